@@ -1,0 +1,20 @@
+//! The pure math kernel of cnets.
+//!
+//! Plain `f64` value types over [`glam::DVec3`]: polylines, planes, line segments, quad-grid meshes and
+//! general polygon meshes, plus (in later modules) the cone-net construction itself. Nothing here knows
+//! about the node engine, the editor or the GPU: the crate is usable as a library on its own.
+
+pub mod error;
+pub mod line;
+pub mod plane;
+pub mod polygon_mesh;
+pub mod polyline;
+pub mod quad_grid;
+
+pub use error::GeometryError;
+pub use glam::DVec3;
+pub use line::Line;
+pub use plane::Plane;
+pub use polygon_mesh::PolygonMesh;
+pub use polyline::Polyline;
+pub use quad_grid::QuadGrid;

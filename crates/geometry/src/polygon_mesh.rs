@@ -1,0 +1,142 @@
+//! General polygon meshes (faces with any number of corners).
+
+use glam::DVec3;
+
+use crate::{GeometryError, QuadGrid};
+
+/// A polygon mesh: shared vertices and faces given as vertex-index loops, stored flat.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PolygonMesh {
+    /// Vertex positions.
+    pub vertices: Vec<DVec3>,
+    /// All face corner indices, face after face.
+    pub indices: Vec<u32>,
+    /// Start of each face in `indices`; face k spans `face_starts[k]..face_starts[k + 1]` (or the end).
+    pub face_starts: Vec<u32>,
+}
+
+impl PolygonMesh {
+    /// An empty mesh.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Builds a mesh from vertices and faces, validating indices and face sizes.
+    pub fn from_faces(vertices: Vec<DVec3>, faces: &[Vec<u32>]) -> Result<Self, GeometryError> {
+        let mut mesh = Self { vertices, ..Self::default() };
+        for face in faces {
+            mesh.push_face(face)?;
+        }
+        Ok(mesh)
+    }
+
+    /// Appends a vertex and returns its index.
+    pub fn push_vertex(&mut self, p: DVec3) -> u32 {
+        self.vertices.push(p);
+        (self.vertices.len() - 1) as u32
+    }
+
+    /// Appends a face (≥ 3 valid vertex indices).
+    pub fn push_face(&mut self, face: &[u32]) -> Result<(), GeometryError> {
+        let k = self.face_starts.len();
+        if face.len() < 3 {
+            return Err(GeometryError::InvalidFace { face: k, reason: format!("{} corners", face.len()) });
+        }
+        if let Some(bad) = face.iter().find(|&&v| v as usize >= self.vertices.len()) {
+            return Err(GeometryError::InvalidFace {
+                face: k,
+                reason: format!("vertex {bad} does not exist ({} vertices)", self.vertices.len()),
+            });
+        }
+        self.face_starts.push(self.indices.len() as u32);
+        self.indices.extend_from_slice(face);
+        Ok(())
+    }
+
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.face_starts.len()
+    }
+
+    /// Corner indices of face `k`.
+    pub fn face(&self, k: usize) -> &[u32] {
+        let start = self.face_starts[k] as usize;
+        let end = self.face_starts.get(k + 1).map_or(self.indices.len(), |&e| e as usize);
+        &self.indices[start..end]
+    }
+
+    /// Iterator over faces as index slices.
+    pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        (0..self.face_count()).map(|k| self.face(k))
+    }
+
+    /// Checks that every face has ≥ 3 corners and valid indices and the starts are increasing.
+    pub fn validate(&self) -> Result<(), GeometryError> {
+        let n = self.vertices.len();
+        for k in 0..self.face_count() {
+            let start = self.face_starts[k] as usize;
+            let end = self.face_starts.get(k + 1).map_or(self.indices.len(), |&e| e as usize);
+            if end < start + 3 || end > self.indices.len() {
+                return Err(GeometryError::InvalidFace { face: k, reason: "fewer than 3 corners".into() });
+            }
+            if let Some(bad) = self.indices[start..end].iter().find(|&&v| v as usize >= n) {
+                return Err(GeometryError::InvalidFace {
+                    face: k,
+                    reason: format!("vertex {bad} does not exist ({n} vertices)"),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Appends all vertices and faces of `other`.
+    pub fn append(&mut self, other: &PolygonMesh) {
+        let offset = self.vertices.len() as u32;
+        let index_offset = self.indices.len() as u32;
+        self.vertices.extend_from_slice(&other.vertices);
+        self.indices.extend(other.indices.iter().map(|&v| v + offset));
+        self.face_starts.extend(other.face_starts.iter().map(|&s| s + index_offset));
+    }
+}
+
+impl From<&QuadGrid> for PolygonMesh {
+    fn from(grid: &QuadGrid) -> Self {
+        let mut mesh = PolygonMesh {
+            vertices: grid.vertices.clone(),
+            indices: Vec::with_capacity(grid.quad_count() * 4),
+            face_starts: Vec::with_capacity(grid.quad_count()),
+        };
+        for i in 0..grid.quad_rows() {
+            for j in 0..grid.quad_cols() {
+                mesh.face_starts.push(mesh.indices.len() as u32);
+                mesh.indices.extend(grid.quad_indices(i, j).map(|k| k as u32));
+            }
+        }
+        mesh
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quad_grid_converts_to_quads_and_appends() {
+        let g = QuadGrid::new(2, 3, (0..6).map(|k| DVec3::splat(k as f64)).collect()).unwrap();
+        let m = PolygonMesh::from(&g);
+        assert_eq!(m.face_count(), 2);
+        assert_eq!(m.face(1), &[1, 2, 5, 4]);
+        let mut two = m.clone();
+        two.append(&m);
+        assert_eq!(two.face_count(), 4);
+        assert_eq!(two.face(3), &[7, 8, 11, 10]);
+        two.validate().unwrap();
+    }
+
+    #[test]
+    fn bad_faces_are_rejected() {
+        let mut m = PolygonMesh::from_faces(vec![DVec3::ZERO; 3], &[vec![0, 1, 2]]).unwrap();
+        assert!(m.push_face(&[0, 1]).is_err());
+        assert!(m.push_face(&[0, 1, 9]).is_err());
+    }
+}
