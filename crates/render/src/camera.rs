@@ -1,0 +1,371 @@
+//! The orbit camera: Z up (as in Rhino), perspective projection with reverse-Z depth.
+//!
+//! The eye sits at `target + distance · (cos pitch cos yaw, cos pitch sin yaw, sin pitch)`; yaw turns
+//! around the Z axis, pitch lifts the eye above the XY plane (±90° looks straight down/up, which is
+//! fine: the camera's up vector is derived from yaw and pitch, never from a fixed world axis).
+//!
+//! The projection is an infinite-far, reverse-Z perspective (`near` maps to depth 1, infinity to 0),
+//! which keeps `Depth32Float` precise over any scene size; `near` follows the orbit distance.
+
+use std::f32::consts::{FRAC_PI_2, FRAC_PI_4};
+use std::fmt;
+use std::str::FromStr;
+
+use glam::camera::rh;
+use glam::{Mat4, Vec3};
+
+use crate::scene::Bounds;
+
+/// A preset viewing direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum View {
+    /// Isometric, from the south-east and above (+X, −Y, +Z), like Rhino's SE isometric.
+    #[default]
+    Iso,
+    /// From above, looking down −Z: X to the right, Y up on screen.
+    Top,
+    /// From the front (−Y), looking along +Y: X to the right, Z up.
+    Front,
+    /// From the right side (+X), looking along −X: Y to the right, Z up.
+    Side,
+}
+
+impl View {
+    /// All presets.
+    pub const ALL: [View; 4] = [View::Iso, View::Top, View::Front, View::Side];
+
+    /// `(yaw, pitch)` in radians of the preset.
+    pub fn angles(self) -> (f32, f32) {
+        match self {
+            // True isometric elevation: atan(1/√2) ≈ 35.26°.
+            View::Iso => (-FRAC_PI_4, (1.0f32 / 2.0f32.sqrt()).atan()),
+            View::Top => (-FRAC_PI_2, FRAC_PI_2),
+            View::Front => (-FRAC_PI_2, 0.0),
+            View::Side => (0.0, 0.0),
+        }
+    }
+
+    /// The lower-case name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            View::Iso => "iso",
+            View::Top => "top",
+            View::Front => "front",
+            View::Side => "side",
+        }
+    }
+}
+
+impl fmt::Display for View {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Error of parsing a [`View`].
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown view {0:?} (expected iso, top, front or side)")]
+pub struct ParseViewError(pub String);
+
+impl FromStr for View {
+    type Err = ParseViewError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "iso" => Ok(View::Iso),
+            "top" => Ok(View::Top),
+            "front" => Ok(View::Front),
+            "side" | "right" => Ok(View::Side),
+            _ => Err(ParseViewError(s.to_string())),
+        }
+    }
+}
+
+/// Margin kept around a fitted box, as a fraction of the half field of view.
+const FIT_MARGIN: f32 = 0.92;
+/// Smallest orbit distance, relative to nothing (absolute world units); keeps matrices invertible.
+const MIN_DISTANCE: f32 = 1e-6;
+/// Near plane as a fraction of the orbit distance.
+const NEAR_FRACTION: f32 = 1e-3;
+
+/// An orbit camera around `target`. See the module docs for the conventions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// The point orbited around and looked at.
+    pub target: Vec3,
+    /// Angle around +Z in radians (0: eye on +X).
+    pub yaw: f32,
+    /// Elevation in radians, within `-π/2..=π/2`.
+    pub pitch: f32,
+    /// Eye-to-target distance (> 0).
+    pub distance: f32,
+    /// Vertical field of view in radians.
+    pub fov_y: f32,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        let (yaw, pitch) = View::Iso.angles();
+        Self {
+            target: Vec3::ZERO,
+            yaw,
+            pitch,
+            distance: 10.0,
+            fov_y: 40f32.to_radians(),
+        }
+    }
+}
+
+impl Camera {
+    /// The default camera turned to a preset view.
+    pub fn new(view: View) -> Self {
+        let mut c = Self::default();
+        c.set_view(view);
+        c
+    }
+
+    /// A camera looking from `view` that frames `bounds` at the given aspect ratio (width / height).
+    pub fn framing(view: View, bounds: Option<Bounds>, aspect: f32) -> Self {
+        let mut c = Self::new(view);
+        c.fit(bounds, aspect);
+        c
+    }
+
+    /// A camera looking from `view` that frames everything in `scene` tightly.
+    pub fn framing_scene(view: View, scene: &crate::Scene, aspect: f32) -> Self {
+        let mut c = Self::new(view);
+        c.fit_scene(scene, aspect);
+        c
+    }
+
+    /// Turns to a preset view, keeping target and distance.
+    pub fn set_view(&mut self, view: View) {
+        (self.yaw, self.pitch) = view.angles();
+    }
+
+    /// Unit vector from the target towards the eye.
+    pub fn back(&self) -> Vec3 {
+        let (sy, cy) = self.yaw.sin_cos();
+        let (sp, cp) = self.pitch.sin_cos();
+        Vec3::new(cp * cy, cp * sy, sp)
+    }
+
+    /// Unit view direction (from the eye towards the target).
+    pub fn forward(&self) -> Vec3 {
+        -self.back()
+    }
+
+    /// Unit up vector of the image (orthogonal to the view direction; +Z-ish unless looking along Z).
+    pub fn up(&self) -> Vec3 {
+        let (sy, cy) = self.yaw.sin_cos();
+        let (sp, cp) = self.pitch.sin_cos();
+        Vec3::new(-sp * cy, -sp * sy, cp)
+    }
+
+    /// Unit right vector of the image.
+    pub fn right(&self) -> Vec3 {
+        self.forward().cross(self.up())
+    }
+
+    /// Eye position.
+    pub fn eye(&self) -> Vec3 {
+        self.target + self.back() * self.distance()
+    }
+
+    /// The orbit distance, made safe (finite and positive).
+    fn distance(&self) -> f32 {
+        if self.distance.is_finite() {
+            self.distance.max(MIN_DISTANCE)
+        } else {
+            10.0
+        }
+    }
+
+    /// The vertical field of view, made safe (1°..=170°).
+    fn fov(&self) -> f32 {
+        if self.fov_y.is_finite() {
+            self.fov_y.clamp(1f32.to_radians(), 170f32.to_radians())
+        } else {
+            0.7
+        }
+    }
+
+    /// Half the horizontal and vertical field of view (radians) for an aspect ratio.
+    fn half_fovs(&self, aspect: f32) -> (f32, f32) {
+        let ty = (self.fov() * 0.5).tan();
+        let tx = ty * safe_aspect(aspect);
+        (tx.atan(), ty.atan())
+    }
+
+    /// World-to-view matrix (right-handed, looking along −Z in view space).
+    pub fn view_matrix(&self) -> Mat4 {
+        rh::view::look_at_mat4(self.eye(), self.target, self.up())
+    }
+
+    /// Projection matrix: infinite reverse-Z perspective (depth 1 at the near plane, 0 at infinity).
+    pub fn projection_matrix(&self, aspect: f32) -> Mat4 {
+        // wgpu's NDC is DirectX-like: z in 0..1, y up.
+        rh::proj::directx::perspective_infinite_reverse(
+            self.fov(),
+            safe_aspect(aspect),
+            self.near(),
+        )
+    }
+
+    /// Near plane distance.
+    pub fn near(&self) -> f32 {
+        self.distance() * NEAR_FRACTION
+    }
+
+    /// `projection × view`.
+    pub fn view_projection(&self, aspect: f32) -> Mat4 {
+        self.projection_matrix(aspect) * self.view_matrix()
+    }
+
+    /// Moves target and distance so the whole box is visible from the current direction, with a
+    /// small margin. Empty bounds (`None`) frame the unit cube around the origin; a box of (almost)
+    /// zero size, e.g. a single point, is padded to a small cube around it first.
+    pub fn fit(&mut self, bounds: Option<Bounds>, aspect: f32) {
+        let b = padded(bounds);
+        self.fit_points_inner(&b.corners(), b, aspect);
+    }
+
+    /// Like [`Camera::fit`] but frames the given points tightly (a box's corners usually project
+    /// wider than the geometry inside it). Non-finite points are ignored; no finite point frames
+    /// the unit cube around the origin.
+    pub fn fit_points(&mut self, points: &[Vec3], aspect: f32) {
+        let bounds = Bounds::from_points(points.iter().copied());
+        let b = padded(bounds);
+        match bounds {
+            Some(raw) if raw.size().max_element() >= b.size().max_element() * 0.999 => {
+                self.fit_points_inner(points, b, aspect)
+            }
+            // Degenerate: frame the padded box instead.
+            _ => self.fit_points_inner(&b.corners(), b, aspect),
+        }
+    }
+
+    /// Frames everything drawn in `scene` tightly ([`Camera::fit_points`] over all its vertices).
+    pub fn fit_scene(&mut self, scene: &crate::Scene, aspect: f32) {
+        let points: Vec<Vec3> = scene.positions().collect();
+        self.fit_points(&points, aspect);
+    }
+
+    fn fit_points_inner(&mut self, points: &[Vec3], b: Bounds, aspect: f32) {
+        let (hx, hy) = self.half_fovs(aspect);
+        let (tx, ty) = (hx.tan() * FIT_MARGIN, hy.tan() * FIT_MARGIN);
+        let (right, up, back) = (self.right(), self.up(), self.back());
+        let radius = b.radius();
+        let mut center = b.center();
+        let mut d = 0.0;
+        // A few rounds of: distance that fits every point around `center`, then shift `center` so
+        // the image of the points is centred. Converges quickly; the last round only sets distance.
+        for round in 0..4 {
+            // Point p at image coordinates (x, y), offset z towards the eye, is inside the view at
+            // distance d when |x| <= tx (d - z) and |y| <= ty (d - z).
+            d = 0.0f32;
+            let mut z_max = f32::NEG_INFINITY;
+            for p in points.iter().filter(|p| p.is_finite()) {
+                let c = *p - center;
+                let (x, y, z) = (c.dot(right), c.dot(up), c.dot(back));
+                d = d.max(z + x.abs() / tx).max(z + y.abs() / ty);
+                z_max = z_max.max(z);
+            }
+            // Keep the near plane (a thousandth of d) well clear of the geometry.
+            d = d
+                .max(z_max + 0.05 * radius)
+                .max(radius * 0.05)
+                .max(MIN_DISTANCE);
+            if round == 3 {
+                break;
+            }
+            let (mut lo, mut hi) = (
+                glam::Vec2::splat(f32::INFINITY),
+                glam::Vec2::splat(f32::NEG_INFINITY),
+            );
+            for p in points.iter().filter(|p| p.is_finite()) {
+                let c = *p - center;
+                let depth = d - c.dot(back);
+                let ndc = glam::Vec2::new(c.dot(right) / (tx * depth), c.dot(up) / (ty * depth));
+                lo = lo.min(ndc);
+                hi = hi.max(ndc);
+            }
+            let mid = (lo + hi) * 0.5;
+            if !mid.is_finite() || mid.length() < 1e-4 {
+                break;
+            }
+            center += (right * mid.x * tx + up * mid.y * ty) * d;
+        }
+        self.target = center;
+        self.distance = d;
+    }
+
+    /// Turns the eye around the target by `d_yaw` and `d_pitch` radians (pitch clamped to ±90°).
+    /// The target and the distance stay.
+    pub fn orbit(&mut self, d_yaw: f32, d_pitch: f32) {
+        if d_yaw.is_finite() {
+            self.yaw = (self.yaw + d_yaw).rem_euclid(std::f32::consts::TAU);
+        }
+        if d_pitch.is_finite() {
+            self.pitch = (self.pitch + d_pitch).clamp(-FRAC_PI_2, FRAC_PI_2);
+        }
+    }
+
+    /// Moves the target (and the eye with it) in the image plane by a mouse drag of `dx, dy`
+    /// pixels in a viewport `viewport_height` pixels tall: the point under the cursor at the
+    /// target's depth follows the cursor. Positive `dy` is downwards, as in screen coordinates.
+    pub fn pan(&mut self, dx: f32, dy: f32, viewport_height: f32) {
+        if !(dx.is_finite() && dy.is_finite() && viewport_height > 0.0) {
+            return;
+        }
+        let world_per_px = 2.0 * self.distance() * (self.fov() * 0.5).tan() / viewport_height;
+        self.target += (-dx * self.right() + dy * self.up()) * world_per_px;
+    }
+
+    /// Multiplies the distance by `factor` (< 1 zooms in); the target stays.
+    pub fn zoom(&mut self, factor: f32) {
+        if factor.is_finite() && factor > 0.0 {
+            self.distance = (self.distance() * factor).max(MIN_DISTANCE);
+        }
+    }
+
+    /// Projects a world point to normalized device coordinates `(x, y, depth)`; `None` when it is
+    /// behind the eye. Inside the view means x, y in `-1..=1` and depth in `0..=1`.
+    pub fn project(&self, p: Vec3, aspect: f32) -> Option<Vec3> {
+        let clip = self.view_projection(aspect) * p.extend(1.0);
+        (clip.w > 0.0).then(|| clip.truncate() / clip.w)
+    }
+}
+
+/// The box to frame: the unit cube for none, padded to a small cube when (almost) degenerate.
+fn padded(bounds: Option<Bounds>) -> Bounds {
+    let b = match bounds {
+        Some(b) if b.min.is_finite() && b.max.is_finite() => b,
+        _ => return Bounds::new(Vec3::splat(-0.5), Vec3::splat(0.5)),
+    };
+    let extent = b.size().max_element();
+    let scale = b.min.abs().max(b.max.abs()).max_element();
+    // Below this size f32 cannot resolve the geometry anyway; pad to a visible cube.
+    let min_extent = (scale * 1e-4).max(1e-3);
+    if extent >= min_extent {
+        return b;
+    }
+    let half = 0.5
+        * if extent > 0.0 {
+            min_extent
+        } else {
+            min_extent.max(1.0)
+        };
+    Bounds::new(
+        b.center() - Vec3::splat(half),
+        b.center() + Vec3::splat(half),
+    )
+}
+
+fn safe_aspect(aspect: f32) -> f32 {
+    if aspect.is_finite() && aspect > 0.0 {
+        aspect.clamp(1e-3, 1e3)
+    } else {
+        1.0
+    }
+}

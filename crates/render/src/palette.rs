@@ -1,0 +1,307 @@
+//! Colours and colour maps: the default look, a perceptual sequential map for planarity values and
+//! fixed, distinguishable colours for the four configuration classes of a cone-net.
+//!
+//! All colours are sRGB-encoded 8-bit RGBA ([`Color`]); the renderer lights them in linear space and
+//! writes sRGB-encoded values again, so what you pick is what you see on a flat, facing surface.
+
+use std::fmt;
+use std::str::FromStr;
+
+use bytemuck::{Pod, Zeroable};
+
+/// An sRGB-encoded RGBA colour, 8 bits per channel (alpha 255 = opaque).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Pod, Zeroable)]
+pub struct Color(pub [u8; 4]);
+
+impl Color {
+    /// Opaque white.
+    pub const WHITE: Color = Color::rgb(255, 255, 255);
+    /// Opaque black.
+    pub const BLACK: Color = Color::rgb(0, 0, 0);
+
+    /// An opaque colour from sRGB bytes.
+    pub const fn rgb(r: u8, g: u8, b: u8) -> Self {
+        Self([r, g, b, 255])
+    }
+
+    /// A colour from sRGB bytes and alpha.
+    pub const fn rgba(r: u8, g: u8, b: u8, a: u8) -> Self {
+        Self([r, g, b, a])
+    }
+
+    /// An opaque colour from `0xRRGGBB`.
+    pub const fn hex(rgb: u32) -> Self {
+        Self::rgb((rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8)
+    }
+
+    /// The same colour with another alpha.
+    pub const fn with_alpha(self, a: u8) -> Self {
+        Self([self.0[0], self.0[1], self.0[2], a])
+    }
+
+    /// Channels as `0..=1` floats (still sRGB-encoded).
+    pub fn to_f32(self) -> [f32; 4] {
+        self.0.map(|c| f32::from(c) / 255.0)
+    }
+
+    /// A colour from `0..=1` sRGB-encoded floats (clamped; NaN becomes 0).
+    pub fn from_f32(rgba: [f32; 4]) -> Self {
+        Self(rgba.map(|c| {
+            let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
+            (c * 255.0).round() as u8
+        }))
+    }
+
+    /// Channel-wise linear interpolation in sRGB space (`t` clamped to `0..=1`).
+    pub fn lerp(self, other: Color, t: f32) -> Self {
+        let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+        let (a, b) = (self.to_f32(), other.to_f32());
+        Self::from_f32([0, 1, 2, 3].map(|k| a[k] + (b[k] - a[k]) * t))
+    }
+
+    /// The colour as `wgpu::Color` with sRGB-encoded components, as clear colour of a `*Unorm` target.
+    pub fn to_wgpu(self) -> wgpu::Color {
+        let [r, g, b, a] = self.to_f32().map(f64::from);
+        wgpu::Color { r, g, b, a }
+    }
+}
+
+/// Default viewport background: a light, neutral grey.
+pub const BACKGROUND: Color = Color::hex(0xeceef1);
+/// Default surface colour: a light blue-grey that shades well under the headlight.
+pub const SURFACE: Color = Color::hex(0xb8c6d6);
+/// Default colour of mesh edges (slightly translucent, so dense meshes do not turn black).
+pub const EDGE: Color = Color::hex(0x1e232b).with_alpha(150);
+/// Default colour of polylines and segments.
+pub const LINE: Color = Color::hex(0x1f5fbf);
+/// Default colour of point markers.
+pub const POINT: Color = Color::hex(0xd0312d);
+/// Colour used for values that cannot be mapped (NaN).
+pub const INVALID: Color = Color::hex(0xff00ff);
+
+/// The configuration class of a cone-net quad strip pair: the signs of the two cone parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ConfigClass {
+    /// "++": the regular, clean configuration.
+    PlusPlus,
+    /// "--": both signs flipped.
+    MinusMinus,
+    /// "+-": mixed signs.
+    PlusMinus,
+    /// "-+": mixed signs, the other way round.
+    MinusPlus,
+}
+
+impl ConfigClass {
+    /// All four classes, in legend order.
+    pub const ALL: [ConfigClass; 4] = [
+        ConfigClass::PlusPlus,
+        ConfigClass::MinusMinus,
+        ConfigClass::PlusMinus,
+        ConfigClass::MinusPlus,
+    ];
+
+    /// The short label: "++", "--", "+-" or "-+".
+    pub fn label(self) -> &'static str {
+        match self {
+            ConfigClass::PlusPlus => "++",
+            ConfigClass::MinusMinus => "--",
+            ConfigClass::PlusMinus => "+-",
+            ConfigClass::MinusPlus => "-+",
+        }
+    }
+
+    /// The fixed colour of the class: ++ calm blue, -- red, +- orange, -+ purple.
+    pub fn color(self) -> Color {
+        match self {
+            ConfigClass::PlusPlus => Color::hex(0x8fb4d9),
+            ConfigClass::MinusMinus => Color::hex(0xd62f2f),
+            ConfigClass::PlusMinus => Color::hex(0xf28e1c),
+            ConfigClass::MinusPlus => Color::hex(0x8e5cc4),
+        }
+    }
+}
+
+impl fmt::Display for ConfigClass {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.label())
+    }
+}
+
+/// Error of parsing a [`ConfigClass`] from text.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown configuration class {0:?} (expected ++, --, +- or -+)")]
+pub struct ParseClassError(pub String);
+
+impl FromStr for ConfigClass {
+    type Err = ParseClassError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim() {
+            "++" => Ok(ConfigClass::PlusPlus),
+            "--" => Ok(ConfigClass::MinusMinus),
+            "+-" => Ok(ConfigClass::PlusMinus),
+            "-+" => Ok(ConfigClass::MinusPlus),
+            other => Err(ParseClassError(other.to_string())),
+        }
+    }
+}
+
+/// Viridis (matplotlib) sampled at 0, 0.1, …, 1; interpolated linearly in between.
+const VIRIDIS: [u32; 11] = [
+    0x440154, 0x482475, 0x414487, 0x355f8d, 0x2a788e, 0x21918c, 0x22a884, 0x44bf70, 0x7ad151,
+    0xbddf26, 0xfde725,
+];
+
+/// The perceptual sequential map (viridis) at `t` in `0..=1` (clamped; NaN gives [`INVALID`]).
+pub fn viridis(t: f32) -> Color {
+    if t.is_nan() {
+        return INVALID;
+    }
+    let x = t.clamp(0.0, 1.0) * (VIRIDIS.len() - 1) as f32;
+    let k = (x.floor() as usize).min(VIRIDIS.len() - 2);
+    Color::hex(VIRIDIS[k]).lerp(Color::hex(VIRIDIS[k + 1]), x - k as f32)
+}
+
+/// A sequential colour map over a value range (e.g. planarity), with the description of its legend.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SequentialMap {
+    /// Value mapped to the first colour.
+    pub min: f64,
+    /// Value mapped to the last colour.
+    pub max: f64,
+}
+
+impl SequentialMap {
+    /// A map over `min..=max` (swapped if given the wrong way round).
+    pub fn new(min: f64, max: f64) -> Self {
+        if min <= max {
+            Self { min, max }
+        } else {
+            Self { min: max, max: min }
+        }
+    }
+
+    /// A map over the finite values of `values` (`0..=1` when there are none).
+    pub fn fit(values: &[f64]) -> Self {
+        let (lo, hi) = values
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            });
+        if lo > hi {
+            Self::new(0.0, 1.0)
+        } else {
+            Self::new(lo, hi)
+        }
+    }
+
+    /// Position of `value` in the range, `0..=1` (0.5 for an empty range; NaN stays NaN).
+    pub fn normalize(&self, value: f64) -> f32 {
+        let span = self.max - self.min;
+        if value.is_nan() {
+            f32::NAN
+        } else if span <= 0.0 || !span.is_finite() {
+            0.5
+        } else {
+            (((value - self.min) / span).clamp(0.0, 1.0)) as f32
+        }
+    }
+
+    /// The colour of one value (NaN gives [`INVALID`]).
+    pub fn color(&self, value: f64) -> Color {
+        viridis(self.normalize(value))
+    }
+
+    /// One colour per value, e.g. per-face colours for [`crate::FaceColors::PerFace`].
+    pub fn colors(&self, values: &[f64]) -> Vec<Color> {
+        values.iter().map(|&v| self.color(v)).collect()
+    }
+
+    /// The legend: the range and `stops` evenly spaced colour stops from min to max.
+    pub fn legend(&self, title: &str, stops: usize) -> Legend {
+        let n = stops.max(2);
+        Legend {
+            title: title.to_string(),
+            min: self.min,
+            max: self.max,
+            stops: (0..n)
+                .map(|k| {
+                    let t = k as f32 / (n - 1) as f32;
+                    (self.min + (self.max - self.min) * f64::from(t), viridis(t))
+                })
+                .collect(),
+        }
+    }
+}
+
+/// What a colour legend shows: a title, the value range and colour stops from min to max.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Legend {
+    /// E.g. "planarity".
+    pub title: String,
+    /// Value at the bottom of the scale.
+    pub min: f64,
+    /// Value at the top of the scale.
+    pub max: f64,
+    /// `(value, colour)` pairs from min to max.
+    pub stops: Vec<(f64, Color)>,
+}
+
+/// The legend of the configuration classes: label and colour of each.
+pub fn class_legend() -> [(&'static str, Color); 4] {
+    ConfigClass::ALL.map(|c| (c.label(), c.color()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn viridis_ends_and_monotone_lightness() {
+        assert_eq!(viridis(0.0), Color::hex(0x440154));
+        assert_eq!(viridis(1.0), Color::hex(0xfde725));
+        assert_eq!(viridis(-3.0), viridis(0.0));
+        assert_eq!(viridis(f32::NAN), INVALID);
+        // Perceptual map: luma increases along the map.
+        let luma = |c: Color| {
+            let [r, g, b, _] = c.to_f32();
+            0.2126 * r + 0.7152 * g + 0.0722 * b
+        };
+        let l: Vec<f32> = (0..=20).map(|k| luma(viridis(k as f32 / 20.0))).collect();
+        assert!(l.windows(2).all(|w| w[1] > w[0]), "{l:?}");
+    }
+
+    #[test]
+    fn sequential_map_range_and_legend() {
+        let m = SequentialMap::fit(&[3.0, f64::NAN, 1.0, 2.0]);
+        assert_eq!((m.min, m.max), (1.0, 3.0));
+        assert_eq!(m.normalize(2.0), 0.5);
+        assert_eq!(m.color(1.0), viridis(0.0));
+        assert_eq!(m.color(99.0), viridis(1.0));
+        assert_eq!(SequentialMap::new(5.0, 5.0).normalize(5.0), 0.5);
+        let legend = m.legend("planarity", 5);
+        assert_eq!(legend.stops.len(), 5);
+        assert_eq!(legend.stops[4], (3.0, viridis(1.0)));
+        assert_eq!(SequentialMap::fit(&[]).max, 1.0);
+    }
+
+    #[test]
+    fn classes_parse_and_are_distinct() {
+        for c in ConfigClass::ALL {
+            assert_eq!(c.label().parse::<ConfigClass>().unwrap(), c);
+        }
+        assert!("+".parse::<ConfigClass>().is_err());
+        let colors = ConfigClass::ALL.map(ConfigClass::color);
+        for i in 0..4 {
+            for j in i + 1..4 {
+                let d: i32 = (0..3)
+                    .map(|k| (i32::from(colors[i].0[k]) - i32::from(colors[j].0[k])).abs())
+                    .sum();
+                assert!(d > 120, "classes {i} and {j} too similar");
+            }
+        }
+    }
+}

@@ -1,0 +1,789 @@
+//! The scene: a plain, GPU-ready description of what the viewport shows.
+//!
+//! A [`Scene`] holds flat `f32` buffers that are uploaded as they are: face vertices (position, face
+//! normal, colour; one copy per face corner so faces are flat-shaded and coloured per face) with
+//! triangle indices (polygons fanned), line segments (mesh edges, polylines, segments) and point
+//! markers. Building one is linear in the input and reuses its allocations after [`Scene::clear`], so
+//! the editor can rebuild it on every slider change.
+//!
+//! Non-finite input (NaN or infinite coordinates, or values too large for `f32`) is skipped, never
+//! uploaded: a face with such a corner, a segment with such an end, a point. [`Scene::skipped`] counts
+//! what was left out.
+
+use bytemuck::{Pod, Zeroable};
+use cnets_geometry::{DVec3, Line, PolygonMesh, Polyline, QuadGrid};
+use glam::Vec3;
+
+use crate::RenderError;
+use crate::palette::{self, Color};
+
+/// Bit of [`Segment::flags`] / [`PointInstance::flags`]: draw over everything (no depth test).
+pub const FLAG_ON_TOP: u32 = 1;
+/// Bit of [`PointInstance::flags`]: draw a disc instead of a square.
+pub const FLAG_DISC: u32 = 2;
+
+/// One corner of a face as uploaded to the GPU.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct FaceVertex {
+    /// World position.
+    pub position: [f32; 3],
+    /// Unit normal of the face (zero for a degenerate face).
+    pub normal: [f32; 3],
+    /// Face colour.
+    pub color: Color,
+}
+
+/// One line segment, drawn as a screen-space quad of `width` pixels.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct Segment {
+    /// First end (world).
+    pub a: [f32; 3],
+    /// Second end (world).
+    pub b: [f32; 3],
+    /// Colour.
+    pub color: Color,
+    /// Width in physical pixels.
+    pub width: f32,
+    /// [`FLAG_ON_TOP`] or 0.
+    pub flags: u32,
+}
+
+/// One point marker, drawn as a screen-facing square or disc of `size` pixels.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct PointInstance {
+    /// World position.
+    pub position: [f32; 3],
+    /// Colour.
+    pub color: Color,
+    /// Side length / diameter in physical pixels.
+    pub size: f32,
+    /// [`FLAG_ON_TOP`] and/or [`FLAG_DISC`].
+    pub flags: u32,
+}
+
+/// An axis-aligned bounding box in `f32` world coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    /// Smallest corner.
+    pub min: Vec3,
+    /// Largest corner.
+    pub max: Vec3,
+}
+
+impl Bounds {
+    /// The box of a single point.
+    pub fn point(p: Vec3) -> Self {
+        Self { min: p, max: p }
+    }
+
+    /// The box from two opposite corners (any order).
+    pub fn new(a: Vec3, b: Vec3) -> Self {
+        Self {
+            min: a.min(b),
+            max: a.max(b),
+        }
+    }
+
+    /// The box of `f64` bounds as returned by the geometry types.
+    pub fn from_f64((lo, hi): (DVec3, DVec3)) -> Self {
+        Self::new(lo.as_vec3(), hi.as_vec3())
+    }
+
+    /// The box of the finite points of an iterator; `None` when there are none.
+    pub fn from_points(points: impl IntoIterator<Item = Vec3>) -> Option<Self> {
+        let mut b: Option<Bounds> = None;
+        for p in points.into_iter().filter(|p| p.is_finite()) {
+            b = Some(b.map_or(Bounds::point(p), |b| b.including(p)));
+        }
+        b
+    }
+
+    /// The box grown to contain `p`.
+    pub fn including(self, p: Vec3) -> Self {
+        Self {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    /// The smallest box containing both.
+    pub fn union(self, other: Bounds) -> Self {
+        Self {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    /// Centre of the box.
+    pub fn center(&self) -> Vec3 {
+        (self.min + self.max) * 0.5
+    }
+
+    /// Edge lengths of the box.
+    pub fn size(&self) -> Vec3 {
+        self.max - self.min
+    }
+
+    /// Half the diagonal: the radius of the sphere around the centre through the corners.
+    pub fn radius(&self) -> f32 {
+        self.size().length() * 0.5
+    }
+
+    /// The eight corners.
+    pub fn corners(&self) -> [Vec3; 8] {
+        let (a, b) = (self.min, self.max);
+        [
+            Vec3::new(a.x, a.y, a.z),
+            Vec3::new(b.x, a.y, a.z),
+            Vec3::new(a.x, b.y, a.z),
+            Vec3::new(b.x, b.y, a.z),
+            Vec3::new(a.x, a.y, b.z),
+            Vec3::new(b.x, a.y, b.z),
+            Vec3::new(a.x, b.y, b.z),
+            Vec3::new(b.x, b.y, b.z),
+        ]
+    }
+
+    /// Whether `p` lies inside or on the box.
+    pub fn contains(&self, p: Vec3) -> bool {
+        p.cmpge(self.min).all() && p.cmple(self.max).all()
+    }
+}
+
+/// How the faces of a mesh are coloured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FaceColors<'a> {
+    /// One colour for every face.
+    Uniform(Color),
+    /// One colour per face, in face order ([`QuadGrid::quads`] order for grids).
+    PerFace(&'a [Color]),
+}
+
+impl Default for FaceColors<'_> {
+    fn default() -> Self {
+        FaceColors::Uniform(palette::SURFACE)
+    }
+}
+
+/// How lines are drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineStyle {
+    /// Colour.
+    pub color: Color,
+    /// Width in physical pixels (at least 1 is drawn).
+    pub width: f32,
+    /// Draw over the surfaces instead of being hidden by them.
+    pub on_top: bool,
+}
+
+impl LineStyle {
+    /// A depth-tested line of the given colour and width.
+    pub fn new(color: Color, width: f32) -> Self {
+        Self {
+            color,
+            width,
+            on_top: false,
+        }
+    }
+
+    /// The same style drawn over everything.
+    pub fn on_top(mut self) -> Self {
+        self.on_top = true;
+        self
+    }
+
+    fn flags(&self) -> u32 {
+        if self.on_top { FLAG_ON_TOP } else { 0 }
+    }
+
+    fn pixel_width(&self) -> f32 {
+        if self.width.is_finite() {
+            self.width.max(1.0)
+        } else {
+            1.0
+        }
+    }
+}
+
+impl Default for LineStyle {
+    fn default() -> Self {
+        Self::new(palette::LINE, 2.0)
+    }
+}
+
+/// Shape of a point marker.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum PointShape {
+    /// A screen-aligned square.
+    Square,
+    /// A round disc.
+    #[default]
+    Disc,
+}
+
+/// How points are drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointStyle {
+    /// Colour.
+    pub color: Color,
+    /// Diameter / side in physical pixels (at least 1 is drawn).
+    pub size: f32,
+    /// Square or disc.
+    pub shape: PointShape,
+    /// Draw over the surfaces instead of being hidden by them.
+    pub on_top: bool,
+}
+
+impl PointStyle {
+    /// A depth-tested disc of the given colour and size.
+    pub fn new(color: Color, size: f32) -> Self {
+        Self {
+            color,
+            size,
+            shape: PointShape::Disc,
+            on_top: false,
+        }
+    }
+
+    /// The same style with another shape.
+    pub fn shape(mut self, shape: PointShape) -> Self {
+        self.shape = shape;
+        self
+    }
+
+    /// The same style drawn over everything.
+    pub fn on_top(mut self) -> Self {
+        self.on_top = true;
+        self
+    }
+}
+
+impl Default for PointStyle {
+    fn default() -> Self {
+        Self::new(palette::POINT, 8.0)
+    }
+}
+
+/// How a mesh is drawn: face colours and optional polygon edges.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshStyle<'a> {
+    /// Face colours.
+    pub faces: FaceColors<'a>,
+    /// Polygon outlines (not the triangle diagonals); `None` draws no edges.
+    pub edges: Option<LineStyle>,
+}
+
+impl<'a> MeshStyle<'a> {
+    /// Faces coloured as given, with the default edges (thin, dark).
+    pub fn new(faces: FaceColors<'a>) -> Self {
+        Self {
+            faces,
+            edges: Some(Self::default_edges()),
+        }
+    }
+
+    /// The default edge style: 1 px, [`palette::EDGE`].
+    pub fn default_edges() -> LineStyle {
+        LineStyle::new(palette::EDGE, 1.0)
+    }
+
+    /// The same style with other edges (`None`: no edges).
+    pub fn edges(mut self, edges: Option<LineStyle>) -> Self {
+        self.edges = edges;
+        self
+    }
+}
+
+impl Default for MeshStyle<'_> {
+    fn default() -> Self {
+        Self::new(FaceColors::default())
+    }
+}
+
+impl<'a> From<FaceColors<'a>> for MeshStyle<'a> {
+    fn from(faces: FaceColors<'a>) -> Self {
+        Self::new(faces)
+    }
+}
+
+/// What one `add_*` call of a mesh put into the scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MeshInfo {
+    /// Faces drawn.
+    pub faces: usize,
+    /// Triangles uploaded for them.
+    pub triangles: usize,
+    /// Edge segments drawn.
+    pub edges: usize,
+    /// Faces left out because a corner was not finite.
+    pub skipped_faces: usize,
+}
+
+/// Counts of what a scene holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneStats {
+    /// Triangles of all faces.
+    pub triangles: usize,
+    /// Line segments (mesh edges, polylines, segments).
+    pub segments: usize,
+    /// Point markers.
+    pub points: usize,
+    /// Items left out because of non-finite coordinates.
+    pub skipped: usize,
+}
+
+/// A renderable scene: GPU-ready buffers plus the background colour. See the module docs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// Background (clear) colour of the image.
+    pub background: Color,
+    face_vertices: Vec<FaceVertex>,
+    face_indices: Vec<u32>,
+    segments: Vec<Segment>,
+    points: Vec<PointInstance>,
+    bounds: Option<Bounds>,
+    skipped: usize,
+    /// Scratch: a mesh's vertices converted to f32 (NaN where not representable).
+    scratch: Vec<Vec3>,
+    /// Scratch: edge keys of a polygon mesh for de-duplication.
+    edge_keys: Vec<u64>,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// `p` as f32, or `None` when it is not finite in f32.
+#[inline]
+fn to_f32(p: DVec3) -> Option<Vec3> {
+    let v = p.as_vec3();
+    v.is_finite().then_some(v)
+}
+
+impl Scene {
+    /// An empty scene with the default background.
+    pub fn new() -> Self {
+        Self {
+            background: palette::BACKGROUND,
+            face_vertices: Vec::new(),
+            face_indices: Vec::new(),
+            segments: Vec::new(),
+            points: Vec::new(),
+            bounds: None,
+            skipped: 0,
+            scratch: Vec::new(),
+            edge_keys: Vec::new(),
+        }
+    }
+
+    /// The same scene with another background colour.
+    pub fn with_background(mut self, background: Color) -> Self {
+        self.background = background;
+        self
+    }
+
+    /// Removes all content, keeping the background and the allocated capacity.
+    pub fn clear(&mut self) {
+        self.face_vertices.clear();
+        self.face_indices.clear();
+        self.segments.clear();
+        self.points.clear();
+        self.bounds = None;
+        self.skipped = 0;
+    }
+
+    /// True when nothing would be drawn but the background.
+    pub fn is_empty(&self) -> bool {
+        self.face_indices.is_empty() && self.segments.is_empty() && self.points.is_empty()
+    }
+
+    /// Bounding box of everything drawn; `None` for an empty scene.
+    pub fn bounds(&self) -> Option<Bounds> {
+        self.bounds
+    }
+
+    /// Face corners, as uploaded.
+    pub fn face_vertices(&self) -> &[FaceVertex] {
+        &self.face_vertices
+    }
+
+    /// Triangle indices into [`Scene::face_vertices`], three per triangle.
+    pub fn face_indices(&self) -> &[u32] {
+        &self.face_indices
+    }
+
+    /// All line segments (mesh edges, polylines, segments), as uploaded.
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+
+    /// All point markers, as uploaded.
+    pub fn points(&self) -> &[PointInstance] {
+        &self.points
+    }
+
+    /// All drawn positions: face corners, segment ends and points (e.g. for tight framing).
+    pub fn positions(&self) -> impl Iterator<Item = Vec3> + '_ {
+        self.face_vertices
+            .iter()
+            .map(|v| Vec3::from(v.position))
+            .chain(
+                self.segments
+                    .iter()
+                    .flat_map(|s| [Vec3::from(s.a), Vec3::from(s.b)]),
+            )
+            .chain(self.points.iter().map(|p| Vec3::from(p.position)))
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.face_indices.len() / 3
+    }
+
+    /// Number of items left out because of non-finite coordinates.
+    pub fn skipped(&self) -> usize {
+        self.skipped
+    }
+
+    /// Counts of what the scene holds.
+    pub fn stats(&self) -> SceneStats {
+        SceneStats {
+            triangles: self.triangle_count(),
+            segments: self.segments.len(),
+            points: self.points.len(),
+            skipped: self.skipped,
+        }
+    }
+
+    fn grow_bounds(&mut self, lo: Vec3, hi: Vec3) {
+        let b = Bounds { min: lo, max: hi };
+        self.bounds = Some(self.bounds.map_or(b, |old| old.union(b)));
+    }
+
+    /// Adds a quad grid: each quad two triangles, edges along the grid lines (each drawn once).
+    ///
+    /// `style` is a [`MeshStyle`] or just [`FaceColors`] (default edges). Per-face colours follow
+    /// [`QuadGrid::quads`] order. Fails on an inconsistent grid or a wrong number of colours.
+    pub fn add_quad_grid<'a>(
+        &mut self,
+        grid: &QuadGrid,
+        style: impl Into<MeshStyle<'a>>,
+    ) -> Result<MeshInfo, RenderError> {
+        let style = style.into();
+        grid.validate()?;
+        let (qr, qc) = (grid.quad_rows(), grid.quad_cols());
+        let quad_count = qr * qc;
+        check_colors(&style.faces, quad_count)?;
+
+        let mut verts = std::mem::take(&mut self.scratch);
+        verts.clear();
+        verts.extend(
+            grid.vertices
+                .iter()
+                .map(|&p| to_f32(p).unwrap_or(Vec3::NAN)),
+        );
+        let mut info = MeshInfo::default();
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+
+        self.face_vertices.reserve(quad_count * 4);
+        self.face_indices.reserve(quad_count * 6);
+        for i in 0..qr {
+            for j in 0..qc {
+                let idx = grid.quad_indices(i, j);
+                let c = idx.map(|k| verts[k]);
+                let color = match style.faces {
+                    FaceColors::Uniform(c) => c,
+                    FaceColors::PerFace(cs) => cs[i * qc + j],
+                };
+                if !c.iter().all(|p| p.is_finite()) {
+                    info.skipped_faces += 1;
+                    continue;
+                }
+                // Newell normal of a quad: cross product of the diagonals (computed in f64).
+                let p = idx.map(|k| grid.vertices[k]);
+                let n = (p[2] - p[0])
+                    .cross(p[3] - p[1])
+                    .normalize_or_zero()
+                    .as_vec3();
+                let base = self.face_vertices.len() as u32;
+                for q in c {
+                    lo = lo.min(q);
+                    hi = hi.max(q);
+                    self.face_vertices.push(FaceVertex {
+                        position: q.to_array(),
+                        normal: n.to_array(),
+                        color,
+                    });
+                }
+                self.face_indices.extend_from_slice(&[
+                    base,
+                    base + 1,
+                    base + 2,
+                    base,
+                    base + 2,
+                    base + 3,
+                ]);
+                info.faces += 1;
+                info.triangles += 2;
+            }
+        }
+
+        if let Some(edge_style) = style.edges {
+            let (color, width, flags) = (
+                edge_style.color,
+                edge_style.pixel_width(),
+                edge_style.flags(),
+            );
+            let cols = grid.cols;
+            let before = self.segments.len();
+            let push = |a: usize, b: usize, segs: &mut Vec<Segment>| {
+                let (pa, pb) = (verts[a], verts[b]);
+                if pa.is_finite() && pb.is_finite() {
+                    segs.push(Segment {
+                        a: pa.to_array(),
+                        b: pb.to_array(),
+                        color,
+                        width,
+                        flags,
+                    });
+                }
+            };
+            if qr > 0 {
+                for i in 0..grid.rows {
+                    for j in 0..qc {
+                        push(i * cols + j, i * cols + (j + 1) % cols, &mut self.segments);
+                    }
+                }
+            }
+            if qc > 0 {
+                for i in 0..qr {
+                    for j in 0..cols {
+                        push(
+                            i * cols + j,
+                            ((i + 1) % grid.rows) * cols + j,
+                            &mut self.segments,
+                        );
+                    }
+                }
+            }
+            info.edges = self.segments.len() - before;
+            // Edges of skipped faces may still be drawn when both ends are finite: extend bounds.
+            for s in &self.segments[before..] {
+                for q in [Vec3::from(s.a), Vec3::from(s.b)] {
+                    lo = lo.min(q);
+                    hi = hi.max(q);
+                }
+            }
+        }
+        self.scratch = verts;
+        if lo.cmple(hi).all() {
+            self.grow_bounds(lo, hi);
+        }
+        self.skipped += info.skipped_faces;
+        Ok(info)
+    }
+
+    /// Adds a polygon mesh: faces fanned into triangles, edges drawn as the polygon outlines (each
+    /// shared edge once, no triangle diagonals).
+    ///
+    /// Fails on invalid face indices or a wrong number of per-face colours.
+    pub fn add_polygon_mesh<'a>(
+        &mut self,
+        mesh: &PolygonMesh,
+        style: impl Into<MeshStyle<'a>>,
+    ) -> Result<MeshInfo, RenderError> {
+        let style = style.into();
+        mesh.validate()?;
+        check_colors(&style.faces, mesh.face_count())?;
+
+        let mut verts = std::mem::take(&mut self.scratch);
+        verts.clear();
+        verts.extend(
+            mesh.vertices
+                .iter()
+                .map(|&p| to_f32(p).unwrap_or(Vec3::NAN)),
+        );
+        let mut info = MeshInfo::default();
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        let mut keys = std::mem::take(&mut self.edge_keys);
+        keys.clear();
+
+        self.face_vertices.reserve(mesh.indices.len());
+        for (k, face) in mesh.faces().enumerate() {
+            if !face.iter().all(|&v| verts[v as usize].is_finite()) {
+                info.skipped_faces += 1;
+                continue;
+            }
+            let color = match style.faces {
+                FaceColors::Uniform(c) => c,
+                FaceColors::PerFace(cs) => cs[k],
+            };
+            // Newell normal relative to the first corner (f64).
+            let p0 = mesh.vertices[face[0] as usize];
+            let mut n = DVec3::ZERO;
+            for w in 1..face.len() - 1 {
+                let a = mesh.vertices[face[w] as usize] - p0;
+                let b = mesh.vertices[face[w + 1] as usize] - p0;
+                n += a.cross(b);
+            }
+            let n = n.normalize_or_zero().as_vec3().to_array();
+            let base = self.face_vertices.len() as u32;
+            for &v in face {
+                let q = verts[v as usize];
+                lo = lo.min(q);
+                hi = hi.max(q);
+                self.face_vertices.push(FaceVertex {
+                    position: q.to_array(),
+                    normal: n,
+                    color,
+                });
+            }
+            for w in 1..face.len() as u32 - 1 {
+                self.face_indices
+                    .extend_from_slice(&[base, base + w, base + w + 1]);
+            }
+            info.faces += 1;
+            info.triangles += face.len() - 2;
+            if style.edges.is_some() {
+                for w in 0..face.len() {
+                    let (a, b) = (face[w], face[(w + 1) % face.len()]);
+                    let (a, b) = (a.min(b), a.max(b));
+                    if a != b {
+                        keys.push((u64::from(a) << 32) | u64::from(b));
+                    }
+                }
+            }
+        }
+
+        if let Some(edge_style) = style.edges {
+            keys.sort_unstable();
+            keys.dedup();
+            let (color, width, flags) = (
+                edge_style.color,
+                edge_style.pixel_width(),
+                edge_style.flags(),
+            );
+            self.segments.reserve(keys.len());
+            for &key in &keys {
+                let (pa, pb) = (
+                    verts[(key >> 32) as usize],
+                    verts[(key & 0xffff_ffff) as usize],
+                );
+                self.segments.push(Segment {
+                    a: pa.to_array(),
+                    b: pb.to_array(),
+                    color,
+                    width,
+                    flags,
+                });
+            }
+            info.edges = keys.len();
+        }
+        self.scratch = verts;
+        self.edge_keys = keys;
+        if lo.cmple(hi).all() {
+            self.grow_bounds(lo, hi);
+        }
+        self.skipped += info.skipped_faces;
+        Ok(info)
+    }
+
+    /// Adds the edges of a polyline (including the closing edge of a closed one). Returns the
+    /// number of segments added.
+    pub fn add_polyline(&mut self, polyline: &Polyline, style: LineStyle) -> usize {
+        self.add_segment_iter(polyline.edges(), style)
+    }
+
+    /// Adds line segments. Returns the number of segments added.
+    pub fn add_lines(&mut self, lines: &[Line], style: LineStyle) -> usize {
+        self.add_segment_iter(lines.iter().map(|l| (l.start, l.end)), style)
+    }
+
+    /// Adds segments given as `(start, end)` pairs. Returns the number of segments added.
+    pub fn add_segments(
+        &mut self,
+        segments: impl IntoIterator<Item = (DVec3, DVec3)>,
+        style: LineStyle,
+    ) -> usize {
+        self.add_segment_iter(segments.into_iter(), style)
+    }
+
+    fn add_segment_iter(
+        &mut self,
+        it: impl Iterator<Item = (DVec3, DVec3)>,
+        style: LineStyle,
+    ) -> usize {
+        let (color, width, flags) = (style.color, style.pixel_width(), style.flags());
+        let before = self.segments.len();
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for (a, b) in it {
+            match (to_f32(a), to_f32(b)) {
+                (Some(a), Some(b)) => {
+                    lo = lo.min(a).min(b);
+                    hi = hi.max(a).max(b);
+                    self.segments.push(Segment {
+                        a: a.to_array(),
+                        b: b.to_array(),
+                        color,
+                        width,
+                        flags,
+                    });
+                }
+                _ => self.skipped += 1,
+            }
+        }
+        if lo.cmple(hi).all() {
+            self.grow_bounds(lo, hi);
+        }
+        self.segments.len() - before
+    }
+
+    /// Adds point markers (e.g. cone apices). Returns the number of points added.
+    pub fn add_points(&mut self, points: &[DVec3], style: PointStyle) -> usize {
+        let size = if style.size.is_finite() {
+            style.size.max(1.0)
+        } else {
+            1.0
+        };
+        let mut flags = if style.on_top { FLAG_ON_TOP } else { 0 };
+        if style.shape == PointShape::Disc {
+            flags |= FLAG_DISC;
+        }
+        let before = self.points.len();
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for &p in points {
+            match to_f32(p) {
+                Some(q) => {
+                    lo = lo.min(q);
+                    hi = hi.max(q);
+                    self.points.push(PointInstance {
+                        position: q.to_array(),
+                        color: style.color,
+                        size,
+                        flags,
+                    });
+                }
+                None => self.skipped += 1,
+            }
+        }
+        if lo.cmple(hi).all() {
+            self.grow_bounds(lo, hi);
+        }
+        self.points.len() - before
+    }
+}
+
+fn check_colors(colors: &FaceColors<'_>, faces: usize) -> Result<(), RenderError> {
+    match colors {
+        FaceColors::PerFace(cs) if cs.len() != faces => Err(RenderError::ColorCount {
+            expected: faces,
+            got: cs.len(),
+        }),
+        _ => Ok(()),
+    }
+}
