@@ -1,1 +1,33 @@
-//! placeholder
+//! The cnets dataflow engine.
+//!
+//! - [`value`]: the typed value model ([`Value`], [`ValueType`]) and its JSON encoding.
+//! - [`kinds`], [`node`], [`node!`]: declaring node types; [`Registry`]: looking them up.
+//! - [`graph`]: the graph document (petgraph), edited through validated operations.
+//! - [`file`]: versioned RON graph files with located diagnostics and atomic saves.
+//! - [`eval`]: incremental, pull-based evaluation with early cutoff.
+
+pub mod atomic;
+pub mod convert;
+pub mod eval;
+pub mod file;
+pub mod graph;
+pub mod kinds;
+pub mod node;
+mod node_macro;
+pub mod registry;
+pub mod value;
+
+pub use eval::{EvalSummary, Evaluator, NodeOutputs, NodeResult};
+pub use graph::{Graph, GraphError, NodeInstance, Revision, WireRef};
+pub use kinds::{IntoPort, PortKind};
+pub use node::{NodeContext, NodeDef, NodeError, NodeFlag, PortDef};
+pub use registry::Registry;
+pub use value::{Access, Record, Value, ValueType};
+
+/// What node modules usually import.
+pub mod prelude {
+    pub use crate::kinds as k;
+    pub use crate::node;
+    pub use crate::{NodeContext, NodeDef, NodeError, Record, Value};
+    pub use cnets_geometry::{DVec3, Line, Plane, PolygonMesh, Polyline, QuadGrid};
+}

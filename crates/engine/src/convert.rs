@@ -1,0 +1,160 @@
+//! Implicit conversions of values into port types, and list depth relative to a port.
+
+use std::sync::Arc;
+
+use cnets_geometry::{PolygonMesh, Polyline};
+
+use crate::value::{Access, Value, ValueType};
+
+/// Converts one item to the item type `ty`, using only the implicit conversions of
+/// [`ValueType::converts_to`]. `Null` passes through (the node decides whether it may be empty).
+pub fn coerce_item(v: &Value, ty: &ValueType) -> Result<Value, String> {
+    use ValueType as T;
+    Ok(match (ty, v) {
+        (_, Value::Null) | (T::Any, _) => v.clone(),
+        (T::Number, Value::Number(_))
+        | (T::Integer, Value::Integer(_))
+        | (T::Boolean, Value::Boolean(_))
+        | (T::Text, Value::Text(_))
+        | (T::Point, Value::Point(_))
+        | (T::Vector, Value::Vector(_))
+        | (T::Plane, Value::Plane(_))
+        | (T::Lines, Value::Lines(_))
+        | (T::Polyline, Value::Polyline(_))
+        | (T::QuadMesh, Value::QuadMesh(_))
+        | (T::Mesh, Value::Mesh(_))
+        | (T::Record, Value::Record(_)) => v.clone(),
+        (T::Number, Value::Integer(i)) => Value::Number(*i as f64),
+        (T::Integer, Value::Number(x)) => {
+            if x.is_finite() && x.fract() == 0.0 && x.abs() < 9.0e15 {
+                Value::Integer(*x as i64)
+            } else {
+                return Err(format!("expected integer, got the number {x}"));
+            }
+        }
+        (T::Point, Value::Vector(p)) => Value::Point(*p),
+        (T::Vector, Value::Point(p)) => Value::Vector(*p),
+        (T::Polyline, Value::List(items)) if is_point_list(items) => Value::Polyline(Arc::new(
+            Polyline::open(items.iter().filter_map(Value::as_vec3).collect()),
+        )),
+        (T::Mesh, Value::QuadMesh(g)) => Value::Mesh(Arc::new(PolygonMesh::from(g.as_ref()))),
+        (T::List(inner), _) => return coerce_item(v, inner),
+        _ => return Err(format!("expected {ty}, got {}", v.type_name())),
+    })
+}
+
+fn is_point_list(items: &[Value]) -> bool {
+    !items.is_empty()
+        && items
+            .iter()
+            .all(|v| matches!(v, Value::Point(_) | Value::Vector(_)))
+}
+
+/// True when `v` is a single item for a port of item type `ty` (a list of points is one polyline).
+pub fn is_item(v: &Value, ty: &ValueType) -> bool {
+    match v {
+        Value::List(items) => *ty.base() == ValueType::Polyline && is_point_list(items),
+        _ => true,
+    }
+}
+
+/// Number of list levels above the items of `v`, judged by first elements (an empty list is one
+/// level of zero items).
+pub fn depth(v: &Value, ty: &ValueType) -> usize {
+    if is_item(v, ty) {
+        return 0;
+    }
+    match v {
+        Value::List(items) => 1 + items.first().map_or(0, |first| depth(first, ty)),
+        _ => 0,
+    }
+}
+
+/// List levels in `v` beyond what a port with `access` consumes itself: how deep the node is mapped.
+pub fn excess_depth(v: &Value, ty: &ValueType, access: Access) -> usize {
+    match access.depth() {
+        None => 0,
+        Some(own) => depth(v, ty).saturating_sub(own),
+    }
+}
+
+/// Converts a value that needs no more mapping into exactly what the port receives: an item, a list
+/// of items (a single value becomes a one-element list), or a tree with converted leaves.
+pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Value, String> {
+    match access {
+        Access::Item => coerce_item(v, ty),
+        Access::List => match v {
+            Value::Null => Ok(Value::Null),
+            v if is_item(v, ty) => Ok(Value::list(vec![coerce_item(v, ty)?])),
+            Value::List(items) => items
+                .iter()
+                .enumerate()
+                .map(|(k, item)| coerce_item(item, ty).map_err(|e| format!("item {k}: {e}")))
+                .collect::<Result<Vec<_>, _>>()
+                .map(Value::list),
+            _ => unreachable_shape(),
+        },
+        Access::Tree => coerce_tree(v, ty),
+    }
+}
+
+fn coerce_tree(v: &Value, ty: &ValueType) -> Result<Value, String> {
+    if is_item(v, ty) {
+        return coerce_item(v, ty);
+    }
+    match v {
+        Value::List(items) => items
+            .iter()
+            .enumerate()
+            .map(|(k, item)| coerce_tree(item, ty).map_err(|e| format!("item {k}: {e}")))
+            .collect::<Result<Vec<_>, _>>()
+            .map(Value::list),
+        _ => unreachable_shape(),
+    }
+}
+
+/// Only lists are not items, so the callers' non-list arms cannot be reached; answer with an error
+/// instead of panicking all the same.
+fn unreachable_shape() -> Result<Value, String> {
+    Err("internal: value shape".into())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    #[test]
+    fn depth_counts_list_levels_and_points_form_polylines() {
+        let pts = Value::list(vec![Value::Point(DVec3::ZERO), Value::Point(DVec3::X)]);
+        assert_eq!(depth(&pts, &ValueType::Point), 1);
+        assert_eq!(depth(&pts, &ValueType::Polyline), 0);
+        let nested = Value::list(vec![pts.clone(), pts.clone()]);
+        assert_eq!(depth(&nested, &ValueType::Polyline), 1);
+        assert_eq!(depth(&nested, &ValueType::Number), 2);
+        assert_eq!(excess_depth(&nested, &ValueType::Number, Access::List), 1);
+        assert_eq!(excess_depth(&nested, &ValueType::Number, Access::Tree), 0);
+        assert_eq!(depth(&Value::list(vec![]), &ValueType::Number), 1);
+    }
+
+    #[test]
+    fn coercions() {
+        assert_eq!(
+            coerce_item(&Value::Integer(3), &ValueType::Number).unwrap(),
+            Value::Number(3.0)
+        );
+        assert_eq!(
+            coerce_item(&Value::Number(3.0), &ValueType::Integer).unwrap(),
+            Value::Integer(3)
+        );
+        assert!(coerce_item(&Value::Number(3.5), &ValueType::Integer).is_err());
+        assert!(
+            coerce_item(&Value::text("a"), &ValueType::Number)
+                .unwrap_err()
+                .contains("expected number")
+        );
+        let single =
+            coerce_for_port(&Value::Number(0.5), &ValueType::Number, Access::List).unwrap();
+        assert_eq!(single, Value::list(vec![Value::Number(0.5)]));
+    }
+}

@@ -1,0 +1,68 @@
+//! Running a node over lists: item ports fed lists run the node once per item, with longest-list
+//! matching (the last item of a shorter list repeats), as Grasshopper does.
+
+use crate::convert::{coerce_for_port, excess_depth};
+use crate::node::{NodeContext, NodeDef, NodeError};
+use crate::value::Value;
+
+/// Runs `def` on raw input values (one per input port, `Null` for empty), mapping over list levels
+/// the ports do not consume themselves. Outputs of a mapped run are lists (nested as deep as the
+/// mapping). An empty list on a mapped port gives empty lists on every output.
+pub fn run_mapped(
+    def: &NodeDef,
+    ctx: &NodeContext,
+    inputs: &[Value],
+) -> Result<Vec<Value>, NodeError> {
+    let excess: Vec<usize> = inputs
+        .iter()
+        .zip(&def.inputs)
+        .map(|(v, port)| excess_depth(v, &port.ty, port.access))
+        .collect();
+    if excess.iter().all(|&e| e == 0) {
+        let prepared = inputs
+            .iter()
+            .zip(&def.inputs)
+            .map(|(v, port)| {
+                coerce_for_port(v, &port.ty, port.access)
+                    .map_err(|e| NodeError::new(format!("input '{}': {e}", port.name)))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let outputs = (def.run)(ctx, &prepared)?;
+        if outputs.len() != def.outputs.len() {
+            return Err(NodeError::new(format!(
+                "internal: node produced {} outputs, declares {}",
+                outputs.len(),
+                def.outputs.len()
+            )));
+        }
+        return Ok(outputs);
+    }
+    let lists: Vec<Option<&[Value]>> = inputs
+        .iter()
+        .zip(&excess)
+        .map(|(v, &e)| if e > 0 { v.as_list() } else { None })
+        .collect();
+    let count = lists.iter().flatten().map(|l| l.len()).max().unwrap_or(0);
+    let empty = lists.iter().flatten().any(|l| l.is_empty());
+    let mut columns: Vec<Vec<Value>> =
+        vec![Vec::with_capacity(if empty { 0 } else { count }); def.outputs.len()];
+    if !empty {
+        let mut item_inputs = inputs.to_vec();
+        for k in 0..count {
+            if ctx.cancelled() {
+                return Err(NodeError::new("cancelled"));
+            }
+            for (slot, list) in item_inputs.iter_mut().zip(&lists) {
+                if let Some(list) = list {
+                    *slot = list[k.min(list.len() - 1)].clone();
+                }
+            }
+            let outputs = run_mapped(def, ctx, &item_inputs)
+                .map_err(|e| NodeError::new(format!("item {k}: {}", e.message)))?;
+            for (column, value) in columns.iter_mut().zip(outputs) {
+                column.push(value);
+            }
+        }
+    }
+    Ok(columns.into_iter().map(Value::list).collect())
+}

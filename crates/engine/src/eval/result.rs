@@ -1,0 +1,72 @@
+//! What a node's evaluation produced.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use crate::value::Value;
+
+/// Outputs of a successful run.
+#[derive(Debug, Clone, Default)]
+pub struct NodeOutputs {
+    /// One value per output port.
+    pub values: Vec<Value>,
+    /// Warnings the node reported (it still produced outputs).
+    pub warnings: Vec<String>,
+    /// Files the node wrote.
+    pub files: Vec<PathBuf>,
+}
+
+/// The state of a node after evaluation.
+#[derive(Debug, Clone)]
+pub enum NodeResult {
+    /// The node ran and produced outputs.
+    Ok(Arc<NodeOutputs>),
+    /// The node ran and failed (or panicked) with this message.
+    Failed(String),
+    /// An upstream node failed or is disabled; the node did not run.
+    Blocked(String),
+    /// The node is disabled.
+    Disabled,
+    /// A required input is missing or a value does not fit: the node could not start.
+    Invalid(String),
+}
+
+impl NodeResult {
+    /// The outputs when the node ran successfully.
+    pub fn outputs(&self) -> Option<&NodeOutputs> {
+        match self {
+            NodeResult::Ok(o) => Some(o),
+            _ => None,
+        }
+    }
+
+    /// The error message, for failed, invalid and blocked nodes.
+    pub fn error(&self) -> Option<&str> {
+        match self {
+            NodeResult::Failed(m) | NodeResult::Blocked(m) | NodeResult::Invalid(m) => Some(m),
+            NodeResult::Disabled => Some("disabled"),
+            NodeResult::Ok(_) => None,
+        }
+    }
+
+    /// True when the node itself failed (not merely blocked or disabled).
+    pub fn is_failure(&self) -> bool {
+        matches!(self, NodeResult::Failed(_) | NodeResult::Invalid(_))
+    }
+
+    /// Equality used for early cutoff: outputs compared bitwise, messages as text.
+    pub(crate) fn same_as(&self, other: &NodeResult) -> bool {
+        match (self, other) {
+            (NodeResult::Ok(a), NodeResult::Ok(b)) => {
+                Arc::ptr_eq(a, b)
+                    || (a.values.len() == b.values.len()
+                        && a.values.iter().zip(&b.values).all(|(x, y)| x.same_as(y)))
+            }
+            (NodeResult::Failed(a), NodeResult::Failed(b))
+            | (NodeResult::Blocked(a), NodeResult::Blocked(b))
+            | (NodeResult::Invalid(a), NodeResult::Invalid(b)) => a == b,
+            (NodeResult::Disabled, NodeResult::Disabled) => true,
+            _ => false,
+        }
+    }
+}

@@ -1,0 +1,509 @@
+//! Graph files: versioned, hand-editable RON.
+//!
+//! ```ron
+//! (
+//!     version: 1,
+//!     name: "torus",
+//!     nodes: {
+//!         "arc": (
+//!             type: "curve.arc",
+//!             position: (40.0, 80.0),
+//!             inputs: {
+//!                 "radius": 5.0,
+//!             },
+//!         ),
+//!     },
+//!     edges: [
+//!         "arc.curve -> sweep.directrix",
+//!     ],
+//! )
+//! ```
+//!
+//! Nodes are keyed by id and keep file order; `preview` and `enabled` are written only when false.
+//! Loading reports every problem with file, line and column; saving is atomic.
+
+pub mod literal;
+pub mod ron;
+
+use std::fmt;
+use std::path::Path;
+use std::sync::Arc;
+
+use self::literal::{LiteralError, push_indent, quote};
+use self::ron::{Kind, Node, Pos};
+use crate::atomic::write_atomic;
+use crate::graph::{Graph, GraphError, WireRef};
+use crate::registry::Registry;
+
+/// The graph file format version this build writes and reads.
+pub const FORMAT_VERSION: i64 = 1;
+
+/// One problem found while loading, with its location when there is one.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Diagnostic {
+    /// The file name as given.
+    pub file: String,
+    /// Line and column.
+    pub pos: Option<Pos>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.pos {
+            Some(p) => write!(f, "{}:{}:{}: {}", self.file, p.line, p.col, self.message),
+            None => write!(f, "{}: {}", self.file, self.message),
+        }
+    }
+}
+
+/// A graph file that could not be loaded: every problem found.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LoadError {
+    /// The problems, in file order.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (k, d) in self.diagnostics.iter().enumerate() {
+            if k > 0 {
+                writeln!(f)?;
+            }
+            write!(f, "{d}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for LoadError {}
+
+/// Metadata of a graph file besides nodes and edges.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct GraphMeta {
+    /// Short title.
+    pub name: Option<String>,
+    /// What the graph is for.
+    pub description: Option<String>,
+}
+
+/// A loaded graph file.
+#[derive(Debug, Clone)]
+pub struct Document {
+    /// The graph.
+    pub graph: Graph,
+    /// Its metadata.
+    pub meta: GraphMeta,
+}
+
+struct Loader<'a> {
+    file: &'a str,
+    diagnostics: Vec<Diagnostic>,
+}
+
+impl Loader<'_> {
+    fn error(&mut self, pos: Pos, message: impl Into<String>) {
+        self.diagnostics.push(Diagnostic {
+            file: self.file.to_string(),
+            pos: Some(pos),
+            message: message.into(),
+        });
+    }
+
+    fn literal(&mut self, e: LiteralError, context: &str) {
+        self.error(e.pos, format!("{context}: {}", e.message));
+    }
+}
+
+/// Reads a graph file from disk.
+pub fn load_file(path: &Path, registry: &Arc<Registry>) -> Result<Document, LoadError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| LoadError {
+        diagnostics: vec![Diagnostic {
+            file: file.clone(),
+            pos: None,
+            message: format!("cannot read: {e}"),
+        }],
+    })?;
+    load_str(&text, &file, registry)
+}
+
+/// Parses and validates a graph file's text; `file` names it in diagnostics.
+pub fn load_str(text: &str, file: &str, registry: &Arc<Registry>) -> Result<Document, LoadError> {
+    let mut loader = Loader {
+        file,
+        diagnostics: Vec::new(),
+    };
+    let root = match ron::parse(text) {
+        Ok(root) => root,
+        Err(e) => {
+            loader.error(e.pos, format!("syntax error: {}", e.message));
+            return Err(LoadError {
+                diagnostics: loader.diagnostics,
+            });
+        }
+    };
+    let document = load_root(&mut loader, &root, registry);
+    if loader.diagnostics.is_empty() {
+        Ok(document)
+    } else {
+        loader.diagnostics.sort_by_key(|d| d.pos);
+        Err(LoadError {
+            diagnostics: loader.diagnostics,
+        })
+    }
+}
+
+fn load_root(loader: &mut Loader<'_>, root: &Node, registry: &Arc<Registry>) -> Document {
+    let mut document = Document {
+        graph: Graph::new(registry.clone()),
+        meta: GraphMeta::default(),
+    };
+    let Kind::Struct(_, fields) = &root.kind else {
+        loader.error(
+            root.pos,
+            format!(
+                "a graph file is a struct (version: 1, nodes: {{..}}, edges: [..]), found {}",
+                root.kind.describe()
+            ),
+        );
+        return document;
+    };
+    let mut version = None;
+    let mut nodes = None;
+    let mut edges = None;
+    for (field, value) in fields {
+        match field.name.as_str() {
+            "version" => version = Some(value),
+            "nodes" => nodes = Some(value),
+            "edges" => edges = Some(value),
+            "name" => document.meta.name = text_field(loader, value, "name"),
+            "description" => document.meta.description = text_field(loader, value, "description"),
+            other => loader.error(
+                field.pos,
+                format!(
+                    "unknown field '{other}'; expected version, name, description, nodes, edges"
+                ),
+            ),
+        }
+    }
+    match version.map(|v| (v, &v.kind)) {
+        None => loader.error(
+            root.pos,
+            "missing field 'version' (this build writes version 1)",
+        ),
+        Some((_, Kind::Int(FORMAT_VERSION))) => {}
+        Some((v, Kind::Int(n))) if *n > FORMAT_VERSION => {
+            loader.error(v.pos, format!("file version {n} is newer than this cnets supports ({FORMAT_VERSION}); upgrade cnets"));
+            return document;
+        }
+        Some((v, _)) => {
+            loader.error(
+                v.pos,
+                format!("unsupported file version; expected {FORMAT_VERSION}"),
+            );
+            return document;
+        }
+    }
+    let mut failed_nodes = Vec::new();
+    if let Some(nodes) = nodes {
+        load_nodes(loader, nodes, &mut document.graph, &mut failed_nodes);
+    }
+    if let Some(edges) = edges {
+        load_edges(loader, edges, &mut document.graph, &failed_nodes);
+    }
+    document
+}
+
+fn text_field(loader: &mut Loader<'_>, value: &Node, name: &str) -> Option<String> {
+    match &value.kind {
+        Kind::Str(s) => Some(s.clone()),
+        other => {
+            loader.error(
+                value.pos,
+                format!("'{name}' must be a string, found {}", other.describe()),
+            );
+            None
+        }
+    }
+}
+
+fn load_nodes(loader: &mut Loader<'_>, nodes: &Node, graph: &mut Graph, failed: &mut Vec<String>) {
+    let Kind::Map(entries) = &nodes.kind else {
+        loader.error(
+            nodes.pos,
+            format!(
+                "'nodes' must be a map {{\"id\": (type: ..)}}, found {}",
+                nodes.kind.describe()
+            ),
+        );
+        return;
+    };
+    for (key, body) in entries {
+        let Some(id) = key.as_str() else {
+            loader.error(
+                key.pos,
+                format!("node ids are strings, found {}", key.kind.describe()),
+            );
+            continue;
+        };
+        if !load_node(loader, id, body, graph) {
+            failed.push(id.to_string());
+        }
+    }
+}
+
+/// Loads one node; returns false when it could not be created.
+fn load_node(loader: &mut Loader<'_>, id: &str, body: &Node, graph: &mut Graph) -> bool {
+    let Kind::Struct(_, fields) = &body.kind else {
+        loader.error(
+            body.pos,
+            format!(
+                "node '{id}' must be a struct (type: \"..\", ..), found {}",
+                body.kind.describe()
+            ),
+        );
+        return false;
+    };
+    let get = |name: &str| fields.iter().find(|(f, _)| f.name == name).map(|(_, v)| v);
+    for (f, _) in fields {
+        if !["type", "position", "inputs", "preview", "enabled"].contains(&f.name.as_str()) {
+            loader.error(f.pos, format!("node '{id}': unknown field '{}'; expected type, position, inputs, preview, enabled", f.name));
+        }
+    }
+    let Some(type_node) = get("type") else {
+        loader.error(body.pos, format!("node '{id}' has no 'type'"));
+        return false;
+    };
+    let Some(type_id) = type_node.as_str() else {
+        loader.error(
+            type_node.pos,
+            format!("node '{id}': 'type' must be a string"),
+        );
+        return false;
+    };
+    if let Err(e) = graph.add_node(id, type_id) {
+        let pos = if matches!(e, GraphError::UnknownType { .. }) {
+            type_node.pos
+        } else {
+            body.pos
+        };
+        loader.error(pos, format!("node '{id}': {e}"));
+        return false;
+    }
+    if let Some(p) = get("position") {
+        match p
+            .items()
+            .map(|xy| xy.iter().map(Node::as_f64).collect::<Option<Vec<f64>>>())
+        {
+            Some(Some(xy)) if xy.len() == 2 => {
+                let _ = graph.set_position(id, [xy[0] as f32, xy[1] as f32]);
+            }
+            _ => loader.error(p.pos, format!("node '{id}': 'position' must be (x, y)")),
+        }
+    }
+    for (flag, setter) in [
+        (
+            "preview",
+            Graph::set_preview as fn(&mut Graph, &str, bool) -> _,
+        ),
+        ("enabled", Graph::set_enabled),
+    ] {
+        match get(flag).map(|v| &v.kind) {
+            None => {}
+            Some(Kind::Bool(b)) => {
+                let _ = setter(graph, id, *b);
+            }
+            Some(_) => loader.error(
+                get(flag).map_or(body.pos, |v| v.pos),
+                format!("node '{id}': '{flag}' must be true or false"),
+            ),
+        }
+    }
+    if let Some(inputs) = get("inputs") {
+        load_inputs(loader, id, inputs, graph);
+    }
+    true
+}
+
+fn load_inputs(loader: &mut Loader<'_>, id: &str, inputs: &Node, graph: &mut Graph) {
+    let Kind::Map(entries) = &inputs.kind else {
+        loader.error(
+            inputs.pos,
+            format!("node '{id}': 'inputs' must be a map {{\"name\": value}}"),
+        );
+        return;
+    };
+    let Some(def) = graph.node(id).map(|n| n.def.clone()) else {
+        return;
+    };
+    for (key, value) in entries {
+        let Some(name) = key.as_str() else {
+            loader.error(key.pos, format!("node '{id}': input names are strings"));
+            continue;
+        };
+        let Some(k) = def.input_index(name) else {
+            loader.error(
+                key.pos,
+                format!(
+                    "node '{id}' ({}) has no input '{name}'; its inputs are: {}",
+                    def.id,
+                    def.input_names()
+                ),
+            );
+            continue;
+        };
+        match literal::decode(value, &def.inputs[k].ty) {
+            Ok(v) => {
+                if let Err(e) = graph.set_value(id, name, v) {
+                    loader.error(value.pos, e.to_string());
+                }
+            }
+            Err(e) => loader.literal(
+                e,
+                &format!("input '{id}.{name}' ({})", def.inputs[k].type_name()),
+            ),
+        }
+    }
+}
+
+/// Parses `"from.output -> to.input"`.
+pub fn parse_edge(text: &str) -> Option<WireRef> {
+    let (from, to) = text.split_once("->")?;
+    let (from, output) = from.trim().split_once('.')?;
+    let (to, input) = to.trim().split_once('.')?;
+    let ok = |s: &str| !s.is_empty() && !s.contains(char::is_whitespace);
+    [from, output, to, input]
+        .iter()
+        .all(|s| ok(s))
+        .then(|| WireRef {
+            from: from.to_string(),
+            output: output.to_string(),
+            to: to.to_string(),
+            input: input.to_string(),
+        })
+}
+
+fn load_edges(loader: &mut Loader<'_>, edges: &Node, graph: &mut Graph, failed: &[String]) {
+    let Kind::List(items) = &edges.kind else {
+        loader.error(
+            edges.pos,
+            format!(
+                "'edges' must be a list of \"from.output -> to.input\", found {}",
+                edges.kind.describe()
+            ),
+        );
+        return;
+    };
+    for item in items {
+        let Some(text) = item.as_str() else {
+            loader.error(
+                item.pos,
+                format!(
+                    "an edge is a string \"from.output -> to.input\", found {}",
+                    item.kind.describe()
+                ),
+            );
+            continue;
+        };
+        let Some(w) = parse_edge(text) else {
+            loader.error(
+                item.pos,
+                format!("malformed edge '{text}'; expected \"from.output -> to.input\""),
+            );
+            continue;
+        };
+        if failed.contains(&w.from) || failed.contains(&w.to) {
+            continue;
+        }
+        if let Err(e) = graph.connect(&w.from, &w.output, &w.to, &w.input) {
+            let message = match e {
+                GraphError::UnknownNode(n) => format!("dangling edge '{text}': no node '{n}'"),
+                other => format!("edge '{text}': {other}"),
+            };
+            loader.error(item.pos, message);
+        }
+    }
+}
+
+/// Writes a graph as canonical RON text (nodes in creation order, inputs in port order).
+pub fn to_ron(graph: &Graph, meta: &GraphMeta) -> String {
+    let mut out = String::from("(\n");
+    push_indent(&mut out, 1);
+    out.push_str(&format!("version: {FORMAT_VERSION},\n"));
+    for (name, value) in [("name", &meta.name), ("description", &meta.description)] {
+        if let Some(v) = value {
+            push_indent(&mut out, 1);
+            out.push_str(name);
+            out.push_str(": ");
+            quote(&mut out, v);
+            out.push_str(",\n");
+        }
+    }
+    push_indent(&mut out, 1);
+    out.push_str("nodes: {\n");
+    let mut nodes: Vec<_> = graph.nodes().map(|(_, n)| n).collect();
+    nodes.sort_by_key(|n| n.uid());
+    for node in nodes {
+        push_indent(&mut out, 2);
+        quote(&mut out, &node.id);
+        out.push_str(": (\n");
+        push_indent(&mut out, 3);
+        out.push_str("type: ");
+        quote(&mut out, &node.def.id);
+        out.push_str(",\n");
+        push_indent(&mut out, 3);
+        out.push_str(&format!(
+            "position: ({:?}, {:?}),\n",
+            node.position[0], node.position[1]
+        ));
+        if !node.preview {
+            push_indent(&mut out, 3);
+            out.push_str("preview: false,\n");
+        }
+        if !node.enabled {
+            push_indent(&mut out, 3);
+            out.push_str("enabled: false,\n");
+        }
+        let values: Vec<_> = node
+            .def
+            .inputs
+            .iter()
+            .enumerate()
+            .filter_map(|(k, p)| Some((p, node.value(k)?)))
+            .collect();
+        if !values.is_empty() {
+            push_indent(&mut out, 3);
+            out.push_str("inputs: {\n");
+            for (port, value) in values {
+                push_indent(&mut out, 4);
+                quote(&mut out, &port.name);
+                out.push_str(": ");
+                out.push_str(&literal::encode(value, &port.ty, 4));
+                out.push_str(",\n");
+            }
+            push_indent(&mut out, 3);
+            out.push_str("},\n");
+        }
+        push_indent(&mut out, 2);
+        out.push_str("),\n");
+    }
+    push_indent(&mut out, 1);
+    out.push_str("},\n");
+    push_indent(&mut out, 1);
+    out.push_str("edges: [\n");
+    for wire in graph.wires() {
+        push_indent(&mut out, 2);
+        quote(&mut out, &wire.to_string());
+        out.push_str(",\n");
+    }
+    push_indent(&mut out, 1);
+    out.push_str("],\n)\n");
+    out
+}
+
+/// Saves a graph file atomically (temporary file, then rename).
+pub fn save_file(path: &Path, graph: &Graph, meta: &GraphMeta) -> std::io::Result<()> {
+    write_atomic(path, to_ron(graph, meta).as_bytes())
+}

@@ -1,0 +1,526 @@
+//! The graph document: node instances, their literal input values and the wires between them.
+//!
+//! The document is separate from the executor ([`crate::eval::Evaluator`]): every semantic edit bumps
+//! the graph's revision and stamps the edited node, which is all the executor needs to re-run only
+//! what changed.
+
+mod error;
+
+pub use error::GraphError;
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use petgraph::Direction;
+use petgraph::stable_graph::{EdgeIndex, NodeIndex, StableDiGraph};
+use petgraph::visit::{EdgeRef, IntoEdgeReferences, NodeIndexable};
+
+use crate::convert::{coerce_item, is_item};
+use crate::node::NodeDef;
+use crate::registry::Registry;
+use crate::value::{Value, ValueType};
+
+/// A revision number: bumped on every semantic edit of a graph.
+pub type Revision = u64;
+
+/// One node in a graph.
+#[derive(Debug, Clone)]
+pub struct NodeInstance {
+    /// Stable, human-readable id (`"torus"`).
+    pub id: String,
+    /// The node type.
+    pub def: Arc<NodeDef>,
+    /// Literal values of inputs, by input index (`None` = use the default).
+    values: Vec<Option<Value>>,
+    /// Position on the editor canvas.
+    pub position: [f32; 2],
+    /// Whether the editor previews the node's geometry.
+    pub preview: bool,
+    /// Disabled nodes do not run; their dependents are blocked.
+    pub enabled: bool,
+    uid: u64,
+    edited_at: Revision,
+}
+
+impl NodeInstance {
+    /// The literal value set on input `k`, if any.
+    pub fn value(&self, k: usize) -> Option<&Value> {
+        self.values.get(k).and_then(Option::as_ref)
+    }
+
+    /// The literal value set on the named input, if any.
+    pub fn value_of(&self, input: &str) -> Option<&Value> {
+        self.def.input_index(input).and_then(|k| self.value(k))
+    }
+
+    /// Unique id of this instance across the life of the graph (never reused).
+    pub fn uid(&self) -> u64 {
+        self.uid
+    }
+
+    /// Revision of the last edit of this node's inputs, wires in or flags.
+    pub fn edited_at(&self) -> Revision {
+        self.edited_at
+    }
+}
+
+/// A wire from an output port to an input port (by port index).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Wire {
+    /// Output port index on the source node.
+    pub from_output: usize,
+    /// Input port index on the target node.
+    pub to_input: usize,
+    /// Creation order: several wires into one input are merged in this order.
+    order: u64,
+}
+
+/// A wire described by node ids and port names.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct WireRef {
+    /// Source node id.
+    pub from: String,
+    /// Source output name.
+    pub output: String,
+    /// Target node id.
+    pub to: String,
+    /// Target input name.
+    pub input: String,
+}
+
+impl std::fmt::Display for WireRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}.{} -> {}.{}",
+            self.from, self.output, self.to, self.input
+        )
+    }
+}
+
+/// A dataflow graph of node instances.
+#[derive(Debug, Clone)]
+pub struct Graph {
+    inner: StableDiGraph<NodeInstance, Wire>,
+    ids: HashMap<String, NodeIndex>,
+    registry: Arc<Registry>,
+    revision: Revision,
+    next_uid: u64,
+    next_order: u64,
+}
+
+/// Checks a node id: non-empty; letters, digits, `_` and `-`.
+pub fn valid_id(id: &str) -> bool {
+    !id.is_empty()
+        && id
+            .chars()
+            .all(|c| c.is_alphanumeric() || c == '_' || c == '-')
+}
+
+impl Graph {
+    /// An empty graph whose node types come from `registry`.
+    pub fn new(registry: Arc<Registry>) -> Self {
+        Self {
+            inner: StableDiGraph::default(),
+            ids: HashMap::new(),
+            registry,
+            revision: 1,
+            next_uid: 1,
+            next_order: 0,
+        }
+    }
+
+    /// The registry node types are looked up in.
+    pub fn registry(&self) -> &Arc<Registry> {
+        &self.registry
+    }
+
+    /// The current revision.
+    pub fn revision(&self) -> Revision {
+        self.revision
+    }
+
+    fn bump(&mut self, node: NodeIndex) {
+        self.revision += 1;
+        if let Some(n) = self.inner.node_weight_mut(node) {
+            n.edited_at = self.revision;
+        }
+    }
+
+    /// Adds a node of a registered type.
+    pub fn add_node(&mut self, id: &str, type_id: &str) -> Result<NodeIndex, GraphError> {
+        let def = self
+            .registry
+            .get(type_id)
+            .cloned()
+            .ok_or_else(|| GraphError::UnknownType {
+                type_id: type_id.to_string(),
+                suggestions: self
+                    .registry
+                    .similar_ids(type_id)
+                    .into_iter()
+                    .map(String::from)
+                    .collect(),
+            })?;
+        self.add_node_with_def(id, def)
+    }
+
+    /// Adds a node with an explicit definition (e.g. a cluster built from a graph file).
+    pub fn add_node_with_def(
+        &mut self,
+        id: &str,
+        def: Arc<NodeDef>,
+    ) -> Result<NodeIndex, GraphError> {
+        if !valid_id(id) {
+            return Err(GraphError::InvalidId(id.to_string()));
+        }
+        if self.ids.contains_key(id) {
+            return Err(GraphError::DuplicateId(id.to_string()));
+        }
+        self.revision += 1;
+        let node = NodeInstance {
+            id: id.to_string(),
+            values: vec![None; def.inputs.len()],
+            def,
+            position: [0.0, 0.0],
+            preview: true,
+            enabled: true,
+            uid: self.next_uid,
+            edited_at: self.revision,
+        };
+        self.next_uid += 1;
+        let index = self.inner.add_node(node);
+        self.ids.insert(id.to_string(), index);
+        Ok(index)
+    }
+
+    /// Removes a node and its wires; its dependents are marked edited.
+    pub fn remove_node(&mut self, id: &str) -> Result<NodeInstance, GraphError> {
+        let index = self.index(id)?;
+        let dependents: Vec<NodeIndex> = self
+            .inner
+            .neighbors_directed(index, Direction::Outgoing)
+            .collect();
+        let node = self
+            .inner
+            .remove_node(index)
+            .ok_or_else(|| GraphError::UnknownNode(id.into()))?;
+        self.ids.remove(id);
+        self.revision += 1;
+        for d in dependents {
+            self.bump(d);
+        }
+        Ok(node)
+    }
+
+    /// Renames a node, keeping its wires and values.
+    pub fn rename_node(&mut self, id: &str, new_id: &str) -> Result<(), GraphError> {
+        let index = self.index(id)?;
+        if id == new_id {
+            return Ok(());
+        }
+        if !valid_id(new_id) {
+            return Err(GraphError::InvalidId(new_id.to_string()));
+        }
+        if self.ids.contains_key(new_id) {
+            return Err(GraphError::DuplicateId(new_id.to_string()));
+        }
+        self.ids.remove(id);
+        self.ids.insert(new_id.to_string(), index);
+        self.inner[index].id = new_id.to_string();
+        Ok(())
+    }
+
+    /// The petgraph index of a node.
+    pub fn index(&self, id: &str) -> Result<NodeIndex, GraphError> {
+        self.ids
+            .get(id)
+            .copied()
+            .ok_or_else(|| GraphError::UnknownNode(id.to_string()))
+    }
+
+    /// The node with this id.
+    pub fn node(&self, id: &str) -> Option<&NodeInstance> {
+        self.ids.get(id).map(|&k| &self.inner[k])
+    }
+
+    /// The node at this index.
+    pub fn node_at(&self, index: NodeIndex) -> Option<&NodeInstance> {
+        self.inner.node_weight(index)
+    }
+
+    /// All nodes, in index order.
+    pub fn nodes(&self) -> impl Iterator<Item = (NodeIndex, &NodeInstance)> + '_ {
+        self.inner.node_indices().map(move |k| (k, &self.inner[k]))
+    }
+
+    /// Number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.inner.node_count()
+    }
+
+    /// Number of wires.
+    pub fn wire_count(&self) -> usize {
+        self.inner.edge_count()
+    }
+
+    /// Upper bound of node indices (for index-keyed side tables).
+    pub fn index_bound(&self) -> usize {
+        (&self.inner).node_bound()
+    }
+
+    /// The underlying petgraph graph (read-only).
+    pub fn petgraph(&self) -> &StableDiGraph<NodeInstance, Wire> {
+        &self.inner
+    }
+
+    /// Wires into `node`, ordered by creation, as (source node, wire).
+    pub fn wires_into(&self, node: NodeIndex) -> Vec<(NodeIndex, Wire)> {
+        let mut wires: Vec<(NodeIndex, Wire)> = self
+            .inner
+            .edges_directed(node, Direction::Incoming)
+            .map(|e| (e.source(), *e.weight()))
+            .collect();
+        wires.sort_by_key(|(_, w)| w.order);
+        wires
+    }
+
+    /// Source nodes feeding `node` (with repeats when several wires come from one node).
+    pub fn sources(&self, node: NodeIndex) -> impl Iterator<Item = NodeIndex> + '_ {
+        self.inner.neighbors_directed(node, Direction::Incoming)
+    }
+
+    /// Nodes fed by `node`.
+    pub fn targets(&self, node: NodeIndex) -> impl Iterator<Item = NodeIndex> + '_ {
+        self.inner.neighbors_directed(node, Direction::Outgoing)
+    }
+
+    /// All wires by ids and port names, ordered by creation.
+    pub fn wires(&self) -> Vec<WireRef> {
+        let mut wires: Vec<(u64, WireRef)> = self
+            .inner
+            .edge_references()
+            .map(|e| {
+                let (from, to) = (&self.inner[e.source()], &self.inner[e.target()]);
+                let w = e.weight();
+                (
+                    w.order,
+                    WireRef {
+                        from: from.id.clone(),
+                        output: from.def.outputs[w.from_output].name.to_string(),
+                        to: to.id.clone(),
+                        input: to.def.inputs[w.to_input].name.to_string(),
+                    },
+                )
+            })
+            .collect();
+        wires.sort_by_key(|(order, _)| *order);
+        wires.into_iter().map(|(_, w)| w).collect()
+    }
+
+    fn input_port(&self, node: NodeIndex, input: &str) -> Result<usize, GraphError> {
+        let n = &self.inner[node];
+        n.def
+            .input_index(input)
+            .ok_or_else(|| GraphError::UnknownInput {
+                node: n.id.clone(),
+                type_id: n.def.id.to_string(),
+                port: input.to_string(),
+                valid: n.def.input_names(),
+            })
+    }
+
+    fn output_port(&self, node: NodeIndex, output: &str) -> Result<usize, GraphError> {
+        let n = &self.inner[node];
+        n.def
+            .output_index(output)
+            .ok_or_else(|| GraphError::UnknownOutput {
+                node: n.id.clone(),
+                type_id: n.def.id.to_string(),
+                port: output.to_string(),
+                valid: n.def.output_names(),
+            })
+    }
+
+    /// Sets the literal value of an input. The value is converted to the port's type (integer ↔
+    /// number, point ↔ vector, …) and refused when it cannot be. Returns whether anything changed:
+    /// setting an equal value is not an edit.
+    pub fn set_value(&mut self, id: &str, input: &str, value: Value) -> Result<bool, GraphError> {
+        let index = self.index(id)?;
+        let k = self.input_port(index, input)?;
+        let port = &self.inner[index].def.inputs[k];
+        let value = coerce_leaves(&value, &port.ty).map_err(|message| GraphError::BadValue {
+            node: id.to_string(),
+            port: input.to_string(),
+            message,
+        })?;
+        if self.inner[index].values[k]
+            .as_ref()
+            .is_some_and(|old| old.same_as(&value))
+        {
+            return Ok(false);
+        }
+        self.inner[index].values[k] = Some(value);
+        self.bump(index);
+        Ok(true)
+    }
+
+    /// Removes the literal value of an input (the default applies again).
+    pub fn clear_value(&mut self, id: &str, input: &str) -> Result<bool, GraphError> {
+        let index = self.index(id)?;
+        let k = self.input_port(index, input)?;
+        if self.inner[index].values[k].take().is_none() {
+            return Ok(false);
+        }
+        self.bump(index);
+        Ok(true)
+    }
+
+    /// Connects `from.output` to `to.input`, checking ports, types and cycles.
+    pub fn connect(
+        &mut self,
+        from: &str,
+        output: &str,
+        to: &str,
+        input: &str,
+    ) -> Result<EdgeIndex, GraphError> {
+        let (a, b) = (self.index(from)?, self.index(to)?);
+        let (o, i) = (self.output_port(a, output)?, self.input_port(b, input)?);
+        let out_port = &self.inner[a].def.outputs[o];
+        let in_port = &self.inner[b].def.inputs[i];
+        let label_from = format!("{from}.{output}");
+        let label_to = format!("{to}.{input}");
+        if !out_port.ty.converts_to(&in_port.ty) {
+            return Err(GraphError::TypeMismatch {
+                from: label_from,
+                from_type: out_port.type_name(),
+                to: label_to,
+                to_type: in_port.type_name(),
+            });
+        }
+        if self.find_wire(a, o, b, i).is_some() {
+            return Err(GraphError::AlreadyConnected {
+                from: label_from,
+                to: label_to,
+            });
+        }
+        if let Some(path) = self.path(b, a) {
+            let mut names: Vec<&str> = path.iter().map(|&k| self.inner[k].id.as_str()).collect();
+            names.push(&self.inner[b].id);
+            return Err(GraphError::Cycle {
+                from: label_from,
+                to: label_to,
+                path: names.join(" -> "),
+            });
+        }
+        let wire = Wire {
+            from_output: o,
+            to_input: i,
+            order: self.next_order,
+        };
+        self.next_order += 1;
+        let edge = self.inner.add_edge(a, b, wire);
+        self.bump(b);
+        Ok(edge)
+    }
+
+    /// Removes the wire `from.output -> to.input`.
+    pub fn disconnect(
+        &mut self,
+        from: &str,
+        output: &str,
+        to: &str,
+        input: &str,
+    ) -> Result<(), GraphError> {
+        let (a, b) = (self.index(from)?, self.index(to)?);
+        let (o, i) = (self.output_port(a, output)?, self.input_port(b, input)?);
+        let edge = self
+            .find_wire(a, o, b, i)
+            .ok_or_else(|| GraphError::NotConnected {
+                from: format!("{from}.{output}"),
+                to: format!("{to}.{input}"),
+            })?;
+        self.inner.remove_edge(edge);
+        self.bump(b);
+        Ok(())
+    }
+
+    fn find_wire(&self, a: NodeIndex, o: usize, b: NodeIndex, i: usize) -> Option<EdgeIndex> {
+        self.inner
+            .edges_connecting(a, b)
+            .find(|e| e.weight().from_output == o && e.weight().to_input == i)
+            .map(|e| e.id())
+    }
+
+    /// A path of nodes from `start` to `goal` along wires (both included), if one exists.
+    fn path(&self, start: NodeIndex, goal: NodeIndex) -> Option<Vec<NodeIndex>> {
+        let mut parent: HashMap<NodeIndex, NodeIndex> = HashMap::new();
+        let mut stack = vec![start];
+        let mut seen = std::collections::HashSet::from([start]);
+        while let Some(n) = stack.pop() {
+            if n == goal {
+                let mut path = vec![n];
+                let mut cur = n;
+                while let Some(&p) = parent.get(&cur) {
+                    path.push(p);
+                    cur = p;
+                }
+                path.reverse();
+                return Some(path);
+            }
+            for next in self.inner.neighbors_directed(n, Direction::Outgoing) {
+                if seen.insert(next) {
+                    parent.insert(next, n);
+                    stack.push(next);
+                }
+            }
+        }
+        None
+    }
+
+    /// Enables or disables a node.
+    pub fn set_enabled(&mut self, id: &str, enabled: bool) -> Result<(), GraphError> {
+        let index = self.index(id)?;
+        if self.inner[index].enabled != enabled {
+            self.inner[index].enabled = enabled;
+            self.bump(index);
+        }
+        Ok(())
+    }
+
+    /// Turns the editor preview of a node on or off (not an edit for evaluation).
+    pub fn set_preview(&mut self, id: &str, preview: bool) -> Result<(), GraphError> {
+        let index = self.index(id)?;
+        self.inner[index].preview = preview;
+        Ok(())
+    }
+
+    /// Moves a node on the canvas (not an edit for evaluation).
+    pub fn set_position(&mut self, id: &str, position: [f32; 2]) -> Result<(), GraphError> {
+        let index = self.index(id)?;
+        self.inner[index].position = position;
+        Ok(())
+    }
+
+    /// Node indices in a topological order (sources first).
+    pub fn topological_order(&self) -> Vec<NodeIndex> {
+        petgraph::algo::toposort(&self.inner, None)
+            .unwrap_or_else(|_| self.inner.node_indices().collect())
+    }
+}
+
+/// Converts every item of a (possibly nested) literal to the port's item type.
+fn coerce_leaves(v: &Value, ty: &ValueType) -> Result<Value, String> {
+    if is_item(v, ty) {
+        return coerce_item(v, ty);
+    }
+    match v {
+        Value::List(items) => items
+            .iter()
+            .enumerate()
+            .map(|(k, item)| coerce_leaves(item, ty).map_err(|e| format!("item {k}: {e}")))
+            .collect::<Result<Vec<_>, _>>()
+            .map(Value::list),
+        other => coerce_item(other, ty),
+    }
+}

@@ -1,0 +1,81 @@
+//! The `node!` macro: a node type declared as one documented function.
+
+/// Declares a node type as a plain function whose doc comments become the node's documentation.
+///
+/// ```
+/// use cnets_engine::{node, kinds as k};
+///
+/// node! {
+///     /// Adds two numbers.
+///     #[node(id = "demo.add", category = "Math")]
+///     pub fn add(
+///         /// First term.
+///         a: k::Number = 0.0,
+///         /// Second term.
+///         b: k::Number = 0.0,
+///     ) -> (
+///         /// The sum.
+///         sum: k::Number,
+///     ) {
+///         Ok((a + b,))
+///     }
+/// }
+///
+/// let def = add();
+/// assert_eq!(def.id, "demo.add");
+/// assert_eq!(def.doc, "Adds two numbers.");
+/// assert_eq!(def.inputs[1].doc, "Second term.");
+/// ```
+///
+/// The generated function (`add()` above) returns the [`NodeDef`](crate::NodeDef). Inputs are bound
+/// by name in the body, already converted to their Rust types; the body returns `Ok((out1, out2, …))`
+/// in output order. Write `fn name[ctx](…)` to receive the [`NodeContext`](crate::NodeContext) as
+/// `ctx`; add `flags(Export)` (or `Parameter`, `Import`) inside `#[node(…)]` for special nodes.
+#[macro_export]
+macro_rules! node {
+    (
+        $(#[doc = $doc:literal])*
+        #[node(id = $id:literal, category = $cat:literal $(, flags($($flag:ident),* $(,)?))? $(,)?)]
+        $vis:vis fn $name:ident $([$ctx:ident])? (
+            $( $(#[doc = $idoc:literal])* $iname:ident : $ikind:ty $(= $idef:expr)? ),* $(,)?
+        ) -> (
+            $( $(#[doc = $odoc:literal])* $oname:ident : $okind:ty ),* $(,)?
+        ) $body:block
+    ) => {
+        $(#[doc = $doc])*
+        $vis fn $name() -> $crate::NodeDef {
+            $crate::NodeDef::new($id, $cat, $crate::node::doc_text(&[$($doc),*]))
+            $(
+                .input({
+                    let port = $crate::PortDef::of::<$ikind>(
+                        stringify!($iname),
+                        $crate::node::doc_text(&[$($idoc),*]),
+                    );
+                    $( let port = port.with_default($crate::kinds::default_value::<$ikind, _>($idef)); )?
+                    port
+                })
+            )*
+            $(
+                .output($crate::PortDef::of::<$okind>(
+                    stringify!($oname),
+                    $crate::node::doc_text(&[$($odoc),*]),
+                ))
+            )*
+            $( $( .flag($crate::NodeFlag::$flag) )* )?
+            .run(move |__ctx: &$crate::NodeContext, __inputs: &[$crate::Value]| {
+                let mut __it = __inputs.iter();
+                $(
+                    let $iname = <$ikind as $crate::PortKind>::extract(
+                        __it.next().ok_or_else(|| $crate::NodeError::new("missing input"))?,
+                        stringify!($iname),
+                    )?;
+                )*
+                $( let $ctx: &$crate::NodeContext = __ctx; )?
+                let _ = __ctx;
+                let ($($oname,)*) =
+                    (|| -> ::core::result::Result<_, $crate::NodeError> { $body })()?;
+                Ok(vec![$($crate::IntoPort::<$okind>::into_port($oname)),*])
+            })
+        }
+    };
+}

@@ -1,0 +1,383 @@
+//! The runner's JSON encoding of values.
+//!
+//! number/integer → number; boolean; text → string; point/vector → `[x, y, z]`; list → array;
+//! polyline → `{ "points": [[x,y,z], …], "closed": bool }` (a bare array of points is accepted as an
+//! open polyline on input); quad mesh → `{ "rows", "cols", "wrap_rows", "wrap_cols", "vertices" }`;
+//! polygon mesh → `{ "vertices", "faces": [[i, …], …] }`; plane → `{ "origin", "x_axis", "y_axis",
+//! "normal" }`; lines → `[[[x,y,z],[x,y,z]], …]`; record → object; null and non-finite numbers → `null`.
+
+use std::sync::Arc;
+
+use cnets_geometry::{Line, Plane, PolygonMesh, Polyline, QuadGrid};
+use glam::DVec3;
+use serde_json::{Map, Value as Json, json};
+
+use super::{Record, Value, ValueType};
+
+/// Encodes a value as JSON. Non-finite numbers become `null`.
+pub fn to_json(value: &Value) -> Json {
+    match value {
+        Value::Null => Json::Null,
+        Value::Number(x) => num(*x),
+        Value::Integer(i) => json!(i),
+        Value::Boolean(b) => json!(b),
+        Value::Text(s) => json!(s.as_ref()),
+        Value::Point(p) | Value::Vector(p) => vec3(*p),
+        Value::Plane(p) => json!({
+            "origin": vec3(p.origin),
+            "x_axis": vec3(p.x_axis),
+            "y_axis": vec3(p.y_axis),
+            "normal": vec3(p.normal),
+        }),
+        Value::Lines(lines) => Json::Array(
+            lines
+                .iter()
+                .map(|l| json!([vec3(l.start), vec3(l.end)]))
+                .collect(),
+        ),
+        Value::Polyline(p) => json!({ "points": points(&p.points), "closed": p.closed }),
+        Value::QuadMesh(g) => json!({
+            "rows": g.rows,
+            "cols": g.cols,
+            "wrap_rows": g.wrap_rows,
+            "wrap_cols": g.wrap_cols,
+            "vertices": points(&g.vertices),
+        }),
+        Value::Mesh(m) => json!({
+            "vertices": points(&m.vertices),
+            "faces": m.faces().map(|f| json!(f)).collect::<Vec<_>>(),
+        }),
+        Value::List(items) => Json::Array(items.iter().map(to_json).collect()),
+        Value::Record(r) => Json::Object(
+            r.fields()
+                .iter()
+                .map(|(k, v)| (k.clone(), to_json(v)))
+                .collect::<Map<_, _>>(),
+        ),
+    }
+}
+
+fn num(x: f64) -> Json {
+    serde_json::Number::from_f64(x).map_or(Json::Null, Json::Number)
+}
+
+fn vec3(p: DVec3) -> Json {
+    Json::Array(vec![num(p.x), num(p.y), num(p.z)])
+}
+
+fn points(ps: &[DVec3]) -> Json {
+    Json::Array(ps.iter().map(|p| vec3(*p)).collect())
+}
+
+/// Decodes JSON into a value whose items have type `ty` (or nested lists of such items).
+/// `null` decodes to [`Value::Null`]. The error says what was expected and what was found.
+pub fn from_json(json: &Json, ty: &ValueType) -> Result<Value, String> {
+    if json.is_null() {
+        return Ok(Value::Null);
+    }
+    if let Some(v) = decode_item(json, ty.base())? {
+        return Ok(v);
+    }
+    match json {
+        Json::Array(items) => items
+            .iter()
+            .map(|j| from_json(j, ty))
+            .collect::<Result<Vec<_>, _>>()
+            .map(Value::list),
+        other => Err(format!("expected {}, got {}", ty.base(), kind(other))),
+    }
+}
+
+fn kind(j: &Json) -> &'static str {
+    match j {
+        Json::Null => "null",
+        Json::Bool(_) => "a boolean",
+        Json::Number(_) => "a number",
+        Json::String(_) => "a string",
+        Json::Array(_) => "an array",
+        Json::Object(_) => "an object",
+    }
+}
+
+/// Decodes `json` as one item of `ty`; `Ok(None)` when it has the shape of a list instead.
+fn decode_item(json: &Json, ty: &ValueType) -> Result<Option<Value>, String> {
+    use ValueType as T;
+    let found = || format!("expected {ty}, got {}", kind(json));
+    Ok(Some(match ty {
+        T::Number => match json {
+            Json::Number(n) => Value::Number(n.as_f64().ok_or_else(found)?),
+            Json::Array(_) => return Ok(None),
+            _ => return Err(found()),
+        },
+        T::Integer => match json {
+            Json::Number(n) => Value::Integer(
+                as_integer(n)
+                    .ok_or_else(|| format!("expected integer, got the non-integral number {n}"))?,
+            ),
+            Json::Array(_) => return Ok(None),
+            _ => return Err(found()),
+        },
+        T::Boolean => match json {
+            Json::Bool(b) => Value::Boolean(*b),
+            Json::Array(_) => return Ok(None),
+            _ => return Err(found()),
+        },
+        T::Text => match json {
+            Json::String(s) => Value::text(s),
+            Json::Array(_) => return Ok(None),
+            _ => return Err(found()),
+        },
+        T::Point | T::Vector => match json {
+            Json::Array(_) => match as_vec3(json) {
+                Some(p) if *ty == T::Point => Value::Point(p),
+                Some(p) => Value::Vector(p),
+                None => return Ok(None),
+            },
+            _ => return Err(found()),
+        },
+        T::Plane => match json {
+            Json::Object(o) => Value::Plane(Arc::new(decode_plane(o)?)),
+            Json::Array(_) => return Ok(None),
+            _ => return Err(found()),
+        },
+        T::Lines => match json {
+            Json::Array(items)
+                if items.iter().all(|s| as_segment(s).is_some()) && !items.is_empty() =>
+            {
+                Value::Lines(Arc::new(items.iter().filter_map(as_segment).collect()))
+            }
+            Json::Array(_) => return Ok(None),
+            _ => return Err(found()),
+        },
+        T::Polyline => match json {
+            Json::Object(o) => Value::Polyline(Arc::new(decode_polyline(o)?)),
+            Json::Array(items)
+                if !items.is_empty() && items.iter().all(|p| as_vec3(p).is_some()) =>
+            {
+                Value::Polyline(Arc::new(Polyline::open(
+                    items.iter().filter_map(as_vec3).collect(),
+                )))
+            }
+            Json::Array(_) => return Ok(None),
+            _ => return Err(found()),
+        },
+        T::QuadMesh => match json {
+            Json::Object(o) => Value::QuadMesh(Arc::new(decode_quad_mesh(o)?)),
+            Json::Array(_) => return Ok(None),
+            _ => return Err(found()),
+        },
+        T::Mesh => match json {
+            Json::Object(o) if o.contains_key("rows") => {
+                Value::QuadMesh(Arc::new(decode_quad_mesh(o)?))
+            }
+            Json::Object(o) => Value::Mesh(Arc::new(decode_mesh(o)?)),
+            Json::Array(_) => return Ok(None),
+            _ => return Err(found()),
+        },
+        T::Record => match json {
+            Json::Object(o) => Value::Record(Arc::new(decode_record(o)?)),
+            Json::Array(_) => return Ok(None),
+            _ => return Err(found()),
+        },
+        T::Any => match json {
+            Json::Bool(b) => Value::Boolean(*b),
+            Json::Number(n) => Value::Number(n.as_f64().ok_or_else(found)?),
+            Json::String(s) => Value::text(s),
+            Json::Array(_) => match as_vec3(json) {
+                Some(p) => Value::Point(p),
+                None => return Ok(None),
+            },
+            Json::Object(o) if o.contains_key("rows") => {
+                Value::QuadMesh(Arc::new(decode_quad_mesh(o)?))
+            }
+            Json::Object(o) if o.contains_key("points") => {
+                Value::Polyline(Arc::new(decode_polyline(o)?))
+            }
+            Json::Object(o) if o.contains_key("faces") => Value::Mesh(Arc::new(decode_mesh(o)?)),
+            Json::Object(o) if o.contains_key("normal") && o.contains_key("origin") => {
+                Value::Plane(Arc::new(decode_plane(o)?))
+            }
+            Json::Object(o) => Value::Record(Arc::new(decode_record(o)?)),
+            Json::Null => Value::Null,
+        },
+        T::List(inner) => return decode_item(json, inner),
+    }))
+}
+
+fn as_integer(n: &serde_json::Number) -> Option<i64> {
+    n.as_i64().or_else(|| {
+        let x = n.as_f64()?;
+        (x.fract() == 0.0 && x.abs() < 9.0e15).then_some(x as i64)
+    })
+}
+
+fn as_vec3(j: &Json) -> Option<DVec3> {
+    match j.as_array()?.as_slice() {
+        [x, y, z] => Some(DVec3::new(x.as_f64()?, y.as_f64()?, z.as_f64()?)),
+        _ => None,
+    }
+}
+
+fn as_segment(j: &Json) -> Option<Line> {
+    match j.as_array()?.as_slice() {
+        [a, b] => Some(Line::new(as_vec3(a)?, as_vec3(b)?)),
+        _ => None,
+    }
+}
+
+fn field<'a>(o: &'a Map<String, Json>, name: &str, what: &str) -> Result<&'a Json, String> {
+    o.get(name)
+        .ok_or_else(|| format!("{what} object needs a \"{name}\" field"))
+}
+
+fn point_list(j: &Json, what: &str) -> Result<Vec<DVec3>, String> {
+    let items = j
+        .as_array()
+        .ok_or_else(|| format!("{what} must be an array of [x, y, z]"))?;
+    items
+        .iter()
+        .enumerate()
+        .map(|(k, p)| as_vec3(p).ok_or_else(|| format!("{what}[{k}] is not an [x, y, z] point")))
+        .collect()
+}
+
+fn decode_point(o: &Map<String, Json>, name: &str) -> Result<DVec3, String> {
+    as_vec3(field(o, name, "plane")?).ok_or_else(|| format!("plane \"{name}\" is not [x, y, z]"))
+}
+
+fn decode_plane(o: &Map<String, Json>) -> Result<Plane, String> {
+    let origin = decode_point(o, "origin")?;
+    let normal = decode_point(o, "normal")?;
+    let plane = match o.get("x_axis").and_then(as_vec3) {
+        Some(x) => Plane::from_axes(origin, x, normal.cross(x)),
+        None => Plane::from_normal(origin, normal),
+    };
+    plane.map_err(|e| e.to_string())
+}
+
+fn decode_polyline(o: &Map<String, Json>) -> Result<Polyline, String> {
+    let points = point_list(field(o, "points", "polyline")?, "points")?;
+    let closed = match o.get("closed") {
+        None => false,
+        Some(Json::Bool(b)) => *b,
+        Some(_) => return Err("polyline \"closed\" must be a boolean".into()),
+    };
+    Ok(Polyline { points, closed })
+}
+
+fn usize_field(o: &Map<String, Json>, name: &str) -> Result<usize, String> {
+    field(o, name, "quad mesh")?
+        .as_u64()
+        .and_then(|n| usize::try_from(n).ok())
+        .ok_or_else(|| format!("quad mesh \"{name}\" must be a non-negative integer"))
+}
+
+fn bool_field(o: &Map<String, Json>, name: &str) -> Result<bool, String> {
+    match o.get(name) {
+        None => Ok(false),
+        Some(Json::Bool(b)) => Ok(*b),
+        Some(_) => Err(format!("quad mesh \"{name}\" must be a boolean")),
+    }
+}
+
+fn decode_quad_mesh(o: &Map<String, Json>) -> Result<QuadGrid, String> {
+    let rows = usize_field(o, "rows")?;
+    let cols = usize_field(o, "cols")?;
+    let vertices = point_list(field(o, "vertices", "quad mesh")?, "vertices")?;
+    let grid = QuadGrid::new(rows, cols, vertices).map_err(|e| e.to_string())?;
+    Ok(grid.with_wrap(bool_field(o, "wrap_rows")?, bool_field(o, "wrap_cols")?))
+}
+
+fn decode_mesh(o: &Map<String, Json>) -> Result<PolygonMesh, String> {
+    let vertices = point_list(field(o, "vertices", "mesh")?, "vertices")?;
+    let faces = field(o, "faces", "mesh")?
+        .as_array()
+        .ok_or("mesh \"faces\" must be an array")?;
+    let faces = faces
+        .iter()
+        .enumerate()
+        .map(|(k, f)| {
+            f.as_array()
+                .and_then(|ix| {
+                    ix.iter()
+                        .map(|i| i.as_u64().and_then(|i| u32::try_from(i).ok()))
+                        .collect()
+                })
+                .ok_or_else(|| format!("mesh faces[{k}] must be an array of vertex indices"))
+        })
+        .collect::<Result<Vec<Vec<u32>>, String>>()?;
+    PolygonMesh::from_faces(vertices, &faces).map_err(|e| e.to_string())
+}
+
+fn decode_record(o: &Map<String, Json>) -> Result<Record, String> {
+    let mut r = Record::new();
+    for (k, v) in o {
+        r.set(
+            k.clone(),
+            from_json(v, &ValueType::Any).map_err(|e| format!("{k}: {e}"))?,
+        );
+    }
+    Ok(r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn encodes_contract_shapes() {
+        let p = Value::from(Polyline::open(vec![DVec3::ZERO, DVec3::X]));
+        assert_eq!(
+            to_json(&p),
+            json!({"points": [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], "closed": false})
+        );
+        let g = QuadGrid::new(1, 2, vec![DVec3::ZERO, DVec3::Y]).unwrap();
+        assert_eq!(
+            to_json(&Value::from(g)),
+            json!({"rows": 1, "cols": 2, "wrap_rows": false, "wrap_cols": false,
+                   "vertices": [[0.0, 0.0, 0.0], [0.0, 1.0, 0.0]]})
+        );
+        assert_eq!(to_json(&Value::Number(f64::INFINITY)), Json::Null);
+        assert_eq!(
+            to_json(&Value::list(vec![Value::Null, Value::Integer(3)])),
+            json!([null, 3])
+        );
+    }
+
+    #[test]
+    fn decodes_by_port_type() {
+        assert!(
+            from_json(&json!([1, 2, 3]), &ValueType::Point)
+                .unwrap()
+                .same_as(&Value::Point(DVec3::new(1.0, 2.0, 3.0)))
+        );
+        let list = from_json(&json!([1, 2, 3]), &ValueType::Number).unwrap();
+        assert_eq!(list.as_list().unwrap().len(), 3);
+        let bare = from_json(&json!([[0, 0, 0], [1, 0, 0]]), &ValueType::Polyline).unwrap();
+        assert!(matches!(bare, Value::Polyline(p) if p.points.len() == 2 && !p.closed));
+        assert!(
+            from_json(&json!("x"), &ValueType::Number)
+                .unwrap_err()
+                .contains("expected number")
+        );
+        assert!(from_json(&json!(1.5), &ValueType::Integer).is_err());
+        assert_eq!(
+            from_json(&json!(2.0), &ValueType::Integer).unwrap(),
+            Value::Integer(2)
+        );
+    }
+
+    #[test]
+    fn round_trips_meshes() {
+        let g = QuadGrid::new(2, 2, vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE])
+            .unwrap()
+            .with_wrap(true, false);
+        let v = Value::from(g);
+        assert_eq!(from_json(&to_json(&v), &ValueType::QuadMesh).unwrap(), v);
+        let m = Value::from(
+            PolygonMesh::from_faces(vec![DVec3::ZERO, DVec3::X, DVec3::Y], &[vec![0, 1, 2]])
+                .unwrap(),
+        );
+        assert_eq!(from_json(&to_json(&m), &ValueType::Mesh).unwrap(), m);
+    }
+}

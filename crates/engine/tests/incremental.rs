@@ -1,0 +1,125 @@
+//! Only the downstream cone of an edit re-runs; nothing runs when nothing changed.
+
+mod common;
+
+use cnets_engine::{Evaluator, NodeContext, Value};
+
+#[test]
+fn first_evaluation_runs_every_node_once() {
+    let g = common::chain(10);
+    let mut ev = Evaluator::new();
+    let s = ev.evaluate_all(&g, &NodeContext::default());
+    assert_eq!(s.ran, 11);
+    assert_eq!(ev.output(&g, "n9", "sum"), Some(&Value::Number(10.0)));
+    for k in 0..10 {
+        assert_eq!(ev.runs(&g, &format!("n{k}")), 1);
+    }
+}
+
+#[test]
+fn nothing_runs_when_nothing_changed() {
+    let mut g = common::chain(10);
+    let mut ev = Evaluator::new();
+    let ctx = NodeContext::default();
+    ev.evaluate_all(&g, &ctx);
+    let before = ev.total_runs();
+    assert_eq!(ev.evaluate_all(&g, &ctx).ran, 0);
+    // Setting an equal value is not an edit.
+    assert!(!g.set_value("n3", "b", Value::Number(1.0)).unwrap());
+    assert_eq!(ev.evaluate_all(&g, &ctx).ran, 0);
+    // Moving a node or toggling preview is not an edit either.
+    g.set_position("n3", [10.0, 20.0]).unwrap();
+    g.set_preview("n3", false).unwrap();
+    assert_eq!(ev.evaluate_all(&g, &ctx).ran, 0);
+    assert_eq!(ev.total_runs(), before);
+}
+
+#[test]
+fn only_the_downstream_cone_reruns() {
+    // head -> n0 -> … -> n9, plus an independent branch `side` and a node `join` fed by n4 and side.
+    let mut g = common::chain(10);
+    g.add_node("side", "t.num").unwrap();
+    g.add_node("join", "t.add").unwrap();
+    g.connect("n4", "sum", "join", "a").unwrap();
+    g.connect("side", "out", "join", "b").unwrap();
+    let mut ev = Evaluator::new();
+    let ctx = NodeContext::default();
+    ev.evaluate_all(&g, &ctx);
+
+    g.set_value("n5", "b", Value::Number(2.0)).unwrap();
+    let s = ev.evaluate_all(&g, &ctx);
+    assert_eq!(s.ran, 5, "n5..n9 re-run, nothing else");
+    for k in 0..5 {
+        assert_eq!(
+            ev.runs(&g, &format!("n{k}")),
+            1,
+            "n{k} is upstream of the edit"
+        );
+    }
+    for k in 5..10 {
+        assert_eq!(
+            ev.runs(&g, &format!("n{k}")),
+            2,
+            "n{k} is downstream of the edit"
+        );
+    }
+    assert_eq!(ev.runs(&g, "join"), 1);
+    assert_eq!(ev.runs(&g, "side"), 1);
+    assert_eq!(ev.output(&g, "n9", "sum"), Some(&Value::Number(11.0)));
+
+    g.set_value("side", "value", Value::Number(5.0)).unwrap();
+    let s = ev.evaluate_all(&g, &ctx);
+    assert_eq!(s.ran, 2, "side and join");
+    assert_eq!(ev.output(&g, "join", "sum"), Some(&Value::Number(10.0)));
+}
+
+#[test]
+fn pull_based_evaluation_runs_only_what_is_requested() {
+    let mut g = common::chain(5);
+    g.add_node("other", "t.num").unwrap();
+    let mut ev = Evaluator::new();
+    let ctx = NodeContext::default();
+    let n2 = g.index("n2").unwrap();
+    let s = ev.evaluate(&g, &[n2], &ctx, &mut |_, _| {});
+    assert_eq!(s.ran, 4, "head, n0, n1, n2");
+    assert_eq!(ev.runs(&g, "n3"), 0);
+    assert_eq!(ev.runs(&g, "other"), 0);
+    assert!(ev.result(&g, "n4").is_none());
+}
+
+#[test]
+fn rewiring_reruns_the_target() {
+    let mut g = common::chain(3);
+    g.add_node("alt", "t.num").unwrap();
+    g.set_value("alt", "value", Value::Number(100.0)).unwrap();
+    let mut ev = Evaluator::new();
+    let ctx = NodeContext::default();
+    ev.evaluate_all(&g, &ctx);
+    g.disconnect("n0", "sum", "n1", "a").unwrap();
+    g.connect("alt", "out", "n1", "a").unwrap();
+    let s = ev.evaluate_all(&g, &ctx);
+    assert_eq!(s.ran, 2, "n1 and n2");
+    assert_eq!(ev.output(&g, "n2", "sum"), Some(&Value::Number(102.0)));
+    g.remove_node("alt").unwrap();
+    ev.evaluate_all(&g, &ctx);
+    assert_eq!(
+        ev.output(&g, "n2", "sum"),
+        Some(&Value::Number(2.0)),
+        "n1.a falls back to its default 0"
+    );
+}
+
+#[test]
+fn a_removed_node_index_reused_by_a_new_node_does_not_inherit_its_memo() {
+    let mut g = common::graph();
+    g.add_node("a", "t.num").unwrap();
+    g.set_value("a", "value", Value::Number(3.0)).unwrap();
+    let mut ev = Evaluator::new();
+    let ctx = NodeContext::default();
+    ev.evaluate_all(&g, &ctx);
+    g.remove_node("a").unwrap();
+    g.add_node("b", "t.num").unwrap();
+    ev.evaluate_all(&g, &ctx);
+    assert_eq!(ev.output(&g, "b", "out"), Some(&Value::Number(0.0)));
+    assert_eq!(ev.runs(&g, "b"), 1);
+}
