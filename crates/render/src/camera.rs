@@ -222,26 +222,29 @@ impl Camera {
         self.projection_matrix(aspect) * self.view_matrix()
     }
 
-    /// Moves target and distance so the whole box is visible from the current direction, with a
-    /// small margin. Empty bounds (`None`) frame the unit cube around the origin; a box of (almost)
-    /// zero size, e.g. a single point, is padded to a small cube around it first.
+    /// Sets target and distance so the whole box is visible from the current direction with a
+    /// small margin, its image centred (the target stays in the box's middle plane, near its
+    /// centre). Empty bounds (`None`) frame the unit cube around the origin; a box of (almost)
+    /// zero size, e.g. a single point, is padded to a small cube around it and its centre becomes
+    /// the target.
     pub fn fit(&mut self, bounds: Option<Bounds>, aspect: f32) {
         let b = padded(bounds);
-        self.fit_points_inner(&b.corners(), b, aspect);
+        let degenerate = bounds != Some(b);
+        self.fit_points_inner(&b.corners(), b, aspect, !degenerate);
     }
 
-    /// Like [`Camera::fit`] but frames the given points tightly (a box's corners usually project
-    /// wider than the geometry inside it). Non-finite points are ignored; no finite point frames
+    /// Like [`Camera::fit`] but frames the given points tightly and centres their image (a box's
+    /// corners usually project wider than the geometry inside it). Non-finite points are ignored; no finite point frames
     /// the unit cube around the origin.
     pub fn fit_points(&mut self, points: &[Vec3], aspect: f32) {
         let bounds = Bounds::from_points(points.iter().copied());
         let b = padded(bounds);
         match bounds {
             Some(raw) if raw.size().max_element() >= b.size().max_element() * 0.999 => {
-                self.fit_points_inner(points, b, aspect)
+                self.fit_points_inner(points, b, aspect, true)
             }
             // Degenerate: frame the padded box instead.
-            _ => self.fit_points_inner(&b.corners(), b, aspect),
+            _ => self.fit_points_inner(&b.corners(), b, aspect, false),
         }
     }
 
@@ -251,7 +254,7 @@ impl Camera {
         self.fit_points(&points, aspect);
     }
 
-    fn fit_points_inner(&mut self, points: &[Vec3], b: Bounds, aspect: f32) {
+    fn fit_points_inner(&mut self, points: &[Vec3], b: Bounds, aspect: f32, recenter: bool) {
         let (hx, hy) = self.half_fovs(aspect);
         let (tx, ty) = (hx.tan() * FIT_MARGIN, hy.tan() * FIT_MARGIN);
         let (right, up, back) = (self.right(), self.up(), self.back());
@@ -260,7 +263,8 @@ impl Camera {
         let mut d = 0.0;
         // A few rounds of: distance that fits every point around `center`, then shift `center` so
         // the image of the points is centred. Converges quickly; the last round only sets distance.
-        for round in 0..4 {
+        let rounds = if recenter { 12 } else { 1 };
+        for round in 0..rounds {
             // Point p at image coordinates (x, y), offset z towards the eye, is inside the view at
             // distance d when |x| <= tx (d - z) and |y| <= ty (d - z).
             d = 0.0f32;
@@ -276,7 +280,7 @@ impl Camera {
                 .max(z_max + 0.05 * radius)
                 .max(radius * 0.05)
                 .max(MIN_DISTANCE);
-            if round == 3 {
+            if round + 1 == rounds {
                 break;
             }
             let (mut lo, mut hi) = (
@@ -291,7 +295,7 @@ impl Camera {
                 hi = hi.max(ndc);
             }
             let mid = (lo + hi) * 0.5;
-            if !mid.is_finite() || mid.length() < 1e-4 {
+            if !mid.is_finite() || mid.length() < 1e-3 {
                 break;
             }
             center += (right * mid.x * tx + up * mid.y * ty) * d;

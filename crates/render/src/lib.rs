@@ -115,7 +115,7 @@ pub use blit::{BlitSource, Blitter};
 pub use camera::{Camera, ParseViewError, View};
 pub use cnets_geometry::{Line, PolygonMesh, Polyline, QuadGrid};
 pub use error::RenderError;
-pub use offscreen::{Image, Offscreen};
+pub use offscreen::{Image, Offscreen, read_texture};
 pub use palette::{Color, ConfigClass, Legend, SequentialMap};
 pub use renderer::{COLOR_FORMAT, DEPTH_FORMAT, RendererOptions, SceneRenderer};
 pub use scene::{

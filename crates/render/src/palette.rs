@@ -118,7 +118,7 @@ impl ConfigClass {
             ConfigClass::PlusPlus => Color::hex(0x8fb4d9),
             ConfigClass::MinusMinus => Color::hex(0xd62f2f),
             ConfigClass::PlusMinus => Color::hex(0xf28e1c),
-            ConfigClass::MinusPlus => Color::hex(0x8e5cc4),
+            ConfigClass::MinusPlus => Color::hex(0x7b3fa8),
         }
     }
 }
