@@ -66,20 +66,28 @@ impl Registry {
     }
 }
 
-/// Levenshtein distance between two short strings.
+/// Edit distance counting insertions, deletions, substitutions and swaps of neighbours (optimal
+/// string alignment), so that the common typo `nmu` for `num` counts as one edit.
 pub fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
     let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut prev = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let cur = row[j + 1];
-            row[j + 1] = (prev + usize::from(ca != *cb)).min(row[j] + 1).min(cur + 1);
-            prev = cur;
+    let w = b.len() + 1;
+    let mut d = vec![0usize; (a.len() + 1) * w];
+    for i in 0..=a.len() {
+        for j in 0..=b.len() {
+            d[i * w + j] = if i == 0 || j == 0 {
+                i + j
+            } else {
+                let cost = usize::from(a[i - 1] != b[j - 1]);
+                let mut best = (d[(i - 1) * w + j] + 1).min(d[i * w + j - 1] + 1).min(d[(i - 1) * w + j - 1] + cost);
+                if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                    best = best.min(d[(i - 2) * w + j - 2] + 1);
+                }
+                best
+            };
         }
     }
-    row[b.len()]
+    d[a.len() * w + b.len()]
 }
 
 #[cfg(test)]
@@ -95,6 +103,7 @@ mod tests {
         assert!(r.get("curve.arcs").is_none());
         assert_eq!(r.similar_ids("curve.arcs"), vec!["curve.arc"]);
         assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("t.nmu", "t.num"), 1);
         r.register(NodeDef::new("curve.arc", "Curves", "Replaced."));
         assert_eq!(r.len(), 2);
         assert_eq!(r.get("curve.arc").unwrap().doc, "Replaced.");
