@@ -57,11 +57,21 @@ fn newer_versions_and_wrong_shapes_are_refused() {
         errors("(version: 2, nodes: {}, edges: [])"),
         ["g.ron:1:11: file version 2 is newer than this cnets supports (1); upgrade cnets"]
     );
-    assert_eq!(errors("(nodes: {}, edges: [])"), ["g.ron:1:1: missing field 'version' (this build writes version 1)"]);
+    assert_eq!(
+        errors("(nodes: {}, edges: [])"),
+        ["g.ron:1:1: missing field 'version' (this build writes version 1)"]
+    );
     assert!(errors("[1, 2]")[0].contains("a graph file is a struct"));
     assert!(errors("(version: 1, nodes: [], edges: [])")[0].contains("'nodes' must be a map"));
-    assert!(errors("(version: 1, nodes: {\"a b\": (type: \"t.num\")})")[0].contains("invalid node id"));
-    assert!(errors("(version: 1, nodes: {\"a\": (type: \"t.num\"), \"a\": (type: \"t.num\")})")[0].contains("already exists"));
-    assert!(errors("(version: 1, nodes: {}, edges: [], extra: 1)")[0].contains("unknown field 'extra'"));
+    assert!(
+        errors("(version: 1, nodes: {\"a b\": (type: \"t.num\")})")[0].contains("invalid node id")
+    );
+    assert!(
+        errors("(version: 1, nodes: {\"a\": (type: \"t.num\"), \"a\": (type: \"t.num\")})")[0]
+            .contains("already exists")
+    );
+    assert!(
+        errors("(version: 1, nodes: {}, edges: [], extra: 1)")[0].contains("unknown field 'extra'")
+    );
     assert!(errors("(version: 1, nodes: {}, edges: [])").is_empty());
 }

@@ -22,9 +22,39 @@ const BASE: &str = r#"(
 )"#;
 
 const TOKENS: &[&str] = &[
-    "(", ")", "[", "]", "{", "}", ",", ":", "\"", "'", "->", ".", "-", "1e999", "NaN", "inf", "None",
-    "Some(", "r#\"", "/*", "//", "\\u{", "0x", "version", "nodes", "edges", "type", "t.num", "\n", " ",
-    "99999999999999999999", "é", "\u{0}",
+    "(",
+    ")",
+    "[",
+    "]",
+    "{",
+    "}",
+    ",",
+    ":",
+    "\"",
+    "'",
+    "->",
+    ".",
+    "-",
+    "1e999",
+    "NaN",
+    "inf",
+    "None",
+    "Some(",
+    "r#\"",
+    "/*",
+    "//",
+    "\\u{",
+    "0x",
+    "version",
+    "nodes",
+    "edges",
+    "type",
+    "t.num",
+    "\n",
+    " ",
+    "99999999999999999999",
+    "é",
+    "\u{0}",
 ];
 
 #[derive(Debug, Clone)]
@@ -39,7 +69,8 @@ fn mutation() -> impl Strategy<Value = Mutation> {
     prop_oneof![
         (any::<usize>(), 1usize..8).prop_map(|(at, n)| Mutation::Delete(at, n)),
         (any::<usize>(), any::<usize>()).prop_map(|(at, t)| Mutation::Insert(at, t)),
-        (any::<usize>(), 1usize..6, any::<usize>()).prop_map(|(at, n, t)| Mutation::Replace(at, n, t)),
+        (any::<usize>(), 1usize..6, any::<usize>())
+            .prop_map(|(at, n, t)| Mutation::Replace(at, n, t)),
         (any::<usize>(), 1usize..40).prop_map(|(at, n)| Mutation::Duplicate(at, n)),
     ]
 }
@@ -77,7 +108,11 @@ fn apply(text: &str, mutations: &[Mutation]) -> String {
 }
 
 fn cases() -> u32 {
-    std::env::var("PROPTEST_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(10_000).max(10_000)
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(10_000)
+        .max(10_000)
 }
 
 proptest! {

@@ -70,27 +70,43 @@ fn saved_files_are_standard_ron() {
     let doc = load_str(SAMPLE, "sample.ron", &common::registry()).unwrap();
     let text = to_ron(&doc.graph, &doc.meta);
     let parsed: Result<ron::Value, _> = ron::from_str(&text);
-    assert!(parsed.is_ok(), "the ron crate rejects our output: {parsed:?}");
+    assert!(
+        parsed.is_ok(),
+        "the ron crate rejects our output: {parsed:?}"
+    );
 }
 
 #[test]
 fn load_save_load_gives_the_same_graph() {
     let registry = common::registry();
     let mut doc = load_str(SAMPLE, "sample.ron", &registry).unwrap();
-    doc.graph.set_value("x", "value", Value::Number(0.1 + 0.2)).unwrap();
-    doc.graph.set_value("add", "a", Value::Number(f64::NAN)).unwrap();
+    doc.graph
+        .set_value("x", "value", Value::Number(0.1 + 0.2))
+        .unwrap();
+    doc.graph
+        .set_value("add", "a", Value::Number(f64::NAN))
+        .unwrap();
     let text = to_ron(&doc.graph, &doc.meta);
     let again = load_str(&text, "again.ron", &registry).unwrap();
     assert_eq!(to_ron(&again.graph, &again.meta), text);
-    assert_eq!(again.graph.node("x").unwrap().value_of("value"), Some(&Value::Number(0.1 + 0.2)));
+    assert_eq!(
+        again.graph.node("x").unwrap().value_of("value"),
+        Some(&Value::Number(0.1 + 0.2))
+    );
     assert_eq!(again.graph.wires(), doc.graph.wires());
     assert!(!again.graph.node("series").unwrap().preview);
     assert!(!again.graph.node("add").unwrap().enabled);
     assert_eq!(again.graph.node("x").unwrap().position, [10.0, -20.5]);
     let mut ev = Evaluator::new();
     ev.evaluate_all(&again.graph, &NodeContext::default());
-    assert_eq!(ev.output(&again.graph, "sum", "total"), Some(&Value::Number(6.0)));
-    assert_eq!(ev.output(&again.graph, "poly", "count"), Some(&Value::Integer(3)));
+    assert_eq!(
+        ev.output(&again.graph, "sum", "total"),
+        Some(&Value::Number(6.0))
+    );
+    assert_eq!(
+        ev.output(&again.graph, "poly", "count"),
+        Some(&Value::Integer(3))
+    );
 }
 
 #[test]
@@ -104,8 +120,19 @@ fn saving_is_atomic_and_replaces_the_file() {
     save_file(&path, &doc.graph, &GraphMeta::default()).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(text.starts_with("(\n    version: 1,\n    nodes: {"));
-    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "no temporary file left");
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        1,
+        "no temporary file left"
+    );
     // A save into a missing directory fails and writes nothing.
-    assert!(save_file(&dir.join("missing/g.ron"), &doc.graph, &GraphMeta::default()).is_err());
+    assert!(
+        save_file(
+            &dir.join("missing/g.ron"),
+            &doc.graph,
+            &GraphMeta::default()
+        )
+        .is_err()
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

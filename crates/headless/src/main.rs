@@ -1,1 +1,52 @@
-fn main() {}
+//! `cnets`: the command-line runner. List node types, evaluate one node on JSON inputs, run and
+//! check graph files.
+
+mod commands;
+mod failure;
+mod inputs;
+mod progress;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use crate::failure::Failure;
+
+/// cnets: design cone-nets (planar-quad meshes on discrete cones) from node graphs.
+#[derive(Debug, Parser)]
+#[command(name = "cnets", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// List every node type: id, category, doc, inputs (name, type, default) and outputs.
+    Nodes(commands::nodes::Args),
+    /// Evaluate one node type on JSON inputs and print its outputs as JSON.
+    Eval(commands::eval::Args),
+    /// Evaluate a graph file; export nodes write into --out.
+    Run(commands::run::Args),
+    /// Load and type-check a graph file without evaluating it.
+    Check(commands::check::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Nodes(args) => commands::nodes::run(args),
+        Command::Eval(args) => commands::eval::run(args),
+        Command::Run(args) => commands::run::run(args),
+        Command::Check(args) => commands::check::run(args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(Failure { code, messages }) => {
+            for m in messages {
+                eprintln!("error: {m}");
+            }
+            ExitCode::from(code)
+        }
+    }
+}

@@ -1,1 +1,51 @@
-//! placeholder
+//! The cnets node library: thin wrappers over `cnets-geometry`, registered in one place.
+//!
+//! Each module declares its nodes with [`cnets_engine::node!`] and lists them in its `nodes()`
+//! function; [`registry`] collects every module. To add a node: declare it in the module of its
+//! category, add it to that module's `nodes()`, and regenerate `docs/nodes.md`
+//! (`cargo run -p cnets -- nodes --markdown > docs/nodes.md`).
+
+pub mod curve;
+pub mod param;
+pub mod reference;
+
+use cnets_engine::{NodeDef, Registry};
+
+/// Every node type of the library, in palette order.
+pub fn all() -> Vec<NodeDef> {
+    [param::nodes(), curve::nodes()]
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
+/// A registry with every node type of the library.
+pub fn registry() -> Registry {
+    let mut registry = Registry::new();
+    for def in all() {
+        registry.register(def);
+    }
+    registry
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_are_unique_namespaced_and_documented() {
+        let defs = all();
+        let mut ids: Vec<&str> = defs.iter().map(|d| d.id.as_ref()).collect();
+        ids.sort();
+        let before = ids.len();
+        ids.dedup();
+        assert_eq!(ids.len(), before, "duplicate node ids");
+        for d in &defs {
+            assert!(d.id.contains('.'), "{} is not namespaced", d.id);
+            assert!(!d.doc.is_empty(), "{} has no doc", d.id);
+            for p in d.inputs.iter().chain(&d.outputs) {
+                assert!(!p.doc.is_empty(), "{}.{} has no doc", d.id, p.name);
+            }
+        }
+    }
+}

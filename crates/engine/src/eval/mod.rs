@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 use petgraph::stable_graph::NodeIndex;
 
 use crate::graph::{Graph, NodeInstance, Revision};
-use crate::node::NodeContext;
+use crate::node::{NodeContext, NodeDef};
 use crate::value::{Value, content_hash};
 
 /// The memo of one node instance.
@@ -367,6 +367,27 @@ impl Evaluator {
             .get(index.index())?
             .as_ref()
             .filter(|m| m.uid == uid)
+    }
+}
+
+/// Runs one node type on raw input values (one per input port, `Null` for empty), outside any graph:
+/// maps over lists like a graph run, catches panics, and collects warnings and written files.
+pub fn evaluate_node(
+    def: &NodeDef,
+    ctx: &NodeContext,
+    inputs: &[Value],
+) -> Result<NodeOutputs, String> {
+    let outcome = panic_guard::catch(|| run_mapped(def, ctx, inputs));
+    let warnings = ctx.take_warnings();
+    let files = ctx.take_files();
+    match outcome {
+        Ok(Ok(values)) => Ok(NodeOutputs {
+            values,
+            warnings,
+            files,
+        }),
+        Ok(Err(e)) => Err(e.message),
+        Err(panic) => Err(panic),
     }
 }
 

@@ -95,11 +95,15 @@ pub struct Document {
     pub graph: Graph,
     /// Its metadata.
     pub meta: GraphMeta,
+    /// Problems that do not stop loading (e.g. a required input neither wired nor set): the graph
+    /// loads and can be edited, but the node will fail when evaluated.
+    pub warnings: Vec<Diagnostic>,
 }
 
 struct Loader<'a> {
     file: &'a str,
     diagnostics: Vec<Diagnostic>,
+    warnings: Vec<Diagnostic>,
 }
 
 impl Loader<'_> {
@@ -134,6 +138,7 @@ pub fn load_str(text: &str, file: &str, registry: &Arc<Registry>) -> Result<Docu
     let mut loader = Loader {
         file,
         diagnostics: Vec::new(),
+        warnings: Vec::new(),
     };
     let root = match ron::parse(text) {
         Ok(root) => root,
@@ -144,8 +149,9 @@ pub fn load_str(text: &str, file: &str, registry: &Arc<Registry>) -> Result<Docu
             });
         }
     };
-    let document = load_root(&mut loader, &root, registry);
+    let mut document = load_root(&mut loader, &root, registry);
     if loader.diagnostics.is_empty() {
+        document.warnings = loader.warnings;
         Ok(document)
     } else {
         loader.diagnostics.sort_by_key(|d| d.pos);
@@ -159,6 +165,7 @@ fn load_root(loader: &mut Loader<'_>, root: &Node, registry: &Arc<Registry>) -> 
     let mut document = Document {
         graph: Graph::new(registry.clone()),
         meta: GraphMeta::default(),
+        warnings: Vec::new(),
     };
     let Kind::Struct(_, fields) = &root.kind else {
         loader.error(
@@ -213,7 +220,40 @@ fn load_root(loader: &mut Loader<'_>, root: &Node, registry: &Arc<Registry>) -> 
     if let Some(edges) = edges {
         load_edges(loader, edges, &mut document.graph, &failed_nodes);
     }
+    if let Some(nodes) = nodes {
+        warn_unset_inputs(loader, nodes, &document.graph);
+    }
     document
+}
+
+/// Warns about required inputs that are neither wired nor set (at the node's position).
+fn warn_unset_inputs(loader: &mut Loader<'_>, nodes: &Node, graph: &Graph) {
+    let Kind::Map(entries) = &nodes.kind else {
+        return;
+    };
+    for (key, body) in entries {
+        let Some(id) = key.as_str() else { continue };
+        let (Ok(index), Some(node)) = (graph.index(id), graph.node(id)) else {
+            continue;
+        };
+        let wired: Vec<usize> = graph
+            .wires_into(index)
+            .iter()
+            .map(|(_, w)| w.to_input)
+            .collect();
+        for (k, port) in node.def.inputs.iter().enumerate() {
+            if port.required() && node.value(k).is_none() && !wired.contains(&k) {
+                loader.warnings.push(Diagnostic {
+                    file: loader.file.to_string(),
+                    pos: Some(body.pos),
+                    message: format!(
+                        "node '{id}': required input '{}' is neither connected nor set",
+                        port.name
+                    ),
+                });
+            }
+        }
+    }
 }
 
 fn text_field(loader: &mut Loader<'_>, value: &Node, name: &str) -> Option<String> {

@@ -367,7 +367,9 @@ impl Parser {
                     return Err(self.error(format!("expected ',' or '{close}', found '{c}'")));
                 }
                 None => {
-                    return Err(self.error(format!("expected '{close}', found the end of the file")));
+                    return Err(
+                        self.error(format!("expected '{close}', found the end of the file"))
+                    );
                 }
             }
         }

@@ -1,0 +1,77 @@
+//! `cnets eval <TYPE> --inputs <FILE.json | -> [--timing] [--out DIR]`.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use cnets_engine::eval::evaluate_node;
+use cnets_engine::value::json::to_json;
+use cnets_engine::{NodeContext, NodeFlag};
+use serde_json::{Map, Value as Json};
+
+use crate::failure::{CommandResult, Failure};
+use crate::inputs::{node_inputs, read_json};
+
+/// Arguments of `cnets eval`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The node type id, e.g. `curve.arc`.
+    node_type: String,
+    /// JSON object of inputs: a file, or `-` for stdin.
+    #[arg(long)]
+    inputs: String,
+    /// Print `time: <ms> ms` on stderr (evaluation only).
+    #[arg(long)]
+    timing: bool,
+    /// Output directory for export nodes.
+    #[arg(long, default_value = "out")]
+    out: PathBuf,
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> CommandResult {
+    let registry = cnets_nodes::registry();
+    let Some(def) = registry.get(&args.node_type) else {
+        let hints = registry.similar_ids(&args.node_type);
+        let hint = if hints.is_empty() {
+            String::new()
+        } else {
+            format!(" (did you mean {}?)", hints.join(", "))
+        };
+        return Err(Failure::usage(format!(
+            "unknown node type '{}'{hint}; `cnets nodes` lists them",
+            args.node_type
+        )));
+    };
+    let json = read_json(&args.inputs)?;
+    let inputs = node_inputs(def, &json)?;
+    let out_dir = def.has_flag(NodeFlag::Export).then(|| args.out.clone());
+    if let Some(dir) = &out_dir {
+        std::fs::create_dir_all(dir).map_err(|e| {
+            Failure::usage(format!(
+                "{}: cannot create the output directory: {e}",
+                dir.display()
+            ))
+        })?;
+    }
+    let base = std::env::current_dir().ok();
+    let ctx = NodeContext::new(out_dir, base);
+    let start = Instant::now();
+    let result = evaluate_node(def, &ctx, &inputs);
+    let elapsed = start.elapsed();
+    if args.timing {
+        eprintln!("time: {:.3} ms", elapsed.as_secs_f64() * 1e3);
+    }
+    let outputs = result.map_err(|message| Failure::node(format!("{}: {message}", def.id)))?;
+    for w in &outputs.warnings {
+        eprintln!("warning: {}: {w}", def.id);
+    }
+    let object: Map<String, Json> = def
+        .outputs
+        .iter()
+        .zip(&outputs.values)
+        .map(|(p, v)| (p.name.to_string(), to_json(v)))
+        .collect();
+    println!("{}", Json::Object(object));
+    Ok(ExitCode::SUCCESS)
+}

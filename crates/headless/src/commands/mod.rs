@@ -1,0 +1,6 @@
+//! One module per `cnets` subcommand.
+
+pub mod check;
+pub mod eval;
+pub mod nodes;
+pub mod run;

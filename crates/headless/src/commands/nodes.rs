@@ -1,0 +1,75 @@
+//! `cnets nodes [--json | --markdown]`.
+
+use std::process::ExitCode;
+
+use cnets_engine::value::json::to_json;
+use cnets_engine::{NodeDef, PortDef};
+use serde_json::{Value as Json, json};
+
+use crate::failure::CommandResult;
+
+/// Arguments of `cnets nodes`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Print a JSON array of node types.
+    #[arg(long, conflicts_with = "markdown")]
+    json: bool,
+    /// Print the Markdown reference (docs/nodes.md).
+    #[arg(long)]
+    markdown: bool,
+}
+
+fn port_json(p: &PortDef, with_default: bool) -> Json {
+    let mut o = json!({ "name": p.name, "type": p.type_name(), "doc": p.doc });
+    if with_default {
+        o["default"] = p.default.as_ref().map_or(Json::Null, to_json);
+        o["optional"] = json!(p.optional);
+        o["required"] = json!(p.required());
+    }
+    o
+}
+
+/// The JSON description of a node type.
+pub fn node_json(def: &NodeDef) -> Json {
+    json!({
+        "id": def.id,
+        "category": def.category,
+        "doc": def.doc,
+        "flags": def.flags.iter().map(|f| format!("{f:?}").to_lowercase()).collect::<Vec<_>>(),
+        "inputs": def.inputs.iter().map(|p| port_json(p, true)).collect::<Vec<_>>(),
+        "outputs": def.outputs.iter().map(|p| port_json(p, false)).collect::<Vec<_>>(),
+    })
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> CommandResult {
+    let registry = cnets_nodes::registry();
+    if args.json {
+        let all: Vec<Json> = registry.iter().map(|d| node_json(d)).collect();
+        println!("{}", serde_json::to_string_pretty(&all).unwrap_or_default());
+    } else if args.markdown {
+        print!("{}", cnets_nodes::reference::markdown(&registry));
+    } else {
+        let mut category = String::new();
+        for def in registry.iter() {
+            if def.category != category {
+                category = def.category.to_string();
+                println!("\n{category}");
+            }
+            println!("  {:<28} {}", def.id, def.summary());
+            for p in &def.inputs {
+                let default = p
+                    .default
+                    .as_ref()
+                    .map(|d| format!(" = {}", to_json(d)))
+                    .unwrap_or_default();
+                let optional = if p.optional { " (optional)" } else { "" };
+                println!("      in  {}: {}{default}{optional}", p.name, p.type_name());
+            }
+            for p in &def.outputs {
+                println!("      out {}: {}", p.name, p.type_name());
+            }
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,185 @@
+//! `cnets run <GRAPH.ron> [--set <node>.<input>=<value>]… [--out <DIR>] [--json]`.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::time::Instant;
+
+use cnets_engine::file::load_file;
+use cnets_engine::value::json::to_json;
+use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag, NodeResult, ValueType};
+use serde_json::{Map, Value as Json, json};
+
+use crate::failure::{CommandResult, Failure};
+use crate::inputs::decode_input;
+use crate::progress::Progress;
+
+/// Arguments of `cnets run`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The graph file.
+    graph: PathBuf,
+    /// Override an input before running: `node.input=value` (value in JSON; plain text for text inputs).
+    #[arg(long = "set", value_name = "NODE.INPUT=VALUE")]
+    sets: Vec<String>,
+    /// Output directory for export nodes (never written outside of).
+    #[arg(long, default_value = "out")]
+    out: PathBuf,
+    /// Print `{ "nodes": { "<id>": { "outputs", "errors", "time_ms" } } }` instead of a summary.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Applies one `--set node.input=value`.
+fn apply_set(graph: &mut Graph, set: &str) -> Result<(), Failure> {
+    let bad = || Failure::usage(format!("--set '{set}': expected <node>.<input>=<value>"));
+    let (target, raw) = set.split_once('=').ok_or_else(bad)?;
+    let (node_id, input) = target.split_once('.').ok_or_else(bad)?;
+    let node = graph
+        .node(node_id)
+        .ok_or_else(|| Failure::usage(format!("--set '{set}': no node '{node_id}'")))?;
+    let def = node.def.clone();
+    let port_ty = def.input_index(input).map(|k| def.inputs[k].ty.clone());
+    let json = match serde_json::from_str::<Json>(raw) {
+        Ok(j) => j,
+        Err(_) if port_ty == Some(ValueType::Text) => Json::String(raw.to_string()),
+        Err(e) => {
+            return Err(Failure::usage(format!(
+                "--set '{set}': the value is not valid JSON: {e}"
+            )));
+        }
+    };
+    let value = decode_input(&def, input, &json)
+        .map_err(|f| Failure::usage(format!("--set '{set}': {}", f.messages.join("; "))))?;
+    graph
+        .set_value(node_id, input, value)
+        .map_err(|e| Failure::usage(format!("--set '{set}': {e}")))?;
+    Ok(())
+}
+
+fn errors_of(result: Option<&NodeResult>) -> Vec<String> {
+    match result {
+        Some(NodeResult::Ok(_)) | None => Vec::new(),
+        Some(NodeResult::Disabled) => Vec::new(),
+        Some(r) => r.error().map(str::to_string).into_iter().collect(),
+    }
+}
+
+fn status(result: Option<&NodeResult>) -> &'static str {
+    match result {
+        Some(NodeResult::Ok(_)) => "ok",
+        Some(NodeResult::Failed(_) | NodeResult::Invalid(_)) => "failed",
+        Some(NodeResult::Blocked(_)) => "blocked",
+        Some(NodeResult::Disabled) => "disabled",
+        None => "not evaluated",
+    }
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> CommandResult {
+    let registry = Arc::new(cnets_nodes::registry());
+    let mut doc = load_file(&args.graph, &registry)?;
+    for set in &args.sets {
+        apply_set(&mut doc.graph, set)?;
+    }
+    let graph = doc.graph;
+    let exports = graph
+        .nodes()
+        .any(|(_, n)| n.def.has_flag(NodeFlag::Export) && n.enabled);
+    if exports {
+        std::fs::create_dir_all(&args.out).map_err(|e| {
+            Failure::usage(format!(
+                "{}: cannot create the output directory: {e}",
+                args.out.display()
+            ))
+        })?;
+    }
+    let base = args.graph.parent().map(Path::to_path_buf);
+    let ctx = NodeContext::new(exports.then(|| args.out.clone()), base);
+    let mut evaluator = Evaluator::new();
+    let all: Vec<_> = graph.nodes().map(|(k, _)| k).collect();
+    let progress = Progress::new("evaluating");
+    let start = Instant::now();
+    let summary = evaluator.evaluate(&graph, &all, &ctx, &mut |done, total| {
+        progress.update(done, total)
+    });
+    let elapsed = start.elapsed();
+    progress.finish();
+
+    let mut failed = Vec::new();
+    let mut nodes = Map::new();
+    let mut files = Vec::new();
+    for (index, node) in graph.nodes() {
+        let result = evaluator.result_at(&graph, index);
+        if result.is_some_and(NodeResult::is_failure) {
+            failed.push(format!(
+                "node '{}' ({}): {}",
+                node.id,
+                node.def.id,
+                result.and_then(NodeResult::error).unwrap_or("")
+            ));
+        }
+        let outputs = result.and_then(NodeResult::outputs);
+        if let Some(o) = outputs {
+            files.extend(o.files.iter().cloned());
+        }
+        if args.json {
+            let values: Map<String, Json> = outputs
+                .map(|o| {
+                    node.def
+                        .outputs
+                        .iter()
+                        .zip(&o.values)
+                        .map(|(p, v)| (p.name.to_string(), to_json(v)))
+                        .collect()
+                })
+                .unwrap_or_default();
+            let time_ms = evaluator
+                .time(&graph, &node.id)
+                .map_or(0.0, |t| t.as_secs_f64() * 1e3);
+            nodes.insert(
+                node.id.clone(),
+                json!({
+                    "type": node.def.id,
+                    "status": status(result),
+                    "outputs": values,
+                    "errors": errors_of(result),
+                    "warnings": outputs.map(|o| o.warnings.clone()).unwrap_or_default(),
+                    "time_ms": time_ms,
+                }),
+            );
+        }
+    }
+    if args.json {
+        println!("{}", json!({ "nodes": nodes }));
+    } else {
+        println!(
+            "{}: {} nodes evaluated in {:.1} ms, {} failed",
+            args.graph.display(),
+            summary.ran,
+            elapsed.as_secs_f64() * 1e3,
+            failed.len()
+        );
+        for (_, node) in graph.nodes() {
+            if let Some(o) = evaluator
+                .result(&graph, &node.id)
+                .and_then(NodeResult::outputs)
+            {
+                for w in &o.warnings {
+                    eprintln!("warning: node '{}': {w}", node.id);
+                }
+            }
+        }
+        for f in &files {
+            println!("wrote {}", f.display());
+        }
+    }
+    if failed.is_empty() {
+        Ok(ExitCode::SUCCESS)
+    } else {
+        Err(Failure {
+            code: 1,
+            messages: failed,
+        })
+    }
+}
