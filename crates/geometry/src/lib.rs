@@ -1,9 +1,10 @@
 //! The pure math kernel of cnets.
 //!
 //! Plain `f64` value types over [`glam::DVec3`]: polylines, planes, line segments, quad-grid meshes and
-//! general polygon meshes, plus (in later modules) the cone-net construction itself. Nothing here knows
+//! general polygon meshes, plus the cone-net construction kernel ([`conenet`]). Nothing here knows
 //! about the node engine, the editor or the GPU: the crate is usable as a library on its own.
 
+pub mod conenet;
 pub mod error;
 pub mod line;
 pub mod plane;
@@ -11,6 +12,10 @@ pub mod polygon_mesh;
 pub mod polyline;
 pub mod quad_grid;
 
+pub use conenet::{
+    ConeNet, ConstructInputs, CoplanarInputs, CtubeInputs, construct, construct_coplanar,
+    construct_ctube, encode,
+};
 pub use error::GeometryError;
 pub use glam::DVec3;
 pub use line::Line;

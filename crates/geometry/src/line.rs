@@ -51,7 +51,10 @@ mod tests {
     fn distance_to_line_is_perpendicular_distance() {
         let l = Line::new(DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0));
         assert_eq!(l.distance_to_line(DVec3::new(5.0, 3.0, 4.0)), Some(5.0));
-        assert_eq!(Line::new(DVec3::X, DVec3::X).distance_to_line(DVec3::ZERO), None);
+        assert_eq!(
+            Line::new(DVec3::X, DVec3::X).distance_to_line(DVec3::ZERO),
+            None
+        );
         assert_eq!(l.at(0.5), DVec3::X);
     }
 }

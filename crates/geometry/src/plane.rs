@@ -25,28 +25,53 @@ impl Default for Plane {
 
 impl Plane {
     /// The world XY plane through the origin.
-    pub const XY: Plane =
-        Plane { origin: DVec3::ZERO, x_axis: DVec3::X, y_axis: DVec3::Y, normal: DVec3::Z };
+    pub const XY: Plane = Plane {
+        origin: DVec3::ZERO,
+        x_axis: DVec3::X,
+        y_axis: DVec3::Y,
+        normal: DVec3::Z,
+    };
     /// The world YZ plane through the origin.
-    pub const YZ: Plane =
-        Plane { origin: DVec3::ZERO, x_axis: DVec3::Y, y_axis: DVec3::Z, normal: DVec3::X };
+    pub const YZ: Plane = Plane {
+        origin: DVec3::ZERO,
+        x_axis: DVec3::Y,
+        y_axis: DVec3::Z,
+        normal: DVec3::X,
+    };
     /// The world ZX plane through the origin (x axis along Z, normal along Y).
-    pub const ZX: Plane =
-        Plane { origin: DVec3::ZERO, x_axis: DVec3::Z, y_axis: DVec3::X, normal: DVec3::Y };
+    pub const ZX: Plane = Plane {
+        origin: DVec3::ZERO,
+        x_axis: DVec3::Z,
+        y_axis: DVec3::X,
+        normal: DVec3::Y,
+    };
 
     /// A plane through `origin` with the given normal; the x axis is chosen deterministically.
     pub fn from_normal(origin: DVec3, normal: DVec3) -> Result<Self, GeometryError> {
         let n = unit(normal, "plane normal")?;
         let helper = if n.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
         let x = (helper - n * helper.dot(n)).normalize();
-        Ok(Self { origin, x_axis: x, y_axis: n.cross(x), normal: n })
+        Ok(Self {
+            origin,
+            x_axis: x,
+            y_axis: n.cross(x),
+            normal: n,
+        })
     }
 
     /// A plane through `origin` spanned by `x_dir` and (the part of) `y_hint` orthogonal to it.
     pub fn from_axes(origin: DVec3, x_dir: DVec3, y_hint: DVec3) -> Result<Self, GeometryError> {
         let x = unit(x_dir, "plane x axis")?;
-        let y = unit(y_hint - x * y_hint.dot(x), "plane y axis (parallel to x axis)")?;
-        Ok(Self { origin, x_axis: x, y_axis: y, normal: x.cross(y) })
+        let y = unit(
+            y_hint - x * y_hint.dot(x),
+            "plane y axis (parallel to x axis)",
+        )?;
+        Ok(Self {
+            origin,
+            x_axis: x,
+            y_axis: y,
+            normal: x.cross(y),
+        })
     }
 
     /// The world point at plane coordinates (u, v).
@@ -105,15 +130,23 @@ mod tests {
         }
         assert_eq!(
             Plane::from_normal(DVec3::ZERO, DVec3::ZERO),
-            Err(GeometryError::ZeroVector { what: "plane normal" })
+            Err(GeometryError::ZeroVector {
+                what: "plane normal"
+            })
         );
     }
 
     #[test]
     fn reflect_and_project() {
         let p = Plane::XY;
-        assert_eq!(p.reflect(DVec3::new(1.0, 2.0, 3.0)), DVec3::new(1.0, 2.0, -3.0));
-        assert_eq!(p.project(DVec3::new(1.0, 2.0, 3.0)), DVec3::new(1.0, 2.0, 0.0));
+        assert_eq!(
+            p.reflect(DVec3::new(1.0, 2.0, 3.0)),
+            DVec3::new(1.0, 2.0, -3.0)
+        );
+        assert_eq!(
+            p.project(DVec3::new(1.0, 2.0, 3.0)),
+            DVec3::new(1.0, 2.0, 0.0)
+        );
         assert!(Plane::from_axes(DVec3::ZERO, DVec3::X, DVec3::X).is_err());
     }
 }

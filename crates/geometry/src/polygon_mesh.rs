@@ -23,7 +23,10 @@ impl PolygonMesh {
 
     /// Builds a mesh from vertices and faces, validating indices and face sizes.
     pub fn from_faces(vertices: Vec<DVec3>, faces: &[Vec<u32>]) -> Result<Self, GeometryError> {
-        let mut mesh = Self { vertices, ..Self::default() };
+        let mut mesh = Self {
+            vertices,
+            ..Self::default()
+        };
         for face in faces {
             mesh.push_face(face)?;
         }
@@ -40,12 +43,18 @@ impl PolygonMesh {
     pub fn push_face(&mut self, face: &[u32]) -> Result<(), GeometryError> {
         let k = self.face_starts.len();
         if face.len() < 3 {
-            return Err(GeometryError::InvalidFace { face: k, reason: format!("{} corners", face.len()) });
+            return Err(GeometryError::InvalidFace {
+                face: k,
+                reason: format!("{} corners", face.len()),
+            });
         }
         if let Some(bad) = face.iter().find(|&&v| v as usize >= self.vertices.len()) {
             return Err(GeometryError::InvalidFace {
                 face: k,
-                reason: format!("vertex {bad} does not exist ({} vertices)", self.vertices.len()),
+                reason: format!(
+                    "vertex {bad} does not exist ({} vertices)",
+                    self.vertices.len()
+                ),
             });
         }
         self.face_starts.push(self.indices.len() as u32);
@@ -61,7 +70,10 @@ impl PolygonMesh {
     /// Corner indices of face `k`.
     pub fn face(&self, k: usize) -> &[u32] {
         let start = self.face_starts[k] as usize;
-        let end = self.face_starts.get(k + 1).map_or(self.indices.len(), |&e| e as usize);
+        let end = self
+            .face_starts
+            .get(k + 1)
+            .map_or(self.indices.len(), |&e| e as usize);
         &self.indices[start..end]
     }
 
@@ -75,9 +87,15 @@ impl PolygonMesh {
         let n = self.vertices.len();
         for k in 0..self.face_count() {
             let start = self.face_starts[k] as usize;
-            let end = self.face_starts.get(k + 1).map_or(self.indices.len(), |&e| e as usize);
+            let end = self
+                .face_starts
+                .get(k + 1)
+                .map_or(self.indices.len(), |&e| e as usize);
             if end < start + 3 || end > self.indices.len() {
-                return Err(GeometryError::InvalidFace { face: k, reason: "fewer than 3 corners".into() });
+                return Err(GeometryError::InvalidFace {
+                    face: k,
+                    reason: "fewer than 3 corners".into(),
+                });
             }
             if let Some(bad) = self.indices[start..end].iter().find(|&&v| v as usize >= n) {
                 return Err(GeometryError::InvalidFace {
@@ -94,8 +112,10 @@ impl PolygonMesh {
         let offset = self.vertices.len() as u32;
         let index_offset = self.indices.len() as u32;
         self.vertices.extend_from_slice(&other.vertices);
-        self.indices.extend(other.indices.iter().map(|&v| v + offset));
-        self.face_starts.extend(other.face_starts.iter().map(|&s| s + index_offset));
+        self.indices
+            .extend(other.indices.iter().map(|&v| v + offset));
+        self.face_starts
+            .extend(other.face_starts.iter().map(|&s| s + index_offset));
     }
 }
 
@@ -109,7 +129,8 @@ impl From<&QuadGrid> for PolygonMesh {
         for i in 0..grid.quad_rows() {
             for j in 0..grid.quad_cols() {
                 mesh.face_starts.push(mesh.indices.len() as u32);
-                mesh.indices.extend(grid.quad_indices(i, j).map(|k| k as u32));
+                mesh.indices
+                    .extend(grid.quad_indices(i, j).map(|k| k as u32));
             }
         }
         mesh

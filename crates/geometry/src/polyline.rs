@@ -17,12 +17,18 @@ pub struct Polyline {
 impl Polyline {
     /// An open polyline through `points`.
     pub fn open(points: Vec<DVec3>) -> Self {
-        Self { points, closed: false }
+        Self {
+            points,
+            closed: false,
+        }
     }
 
     /// A closed polyline through `points` (the first point is not repeated at the end).
     pub fn closed(points: Vec<DVec3>) -> Self {
-        Self { points, closed: true }
+        Self {
+            points,
+            closed: true,
+        }
     }
 
     /// Number of stored points.
@@ -73,14 +79,22 @@ impl Polyline {
     /// (including the closing edge of a closed polyline).
     pub fn validate(&self, what: &'static str, min_points: usize) -> Result<(), GeometryError> {
         if self.points.len() < min_points {
-            return Err(GeometryError::TooFewPoints { what, needed: min_points, got: self.points.len() });
+            return Err(GeometryError::TooFewPoints {
+                what,
+                needed: min_points,
+                got: self.points.len(),
+            });
         }
         check_finite_points(what, &self.points)?;
         let n = self.points.len();
         for k in 0..self.edge_count() {
             let (a, b) = self.edge(k);
             if a.distance_squared(b) <= f64::MIN_POSITIVE {
-                return Err(GeometryError::ZeroLengthEdge { what, index: k, next: (k + 1) % n });
+                return Err(GeometryError::ZeroLengthEdge {
+                    what,
+                    index: k,
+                    next: (k + 1) % n,
+                });
             }
         }
         Ok(())
@@ -95,7 +109,10 @@ impl Polyline {
     pub fn reversed(&self) -> Self {
         let mut points = self.points.clone();
         points.reverse();
-        Self { points, closed: self.closed }
+        Self {
+            points,
+            closed: self.closed,
+        }
     }
 }
 
@@ -122,20 +139,37 @@ mod tests {
         let p = Polyline::open(vec![DVec3::ZERO, DVec3::X, DVec3::X]);
         assert_eq!(
             p.validate("directrix", 2),
-            Err(GeometryError::ZeroLengthEdge { what: "directrix", index: 1, next: 2 })
+            Err(GeometryError::ZeroLengthEdge {
+                what: "directrix",
+                index: 1,
+                next: 2
+            })
         );
         let closed = Polyline::closed(vec![DVec3::ZERO, DVec3::X, DVec3::ZERO]);
         assert!(matches!(
             closed.validate("g", 2),
-            Err(GeometryError::ZeroLengthEdge { index: 2, next: 0, .. })
+            Err(GeometryError::ZeroLengthEdge {
+                index: 2,
+                next: 0,
+                ..
+            })
         ));
     }
 
     #[test]
     fn validate_reports_non_finite_and_too_few() {
         let p = Polyline::open(vec![DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 0.0)]);
-        assert_eq!(p.validate("g", 2), Err(GeometryError::NonFinite { what: "g", index: 1 }));
+        assert_eq!(
+            p.validate("g", 2),
+            Err(GeometryError::NonFinite {
+                what: "g",
+                index: 1
+            })
+        );
         let q = Polyline::open(vec![DVec3::ZERO]);
-        assert!(matches!(q.validate("g", 2), Err(GeometryError::TooFewPoints { got: 1, .. })));
+        assert!(matches!(
+            q.validate("g", 2),
+            Err(GeometryError::TooFewPoints { got: 1, .. })
+        ));
     }
 }

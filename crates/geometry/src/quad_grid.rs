@@ -28,9 +28,20 @@ impl QuadGrid {
     pub fn new(rows: usize, cols: usize, vertices: Vec<DVec3>) -> Result<Self, GeometryError> {
         let expected = rows.checked_mul(cols).unwrap_or(usize::MAX);
         if vertices.len() != expected {
-            return Err(GeometryError::GridSize { rows, cols, expected, got: vertices.len() });
+            return Err(GeometryError::GridSize {
+                rows,
+                cols,
+                expected,
+                got: vertices.len(),
+            });
         }
-        Ok(Self { rows, cols, wrap_rows: false, wrap_cols: false, vertices })
+        Ok(Self {
+            rows,
+            cols,
+            wrap_rows: false,
+            wrap_cols: false,
+            vertices,
+        })
     }
 
     /// Sets the wrap flags (builder style).
@@ -86,7 +97,12 @@ impl QuadGrid {
     pub fn quad_indices(&self, i: usize, j: usize) -> [usize; 4] {
         let i1 = (i + 1) % self.rows;
         let j1 = (j + 1) % self.cols;
-        [i * self.cols + j, i * self.cols + j1, i1 * self.cols + j1, i1 * self.cols + j]
+        [
+            i * self.cols + j,
+            i * self.cols + j1,
+            i1 * self.cols + j1,
+            i1 * self.cols + j,
+        ]
     }
 
     /// Corner positions of quad (i, j), in the order of [`QuadGrid::quad_indices`].
@@ -104,12 +120,18 @@ impl QuadGrid {
     /// Row `i` as a polyline (directrix-aligned), closed when columns wrap.
     pub fn row(&self, i: usize) -> Polyline {
         let start = i * self.cols;
-        Polyline { points: self.vertices[start..start + self.cols].to_vec(), closed: self.wrap_cols }
+        Polyline {
+            points: self.vertices[start..start + self.cols].to_vec(),
+            closed: self.wrap_cols,
+        }
     }
 
     /// Column `j` as a polyline (generatrix-aligned), closed when rows wrap.
     pub fn column(&self, j: usize) -> Polyline {
-        Polyline { points: (0..self.rows).map(|i| self.at(i, j)).collect(), closed: self.wrap_rows }
+        Polyline {
+            points: (0..self.rows).map(|i| self.at(i, j)).collect(),
+            closed: self.wrap_rows,
+        }
     }
 
     /// Axis-aligned bounding box; `None` when empty.
@@ -136,7 +158,11 @@ fn span_count(n: usize, wrap: bool) -> usize {
 /// Axis-aligned bounding box of a point set; `None` when empty.
 pub fn bounds_of(points: &[DVec3]) -> Option<(DVec3, DVec3)> {
     let first = *points.first()?;
-    Some(points.iter().fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p))))
+    Some(
+        points
+            .iter()
+            .fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p))),
+    )
 }
 
 #[cfg(test)]
@@ -160,14 +186,25 @@ mod tests {
         assert_eq!(w.quad_indices(2, 0), [8, 9, 1, 0]);
         assert_eq!(g.at(2, 3), DVec3::new(3.0, 2.0, 0.0));
         assert_eq!(g.row(1).points.len(), 4);
-        assert_eq!(g.column(1).points, vec![DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::new(1.0, 2.0, 0.0)]);
+        assert_eq!(
+            g.column(1).points,
+            vec![
+                DVec3::X,
+                DVec3::new(1.0, 1.0, 0.0),
+                DVec3::new(1.0, 2.0, 0.0)
+            ]
+        );
     }
 
     #[test]
     fn new_rejects_wrong_vertex_count() {
         assert!(matches!(
             QuadGrid::new(2, 2, vec![DVec3::ZERO; 3]),
-            Err(GeometryError::GridSize { expected: 4, got: 3, .. })
+            Err(GeometryError::GridSize {
+                expected: 4,
+                got: 3,
+                ..
+            })
         ));
         assert_eq!(QuadGrid::new(0, 5, vec![]).unwrap().quad_count(), 0);
     }

@@ -1,0 +1,198 @@
+//! Configuration classification (paper Sec. 4.2.1, notes §6):
+//! `s1 = (G_{i,j+1} − X_j)·P_{i,j}`, `s2 = (X_{j+1} − G_{i,j})·P_{i,j+1}`, for j = 1 … M−2.
+
+use std::fmt;
+
+/// The configuration c_{i,j} of support-strip quad (i, j) from the signs of s1 and s2.
+/// A sign is `+` when the value is strictly positive, `−` otherwise (zero counts as `−`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[repr(u8)]
+pub enum Configuration {
+    /// s1 > 0 and s2 > 0: convex, properly oriented (the desired case).
+    #[default]
+    PlusPlus,
+    /// s1 ≤ 0 and s2 ≤ 0.
+    MinusMinus,
+    /// s1 > 0 and s2 ≤ 0.
+    PlusMinus,
+    /// s1 ≤ 0 and s2 > 0.
+    MinusPlus,
+}
+
+impl Configuration {
+    /// Classifies from s1 and s2.
+    #[inline]
+    pub fn from_signs(s1: f64, s2: f64) -> Self {
+        match (s1 > 0.0, s2 > 0.0) {
+            (true, true) => Self::PlusPlus,
+            (false, false) => Self::MinusMinus,
+            (true, false) => Self::PlusMinus,
+            (false, true) => Self::MinusPlus,
+        }
+    }
+
+    /// The label used in node outputs: `"++"`, `"--"`, `"+-"` or `"-+"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::PlusPlus => "++",
+            Self::MinusMinus => "--",
+            Self::PlusMinus => "+-",
+            Self::MinusPlus => "-+",
+        }
+    }
+
+    /// Whether this is the desired (++) configuration.
+    pub fn is_good(self) -> bool {
+        self == Self::PlusPlus
+    }
+}
+
+impl fmt::Display for Configuration {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// How many vertices are in each configuration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ConfigurationCounts {
+    /// Number of (++).
+    pub plus_plus: usize,
+    /// Number of (−−).
+    pub minus_minus: usize,
+    /// Number of (+−).
+    pub plus_minus: usize,
+    /// Number of (−+).
+    pub minus_plus: usize,
+}
+
+impl ConfigurationCounts {
+    /// Total number of classified vertices.
+    pub fn total(&self) -> usize {
+        self.plus_plus + self.minus_minus + self.plus_minus + self.minus_plus
+    }
+
+    /// Number of vertices not in (++).
+    pub fn bad(&self) -> usize {
+        self.total() - self.plus_plus
+    }
+}
+
+/// The configurations c_{i,j} for i = 0 … N−1 and j = 1 … M−2.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Configurations {
+    rows: usize,
+    /// M − 2.
+    cols: usize,
+    /// Row stride in `data` (≥ cols; the sweep pads each row by one slot).
+    stride: usize,
+    data: Vec<Configuration>,
+}
+
+impl Configurations {
+    /// Wraps a row-major buffer with `stride ≥ cols` entries per row.
+    pub(crate) fn from_padded(
+        rows: usize,
+        cols: usize,
+        stride: usize,
+        data: Vec<Configuration>,
+    ) -> Self {
+        debug_assert!(stride >= cols && data.len() == rows * stride);
+        Self {
+            rows,
+            cols,
+            stride,
+            data,
+        }
+    }
+
+    /// Number of rows N.
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// Number of classified columns, M − 2.
+    pub fn cols(&self) -> usize {
+        self.cols
+    }
+
+    /// c_{i,j} for j = 1 … M−2.
+    #[inline]
+    pub fn get(&self, i: usize, j: usize) -> Configuration {
+        assert!(
+            j >= 1 && j <= self.cols,
+            "configuration column {j} out of 1..={}",
+            self.cols
+        );
+        self.data[i * self.stride + j - 1]
+    }
+
+    /// Row i as a slice (entry k is c_{i,k+1}).
+    pub fn row(&self, i: usize) -> &[Configuration] {
+        &self.data[i * self.stride..i * self.stride + self.cols]
+    }
+
+    /// N lists of M−2 labels (`"++"`, …), as the nodes output them.
+    pub fn to_strings(&self) -> Vec<Vec<&'static str>> {
+        (0..self.rows)
+            .map(|i| self.row(i).iter().map(|c| c.as_str()).collect())
+            .collect()
+    }
+
+    /// Counts per class.
+    pub fn counts(&self) -> ConfigurationCounts {
+        let mut c = ConfigurationCounts::default();
+        for i in 0..self.rows {
+            for &k in self.row(i) {
+                match k {
+                    Configuration::PlusPlus => c.plus_plus += 1,
+                    Configuration::MinusMinus => c.minus_minus += 1,
+                    Configuration::PlusMinus => c.plus_minus += 1,
+                    Configuration::MinusPlus => c.minus_plus += 1,
+                }
+            }
+        }
+        c
+    }
+
+    /// The first vertex (i, j) not in (++), in the order the correction visits them: by column j,
+    /// then row i.
+    pub fn first_bad(&self) -> Option<(usize, usize)> {
+        (1..=self.cols).find_map(|j| {
+            (0..self.rows)
+                .find(|&i| !self.get(i, j).is_good())
+                .map(|i| (i, j))
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn classification_and_counts() {
+        assert_eq!(Configuration::from_signs(1.0, 2.0), Configuration::PlusPlus);
+        assert_eq!(Configuration::from_signs(-1.0, -2.0).as_str(), "--");
+        assert_eq!(Configuration::from_signs(1.0, 0.0).as_str(), "+-");
+        assert_eq!(Configuration::from_signs(-0.0, 1.0).as_str(), "-+");
+        use Configuration::*;
+        let data = vec![
+            PlusPlus, MinusMinus, PlusPlus, PlusPlus, PlusPlus, MinusPlus,
+        ];
+        let c = Configurations::from_padded(2, 2, 3, data);
+        assert_eq!(c.get(0, 2), MinusMinus);
+        assert_eq!(c.get(1, 2), PlusPlus);
+        assert_eq!(
+            c.counts(),
+            ConfigurationCounts {
+                plus_plus: 3,
+                minus_minus: 1,
+                plus_minus: 0,
+                minus_plus: 0
+            }
+        );
+        assert_eq!(c.first_bad(), Some((0, 2)));
+        assert_eq!(c.to_strings(), vec![vec!["++", "--"], vec!["++", "++"]]);
+    }
+}

@@ -1,0 +1,61 @@
+//! CNets Construct (ratios, notes §3) and CNets Construct Coplanar (notes §4), with the assisted
+//! correction (notes §6).
+
+use glam::DVec3;
+
+use super::ctube::{Raw, prepare};
+use super::inputs::{ConstructInputs, CoplanarInputs, check_unit_interval};
+use super::result::ConeNet;
+use super::sweep::{Rule, Sweep};
+use crate::GeometryError;
+
+/// CNets Construct (`cnets.construct`): ratios r_{i,j} pick the rulings of the support strips, the
+/// planes follow (notes §3); the assisted correction runs when `assistance.alpha ≥ 0`.
+pub fn construct(inputs: &ConstructInputs) -> Result<ConeNet, GeometryError> {
+    let prep = prepare(&inputs.directrix, &inputs.generatrix, &inputs.apex)?;
+    let (n, m) = (prep.generatrix.len(), prep.dx.columns());
+    let grid = inputs
+        .ratios
+        .resolve("ratios", n, m - 1, (0.0, 1.0, "a value in [0, 1]"))?;
+    inputs.assistance.validate()?;
+    prep.dx.check_bisectors()?;
+    let mut sweep = Sweep::new(
+        &prep.dx,
+        &prep.generatrix,
+        prep.apex.clone(),
+        vec![DVec3::ZERO; n * (m - 1)],
+        true,
+        Rule::Ratios(&grid),
+        Some(inputs.assistance),
+    );
+    sweep.run()?;
+    Raw::from_sweep(sweep, prep.wrap_rows).finish()
+}
+
+/// CNets Construct Coplanar (`cnets.construct_coplanar`): one plane per column through the ruling
+/// R_{0,j} of support strip 0 (ratio ρ_j), turned by the rotation ratio τ_j (notes §4). Every
+/// generatrix-aligned polyline G_{:,j} (j ≥ 1) lies in the plane Π_j.
+pub fn construct_coplanar(inputs: &CoplanarInputs) -> Result<ConeNet, GeometryError> {
+    let prep = prepare(&inputs.directrix, &inputs.generatrix, &inputs.apex)?;
+    let m = prep.dx.columns();
+    let rho = inputs.ruling_ratios.resolve("ruling_ratios", m - 1)?;
+    check_unit_interval("ruling_ratios", &rho)?;
+    let tau = inputs.plane_ratios.resolve("plane_ratios", m - 1)?;
+    check_unit_interval("plane_ratios", &tau)?;
+    inputs.assistance.validate()?;
+    prep.dx.check_bisectors()?;
+    let mut sweep = Sweep::new(
+        &prep.dx,
+        &prep.generatrix,
+        prep.apex.clone(),
+        vec![DVec3::ZERO; m - 1],
+        false,
+        Rule::Coplanar {
+            rho: &rho,
+            tau: &tau,
+        },
+        Some(inputs.assistance),
+    );
+    sweep.run()?;
+    Raw::from_sweep(sweep, prep.wrap_rows).finish()
+}

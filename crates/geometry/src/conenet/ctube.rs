@@ -1,0 +1,241 @@
+//! The base C-tube construction with explicit plane normals (paper Sec. 3.2, notes §2):
+//! `V = a_j (G_{i,j−1} − X_{j−1}) + X_j − G_{i,j−1}`,
+//! `d = ((X_j − G_{i,j−1}) · P_{i,j}) / (V · P_{i,j})`, `G_{i,j} = G_{i,j−1} + d V`.
+
+use glam::DVec3;
+
+use super::apex::apex_points;
+use super::configuration::Configurations;
+use super::directrix::SweptDirectrix;
+use super::inputs::{ApexInput, CtubeInputs, NormalsInput};
+use super::normalize::resolve_apex;
+use super::quality::quality;
+use super::result::{ConeNet, PlaneNormals};
+use super::sweep::{Rule, Sweep};
+use super::tolerance;
+use crate::{GeometryError, Polyline, QuadGrid};
+
+/// One construction step: G_{i,j} from `g = G_{i,j−1}`, `x0 = X_{j−1}`, `x1 = X_j`, `a = a_j` and the
+/// unit normal `p = P_{i,j}`. `None` when `|V·P| ≤ 1e-12 |V|` (V parallel to the plane, or V = 0
+/// because g is the cone apex): the caller reports the offending (i, j).
+#[inline(always)]
+pub fn step(g: DVec3, x0: DVec3, x1: DVec3, a: f64, p: DVec3) -> Option<DVec3> {
+    let v = (g - x0) * a + x1 - g;
+    let vp = v.dot(p);
+    if !(vp.abs() > tolerance::PARALLEL * v.length()) {
+        return None;
+    }
+    Some(g + v * ((x1 - g).dot(p) / vp))
+}
+
+/// Validated inputs common to every construction.
+pub(crate) struct Prepared {
+    pub dx: SweptDirectrix,
+    pub generatrix: Vec<DVec3>,
+    pub wrap_rows: bool,
+    pub apex: Vec<f64>,
+}
+
+/// Validates directrix, generatrix and apex (in this order) and resolves the apex values.
+pub(crate) fn prepare(
+    directrix: &Polyline,
+    generatrix: &Polyline,
+    apex: &ApexInput,
+) -> Result<Prepared, GeometryError> {
+    let dx = SweptDirectrix::new(directrix)?;
+    generatrix.validate("generatrix", 2)?;
+    let apex = resolve_apex(apex, &dx)?;
+    Ok(Prepared {
+        dx,
+        generatrix: generatrix.points.clone(),
+        wrap_rows: generatrix.closed,
+        apex,
+    })
+}
+
+/// Orients and normalizes one user normal for column j.
+fn orient(p: DVec3, e: DVec3, row: Option<usize>, column: usize) -> Result<DVec3, GeometryError> {
+    if !p.is_finite() {
+        return Err(match row {
+            Some(row) => GeometryError::NonFiniteEntry {
+                what: "normals",
+                row,
+                column,
+            },
+            None => GeometryError::NonFinite {
+                what: "normals",
+                index: column - 1,
+            },
+        });
+    }
+    let len = p.length();
+    if !(len > 1e-300) || !len.is_finite() {
+        return Err(GeometryError::ZeroNormal { row, column });
+    }
+    let u = p / len;
+    let along = u.dot(e);
+    if !(along.abs() > tolerance::EDGE_PLANE) {
+        return Err(GeometryError::PlaneContainsEdge { row, column });
+    }
+    Ok(if along < 0.0 { -u } else { u })
+}
+
+/// Resolves the normals input to unit normals with `P·ê_j > 0`: (data, per_vertex).
+fn resolve_normals(
+    input: &NormalsInput,
+    dx: &SweptDirectrix,
+    rows: usize,
+) -> Result<(Vec<DVec3>, bool), GeometryError> {
+    let cols = dx.columns() - 1;
+    match input {
+        NormalsInput::Monge => {
+            dx.check_bisectors()?;
+            Ok((dx.bisectors[1..].to_vec(), false))
+        }
+        NormalsInput::PerColumn(list) => {
+            if list.len() != cols {
+                return Err(GeometryError::WrongLength {
+                    what: "normals",
+                    expected: format!("{cols} (one per directrix edge, M − 1) or {rows} lists"),
+                    got: list.len(),
+                });
+            }
+            let data = list
+                .iter()
+                .enumerate()
+                .map(|(k, &p)| orient(p, dx.edges[k + 1], None, k + 1))
+                .collect::<Result<_, _>>()?;
+            Ok((data, false))
+        }
+        NormalsInput::PerVertex(table) => {
+            if table.len() != rows {
+                return Err(GeometryError::WrongLength {
+                    what: "normals",
+                    expected: format!("{rows} lists (one per generatrix point, N)"),
+                    got: table.len(),
+                });
+            }
+            let mut data = Vec::with_capacity(rows * cols);
+            for (i, row) in table.iter().enumerate() {
+                if row.len() != cols {
+                    return Err(GeometryError::WrongRowLength {
+                        what: "normals",
+                        row: i,
+                        expected: cols,
+                        got: row.len(),
+                    });
+                }
+                for (k, &p) in row.iter().enumerate() {
+                    data.push(orient(p, dx.edges[k + 1], Some(i), k + 1)?);
+                }
+            }
+            Ok((data, true))
+        }
+    }
+}
+
+/// Runs the C-tube sweep and returns the mesh only (no apices, no quality): the fast kernel.
+pub fn ctube_mesh(inputs: &CtubeInputs) -> Result<QuadGrid, GeometryError> {
+    Ok(run_ctube(inputs)?.mesh)
+}
+
+/// The base C-tube construction (`ctube.construct`): explicit normals (or Monge planes), no
+/// correction. Configurations and quality are reported.
+pub fn construct_ctube(inputs: &CtubeInputs) -> Result<ConeNet, GeometryError> {
+    run_ctube(inputs)?.finish()
+}
+
+fn run_ctube(inputs: &CtubeInputs) -> Result<Raw, GeometryError> {
+    let prep = prepare(&inputs.directrix, &inputs.generatrix, &inputs.apex)?;
+    let n = prep.generatrix.len();
+    let (planes, per_vertex) = resolve_normals(&inputs.normals, &prep.dx, n)?;
+    let mut sweep = Sweep::new(
+        &prep.dx,
+        &prep.generatrix,
+        prep.apex.clone(),
+        planes,
+        per_vertex,
+        Rule::Given,
+        None,
+    );
+    sweep.run()?;
+    Ok(Raw::from_sweep(sweep, prep.wrap_rows))
+}
+
+/// The raw output of a sweep, before apices and quality are computed.
+pub(crate) struct Raw {
+    pub mesh: QuadGrid,
+    pub directrix: Vec<DVec3>,
+    pub apex: Vec<f64>,
+    pub normals: PlaneNormals,
+    pub configurations: Configurations,
+    pub corrections: Vec<super::correction::Correction>,
+}
+
+impl Raw {
+    pub(crate) fn from_sweep(sweep: Sweep<'_>, wrap_rows: bool) -> Self {
+        let (n, m) = (sweep.n, sweep.m);
+        let normals = if sweep.per_vertex {
+            PlaneNormals::per_vertex(n, m - 1, sweep.planes)
+        } else {
+            PlaneNormals::shared(n, sweep.planes)
+        };
+        Self {
+            mesh: QuadGrid {
+                rows: n,
+                cols: m,
+                wrap_rows,
+                wrap_cols: false,
+                vertices: sweep.verts,
+            },
+            directrix: sweep.dx.points.clone(),
+            apex: sweep.apex,
+            normals,
+            configurations: Configurations::from_padded(n, m - 2, m - 1, sweep.configs),
+            corrections: sweep.corrections,
+        }
+    }
+
+    /// Computes apices and quality and checks every output is finite.
+    pub(crate) fn finish(self) -> Result<ConeNet, GeometryError> {
+        if let Some(k) = self.apex.iter().position(|a| !a.is_finite()) {
+            return Err(GeometryError::NonFiniteOutput {
+                what: "apex value",
+                row: 0,
+                column: k + 1,
+            });
+        }
+        let apices = apex_points(&self.directrix, &self.apex);
+        let quality = quality(&self.mesh, &self.configurations)?;
+        Ok(ConeNet {
+            mesh: self.mesh,
+            directrix: self.directrix,
+            apex: self.apex,
+            apices,
+            normals: self.normals,
+            configurations: self.configurations,
+            corrections: self.corrections,
+            quality,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn step_hits_the_plane_along_the_scaling_direction() {
+        let (x0, x1) = (DVec3::ZERO, DVec3::X);
+        let g = DVec3::new(0.0, 1.0, 0.0);
+        // a = 0.5: apex C = (2, 0, 0); plane x = 1 ⇒ G = (1, 0.5, 0).
+        assert_eq!(
+            step(g, x0, x1, 0.5, DVec3::X),
+            Some(DVec3::new(1.0, 0.5, 0.0))
+        );
+        // V parallel to the plane.
+        assert_eq!(step(g, x0, x1, 1.0, DVec3::Y), None);
+        // g is the apex: V = 0.
+        assert_eq!(step(DVec3::new(2.0, 0.0, 0.0), x0, x1, 0.5, DVec3::X), None);
+    }
+}

@@ -1,0 +1,492 @@
+//! Construction inputs: the three input records (C-tube, CNets Construct, CNets Construct Coplanar)
+//! and the broadcast forms of their per-column and per-vertex values.
+//!
+//! Column values are indexed j = 1 … M−1 (one per directrix edge / construction plane), stored at
+//! index `j − 1`. Row values are indexed by the generatrix point i = 0 … N−1.
+
+use glam::DVec3;
+
+use crate::{GeometryError, Polyline};
+
+/// One scalar per directrix column j = 1 … M−1: a single number broadcast to every column, or a list
+/// of M−1 numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ColumnValues {
+    /// The same value for every column.
+    Uniform(f64),
+    /// One value per column j = 1 … M−1 (index j − 1).
+    List(Vec<f64>),
+}
+
+impl From<f64> for ColumnValues {
+    fn from(v: f64) -> Self {
+        Self::Uniform(v)
+    }
+}
+
+impl From<Vec<f64>> for ColumnValues {
+    fn from(v: Vec<f64>) -> Self {
+        Self::List(v)
+    }
+}
+
+impl From<&[f64]> for ColumnValues {
+    fn from(v: &[f64]) -> Self {
+        Self::List(v.to_vec())
+    }
+}
+
+impl ColumnValues {
+    /// Expands to exactly `columns` finite values, failing with a typed error on a wrong length or a
+    /// non-finite entry.
+    pub fn resolve(&self, what: &'static str, columns: usize) -> Result<Vec<f64>, GeometryError> {
+        let values = match self {
+            Self::Uniform(v) => vec![*v; columns],
+            Self::List(list) => {
+                if list.len() != columns {
+                    return Err(GeometryError::WrongLength {
+                        what,
+                        expected: format!("{columns} (one per directrix edge, M − 1)"),
+                        got: list.len(),
+                    });
+                }
+                list.clone()
+            }
+        };
+        if let Self::Uniform(v) = self
+            && !v.is_finite()
+        {
+            return Err(GeometryError::NonFinite { what, index: 0 });
+        }
+        crate::error::check_finite_scalars(what, &values)?;
+        Ok(values)
+    }
+}
+
+/// One scalar per vertex (i, j), j = 1 … M−1: a single number, a list of M−1 numbers shared by all
+/// rows, or N lists of M−1 numbers (one list per generatrix point).
+#[derive(Debug, Clone, PartialEq)]
+pub enum GridValues {
+    /// The same value everywhere.
+    Uniform(f64),
+    /// One value per column j = 1 … M−1, shared by all rows.
+    PerColumn(Vec<f64>),
+    /// `rows[i][j − 1]`: N lists of M−1 values.
+    PerVertex(Vec<Vec<f64>>),
+}
+
+impl From<f64> for GridValues {
+    fn from(v: f64) -> Self {
+        Self::Uniform(v)
+    }
+}
+
+impl From<Vec<f64>> for GridValues {
+    fn from(v: Vec<f64>) -> Self {
+        Self::PerColumn(v)
+    }
+}
+
+impl From<Vec<Vec<f64>>> for GridValues {
+    fn from(v: Vec<Vec<f64>>) -> Self {
+        Self::PerVertex(v)
+    }
+}
+
+/// A validated [`GridValues`]: constant-time lookup of the value at (i, j).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Grid {
+    /// Values; layout given by `per_row`.
+    values: Vec<f64>,
+    /// M − 1.
+    columns: usize,
+    /// Whether `values` holds N × (M−1) entries (else M−1 shared by the rows).
+    per_row: bool,
+}
+
+impl Grid {
+    /// The value at row i, column j (1 … M−1).
+    #[inline]
+    pub(crate) fn get(&self, i: usize, j: usize) -> f64 {
+        if self.per_row {
+            self.values[i * self.columns + j - 1]
+        } else {
+            self.values[j - 1]
+        }
+    }
+}
+
+impl GridValues {
+    /// Validates against N rows and M−1 columns and checks every value lies in `[lo, hi]`.
+    pub(crate) fn resolve(
+        &self,
+        what: &'static str,
+        rows: usize,
+        columns: usize,
+        (lo, hi, expected): (f64, f64, &'static str),
+    ) -> Result<Grid, GeometryError> {
+        let check = |v: f64, row: Option<usize>, column: usize| -> Result<(), GeometryError> {
+            if !v.is_finite() {
+                return Err(match row {
+                    Some(row) => GeometryError::NonFiniteEntry { what, row, column },
+                    None => GeometryError::NonFinite {
+                        what,
+                        index: column.saturating_sub(1),
+                    },
+                });
+            }
+            if !(lo..=hi).contains(&v) {
+                return Err(GeometryError::OutOfRange {
+                    what,
+                    row,
+                    column: Some(column),
+                    value: v,
+                    expected,
+                });
+            }
+            Ok(())
+        };
+        match self {
+            Self::Uniform(v) => {
+                check(*v, None, 1)?;
+                Ok(Grid {
+                    values: vec![*v; columns],
+                    columns,
+                    per_row: false,
+                })
+            }
+            Self::PerColumn(list) => {
+                if list.len() != columns {
+                    return Err(GeometryError::WrongLength {
+                        what,
+                        expected: format!("{columns} (one per directrix edge, M − 1)"),
+                        got: list.len(),
+                    });
+                }
+                for (k, v) in list.iter().enumerate() {
+                    check(*v, None, k + 1)?;
+                }
+                Ok(Grid {
+                    values: list.clone(),
+                    columns,
+                    per_row: false,
+                })
+            }
+            Self::PerVertex(table) => {
+                if table.len() != rows {
+                    return Err(GeometryError::WrongLength {
+                        what,
+                        expected: format!("{rows} lists (one per generatrix point, N)"),
+                        got: table.len(),
+                    });
+                }
+                let mut values = Vec::with_capacity(rows * columns);
+                for (i, row) in table.iter().enumerate() {
+                    if row.len() != columns {
+                        return Err(GeometryError::WrongRowLength {
+                            what,
+                            row: i,
+                            expected: columns,
+                            got: row.len(),
+                        });
+                    }
+                    for (k, v) in row.iter().enumerate() {
+                        check(*v, Some(i), k + 1)?;
+                    }
+                    values.extend_from_slice(row);
+                }
+                Ok(Grid {
+                    values,
+                    columns,
+                    per_row: true,
+                })
+            }
+        }
+    }
+}
+
+/// Construction-plane normals for the C-tube construction.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum NormalsInput {
+    /// Default Monge (bisecting) planes (notes §2).
+    #[default]
+    Monge,
+    /// One normal per column j = 1 … M−1, shared by all rows.
+    PerColumn(Vec<DVec3>),
+    /// `rows[i][j − 1]`: N lists of M−1 normals.
+    PerVertex(Vec<Vec<DVec3>>),
+}
+
+impl From<Vec<DVec3>> for NormalsInput {
+    fn from(v: Vec<DVec3>) -> Self {
+        Self::PerColumn(v)
+    }
+}
+
+impl From<Vec<Vec<DVec3>>> for NormalsInput {
+    fn from(v: Vec<Vec<DVec3>>) -> Self {
+        Self::PerVertex(v)
+    }
+}
+
+/// The apex-locating function as given by the user: values, whether they are normalized (§5), and
+/// the normalization scale L.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ApexInput {
+    /// a_j (or ā_j when normalized) for j = 1 … M−1.
+    pub values: ColumnValues,
+    /// Whether `values` is the normalized apex function ā (paper Sec. 4.3).
+    pub normalized: bool,
+    /// The scale L of the normalization; `None` = directrix length / 5.
+    pub scale: Option<f64>,
+}
+
+impl Default for ApexInput {
+    fn default() -> Self {
+        Self {
+            values: ColumnValues::Uniform(1.0),
+            normalized: false,
+            scale: None,
+        }
+    }
+}
+
+/// Inputs of the base C-tube construction (`ctube.construct`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CtubeInputs {
+    /// The directrix X (open, or closed: swept once around).
+    pub directrix: Polyline,
+    /// The generatrix G_{:,0} (closed ⇒ the mesh wraps in the row direction).
+    pub generatrix: Polyline,
+    /// The apex-locating function.
+    pub apex: ApexInput,
+    /// Construction-plane normals (default: Monge planes).
+    pub normals: NormalsInput,
+}
+
+impl CtubeInputs {
+    /// Inputs with default apex (a ≡ 1) and default Monge planes.
+    pub fn new(directrix: Polyline, generatrix: Polyline) -> Self {
+        Self {
+            directrix,
+            generatrix,
+            apex: ApexInput::default(),
+            normals: NormalsInput::Monge,
+        }
+    }
+
+    /// Sets the apex values (builder style).
+    pub fn apex(mut self, values: impl Into<ColumnValues>) -> Self {
+        self.apex.values = values.into();
+        self
+    }
+
+    /// Marks the apex values as normalized, with an optional scale L (builder style).
+    pub fn normalized(mut self, normalized: bool, scale: Option<f64>) -> Self {
+        self.apex.normalized = normalized;
+        self.apex.scale = scale;
+        self
+    }
+
+    /// Sets the plane normals (builder style).
+    pub fn normals(mut self, normals: impl Into<NormalsInput>) -> Self {
+        self.normals = normals.into();
+        self
+    }
+}
+
+/// The assisted-correction settings shared by both CNets constructions.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Assistance {
+    /// α: negative = off, 0 = planes only, 1 = apex only, between = hybrid.
+    pub alpha: f64,
+    /// ε ∈ (0, 1): safety margin of every fix.
+    pub epsilon: f64,
+}
+
+impl Default for Assistance {
+    fn default() -> Self {
+        Self {
+            alpha: -1.0,
+            epsilon: 0.01,
+        }
+    }
+}
+
+impl Assistance {
+    /// Assistance α with the default ε = 0.01.
+    pub fn new(alpha: f64) -> Self {
+        Self {
+            alpha,
+            ..Self::default()
+        }
+    }
+
+    /// Whether the correction is enabled (α ≥ 0).
+    pub fn enabled(&self) -> bool {
+        self.alpha >= 0.0
+    }
+
+    /// Checks α is finite and ≤ 1 and ε ∈ (0, 1).
+    pub fn validate(&self) -> Result<(), GeometryError> {
+        if !self.alpha.is_finite() || self.alpha > 1.0 {
+            return Err(GeometryError::InvalidParameter {
+                what: "assistance",
+                value: self.alpha,
+                expected: "a finite number ≤ 1 (negative disables the correction)",
+            });
+        }
+        if !(self.epsilon > 0.0 && self.epsilon < 1.0) {
+            return Err(GeometryError::InvalidParameter {
+                what: "epsilon",
+                value: self.epsilon,
+                expected: "a number in (0, 1)",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Inputs of CNets Construct (`cnets.construct`): ratios pick the rulings of the support strips.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConstructInputs {
+    /// The directrix X.
+    pub directrix: Polyline,
+    /// The generatrix G_{:,0}.
+    pub generatrix: Polyline,
+    /// The apex-locating function.
+    pub apex: ApexInput,
+    /// Ratios r_{i,j} ∈ [0, 1] (default ½ = Monge).
+    pub ratios: GridValues,
+    /// Assisted correction (default off).
+    pub assistance: Assistance,
+}
+
+impl ConstructInputs {
+    /// Inputs with a ≡ 1, ratios ½, assistance off, ε = 0.01.
+    pub fn new(directrix: Polyline, generatrix: Polyline) -> Self {
+        Self {
+            directrix,
+            generatrix,
+            apex: ApexInput::default(),
+            ratios: GridValues::Uniform(0.5),
+            assistance: Assistance::default(),
+        }
+    }
+
+    /// Sets the apex values (builder style).
+    pub fn apex(mut self, values: impl Into<ColumnValues>) -> Self {
+        self.apex.values = values.into();
+        self
+    }
+
+    /// Marks the apex values as normalized, with an optional scale L (builder style).
+    pub fn normalized(mut self, normalized: bool, scale: Option<f64>) -> Self {
+        self.apex.normalized = normalized;
+        self.apex.scale = scale;
+        self
+    }
+
+    /// Sets the ratios (builder style).
+    pub fn ratios(mut self, ratios: impl Into<GridValues>) -> Self {
+        self.ratios = ratios.into();
+        self
+    }
+
+    /// Sets the assistance α (builder style).
+    pub fn assistance(mut self, alpha: f64) -> Self {
+        self.assistance.alpha = alpha;
+        self
+    }
+
+    /// Sets ε (builder style).
+    pub fn epsilon(mut self, epsilon: f64) -> Self {
+        self.assistance.epsilon = epsilon;
+        self
+    }
+}
+
+/// Inputs of CNets Construct Coplanar (`cnets.construct_coplanar`): one ruling ratio and one
+/// plane-rotation ratio per column; every generatrix-aligned polyline is planar.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CoplanarInputs {
+    /// The directrix X.
+    pub directrix: Polyline,
+    /// The generatrix G_{:,0}.
+    pub generatrix: Polyline,
+    /// The apex-locating function.
+    pub apex: ApexInput,
+    /// Ruling ratios ρ_j ∈ [0, 1] of support strip 0 (default ½).
+    pub ruling_ratios: ColumnValues,
+    /// Plane-rotation ratios τ_j ∈ [0, 1] (default ½).
+    pub plane_ratios: ColumnValues,
+    /// Assisted correction (default off).
+    pub assistance: Assistance,
+}
+
+impl CoplanarInputs {
+    /// Inputs with a ≡ 1, ρ = τ = ½, assistance off, ε = 0.01.
+    pub fn new(directrix: Polyline, generatrix: Polyline) -> Self {
+        Self {
+            directrix,
+            generatrix,
+            apex: ApexInput::default(),
+            ruling_ratios: ColumnValues::Uniform(0.5),
+            plane_ratios: ColumnValues::Uniform(0.5),
+            assistance: Assistance::default(),
+        }
+    }
+
+    /// Sets the apex values (builder style).
+    pub fn apex(mut self, values: impl Into<ColumnValues>) -> Self {
+        self.apex.values = values.into();
+        self
+    }
+
+    /// Marks the apex values as normalized, with an optional scale L (builder style).
+    pub fn normalized(mut self, normalized: bool, scale: Option<f64>) -> Self {
+        self.apex.normalized = normalized;
+        self.apex.scale = scale;
+        self
+    }
+
+    /// Sets the ruling ratios ρ (builder style).
+    pub fn ruling_ratios(mut self, values: impl Into<ColumnValues>) -> Self {
+        self.ruling_ratios = values.into();
+        self
+    }
+
+    /// Sets the plane-rotation ratios τ (builder style).
+    pub fn plane_ratios(mut self, values: impl Into<ColumnValues>) -> Self {
+        self.plane_ratios = values.into();
+        self
+    }
+
+    /// Sets the assistance α (builder style).
+    pub fn assistance(mut self, alpha: f64) -> Self {
+        self.assistance.alpha = alpha;
+        self
+    }
+
+    /// Sets ε (builder style).
+    pub fn epsilon(mut self, epsilon: f64) -> Self {
+        self.assistance.epsilon = epsilon;
+        self
+    }
+}
+
+/// Checks a list of ratios lies in `[0, 1]` (per column).
+pub(crate) fn check_unit_interval(what: &'static str, values: &[f64]) -> Result<(), GeometryError> {
+    for (k, &v) in values.iter().enumerate() {
+        if !(0.0..=1.0).contains(&v) {
+            return Err(GeometryError::OutOfRange {
+                what,
+                row: None,
+                column: Some(k + 1),
+                value: v,
+                expected: "a value in [0, 1]",
+            });
+        }
+    }
+    Ok(())
+}

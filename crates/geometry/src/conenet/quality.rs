@@ -1,0 +1,362 @@
+//! Quality measures (notes §9): quad planarity as in libigl, the cone check (how far the lines
+//! G_{i,j}G_{i,j+1} of each strip miss a common point) and configuration counts.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::configuration::{ConfigurationCounts, Configurations};
+use super::eigen::smallest_eigenvector;
+use crate::{GeometryError, QuadGrid};
+
+/// Planarity of a quad `p1 p2 p3 p4` as in libigl: with diagonals `d1 = p3 − p1`, `d2 = p4 − p2`, the
+/// distance between the two diagonal lines divided by the mean diagonal length. Quads with parallel
+/// (or vanishing) diagonals are planar (0).
+#[inline]
+pub fn quad_planarity(q: [DVec3; 4]) -> f64 {
+    let d1 = q[2] - q[0];
+    let d2 = q[3] - q[1];
+    let (l1, l2) = (d1.length(), d2.length());
+    let n = d1.cross(d2);
+    let nl = n.length();
+    if !(nl > 1e-14 * l1 * l2) {
+        return 0.0;
+    }
+    (q[1] - q[0]).dot(n).abs() / nl / (0.5 * (l1 + l2))
+}
+
+/// Planarity of every quad (row-major over quad rows × quad columns), with max and mean.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Planarity {
+    /// Per quad, row-major (`i * quad_cols + j`).
+    pub per_face: Vec<f64>,
+    /// Maximum (0 for a mesh without quads).
+    pub max: f64,
+    /// Mean (0 for a mesh without quads).
+    pub mean: f64,
+}
+
+/// Checks that every vertex of the mesh is finite and the vertex count matches.
+fn check_mesh(mesh: &QuadGrid) -> Result<(), GeometryError> {
+    mesh.validate()?;
+    crate::error::check_finite_points("mesh", &mesh.vertices)
+}
+
+/// Planarity of every quad of `mesh` (`mesh.planarity`).
+pub fn planarity(mesh: &QuadGrid) -> Result<Planarity, GeometryError> {
+    check_mesh(mesh)?;
+    let qc = mesh.quad_cols();
+    let per_face: Vec<f64> = (0..mesh.quad_rows())
+        .into_par_iter()
+        .flat_map_iter(|i| (0..qc).map(move |j| quad_planarity(mesh.quad(i, j))))
+        .collect();
+    let max = per_face.iter().copied().fold(0.0, f64::max);
+    let mean = if per_face.is_empty() {
+        0.0
+    } else {
+        per_face.iter().sum::<f64>() / per_face.len() as f64
+    };
+    if !(max.is_finite() && mean.is_finite()) {
+        return Err(GeometryError::NonFiniteOutput {
+            what: "planarity",
+            row: 0,
+            column: 0,
+        });
+    }
+    Ok(Planarity {
+        per_face,
+        max,
+        mean,
+    })
+}
+
+/// The cone check of every strip j (between columns j and j+1).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ConeCheck {
+    /// Relative concurrency residual per strip (see [`cone_check`]).
+    pub residuals: Vec<f64>,
+    /// Maximum residual.
+    pub max: f64,
+    /// The fitted common point of each strip; `None` at infinity (parallel lines) or when fewer than
+    /// two lines are defined.
+    pub apices: Vec<Option<DVec3>>,
+}
+
+/// Homogeneous least-squares fit of the common point of the lines of one strip, in normalized
+/// coordinates `(p − center) / scale`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct StripFit {
+    /// Homogeneous point (v, w), unit length.
+    pub h: [f64; 4],
+    /// max_i |(v − w p_i) × d_i| over the lines (unit d_i).
+    pub residual: f64,
+    /// Number of lines used.
+    pub lines: usize,
+}
+
+/// Normalization frame of a mesh: bounding-box center and half diagonal (1 when degenerate).
+pub(crate) fn normalization(mesh: &QuadGrid) -> (DVec3, f64) {
+    match mesh.bounds() {
+        Some((lo, hi)) => {
+            let scale = 0.5 * lo.distance(hi);
+            (
+                lo * 0.5 + hi * 0.5,
+                if scale > 0.0 && scale.is_finite() {
+                    scale
+                } else {
+                    1.0
+                },
+            )
+        }
+        None => (DVec3::ZERO, 1.0),
+    }
+}
+
+/// One line of a strip in normalized coordinates: point and unit direction, or `None` for a
+/// zero-length edge.
+#[inline]
+fn strip_line(
+    mesh: &QuadGrid,
+    i: usize,
+    j: usize,
+    center: DVec3,
+    inv: f64,
+) -> Option<(DVec3, DVec3)> {
+    let a = (mesh.at(i, j) - center) * inv;
+    let b = (mesh.at(i, (j + 1) % mesh.cols) - center) * inv;
+    let d = b - a;
+    let l = d.length();
+    (l > 0.0 && l.is_finite()).then(|| (a, d / l))
+}
+
+/// Fits every strip: accumulates Σ AᵢᵀAᵢ per strip (rows in parallel), takes the smallest
+/// eigenvector, then evaluates the residual of every line.
+pub(crate) fn fit_strips(mesh: &QuadGrid, center: DVec3, scale: f64) -> Vec<StripFit> {
+    let strips = mesh.quad_cols();
+    let inv = 1.0 / scale;
+    let zero = || vec![[0.0f64; 11]; strips];
+    let sums = (0..mesh.rows)
+        .into_par_iter()
+        .fold(zero, |mut acc, i| {
+            for (j, s) in acc.iter_mut().enumerate() {
+                if let Some((p, d)) = strip_line(mesh, i, j, center, inv) {
+                    // Aᵢ = [−[d]× | −(p × d)]; AᵢᵀAᵢ = [[I − ddᵀ, (p·d) d − p], [·, |p × d|²]].
+                    let pd = p.dot(d);
+                    let t = d * pd - p;
+                    let c = p.cross(d).length_squared();
+                    let upper = [
+                        1.0 - d.x * d.x,
+                        -d.x * d.y,
+                        -d.x * d.z,
+                        t.x,
+                        1.0 - d.y * d.y,
+                        -d.y * d.z,
+                        t.y,
+                        1.0 - d.z * d.z,
+                        t.z,
+                        c,
+                    ];
+                    for (k, u) in upper.iter().enumerate() {
+                        s[k] += u;
+                    }
+                    s[10] += 1.0;
+                }
+            }
+            acc
+        })
+        .reduce(zero, |mut a, b| {
+            for (x, y) in a.iter_mut().zip(&b) {
+                for k in 0..11 {
+                    x[k] += y[k];
+                }
+            }
+            a
+        });
+    let hs: Vec<[f64; 4]> = sums
+        .par_iter()
+        .map(|s| {
+            let q = [
+                [s[0], s[1], s[2], s[3]],
+                [s[1], s[4], s[5], s[6]],
+                [s[2], s[5], s[7], s[8]],
+                [s[3], s[6], s[8], s[9]],
+            ];
+            smallest_eigenvector(q)
+        })
+        .collect();
+    let residuals = (0..mesh.rows)
+        .into_par_iter()
+        .fold(
+            || vec![0.0f64; strips],
+            |mut acc, i| {
+                for (j, r) in acc.iter_mut().enumerate() {
+                    if let Some((p, d)) = strip_line(mesh, i, j, center, inv) {
+                        let h = hs[j];
+                        let v = DVec3::new(h[0], h[1], h[2]);
+                        let e = (v - p * h[3]).cross(d).length();
+                        *r = r.max(e);
+                    }
+                }
+                acc
+            },
+        )
+        .reduce(
+            || vec![0.0f64; strips],
+            |mut a, b| {
+                for (x, y) in a.iter_mut().zip(&b) {
+                    *x = x.max(*y);
+                }
+                a
+            },
+        );
+    hs.into_iter()
+        .zip(residuals)
+        .zip(&sums)
+        .map(|((h, residual), s)| {
+            let lines = s[10] as usize;
+            StripFit {
+                h,
+                residual: if lines >= 2 { residual } else { 0.0 },
+                lines,
+            }
+        })
+        .collect()
+}
+
+/// The fitted point of a strip in world coordinates; `None` at infinity.
+pub(crate) fn fitted_point(fit: &StripFit, center: DVec3, scale: f64) -> Option<DVec3> {
+    let [x, y, z, w] = fit.h;
+    if fit.lines < 2 || !(w.abs() > 1e-12) {
+        return None;
+    }
+    let c = center + DVec3::new(x, y, z) * (scale / w);
+    c.is_finite().then_some(c)
+}
+
+/// The cone check of `mesh`: for each strip j, the lines through G_{i,j} and G_{i,j+1} (all rows i)
+/// are fitted with a common point (possibly at infinity) by homogeneous least squares, in coordinates
+/// centered on the mesh and scaled by half its bounding-box diagonal. The residual of a line is
+/// `|(v − w pᵢ) × dᵢ|` for the unit fit (v, w) and unit direction dᵢ: for a finite point C this is
+/// `dist(C, line) / √(|C|² + 1)` (relative to the mesh size), for a point at infinity the sine of the
+/// angle between the line and the common direction. The strip residual is the maximum over its lines.
+pub fn cone_check(mesh: &QuadGrid) -> Result<ConeCheck, GeometryError> {
+    check_mesh(mesh)?;
+    let (center, scale) = normalization(mesh);
+    let fits = fit_strips(mesh, center, scale);
+    let residuals: Vec<f64> = fits.iter().map(|f| f.residual).collect();
+    let max = residuals.iter().copied().fold(0.0, f64::max);
+    if !max.is_finite() {
+        return Err(GeometryError::NonFiniteOutput {
+            what: "cone residual",
+            row: 0,
+            column: 0,
+        });
+    }
+    let apices = fits
+        .iter()
+        .map(|f| fitted_point(f, center, scale))
+        .collect();
+    Ok(ConeCheck {
+        residuals,
+        max,
+        apices,
+    })
+}
+
+/// Quality of a constructed cone-net (the nodes' `quality` record).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Quality {
+    /// Maximum quad planarity (libigl measure).
+    pub max_planarity: f64,
+    /// Mean quad planarity.
+    pub mean_planarity: f64,
+    /// Cone residual per strip j = 0 … M−2 (see [`cone_check`]).
+    pub cone_residuals: Vec<f64>,
+    /// Maximum cone residual.
+    pub max_cone_residual: f64,
+    /// Configuration counts.
+    pub configurations: ConfigurationCounts,
+    /// The first vertex (i, j) not in (++), by column then row.
+    pub first_bad: Option<(usize, usize)>,
+}
+
+/// Computes the quality record of a constructed mesh (planarity without storing per-face values).
+pub(crate) fn quality(
+    mesh: &QuadGrid,
+    configurations: &Configurations,
+) -> Result<Quality, GeometryError> {
+    check_mesh(mesh)?;
+    let qc = mesh.quad_cols();
+    let (max, sum) = (0..mesh.quad_rows())
+        .into_par_iter()
+        .map(|i| {
+            (0..qc).fold((0.0f64, 0.0f64), |(m, s), j| {
+                let p = quad_planarity(mesh.quad(i, j));
+                (m.max(p), s + p)
+            })
+        })
+        .reduce(|| (0.0, 0.0), |a, b| (a.0.max(b.0), a.1 + b.1));
+    let count = mesh.quad_count();
+    let mean = if count == 0 { 0.0 } else { sum / count as f64 };
+    let cone = cone_check(mesh)?;
+    if !(max.is_finite() && mean.is_finite()) {
+        return Err(GeometryError::NonFiniteOutput {
+            what: "planarity",
+            row: 0,
+            column: 0,
+        });
+    }
+    Ok(Quality {
+        max_planarity: max,
+        mean_planarity: mean,
+        cone_residuals: cone.residuals,
+        max_cone_residual: cone.max,
+        configurations: configurations.counts(),
+        first_bad: configurations.first_bad(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn planar_and_twisted_quads() {
+        let flat = [DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+        assert_eq!(quad_planarity(flat), 0.0);
+        // Lift one corner by h: diagonals (0,0,0)-(1,1,0) and (1,0,0)-(0,1,h).
+        // d1 = (1,1,0), d2 = (−1,1,h): n = (h, −h, 2); (p2 − p1)·n = h; |n| = √(2h² + 4).
+        let h = 0.2;
+        let twisted = [
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, h),
+        ];
+        let dist = h / (2.0 * h * h + 4.0f64).sqrt();
+        let mean = 0.5 * (2.0f64.sqrt() + (2.0 + h * h).sqrt());
+        assert!((quad_planarity(twisted) - dist / mean).abs() < 1e-15);
+    }
+
+    #[test]
+    fn cone_check_detects_concurrent_and_skew_lines() {
+        // Three lines through the apex (0, 0, 5): a cone strip.
+        let apex = DVec3::new(0.0, 0.0, 5.0);
+        let base = [
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(-1.0, 0.2, 0.0),
+        ];
+        let mut v = Vec::new();
+        for b in base {
+            v.push(b);
+            v.push(b + (apex - b) * 0.3);
+        }
+        let mesh = QuadGrid::new(3, 2, v.clone()).unwrap();
+        let c = cone_check(&mesh).unwrap();
+        assert!(c.max < 1e-14, "{}", c.max);
+        assert!((c.apices[0].unwrap() - apex).length() < 1e-12);
+        v[5] += DVec3::new(0.1, 0.0, 0.0);
+        let skew = cone_check(&QuadGrid::new(3, 2, v).unwrap()).unwrap();
+        assert!(skew.max > 1e-3);
+    }
+}

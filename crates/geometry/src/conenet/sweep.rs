@@ -1,0 +1,742 @@
+//! The sweep engine shared by all constructions.
+//!
+//! For a fixed apex function the rows are independent, so rows are swept in parallel (rayon), each
+//! writing only its own contiguous slice of the mesh, planes and configurations. The assisted
+//! correction couples the rows of one column only. The engine therefore sweeps *optimistically*: all
+//! rows run in parallel over a block of columns and each row stops at its first column that needs a
+//! coupled fix. The smallest such column j0 (ties: plane errors before stops before step errors, then
+//! the smallest row) is the next event; columns ≤ j0 are final for every row, the coupled correction
+//! is applied at j0 over all rows, and the sweep resumes at j0. The block length adapts (doubling
+//! after each block, restarting from the distance covered before the last stop), so the work wasted
+//! beyond a stop stays proportional to the useful work. Results do not depend on the thread count.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::configuration::Configuration;
+use super::coplanar::PlanePencil;
+use super::correction::{Correction, CorrectionKind, apex_fix_value};
+use super::ctube::step;
+use super::directrix::SweptDirectrix;
+use super::inputs::{Assistance, Grid};
+use super::ratios::{SupportFrame, angle_to_ratio, ratio_to_angle};
+use super::tolerance;
+use crate::GeometryError;
+
+/// How the construction planes are obtained.
+#[derive(Clone, Copy)]
+pub(crate) enum Rule<'a> {
+    /// Planes are given (shared per column or per vertex): the C-tube construction.
+    Given,
+    /// CNets Construct: per-vertex planes from ratios.
+    Ratios(&'a Grid),
+    /// CNets Construct Coplanar: one plane per column from ρ_j, τ_j and support strip 0.
+    Coplanar {
+        /// ρ_j at index j − 1.
+        rho: &'a [f64],
+        /// τ_j at index j − 1.
+        tau: &'a [f64],
+    },
+}
+
+/// The mutable state of one construction.
+pub(crate) struct Sweep<'a> {
+    pub dx: &'a SweptDirectrix,
+    pub n: usize,
+    pub m: usize,
+    /// Row-major N × M vertices; column 0 holds the generatrix.
+    pub verts: Vec<DVec3>,
+    /// Plane normals: N × (M−1) when `per_vertex`, else M−1 shared.
+    pub planes: Vec<DVec3>,
+    pub per_vertex: bool,
+    /// N × (M−1) configurations (entry `i*(M−1) + j − 1` is c_{i,j}; the last slot of a row is unused).
+    pub configs: Vec<Configuration>,
+    /// a_j at index j − 1.
+    pub apex: Vec<f64>,
+    pub rule: Rule<'a>,
+    pub assistance: Option<Assistance>,
+    pub corrections: Vec<Correction>,
+    /// Coplanar mode: ψ of the shared plane at column j (index j).
+    pub psi: Vec<f64>,
+}
+
+/// How one row's sweep ended.
+enum RowEnd {
+    Done,
+    /// Needs a coupled fix at step j (before building column j + 1).
+    Stop(usize),
+    /// Failed at step j, phase (0 plane, 1 fix, 2 build).
+    Error(usize, u8, GeometryError),
+}
+
+impl RowEnd {
+    fn key(&self, i: usize) -> Option<(usize, u8, usize)> {
+        match self {
+            Self::Done => None,
+            Self::Stop(j) => Some((*j, 1, i)),
+            Self::Error(j, phase, _) => Some((*j, *phase, i)),
+        }
+    }
+}
+
+/// Read-only data shared by every row of a block.
+struct Ctx<'s> {
+    x: &'s [DVec3],
+    apex: &'s [f64],
+    check: bool,
+}
+
+/// Where a row gets its planes from.
+trait PlaneSource {
+    /// The plane for building column `jn` from `g = G_{i,jn−1}`.
+    fn plane(&mut self, jn: usize, g: DVec3) -> Result<DVec3, GeometryError>;
+    /// The stored (final) plane of column `j`.
+    fn stored(&self, j: usize) -> DVec3;
+    /// Stores the final plane of column `j`.
+    fn store(&mut self, j: usize, p: DVec3);
+    /// Eq. 2 fails at step j (vertex G_{i,j} = `g` against plane j + 1): a row-local fix (new plane)
+    /// or `None` when the fix couples the rows.
+    fn fix_inline(&mut self, j: usize, g: DVec3) -> Result<Option<DVec3>, GeometryError>;
+}
+
+/// Shared planes, read only.
+struct SharedRead<'p>(&'p [DVec3]);
+
+impl PlaneSource for SharedRead<'_> {
+    #[inline]
+    fn plane(&mut self, jn: usize, _: DVec3) -> Result<DVec3, GeometryError> {
+        Ok(self.0[jn - 1])
+    }
+    #[inline]
+    fn stored(&self, j: usize) -> DVec3 {
+        self.0[j - 1]
+    }
+    #[inline]
+    fn store(&mut self, _: usize, _: DVec3) {}
+    fn fix_inline(&mut self, _: usize, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
+        Ok(None)
+    }
+}
+
+/// The planes of one row, read only (given per-vertex normals).
+struct RowRead<'p>(&'p [DVec3]);
+
+impl PlaneSource for RowRead<'_> {
+    #[inline]
+    fn plane(&mut self, jn: usize, _: DVec3) -> Result<DVec3, GeometryError> {
+        Ok(self.0[jn - 1])
+    }
+    #[inline]
+    fn stored(&self, j: usize) -> DVec3 {
+        self.0[j - 1]
+    }
+    #[inline]
+    fn store(&mut self, _: usize, _: DVec3) {}
+    fn fix_inline(&mut self, _: usize, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
+        Ok(None)
+    }
+}
+
+/// Ratio planes of one row, computed and stored as the row advances.
+struct RatioRow<'p> {
+    i: usize,
+    dx: &'p SweptDirectrix,
+    grid: &'p Grid,
+    planes: &'p mut [DVec3],
+    frame: Option<SupportFrame>,
+    /// α (negative: off).
+    alpha: f64,
+    epsilon: f64,
+    fixes: Vec<(usize, Correction)>,
+}
+
+impl PlaneSource for RatioRow<'_> {
+    #[inline]
+    fn plane(&mut self, jn: usize, g: DVec3) -> Result<DVec3, GeometryError> {
+        let dx = self.dx;
+        let frame = SupportFrame::new(dx.points[jn - 1], dx.edges[jn], g, self.i, jn)?;
+        let p = frame.ratio_normal(dx.bisectors[jn], self.grid.get(self.i, jn));
+        if !(p.dot(frame.e) > tolerance::EDGE_PLANE) {
+            return Err(GeometryError::PlaneContainsEdge {
+                row: Some(self.i),
+                column: jn,
+            });
+        }
+        self.frame = Some(frame);
+        Ok(p)
+    }
+    #[inline]
+    fn stored(&self, j: usize) -> DVec3 {
+        self.planes[j - 1]
+    }
+    #[inline]
+    fn store(&mut self, j: usize, p: DVec3) {
+        self.planes[j - 1] = p;
+    }
+    fn fix_inline(&mut self, j: usize, g: DVec3) -> Result<Option<DVec3>, GeometryError> {
+        if j == 0 && self.alpha >= 1.0 {
+            return Err(GeometryError::FirstColumnUnfixable { row: self.i });
+        }
+        if j > 0 && self.alpha > 0.0 {
+            return Ok(None);
+        }
+        // Full plane fix: θ = (1 − ε) φ (α = 0, or the first column where the apex cannot help).
+        let jn = j + 1;
+        let Some(frame) = self.frame else {
+            return Ok(None);
+        };
+        let b = self.dx.bisectors[jn];
+        let theta_b = frame.bisector_angle(b);
+        let r_old = self.grid.get(self.i, jn);
+        let phi = frame.angle_of(g, self.dx.points[jn]);
+        let theta = (1.0 - self.epsilon) * phi;
+        let p = frame.normal(theta);
+        if !(p.dot(frame.e) > tolerance::EDGE_PLANE) {
+            return Err(GeometryError::PlaneContainsEdge {
+                row: Some(self.i),
+                column: jn,
+            });
+        }
+        self.fixes.push((
+            j,
+            Correction {
+                kind: CorrectionKind::Ratio,
+                column: jn,
+                row: Some(self.i),
+                old: r_old,
+                new: angle_to_ratio(theta, theta_b),
+            },
+        ));
+        Ok(Some(p))
+    }
+}
+
+/// Coplanar mode, row 0: computes the shared plane of every column from support strip 0.
+struct CoplanarRow0<'p> {
+    dx: &'p SweptDirectrix,
+    rho: &'p [f64],
+    tau: &'p [f64],
+    planes: &'p mut [DVec3],
+    psi: &'p mut [f64],
+}
+
+impl PlaneSource for CoplanarRow0<'_> {
+    fn plane(&mut self, jn: usize, g: DVec3) -> Result<DVec3, GeometryError> {
+        let dx = self.dx;
+        let frame = SupportFrame::new(dx.points[jn - 1], dx.edges[jn], g, 0, jn)?;
+        let pencil = PlanePencil::new(
+            &frame,
+            dx.bisectors[jn],
+            self.rho[jn - 1],
+            dx.outgoing[jn],
+            jn,
+        )?;
+        let psi = self.tau[jn - 1] * pencil.psi_out;
+        let p = pencil.normal(psi);
+        if !(p.dot(frame.e) > tolerance::EDGE_PLANE) {
+            return Err(GeometryError::PlaneContainsEdge {
+                row: None,
+                column: jn,
+            });
+        }
+        self.psi[jn] = psi;
+        Ok(p)
+    }
+    #[inline]
+    fn stored(&self, j: usize) -> DVec3 {
+        self.planes[j - 1]
+    }
+    #[inline]
+    fn store(&mut self, j: usize, p: DVec3) {
+        self.planes[j - 1] = p;
+    }
+    fn fix_inline(&mut self, _: usize, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
+        Ok(None)
+    }
+}
+
+/// Sweeps row i over steps `js..je` (building columns js+1 … je). Columns ≤ js are built; when
+/// `plane_final`, the plane of column js+1 is already final (set by a coupled correction).
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn run_row<S: PlaneSource>(
+    ctx: &Ctx<'_>,
+    i: usize,
+    js: usize,
+    je: usize,
+    plane_final: bool,
+    row: &mut [DVec3],
+    cfg: &mut [Configuration],
+    src: &mut S,
+) -> RowEnd {
+    let x = ctx.x;
+    let mut g = row[js];
+    let mut p_prev = if js >= 1 { src.stored(js) } else { DVec3::ZERO };
+    for j in js..je {
+        let jn = j + 1;
+        let fixed = plane_final && j == js;
+        let mut p = if fixed {
+            src.stored(jn)
+        } else {
+            match src.plane(jn, g) {
+                Ok(p) => p,
+                Err(e) => return RowEnd::Error(j, 0, e),
+            }
+        };
+        let mut s2 = (x[jn] - g).dot(p);
+        if ctx.check && !fixed && !(s2 > 0.0) {
+            match src.fix_inline(j, g) {
+                Ok(Some(q)) => {
+                    p = q;
+                    s2 = (x[jn] - g).dot(p);
+                }
+                Ok(None) => return RowEnd::Stop(j),
+                Err(e) => return RowEnd::Error(j, 1, e),
+            }
+        }
+        src.store(jn, p);
+        let Some(g1) = step(g, x[j], x[jn], ctx.apex[j], p) else {
+            return RowEnd::Error(j, 2, GeometryError::ParallelStep { row: i, column: jn });
+        };
+        if !g1.is_finite() {
+            return RowEnd::Error(
+                j,
+                2,
+                GeometryError::NonFiniteOutput {
+                    what: "mesh vertex",
+                    row: i,
+                    column: jn,
+                },
+            );
+        }
+        row[jn] = g1;
+        if j >= 1 {
+            cfg[j - 1] = Configuration::from_signs((g1 - x[j]).dot(p_prev), s2);
+        }
+        p_prev = p;
+        g = g1;
+    }
+    RowEnd::Done
+}
+
+/// The first event of a block over all rows, as (step, phase, row) plus the error if any.
+fn first_event(ends: Vec<RowEnd>) -> Option<(usize, Option<GeometryError>)> {
+    let mut best: Option<((usize, u8, usize), RowEnd)> = None;
+    for (i, end) in ends.into_iter().enumerate() {
+        if let Some(k) = end.key(i)
+            && best.as_ref().is_none_or(|(b, _)| k < *b)
+        {
+            best = Some((k, end));
+        }
+    }
+    best.map(|((j, _, _), end)| match end {
+        RowEnd::Error(_, _, e) => (j, Some(e)),
+        _ => (j, None),
+    })
+}
+
+impl<'a> Sweep<'a> {
+    /// A sweep over `generatrix` (N points) with the given planes and apex values.
+    pub fn new(
+        dx: &'a SweptDirectrix,
+        generatrix: &[DVec3],
+        apex: Vec<f64>,
+        planes: Vec<DVec3>,
+        per_vertex: bool,
+        rule: Rule<'a>,
+        assistance: Option<Assistance>,
+    ) -> Self {
+        let (n, m) = (generatrix.len(), dx.columns());
+        let mut verts = vec![DVec3::ZERO; n * m];
+        for (i, g) in generatrix.iter().enumerate() {
+            verts[i * m] = *g;
+        }
+        Self {
+            dx,
+            n,
+            m,
+            verts,
+            planes,
+            per_vertex,
+            configs: vec![Configuration::PlusPlus; n * (m - 1)],
+            apex,
+            rule,
+            assistance: assistance.filter(Assistance::enabled),
+            corrections: Vec::new(),
+            psi: vec![0.0; m],
+        }
+    }
+
+    /// Normal of Π_{i,j}.
+    #[inline]
+    fn plane_at(&self, i: usize, j: usize) -> DVec3 {
+        if self.per_vertex {
+            self.planes[i * (self.m - 1) + j - 1]
+        } else {
+            self.planes[j - 1]
+        }
+    }
+
+    #[inline]
+    fn vert(&self, i: usize, j: usize) -> DVec3 {
+        self.verts[i * self.m + j]
+    }
+
+    /// Whether a failing Eq. 2 at some column needs the coupled (all-rows) correction.
+    fn coupled(&self) -> bool {
+        match (&self.rule, self.assistance) {
+            (_, None) => false,
+            (Rule::Given, _) => false,
+            (Rule::Ratios(_), Some(a)) => a.alpha > 0.0,
+            (Rule::Coplanar { .. }, Some(_)) => true,
+        }
+    }
+
+    /// Runs the whole sweep.
+    pub fn run(&mut self) -> Result<(), GeometryError> {
+        let steps = self.m - 1;
+        let coupled = self.coupled();
+        let (mut js, mut plane_final, mut block) = (0, false, steps);
+        while js < steps {
+            let je = (js + block).min(steps);
+            match self.block(js, je, plane_final)? {
+                None => {
+                    js = je;
+                    plane_final = false;
+                    block = block.saturating_mul(2);
+                }
+                Some(j0) => {
+                    debug_assert!(coupled);
+                    self.correct(j0)?;
+                    block = (2 * (j0 - js)).max(8);
+                    js = j0;
+                    plane_final = true;
+                }
+            }
+        }
+        self.corrections.sort_by_key(|c| {
+            let rank = match c.kind {
+                CorrectionKind::Apex => 0,
+                CorrectionKind::Ratio | CorrectionKind::PlaneRotation => 1,
+            };
+            (c.column, rank, c.row)
+        });
+        Ok(())
+    }
+
+    /// Sweeps every row over steps `js..je`; returns the step of the first coupled stop, if any.
+    fn block(
+        &mut self,
+        js: usize,
+        je: usize,
+        plane_final: bool,
+    ) -> Result<Option<usize>, GeometryError> {
+        let m = self.m;
+        let check = self.assistance.is_some();
+        let (alpha, epsilon) = self
+            .assistance
+            .map_or((-1.0, 0.01), |a| (a.alpha, a.epsilon));
+        let dx = self.dx;
+        let rule = self.rule;
+        let per_vertex = self.per_vertex;
+        let Self {
+            verts,
+            planes,
+            configs,
+            apex,
+            psi,
+            ..
+        } = self;
+        let ctx = Ctx {
+            x: &dx.points,
+            apex,
+            check,
+        };
+        let rows: Vec<(usize, &mut [DVec3], &mut [Configuration])> = verts
+            .chunks_mut(m)
+            .zip(configs.chunks_mut(m - 1))
+            .enumerate()
+            .map(|(i, (r, c))| (i, r, c))
+            .collect();
+        let (ends, fixes): (Vec<RowEnd>, Vec<(usize, Correction)>) = match rule {
+            Rule::Given if per_vertex => {
+                let ends = rows
+                    .into_par_iter()
+                    .zip(planes.par_chunks(m - 1))
+                    .map(|((i, r, c), p)| {
+                        run_row(&ctx, i, js, je, plane_final, r, c, &mut RowRead(p))
+                    })
+                    .collect();
+                (ends, Vec::new())
+            }
+            Rule::Given => {
+                let shared = &planes[..];
+                let ends = rows
+                    .into_par_iter()
+                    .map(|(i, r, c)| {
+                        run_row(&ctx, i, js, je, plane_final, r, c, &mut SharedRead(shared))
+                    })
+                    .collect();
+                (ends, Vec::new())
+            }
+            Rule::Ratios(grid) => {
+                let out: Vec<(RowEnd, Vec<(usize, Correction)>)> = rows
+                    .into_par_iter()
+                    .zip(planes.par_chunks_mut(m - 1))
+                    .map(|((i, r, c), p)| {
+                        let mut src = RatioRow {
+                            i,
+                            dx,
+                            grid,
+                            planes: p,
+                            frame: None,
+                            alpha,
+                            epsilon,
+                            fixes: Vec::new(),
+                        };
+                        let end = run_row(&ctx, i, js, je, plane_final, r, c, &mut src);
+                        (end, src.fixes)
+                    })
+                    .collect();
+                let mut ends = Vec::with_capacity(out.len());
+                let mut fixes = Vec::new();
+                for (end, f) in out {
+                    ends.push(end);
+                    fixes.extend(f);
+                }
+                (ends, fixes)
+            }
+            Rule::Coplanar { rho, tau } => {
+                let mut rows = rows.into_iter();
+                let (i0, r0, c0) = rows.next().expect("N ≥ 2 rows");
+                let mut src0 = CoplanarRow0 {
+                    dx,
+                    rho,
+                    tau,
+                    planes,
+                    psi,
+                };
+                let end0 = run_row(&ctx, i0, js, je, plane_final, r0, c0, &mut src0);
+                // The other rows can go as far as row 0 has produced planes.
+                let limit = match end0 {
+                    RowEnd::Done => je,
+                    RowEnd::Error(j, 0, _) => j,
+                    RowEnd::Stop(j) | RowEnd::Error(j, _, _) => j + 1,
+                };
+                let shared = &planes[..];
+                let rest: Vec<_> = rows.collect();
+                let mut ends: Vec<RowEnd> = vec![end0];
+                ends.par_extend(rest.into_par_iter().map(|(i, r, c)| {
+                    run_row(
+                        &ctx,
+                        i,
+                        js,
+                        limit.max(js),
+                        plane_final,
+                        r,
+                        c,
+                        &mut SharedRead(shared),
+                    )
+                }));
+                (ends, Vec::new())
+            }
+        };
+        let event = first_event(ends);
+        match event {
+            Some((_, Some(err))) => Err(err),
+            Some((j0, None)) => {
+                self.corrections
+                    .extend(fixes.into_iter().filter(|(j, _)| *j < j0).map(|(_, c)| c));
+                Ok(Some(j0))
+            }
+            None => {
+                self.corrections.extend(fixes.into_iter().map(|(_, c)| c));
+                Ok(None)
+            }
+        }
+    }
+
+    /// The coupled correction at step j0: vertex column j0 against planes Π_{·,j0+1}.
+    fn correct(&mut self, j0: usize) -> Result<(), GeometryError> {
+        match self.rule {
+            Rule::Ratios(grid) => self.correct_ratio(j0, grid),
+            Rule::Coplanar { rho, .. } => self.correct_coplanar(j0, rho[j0]),
+            Rule::Given => Ok(()),
+        }
+    }
+
+    /// Rows i with `(X_{j0+1} − G_{i,j0}) · P_{i,j0+1} ≤ 0`.
+    fn bad_rows(&self, j0: usize) -> Vec<usize> {
+        let x1 = self.dx.points[j0 + 1];
+        (0..self.n)
+            .filter(|&i| !((x1 - self.vert(i, j0)).dot(self.plane_at(i, j0 + 1)) > 0.0))
+            .collect()
+    }
+
+    fn correct_ratio(&mut self, j0: usize, grid: &Grid) -> Result<(), GeometryError> {
+        let a = self
+            .assistance
+            .expect("correction only runs with assistance");
+        let dx = self.dx;
+        let jn = j0 + 1;
+        let b = dx.bisectors[jn];
+        // Current ruling angle per row (from the ratio; plane fixes overwrite it).
+        let mut thetas = Vec::with_capacity(self.n);
+        for i in 0..self.n {
+            let frame = SupportFrame::new(dx.points[j0], dx.edges[jn], self.vert(i, j0), i, jn)?;
+            thetas.push(ratio_to_angle(grid.get(i, jn), frame.bisector_angle(b)));
+        }
+        for round in 0..tolerance::MAX_CORRECTION_ROUNDS {
+            let mut frames = Vec::with_capacity(self.n);
+            for (i, &theta) in thetas.iter().enumerate() {
+                let frame =
+                    SupportFrame::new(dx.points[j0], dx.edges[jn], self.vert(i, j0), i, jn)?;
+                let p = frame.normal(theta);
+                if !(p.dot(frame.e) > tolerance::EDGE_PLANE) {
+                    return Err(GeometryError::PlaneContainsEdge {
+                        row: Some(i),
+                        column: jn,
+                    });
+                }
+                self.planes[i * (self.m - 1) + jn - 1] = p;
+                frames.push(frame);
+            }
+            let bad = self.bad_rows(j0);
+            if bad.is_empty() {
+                return Ok(());
+            }
+            if round == 0 && a.alpha < 1.0 {
+                for &i in &bad {
+                    let frame = frames[i];
+                    let theta_b = frame.bisector_angle(b);
+                    let phi = frame.angle_of(self.vert(i, j0), dx.points[jn]);
+                    let target = (1.0 - a.epsilon) * phi;
+                    let new = thetas[i] + (1.0 - a.alpha) * (target - thetas[i]);
+                    self.corrections.push(Correction {
+                        kind: CorrectionKind::Ratio,
+                        column: jn,
+                        row: Some(i),
+                        old: angle_to_ratio(thetas[i], theta_b),
+                        new: angle_to_ratio(new, theta_b),
+                    });
+                    thetas[i] = new;
+                }
+                continue;
+            }
+            if j0 == 0 {
+                return Err(GeometryError::FirstColumnUnfixable { row: bad[0] });
+            }
+            self.apex_fix(j0, &bad, a.epsilon)?;
+        }
+        Err(GeometryError::CorrectionFailed { column: j0 })
+    }
+
+    fn correct_coplanar(&mut self, j0: usize, rho: f64) -> Result<(), GeometryError> {
+        let a = self
+            .assistance
+            .expect("correction only runs with assistance");
+        let dx = self.dx;
+        let jn = j0 + 1;
+        let mut psi = self.psi[jn];
+        for round in 0..tolerance::MAX_CORRECTION_ROUNDS {
+            let frame = SupportFrame::new(dx.points[j0], dx.edges[jn], self.vert(0, j0), 0, jn)?;
+            let pencil = PlanePencil::new(&frame, dx.bisectors[jn], rho, dx.outgoing[jn], jn)?;
+            let p = pencil.normal(psi);
+            if !(p.dot(frame.e) > tolerance::EDGE_PLANE) {
+                return Err(GeometryError::PlaneContainsEdge {
+                    row: None,
+                    column: jn,
+                });
+            }
+            self.planes[jn - 1] = p;
+            self.psi[jn] = psi;
+            let bad = self.bad_rows(j0);
+            if bad.is_empty() {
+                return Ok(());
+            }
+            if round == 0 && a.alpha < 1.0 {
+                let x1 = dx.points[jn];
+                let qs = (0..self.n).map(|i| x1 - self.vert(i, j0));
+                if let Some((lo, hi)) = pencil.feasible(qs, a.epsilon) {
+                    let fix = psi.clamp(lo, hi);
+                    let new = if j0 == 0 {
+                        fix
+                    } else {
+                        psi + (1.0 - a.alpha) * (fix - psi)
+                    };
+                    self.corrections.push(Correction {
+                        kind: CorrectionKind::PlaneRotation,
+                        column: jn,
+                        row: None,
+                        old: psi / pencil.psi_out,
+                        new: new / pencil.psi_out,
+                    });
+                    psi = new;
+                    continue;
+                }
+            }
+            if j0 == 0 {
+                return Err(GeometryError::FirstColumnUnfixable { row: bad[0] });
+            }
+            self.apex_fix(j0, &bad, a.epsilon)?;
+        }
+        Err(GeometryError::CorrectionFailed { column: j0 })
+    }
+
+    /// The apex fix at column j0 ≥ 1 (Appendix A): a' = min over the bad rows; a_{j0} = (1 − ε) a';
+    /// rebuilds column j0 for every row.
+    fn apex_fix(&mut self, j0: usize, bad: &[usize], epsilon: f64) -> Result<(), GeometryError> {
+        let x = &self.dx.points;
+        let xs = [x[j0 - 1], x[j0], x[j0 + 1]];
+        let mut a_min = f64::INFINITY;
+        for &i in bad {
+            let v = apex_fix_value(
+                self.vert(i, j0 - 1),
+                xs,
+                self.plane_at(i, j0),
+                self.plane_at(i, j0 + 1),
+            );
+            if v.is_nan() {
+                // A NaN candidate means the fix is undefined for that row: impossible.
+                a_min = f64::NAN;
+                break;
+            }
+            a_min = a_min.min(v);
+        }
+        if !(a_min > 0.0 && a_min.is_finite()) {
+            return Err(GeometryError::ApexFixImpossible {
+                column: j0,
+                value: a_min,
+            });
+        }
+        let old = self.apex[j0 - 1];
+        let new = (1.0 - epsilon) * a_min;
+        self.corrections.push(Correction {
+            kind: CorrectionKind::Apex,
+            column: j0,
+            row: None,
+            old,
+            new,
+        });
+        self.apex[j0 - 1] = new;
+        for i in 0..self.n {
+            let p = self.plane_at(i, j0);
+            let g = step(self.vert(i, j0 - 1), xs[0], xs[1], new, p)
+                .ok_or(GeometryError::ParallelStep { row: i, column: j0 })?;
+            if !g.is_finite() {
+                return Err(GeometryError::NonFiniteOutput {
+                    what: "mesh vertex",
+                    row: i,
+                    column: j0,
+                });
+            }
+            self.verts[i * self.m + j0] = g;
+            if j0 >= 2 {
+                let s1 = (g - xs[0]).dot(self.plane_at(i, j0 - 1));
+                let s2 = (xs[1] - self.vert(i, j0 - 1)).dot(p);
+                self.configs[i * (self.m - 1) + j0 - 2] = Configuration::from_signs(s1, s2);
+            }
+        }
+        Ok(())
+    }
+}
