@@ -26,7 +26,7 @@ node! {
         if !(radius.is_finite() && radius > 0.0) {
             return Err(format!("radius must be a positive number, got {radius}").into());
         }
-        if !(start.is_finite() && end.is_finite()) || !centre.is_finite() || !plane.is_finite() {
+        if !(start.is_finite() && end.is_finite() && centre.is_finite() && plane.is_finite()) {
             return Err("centre, angles and plane must be finite".into());
         }
         if count < 2 {

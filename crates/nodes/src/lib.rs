@@ -49,3 +49,17 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod reference_tests {
+    #[test]
+    fn docs_nodes_md_is_up_to_date() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/nodes.md");
+        let expected = crate::reference::markdown(&crate::registry());
+        let actual = std::fs::read_to_string(path).unwrap_or_default();
+        assert!(
+            actual == expected,
+            "docs/nodes.md is stale: run `cargo run -p cnets -- nodes --markdown > docs/nodes.md`"
+        );
+    }
+}

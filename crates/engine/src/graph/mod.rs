@@ -266,7 +266,7 @@ impl Graph {
 
     /// Upper bound of node indices (for index-keyed side tables).
     pub fn index_bound(&self) -> usize {
-        (&self.inner).node_bound()
+        self.inner.node_bound()
     }
 
     /// The underlying petgraph graph (read-only).

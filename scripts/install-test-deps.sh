@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs what the tests need, when it is missing: lavapipe (apt), gltf-validator (npm, into
+# ./node_modules), ezdxf (pip, user site). Uses sudo when not root; says what to install otherwise.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+as_root() {
+  if [ "$(id -u)" = 0 ]; then "$@"; elif command -v sudo >/dev/null; then sudo "$@"; else
+    echo "install-test-deps: need root to run: $*" >&2; return 1; fi
+}
+
+if ! ls /usr/share/vulkan/icd.d/lvp_icd*.json >/dev/null 2>&1; then
+  echo "== installing the software Vulkan driver (mesa-vulkan-drivers, libvulkan1)"
+  as_root apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq mesa-vulkan-drivers libvulkan1 >/dev/null
+fi
+
+if [ -f package.json ] && [ ! -d node_modules ]; then
+  echo "== installing npm test tools (package.json)"
+  npm ci --silent --no-audit --no-fund
+fi
+
+if [ -f scripts/requirements-test.txt ]; then
+  if ! python3 -c "import sys; import importlib; [importlib.import_module(l.split('=')[0].strip()) for l in open('scripts/requirements-test.txt') if l.strip() and not l.startswith('#')]" 2>/dev/null; then
+    echo "== installing Python test tools (scripts/requirements-test.txt)"
+    python3 -m pip install --quiet --user -r scripts/requirements-test.txt || python3 -m pip install --quiet -r scripts/requirements-test.txt
+  fi
+fi
