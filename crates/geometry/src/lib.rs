@@ -5,7 +5,9 @@
 //! about the node engine, the editor or the GPU: the crate is usable as a library on its own.
 
 pub mod conenet;
+pub mod curves;
 pub mod error;
+pub mod fabrication;
 pub mod line;
 pub mod plane;
 pub mod polygon_mesh;

@@ -5,9 +5,19 @@
 //! category, add it to that module's `nodes()`, and regenerate `docs/nodes.md`
 //! (`cargo run -p cnets -- nodes --markdown > docs/nodes.md`).
 
+pub mod analysis;
+pub mod cnets;
 pub mod curve;
+pub mod fabrication;
+pub mod io_export;
+pub mod io_read;
+pub mod list;
+pub mod mapper;
+pub mod math;
+pub mod mesh;
 pub mod param;
 pub mod reference;
+pub mod vector;
 
 use cnets_engine::{NodeDef, Registry};
 

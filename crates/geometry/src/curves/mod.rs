@@ -1,0 +1,1 @@
+//! Curve operations on polylines: sampling, splines, resampling, transforms.
