@@ -7,8 +7,8 @@ use std::time::Instant;
 
 use cnets_geometry::{DVec3, Polyline, QuadGrid};
 use cnets_render::{
-    Camera, ConfigClass, FaceColors, LineStyle, MeshStyle, Offscreen, PointStyle, Scene,
-    SequentialMap, View, palette,
+    Camera, ConfigClass, FaceColors, LineStyle, MeshStyle, Offscreen, PointStyle, RendererOptions,
+    Scene, SceneRenderer, SequentialMap, View, palette, wgpu,
 };
 
 fn wavy_grid(n: usize) -> QuadGrid {
@@ -100,6 +100,31 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         t.elapsed().as_secs_f64() * 1e3 / f64::from(frames)
     );
 
+    // The pass alone (as in the editor: no readback), with and without MSAA.
+    for samples in [4, 1] {
+        let device = gpu.device().clone();
+        let queue = gpu.queue().clone();
+        let mut renderer = SceneRenderer::new(
+            &device,
+            RendererOptions {
+                sample_count: samples,
+            },
+        );
+        renderer.set_scene(&device, &queue, &scene);
+        let t = Instant::now();
+        for _ in 0..frames {
+            camera.orbit(0.01, 0.0);
+            let mut encoder = device.create_command_encoder(&Default::default());
+            renderer.render(&device, &queue, &mut encoder, &camera, 1280, 720)?;
+            queue.submit([encoder.finish()]);
+            device.poll(wgpu::PollType::wait_indefinitely())?;
+        }
+        println!(
+            "scene pass only 1280×720, {samples}× MSAA: {:.1} ms",
+            t.elapsed().as_secs_f64() * 1e3 / f64::from(frames)
+        );
+    }
+
     // Planarity-style colouring.
     let values: Vec<f64> = grid
         .quads()
@@ -112,5 +137,37 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     gpu.render_view(&scene, View::Iso, 1280, 720)?
         .save_png(out.join("demo-planarity.png"))?;
     println!("legend: {:?}", map.legend("planarity", 3));
+
+    // A closed surface (both directions wrap): a torus, classes in bands, with a polyline and apices.
+    let (rows, cols) = (24, 48);
+    let torus: Vec<DVec3> = (0..rows)
+        .flat_map(|i| {
+            (0..cols).map(move |j| {
+                let (u, v) = (
+                    i as f64 / rows as f64 * std::f64::consts::TAU,
+                    j as f64 / cols as f64 * std::f64::consts::TAU,
+                );
+                let r = 3.0 + 1.2 * u.cos();
+                DVec3::new(r * v.cos(), r * v.sin(), 1.2 * u.sin())
+            })
+        })
+        .collect();
+    let torus = QuadGrid::new(rows, cols, torus)?.with_wrap(true, true);
+    let tc: Vec<_> = torus
+        .quads()
+        .map(|((i, _), _)| ConfigClass::ALL[i * 4 / rows].color())
+        .collect();
+    scene.clear();
+    scene.add_quad_grid(&torus, FaceColors::PerFace(&tc))?;
+    scene.add_polyline(&torus.row(0), LineStyle::new(palette::LINE, 3.0));
+    scene.add_points(
+        &[DVec3::new(0.0, 0.0, 2.5)],
+        PointStyle::new(palette::POINT, 12.0).on_top(),
+    );
+    for view in [View::Iso, View::Top] {
+        gpu.render_view(&scene, view, 960, 640)?
+            .save_png(out.join(format!("torus-{view}.png")))?;
+    }
+    println!("wrote torus-*.png");
     Ok(())
 }

@@ -56,6 +56,9 @@
 //!     target_format: wgpu::TextureFormat,
 //!     msaa_samples: u32,
 //!     depth_format: Option<wgpu::TextureFormat>,
+//!     /// `RendererOptions::for_adapter(&render_state.adapter.get_info())`: no MSAA on software
+//!     /// rasterizers, where it doubles the frame time.
+//!     options: RendererOptions,
 //! }
 //!
 //! impl CallbackTrait for ViewportCallback {
@@ -68,7 +71,7 @@
 //!         resources: &mut CallbackResources,
 //!     ) -> Vec<wgpu::CommandBuffer> {
 //!         let gpu = resources.entry::<ViewportGpu>().or_insert_with(|| ViewportGpu {
-//!             renderer: SceneRenderer::new(device, RendererOptions::default()),
+//!             renderer: SceneRenderer::new(device, self.options),
 //!             blitter: Blitter::new(device, self.target_format, self.msaa_samples, self.depth_format),
 //!             source: None,
 //!         });

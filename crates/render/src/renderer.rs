@@ -27,6 +27,17 @@ pub struct RendererOptions {
     pub sample_count: u32,
 }
 
+impl RendererOptions {
+    /// Options suited to an adapter: 4× MSAA on GPUs, none on software rasterizers (lavapipe,
+    /// llvmpipe), where 4× costs about twice the frame time (≈ 42 vs 24 ms at 1280 × 720).
+    pub fn for_adapter(info: &wgpu::AdapterInfo) -> Self {
+        let software = info.device_type == wgpu::DeviceType::Cpu;
+        Self {
+            sample_count: if software { 1 } else { 4 },
+        }
+    }
+}
+
 impl Default for RendererOptions {
     fn default() -> Self {
         Self { sample_count: 4 }

@@ -154,6 +154,9 @@ impl Bounds {
 }
 
 /// How the faces of a mesh are coloured.
+///
+/// Faces are meant to be opaque: a colour with alpha below 255 is blended in draw order, without
+/// sorting, so translucent surfaces only look right over what was drawn before them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FaceColors<'a> {
     /// One colour for every face.

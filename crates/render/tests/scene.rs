@@ -326,3 +326,15 @@ fn degenerate_grids_do_not_panic() {
             .all(|v| v.normal.iter().all(|c| c.is_finite()))
     );
 }
+
+#[test]
+fn gpu_types_can_live_in_egui_callback_resources() {
+    // egui-wgpu's CallbackResources (a concurrent type map) and its callbacks need Send + Sync.
+    fn send_sync<T: Send + Sync + 'static>() {}
+    send_sync::<cnets_render::SceneRenderer>();
+    send_sync::<cnets_render::Blitter>();
+    send_sync::<cnets_render::BlitSource>();
+    send_sync::<cnets_render::Offscreen>();
+    send_sync::<Scene>();
+    send_sync::<cnets_render::Camera>();
+}
