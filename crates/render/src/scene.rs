@@ -236,18 +236,19 @@ pub struct PointStyle {
     pub size: f32,
     /// Square or disc.
     pub shape: PointShape,
-    /// Draw over the surfaces instead of being hidden by them.
+    /// Draw over the surfaces (the default for markers such as apices) instead of being hidden
+    /// by them.
     pub on_top: bool,
 }
 
 impl PointStyle {
-    /// A depth-tested disc of the given colour and size.
+    /// A disc of the given colour and size, drawn on top of everything.
     pub fn new(color: Color, size: f32) -> Self {
         Self {
             color,
             size,
             shape: PointShape::Disc,
-            on_top: false,
+            on_top: true,
         }
     }
 
@@ -260,6 +261,13 @@ impl PointStyle {
     /// The same style drawn over everything.
     pub fn on_top(mut self) -> Self {
         self.on_top = true;
+        self
+    }
+
+    /// The same style hidden by surfaces in front of it (with a small depth bias, so points on a
+    /// surface still show).
+    pub fn depth_tested(mut self) -> Self {
+        self.on_top = false;
         self
     }
 }

@@ -248,13 +248,16 @@ fn nan_geometry_renders_without_error() {
 fn depth_tested_and_on_top_points_behind_a_surface() {
     with_gpu(|gpu| {
         let (mut scene, _) = grid_scene(None);
-        // Below the grid, seen from the top: hidden unless drawn on top.
+        // Both below the grid, seen from the top: the depth-tested one is hidden, the default
+        // (on top) one shows.
         let below = [DVec3::new(-1.5, 0.5, -1.0)];
         let above = [DVec3::new(1.5, 0.5, -1.0)];
         let green = Color::hex(0x00ff00);
         scene.add_points(
             &below,
-            PointStyle::new(green, 12.0).shape(PointShape::Square),
+            PointStyle::new(green, 12.0)
+                .shape(PointShape::Square)
+                .depth_tested(),
         );
         scene.add_points(
             &above,
@@ -511,5 +514,36 @@ fn blitter_copies_the_scene_into_egui_like_passes() {
         queue.submit([encoder.finish()]);
         assert!(!source.is_current(&renderer));
         assert_eq!(renderer.size(), (W / 2, H / 2));
+    });
+}
+
+#[test]
+fn scene_changes_are_uploaded_and_buffers_grow_and_shrink_correctly() {
+    with_gpu(|gpu| {
+        let (small, _) = grid_scene(Some(MeshStyle::default_edges()));
+        let camera = Camera::framing(View::Iso, small.bounds(), W as f32 / H as f32);
+        let first = gpu.render(&small, &camera, W, H).unwrap();
+        // A much larger scene in the same place (the buffers must grow).
+        let n = 60;
+        let v = (0..n)
+            .flat_map(|i| {
+                (0..n).map(move |j| {
+                    let (x, y) = (j as f64 / 10.0 - 3.0, i as f64 / 10.0 - 3.0);
+                    DVec3::new(x, y, 0.3 * (x * y).sin())
+                })
+            })
+            .collect();
+        let mut large = Scene::new();
+        large
+            .add_quad_grid(&QuadGrid::new(n, n, v).unwrap(), FaceColors::default())
+            .unwrap();
+        let big = gpu.render(&large, &camera, W, H).unwrap();
+        assert!(big != first);
+        // Back to the small scene: stale data past the new counts must not be drawn.
+        let again = gpu.render(&small, &camera, W, H).unwrap();
+        assert!(
+            again == first,
+            "re-rendering the small scene after a large one differs"
+        );
     });
 }

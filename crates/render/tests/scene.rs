@@ -273,6 +273,11 @@ fn lines_points_and_bounds() {
     assert_eq!(scene.segments()[0].width, 3.0);
     assert_eq!(scene.segments()[4].flags, cnets_render::scene::FLAG_ON_TOP);
     assert_eq!(scene.points()[0].flags, cnets_render::scene::FLAG_ON_TOP);
+    assert!(
+        PointStyle::default().on_top,
+        "markers are drawn on top by default"
+    );
+    assert!(!PointStyle::default().depth_tested().on_top);
     assert_eq!(
         scene.bounds(),
         Some(Bounds::new(
