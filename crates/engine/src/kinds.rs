@@ -232,6 +232,10 @@ into_port!(QuadMesh: QuadGrid => |x| Value::from(x), Arc<QuadGrid> => |x| Value:
 into_port!(Mesh: PolygonMesh => |x| Value::from(x), Arc<PolygonMesh> => |x| Value::Mesh(x));
 into_port!(Record: RecordValue => |x| Value::from(x));
 into_port!(Tree<Number>: f64 => |x| Value::Number(x));
+// A single value as the default of a list port (the engine passes it as a one-element list).
+into_port!(List<Number>: f64 => |x| Value::Number(x));
+into_port!(List<Integer>: i64 => |x| Value::Integer(x), i32 => |x| Value::Integer(x as i64));
+into_port!(List<Text>: &str => |x| Value::text(x));
 
 impl<K: PortKind, T: IntoPort<K>> IntoPort<List<K>> for Vec<T> {
     fn into_port(self) -> Value {

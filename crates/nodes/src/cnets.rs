@@ -1,8 +1,378 @@
 //! Cone-net construction: C-tube, CNets Construct, Construct Coplanar, encoding.
+//!
+//! Every construction node outputs `mesh`, `apex` (the a_j actually used), `apices` (C_j, `null` at
+//! infinity), `planes` (N lists of M−1 normals), `configurations` (N lists of M−2 labels),
+//! `corrections` (text) and `quality` (a record).
 
-use cnets_engine::NodeDef;
+use std::sync::{Arc, OnceLock};
+
+use cnets_engine::prelude::*;
+use cnets_geometry::conenet::{
+    self, ApexInput, ColumnValues, ConeNet, ConstructInputs, CoplanarInputs, CtubeInputs,
+    GridValues, NormalsInput,
+};
+
+/// The apex input: one number broadcast to every column, or one value per directrix edge.
+fn apex_input(values: Vec<f64>, normalized: bool, scale: Option<f64>) -> ApexInput {
+    let values = match values.as_slice() {
+        [single] => ColumnValues::Uniform(*single),
+        _ => ColumnValues::List(values),
+    };
+    ApexInput {
+        values,
+        normalized,
+        scale,
+    }
+}
+
+/// Reads a number, a list of numbers, or a list of lists of numbers.
+fn grid_values(value: &Value, what: &str) -> Result<GridValues, NodeError> {
+    let number = |v: &Value, at: String| -> Result<f64, NodeError> {
+        v.as_f64().ok_or_else(|| {
+            NodeError::new(format!(
+                "{what}{at} must be a number, got {}",
+                v.type_name()
+            ))
+        })
+    };
+    match value {
+        Value::List(items) if items.iter().any(|v| v.as_list().is_some()) => items
+            .iter()
+            .enumerate()
+            .map(|(i, row)| match row.as_list() {
+                Some(row) => row
+                    .iter()
+                    .enumerate()
+                    .map(|(j, v)| number(v, format!("[{i}][{j}]")))
+                    .collect(),
+                None => Err(NodeError::new(format!(
+                    "{what}[{i}] must be a list (a table needs one list per generatrix point)"
+                ))),
+            })
+            .collect::<Result<Vec<Vec<f64>>, _>>()
+            .map(GridValues::PerVertex),
+        Value::List(items) => match items.as_slice() {
+            [single] => number(single, "[0]".into()).map(GridValues::Uniform),
+            _ => items
+                .iter()
+                .enumerate()
+                .map(|(j, v)| number(v, format!("[{j}]")))
+                .collect::<Result<_, _>>()
+                .map(GridValues::PerColumn),
+        },
+        other => number(other, String::new()).map(GridValues::Uniform),
+    }
+}
+
+/// Reads M−1 vectors shared by all rows, or N lists of M−1 vectors.
+fn normals_input(value: Option<Value>) -> Result<NormalsInput, NodeError> {
+    let Some(value) = value else {
+        return Ok(NormalsInput::Monge);
+    };
+    let vector = |v: &Value, at: String| -> Result<DVec3, NodeError> {
+        v.as_vec3().ok_or_else(|| {
+            NodeError::new(format!(
+                "normals{at} must be a vector, got {}",
+                v.type_name()
+            ))
+        })
+    };
+    match &value {
+        Value::List(items) if items.iter().any(|v| v.as_list().is_some()) => items
+            .iter()
+            .enumerate()
+            .map(|(i, row)| match row.as_list() {
+                Some(row) => row
+                    .iter()
+                    .enumerate()
+                    .map(|(j, v)| vector(v, format!("[{i}][{j}]")))
+                    .collect(),
+                None => Err(NodeError::new(format!(
+                    "normals[{i}] must be a list of vectors"
+                ))),
+            })
+            .collect::<Result<Vec<Vec<DVec3>>, _>>()
+            .map(NormalsInput::PerVertex),
+        Value::List(items) => items
+            .iter()
+            .enumerate()
+            .map(|(j, v)| vector(v, format!("[{j}]")))
+            .collect::<Result<Vec<DVec3>, _>>()
+            .map(NormalsInput::PerColumn),
+        other => vector(other, String::new()).map(|v| NormalsInput::PerColumn(vec![v])),
+    }
+}
+
+/// The four configuration labels, shared so that large outputs do not allocate per vertex.
+fn label(text: &'static str) -> Value {
+    static LABELS: OnceLock<[Value; 4]> = OnceLock::new();
+    let labels = LABELS.get_or_init(|| ["++", "--", "+-", "-+"].map(Value::text));
+    match text {
+        "++" => labels[0].clone(),
+        "--" => labels[1].clone(),
+        "+-" => labels[2].clone(),
+        _ => labels[3].clone(),
+    }
+}
+
+/// The quality record of a cone-net.
+pub fn quality_record(net: &ConeNet) -> Record {
+    let q = &net.quality;
+    let counts = &q.configurations;
+    Record::new()
+        .with("max_planarity", q.max_planarity)
+        .with("mean_planarity", q.mean_planarity)
+        .with("max_cone_residual", q.max_cone_residual)
+        .with(
+            "cone_residuals",
+            Value::list(q.cone_residuals.iter().map(|&r| Value::Number(r)).collect()),
+        )
+        .with(
+            "configurations",
+            Record::new()
+                .with("++", counts.plus_plus as i64)
+                .with("--", counts.minus_minus as i64)
+                .with("+-", counts.plus_minus as i64)
+                .with("-+", counts.minus_plus as i64),
+        )
+        .with(
+            "first_bad",
+            q.first_bad.map_or(Value::Null, |(i, j)| {
+                Value::list(vec![Value::Integer(i as i64), Value::Integer(j as i64)])
+            }),
+        )
+        .with("corrections", net.corrections.len() as i64)
+        .with("vertices", net.mesh.vertices.len() as i64)
+        .with("faces", net.mesh.quad_count() as i64)
+}
+
+/// The common outputs of every construction node, in output order.
+type Outputs = (
+    QuadGrid,
+    Vec<f64>,
+    Vec<Option<DVec3>>,
+    Value,
+    Value,
+    Vec<String>,
+    Record,
+);
+
+fn outputs(net: ConeNet) -> Outputs {
+    let planes = Value::list(
+        net.normals
+            .to_rows()
+            .into_iter()
+            .map(|row| Value::list(row.into_iter().map(Value::Vector).collect()))
+            .collect(),
+    );
+    let configurations = Value::list(
+        (0..net.configurations.rows())
+            .map(|i| {
+                Value::list(
+                    net.configurations
+                        .row(i)
+                        .iter()
+                        .map(|c| label(c.as_str()))
+                        .collect(),
+                )
+            })
+            .collect(),
+    );
+    let quality = quality_record(&net);
+    let corrections = net.correction_lines();
+    (
+        net.mesh,
+        net.apex,
+        net.apices,
+        planes,
+        configurations,
+        corrections,
+        quality,
+    )
+}
+
+fn unwrap_arc<T: Clone>(a: Arc<T>) -> T {
+    Arc::try_unwrap(a).unwrap_or_else(|a| (*a).clone())
+}
+
+node! {
+    /// The base C-tube construction (paper Sec. 3.2): sweeps the generatrix along the directrix; each
+    /// vertex G_ij is where the line towards the cone apex meets the construction plane through X_j.
+    /// Planes are given by their normals, or default to the bisecting (Monge) planes.
+    #[node(id = "ctube.construct", category = "Cone-nets")]
+    pub fn ctube_construct(
+        /// Directrix X (open, or closed: swept once around).
+        directrix: k::Polyline,
+        /// Generatrix G_{:,0} (closed: the mesh wraps).
+        generatrix: k::Polyline,
+        /// Apex-locating function a_j: one number or one per directrix edge (M−1); 1 = translation.
+        apex: k::List<k::Number> = 1.0,
+        /// Plane normals: M−1 vectors shared by all rows, or N lists of M−1; empty = Monge planes.
+        normals: Option<k::Tree<k::Vector>>,
+        /// Whether `apex` is the normalized apex function ā (paper Sec. 4.3).
+        normalized: k::Boolean = false,
+        /// Normalization scale L (default: directrix length / 5).
+        scale: Option<k::Number>,
+    ) -> (
+        /// The cone-net, N rows × M columns.
+        mesh: k::QuadMesh,
+        /// The apex values a_j used (M−1), after normalization.
+        apex: k::List<k::Number>,
+        /// Cone apices C_j (M−1), null at infinity.
+        apices: k::List<Option<k::Point>>,
+        /// Plane normals P_ij: N lists of M−1 vectors.
+        planes: k::Tree<k::Vector>,
+        /// Configurations c_ij: N lists of M−2 labels "++", "--", "+-", "-+".
+        configurations: k::Tree<k::Text>,
+        /// Corrections made (none for this construction).
+        corrections: k::List<k::Text>,
+        /// Quality: max_planarity, mean_planarity, cone residuals, configuration counts, first_bad.
+        quality: k::Record,
+    ) {
+        let inputs = CtubeInputs {
+            directrix: unwrap_arc(directrix),
+            generatrix: unwrap_arc(generatrix),
+            apex: apex_input(apex, normalized, scale),
+            normals: normals_input(normals)?,
+        };
+        Ok(outputs(conenet::construct_ctube(&inputs)?))
+    }
+}
+
+node! {
+    /// CNets Construct (paper Sec. 4.4.1): like the C-tube construction, but each plane is chosen by a
+    /// ratio r_ij ∈ [0, 1] that picks the ruling of support strip i at X_j (½ = the bisecting plane,
+    /// a Monge surface when a ≡ 1). With `assistance` ≥ 0 folded-over configurations are repaired
+    /// (0: planes only, 1: apex only, between: hybrid) and every correction is reported.
+    #[node(id = "cnets.construct", category = "Cone-nets")]
+    pub fn construct(
+        /// Directrix X (open, or closed: swept once around).
+        directrix: k::Polyline,
+        /// Generatrix G_{:,0} (closed: the mesh wraps).
+        generatrix: k::Polyline,
+        /// Apex-locating function a_j: one number or one per directrix edge (M−1); 1 = translation.
+        apex: k::List<k::Number> = 1.0,
+        /// Ratios r_ij: one number, a list of M−1 (shared by rows), or N lists of M−1.
+        ratios: k::Tree<k::Number> = 0.5,
+        /// Assisted correction α: negative = off, 0 = planes only, 1 = apex only, between = hybrid.
+        assistance: k::Number = -1.0,
+        /// Whether `apex` is the normalized apex function ā (paper Sec. 4.3).
+        normalized: k::Boolean = false,
+        /// Normalization scale L (default: directrix length / 5).
+        scale: Option<k::Number>,
+        /// Safety margin ε of every correction, in (0, 1).
+        epsilon: k::Number = 0.01,
+    ) -> (
+        /// The cone-net, N rows × M columns.
+        mesh: k::QuadMesh,
+        /// The apex values a_j used (M−1), after normalization and correction.
+        apex: k::List<k::Number>,
+        /// Cone apices C_j (M−1), null at infinity.
+        apices: k::List<Option<k::Point>>,
+        /// Plane normals P_ij: N lists of M−1 vectors.
+        planes: k::Tree<k::Vector>,
+        /// Configurations c_ij: N lists of M−2 labels "++", "--", "+-", "-+".
+        configurations: k::Tree<k::Text>,
+        /// Every correction made: column, row, old → new.
+        corrections: k::List<k::Text>,
+        /// Quality: max_planarity, mean_planarity, cone residuals, configuration counts, first_bad.
+        quality: k::Record,
+    ) {
+        let mut inputs = ConstructInputs::new(unwrap_arc(directrix), unwrap_arc(generatrix));
+        inputs.apex = apex_input(apex, normalized, scale);
+        inputs.ratios = grid_values(&ratios, "ratios")?;
+        inputs.assistance.alpha = assistance;
+        inputs.assistance.epsilon = epsilon;
+        Ok(outputs(conenet::construct(&inputs)?))
+    }
+}
+
+node! {
+    /// CNets Construct Coplanar: one plane per directrix vertex, shared by all rows, so every
+    /// generatrix-aligned polyline is planar. `ruling_ratios` pick the ruling of the first support
+    /// strip; `plane_ratios` turn the plane about it (½ and ½: the bisecting plane).
+    #[node(id = "cnets.construct_coplanar", category = "Cone-nets")]
+    pub fn construct_coplanar(
+        /// Directrix X (open, or closed: swept once around).
+        directrix: k::Polyline,
+        /// Generatrix G_{:,0} (closed: the mesh wraps).
+        generatrix: k::Polyline,
+        /// Apex-locating function a_j: one number or one per directrix edge (M−1); 1 = translation.
+        apex: k::List<k::Number> = 1.0,
+        /// Ruling ratios ρ_j: one number or one per directrix edge (M−1).
+        ruling_ratios: k::List<k::Number> = 0.5,
+        /// Plane-rotation ratios τ_j: one number or one per directrix edge (M−1).
+        plane_ratios: k::List<k::Number> = 0.5,
+        /// Assisted correction α: negative = off, 0 = planes only, 1 = apex only, between = hybrid.
+        assistance: k::Number = -1.0,
+        /// Whether `apex` is the normalized apex function ā (paper Sec. 4.3).
+        normalized: k::Boolean = false,
+        /// Normalization scale L (default: directrix length / 5).
+        scale: Option<k::Number>,
+        /// Safety margin ε of every correction, in (0, 1).
+        epsilon: k::Number = 0.01,
+    ) -> (
+        /// The cone-net, N rows × M columns; every column is planar.
+        mesh: k::QuadMesh,
+        /// The apex values a_j used (M−1), after normalization and correction.
+        apex: k::List<k::Number>,
+        /// Cone apices C_j (M−1), null at infinity.
+        apices: k::List<Option<k::Point>>,
+        /// Plane normals P_ij: N lists of M−1 vectors (equal along each column).
+        planes: k::Tree<k::Vector>,
+        /// Configurations c_ij: N lists of M−2 labels "++", "--", "+-", "-+".
+        configurations: k::Tree<k::Text>,
+        /// Every correction made: column, old → new.
+        corrections: k::List<k::Text>,
+        /// Quality: max_planarity, mean_planarity, cone residuals, configuration counts, first_bad.
+        quality: k::Record,
+    ) {
+        let column = |v: Vec<f64>| match v.as_slice() {
+            [single] => ColumnValues::Uniform(*single),
+            _ => ColumnValues::List(v),
+        };
+        let mut inputs = CoplanarInputs::new(unwrap_arc(directrix), unwrap_arc(generatrix));
+        inputs.apex = apex_input(apex, normalized, scale);
+        inputs.ruling_ratios = column(ruling_ratios);
+        inputs.plane_ratios = column(plane_ratios);
+        inputs.assistance.alpha = assistance;
+        inputs.assistance.epsilon = epsilon;
+        Ok(outputs(conenet::construct_coplanar(&inputs)?))
+    }
+}
+
+node! {
+    /// Encodes any cone-net as C-tube construction inputs (paper Sec. 4.1, Proposition 1): a
+    /// directrix, the first generatrix, a positive apex function and per-vertex plane normals that
+    /// reproduce the mesh with `ctube.construct`.
+    #[node(id = "cnets.encode", category = "Cone-nets")]
+    pub fn encode(
+        /// A cone-net (a quad mesh whose directrix-direction strips lie on cones).
+        mesh: k::QuadMesh,
+    ) -> (
+        /// A directrix X with every a_j > 0.
+        directrix: k::Polyline,
+        /// The generatrix: the mesh's first column.
+        generatrix: k::Polyline,
+        /// Apex values a_j > 0 (M−1).
+        apex: k::List<k::Number>,
+        /// Plane normals: N lists of M−1 vectors.
+        normals: k::Tree<k::Vector>,
+    ) {
+        let e = conenet::encode(&mesh)?;
+        let normals = Value::list(
+            e.normals.into_iter().map(|row| Value::list(row.into_iter().map(Value::Vector).collect())).collect(),
+        );
+        Ok((e.directrix, e.generatrix, e.apex, normals))
+    }
+}
 
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
-    vec![]
+    vec![
+        ctube_construct(),
+        construct(),
+        construct_coplanar(),
+        encode(),
+    ]
 }

@@ -16,6 +16,7 @@ pub mod mapper;
 pub mod math;
 pub mod mesh;
 pub mod param;
+pub mod quality;
 pub mod reference;
 pub mod vector;
 
@@ -23,10 +24,24 @@ use cnets_engine::{NodeDef, Registry};
 
 /// Every node type of the library, in palette order.
 pub fn all() -> Vec<NodeDef> {
-    [param::nodes(), curve::nodes()]
-        .into_iter()
-        .flatten()
-        .collect()
+    [
+        param::nodes(),
+        math::nodes(),
+        vector::nodes(),
+        curve::nodes(),
+        mapper::nodes(),
+        list::nodes(),
+        io_read::nodes(),
+        cnets::nodes(),
+        quality::nodes(),
+        analysis::nodes(),
+        fabrication::nodes(),
+        mesh::nodes(),
+        io_export::nodes(),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
 }
 
 /// A registry with every node type of the library.
