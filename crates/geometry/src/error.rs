@@ -191,15 +191,6 @@ pub enum GeometryError {
         /// The apex value a' the fix computed.
         value: f64,
     },
-    /// A generatrix point lies on the wrong side of the first construction plane and the chosen
-    /// assistance cannot fix it (the apex fix never moves user input).
-    #[error(
-        "assisted correction impossible at column 0: generatrix point {row} lies on the wrong side of construction plane ({row}, 1); user input is never moved, so only a plane fix (assistance < 1) can repair it"
-    )]
-    FirstColumnUnfixable {
-        /// Row (generatrix index i).
-        row: usize,
-    },
     /// The assisted correction did not reach a valid configuration at this column.
     #[error("assisted correction did not converge at column {column}")]
     CorrectionFailed {

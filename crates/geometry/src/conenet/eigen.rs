@@ -6,24 +6,28 @@ pub(crate) fn symmetric_eigen<const N: usize>(mut a: [[f64; N]; N]) -> ([f64; N]
     for (k, row) in v.iter_mut().enumerate() {
         row[k] = 1.0;
     }
-    for _ in 0..64 {
-        let mut off = 0.0;
-        let mut total = 0.0;
-        for p in 0..N {
-            for q in 0..N {
-                let s = a[p][q] * a[p][q];
-                total += s;
-                if p != q {
-                    off += s;
-                }
-            }
-        }
-        if !(off > 1e-34 * total) {
+    for sweep in 0..50 {
+        let off: f64 = (0..N)
+            .flat_map(|p| (p + 1..N).map(move |q| (p, q)))
+            .map(|(p, q)| a[p][q].abs())
+            .sum();
+        if off == 0.0 || !off.is_finite() {
             break;
         }
         for p in 0..N {
             for q in p + 1..N {
                 let apq = a[p][q];
+                // After a few sweeps, off-diagonal entries below the rounding level of both diagonal
+                // entries are set to zero (Numerical Recipes' criterion): guarantees termination.
+                let g = 100.0 * apq.abs();
+                if sweep > 3
+                    && a[p][p].abs() + g == a[p][p].abs()
+                    && a[q][q].abs() + g == a[q][q].abs()
+                {
+                    a[p][q] = 0.0;
+                    a[q][p] = 0.0;
+                    continue;
+                }
                 if apq == 0.0 {
                     continue;
                 }

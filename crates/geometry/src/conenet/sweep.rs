@@ -144,6 +144,8 @@ struct RatioRow<'p> {
     grid: &'p Grid,
     planes: &'p mut [DVec3],
     frame: Option<SupportFrame>,
+    /// The plane computed last (by `plane`).
+    last: DVec3,
     /// α (negative: off).
     alpha: f64,
     epsilon: f64,
@@ -163,6 +165,7 @@ impl PlaneSource for RatioRow<'_> {
             });
         }
         self.frame = Some(frame);
+        self.last = p;
         Ok(p)
     }
     #[inline]
@@ -175,7 +178,11 @@ impl PlaneSource for RatioRow<'_> {
     }
     fn fix_inline(&mut self, j: usize, g: DVec3) -> Result<Option<DVec3>, GeometryError> {
         if j == 0 && self.alpha >= 1.0 {
-            return Err(GeometryError::FirstColumnUnfixable { row: self.i });
+            // Apex fixes only, and the apex cannot move user input: report and keep the plane.
+            let p = self.last;
+            self.fixes
+                .push((0, unfixed(self.i, (self.dx.points[1] - g).dot(p))));
+            return Ok(Some(p));
         }
         if j > 0 && self.alpha > 0.0 {
             return Ok(None);
@@ -252,6 +259,17 @@ impl PlaneSource for CoplanarRow0<'_> {
     }
     fn fix_inline(&mut self, _: usize, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
         Ok(None)
+    }
+}
+
+/// The record of a first-column vertex left on the wrong side of its plane.
+fn unfixed(row: usize, signed_distance: f64) -> Correction {
+    Correction {
+        kind: CorrectionKind::Unfixed,
+        column: 1,
+        row: Some(row),
+        old: signed_distance,
+        new: signed_distance,
     }
 }
 
@@ -416,8 +434,9 @@ impl<'a> Sweep<'a> {
         }
         self.corrections.sort_by_key(|c| {
             let rank = match c.kind {
-                CorrectionKind::Apex => 0,
-                CorrectionKind::Ratio | CorrectionKind::PlaneRotation => 1,
+                CorrectionKind::Unfixed => 0,
+                CorrectionKind::Apex => 1,
+                CorrectionKind::Ratio | CorrectionKind::PlaneRotation => 2,
             };
             (c.column, rank, c.row)
         });
@@ -490,6 +509,7 @@ impl<'a> Sweep<'a> {
                             grid,
                             planes: p,
                             frame: None,
+                            last: DVec3::ZERO,
                             alpha,
                             epsilon,
                             fixes: Vec::new(),
@@ -624,7 +644,8 @@ impl<'a> Sweep<'a> {
                 continue;
             }
             if j0 == 0 {
-                return Err(GeometryError::FirstColumnUnfixable { row: bad[0] });
+                self.report_unfixed(&bad);
+                return Ok(());
             }
             self.apex_fix(j0, &bad, a.epsilon)?;
         }
@@ -676,26 +697,46 @@ impl<'a> Sweep<'a> {
                 }
             }
             if j0 == 0 {
-                return Err(GeometryError::FirstColumnUnfixable { row: bad[0] });
+                self.report_unfixed(&bad);
+                return Ok(());
             }
             self.apex_fix(j0, &bad, a.epsilon)?;
         }
         Err(GeometryError::CorrectionFailed { column: j0 })
     }
 
+    /// Reports first-column rows that no fix can repair (user input is never moved).
+    fn report_unfixed(&mut self, bad: &[usize]) {
+        let x1 = self.dx.points[1];
+        for &i in bad {
+            let s = (x1 - self.vert(i, 0)).dot(self.plane_at(i, 1));
+            self.corrections.push(unfixed(i, s));
+        }
+    }
+
     /// The apex fix at column j0 ≥ 1 (Appendix A): a' = min over the bad rows; a_{j0} = (1 − ε) a';
     /// rebuilds column j0 for every row.
+    ///
+    /// Per bad row the value is the first critical value of `s2(a)` in (0, a_old): the root of the
+    /// paper's formula, or the pole where `V·P_{i,j0} = 0` (the vertex passed through infinity: the
+    /// root then lies beyond a_old and would not help). Without a critical value in (0, a_old) the
+    /// paper's root is used as is, and a non-positive a' is the impossible case.
     fn apex_fix(&mut self, j0: usize, bad: &[usize], epsilon: f64) -> Result<(), GeometryError> {
         let x = &self.dx.points;
         let xs = [x[j0 - 1], x[j0], x[j0 + 1]];
+        let old = self.apex[j0 - 1];
         let mut a_min = f64::INFINITY;
         for &i in bad {
-            let v = apex_fix_value(
-                self.vert(i, j0 - 1),
-                xs,
-                self.plane_at(i, j0),
-                self.plane_at(i, j0 + 1),
-            );
+            let (g, p0) = (self.vert(i, j0 - 1), self.plane_at(i, j0));
+            let root = apex_fix_value(g, xs, p0, self.plane_at(i, j0 + 1));
+            let pole = -(xs[1] - g).dot(p0) / (g - xs[0]).dot(p0);
+            let inside = |v: f64| v > 0.0 && v < old;
+            let v = match (inside(root), inside(pole)) {
+                (true, true) => root.min(pole),
+                (true, false) => root,
+                (false, true) => pole,
+                (false, false) => root,
+            };
             if v.is_nan() {
                 // A NaN candidate means the fix is undefined for that row: impossible.
                 a_min = f64::NAN;
@@ -709,7 +750,6 @@ impl<'a> Sweep<'a> {
                 value: a_min,
             });
         }
-        let old = self.apex[j0 - 1];
         let new = (1.0 - epsilon) * a_min;
         self.corrections.push(Correction {
             kind: CorrectionKind::Apex,
