@@ -1,1 +1,91 @@
-//! Curve operations on polylines: sampling, splines, resampling, transforms.
+//! Curve operations on polylines: primitives (line, arc, circle, polygon, helix), interpolating
+//! splines, arc-length resampling, subdivision, transforms, reversing and joining, and the graph
+//! mapper functions y = f(x) used to shape lists of numbers.
+//!
+//! Conventions shared by every function here:
+//! - angles are in **degrees**, measured in a plane from its x axis towards its y axis;
+//! - a count is a number of points (open curves include both ends; closed curves store each point
+//!   once, the closing edge is implicit);
+//! - every function validates its input and returns a typed [`GeometryError`] instead of panicking:
+//!   non-finite coordinates, too few points, zero-length curves, counts out of range.
+
+pub mod join;
+pub mod mapper;
+pub mod primitives;
+#[cfg(test)]
+mod props;
+pub mod resample;
+pub mod spline;
+pub mod subdivide;
+pub mod transform;
+
+pub use join::{join, reverse};
+pub use mapper::{Domains, GraphMapper, MapperKind};
+pub use primitives::{arc, circle, helix, line, polygon};
+pub use resample::{divide_equal_chords, resample_by_count, resample_by_length};
+pub use spline::{Spline, SplineKind};
+pub use subdivide::{SubdivisionScheme, subdivide};
+pub use transform::Transform;
+
+use glam::DVec3;
+
+use crate::GeometryError;
+
+/// Largest number of points a curve operation will create (guards against runaway counts).
+pub const MAX_POINTS: usize = 10_000_000;
+
+/// Checks a requested point count: at least `min`, at most [`MAX_POINTS`].
+pub(crate) fn check_count(
+    what: &'static str,
+    count: usize,
+    min: usize,
+) -> Result<(), GeometryError> {
+    if count < min {
+        return Err(GeometryError::Degenerate(format!(
+            "{what} must be at least {min}, got {count}"
+        )));
+    }
+    if count > MAX_POINTS {
+        return Err(GeometryError::Degenerate(format!(
+            "{what} {count} is too large (at most {MAX_POINTS} points)"
+        )));
+    }
+    Ok(())
+}
+
+/// Checks that a scalar is finite.
+pub(crate) fn check_finite(what: &'static str, value: f64) -> Result<(), GeometryError> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(GeometryError::InvalidParameter {
+            what,
+            value,
+            expected: "a finite number",
+        })
+    }
+}
+
+/// Checks that a point or vector is finite.
+pub(crate) fn check_finite_vec(what: &'static str, v: DVec3) -> Result<(), GeometryError> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(GeometryError::NonFinite { what, index: 0 })
+    }
+}
+
+/// Cumulative arc length at each point of `points` (first entry 0).
+pub(crate) fn cumulative_lengths(points: &[DVec3]) -> Vec<f64> {
+    let mut acc = 0.0;
+    let mut out = Vec::with_capacity(points.len());
+    out.push(0.0);
+    for w in points.windows(2) {
+        acc += w[0].distance(w[1]);
+        out.push(acc);
+    }
+    if points.is_empty() {
+        out.clear();
+    }
+    out
+}
