@@ -1,0 +1,682 @@
+//! The editor: state and one frame of UI, the same in the window (`main.rs`) and in tests.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use cnets_engine::{Graph, NodeDef, Registry, Value};
+use egui::{Key, KeyboardShortcut, Modifiers, Ui};
+
+use crate::canvas::{self, Canvas, CanvasAction};
+use crate::document::{GraphDocument, fresh_id};
+use crate::export;
+use crate::file_dialog::{FileDialog, Outcome, Purpose};
+use crate::menus::{self, MenuAction, MenuContext};
+use crate::palette::{self, PaletteState};
+use crate::recovery::{Recovered, Recovery};
+use crate::settings::Settings;
+use crate::viewport::Viewport;
+use crate::worker::{NodeStatus, Worker};
+
+pub use crate::viewport::GpuTarget;
+
+/// The graph the editor starts on when no file is given and `graphs/torus-monge.ron` is absent.
+pub const DEFAULT_GRAPH: &str = include_str!("../../../graphs/editor-default.ron");
+
+/// Copied nodes: definitions, values, flags, relative positions and wires.
+#[derive(Clone, Debug, Default)]
+pub struct Clipboard {
+    nodes: Vec<ClipNode>,
+    /// Wires between copied nodes, by index into `nodes`: (from, output, to, input).
+    inner: Vec<(usize, String, usize, String)>,
+    /// Wires from outside into copied nodes: (from id, output, to index, input).
+    incoming: Vec<(String, String, usize, String)>,
+}
+
+#[derive(Clone, Debug)]
+struct ClipNode {
+    id: String,
+    def: Arc<NodeDef>,
+    values: Vec<(String, Value)>,
+    position: [f32; 2],
+    preview: bool,
+    enabled: bool,
+}
+
+impl Clipboard {
+    /// Copies the nodes `ids` of `graph` (unknown ids are skipped).
+    pub fn copy(graph: &Graph, ids: &[String]) -> Self {
+        let nodes: Vec<ClipNode> = ids
+            .iter()
+            .filter_map(|id| graph.node(id))
+            .map(|n| ClipNode {
+                id: n.id.clone(),
+                def: n.def.clone(),
+                values: n
+                    .def
+                    .inputs
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(k, p)| n.value(k).map(|v| (p.name.to_string(), v.clone())))
+                    .collect(),
+                position: n.position,
+                preview: n.preview,
+                enabled: n.enabled,
+            })
+            .collect();
+        let index = |id: &str| nodes.iter().position(|n| n.id == id);
+        let mut inner = Vec::new();
+        let mut incoming = Vec::new();
+        for w in graph.wires() {
+            match (index(&w.from), index(&w.to)) {
+                (Some(a), Some(b)) => inner.push((a, w.output, b, w.input)),
+                (None, Some(b)) => incoming.push((w.from, w.output, b, w.input)),
+                _ => {}
+            }
+        }
+        Self { nodes, inner, incoming }
+    }
+
+    /// Whether nothing was copied.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Adds the copied nodes to `graph` under fresh ids, shifted by `offset`, with their inner
+    /// wires (and, when `keep_incoming`, the wires from nodes outside the copy that still exist).
+    /// Returns the new ids.
+    pub fn paste(&self, graph: &mut Graph, offset: [f32; 2], keep_incoming: bool) -> Result<Vec<String>, String> {
+        let err = |e: cnets_engine::GraphError| e.to_string();
+        let mut new_ids = Vec::new();
+        for n in &self.nodes {
+            let id = fresh_id(graph, &n.id);
+            graph.add_node_with_def(&id, n.def.clone()).map_err(err)?;
+            for (input, value) in &n.values {
+                graph.set_value(&id, input, value.clone()).map_err(err)?;
+            }
+            graph
+                .set_position(&id, [n.position[0] + offset[0], n.position[1] + offset[1]])
+                .map_err(err)?;
+            graph.set_preview(&id, n.preview).map_err(err)?;
+            graph.set_enabled(&id, n.enabled).map_err(err)?;
+            new_ids.push(id);
+        }
+        for (a, output, b, input) in &self.inner {
+            graph.connect(&new_ids[*a], output, &new_ids[*b], input).map_err(err)?;
+        }
+        if keep_incoming {
+            for (from, output, b, input) in &self.incoming {
+                if graph.node(from).is_some() {
+                    graph.connect(from, output, &new_ids[*b], input).map_err(err)?;
+                }
+            }
+        }
+        Ok(new_ids)
+    }
+}
+
+/// How the editor starts.
+pub struct AppOptions {
+    /// GPU formats of the window (`None`: no 3D view).
+    pub gpu: Option<GpuTarget>,
+    /// Settings folder (recent files, recovery file).
+    pub config_dir: PathBuf,
+    /// A graph file to open instead of the default.
+    pub file: Option<PathBuf>,
+    /// The examples folder (`graphs/`).
+    pub examples_dir: PathBuf,
+    /// Called by the worker when a result is ready (request a repaint).
+    pub wake: Arc<dyn Fn() + Send + Sync>,
+}
+
+/// Change-to-picture latency figures: from a graph edit to the frame that hands the resulting
+/// scene to the GPU.
+#[derive(Clone, Debug, Default)]
+pub struct Latency {
+    /// The last measurement, in milliseconds.
+    pub last_ms: f64,
+    /// All measurements (capped at 10 000).
+    pub samples: Vec<f64>,
+    /// The last evaluation time (nodes only), in milliseconds.
+    pub eval_ms: f64,
+    /// The last scene build time, in milliseconds.
+    pub scene_ms: f64,
+}
+
+/// The editor.
+pub struct EditorApp {
+    /// Node types.
+    pub registry: Arc<Registry>,
+    /// The document being edited.
+    pub doc: GraphDocument,
+    /// The node canvas.
+    pub canvas: Canvas,
+    /// The 3D viewport.
+    pub viewport: Viewport,
+    /// The node palette.
+    pub palette: PaletteState,
+    /// Status of every node after the last finished evaluation.
+    pub statuses: HashMap<String, NodeStatus>,
+    /// The message in the status bar (e.g. why a wire was refused).
+    pub message: String,
+    /// Recent files.
+    pub settings: Settings,
+    /// Latency figures.
+    pub latency: Latency,
+    /// Whether the window should close.
+    pub quit: bool,
+    worker: Worker,
+    submitted: Option<(u64, u64, crate::preview::PreviewOptions)>,
+    pending_change: Option<Instant>,
+    awaiting_picture: Option<(u64, Instant)>,
+    recovery: Recovery,
+    offer_restore: Option<Recovered>,
+    dialog: Option<FileDialog>,
+    clipboard: Clipboard,
+    gpu: Option<GpuTarget>,
+    examples: Vec<PathBuf>,
+    examples_dir: PathBuf,
+}
+
+impl EditorApp {
+    /// The editor on the given file, the gallery's `torus-monge.ron`, or the built-in default.
+    pub fn new(options: AppOptions) -> Self {
+        let registry = Arc::new(cnets_nodes::registry());
+        let settings = Settings::load(&options.config_dir);
+        let recovery = Recovery::new(&options.config_dir);
+        let offer_restore = recovery.find();
+        let mut message = String::new();
+        let torus = options.examples_dir.join("torus-monge.ron");
+        let doc = match options.file.as_deref().or(torus.is_file().then_some(torus.as_path())) {
+            Some(path) => match GraphDocument::open(path, &registry) {
+                Ok(d) => Some(d),
+                Err(e) => {
+                    message = e;
+                    None
+                }
+            },
+            None => None,
+        };
+        let doc = doc.unwrap_or_else(|| {
+            GraphDocument::from_text(DEFAULT_GRAPH, "editor-default.ron", None, &registry)
+                .unwrap_or_else(|_| GraphDocument::new(registry.clone()))
+        });
+        let mut app = Self {
+            registry,
+            doc,
+            canvas: Canvas::new(),
+            viewport: Viewport::default(),
+            palette: PaletteState::default(),
+            statuses: HashMap::new(),
+            message,
+            settings,
+            latency: Latency::default(),
+            quit: false,
+            worker: Worker::spawn(options.wake),
+            submitted: None,
+            pending_change: Some(Instant::now()),
+            awaiting_picture: None,
+            recovery,
+            offer_restore,
+            dialog: None,
+            clipboard: Clipboard::default(),
+            gpu: options.gpu,
+            examples: menus::examples_in(&options.examples_dir),
+            examples_dir: options.examples_dir,
+        };
+        app.submit_if_changed();
+        app
+    }
+
+    /// Whether a restore from a previous session's recovery file is being offered.
+    pub fn restore_offered(&self) -> bool {
+        self.offer_restore.is_some()
+    }
+
+    /// Restores the recovery file (the crash-restore dialog's "Restore").
+    pub fn restore(&mut self) {
+        if let Some(r) = self.offer_restore.take() {
+            match GraphDocument::from_text(&r.text, "recovery", r.path.clone(), &self.registry) {
+                Ok(mut d) => {
+                    d.mark_dirty();
+                    self.replace_doc(d);
+                    self.message = "restored unsaved work from the last session".into();
+                }
+                Err(e) => self.message = format!("cannot restore: {e}"),
+            }
+        }
+    }
+
+    /// Declines the restore and removes the recovery file.
+    pub fn discard_recovery(&mut self) {
+        self.offer_restore = None;
+        self.recovery.clear();
+    }
+
+    fn replace_doc(&mut self, doc: GraphDocument) {
+        let previous = self.doc.generation();
+        self.doc = doc;
+        // A new document is a new evaluation generation (fresh evaluator).
+        self.doc.start_after(previous);
+        self.canvas = Canvas::new();
+        self.statuses.clear();
+        self.viewport.reset();
+        self.pending_change = Some(Instant::now());
+    }
+
+    /// Opens a graph file.
+    pub fn open(&mut self, path: &Path) {
+        match GraphDocument::open(path, &self.registry) {
+            Ok(d) => {
+                self.replace_doc(d);
+                self.settings.add_recent(path);
+                self.message = format!("opened {}", path.display());
+            }
+            Err(e) => self.message = e,
+        }
+    }
+
+    /// Saves to `path` (atomic) and clears the recovery file.
+    pub fn save_as(&mut self, path: &Path) {
+        match self.doc.save_as(path) {
+            Ok(()) => {
+                self.settings.add_recent(path);
+                self.recovery.clear();
+                self.message = format!("saved {}", path.display());
+            }
+            Err(e) => self.message = e,
+        }
+    }
+
+    /// Adds a node of type `type_id` at a canvas position; returns its id.
+    pub fn add_node(&mut self, type_id: &str, at: [f32; 2]) -> Option<String> {
+        let id = self.doc.fresh_id(type_id);
+        let r = self.doc.edit(None, |g, _| {
+            g.add_node(&id, type_id).map_err(|e| e.to_string())?;
+            g.set_position(&id, at).map_err(|e| e.to_string())
+        });
+        match r {
+            Ok(()) => {
+                self.canvas.focused = Some(id.clone());
+                Some(id)
+            }
+            Err(e) => {
+                self.message = e;
+                None
+            }
+        }
+    }
+
+    /// Applies a canvas action; a refusal becomes the status message. Returns whether it applied.
+    pub fn apply(&mut self, action: CanvasAction) -> bool {
+        if let CanvasAction::OpenPalette(at) = action {
+            self.palette.open_at(at);
+            return true;
+        }
+        match canvas::apply(&mut self.doc, action) {
+            Ok(()) => true,
+            Err(e) => {
+                self.message = format!("refused: {e}");
+                false
+            }
+        }
+    }
+
+    /// Carries out a menu action or shortcut.
+    pub fn run(&mut self, action: MenuAction) {
+        match action {
+            MenuAction::New => {
+                self.replace_doc(GraphDocument::new(self.registry.clone()));
+                self.message = "new graph".into();
+            }
+            MenuAction::Open => {
+                let start = self.doc.path.as_deref().and_then(Path::parent).map_or_else(
+                    || self.examples_dir.clone(),
+                    Path::to_path_buf,
+                );
+                self.dialog = Some(FileDialog::new(Purpose::Open, &start));
+            }
+            MenuAction::OpenPath(p) => self.open(&p),
+            MenuAction::Save => match self.doc.path.clone() {
+                Some(p) => self.save_as(&p),
+                None => self.run(MenuAction::SaveAs),
+            },
+            MenuAction::SaveAs => {
+                let start = self.doc.path.clone().unwrap_or_else(|| {
+                    std::env::current_dir().unwrap_or_default().join("untitled.ron")
+                });
+                self.dialog = Some(FileDialog::new(Purpose::SaveAs, &start));
+            }
+            MenuAction::Export(format) => {
+                if export::export_node(&self.registry, format).is_none() {
+                    self.message = format!(
+                        "no {} export node is registered in this build",
+                        format.extension()
+                    );
+                } else {
+                    let start = self
+                        .doc
+                        .path
+                        .as_deref()
+                        .and_then(Path::parent)
+                        .map_or_else(|| std::env::current_dir().unwrap_or_default(), Path::to_path_buf);
+                    self.dialog = Some(FileDialog::new(Purpose::ExportFolder(format), &start));
+                }
+            }
+            MenuAction::Undo => {
+                if !self.doc.undo() {
+                    self.message = "nothing to undo".into();
+                }
+            }
+            MenuAction::Redo => {
+                if !self.doc.redo() {
+                    self.message = "nothing to redo".into();
+                }
+            }
+            MenuAction::Delete => {
+                let targets = self.canvas.targets();
+                if !targets.is_empty() {
+                    self.apply(CanvasAction::Remove(targets));
+                    self.canvas.focused = None;
+                }
+            }
+            MenuAction::Duplicate => {
+                let targets = self.canvas.targets();
+                if !targets.is_empty() {
+                    self.apply(CanvasAction::Duplicate(targets));
+                }
+            }
+            MenuAction::Copy => {
+                self.clipboard = Clipboard::copy(&self.doc.graph, &self.canvas.targets());
+                self.message = format!("copied {} nodes", self.clipboard.nodes.len());
+            }
+            MenuAction::Paste => {
+                let clip = self.clipboard.clone();
+                if !clip.is_empty() {
+                    let r = self.doc.edit(None, |g, _| clip.paste(g, [40.0, 40.0], false));
+                    if let Err(e) = r {
+                        self.message = e;
+                    }
+                }
+            }
+            MenuAction::AddNode => self.palette.open_at([0.0, 0.0]),
+            MenuAction::Fit => self.viewport.fit(),
+            MenuAction::SetPreview(o) => self.viewport.options = o,
+            MenuAction::Quit => self.quit = true,
+        }
+    }
+
+    fn shortcuts(&mut self, ctx: &egui::Context) {
+        let typing = ctx.egui_wants_keyboard_input();
+        let cmd = Modifiers::COMMAND;
+        let shift_cmd = Modifiers::COMMAND | Modifiers::SHIFT;
+        let mut actions = Vec::new();
+        ctx.input_mut(|i| {
+            // Longer shortcuts first, so Ctrl+Shift+Z is not taken as Ctrl+Z.
+            let mut take = |m: Modifiers, k: Key, a: MenuAction| {
+                if i.consume_shortcut(&KeyboardShortcut::new(m, k)) {
+                    actions.push(a);
+                }
+            };
+            take(shift_cmd, Key::Z, MenuAction::Redo);
+            take(shift_cmd, Key::S, MenuAction::SaveAs);
+            take(cmd, Key::S, MenuAction::Save);
+            take(cmd, Key::O, MenuAction::Open);
+            take(cmd, Key::Q, MenuAction::Quit);
+            if !typing {
+                take(cmd, Key::Z, MenuAction::Undo);
+                take(cmd, Key::Y, MenuAction::Redo);
+                take(cmd, Key::D, MenuAction::Duplicate);
+                take(cmd, Key::C, MenuAction::Copy);
+                take(cmd, Key::V, MenuAction::Paste);
+                take(Modifiers::NONE, Key::Delete, MenuAction::Delete);
+                take(Modifiers::NONE, Key::F, MenuAction::Fit);
+            }
+        });
+        // Copy and paste arrive as events, not key presses, on some platforms.
+        if !typing {
+            ctx.input(|i| {
+                for e in &i.events {
+                    match e {
+                        egui::Event::Copy => actions.push(MenuAction::Copy),
+                        egui::Event::Paste(_) => actions.push(MenuAction::Paste),
+                        _ => {}
+                    }
+                }
+            });
+        }
+        for a in actions {
+            self.run(a);
+        }
+    }
+
+    fn poll_worker(&mut self) {
+        if let Some(r) = self.worker.poll() {
+            self.statuses = r.statuses;
+            self.latency.eval_ms = r.eval_ms;
+            self.latency.scene_ms = r.stats.build_ms;
+            self.viewport.set_scene(r.scene, r.stats);
+            self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
+        }
+    }
+
+    /// Sends the graph to the worker when it (or the display options) changed since the last
+    /// submission.
+    pub fn submit_if_changed(&mut self) {
+        let key = (self.doc.generation(), self.doc.version(), self.viewport.options);
+        if self.submitted == Some(key) {
+            return;
+        }
+        let changed_at = self.pending_change.take().unwrap_or_else(Instant::now);
+        let base = self.doc.path.as_deref().and_then(Path::parent).map(Path::to_path_buf);
+        self.worker.submit(self.doc.graph.clone(), self.doc.generation(), self.viewport.options, base, changed_at);
+        self.submitted = Some(key);
+    }
+
+    /// Whether an evaluation is in progress.
+    pub fn busy(&self) -> bool {
+        self.worker.busy()
+    }
+
+    /// Waits (up to `timeout`) for the worker to answer the latest submission and takes the
+    /// result, as the next frame would. For tests and the screenshot mode.
+    pub fn wait_for_worker(&mut self, timeout: Duration) {
+        self.submit_if_changed();
+        if let Some(r) = self.worker.wait(timeout) {
+            self.statuses = r.statuses;
+            self.latency.eval_ms = r.eval_ms;
+            self.latency.scene_ms = r.stats.build_ms;
+            self.viewport.set_scene(r.scene, r.stats);
+            self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
+        }
+    }
+
+    /// One frame of the editor.
+    pub fn ui(&mut self, ui: &mut Ui) {
+        let ctx = ui.ctx().clone();
+        self.poll_worker();
+        self.shortcuts(&ctx);
+        let version_before = self.doc.version();
+
+        egui::Panel::top("cnets-menu").show(ui, |ui| {
+            let mc = MenuContext {
+                examples: &self.examples,
+                recent: &self.settings.recent,
+                can_undo: self.doc.history.can_undo(),
+                can_redo: self.doc.history.can_redo(),
+                can_paste: !self.clipboard.is_empty(),
+                preview: self.viewport.options,
+            };
+            if let Some(a) = menus::menu_bar(ui, &mc) {
+                self.run(a);
+            }
+        });
+        egui::Panel::bottom("cnets-status").show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.label(self.doc.title());
+                ui.separator();
+                if self.worker.busy() {
+                    ui.spinner();
+                }
+                ui.weak(format!(
+                    "eval {:.1} ms · scene {:.1} ms · change→picture {:.1} ms",
+                    self.latency.eval_ms, self.latency.scene_ms, self.latency.last_ms
+                ));
+                ui.separator();
+                ui.label(&self.message);
+            });
+        });
+        egui::Panel::right("cnets-viewport")
+            .resizable(true)
+            .default_size(ui.available_width() * 0.45)
+            .min_size(200.0)
+            .frame(egui::Frame::NONE)
+            .show(ui, |ui| {
+                ui.horizontal(|ui| {
+                    let mut o = self.viewport.options;
+                    egui::ComboBox::from_id_salt("color-mode")
+                        .selected_text(o.color_mode.label())
+                        .show_ui(ui, |ui| {
+                            for m in crate::preview::ColorMode::ALL {
+                                ui.selectable_value(&mut o.color_mode, m, m.label());
+                            }
+                        });
+                    if ui.button("Fit (F)").clicked() {
+                        self.viewport.fit();
+                    }
+                    self.viewport.options = o;
+                });
+                self.viewport.show(ui, self.gpu.as_ref());
+            });
+        egui::CentralPanel::default().frame(egui::Frame::NONE).show(ui, |ui| {
+            let actions = self.canvas.show(ui, &self.doc.graph, &self.statuses);
+            for a in actions {
+                self.apply(a);
+            }
+        });
+
+        if let Some(type_id) = palette::show(&ctx, &mut self.palette, &self.registry) {
+            let at = self.palette.at;
+            self.add_node(&type_id, at);
+        }
+        self.show_dialog(&ctx);
+        self.show_restore(&ctx);
+
+        if !ctx.input(|i| i.pointer.any_down()) {
+            self.doc.history.end_gesture();
+        }
+        if self.doc.version() != version_before && self.pending_change.is_none() {
+            self.pending_change = Some(Instant::now());
+        }
+        self.submit_if_changed();
+        // The frame that hands a new scene to the GPU closes a change-to-picture measurement.
+        if let Some((version, changed_at)) = self.awaiting_picture
+            && self.viewport.drawn_version >= version
+        {
+            self.latency.last_ms = changed_at.elapsed().as_secs_f64() * 1e3;
+            if self.latency.samples.len() < 10_000 {
+                self.latency.samples.push(self.latency.last_ms);
+            }
+            self.awaiting_picture = None;
+        }
+        let (dirty, version, path) = (self.doc.is_dirty(), self.doc.version(), self.doc.path.clone());
+        let doc = &self.doc;
+        self.recovery.tick(dirty, version, path.as_deref(), || doc.to_ron());
+        ctx.send_viewport_cmd(egui::ViewportCommand::Title(format!("{} — cnets editor", self.doc.title())));
+        if self.worker.busy() {
+            ctx.request_repaint_after(Duration::from_millis(30));
+        }
+    }
+
+    fn show_dialog(&mut self, ctx: &egui::Context) {
+        let Some(dialog) = &mut self.dialog else {
+            return;
+        };
+        match dialog.show(ctx) {
+            Outcome::Open => {}
+            Outcome::Cancelled => self.dialog = None,
+            Outcome::Chosen(path) => {
+                let purpose = dialog.purpose;
+                self.dialog = None;
+                match purpose {
+                    Purpose::Open => self.open(&path),
+                    Purpose::SaveAs => self.save_as(&path),
+                    Purpose::ExportFolder(format) => {
+                        let name = self
+                            .doc
+                            .path
+                            .as_deref()
+                            .and_then(Path::file_stem)
+                            .map_or_else(|| "cone-net".to_string(), |s| s.to_string_lossy().into_owned());
+                        let base = self.doc.path.as_deref().and_then(Path::parent).map(Path::to_path_buf);
+                        self.message = match export::export(&self.doc.graph, base, format, &path, &name) {
+                            Ok(files) => format!(
+                                "exported {}",
+                                files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>().join(", ")
+                            ),
+                            Err(e) => format!("export failed: {e}"),
+                        };
+                    }
+                }
+            }
+        }
+    }
+
+    fn show_restore(&mut self, ctx: &egui::Context) {
+        let Some(r) = &self.offer_restore else {
+            return;
+        };
+        let what = r
+            .path
+            .as_ref()
+            .map_or_else(|| "an untitled graph".to_string(), |p| p.display().to_string());
+        let mut choice = None;
+        egui::Modal::new(egui::Id::new("cnets-restore")).show(ctx, |ui| {
+            ui.heading("Restore unsaved work?");
+            ui.label(format!(
+                "The last session ended without saving {what}. Restore it from the recovery file?"
+            ));
+            ui.horizontal(|ui| {
+                if ui.button("Restore").clicked() {
+                    choice = Some(true);
+                }
+                if ui.button("Discard").clicked() {
+                    choice = Some(false);
+                }
+            });
+        });
+        match choice {
+            Some(true) => self.restore(),
+            Some(false) => self.discard_recovery(),
+            None => {}
+        }
+    }
+
+    /// Called when the window closes normally: the recovery file is removed (unsaved changes
+    /// are the designer's choice then, not a crash).
+    pub fn on_exit(&mut self) {
+        self.recovery.clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn duplicate_keeps_values_inner_wires_and_incoming_wires() {
+        let registry = Arc::new(cnets_nodes::registry());
+        let d = cnets_engine::file::load_str(DEFAULT_GRAPH, "default", &registry).unwrap();
+        let mut g = d.graph;
+        let clip = Clipboard::copy(&g, &["construct".to_string(), "planarity".to_string()]);
+        let ids = clip.paste(&mut g, [10.0, 10.0], true).unwrap();
+        assert_eq!(ids, vec!["construct_2".to_string(), "planarity_2".to_string()]);
+        let wires = g.wires();
+        assert!(wires.iter().any(|w| w.from == "construct_2" && w.to == "planarity_2"));
+        assert!(wires.iter().any(|w| w.from == "directrix" && w.to == "construct_2"));
+        let mut g2 = g.clone();
+        let ids = clip.paste(&mut g2, [10.0, 10.0], false).unwrap();
+        assert!(!g2.wires().iter().any(|w| w.to == ids[0]), "paste does not keep incoming wires");
+    }
+}

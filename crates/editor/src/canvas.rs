@@ -1,0 +1,824 @@
+//! The node canvas: an egui-snarl view of the graph document.
+//!
+//! The engine [`Graph`] is the source of truth. Before each frame [`Canvas::sync`] makes the snarl
+//! mirror it (nodes, positions, wires); while the snarl is shown, the [`Viewer`] turns the
+//! designer's gestures into [`CanvasAction`]s instead of changing anything itself; the app applies
+//! them to the document as validated, undoable edits ([`apply`]), so a refused wire (incompatible
+//! types, a cycle) never appears. Positions moved on the canvas are written back to the graph.
+//!
+//! Selection follows egui-snarl: Shift+click adds a node, Shift+drag on the background selects a
+//! box, Ctrl+click removes a node. A plain click makes a node the *focused* node, which the
+//! commands (Delete, duplicate, copy) use when nothing is selected.
+
+use std::cell::RefCell;
+use std::collections::{HashMap, HashSet};
+use std::rc::Rc;
+
+use cnets_engine::{Access, Graph, NodeFlag, PortDef, Value, ValueType};
+use egui::emath::TSTransform;
+use egui::{Color32, Pos2, Rect, Stroke, Ui};
+use egui_snarl::ui::{PinInfo, PinShape, PinWireInfo, SnarlPin, SnarlStyle, SnarlViewer, SnarlWidget};
+use egui_snarl::{InPin, InPinId, NodeId, OutPin, OutPinId, Snarl};
+
+use crate::history::EditKey;
+use crate::worker::NodeStatus;
+use crate::{mapper, widgets};
+
+/// A node on the canvas: the id of the graph node it shows.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CanvasNode {
+    /// Graph node id.
+    pub id: String,
+}
+
+/// A gesture on the canvas, to be applied to the document.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CanvasAction {
+    /// Wire `from.output` into `to.input`; `replace` removes the wires already in that input
+    /// (a plain drag; Shift keeps them, as in Grasshopper).
+    Connect {
+        /// Source node.
+        from: String,
+        /// Source output.
+        output: String,
+        /// Target node.
+        to: String,
+        /// Target input.
+        input: String,
+        /// Replace existing wires into the input.
+        replace: bool,
+    },
+    /// Remove one wire.
+    Disconnect {
+        /// Source node.
+        from: String,
+        /// Source output.
+        output: String,
+        /// Target node.
+        to: String,
+        /// Target input.
+        input: String,
+    },
+    /// Remove every wire into an input.
+    DropInputs {
+        /// Node.
+        node: String,
+        /// Input.
+        input: String,
+    },
+    /// Remove every wire out of an output.
+    DropOutputs {
+        /// Node.
+        node: String,
+        /// Output.
+        output: String,
+    },
+    /// Set an input's literal value.
+    SetValue {
+        /// Node.
+        node: String,
+        /// Input.
+        input: String,
+        /// New value.
+        value: Value,
+    },
+    /// Clear an input's literal value (back to the default).
+    ClearValue {
+        /// Node.
+        node: String,
+        /// Input.
+        input: String,
+    },
+    /// Set several inputs at once (the graph mapper's handles and type), one undo step per drag.
+    SetValues {
+        /// Node.
+        node: String,
+        /// `(input, value)` pairs.
+        values: Vec<(String, Value)>,
+    },
+    /// Turn the preview of a node on or off.
+    SetPreview(String, bool),
+    /// Enable or disable a node.
+    SetEnabled(String, bool),
+    /// Move nodes to new canvas positions.
+    Move(Vec<(String, [f32; 2])>),
+    /// Remove nodes.
+    Remove(Vec<String>),
+    /// Duplicate nodes (with the wires between them and wires coming in from outside).
+    Duplicate(Vec<String>),
+    /// Open the node palette at a canvas position.
+    OpenPalette([f32; 2]),
+}
+
+/// Where a pin is, for tests that drag wires: (node id, is input, port index).
+pub type PinKey = (String, bool, usize);
+
+/// The canvas: the snarl mirror of the graph and what the last frame learned about it.
+pub struct Canvas {
+    snarl: Snarl<CanvasNode>,
+    ids: HashMap<String, NodeId>,
+    /// Graph-to-screen transform of the last frame.
+    to_global: TSTransform,
+    /// Pin centres in canvas coordinates, recorded while drawing.
+    pins: Rc<RefCell<HashMap<PinKey, Pos2>>>,
+    /// Node rectangles in canvas coordinates.
+    rects: HashMap<String, Rect>,
+    /// The node last clicked.
+    pub focused: Option<String>,
+    /// Nodes selected (Shift+click, box selection) in the last frame.
+    pub selected: Vec<String>,
+    widget: SnarlWidget,
+}
+
+impl Default for Canvas {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The snarl style of the canvas.
+fn style() -> SnarlStyle {
+    let mut s = SnarlStyle::new();
+    s.centering = Some(false);
+    s.collapsible = Some(true);
+    s.pin_size = Some(9.0);
+    s.wire_width = Some(2.0);
+    s.select_rect_contained = Some(false);
+    s.bg_pattern = Some(egui_snarl::ui::BackgroundPattern::grid(egui::vec2(40.0, 40.0), 0.0));
+    s
+}
+
+impl Canvas {
+    /// An empty canvas.
+    pub fn new() -> Self {
+        Self {
+            snarl: Snarl::new(),
+            ids: HashMap::new(),
+            to_global: TSTransform::IDENTITY,
+            pins: Rc::default(),
+            rects: HashMap::new(),
+            focused: None,
+            selected: Vec::new(),
+            widget: SnarlWidget::new().id(egui::Id::new("cnets-canvas")).style(style()),
+        }
+    }
+
+    /// Makes the snarl mirror `graph`: adds and removes nodes, copies positions, diffs wires.
+    pub fn sync(&mut self, graph: &Graph) {
+        let alive: HashSet<&str> = graph.nodes().map(|(_, n)| n.id.as_str()).collect();
+        let gone: Vec<String> = self
+            .ids
+            .keys()
+            .filter(|id| !alive.contains(id.as_str()))
+            .cloned()
+            .collect();
+        for id in gone {
+            if let Some(nid) = self.ids.remove(&id) {
+                self.snarl.remove_node(nid);
+            }
+        }
+        for (_, node) in graph.nodes() {
+            let pos = Pos2::new(node.position[0], node.position[1]);
+            match self.ids.get(&node.id) {
+                Some(&nid) => {
+                    if let Some(info) = self.snarl.get_node_info_mut(nid) {
+                        info.pos = pos;
+                    }
+                }
+                None => {
+                    let nid = self.snarl.insert_node(pos, CanvasNode { id: node.id.clone() });
+                    self.ids.insert(node.id.clone(), nid);
+                }
+            }
+        }
+        let mut wanted: HashSet<(OutPinId, InPinId)> = HashSet::new();
+        for w in graph.wires() {
+            let (Some(&a), Some(&b)) = (self.ids.get(&w.from), self.ids.get(&w.to)) else {
+                continue;
+            };
+            let (Some(fa), Some(fb)) = (graph.node(&w.from), graph.node(&w.to)) else {
+                continue;
+            };
+            let (Some(o), Some(i)) = (fa.def.output_index(&w.output), fb.def.input_index(&w.input))
+            else {
+                continue;
+            };
+            wanted.insert((OutPinId { node: a, output: o }, InPinId { node: b, input: i }));
+        }
+        let existing: Vec<(OutPinId, InPinId)> = self.snarl.wires().collect();
+        for (o, i) in &existing {
+            if !wanted.contains(&(*o, *i)) {
+                self.snarl.disconnect(*o, *i);
+            }
+        }
+        for (o, i) in wanted {
+            self.snarl.connect(o, i);
+        }
+    }
+
+    /// The snarl node showing graph node `id`.
+    pub fn snarl_id(&self, id: &str) -> Option<NodeId> {
+        self.ids.get(id).copied()
+    }
+
+    /// Number of nodes and wires on the canvas.
+    pub fn counts(&self) -> (usize, usize) {
+        (self.snarl.nodes().count(), self.snarl.wires().count())
+    }
+
+    /// Screen position of a pin after the last frame.
+    pub fn pin_screen_pos(&self, node: &str, input: bool, port: usize) -> Option<Pos2> {
+        let p = *self.pins.borrow().get(&(node.to_string(), input, port))?;
+        Some(self.to_global * p)
+    }
+
+    /// Screen rectangle of a node after the last frame.
+    pub fn node_screen_rect(&self, node: &str) -> Option<Rect> {
+        self.rects.get(node).map(|r| self.to_global * *r)
+    }
+
+    /// Canvas position of a screen point.
+    pub fn to_canvas(&self, screen: Pos2) -> Pos2 {
+        self.to_global.inverse() * screen
+    }
+
+    /// The nodes commands act on: the selection, else the focused node.
+    pub fn targets(&self) -> Vec<String> {
+        if self.selected.is_empty() {
+            self.focused.iter().cloned().collect()
+        } else {
+            self.selected.clone()
+        }
+    }
+
+    /// Shows the canvas; returns the actions of the designer.
+    pub fn show(
+        &mut self,
+        ui: &mut Ui,
+        graph: &Graph,
+        statuses: &HashMap<String, NodeStatus>,
+    ) -> Vec<CanvasAction> {
+        self.sync(graph);
+        self.pins.borrow_mut().clear();
+        let mut viewer = Viewer {
+            graph,
+            statuses,
+            actions: Vec::new(),
+            shift: ui.input(|i| i.modifiers.shift),
+            pins: self.pins.clone(),
+            to_global: self.to_global,
+            rects: HashMap::new(),
+            focused: self.focused.clone(),
+            pressed_node: None,
+        };
+        let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
+        self.to_global = viewer.to_global;
+        self.rects = viewer.rects;
+        if let Some(id) = viewer.pressed_node {
+            self.focused = Some(id);
+        } else if response.clicked() {
+            self.focused = None;
+        }
+        let mut actions = viewer.actions;
+        if response.double_clicked()
+            && let Some(pos) = response.interact_pointer_pos()
+        {
+            let p = self.to_canvas(pos);
+            actions.push(CanvasAction::OpenPalette([p.x, p.y]));
+        }
+        self.selected = self
+            .widget
+            .get_selected_nodes_at(ui.id(), ui.ctx())
+            .into_iter()
+            .filter_map(|nid| self.snarl.get_node(nid).map(|n| n.id.clone()))
+            .collect();
+        // Positions moved by dragging, written back to the graph.
+        let moves: Vec<(String, [f32; 2])> = self
+            .snarl
+            .nodes_pos()
+            .filter_map(|(pos, n)| {
+                let node = graph.node(&n.id)?;
+                (node.position != [pos.x, pos.y]).then(|| (n.id.clone(), [pos.x, pos.y]))
+            })
+            .collect();
+        if !moves.is_empty() {
+            actions.push(CanvasAction::Move(moves));
+        }
+        actions
+    }
+}
+
+/// Applies a canvas action to a document as one undoable edit. Errors are messages for the
+/// status bar (the graph is unchanged then).
+pub fn apply(doc: &mut crate::document::GraphDocument, action: CanvasAction) -> Result<(), String> {
+    let err = |e: cnets_engine::GraphError| e.to_string();
+    match action {
+        CanvasAction::Connect {
+            from,
+            output,
+            to,
+            input,
+            replace,
+        } => doc.edit(None, |g, _| {
+            if replace {
+                for w in g.wires() {
+                    if w.to == to && w.input == input {
+                        g.disconnect(&w.from, &w.output, &w.to, &w.input).map_err(err)?;
+                    }
+                }
+            }
+            g.connect(&from, &output, &to, &input).map(|_| ()).map_err(err)
+        }),
+        CanvasAction::Disconnect {
+            from,
+            output,
+            to,
+            input,
+        } => doc.edit(None, |g, _| g.disconnect(&from, &output, &to, &input).map_err(err)),
+        CanvasAction::DropInputs { node, input } => doc.edit(None, |g, _| {
+            for w in g.wires() {
+                if w.to == node && w.input == input {
+                    g.disconnect(&w.from, &w.output, &w.to, &w.input).map_err(err)?;
+                }
+            }
+            Ok(())
+        }),
+        CanvasAction::DropOutputs { node, output } => doc.edit(None, |g, _| {
+            for w in g.wires() {
+                if w.from == node && w.output == output {
+                    g.disconnect(&w.from, &w.output, &w.to, &w.input).map_err(err)?;
+                }
+            }
+            Ok(())
+        }),
+        CanvasAction::SetValue { node, input, value } => {
+            let key = EditKey::Value(node.clone(), input.clone());
+            doc.edit(Some(key), |g, _| g.set_value(&node, &input, value).map(|_| ()).map_err(err))
+        }
+        CanvasAction::ClearValue { node, input } => {
+            doc.edit(None, |g, _| g.clear_value(&node, &input).map(|_| ()).map_err(err))
+        }
+        CanvasAction::SetValues { node, values } => {
+            doc.edit(Some(EditKey::Mapper(node.clone())), |g, _| {
+                for (input, value) in values {
+                    g.set_value(&node, &input, value).map_err(err)?;
+                }
+                Ok(())
+            })
+        }
+        CanvasAction::SetPreview(node, on) => doc.edit(None, |g, _| g.set_preview(&node, on).map_err(err)),
+        CanvasAction::SetEnabled(node, on) => doc.edit(None, |g, _| g.set_enabled(&node, on).map_err(err)),
+        CanvasAction::Move(moves) => doc.edit(Some(EditKey::Move), |g, _| {
+            for (id, pos) in moves {
+                g.set_position(&id, pos).map_err(err)?;
+            }
+            Ok(())
+        }),
+        CanvasAction::Remove(ids) => doc.edit(None, |g, _| {
+            for id in ids {
+                g.remove_node(&id).map_err(err)?;
+            }
+            Ok(())
+        }),
+        CanvasAction::Duplicate(ids) => {
+            let clip = crate::app::Clipboard::copy(&doc.graph, &ids);
+            doc.edit(None, |g, _| clip.paste(g, [30.0, 30.0], true).map(|_| ()))
+        }
+        CanvasAction::OpenPalette(_) => Ok(()),
+    }
+}
+
+/// Colour of a pin by its item type.
+pub fn type_color(ty: &ValueType) -> Color32 {
+    match ty.base() {
+        ValueType::Number | ValueType::Integer => Color32::from_rgb(0x4c, 0x8b, 0xd6),
+        ValueType::Boolean => Color32::from_rgb(0xd6, 0x4c, 0x8b),
+        ValueType::Text => Color32::from_rgb(0x5a, 0xa0, 0x5a),
+        ValueType::Point | ValueType::Vector | ValueType::Plane => Color32::from_rgb(0xe0, 0x9a, 0x2b),
+        ValueType::Polyline | ValueType::Lines => Color32::from_rgb(0x1f, 0x5f, 0xbf),
+        ValueType::QuadMesh | ValueType::Mesh => Color32::from_rgb(0x8a, 0x4f, 0xc8),
+        ValueType::Record => Color32::from_rgb(0x80, 0x80, 0x80),
+        ValueType::Any | ValueType::List(_) => Color32::from_rgb(0xb0, 0xb0, 0xb0),
+    }
+}
+
+fn pin_info(port: &PortDef) -> PinInfo {
+    let shape = match port.access {
+        Access::Item => PinShape::Circle,
+        Access::List => PinShape::Square,
+        Access::Tree => PinShape::Triangle,
+    };
+    PinInfo::default()
+        .with_shape(shape)
+        .with_fill(type_color(&port.ty))
+}
+
+/// A pin that records where it was drawn (for tests that drag wires between pins).
+pub struct RecordingPin {
+    info: PinInfo,
+    key: PinKey,
+    sink: Rc<RefCell<HashMap<PinKey, Pos2>>>,
+}
+
+impl SnarlPin for RecordingPin {
+    fn draw(
+        self,
+        snarl_style: &SnarlStyle,
+        style: &egui::Style,
+        rect: Rect,
+        painter: &egui::Painter,
+    ) -> PinWireInfo {
+        self.sink.borrow_mut().insert(self.key, rect.center());
+        self.info.draw(snarl_style, style, rect, painter)
+    }
+}
+
+/// The snarl viewer: draws nodes from the graph and collects actions.
+struct Viewer<'a> {
+    graph: &'a Graph,
+    statuses: &'a HashMap<String, NodeStatus>,
+    actions: Vec<CanvasAction>,
+    shift: bool,
+    pins: Rc<RefCell<HashMap<PinKey, Pos2>>>,
+    to_global: TSTransform,
+    rects: HashMap<String, Rect>,
+    focused: Option<String>,
+    pressed_node: Option<String>,
+}
+
+impl Viewer<'_> {
+    fn names(&self, snarl: &Snarl<CanvasNode>, from: &OutPin, to: &InPin) -> Option<(String, String, String, String)> {
+        let a = snarl.get_node(from.id.node)?;
+        let b = snarl.get_node(to.id.node)?;
+        let na = self.graph.node(&a.id)?;
+        let nb = self.graph.node(&b.id)?;
+        Some((
+            a.id.clone(),
+            na.def.outputs.get(from.id.output)?.name.to_string(),
+            b.id.clone(),
+            nb.def.inputs.get(to.id.input)?.name.to_string(),
+        ))
+    }
+}
+
+const ERROR_COLOR: Color32 = Color32::from_rgb(0xd6, 0x2f, 0x2f);
+const WARNING_COLOR: Color32 = Color32::from_rgb(0xe0, 0x9a, 0x2b);
+
+impl SnarlViewer<CanvasNode> for Viewer<'_> {
+    fn title(&mut self, node: &CanvasNode) -> String {
+        node.id.clone()
+    }
+
+    fn node_frame(
+        &mut self,
+        default: egui::Frame,
+        node: NodeId,
+        _inputs: &[InPin],
+        _outputs: &[OutPin],
+        snarl: &Snarl<CanvasNode>,
+    ) -> egui::Frame {
+        let Some(n) = snarl.get_node(node) else {
+            return default;
+        };
+        let mut frame = default;
+        if self.statuses.get(&n.id).and_then(NodeStatus::error).is_some() {
+            frame.stroke = Stroke::new(2.0, ERROR_COLOR);
+        }
+        if self.focused.as_deref() == Some(n.id.as_str()) {
+            frame.stroke = Stroke::new(2.0, Color32::from_rgb(0x3a, 0x8e, 0xe6));
+        }
+        if self.graph.node(&n.id).is_some_and(|g| !g.enabled) {
+            frame.fill = frame.fill.gamma_multiply(0.6);
+        }
+        frame
+    }
+
+    fn show_header(
+        &mut self,
+        node: NodeId,
+        _inputs: &[InPin],
+        _outputs: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<CanvasNode>,
+    ) {
+        let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
+            return;
+        };
+        let Some(instance) = self.graph.node(&id) else {
+            return;
+        };
+        ui.horizontal(|ui| {
+            let title = ui
+                .add(egui::Label::new(egui::RichText::new(&id).strong()).sense(egui::Sense::hover()))
+                .on_hover_ui(|ui| {
+                    ui.set_max_width(360.0);
+                    ui.strong(instance.def.id.as_ref());
+                    ui.label(instance.def.doc.as_ref());
+                });
+            let _ = title;
+            ui.weak(instance.def.id.as_ref());
+            let mut preview = instance.preview;
+            if ui
+                .toggle_value(&mut preview, "👁")
+                .on_hover_text("preview this node's geometry in the viewport")
+                .changed()
+            {
+                self.actions.push(CanvasAction::SetPreview(id.clone(), preview));
+            }
+            let mut enabled = instance.enabled;
+            if ui
+                .toggle_value(&mut enabled, "⏻")
+                .on_hover_text("enable / disable this node (disabled nodes do not run)")
+                .changed()
+            {
+                self.actions.push(CanvasAction::SetEnabled(id.clone(), enabled));
+            }
+            match self.statuses.get(&id) {
+                Some(NodeStatus::Error(m)) => {
+                    ui.colored_label(ERROR_COLOR, "⛔").on_hover_text(m);
+                }
+                Some(NodeStatus::Blocked(m)) => {
+                    ui.colored_label(Color32::GRAY, "⏸").on_hover_text(m);
+                }
+                Some(s @ NodeStatus::Ok { .. }) if !s.warnings().is_empty() => {
+                    ui.colored_label(WARNING_COLOR, "⚠")
+                        .on_hover_text(s.warnings().join("\n"));
+                }
+                _ => {}
+            }
+        });
+    }
+
+    fn inputs(&mut self, node: &CanvasNode) -> usize {
+        self.graph.node(&node.id).map_or(0, |n| n.def.inputs.len())
+    }
+
+    fn outputs(&mut self, node: &CanvasNode) -> usize {
+        self.graph.node(&node.id).map_or(0, |n| n.def.outputs.len())
+    }
+
+    #[allow(refining_impl_trait)]
+    fn show_input(&mut self, pin: &InPin, ui: &mut Ui, snarl: &mut Snarl<CanvasNode>) -> RecordingPin {
+        let id = snarl.get_node(pin.id.node).map(|n| n.id.clone()).unwrap_or_default();
+        let key = (id.clone(), true, pin.id.input);
+        let Some(instance) = self.graph.node(&id) else {
+            return RecordingPin { info: PinInfo::circle(), key, sink: self.pins.clone() };
+        };
+        let Some(port) = instance.def.inputs.get(pin.id.input) else {
+            return RecordingPin { info: PinInfo::circle(), key, sink: self.pins.clone() };
+        };
+        let wired = !pin.remotes.is_empty();
+        let missing = !wired && port.required() && instance.value(pin.id.input).is_none();
+        ui.horizontal(|ui| {
+            let mut text = egui::RichText::new(port.name.as_ref());
+            if missing {
+                text = text.color(ERROR_COLOR);
+            }
+            ui.label(text).on_hover_text(format!(
+                "{} — {}{}",
+                port.type_name(),
+                port.doc,
+                if missing { "\n(required: connect it or set a value)" } else { "" }
+            ));
+            if !wired && widgets::has_editor(instance, pin.id.input) {
+                ui.spacing_mut().slider_width = 110.0;
+                if let Some(value) = widgets::input_editor(ui, instance, pin.id.input) {
+                    self.actions.push(CanvasAction::SetValue {
+                        node: id.clone(),
+                        input: port.name.to_string(),
+                        value,
+                    });
+                }
+            }
+        });
+        RecordingPin {
+            info: pin_info(port),
+            key,
+            sink: self.pins.clone(),
+        }
+    }
+
+    #[allow(refining_impl_trait)]
+    fn show_output(&mut self, pin: &OutPin, ui: &mut Ui, snarl: &mut Snarl<CanvasNode>) -> RecordingPin {
+        let id = snarl.get_node(pin.id.node).map(|n| n.id.clone()).unwrap_or_default();
+        let key = (id.clone(), false, pin.id.output);
+        let Some(port) = self.graph.node(&id).and_then(|n| n.def.outputs.get(pin.id.output)) else {
+            return RecordingPin { info: PinInfo::circle(), key, sink: self.pins.clone() };
+        };
+        let summary = match self.statuses.get(&id) {
+            Some(NodeStatus::Ok { outputs, .. }) => outputs.get(pin.id.output).cloned(),
+            _ => None,
+        };
+        ui.horizontal(|ui| {
+            if let Some(s) = summary {
+                ui.weak(s);
+            }
+            ui.label(port.name.as_ref())
+                .on_hover_text(format!("{} — {}", port.type_name(), port.doc));
+        });
+        RecordingPin {
+            info: pin_info(port),
+            key,
+            sink: self.pins.clone(),
+        }
+    }
+
+    fn has_body(&mut self, node: &CanvasNode) -> bool {
+        self.graph.node(&node.id).is_some_and(mapper::is_mapper)
+    }
+
+    fn show_body(
+        &mut self,
+        node: NodeId,
+        _inputs: &[InPin],
+        _outputs: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<CanvasNode>,
+    ) {
+        let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
+            return;
+        };
+        if let Some(instance) = self.graph.node(&id)
+            && let Some(values) = mapper::show(ui, self.graph, instance)
+        {
+            self.actions.push(CanvasAction::SetValues { node: id, values });
+        }
+    }
+
+    fn final_node_rect(&mut self, node: NodeId, rect: Rect, ui: &mut Ui, snarl: &mut Snarl<CanvasNode>) {
+        let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
+            return;
+        };
+        if ui.input(|i| i.pointer.primary_pressed()) && ui.rect_contains_pointer(rect) {
+            self.pressed_node = Some(id.clone());
+        }
+        self.rects.insert(id, rect);
+    }
+
+    fn has_node_menu(&mut self, _node: &CanvasNode) -> bool {
+        true
+    }
+
+    fn show_node_menu(
+        &mut self,
+        node: NodeId,
+        _inputs: &[InPin],
+        _outputs: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<CanvasNode>,
+    ) {
+        let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
+            return;
+        };
+        if ui.button("Duplicate").clicked() {
+            self.actions.push(CanvasAction::Duplicate(vec![id.clone()]));
+            ui.close();
+        }
+        if ui.button("Delete").clicked() {
+            self.actions.push(CanvasAction::Remove(vec![id.clone()]));
+            ui.close();
+        }
+        if let Some(n) = self.graph.node(&id)
+            && n.def.has_flag(NodeFlag::Export)
+        {
+            ui.weak("runs on File ▸ Export");
+        }
+    }
+
+    fn has_graph_menu(&mut self, _pos: Pos2, _snarl: &mut Snarl<CanvasNode>) -> bool {
+        true
+    }
+
+    fn show_graph_menu(&mut self, pos: Pos2, ui: &mut Ui, _snarl: &mut Snarl<CanvasNode>) {
+        if ui.button("Add node…").clicked() {
+            self.actions.push(CanvasAction::OpenPalette([pos.x, pos.y]));
+            ui.close();
+        }
+    }
+
+    fn connect(&mut self, from: &OutPin, to: &InPin, snarl: &mut Snarl<CanvasNode>) {
+        if let Some((from, output, to, input)) = self.names(snarl, from, to) {
+            self.actions.push(CanvasAction::Connect {
+                from,
+                output,
+                to,
+                input,
+                replace: !self.shift,
+            });
+        }
+    }
+
+    fn disconnect(&mut self, from: &OutPin, to: &InPin, snarl: &mut Snarl<CanvasNode>) {
+        if let Some((from, output, to, input)) = self.names(snarl, from, to) {
+            self.actions.push(CanvasAction::Disconnect { from, output, to, input });
+        }
+    }
+
+    fn drop_inputs(&mut self, pin: &InPin, snarl: &mut Snarl<CanvasNode>) {
+        let Some(id) = snarl.get_node(pin.id.node).map(|n| n.id.clone()) else {
+            return;
+        };
+        if let Some(port) = self.graph.node(&id).and_then(|n| n.def.inputs.get(pin.id.input)) {
+            self.actions.push(CanvasAction::DropInputs { node: id, input: port.name.to_string() });
+        }
+    }
+
+    fn drop_outputs(&mut self, pin: &OutPin, snarl: &mut Snarl<CanvasNode>) {
+        let Some(id) = snarl.get_node(pin.id.node).map(|n| n.id.clone()) else {
+            return;
+        };
+        if let Some(port) = self.graph.node(&id).and_then(|n| n.def.outputs.get(pin.id.output)) {
+            self.actions.push(CanvasAction::DropOutputs { node: id, output: port.name.to_string() });
+        }
+    }
+
+    fn current_transform(&mut self, to_global: &mut TSTransform, _snarl: &mut Snarl<CanvasNode>) {
+        self.to_global = *to_global;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::document::GraphDocument;
+    use std::sync::Arc;
+
+    fn doc() -> GraphDocument {
+        let mut d = GraphDocument::new(Arc::new(cnets_nodes::registry()));
+        d.edit(None, |g, _| {
+            g.add_node("n", "param.number").map_err(|e| e.to_string())?;
+            g.add_node("arc", "curve.arc").map_err(|e| e.to_string())?;
+            g.add_node("len", "curve.length").map_err(|e| e.to_string())?;
+            g.connect("n", "value", "arc", "radius").map_err(|e| e.to_string())?;
+            g.connect("arc", "curve", "len", "curve").map(|_| ()).map_err(|e| e.to_string())
+        })
+        .unwrap();
+        d
+    }
+
+    #[test]
+    fn sync_mirrors_nodes_and_wires() {
+        let d = doc();
+        let mut c = Canvas::new();
+        c.sync(&d.graph);
+        assert_eq!(c.counts(), (3, 2));
+        let mut g = d.graph.clone();
+        g.remove_node("len").unwrap();
+        c.sync(&g);
+        assert_eq!(c.counts(), (2, 1));
+    }
+
+    #[test]
+    fn incompatible_and_cyclic_wires_are_refused() {
+        let mut d = doc();
+        let before = d.to_ron();
+        // A polyline into a number input.
+        let e = apply(
+            &mut d,
+            CanvasAction::Connect {
+                from: "arc".into(),
+                output: "curve".into(),
+                to: "n".into(),
+                input: "value".into(),
+                replace: true,
+            },
+        )
+        .unwrap_err();
+        assert!(e.contains("type mismatch"), "{e}");
+        // len.length (number) into arc.radius would close arc -> len -> arc.
+        let e = apply(
+            &mut d,
+            CanvasAction::Connect {
+                from: "len".into(),
+                output: "length".into(),
+                to: "arc".into(),
+                input: "radius".into(),
+                replace: false,
+            },
+        )
+        .unwrap_err();
+        assert!(e.contains("cycle"), "{e}");
+        assert_eq!(d.to_ron(), before);
+    }
+
+    #[test]
+    fn plain_connect_replaces_shift_connect_adds() {
+        let mut d = doc();
+        d.edit(None, |g, _| g.add_node("m", "param.number").map(|_| ()).map_err(|e| e.to_string()))
+            .unwrap();
+        let connect = |replace| CanvasAction::Connect {
+            from: "m".into(),
+            output: "value".into(),
+            to: "arc".into(),
+            input: "radius".into(),
+            replace,
+        };
+        apply(&mut d, connect(false)).unwrap();
+        assert_eq!(d.graph.wires().iter().filter(|w| w.to == "arc").count(), 2);
+        apply(&mut d, CanvasAction::DropInputs { node: "arc".into(), input: "radius".into() }).unwrap();
+        apply(&mut d, connect(true)).unwrap();
+        let into: Vec<_> = d.graph.wires().into_iter().filter(|w| w.to == "arc").collect();
+        assert_eq!(into.len(), 1);
+        assert_eq!(into[0].from, "m");
+    }
+}

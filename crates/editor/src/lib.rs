@@ -1,0 +1,34 @@
+//! The cnets desktop editor: a node canvas and a live 3D viewport over the cnets engine.
+//!
+//! One concept a module, UI logic testable without a window:
+//!
+//! - [`document`]: the graph document (engine graph + metadata + path), the source of truth;
+//!   [`history`]: undo / redo by snapshots, one step per gesture.
+//! - [`worker`]: evaluation on a background thread, latest change wins; [`preview`]: the render
+//!   scene and figures built from the results.
+//! - [`canvas`]: the node canvas (an egui-snarl view of the graph, kept in sync both ways);
+//!   [`palette`]: the searchable node palette; [`widgets`]: inline value editors;
+//!   [`mapper`]: the graph-mapper widget.
+//! - [`viewport`]: the 3D view (a wgpu paint callback through `cnets-render`) and its camera.
+//! - [`menus`], [`file_dialog`]: the menu bar and a built-in path dialog; [`export`]: exports
+//!   through the export nodes.
+//! - [`recovery`]: autosave and restore after a crash; [`settings`]: recent files.
+//! - [`app`]: the editor state and one frame of UI, shared by the window (`main.rs`) and tests.
+
+pub mod app;
+pub mod canvas;
+pub mod document;
+pub mod export;
+pub mod file_dialog;
+pub mod history;
+pub mod mapper;
+pub mod menus;
+pub mod palette;
+pub mod preview;
+pub mod recovery;
+pub mod settings;
+pub mod viewport;
+pub mod widgets;
+pub mod worker;
+
+pub use app::{EditorApp, GpuTarget};

@@ -1,0 +1,157 @@
+//! The menu bar. It only reports what was picked ([`MenuAction`]); the app carries it out, so
+//! the same actions serve the menus, the keyboard shortcuts and tests.
+
+use std::path::{Path, PathBuf};
+
+use crate::export::ExportFormat;
+use crate::preview::{ColorMode, Layer, PreviewOptions};
+
+/// Something picked in a menu (or by a shortcut).
+#[derive(Clone, Debug, PartialEq)]
+pub enum MenuAction {
+    /// New empty graph.
+    New,
+    /// Show the open dialog.
+    Open,
+    /// Open this file (examples, recent files).
+    OpenPath(PathBuf),
+    /// Save (save-as for an untitled graph).
+    Save,
+    /// Show the save-as dialog.
+    SaveAs,
+    /// Export in a format into a folder chosen next.
+    Export(ExportFormat),
+    /// Undo.
+    Undo,
+    /// Redo.
+    Redo,
+    /// Delete the selected / focused nodes.
+    Delete,
+    /// Duplicate them.
+    Duplicate,
+    /// Copy them.
+    Copy,
+    /// Paste the copied nodes.
+    Paste,
+    /// Open the node palette.
+    AddNode,
+    /// Frame the geometry in the viewport.
+    Fit,
+    /// Change the viewport's display options.
+    SetPreview(PreviewOptions),
+    /// Close the editor.
+    Quit,
+}
+
+/// What the menus need to know.
+pub struct MenuContext<'a> {
+    /// Example graphs (files in `graphs/`).
+    pub examples: &'a [PathBuf],
+    /// Recent files.
+    pub recent: &'a [PathBuf],
+    /// Undo possible.
+    pub can_undo: bool,
+    /// Redo possible.
+    pub can_redo: bool,
+    /// Something to paste.
+    pub can_paste: bool,
+    /// Viewport options.
+    pub preview: PreviewOptions,
+}
+
+fn file_label(p: &Path) -> String {
+    p.file_name().map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into_owned())
+}
+
+/// Shows the menu bar; returns what was picked.
+pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
+    let mut action = None;
+    let mut pick_preview = None;
+    let mut pick = |ui: &mut egui::Ui, label: &str, shortcut: &str, a: MenuAction, enabled: bool| {
+        let button = egui::Button::new(label).shortcut_text(shortcut);
+        if ui.add_enabled(enabled, button).clicked() {
+            action = Some(a);
+            ui.close();
+        }
+    };
+    egui::MenuBar::new().ui(ui, |ui| {
+        ui.menu_button("File", |ui| {
+            pick(ui, "New", "", MenuAction::New, true);
+            pick(ui, "Open…", "Ctrl+O", MenuAction::Open, true);
+            ui.menu_button("Open example", |ui| {
+                if mc.examples.is_empty() {
+                    ui.weak("no graphs/ folder found");
+                }
+                for p in mc.examples {
+                    pick(ui, &file_label(p), "", MenuAction::OpenPath(p.clone()), true);
+                }
+            });
+            ui.menu_button("Recent files", |ui| {
+                if mc.recent.is_empty() {
+                    ui.weak("none yet");
+                }
+                for p in mc.recent {
+                    pick(ui, &p.display().to_string(), "", MenuAction::OpenPath(p.clone()), true);
+                }
+            });
+            ui.separator();
+            pick(ui, "Save", "Ctrl+S", MenuAction::Save, true);
+            pick(ui, "Save as…", "Ctrl+Shift+S", MenuAction::SaveAs, true);
+            ui.menu_button("Export", |ui| {
+                for f in ExportFormat::ALL {
+                    pick(ui, &format!("{}…", f.extension().to_uppercase()), "", MenuAction::Export(f), true);
+                }
+            });
+            ui.separator();
+            pick(ui, "Quit", "Ctrl+Q", MenuAction::Quit, true);
+        });
+        ui.menu_button("Edit", |ui| {
+            pick(ui, "Undo", "Ctrl+Z", MenuAction::Undo, mc.can_undo);
+            pick(ui, "Redo", "Ctrl+Shift+Z", MenuAction::Redo, mc.can_redo);
+            ui.separator();
+            pick(ui, "Copy", "Ctrl+C", MenuAction::Copy, true);
+            pick(ui, "Paste", "Ctrl+V", MenuAction::Paste, mc.can_paste);
+            pick(ui, "Duplicate", "Ctrl+D", MenuAction::Duplicate, true);
+            pick(ui, "Delete", "Delete", MenuAction::Delete, true);
+        });
+        ui.menu_button("Add", |ui| {
+            pick(ui, "Node…", "double-click canvas", MenuAction::AddNode, true);
+        });
+        ui.menu_button("View", |ui| {
+            pick(ui, "Frame all", "F", MenuAction::Fit, true);
+            ui.separator();
+            ui.label("Colour faces by");
+            for mode in ColorMode::ALL {
+                let mut o = mc.preview;
+                if ui.radio(o.color_mode == mode, mode.label()).clicked() {
+                    o.color_mode = mode;
+                    pick_preview = Some(o);
+                }
+            }
+            ui.separator();
+            for layer in Layer::ALL {
+                let mut on = mc.preview.shows(layer);
+                if ui.checkbox(&mut on, layer.label()).changed() {
+                    let mut o = mc.preview;
+                    o.set(layer, on);
+                    pick_preview = Some(o);
+                }
+            }
+        });
+    });
+    pick_preview.map(MenuAction::SetPreview).or(action)
+}
+
+/// Graph files of a folder (the examples menu), sorted.
+pub fn examples_in(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|d| {
+            d.filter_map(Result::ok)
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+                .collect()
+        })
+        .unwrap_or_default();
+    v.sort();
+    v
+}

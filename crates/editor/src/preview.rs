@@ -1,0 +1,475 @@
+//! What the viewport shows: the geometry outputs of every node whose preview is on, turned into a
+//! render [`Scene`], plus the figures shown with it (vertex count, max planarity, legend).
+//!
+//! Outputs are sorted into layers by type and port name, so each layer can be toggled:
+//! quad / polygon meshes are surfaces (coloured by configuration class, planarity or plainly),
+//! polylines and unnamed segment sets are curves (directrix, generatrix…), points named `apices`
+//! are apices, segment sets named `…axes…` are torsion-free axes, anything named `…support…` is
+//! a support layer. Lists (from nodes run per item) are flattened.
+
+use std::time::Instant;
+
+use cnets_engine::{Evaluator, Graph, Value};
+use cnets_geometry::conenet::quad_planarity;
+use cnets_geometry::{DVec3, QuadGrid};
+use cnets_render::palette::{self, SequentialMap};
+use cnets_render::{
+    Color, ConfigClass, FaceColors, LineStyle, MeshStyle, PointStyle, Scene,
+};
+
+/// How surfaces are coloured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ColorMode {
+    /// By configuration class (`++`, `--`, `+-`, `-+`) from the construction node's
+    /// `configurations` output; plain when the node has none.
+    #[default]
+    Configuration,
+    /// By per-face planarity (viridis, range fitted to the values).
+    Planarity,
+    /// One colour.
+    Plain,
+}
+
+impl ColorMode {
+    /// All modes, for menus.
+    pub const ALL: [ColorMode; 3] = [
+        ColorMode::Configuration,
+        ColorMode::Planarity,
+        ColorMode::Plain,
+    ];
+
+    /// Menu label.
+    pub fn label(self) -> &'static str {
+        match self {
+            ColorMode::Configuration => "Configuration class",
+            ColorMode::Planarity => "Planarity",
+            ColorMode::Plain => "Plain",
+        }
+    }
+}
+
+/// A toggleable group of preview geometry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Layer {
+    /// Meshes.
+    Surfaces,
+    /// Mesh edges.
+    Edges,
+    /// Polylines and segment sets (directrix, generatrix, …).
+    Curves,
+    /// Cone apices.
+    Apices,
+    /// Torsion-free node axes.
+    Axes,
+    /// Support layers.
+    Supports,
+    /// Other points.
+    Points,
+}
+
+impl Layer {
+    /// All layers, for menus.
+    pub const ALL: [Layer; 7] = [
+        Layer::Surfaces,
+        Layer::Edges,
+        Layer::Curves,
+        Layer::Apices,
+        Layer::Axes,
+        Layer::Supports,
+        Layer::Points,
+    ];
+
+    /// Menu label.
+    pub fn label(self) -> &'static str {
+        match self {
+            Layer::Surfaces => "Surfaces",
+            Layer::Edges => "Edges",
+            Layer::Curves => "Curves (directrix…)",
+            Layer::Apices => "Apices",
+            Layer::Axes => "Torsion-free axes",
+            Layer::Supports => "Support layers",
+            Layer::Points => "Points",
+        }
+    }
+
+    fn bit(self) -> u8 {
+        1 << (self as u8)
+    }
+}
+
+/// Display options of the viewport: colour mode and visible layers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PreviewOptions {
+    /// Surface colouring.
+    pub color_mode: ColorMode,
+    layers: u8,
+}
+
+impl Default for PreviewOptions {
+    fn default() -> Self {
+        Self {
+            color_mode: ColorMode::default(),
+            layers: Layer::ALL.iter().fold(0, |acc, l| acc | l.bit()),
+        }
+    }
+}
+
+impl PreviewOptions {
+    /// Whether a layer is shown.
+    pub fn shows(&self, layer: Layer) -> bool {
+        self.layers & layer.bit() != 0
+    }
+
+    /// Shows or hides a layer.
+    pub fn set(&mut self, layer: Layer, on: bool) {
+        if on {
+            self.layers |= layer.bit();
+        } else {
+            self.layers &= !layer.bit();
+        }
+    }
+}
+
+/// The legend to draw next to the viewport.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum LegendInfo {
+    /// Nothing coloured.
+    #[default]
+    None,
+    /// Configuration classes with their face counts.
+    Classes([(ConfigClass, usize); 4]),
+    /// A planarity colour scale.
+    Planarity(cnets_render::Legend),
+}
+
+/// Figures about the previewed geometry.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct PreviewStats {
+    /// Vertices of all previewed meshes.
+    pub vertices: usize,
+    /// Faces of all previewed meshes.
+    pub faces: usize,
+    /// Largest face planarity over all previewed quad meshes (`None` without quad meshes).
+    pub max_planarity: Option<f64>,
+    /// Legend of the surface colours.
+    pub legend: LegendInfo,
+    /// Time spent building the scene, in milliseconds.
+    pub build_ms: f64,
+}
+
+/// Builds the preview scene from the evaluator's results for `graph`.
+pub fn build_scene(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> (Scene, PreviewStats) {
+    let start = Instant::now();
+    let mut b = Builder {
+        scene: Scene::new(),
+        stats: PreviewStats::default(),
+        opts: *opts,
+        class_counts: [0; 4],
+        any_classes: false,
+        planarity_range: None,
+    };
+    // Planarity colours need one range over all meshes: collect meshes first.
+    let mut meshes: Vec<(std::sync::Arc<QuadGrid>, Option<Value>, Layer)> = Vec::new();
+    for (index, node) in graph.nodes() {
+        if !node.preview || !node.enabled {
+            continue;
+        }
+        let Some(outputs) = eval.result_at(graph, index).and_then(|r| r.outputs()) else {
+            continue;
+        };
+        let configurations = node
+            .def
+            .output_index("configurations")
+            .and_then(|k| outputs.values.get(k))
+            .cloned();
+        for (port, value) in node.def.outputs.iter().zip(&outputs.values) {
+            let layer = layer_of(&port.name);
+            b.collect(value, layer, &configurations, &mut meshes);
+        }
+    }
+    // Per-face planarity of every quad mesh (for the figure, and the colours in that mode).
+    let planarities: Vec<Vec<f64>> = meshes
+        .iter()
+        .map(|(m, _, _)| m.quads().map(|(_, q)| quad_planarity(q)).collect())
+        .collect();
+    let max = planarities
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|v| v.is_finite())
+        .fold(None, |acc: Option<f64>, v| Some(acc.map_or(v, |a| a.max(v))));
+    b.stats.max_planarity = max;
+    if opts.color_mode == ColorMode::Planarity {
+        let all: Vec<f64> = planarities.iter().flatten().copied().collect();
+        b.planarity_range = Some(SequentialMap::fit(&all));
+    }
+    for ((mesh, configurations, layer), planarity) in meshes.iter().zip(&planarities) {
+        b.add_quad_grid(mesh, configurations.as_ref(), planarity, *layer);
+    }
+    b.stats.legend = match opts.color_mode {
+        _ if b.stats.faces == 0 || !opts.shows(Layer::Surfaces) => LegendInfo::None,
+        ColorMode::Configuration if b.any_classes => {
+            let c = b.class_counts;
+            LegendInfo::Classes([0, 1, 2, 3].map(|k| (ConfigClass::ALL[k], c[k])))
+        }
+        ColorMode::Planarity => b
+            .planarity_range
+            .map_or(LegendInfo::None, |m| LegendInfo::Planarity(m.legend("planarity", 5))),
+        _ => LegendInfo::None,
+    };
+    b.stats.build_ms = start.elapsed().as_secs_f64() * 1e3;
+    (b.scene, b.stats)
+}
+
+/// The layer an output belongs to, by its port name.
+pub fn layer_of(name: &str) -> Layer {
+    let n = name.to_ascii_lowercase();
+    if n.contains("support") {
+        Layer::Supports
+    } else if n.contains("axes") || n.contains("axis") {
+        Layer::Axes
+    } else if n.contains("apex") || n.contains("apices") {
+        Layer::Apices
+    } else {
+        Layer::Surfaces
+    }
+}
+
+struct Builder {
+    scene: Scene,
+    stats: PreviewStats,
+    opts: PreviewOptions,
+    class_counts: [usize; 4],
+    any_classes: bool,
+    planarity_range: Option<SequentialMap>,
+}
+
+const SUPPORT_COLOR: Color = Color::hex(0xc9a66b);
+const AXIS_COLOR: Color = Color::hex(0x2a9d5c);
+const CURVE_COLOR: Color = palette::LINE;
+
+impl Builder {
+    fn edges(&self) -> Option<LineStyle> {
+        self.opts
+            .shows(Layer::Edges)
+            .then(MeshStyle::default_edges)
+    }
+
+    fn collect(
+        &mut self,
+        value: &Value,
+        layer: Layer,
+        configurations: &Option<Value>,
+        meshes: &mut Vec<(std::sync::Arc<QuadGrid>, Option<Value>, Layer)>,
+    ) {
+        match value {
+            Value::List(items) => {
+                // A list of points is one point set; other lists are flattened.
+                if items.iter().any(|v| matches!(v, Value::Point(_))) {
+                    let points: Vec<DVec3> = items
+                        .iter()
+                        .filter_map(|v| match v {
+                            Value::Point(p) => Some(*p),
+                            _ => None,
+                        })
+                        .collect();
+                    self.add_points(&points, layer);
+                } else {
+                    for item in items.iter() {
+                        self.collect(item, layer, configurations, meshes);
+                    }
+                }
+            }
+            Value::QuadMesh(grid) => {
+                let layer = if layer == Layer::Supports { layer } else { Layer::Surfaces };
+                meshes.push((grid.clone(), configurations.clone(), layer));
+            }
+            Value::Mesh(mesh) => {
+                let show = if layer == Layer::Supports {
+                    self.opts.shows(Layer::Supports)
+                } else {
+                    self.opts.shows(Layer::Surfaces)
+                };
+                self.stats.vertices += mesh.vertices.len();
+                self.stats.faces += mesh.face_count();
+                if show {
+                    let color = if layer == Layer::Supports { SUPPORT_COLOR } else { palette::SURFACE };
+                    let style = MeshStyle::new(FaceColors::Uniform(color)).edges(self.edges());
+                    let _ = self.scene.add_polygon_mesh(mesh, style);
+                }
+            }
+            Value::Polyline(p) => {
+                let (layer, color) = self.line_layer(layer);
+                if self.opts.shows(layer) {
+                    self.scene.add_polyline(p, LineStyle::new(color, 2.5));
+                }
+            }
+            Value::Lines(lines) => {
+                let (layer, color) = self.line_layer(layer);
+                if self.opts.shows(layer) {
+                    self.scene.add_lines(lines, LineStyle::new(color, 1.5));
+                }
+            }
+            Value::Point(p) => self.add_points(&[*p], layer),
+            _ => {}
+        }
+    }
+
+    fn line_layer(&self, layer: Layer) -> (Layer, Color) {
+        match layer {
+            Layer::Axes => (Layer::Axes, AXIS_COLOR),
+            Layer::Supports => (Layer::Supports, SUPPORT_COLOR),
+            _ => (Layer::Curves, CURVE_COLOR),
+        }
+    }
+
+    fn add_points(&mut self, points: &[DVec3], layer: Layer) {
+        let layer = match layer {
+            Layer::Apices => Layer::Apices,
+            _ => Layer::Points,
+        };
+        if !self.opts.shows(layer) {
+            return;
+        }
+        let style = match layer {
+            Layer::Apices => PointStyle::new(palette::POINT, 7.0),
+            _ => PointStyle::new(Color::hex(0x333333), 5.0),
+        };
+        self.scene.add_points(points, style);
+    }
+
+    fn add_quad_grid(
+        &mut self,
+        grid: &QuadGrid,
+        configurations: Option<&Value>,
+        planarity: &[f64],
+        layer: Layer,
+    ) {
+        self.stats.vertices += grid.vertices.len();
+        self.stats.faces += grid.quad_count();
+        if !self.opts.shows(layer) {
+            return;
+        }
+        let colors: Option<Vec<Color>> = match (self.opts.color_mode, layer) {
+            (_, Layer::Supports) => None,
+            (ColorMode::Configuration, _) => configurations.and_then(|c| {
+                let classes = face_classes(grid, c)?;
+                self.any_classes = true;
+                for class in &classes {
+                    self.class_counts[ConfigClass::ALL.iter().position(|c| c == class).unwrap_or(0)] += 1;
+                }
+                Some(classes.into_iter().map(ConfigClass::color).collect())
+            }),
+            (ColorMode::Planarity, _) => {
+                let map = self.planarity_range.unwrap_or_else(|| SequentialMap::fit(planarity));
+                Some(planarity.iter().map(|&v| map.color(v)).collect())
+            }
+            (ColorMode::Plain, _) => None,
+        };
+        let uniform = if layer == Layer::Supports { SUPPORT_COLOR } else { palette::SURFACE };
+        let faces = match &colors {
+            Some(c) => FaceColors::PerFace(c),
+            None => FaceColors::Uniform(uniform),
+        };
+        let _ = self
+            .scene
+            .add_quad_grid(grid, MeshStyle::new(faces).edges(self.edges()));
+    }
+}
+
+/// The class of every face of `grid` (row-major over quads) from a construction node's
+/// `configurations` output (N lists of M−2 labels, one per interior directrix vertex): a face
+/// takes the worst class among its corners (`--` over `+-` over `-+` over `++`); corners on the
+/// first and last column have none. `None` when the table does not fit the grid.
+pub fn face_classes(grid: &QuadGrid, configurations: &Value) -> Option<Vec<ConfigClass>> {
+    let rows = configurations.as_list()?;
+    if rows.len() != grid.rows || grid.cols < 2 {
+        return None;
+    }
+    let table: Vec<Vec<ConfigClass>> = rows
+        .iter()
+        .map(|row| {
+            row.as_list()?
+                .iter()
+                .map(|v| match v {
+                    Value::Text(t) => t.parse::<ConfigClass>().ok(),
+                    _ => None,
+                })
+                .collect::<Option<Vec<_>>>()
+        })
+        .collect::<Option<Vec<_>>>()?;
+    let rank = |c: ConfigClass| match c {
+        ConfigClass::PlusPlus => 0,
+        ConfigClass::MinusPlus => 1,
+        ConfigClass::PlusMinus => 2,
+        ConfigClass::MinusMinus => 3,
+    };
+    let at = |i: usize, j: usize| -> Option<ConfigClass> {
+        // Vertex column j has a class when 1 <= j <= M-2.
+        let row = table.get(i % grid.rows)?;
+        j.checked_sub(1).and_then(|k| row.get(k)).copied()
+    };
+    let mut out = Vec::with_capacity(grid.quad_count());
+    for ((i, j), _) in grid.quads() {
+        let j1 = (j + 1) % grid.cols;
+        let worst = [at(i, j), at(i, j1), at(i + 1, j), at(i + 1, j1)]
+            .into_iter()
+            .flatten()
+            .max_by_key(|&c| rank(c))
+            .unwrap_or(ConfigClass::PlusPlus);
+        out.push(worst);
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(rows: usize, cols: usize) -> QuadGrid {
+        let vertices = (0..rows)
+            .flat_map(|i| (0..cols).map(move |j| DVec3::new(j as f64, i as f64, 0.0)))
+            .collect();
+        QuadGrid {
+            rows,
+            cols,
+            wrap_rows: false,
+            wrap_cols: false,
+            vertices,
+        }
+    }
+
+    fn table(rows: usize, labels: &[&str]) -> Value {
+        Value::list(
+            (0..rows)
+                .map(|_| Value::list(labels.iter().map(|l| Value::text(l)).collect()))
+                .collect(),
+        )
+    }
+
+    #[test]
+    fn faces_take_the_worst_corner_class() {
+        let g = grid(3, 4); // interior columns 1 and 2
+        let classes = face_classes(&g, &table(3, &["++", "--"])).unwrap();
+        assert_eq!(classes.len(), 2 * 3);
+        // Quad column 0 touches vertex columns 0 and 1 (++), 1 touches 1 and 2 (-- wins),
+        // 2 touches 2 (--) and 3 (none).
+        assert_eq!(
+            classes[..3],
+            [ConfigClass::PlusPlus, ConfigClass::MinusMinus, ConfigClass::MinusMinus]
+        );
+        assert!(face_classes(&g, &table(2, &["++", "--"])).is_none(), "row count must match");
+    }
+
+    #[test]
+    fn layers_by_port_name_and_toggles() {
+        assert_eq!(layer_of("apices"), Layer::Apices);
+        assert_eq!(layer_of("node_axes"), Layer::Axes);
+        assert_eq!(layer_of("support_layers"), Layer::Supports);
+        assert_eq!(layer_of("mesh"), Layer::Surfaces);
+        let mut o = PreviewOptions::default();
+        assert!(Layer::ALL.iter().all(|&l| o.shows(l)));
+        o.set(Layer::Apices, false);
+        assert!(!o.shows(Layer::Apices) && o.shows(Layer::Axes));
+    }
+}

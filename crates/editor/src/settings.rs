@@ -1,0 +1,93 @@
+//! Persistent settings: the editor's own folder and the recent-files list.
+//!
+//! The folder is `$CNETS_EDITOR_HOME` when set (tests use a temporary one), else
+//! `$XDG_CONFIG_HOME/cnets-editor`, else `~/.config/cnets-editor`. Files in it are small text
+//! files written atomically.
+
+use std::path::{Path, PathBuf};
+
+use cnets_engine::atomic::write_atomic;
+
+/// Most recent files remembered.
+pub const MAX_RECENT: usize = 10;
+
+/// The editor's settings folder (see the module docs); not created here.
+pub fn config_dir() -> PathBuf {
+    if let Some(dir) = std::env::var_os("CNETS_EDITOR_HOME").filter(|d| !d.is_empty()) {
+        return PathBuf::from(dir);
+    }
+    if let Some(dir) = std::env::var_os("XDG_CONFIG_HOME").filter(|d| !d.is_empty()) {
+        return PathBuf::from(dir).join("cnets-editor");
+    }
+    let home = std::env::var_os("HOME").map_or_else(|| PathBuf::from("."), PathBuf::from);
+    home.join(".config").join("cnets-editor")
+}
+
+/// Settings kept between sessions.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Settings {
+    /// Where they are stored.
+    pub dir: PathBuf,
+    /// Recently opened or saved files, newest first.
+    pub recent: Vec<PathBuf>,
+}
+
+impl Settings {
+    /// Loads the settings from `dir` (missing files: defaults).
+    pub fn load(dir: &Path) -> Self {
+        let recent = std::fs::read_to_string(dir.join("recent.txt"))
+            .unwrap_or_default()
+            .lines()
+            .filter(|l| !l.trim().is_empty())
+            .map(PathBuf::from)
+            .take(MAX_RECENT)
+            .collect();
+        Self {
+            dir: dir.to_path_buf(),
+            recent,
+        }
+    }
+
+    /// Puts `path` first in the recent list and saves the list.
+    pub fn add_recent(&mut self, path: &Path) {
+        let path = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+        self.recent.retain(|p| p != &path);
+        self.recent.insert(0, path);
+        self.recent.truncate(MAX_RECENT);
+        let _ = self.save();
+    }
+
+    /// Writes the settings (creating the folder).
+    pub fn save(&self) -> std::io::Result<()> {
+        std::fs::create_dir_all(&self.dir)?;
+        let text: String = self
+            .recent
+            .iter()
+            .map(|p| format!("{}\n", p.display()))
+            .collect();
+        write_atomic(&self.dir.join("recent.txt"), text.as_bytes())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn recent_files_persist_newest_first_without_duplicates() {
+        let dir = std::env::temp_dir().join(format!("cnets-settings-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let mut s = Settings::load(&dir);
+        assert!(s.recent.is_empty());
+        for k in 0..12 {
+            s.add_recent(Path::new(&format!("/tmp/g{k}.ron")));
+        }
+        s.add_recent(Path::new("/tmp/g5.ron"));
+        let again = Settings::load(&dir);
+        assert_eq!(again.recent.len(), MAX_RECENT);
+        assert_eq!(again.recent[0], PathBuf::from("/tmp/g5.ron"));
+        assert_eq!(again.recent[1], PathBuf::from("/tmp/g11.ron"));
+        assert_eq!(again.recent.iter().filter(|p| p.ends_with("g5.ron")).count(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

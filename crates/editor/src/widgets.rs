@@ -1,0 +1,184 @@
+//! Inline editors for the literal values of unconnected inputs: sliders for `param.number`
+//! (range and step from the node's own `min`, `max`, `step`), drag values for other numbers and
+//! integers, checkboxes, three fields for points and vectors, text fields, a plane picker.
+//!
+//! Each editor returns the new value when the designer changed it; the caller turns it into a
+//! graph edit (one undo step per drag, see [`crate::history::EditKey`]).
+
+use std::sync::Arc;
+
+use cnets_engine::{Access, NodeInstance, PortDef, Value, ValueType};
+use cnets_geometry::{DVec3, Plane};
+
+/// The value an input has when nothing is wired: its literal, else its default.
+pub fn effective_value(node: &NodeInstance, k: usize) -> Option<Value> {
+    node.value(k)
+        .cloned()
+        .or_else(|| node.def.inputs.get(k).and_then(|p| p.default.clone()))
+}
+
+/// Slider range of a `param.number` node: its `min`, `max` and `step` values (defaults 0, 1, 0).
+pub fn slider_range(node: &NodeInstance) -> (f64, f64, f64) {
+    let get = |name: &str, fallback: f64| {
+        node.def
+            .input_index(name)
+            .and_then(|k| effective_value(node, k))
+            .and_then(|v| v.as_f64())
+            .filter(|v| v.is_finite())
+            .unwrap_or(fallback)
+    };
+    let (min, max) = (get("min", 0.0), get("max", 1.0));
+    let (min, max) = if min <= max { (min, max) } else { (max, min) };
+    (min, max, get("step", 0.0).max(0.0))
+}
+
+/// Whether an input gets an inline editor (an item of a simple type, or a list / tree port whose
+/// current value is a single number).
+pub fn has_editor(node: &NodeInstance, k: usize) -> bool {
+    let Some(port) = node.def.inputs.get(k) else {
+        return false;
+    };
+    let simple = matches!(
+        port.ty,
+        ValueType::Number
+            | ValueType::Integer
+            | ValueType::Boolean
+            | ValueType::Text
+            | ValueType::Point
+            | ValueType::Vector
+            | ValueType::Plane
+    );
+    if !simple {
+        return false;
+    }
+    match port.access {
+        Access::Item => true,
+        _ => matches!(
+            effective_value(node, k),
+            Some(Value::Number(_) | Value::Integer(_)) | None
+        ) && matches!(port.ty, ValueType::Number | ValueType::Integer),
+    }
+}
+
+/// Shows the editor of input `k`; returns the new value when it changed.
+pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<Value> {
+    let port: &PortDef = node.def.inputs.get(k)?;
+    let current = effective_value(node, k);
+    let id = ui.id().with((&node.id, k));
+    ui.push_id(id, |ui| match port.ty {
+        ValueType::Number => {
+            let mut x = current.as_ref().and_then(Value::as_f64).unwrap_or(0.0);
+            let changed = if node.def.id == "param.number" && port.name == "value" {
+                let (min, max, step) = slider_range(node);
+                let mut slider = egui::Slider::new(&mut x, min..=max).clamping(egui::SliderClamping::Never);
+                if step > 0.0 {
+                    slider = slider.step_by(step);
+                }
+                ui.add(slider).changed()
+            } else {
+                let speed = (x.abs() * 0.01).max(0.01);
+                ui.add(egui::DragValue::new(&mut x).speed(speed).max_decimals(6))
+                    .changed()
+            };
+            (changed && x.is_finite()).then_some(Value::Number(x))
+        }
+        ValueType::Integer => {
+            let mut i = match current {
+                Some(Value::Integer(i)) => i,
+                Some(v) => v.as_f64().map_or(0, |x| x as i64),
+                None => 0,
+            };
+            ui.add(egui::DragValue::new(&mut i).speed(0.1))
+                .changed()
+                .then_some(Value::Integer(i))
+        }
+        ValueType::Boolean => {
+            let mut b = matches!(current, Some(Value::Boolean(true)));
+            ui.checkbox(&mut b, "").changed().then_some(Value::Boolean(b))
+        }
+        ValueType::Text => {
+            let mut s = match &current {
+                Some(Value::Text(t)) => t.to_string(),
+                _ => String::new(),
+            };
+            ui.add(egui::TextEdit::singleline(&mut s).desired_width(110.0))
+                .changed()
+                .then(|| Value::text(&s))
+        }
+        ValueType::Point | ValueType::Vector => {
+            let v = current.as_ref().and_then(Value::as_vec3).unwrap_or(DVec3::ZERO);
+            let mut xyz = [v.x, v.y, v.z];
+            let mut changed = false;
+            ui.horizontal(|ui| {
+                for c in &mut xyz {
+                    changed |= ui
+                        .add(egui::DragValue::new(c).speed(0.05).max_decimals(4))
+                        .changed();
+                }
+            });
+            let v = DVec3::from_array(xyz);
+            (changed && v.is_finite()).then_some(if port.ty == ValueType::Point {
+                Value::Point(v)
+            } else {
+                Value::Vector(v)
+            })
+        }
+        ValueType::Plane => {
+            let current_name = match &current {
+                Some(Value::Plane(p)) => plane_name(p),
+                _ => "custom",
+            };
+            let mut picked = None;
+            egui::ComboBox::from_id_salt("plane")
+                .selected_text(current_name)
+                .width(70.0)
+                .show_ui(ui, |ui| {
+                    for (name, plane) in [("XY", Plane::XY), ("YZ", Plane::YZ), ("ZX", Plane::ZX)] {
+                        if ui.selectable_label(current_name == name, name).clicked() {
+                            picked = Some(Value::Plane(Arc::new(plane)));
+                        }
+                    }
+                });
+            picked
+        }
+        _ => None,
+    })
+    .inner
+}
+
+fn plane_name(p: &Plane) -> &'static str {
+    for (name, q) in [("XY", Plane::XY), ("YZ", Plane::YZ), ("ZX", Plane::ZX)] {
+        if *p == q {
+            return name;
+        }
+    }
+    "custom"
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cnets_engine::Graph;
+
+    #[test]
+    fn slider_range_comes_from_the_node() {
+        let mut g = Graph::new(Arc::new(cnets_nodes::registry()));
+        g.add_node("n", "param.number").unwrap();
+        assert_eq!(slider_range(g.node("n").unwrap()), (0.0, 1.0, 0.0));
+        g.set_value("n", "min", Value::Number(2.0)).unwrap();
+        g.set_value("n", "max", Value::Number(-1.0)).unwrap();
+        g.set_value("n", "step", Value::Number(0.5)).unwrap();
+        assert_eq!(slider_range(g.node("n").unwrap()), (-1.0, 2.0, 0.5));
+    }
+
+    #[test]
+    fn editors_for_simple_inputs_only() {
+        let mut g = Graph::new(Arc::new(cnets_nodes::registry()));
+        g.add_node("c", "cnets.construct").unwrap();
+        let n = g.node("c").unwrap();
+        let k = |name| n.def.input_index(name).unwrap();
+        assert!(!has_editor(n, k("directrix")), "polylines have no inline editor");
+        assert!(has_editor(n, k("apex")), "a list port holding one number gets a number field");
+        assert!(has_editor(n, k("normalized")));
+    }
+}

@@ -1,0 +1,400 @@
+//! Evaluation off the UI thread.
+//!
+//! A worker thread owns the engine [`Evaluator`]. The UI submits graph snapshots ([`Graph`] is
+//! cheap to clone: payloads are shared); the latest submission wins: submitting sets the cancel
+//! flag of the evaluation in progress (checked by the engine between nodes and between the items
+//! of mapped nodes), and the worker skips every queued snapshot but the newest. After an
+//! evaluation the worker builds the preview [`Scene`] (CPU work stays off the UI thread too) and
+//! sends a [`EvalResponse`] back with the status of every node.
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag, NodeResult, Value};
+use cnets_render::Scene;
+
+use crate::preview::{PreviewOptions, PreviewStats, build_scene};
+
+/// The state of one node after an evaluation, for badges and pin labels.
+#[derive(Clone, Debug, PartialEq)]
+pub enum NodeStatus {
+    /// Ran; warnings (if any) and a short description of each output value.
+    Ok {
+        /// Warnings the node reported.
+        warnings: Vec<String>,
+        /// One short text per output, e.g. `quad mesh 11 × 19`.
+        outputs: Vec<String>,
+        /// Run time of the last run in milliseconds.
+        time_ms: f64,
+    },
+    /// The node failed, or could not start (missing input, bad value).
+    Error(String),
+    /// An upstream node failed or is disabled.
+    Blocked(String),
+    /// Disabled by the designer.
+    Disabled,
+    /// Not evaluated in the editor (export nodes run on File ▸ Export only).
+    Idle,
+}
+
+impl NodeStatus {
+    /// The message for an error badge, if any.
+    pub fn error(&self) -> Option<&str> {
+        match self {
+            NodeStatus::Error(m) => Some(m),
+            _ => None,
+        }
+    }
+
+    /// The warnings of a node that ran.
+    pub fn warnings(&self) -> &[String] {
+        match self {
+            NodeStatus::Ok { warnings, .. } => warnings,
+            _ => &[],
+        }
+    }
+}
+
+/// One evaluation request.
+pub struct EvalRequest {
+    /// Sequence number (increasing).
+    pub seq: u64,
+    /// Document generation: a new generation starts a fresh evaluator.
+    pub generation: u64,
+    /// The graph to evaluate.
+    pub graph: Graph,
+    /// Preview display options.
+    pub options: PreviewOptions,
+    /// Folder relative import paths resolve against.
+    pub base_dir: Option<PathBuf>,
+    /// Set by the UI when a newer request supersedes this one.
+    pub cancel: Arc<AtomicBool>,
+    /// When the change was made (for latency figures).
+    pub changed_at: Instant,
+}
+
+/// The result of one evaluation.
+pub struct EvalResponse {
+    /// The request's sequence number.
+    pub seq: u64,
+    /// Status per node id.
+    pub statuses: HashMap<String, NodeStatus>,
+    /// The preview scene.
+    pub scene: Arc<Scene>,
+    /// Figures about it.
+    pub stats: PreviewStats,
+    /// Evaluation time in milliseconds (nodes only).
+    pub eval_ms: f64,
+    /// Nodes that ran.
+    pub ran: usize,
+    /// When the change was made.
+    pub changed_at: Instant,
+    /// When the response was ready.
+    pub finished_at: Instant,
+}
+
+/// The handle the UI keeps: submit snapshots, poll results.
+pub struct Worker {
+    tx: Option<Sender<EvalRequest>>,
+    rx: Receiver<EvalResponse>,
+    seq: u64,
+    last_received: u64,
+    running_cancel: Option<Arc<AtomicBool>>,
+    thread: Option<JoinHandle<()>>,
+}
+
+impl Worker {
+    /// Starts the worker thread; `wake` is called after each finished evaluation (e.g. to request
+    /// a repaint of the UI).
+    pub fn spawn(wake: Arc<dyn Fn() + Send + Sync>) -> Self {
+        let (tx, requests) = channel::<EvalRequest>();
+        let (responses, rx) = channel::<EvalResponse>();
+        let thread = std::thread::Builder::new()
+            .name("cnets-eval".into())
+            .spawn(move || run(requests, responses, wake))
+            .ok();
+        Self {
+            tx: Some(tx),
+            rx,
+            seq: 0,
+            last_received: 0,
+            running_cancel: None,
+            thread,
+        }
+    }
+
+    /// Submits a snapshot; cancels the evaluation in progress. Returns its sequence number.
+    pub fn submit(
+        &mut self,
+        graph: Graph,
+        generation: u64,
+        options: PreviewOptions,
+        base_dir: Option<PathBuf>,
+        changed_at: Instant,
+    ) -> u64 {
+        if let Some(flag) = self.running_cancel.take() {
+            flag.store(true, Ordering::Relaxed);
+        }
+        self.seq += 1;
+        let cancel = Arc::new(AtomicBool::new(false));
+        self.running_cancel = Some(cancel.clone());
+        if let Some(tx) = &self.tx {
+            let _ = tx.send(EvalRequest {
+                seq: self.seq,
+                generation,
+                graph,
+                options,
+                base_dir,
+                cancel,
+                changed_at,
+            });
+        }
+        self.seq
+    }
+
+    /// The newest finished response, if any arrived since the last poll (older ones are dropped).
+    pub fn poll(&mut self) -> Option<EvalResponse> {
+        let mut latest = None;
+        while let Ok(r) = self.rx.try_recv() {
+            latest = Some(r);
+        }
+        if let Some(r) = &latest {
+            self.last_received = r.seq;
+        }
+        latest
+    }
+
+    /// Whether a submitted snapshot has not been answered yet.
+    pub fn busy(&self) -> bool {
+        self.last_received < self.seq
+    }
+
+    /// Blocks until the newest submission is answered or `timeout` passes; returns it.
+    pub fn wait(&mut self, timeout: Duration) -> Option<EvalResponse> {
+        let deadline = Instant::now() + timeout;
+        let mut latest = None;
+        while self.busy() {
+            let left = deadline.saturating_duration_since(Instant::now());
+            if left.is_zero() {
+                break;
+            }
+            match self.rx.recv_timeout(left) {
+                Ok(r) => {
+                    self.last_received = r.seq;
+                    latest = Some(r);
+                }
+                Err(_) => break,
+            }
+        }
+        latest
+    }
+}
+
+impl Drop for Worker {
+    fn drop(&mut self) {
+        if let Some(flag) = self.running_cancel.take() {
+            flag.store(true, Ordering::Relaxed);
+        }
+        self.tx = None; // closes the channel: the thread ends
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+fn run(requests: Receiver<EvalRequest>, responses: Sender<EvalResponse>, wake: Arc<dyn Fn() + Send + Sync>) {
+    let mut evaluator = Evaluator::new();
+    let mut generation = None;
+    while let Ok(mut request) = requests.recv() {
+        // Latest change wins: skip every queued snapshot but the newest.
+        while let Ok(newer) = requests.try_recv() {
+            request = newer;
+        }
+        if generation != Some(request.generation) {
+            evaluator = Evaluator::new();
+            generation = Some(request.generation);
+        }
+        let Some(response) = evaluate(&mut evaluator, &request) else {
+            continue; // cancelled: a newer request is queued
+        };
+        if responses.send(response).is_err() {
+            break;
+        }
+        wake();
+    }
+}
+
+/// Evaluates a request with `evaluator` and builds its preview; `None` when it was cancelled.
+pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<EvalResponse> {
+    let graph = &request.graph;
+    let mut ctx = NodeContext::new(None, request.base_dir.clone());
+    ctx.cancel = request.cancel.clone();
+    let wanted: Vec<_> = graph
+        .nodes()
+        .filter(|(_, n)| !n.def.has_flag(NodeFlag::Export))
+        .map(|(k, _)| k)
+        .collect();
+    let start = Instant::now();
+    let summary = evaluator.evaluate(graph, &wanted, &ctx, &mut |_, _| {});
+    let eval_ms = start.elapsed().as_secs_f64() * 1e3;
+    if summary.cancelled || request.cancel.load(Ordering::Relaxed) {
+        return None;
+    }
+    let statuses = graph
+        .nodes()
+        .map(|(k, n)| {
+            let status = if n.def.has_flag(NodeFlag::Export) {
+                NodeStatus::Idle
+            } else {
+                match evaluator.result_at(graph, k) {
+                    Some(NodeResult::Ok(out)) => NodeStatus::Ok {
+                        warnings: out.warnings.clone(),
+                        outputs: out.values.iter().map(describe).collect(),
+                        time_ms: evaluator
+                            .time(graph, &n.id)
+                            .map_or(0.0, |t| t.as_secs_f64() * 1e3),
+                    },
+                    Some(NodeResult::Failed(m)) | Some(NodeResult::Invalid(m)) => {
+                        NodeStatus::Error(m.clone())
+                    }
+                    Some(NodeResult::Blocked(m)) => NodeStatus::Blocked(m.clone()),
+                    Some(NodeResult::Disabled) => NodeStatus::Disabled,
+                    None => NodeStatus::Idle,
+                }
+            };
+            (n.id.clone(), status)
+        })
+        .collect();
+    let (scene, stats) = build_scene(graph, evaluator, &request.options);
+    Some(EvalResponse {
+        seq: request.seq,
+        statuses,
+        scene: Arc::new(scene),
+        stats,
+        eval_ms,
+        ran: summary.ran,
+        changed_at: request.changed_at,
+        finished_at: Instant::now(),
+    })
+}
+
+/// A short description of a value for an output pin: `0.5`, `quad mesh 11 × 19`, `18 items`.
+pub fn describe(value: &Value) -> String {
+    match value {
+        Value::Null => "—".into(),
+        Value::Number(x) => format_number(*x),
+        Value::Integer(i) => i.to_string(),
+        Value::Boolean(b) => b.to_string(),
+        Value::Text(t) => {
+            let t: String = t.chars().take(24).collect();
+            format!("\"{t}\"")
+        }
+        Value::Point(p) | Value::Vector(p) => format!(
+            "({}, {}, {})",
+            format_number(p.x),
+            format_number(p.y),
+            format_number(p.z)
+        ),
+        Value::Plane(_) => "plane".into(),
+        Value::Lines(l) => format!("{} segments", l.len()),
+        Value::Polyline(p) => format!("polyline, {} points", p.points.len()),
+        Value::QuadMesh(g) => format!("quad mesh {} × {}", g.rows, g.cols),
+        Value::Mesh(m) => format!("mesh, {} faces", m.face_count()),
+        Value::List(items) => format!("{} items", items.len()),
+        Value::Record(r) => format!("record, {} fields", r.len()),
+    }
+}
+
+/// A number with at most 4 significant decimals, no trailing zeros.
+pub fn format_number(x: f64) -> String {
+    if !x.is_finite() {
+        return x.to_string();
+    }
+    if x != 0.0 && (x.abs() < 1e-3 || x.abs() >= 1e6) {
+        return format!("{x:.3e}");
+    }
+    let s = format!("{x:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Mutex;
+
+    fn graph() -> Graph {
+        let registry = Arc::new(cnets_nodes::registry());
+        let mut g = Graph::new(registry);
+        g.add_node("n", "param.number").unwrap();
+        g.add_node("arc", "curve.arc").unwrap();
+        g.connect("n", "value", "arc", "radius").unwrap();
+        g
+    }
+
+    #[test]
+    fn latest_submission_wins_and_results_come_back() {
+        let woken = Arc::new(Mutex::new(0));
+        let w2 = woken.clone();
+        let mut worker = Worker::spawn(Arc::new(move || *w2.lock().unwrap() += 1));
+        let mut g = graph();
+        let opts = PreviewOptions::default();
+        for k in 1..=20 {
+            g.set_value("n", "value", Value::Number(k as f64 / 20.0)).unwrap();
+            worker.submit(g.clone(), 0, opts, None, Instant::now());
+        }
+        let last = worker.wait(Duration::from_secs(20)).expect("an answer");
+        assert_eq!(last.seq, 20, "the newest submission is answered last");
+        assert!(!worker.busy());
+        assert!(matches!(last.statuses["arc"], NodeStatus::Ok { .. }));
+        assert!(!last.scene.is_empty(), "the arc is previewed");
+        assert!(*woken.lock().unwrap() >= 1);
+    }
+
+    #[test]
+    fn cancelled_requests_give_no_response() {
+        let g = graph();
+        let cancel = Arc::new(AtomicBool::new(true));
+        let request = EvalRequest {
+            seq: 1,
+            generation: 0,
+            graph: g,
+            options: PreviewOptions::default(),
+            base_dir: None,
+            cancel,
+            changed_at: Instant::now(),
+        };
+        assert!(evaluate(&mut Evaluator::new(), &request).is_none());
+    }
+
+    #[test]
+    fn errors_are_reported_per_node() {
+        let mut g = graph();
+        g.set_value("arc", "count", Value::Integer(0)).unwrap();
+        let request = EvalRequest {
+            seq: 1,
+            generation: 0,
+            graph: g,
+            options: PreviewOptions::default(),
+            base_dir: None,
+            cancel: Arc::new(AtomicBool::new(false)),
+            changed_at: Instant::now(),
+        };
+        let r = evaluate(&mut Evaluator::new(), &request).unwrap();
+        assert!(r.statuses["arc"].error().is_some(), "{:?}", r.statuses["arc"]);
+        assert!(matches!(r.statuses["n"], NodeStatus::Ok { .. }));
+    }
+
+    #[test]
+    fn numbers_are_short() {
+        assert_eq!(format_number(0.5), "0.5");
+        assert_eq!(format_number(2.0), "2");
+        assert_eq!(format_number(1.0 / 3.0), "0.3333");
+        assert_eq!(format_number(-0.0), "0");
+    }
+}
