@@ -164,6 +164,8 @@ pub struct NodeDef {
     pub flags: Vec<NodeFlag>,
     /// The evaluation function.
     pub run: RunFn,
+    /// Per-type data of dynamic node types (e.g. a cluster's subgraph), for introspection.
+    pub extension: Option<Arc<dyn std::any::Any + Send + Sync>>,
 }
 
 impl fmt::Debug for NodeDef {
@@ -198,6 +200,7 @@ impl NodeDef {
             outputs: Vec::new(),
             flags: Vec::new(),
             run: Arc::new(|_, _| Err(NodeError::new("node has no implementation"))),
+            extension: None,
         }
     }
 
@@ -265,6 +268,11 @@ impl NodeDef {
     pub fn summary(&self) -> &str {
         self.doc.lines().next().unwrap_or("")
     }
+}
+
+/// A port name from a Rust identifier: raw identifiers (`r#type`) lose their `r#`.
+pub fn port_name(ident: &'static str) -> &'static str {
+    ident.strip_prefix("r#").unwrap_or(ident)
 }
 
 /// Joins doc-comment lines (as captured by the `node!` macro) into one trimmed text: lines are

@@ -48,7 +48,7 @@ macro_rules! node {
             $(
                 .input({
                     let port = $crate::PortDef::of::<$ikind>(
-                        stringify!($iname),
+                        $crate::node::port_name(stringify!($iname)),
                         $crate::node::doc_text(&[$($idoc),*]),
                     );
                     $( let port = port.with_default($crate::kinds::default_value::<$ikind, _>($idef)); )?
@@ -57,7 +57,7 @@ macro_rules! node {
             )*
             $(
                 .output($crate::PortDef::of::<$okind>(
-                    stringify!($oname),
+                    $crate::node::port_name(stringify!($oname)),
                     $crate::node::doc_text(&[$($odoc),*]),
                 ))
             )*
@@ -67,7 +67,7 @@ macro_rules! node {
                 $(
                     let $iname = <$ikind as $crate::PortKind>::extract(
                         __it.next().ok_or_else(|| $crate::NodeError::new("missing input"))?,
-                        stringify!($iname),
+                        $crate::node::port_name(stringify!($iname)),
                     )?;
                 )*
                 $( let $ctx: &$crate::NodeContext = __ctx; )?

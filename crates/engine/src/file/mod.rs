@@ -25,13 +25,15 @@
 pub mod literal;
 pub mod ron;
 
+use std::collections::HashMap;
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use self::literal::{LiteralError, push_indent, quote};
 use self::ron::{Kind, Node, Pos};
 use crate::atomic::write_atomic;
+use crate::cluster::{CLUSTER_TYPE, Cluster, ClusterSource};
 use crate::graph::{Graph, GraphError, WireRef};
 use crate::registry::Registry;
 
@@ -100,10 +102,69 @@ pub struct Document {
     pub warnings: Vec<Diagnostic>,
 }
 
+/// Where cluster sources are looked up, and the chain of files being loaded (to refuse recursion).
+#[derive(Debug, Clone, Default)]
+pub struct LoadOptions {
+    /// Folder relative cluster sources resolve against first (the graph file's folder).
+    pub base_dir: Option<PathBuf>,
+    /// Library folders searched next for cluster sources.
+    pub library: Vec<PathBuf>,
+    /// Canonical paths of the files being loaded, outermost first.
+    stack: Vec<PathBuf>,
+}
+
+impl LoadOptions {
+    /// Options for loading `path`: its folder first, then the folders of `CNETS_LIBRARY`
+    /// (separated like `PATH`).
+    pub fn for_file(path: &Path) -> Self {
+        let library = std::env::var_os("CNETS_LIBRARY")
+            .map(|v| std::env::split_paths(&v).collect())
+            .unwrap_or_default();
+        Self {
+            base_dir: path.parent().map(Path::to_path_buf),
+            library,
+            stack: Vec::new(),
+        }
+    }
+
+    /// Adds a library folder (builder style).
+    pub fn with_library(mut self, dir: impl Into<PathBuf>) -> Self {
+        self.library.push(dir.into());
+        self
+    }
+
+    /// Finds a cluster source: relative to the base folder, then in each library folder (with or
+    /// without the `.ron` extension).
+    fn resolve(&self, written: &str) -> Result<PathBuf, Vec<PathBuf>> {
+        let rel = Path::new(written);
+        let mut looked = Vec::new();
+        let dirs = self.base_dir.iter().chain(&self.library);
+        let candidates: Vec<PathBuf> = if rel.is_absolute() {
+            vec![rel.to_path_buf()]
+        } else {
+            dirs.map(|d| d.join(rel))
+                .chain(std::iter::once(rel.to_path_buf()).filter(|_| self.base_dir.is_none()))
+                .collect()
+        };
+        for c in candidates {
+            for path in [c.clone(), c.with_extension("ron")] {
+                if path.is_file() {
+                    return Ok(path);
+                }
+                looked.push(path);
+            }
+        }
+        Err(looked)
+    }
+}
+
 struct Loader<'a> {
     file: &'a str,
     diagnostics: Vec<Diagnostic>,
     warnings: Vec<Diagnostic>,
+    options: &'a LoadOptions,
+    /// Cluster files loaded so far in this file: each is read once, instances get their own copy.
+    clusters: HashMap<PathBuf, Option<Arc<Cluster>>>,
 }
 
 impl Loader<'_> {
@@ -120,8 +181,23 @@ impl Loader<'_> {
     }
 }
 
-/// Reads a graph file from disk.
+/// Reads a graph file from disk (cluster sources resolve next to it, then in `CNETS_LIBRARY`).
 pub fn load_file(path: &Path, registry: &Arc<Registry>) -> Result<Document, LoadError> {
+    load_file_with(path, registry, &LoadOptions::for_file(path))
+}
+
+/// Reads a graph file from disk with explicit options.
+pub fn load_file_with(
+    path: &Path,
+    registry: &Arc<Registry>,
+    options: &LoadOptions,
+) -> Result<Document, LoadError> {
+    let mut options = options.clone();
+    if let Ok(canonical) = path.canonicalize()
+        && options.stack.last() != Some(&canonical)
+    {
+        options.stack.push(canonical);
+    }
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| LoadError {
         diagnostics: vec![Diagnostic {
@@ -130,15 +206,28 @@ pub fn load_file(path: &Path, registry: &Arc<Registry>) -> Result<Document, Load
             message: format!("cannot read: {e}"),
         }],
     })?;
-    load_str(&text, &file, registry)
+    load_str_with(&text, &file, registry, &options)
 }
 
-/// Parses and validates a graph file's text; `file` names it in diagnostics.
+/// Parses and validates a graph file's text; `file` names it in diagnostics. Relative cluster
+/// sources resolve against the current directory.
 pub fn load_str(text: &str, file: &str, registry: &Arc<Registry>) -> Result<Document, LoadError> {
+    load_str_with(text, file, registry, &LoadOptions::default())
+}
+
+/// Parses and validates a graph file's text with explicit options.
+pub fn load_str_with(
+    text: &str,
+    file: &str,
+    registry: &Arc<Registry>,
+    options: &LoadOptions,
+) -> Result<Document, LoadError> {
     let mut loader = Loader {
         file,
         diagnostics: Vec::new(),
         warnings: Vec::new(),
+        options,
+        clusters: HashMap::new(),
     };
     let root = match ron::parse(text) {
         Ok(root) => root,
@@ -154,7 +243,8 @@ pub fn load_str(text: &str, file: &str, registry: &Arc<Registry>) -> Result<Docu
         document.warnings = loader.warnings;
         Ok(document)
     } else {
-        loader.diagnostics.sort_by_key(|d| d.pos);
+        let own = file.to_string();
+        loader.diagnostics.sort_by_key(|d| (d.file != own, d.pos));
         Err(LoadError {
             diagnostics: loader.diagnostics,
         })
@@ -307,9 +397,13 @@ fn load_node(loader: &mut Loader<'_>, id: &str, body: &Node, graph: &mut Graph) 
         return false;
     };
     let get = |name: &str| fields.iter().find(|(f, _)| f.name == name).map(|(_, v)| v);
+    let is_cluster = get("type").and_then(Node::as_str) == Some(CLUSTER_TYPE);
     for (f, _) in fields {
-        if !["type", "position", "inputs", "preview", "enabled"].contains(&f.name.as_str()) {
-            loader.error(f.pos, format!("node '{id}': unknown field '{}'; expected type, position, inputs, preview, enabled", f.name));
+        let known = ["type", "position", "inputs", "preview", "enabled"].contains(&f.name.as_str())
+            || (is_cluster && ["source", "graph"].contains(&f.name.as_str()));
+        if !known {
+            let extra = if is_cluster { ", source, graph" } else { "" };
+            loader.error(f.pos, format!("node '{id}': unknown field '{}'; expected type, position, inputs, preview, enabled{extra}", f.name));
         }
     }
     let Some(type_node) = get("type") else {
@@ -323,7 +417,22 @@ fn load_node(loader: &mut Loader<'_>, id: &str, body: &Node, graph: &mut Graph) 
         );
         return false;
     };
-    if let Err(e) = graph.add_node(id, type_id) {
+    let added = if type_id == CLUSTER_TYPE {
+        match load_cluster(
+            loader,
+            id,
+            body,
+            graph.registry().clone(),
+            get("source"),
+            get("graph"),
+        ) {
+            Some(cluster) => graph.add_node_with_def(id, Arc::new(cluster.node_def())),
+            None => return false,
+        }
+    } else {
+        graph.add_node(id, type_id)
+    };
+    if let Err(e) = added {
         let pos = if matches!(e, GraphError::UnknownType { .. }) {
             type_node.pos
         } else {
@@ -365,6 +474,139 @@ fn load_node(loader: &mut Loader<'_>, id: &str, body: &Node, graph: &mut Graph) 
         load_inputs(loader, id, inputs, graph);
     }
     true
+}
+
+/// Loads the subgraph of a cluster node, from its `source` file or its inline `graph`.
+fn load_cluster(
+    loader: &mut Loader<'_>,
+    id: &str,
+    body: &Node,
+    registry: Arc<Registry>,
+    source: Option<&Node>,
+    inline: Option<&Node>,
+) -> Option<Arc<Cluster>> {
+    match (source, inline) {
+        (Some(_), Some(g)) => {
+            loader.error(
+                g.pos,
+                format!("node '{id}': a cluster has either 'source' or 'graph', not both"),
+            );
+            None
+        }
+        (None, None) => {
+            loader.error(
+                body.pos,
+                format!(
+                    "node '{id}': a cluster needs 'source: \"file.ron\"' or an inline 'graph: (..)'"
+                ),
+            );
+            None
+        }
+        (Some(s), None) => {
+            let Some(written) = s.as_str() else {
+                loader.error(
+                    s.pos,
+                    format!("node '{id}': 'source' must be a string (a graph file path)"),
+                );
+                return None;
+            };
+            let resolved = match loader.options.resolve(written) {
+                Ok(p) => p,
+                Err(looked) => {
+                    let looked: Vec<String> =
+                        looked.iter().map(|p| p.display().to_string()).collect();
+                    loader.error(
+                        s.pos,
+                        format!(
+                            "node '{id}': cluster source '{written}' not found (looked for: {})",
+                            looked.join(", ")
+                        ),
+                    );
+                    return None;
+                }
+            };
+            let canonical = resolved.canonicalize().unwrap_or_else(|_| resolved.clone());
+            if loader.options.stack.contains(&canonical) {
+                let mut chain: Vec<String> =
+                    loader.options.stack.iter().map(|p| short_name(p)).collect();
+                chain.push(short_name(&canonical));
+                loader.error(
+                    s.pos,
+                    format!("node '{id}': recursive cluster: {}", chain.join(" -> ")),
+                );
+                return None;
+            }
+            if let Some(loaded) = loader.clusters.get(&canonical).cloned() {
+                if loaded.is_none() {
+                    loader.error(
+                        s.pos,
+                        format!("node '{id}': cluster source '{written}' has errors"),
+                    );
+                }
+                return loaded.map(|c| c.duplicate());
+            }
+            let mut options = loader.options.clone();
+            options.base_dir = resolved.parent().map(Path::to_path_buf);
+            options.stack.push(canonical.clone());
+            let cluster =
+                load_cluster_file(loader, id, s.pos, written, resolved, &registry, &options);
+            loader.clusters.insert(canonical, cluster.clone());
+            cluster
+        }
+        (None, Some(g)) => {
+            let doc = load_root(loader, g, &registry);
+            match Cluster::new(
+                ClusterSource::Inline,
+                doc.graph,
+                doc.meta,
+                loader.options.base_dir.clone(),
+            ) {
+                Ok(c) => Some(c),
+                Err(e) => {
+                    loader.error(g.pos, format!("node '{id}': inline cluster: {e}"));
+                    None
+                }
+            }
+        }
+    }
+}
+
+/// Loads a cluster's source file (once per including file).
+fn load_cluster_file(
+    loader: &mut Loader<'_>,
+    id: &str,
+    pos: Pos,
+    written: &str,
+    resolved: PathBuf,
+    registry: &Arc<Registry>,
+    options: &LoadOptions,
+) -> Option<Arc<Cluster>> {
+    match load_file_with(&resolved, registry, options) {
+        Ok(doc) => {
+            let source = ClusterSource::File {
+                written: written.to_string(),
+                resolved,
+            };
+            Cluster::new(source, doc.graph, doc.meta, options.base_dir.clone())
+                .map_err(|e| loader.error(pos, format!("node '{id}': cluster '{written}': {e}")))
+                .ok()
+        }
+        Err(e) => {
+            loader.error(
+                pos,
+                format!("node '{id}': cluster source '{written}' has errors"),
+            );
+            loader.diagnostics.extend(e.diagnostics);
+            None
+        }
+    }
+}
+
+fn short_name(p: &Path) -> String {
+    p.file_name().map_or_else(
+        || p.display().to_string(),
+        |n| n.to_string_lossy().to_string(),
+    )
 }
 
 fn load_inputs(loader: &mut Loader<'_>, id: &str, inputs: &Node, graph: &mut Graph) {
@@ -493,6 +735,30 @@ pub fn to_ron(graph: &Graph, meta: &GraphMeta) -> String {
         out.push_str("type: ");
         quote(&mut out, &node.def.id);
         out.push_str(",\n");
+        if let Some(cluster) = Cluster::of(&node.def) {
+            push_indent(&mut out, 3);
+            match &cluster.source {
+                ClusterSource::File { written, .. } => {
+                    out.push_str("source: ");
+                    quote(&mut out, written);
+                    out.push_str(",\n");
+                }
+                ClusterSource::Inline => {
+                    out.push_str("graph: ");
+                    let inner = to_ron(&cluster.template, &cluster.meta);
+                    for (k, line) in inner.trim_end().lines().enumerate() {
+                        if k > 0 {
+                            out.push('\n');
+                            if !line.is_empty() {
+                                push_indent(&mut out, 3);
+                            }
+                        }
+                        out.push_str(line);
+                    }
+                    out.push_str(",\n");
+                }
+            }
+        }
         push_indent(&mut out, 3);
         out.push_str(&format!(
             "position: ({:?}, {:?}),\n",

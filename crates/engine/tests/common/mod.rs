@@ -174,6 +174,9 @@ pub fn registry() -> Arc<Registry> {
     ] {
         r.register(def);
     }
+    for def in cnets_engine::cluster::nodes() {
+        r.register(def);
+    }
     Arc::new(r)
 }
 
