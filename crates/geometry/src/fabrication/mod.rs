@@ -1,2 +1,40 @@
-//! Supplementary and fabrication tools (paper Sec. 4.4.2): apex from widths, torsion-free axes,
-//! support layers, parallel transforms, strips and unrolling, mesh cutting, mirroring and joining.
+//! Supplementary and fabrication tools (paper Sec. 4.4.2, construction notes §7): apex from widths,
+//! torsion-free node axes, conical and parallel support layers, the parallel (Combescure) transform,
+//! strips and unrolling, and polygon-mesh tools (cut by a plane, mirror, join, weld, per-face
+//! attributes, triangulation). Every formula is documented in its module and in
+//! `docs/fabrication.md`; errors are typed ([`FabricationError`]) and name the offending indices.
+
+// `!(x > tol)` is used on purpose: it is also true for NaN, so non-finite values fail the checks.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+pub mod apex_graph;
+pub mod axes;
+pub mod conical;
+pub mod cut;
+pub mod error;
+pub mod face_attributes;
+pub mod join;
+pub mod layout;
+pub mod lines;
+pub mod mirror;
+pub mod parallel_support;
+pub mod parallel_transform;
+pub mod polygon;
+pub mod strips;
+pub mod unroll;
+
+pub use apex_graph::{graph_to_apex, graph_to_normalized_apex};
+pub use axes::{directrix_for, torsion_free_axes};
+pub use conical::conical_support;
+pub use cut::{Cut, cut_by_plane};
+pub use error::FabricationError;
+pub use face_attributes::{
+    FaceClass, face_classes, face_planarity, planarity_colour, polygon_planarity,
+};
+pub use join::{join, weld};
+pub use mirror::mirror;
+pub use parallel_support::parallel_support;
+pub use parallel_transform::{ParallelTransform, parallel_transform};
+pub use polygon::triangulate;
+pub use strips::{Strip, StripDirection, extract_strips, strips};
+pub use unroll::{UnrollOptions, Unrolled, UnrolledStrip, unroll_strips};
