@@ -4,6 +4,7 @@
 mod commands;
 mod failure;
 mod inputs;
+mod library;
 mod progress;
 
 use std::process::ExitCode;

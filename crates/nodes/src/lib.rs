@@ -38,6 +38,7 @@ pub fn all() -> Vec<NodeDef> {
         fabrication::nodes(),
         mesh::nodes(),
         io_export::nodes(),
+        cnets_engine::cluster::nodes(),
     ]
     .into_iter()
     .flatten()

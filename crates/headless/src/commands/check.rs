@@ -4,21 +4,30 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
 
-use cnets_engine::file::load_file;
+use cnets_engine::file::load_file_with;
 
 use crate::failure::CommandResult;
+use crate::library;
 
 /// Arguments of `cnets check`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// The graph file.
     graph: PathBuf,
+    /// Extra folders searched for cluster graph files (besides the graph's own folder and
+    /// `CNETS_LIBRARY`).
+    #[arg(long)]
+    library: Vec<PathBuf>,
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
     let registry = Arc::new(cnets_nodes::registry());
-    let doc = load_file(&args.graph, &registry)?;
+    let doc = load_file_with(
+        &args.graph,
+        &registry,
+        &library::options(&args.graph, &args.library),
+    )?;
     for w in &doc.warnings {
         eprintln!("warning: {w}");
     }

@@ -11,6 +11,8 @@ use serde_json::{Map, Value as Json};
 
 use crate::failure::{CommandResult, Failure};
 use crate::inputs::{node_inputs, read_json};
+use crate::library;
+use std::sync::Arc;
 
 /// Arguments of `cnets eval`.
 #[derive(Debug, clap::Args)]
@@ -26,12 +28,21 @@ pub struct Args {
     /// Output directory for export nodes.
     #[arg(long, default_value = "out")]
     out: PathBuf,
+    /// Extra folders searched for cluster graph files.
+    #[arg(long)]
+    library: Vec<PathBuf>,
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let registry = cnets_nodes::registry();
-    let Some(def) = registry.get(&args.node_type) else {
+    let registry = Arc::new(cnets_nodes::registry());
+    let cluster;
+    let def = if let Some(path) = args.node_type.strip_prefix(library::PREFIX) {
+        cluster = library::cluster_def(path, &registry, &args.library)?;
+        &cluster
+    } else if let Some(def) = registry.get(&args.node_type) {
+        def.as_ref()
+    } else {
         let hints = registry.similar_ids(&args.node_type);
         let hint = if hints.is_empty() {
             String::new()

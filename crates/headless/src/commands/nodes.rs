@@ -3,7 +3,12 @@
 use std::process::ExitCode;
 
 use cnets_engine::value::json::to_json;
-use cnets_engine::{NodeDef, PortDef};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use cnets_engine::{NodeDef, PortDef, Registry};
+
+use crate::library;
 use serde_json::{Value as Json, json};
 
 use crate::failure::CommandResult;
@@ -17,6 +22,9 @@ pub struct Args {
     /// Print the Markdown reference (docs/nodes.md).
     #[arg(long)]
     markdown: bool,
+    /// List the graphs of this folder as node types (clusters) instead of the built-in nodes.
+    #[arg(long, value_name = "DIR")]
+    library: Option<PathBuf>,
 }
 
 fn port_json(p: &PortDef, with_default: bool) -> Json {
@@ -43,7 +51,17 @@ pub fn node_json(def: &NodeDef) -> Json {
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let registry = cnets_nodes::registry();
+    let shared = Arc::new(cnets_nodes::registry());
+    let registry = match &args.library {
+        Some(dir) => {
+            let mut r = Registry::new();
+            for def in library::folder_defs(dir, &shared)? {
+                r.register(def);
+            }
+            r
+        }
+        None => (*shared).clone(),
+    };
     if args.json {
         let all: Vec<Json> = registry.iter().map(|d| node_json(d)).collect();
         println!("{}", serde_json::to_string_pretty(&all).unwrap_or_default());

@@ -5,13 +5,14 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Instant;
 
-use cnets_engine::file::load_file;
+use cnets_engine::file::load_file_with;
 use cnets_engine::value::json::to_json;
 use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag, NodeResult, ValueType};
 use serde_json::{Map, Value as Json, json};
 
 use crate::failure::{CommandResult, Failure};
 use crate::inputs::decode_input;
+use crate::library;
 use crate::progress::Progress;
 
 /// Arguments of `cnets run`.
@@ -19,6 +20,10 @@ use crate::progress::Progress;
 pub struct Args {
     /// The graph file.
     graph: PathBuf,
+    /// Extra folders searched for cluster graph files (besides the graph's own folder and
+    /// `CNETS_LIBRARY`).
+    #[arg(long)]
+    library: Vec<PathBuf>,
     /// Override an input before running: `node.input=value` (value in JSON; plain text for text inputs).
     #[arg(long = "set", value_name = "NODE.INPUT=VALUE")]
     sets: Vec<String>,
@@ -78,7 +83,11 @@ fn status(result: Option<&NodeResult>) -> &'static str {
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
     let registry = Arc::new(cnets_nodes::registry());
-    let mut doc = load_file(&args.graph, &registry)?;
+    let mut doc = load_file_with(
+        &args.graph,
+        &registry,
+        &library::options(&args.graph, &args.library),
+    )?;
     for set in &args.sets {
         apply_set(&mut doc.graph, set)?;
     }
