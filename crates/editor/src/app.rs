@@ -166,6 +166,9 @@ pub struct EditorApp {
     pub latency: Latency,
     /// Whether the window should close.
     pub quit: bool,
+    /// Show timings and the busy spinner in the status bar (snapshot tests turn them off: they
+    /// vary from run to run).
+    pub show_timings: bool,
     worker: Worker,
     submitted: Option<(u64, u64, crate::preview::PreviewOptions)>,
     pending_change: Option<Instant>,
@@ -213,6 +216,7 @@ impl EditorApp {
             settings,
             latency: Latency::default(),
             quit: false,
+            show_timings: true,
             worker: Worker::spawn(options.wake),
             submitted: None,
             pending_change: Some(Instant::now()),
@@ -402,6 +406,7 @@ impl EditorApp {
             }
             MenuAction::AddNode => self.palette.open_at([0.0, 0.0]),
             MenuAction::Fit => self.viewport.fit(),
+            MenuAction::FitCanvas => self.canvas.fit(),
             MenuAction::SetPreview(o) => self.viewport.options = o,
             MenuAction::Quit => self.quit = true,
         }
@@ -432,6 +437,7 @@ impl EditorApp {
                 take(cmd, Key::V, MenuAction::Paste);
                 take(Modifiers::NONE, Key::Delete, MenuAction::Delete);
                 take(Modifiers::NONE, Key::F, MenuAction::Fit);
+                take(Modifiers::NONE, Key::Home, MenuAction::FitCanvas);
             }
         });
         // Copy and paste arrive as events, not key presses, on some platforms.
@@ -516,13 +522,15 @@ impl EditorApp {
             ui.horizontal(|ui| {
                 ui.label(self.doc.title());
                 ui.separator();
-                if self.worker.busy() {
-                    ui.spinner();
+                if self.show_timings {
+                    if self.worker.busy() {
+                        ui.spinner();
+                    }
+                    ui.weak(format!(
+                        "eval {:.1} ms · scene {:.1} ms · change→picture {:.1} ms",
+                        self.latency.eval_ms, self.latency.scene_ms, self.latency.last_ms
+                    ));
                 }
-                ui.weak(format!(
-                    "eval {:.1} ms · scene {:.1} ms · change→picture {:.1} ms",
-                    self.latency.eval_ms, self.latency.scene_ms, self.latency.last_ms
-                ));
                 ui.separator();
                 ui.label(&self.message);
             });

@@ -128,6 +128,10 @@ pub struct Canvas {
     /// Nodes selected (Shift+click, box selection) in the last frame.
     pub selected: Vec<String>,
     widget: SnarlWidget,
+    /// Frame the whole graph once its nodes have been measured (after a new document).
+    fit_pending: bool,
+    /// Screen rectangle of the canvas in the last frame.
+    ui_rect: Rect,
 }
 
 impl Default for Canvas {
@@ -160,7 +164,29 @@ impl Canvas {
             focused: None,
             selected: Vec::new(),
             widget: SnarlWidget::new().id(egui::Id::new("cnets-canvas")).style(style()),
+            fit_pending: true,
+            ui_rect: Rect::NOTHING,
         }
+    }
+
+    /// Frames the whole graph on the next frames (on a new document, or View ▸ Frame graph).
+    pub fn fit(&mut self) {
+        self.fit_pending = true;
+    }
+
+    /// Screen rectangle of the canvas in the last frame.
+    pub fn screen_rect(&self) -> Rect {
+        self.ui_rect
+    }
+
+    /// The transform that frames canvas rectangle `bb` in screen rectangle `ui` (scale ≤ 1).
+    fn framing(bb: Rect, ui: Rect) -> Option<TSTransform> {
+        if !(bb.is_positive() && ui.is_positive()) {
+            return None;
+        }
+        let bb = bb.expand(30.0);
+        let scale = (ui.width() / bb.width()).min(ui.height() / bb.height()).clamp(0.3, 1.0);
+        Some(TSTransform::new(ui.center().to_vec2() - bb.center().to_vec2() * scale, scale))
     }
 
     /// Makes the snarl mirror `graph`: adds and removes nodes, copies positions, diffs wires.
@@ -237,6 +263,12 @@ impl Canvas {
         self.rects.get(node).map(|r| self.to_global * *r)
     }
 
+    /// Screen position of a canvas point (accessibility rectangles of widgets on the canvas are
+    /// in canvas coordinates).
+    pub fn to_screen(&self, canvas: Pos2) -> Pos2 {
+        self.to_global * canvas
+    }
+
     /// Canvas position of a screen point.
     pub fn to_canvas(&self, screen: Pos2) -> Pos2 {
         self.to_global.inverse() * screen
@@ -260,6 +292,16 @@ impl Canvas {
     ) -> Vec<CanvasAction> {
         self.sync(graph);
         self.pins.borrow_mut().clear();
+        self.ui_rect = ui.available_rect_before_wrap();
+        // Frame the graph once every node has been measured in an earlier frame.
+        let mut fit = None;
+        if self.fit_pending && !self.rects.is_empty() && self.rects.len() == graph.node_count() {
+            let bb = self.rects.values().fold(Rect::NOTHING, |a, r| a.union(*r));
+            fit = Self::framing(bb, self.ui_rect);
+            self.fit_pending = false;
+        } else if self.fit_pending && graph.node_count() == 0 {
+            self.fit_pending = false;
+        }
         let mut viewer = Viewer {
             graph,
             statuses,
@@ -270,20 +312,23 @@ impl Canvas {
             rects: HashMap::new(),
             focused: self.focused.clone(),
             pressed_node: None,
+            fit,
         };
         let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
         self.to_global = viewer.to_global;
         self.rects = viewer.rects;
-        if let Some(id) = viewer.pressed_node {
-            self.focused = Some(id);
-        } else if response.clicked() {
+        if let Some(id) = &viewer.pressed_node {
+            self.focused = Some(id.clone());
+        } else if response.clicked() && !response.double_clicked() {
             self.focused = None;
         }
+
         let mut actions = viewer.actions;
+        // The canvas response lives in the transformed layer: its pointer position is already in
+        // canvas coordinates.
         if response.double_clicked()
-            && let Some(pos) = response.interact_pointer_pos()
+            && let Some(p) = response.interact_pointer_pos()
         {
-            let p = self.to_canvas(pos);
             actions.push(CanvasAction::OpenPalette([p.x, p.y]));
         }
         self.selected = self
@@ -444,6 +489,7 @@ struct Viewer<'a> {
     rects: HashMap<String, Rect>,
     focused: Option<String>,
     pressed_node: Option<String>,
+    fit: Option<TSTransform>,
 }
 
 impl Viewer<'_> {
@@ -649,7 +695,14 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
             return;
         };
-        if ui.input(|i| i.pointer.primary_pressed()) && ui.rect_contains_pointer(rect) {
+        // The pointer is in screen coordinates, the node rectangle in canvas coordinates.
+        let pressed_at = ui.input(|i| {
+            i.pointer
+                .primary_pressed()
+                .then(|| i.pointer.interact_pos())
+                .flatten()
+        });
+        if pressed_at.is_some_and(|p| rect.contains(self.to_global.inverse() * p)) {
             self.pressed_node = Some(id.clone());
         }
         self.rects.insert(id, rect);
@@ -733,6 +786,9 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
     }
 
     fn current_transform(&mut self, to_global: &mut TSTransform, _snarl: &mut Snarl<CanvasNode>) {
+        if let Some(fit) = self.fit.take() {
+            *to_global = fit;
+        }
         self.to_global = *to_global;
     }
 }

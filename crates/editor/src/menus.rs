@@ -37,6 +37,8 @@ pub enum MenuAction {
     AddNode,
     /// Frame the geometry in the viewport.
     Fit,
+    /// Frame the whole graph on the canvas.
+    FitCanvas,
     /// Change the viewport's display options.
     SetPreview(PreviewOptions),
     /// Close the editor.
@@ -118,7 +120,8 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
             pick(ui, "Node…", "double-click canvas", MenuAction::AddNode, true);
         });
         ui.menu_button("View", |ui| {
-            pick(ui, "Frame all", "F", MenuAction::Fit, true);
+            pick(ui, "Frame geometry", "F", MenuAction::Fit, true);
+            pick(ui, "Frame graph", "Home", MenuAction::FitCanvas, true);
             ui.separator();
             ui.label("Colour faces by");
             for mode in ColorMode::ALL {

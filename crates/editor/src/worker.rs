@@ -353,7 +353,12 @@ mod tests {
         assert!(!worker.busy());
         assert!(matches!(last.statuses["arc"], NodeStatus::Ok { .. }));
         assert!(!last.scene.is_empty(), "the arc is previewed");
-        assert!(*woken.lock().unwrap() >= 1);
+        // The wake call follows the send: give it a moment.
+        let deadline = Instant::now() + Duration::from_secs(5);
+        while *woken.lock().unwrap() == 0 && Instant::now() < deadline {
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        assert!(*woken.lock().unwrap() >= 1, "the UI is woken after a result");
     }
 
     #[test]

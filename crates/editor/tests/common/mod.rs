@@ -1,0 +1,67 @@
+//! Shared test setup: the editor in a kittest harness rendered with wgpu.
+
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Duration;
+
+use cnets_editor::app::{AppOptions, EditorApp};
+use cnets_editor::viewport::GpuTarget;
+use egui_kittest::Harness;
+use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
+
+/// A fresh, empty settings folder for one test.
+pub fn temp_config(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("cnets-editor-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The repository's `graphs/` folder.
+pub fn graphs_dir() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../graphs"))
+}
+
+/// The editor on the default graph (the built-in one: the examples folder given has no
+/// torus-monge.ron), in a 1280 × 800 harness rendered with wgpu, first evaluation done.
+pub fn harness(name: &str) -> Harness<'static, EditorApp> {
+    harness_with(name, None, temp_config(name))
+}
+
+/// Like [`harness`] with a file and settings folder.
+pub fn harness_with(name: &str, file: Option<PathBuf>, config: PathBuf) -> Harness<'static, EditorApp> {
+    let _ = name;
+    let rs = create_render_state(default_wgpu_setup(), egui_wgpu::RendererOptions::PREDICTABLE);
+    let gpu = GpuTarget::from_render_state(&rs, 1, None);
+    let mut app = EditorApp::new(AppOptions {
+        gpu: Some(gpu),
+        config_dir: config,
+        file,
+        // A folder without torus-monge.ron, so the built-in default graph is used.
+        examples_dir: std::env::temp_dir(),
+        wake: Arc::new(|| {}),
+    });
+    app.show_timings = false;
+    app.wait_for_worker(Duration::from_secs(60));
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .with_step_dt(1.0 / 60.0)
+        .renderer(WgpuTestRenderer::from_render_state(rs))
+        .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app);
+    settle(&mut h);
+    h
+}
+
+/// Runs frames until the worker has answered and the UI is idle.
+pub fn settle(h: &mut Harness<'static, EditorApp>) {
+    for _ in 0..5 {
+        h.state_mut().wait_for_worker(Duration::from_secs(60));
+        h.run_steps(3);
+        if !h.state().busy() {
+            break;
+        }
+    }
+    h.run_steps(2);
+}
