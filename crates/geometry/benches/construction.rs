@@ -22,14 +22,19 @@ fn directrix(m: usize) -> Polyline {
     )
 }
 
-/// A generatrix of `n` points on an arc around X_0, on the inner side of the directrix.
-fn generatrix(n: usize, x0: DVec3) -> Polyline {
+/// A generatrix of `n` points on an arc around X_0 on the inner side of the directrix, in the plane
+/// through X_0 perpendicular to the first edge.
+fn generatrix(n: usize, d: &Polyline) -> Polyline {
+    let (x0, x1) = (d.points[0], d.points[1]);
+    let e = (x1 - x0).normalize();
+    let inward = (-x0).reject_from(e).normalize();
+    let up = e.cross(inward);
     Polyline::open(
         (0..n)
             .map(|i| {
                 let s = i as f64 / (n - 1) as f64;
                 let phi = PI * (0.2 + 0.6 * s);
-                x0 + DVec3::new(-1.5 * phi.sin(), 0.0, 1.5 * phi.cos())
+                x0 + inward * (1.5 * phi.sin()) + up * (1.5 * phi.cos())
             })
             .collect(),
     )
@@ -56,7 +61,7 @@ fn ratios(n: usize, m: usize) -> Vec<Vec<f64>> {
 fn bench(c: &mut Criterion) {
     for &size in &[100usize, 1000] {
         let d = directrix(size);
-        let g = generatrix(size, d.points[0]);
+        let g = generatrix(size, &d);
         let a = apex(size);
         let ctube = CtubeInputs::new(d.clone(), g.clone()).apex(a.clone());
         let with_ratios = ConstructInputs::new(d.clone(), g.clone())

@@ -141,18 +141,18 @@ impl Configurations {
 
     /// Counts per class.
     pub fn counts(&self) -> ConfigurationCounts {
-        let mut c = ConfigurationCounts::default();
+        let mut n = [0usize; 4];
         for i in 0..self.rows {
             for &k in self.row(i) {
-                match k {
-                    Configuration::PlusPlus => c.plus_plus += 1,
-                    Configuration::MinusMinus => c.minus_minus += 1,
-                    Configuration::PlusMinus => c.plus_minus += 1,
-                    Configuration::MinusPlus => c.minus_plus += 1,
-                }
+                n[k as usize] += 1;
             }
         }
-        c
+        ConfigurationCounts {
+            plus_plus: n[0],
+            minus_minus: n[1],
+            plus_minus: n[2],
+            minus_plus: n[3],
+        }
     }
 
     /// The first vertex (i, j) not in (++), in the order the correction visits them: by column j,

@@ -15,14 +15,16 @@ use super::sweep::{Rule, Sweep};
 use super::tolerance;
 use crate::{GeometryError, Polyline, QuadGrid};
 
-/// One construction step: G_{i,j} from `g = G_{i,j−1}`, `x0 = X_{j−1}`, `x1 = X_j`, `a = a_j` and the
-/// unit normal `p = P_{i,j}`. `None` when `|V·P| ≤ 1e-12 |V|` (V parallel to the plane, or V = 0
-/// because g is the cone apex): the caller reports the offending (i, j).
+/// One construction step: G_{i,j} from `g = G_{i,j−1}`, `x0 = X_{j−1}`, `x1 = X_j`, `a = a_j` and a
+/// normal `p` of Π_{i,j} (any length). `None` when `|V·P| ≤ 1e-12 |V| |P|` (V parallel to the plane,
+/// or V = 0 because g is the cone apex): the caller reports the offending (i, j).
 #[inline(always)]
 pub fn step(g: DVec3, x0: DVec3, x1: DVec3, a: f64, p: DVec3) -> Option<DVec3> {
     let v = (g - x0) * a + x1 - g;
     let vp = v.dot(p);
-    if !(vp.abs() > tolerance::PARALLEL * v.length()) {
+    // Compared squared to keep square roots off the critical path.
+    let tol2 = tolerance::PARALLEL * tolerance::PARALLEL;
+    if !(vp * vp > tol2 * v.length_squared() * p.length_squared()) {
         return None;
     }
     Some(g + v * ((x1 - g).dot(p) / vp))
@@ -206,7 +208,12 @@ impl Raw {
             });
         }
         let apices = apex_points(&self.directrix, &self.apex);
-        let quality = quality(&self.mesh, &self.configurations)?;
+        let quality = quality(
+            &self.mesh,
+            &self.directrix,
+            &self.apex,
+            &self.configurations,
+        )?;
         Ok(ConeNet {
             mesh: self.mesh,
             directrix: self.directrix,

@@ -24,6 +24,7 @@ pub mod quality;
 pub mod ratios;
 pub mod result;
 mod sweep;
+mod trig;
 
 pub use apex::apex_points;
 pub use configuration::{Configuration, ConfigurationCounts, Configurations};

@@ -9,7 +9,7 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::tolerance;
+use super::{tolerance, trig};
 use crate::GeometryError;
 
 /// The orthonormal frame (ê, w) of a support plane S_{i,j}.
@@ -34,11 +34,14 @@ impl SupportFrame {
     ) -> Result<Self, GeometryError> {
         let d = g - x_prev;
         let perp = d - e * d.dot(e);
-        let n = perp.length();
-        if !(n > tolerance::FRAME * d.length()) || !n.is_finite() {
+        let n2 = perp.length_squared();
+        if !(n2 > tolerance::FRAME * tolerance::FRAME * d.length_squared()) || !n2.is_finite() {
             return Err(GeometryError::DegenerateSupport { row, column });
         }
-        Ok(Self { e, w: perp / n })
+        Ok(Self {
+            e,
+            w: perp * (1.0 / n2.sqrt()),
+        })
     }
 
     /// The ruling direction at angle θ from ê.
@@ -75,8 +78,8 @@ impl SupportFrame {
     pub fn ratio_normal(&self, b: DVec3, r: f64) -> DVec3 {
         let (x, y) = self.bisector_pair(b);
         if r == 0.5 {
-            let h = (x * x + y * y).sqrt();
-            self.e * (y / h) - self.w * (x / h)
+            let inv = 1.0 / (x * x + y * y).sqrt();
+            self.e * (y * inv) - self.w * (x * inv)
         } else {
             self.normal(ratio_to_angle(r, y.atan2(x)))
         }
@@ -89,6 +92,41 @@ impl SupportFrame {
     pub fn angle_of(&self, q: DVec3, x: DVec3) -> f64 {
         let v = q - x;
         self.w.dot(v).atan2(self.e.dot(v))
+    }
+}
+
+/// Hot path of the ratio construction: a positive multiple of the normal of Π_{i,j} for ratio r,
+/// from `x_prev = X_{j−1}`, `e = ê_j`, `g = G_{i,j−1}` and the Monge normal `b` at X_j. Equal to
+/// `SupportFrame::new(..).ratio_normal(b, r)` up to a positive factor, without normalizing (the
+/// construction step does not depend on the length of P), so only the trigonometric path needs a
+/// square root.
+#[inline(always)]
+pub(crate) fn ratio_normal_unnormalized(
+    x_prev: DVec3,
+    e: DVec3,
+    g: DVec3,
+    b: DVec3,
+    r: f64,
+    row: usize,
+    column: usize,
+) -> Result<DVec3, GeometryError> {
+    let d = g - x_prev;
+    let perp = d - e * d.dot(e);
+    let n2 = perp.length_squared();
+    if !(n2 > tolerance::FRAME * tolerance::FRAME * d.length_squared()) || !n2.is_finite() {
+        return Err(GeometryError::DegenerateSupport { row, column });
+    }
+    // With w = perp / |perp|: ê·b = y > 0 and −w·b = x = −(perp·b) / |perp|.
+    let y = e.dot(b);
+    let pb = perp.dot(b);
+    if r == 0.5 {
+        // (y ê − x w) · |perp|² = y |perp|² ê + (perp·b) perp.
+        Ok(e * (y * n2) + perp * pb)
+    } else {
+        let n = n2.sqrt();
+        let (s, c) = trig::sin_cos(ratio_to_angle(r, trig::atan2(y * n, -pb)));
+        // (sin θ ê − cos θ w) · |perp|.
+        Ok(e * (s * n) - perp * c)
     }
 }
 

@@ -19,7 +19,7 @@ use super::correction::{Correction, CorrectionKind, apex_fix_value};
 use super::ctube::step;
 use super::directrix::SweptDirectrix;
 use super::inputs::{Assistance, Grid};
-use super::ratios::{SupportFrame, angle_to_ratio, ratio_to_angle};
+use super::ratios::{SupportFrame, angle_to_ratio, ratio_normal_unnormalized, ratio_to_angle};
 use super::tolerance;
 use crate::GeometryError;
 
@@ -137,13 +137,13 @@ impl PlaneSource for RowRead<'_> {
     }
 }
 
-/// Ratio planes of one row, computed and stored as the row advances.
+/// Ratio planes of one row, computed and stored as the row advances. The planes used by the sweep are
+/// unnormalized (see [`ratio_normal_unnormalized`]); they are normalized when stored.
 struct RatioRow<'p> {
     i: usize,
     dx: &'p SweptDirectrix,
     grid: &'p Grid,
     planes: &'p mut [DVec3],
-    frame: Option<SupportFrame>,
     /// The plane computed last (by `plane`).
     last: DVec3,
     /// α (negative: off).
@@ -153,18 +153,22 @@ struct RatioRow<'p> {
 }
 
 impl PlaneSource for RatioRow<'_> {
-    #[inline]
+    #[inline(always)]
     fn plane(&mut self, jn: usize, g: DVec3) -> Result<DVec3, GeometryError> {
         let dx = self.dx;
-        let frame = SupportFrame::new(dx.points[jn - 1], dx.edges[jn], g, self.i, jn)?;
-        let p = frame.ratio_normal(dx.bisectors[jn], self.grid.get(self.i, jn));
-        if !(p.dot(frame.e) > tolerance::EDGE_PLANE) {
+        let e = dx.edges[jn];
+        let r = self.grid.get(self.i, jn);
+        let p =
+            ratio_normal_unnormalized(dx.points[jn - 1], e, g, dx.bisectors[jn], r, self.i, jn)?;
+        let pe = p.dot(e);
+        if !(pe > 0.0
+            && pe * pe > tolerance::EDGE_PLANE * tolerance::EDGE_PLANE * p.length_squared())
+        {
             return Err(GeometryError::PlaneContainsEdge {
                 row: Some(self.i),
                 column: jn,
             });
         }
-        self.frame = Some(frame);
         self.last = p;
         Ok(p)
     }
@@ -172,30 +176,28 @@ impl PlaneSource for RatioRow<'_> {
     fn stored(&self, j: usize) -> DVec3 {
         self.planes[j - 1]
     }
-    #[inline]
+    #[inline(always)]
     fn store(&mut self, j: usize, p: DVec3) {
-        self.planes[j - 1] = p;
+        self.planes[j - 1] = p * (1.0 / p.length());
     }
     fn fix_inline(&mut self, j: usize, g: DVec3) -> Result<Option<DVec3>, GeometryError> {
+        let jn = j + 1;
         if j == 0 && self.alpha >= 1.0 {
             // Apex fixes only, and the apex cannot move user input: report and keep the plane.
             let p = self.last;
-            self.fixes
-                .push((0, unfixed(self.i, (self.dx.points[1] - g).dot(p))));
+            let s = (self.dx.points[jn] - g).dot(p) / p.length();
+            self.fixes.push((0, unfixed(self.i, s)));
             return Ok(Some(p));
         }
         if j > 0 && self.alpha > 0.0 {
             return Ok(None);
         }
         // Full plane fix: θ = (1 − ε) φ (α = 0, or the first column where the apex cannot help).
-        let jn = j + 1;
-        let Some(frame) = self.frame else {
-            return Ok(None);
-        };
-        let b = self.dx.bisectors[jn];
-        let theta_b = frame.bisector_angle(b);
+        let dx = self.dx;
+        let frame = SupportFrame::new(dx.points[j], dx.edges[jn], g, self.i, jn)?;
+        let theta_b = frame.bisector_angle(dx.bisectors[jn]);
         let r_old = self.grid.get(self.i, jn);
-        let phi = frame.angle_of(g, self.dx.points[jn]);
+        let phi = frame.angle_of(g, dx.points[jn]);
         let theta = (1.0 - self.epsilon) * phi;
         let p = frame.normal(theta);
         if !(p.dot(frame.e) > tolerance::EDGE_PLANE) {
@@ -273,68 +275,161 @@ fn unfixed(row: usize, signed_distance: f64) -> Correction {
     }
 }
 
-/// Sweeps row i over steps `js..je` (building columns js+1 … je). Columns ≤ js are built; when
-/// `plane_final`, the plane of column js+1 is already final (set by a coupled correction).
-#[allow(clippy::too_many_arguments)]
-#[inline]
-fn run_row<S: PlaneSource>(
-    ctx: &Ctx<'_>,
+/// One row being swept: its output slices, its plane source and its running state.
+struct Slot<'r, S> {
     i: usize,
+    row: &'r mut [DVec3],
+    cfg: &'r mut [Configuration],
+    src: S,
+    g: DVec3,
+    p_prev: DVec3,
+    end: Option<RowEnd>,
+}
+
+impl<'r, S> Slot<'r, S> {
+    fn new(i: usize, row: &'r mut [DVec3], cfg: &'r mut [Configuration], src: S) -> Self {
+        Self {
+            i,
+            row,
+            cfg,
+            src,
+            g: DVec3::ZERO,
+            p_prev: DVec3::ZERO,
+            end: None,
+        }
+    }
+}
+
+/// Rows swept in lockstep by one task. Each step depends on the previous vertex of its row, so a
+/// single row is latency-bound; interleaving independent rows lets the CPU overlap their chains.
+const BATCH: usize = 8;
+
+/// Sweeps a batch of rows over steps `js..je` (building columns js+1 … je). Columns ≤ js are built;
+/// when `plane_final`, the plane of column js+1 is already final (set by a coupled correction).
+/// Each step runs in two phases over the batch (all planes, then all vertices) so that the
+/// independent per-row chains sit next to each other in the instruction stream.
+fn run_batch<S: PlaneSource>(
+    ctx: &Ctx<'_>,
+    slots: &mut [Slot<'_, S>],
     js: usize,
     je: usize,
     plane_final: bool,
-    row: &mut [DVec3],
-    cfg: &mut [Configuration],
-    src: &mut S,
-) -> RowEnd {
-    let x = ctx.x;
-    let mut g = row[js];
-    let mut p_prev = if js >= 1 { src.stored(js) } else { DVec3::ZERO };
-    for j in js..je {
-        let jn = j + 1;
-        let fixed = plane_final && j == js;
-        let mut p = if fixed {
-            src.stored(jn)
+) {
+    debug_assert!(slots.len() <= BATCH);
+    for s in slots.iter_mut() {
+        s.g = s.row[js];
+        s.p_prev = if js >= 1 {
+            s.src.stored(js)
         } else {
-            match src.plane(jn, g) {
-                Ok(p) => p,
-                Err(e) => return RowEnd::Error(j, 0, e),
-            }
+            DVec3::ZERO
         };
-        let mut s2 = (x[jn] - g).dot(p);
-        if ctx.check && !fixed && !(s2 > 0.0) {
-            match src.fix_inline(j, g) {
-                Ok(Some(q)) => {
-                    p = q;
-                    s2 = (x[jn] - g).dot(p);
-                }
-                Ok(None) => return RowEnd::Stop(j),
-                Err(e) => return RowEnd::Error(j, 1, e),
-            }
-        }
-        src.store(jn, p);
-        let Some(g1) = step(g, x[j], x[jn], ctx.apex[j], p) else {
-            return RowEnd::Error(j, 2, GeometryError::ParallelStep { row: i, column: jn });
-        };
-        if !g1.is_finite() {
-            return RowEnd::Error(
-                j,
-                2,
-                GeometryError::NonFiniteOutput {
-                    what: "mesh vertex",
-                    row: i,
-                    column: jn,
-                },
-            );
-        }
-        row[jn] = g1;
-        if j >= 1 {
-            cfg[j - 1] = Configuration::from_signs((g1 - x[j]).dot(p_prev), s2);
-        }
-        p_prev = p;
-        g = g1;
     }
-    RowEnd::Done
+    let mut planes = [DVec3::ZERO; BATCH];
+    for j in js..je {
+        let fixed = plane_final && j == js;
+        let mut active = false;
+        for (s, p) in slots.iter_mut().zip(planes.iter_mut()) {
+            if s.end.is_none() {
+                active = true;
+                let jn = j + 1;
+                *p = if fixed {
+                    s.src.stored(jn)
+                } else {
+                    match s.src.plane(jn, s.g) {
+                        Ok(p) => p,
+                        Err(e) => {
+                            s.end = Some(RowEnd::Error(j, 0, e));
+                            continue;
+                        }
+                    }
+                };
+            }
+        }
+        if !active {
+            break;
+        }
+        for (s, p) in slots.iter_mut().zip(planes.iter()) {
+            if s.end.is_none()
+                && let Err(end) = advance(ctx, s, j, fixed, *p)
+            {
+                s.end = Some(end);
+            }
+        }
+    }
+}
+
+/// One step of one row given its plane for column j+1: Eq. 2 check (inline fix or stop), vertex
+/// G_{i,j+1}, configuration c_{i,j}.
+#[inline(always)]
+fn advance<S: PlaneSource>(
+    ctx: &Ctx<'_>,
+    s: &mut Slot<'_, S>,
+    j: usize,
+    fixed: bool,
+    plane: DVec3,
+) -> Result<(), RowEnd> {
+    let x = ctx.x;
+    let (i, g) = (s.i, s.g);
+    let jn = j + 1;
+    let mut p = plane;
+    let mut s2 = (x[jn] - g).dot(p);
+    if ctx.check && !fixed && !(s2 > 0.0) {
+        match s.src.fix_inline(j, g) {
+            Ok(Some(q)) => {
+                p = q;
+                s2 = (x[jn] - g).dot(p);
+            }
+            Ok(None) => return Err(RowEnd::Stop(j)),
+            Err(e) => return Err(RowEnd::Error(j, 1, e)),
+        }
+    }
+    s.src.store(jn, p);
+    let Some(g1) = step(g, x[j], x[jn], ctx.apex[j], p) else {
+        return Err(RowEnd::Error(
+            j,
+            2,
+            GeometryError::ParallelStep { row: i, column: jn },
+        ));
+    };
+    if !g1.is_finite() {
+        return Err(RowEnd::Error(
+            j,
+            2,
+            GeometryError::NonFiniteOutput {
+                what: "mesh vertex",
+                row: i,
+                column: jn,
+            },
+        ));
+    }
+    s.row[jn] = g1;
+    if j >= 1 {
+        s.cfg[j - 1] = Configuration::from_signs((g1 - x[j]).dot(s.p_prev), s2);
+    }
+    s.p_prev = p;
+    s.g = g1;
+    Ok(())
+}
+
+/// Sweeps all slots in parallel batches.
+fn sweep_slots<S: PlaneSource + Send>(
+    ctx: &Ctx<'_>,
+    slots: &mut [Slot<'_, S>],
+    js: usize,
+    je: usize,
+    plane_final: bool,
+) {
+    slots
+        .par_chunks_mut(BATCH)
+        .for_each(|batch| run_batch(ctx, batch, js, je, plane_final));
+}
+
+/// The ends of all slots, in row order.
+fn ends<S>(slots: Vec<Slot<'_, S>>) -> Vec<RowEnd> {
+    slots
+        .into_iter()
+        .map(|s| s.end.unwrap_or(RowEnd::Done))
+        .collect()
 }
 
 /// The first event of a block over all rows, as (step, phase, row) plus the error if any.
@@ -471,72 +566,73 @@ impl<'a> Sweep<'a> {
             apex,
             check,
         };
-        let rows: Vec<(usize, &mut [DVec3], &mut [Configuration])> = verts
+        let rows = verts
             .chunks_mut(m)
             .zip(configs.chunks_mut(m - 1))
-            .enumerate()
-            .map(|(i, (r, c))| (i, r, c))
-            .collect();
+            .enumerate();
         let (ends, fixes): (Vec<RowEnd>, Vec<(usize, Correction)>) = match rule {
             Rule::Given if per_vertex => {
-                let ends = rows
-                    .into_par_iter()
-                    .zip(planes.par_chunks(m - 1))
-                    .map(|((i, r, c), p)| {
-                        run_row(&ctx, i, js, je, plane_final, r, c, &mut RowRead(p))
-                    })
+                let mut slots: Vec<_> = rows
+                    .zip(planes.chunks(m - 1))
+                    .map(|((i, (r, c)), p)| Slot::new(i, r, c, RowRead(p)))
                     .collect();
-                (ends, Vec::new())
+                sweep_slots(&ctx, &mut slots, js, je, plane_final);
+                (ends(slots), Vec::new())
             }
             Rule::Given => {
                 let shared = &planes[..];
-                let ends = rows
-                    .into_par_iter()
-                    .map(|(i, r, c)| {
-                        run_row(&ctx, i, js, je, plane_final, r, c, &mut SharedRead(shared))
-                    })
+                let mut slots: Vec<_> = rows
+                    .map(|(i, (r, c))| Slot::new(i, r, c, SharedRead(shared)))
                     .collect();
-                (ends, Vec::new())
+                sweep_slots(&ctx, &mut slots, js, je, plane_final);
+                (ends(slots), Vec::new())
             }
             Rule::Ratios(grid) => {
-                let out: Vec<(RowEnd, Vec<(usize, Correction)>)> = rows
-                    .into_par_iter()
-                    .zip(planes.par_chunks_mut(m - 1))
-                    .map(|((i, r, c), p)| {
-                        let mut src = RatioRow {
+                let mut slots: Vec<_> = rows
+                    .zip(planes.chunks_mut(m - 1))
+                    .map(|((i, (r, c)), p)| {
+                        let src = RatioRow {
                             i,
                             dx,
                             grid,
                             planes: p,
-                            frame: None,
                             last: DVec3::ZERO,
                             alpha,
                             epsilon,
                             fixes: Vec::new(),
                         };
-                        let end = run_row(&ctx, i, js, je, plane_final, r, c, &mut src);
-                        (end, src.fixes)
+                        Slot::new(i, r, c, src)
                     })
                     .collect();
-                let mut ends = Vec::with_capacity(out.len());
+                sweep_slots(&ctx, &mut slots, js, je, plane_final);
                 let mut fixes = Vec::new();
-                for (end, f) in out {
-                    ends.push(end);
-                    fixes.extend(f);
+                let mut out = Vec::with_capacity(slots.len());
+                for s in slots {
+                    fixes.extend(s.src.fixes);
+                    out.push(s.end.unwrap_or(RowEnd::Done));
                 }
-                (ends, fixes)
+                (out, fixes)
             }
             Rule::Coplanar { rho, tau } => {
-                let mut rows = rows.into_iter();
-                let (i0, r0, c0) = rows.next().expect("N ≥ 2 rows");
-                let mut src0 = CoplanarRow0 {
-                    dx,
-                    rho,
-                    tau,
-                    planes,
-                    psi,
+                let mut rows = rows;
+                let Some((i0, (r0, c0))) = rows.next() else {
+                    return Ok(None);
                 };
-                let end0 = run_row(&ctx, i0, js, je, plane_final, r0, c0, &mut src0);
+                let mut first = [Slot::new(
+                    i0,
+                    r0,
+                    c0,
+                    CoplanarRow0 {
+                        dx,
+                        rho,
+                        tau,
+                        planes,
+                        psi,
+                    },
+                )];
+                run_batch(&ctx, &mut first, js, je, plane_final);
+                let [first] = first;
+                let end0 = first.end.unwrap_or(RowEnd::Done);
                 // The other rows can go as far as row 0 has produced planes.
                 let limit = match end0 {
                     RowEnd::Done => je,
@@ -544,21 +640,13 @@ impl<'a> Sweep<'a> {
                     RowEnd::Stop(j) | RowEnd::Error(j, _, _) => j + 1,
                 };
                 let shared = &planes[..];
-                let rest: Vec<_> = rows.collect();
-                let mut ends: Vec<RowEnd> = vec![end0];
-                ends.par_extend(rest.into_par_iter().map(|(i, r, c)| {
-                    run_row(
-                        &ctx,
-                        i,
-                        js,
-                        limit.max(js),
-                        plane_final,
-                        r,
-                        c,
-                        &mut SharedRead(shared),
-                    )
-                }));
-                (ends, Vec::new())
+                let mut slots: Vec<_> = rows
+                    .map(|(i, (r, c))| Slot::new(i, r, c, SharedRead(shared)))
+                    .collect();
+                sweep_slots(&ctx, &mut slots, js, limit.max(js), plane_final);
+                let mut all = vec![end0];
+                all.extend(ends(slots));
+                (all, Vec::new())
             }
         };
         let event = first_event(ends);

@@ -1,0 +1,182 @@
+//! Inlinable `atan2` and `sin_cos` for the ratio hot path (one of each per vertex).
+//!
+//! The libm calls are opaque function calls on the sweep's critical path; these fdlibm-style kernels
+//! (same polynomial coefficients as fdlibm / musl) inline into the loop and stay within about one
+//! ulp of the std functions (tested below). Arguments outside the fast range fall back to std.
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+const ATAN_HI: [f64; 4] = [
+    4.636_476_090_008_060_935_15e-1,
+    7.853_981_633_974_482_789_99e-1,
+    9.827_937_232_473_290_540_82e-1,
+    1.570_796_326_794_896_558_00,
+];
+const ATAN_LO: [f64; 4] = [
+    2.269_877_745_296_168_709_24e-17,
+    3.061_616_997_868_383_017_93e-17,
+    1.390_331_103_123_099_845_16e-17,
+    6.123_233_995_736_766_035_87e-17,
+];
+const AT: [f64; 11] = [
+    3.333_333_333_333_293_180_27e-1,
+    -1.999_999_999_987_648_324_76e-1,
+    1.428_571_427_250_346_637_11e-1,
+    -1.111_111_040_546_235_578_80e-1,
+    9.090_887_133_436_506_561_96e-2,
+    -7.691_876_205_044_829_994_95e-2,
+    6.661_073_137_387_531_206_69e-2,
+    -5.833_570_133_790_573_486_45e-2,
+    4.976_877_994_615_932_360_17e-2,
+    -3.653_157_274_421_691_552_70e-2,
+    1.628_582_011_536_578_236_23e-2,
+];
+
+/// atan(t) for t ∈ [0, ∞) (finite).
+#[inline(always)]
+fn atan_pos(t: f64) -> f64 {
+    let (id, x) = if t < 0.4375 {
+        (usize::MAX, t)
+    } else if t < 0.6875 {
+        (0, (2.0 * t - 1.0) / (2.0 + t))
+    } else if t < 1.1875 {
+        (1, (t - 1.0) / (t + 1.0))
+    } else if t < 2.4375 {
+        (2, (t - 1.5) / (1.0 + 1.5 * t))
+    } else {
+        (3, -1.0 / t)
+    };
+    let z = x * x;
+    let w = z * z;
+    let w2 = w * w;
+    // Estrin's scheme: shorter dependency chains than Horner, same polynomials.
+    let s1 = z * ((AT[0] + w * AT[2]) + w2 * ((AT[4] + w * AT[6]) + w2 * (AT[8] + w * AT[10])));
+    let s2 = w * ((AT[1] + w * AT[3]) + w2 * ((AT[5] + w * AT[7]) + w2 * AT[9]));
+    if id == usize::MAX {
+        x - x * (s1 + s2)
+    } else {
+        ATAN_HI[id] - ((x * (s1 + s2) - ATAN_LO[id]) - x)
+    }
+}
+
+/// `y.atan2(x)`, inlined. Falls back to std for zero, non-finite or extreme ratios.
+#[inline(always)]
+pub(crate) fn atan2(y: f64, x: f64) -> f64 {
+    let (ax, ay) = (x.abs(), y.abs());
+    if !(ax > 1e-300 && ay > 1e-300 && ax < 1e300 && ay < 1e300) {
+        return y.atan2(x);
+    }
+    // Angle of (|x|, |y|) in [0, π/2].
+    let a = if ay <= ax {
+        atan_pos(ay / ax)
+    } else {
+        FRAC_PI_2 - atan_pos(ax / ay)
+    };
+    let a = if x < 0.0 { PI - a } else { a };
+    if y < 0.0 { -a } else { a }
+}
+
+const S1: f64 = -1.666_666_666_666_663_243_48e-1;
+const S2: f64 = 8.333_333_333_322_489_461_24e-3;
+const S3: f64 = -1.984_126_982_985_794_931_34e-4;
+const S4: f64 = 2.755_731_370_707_006_767_89e-6;
+const S5: f64 = -2.505_076_025_340_686_341_95e-8;
+const S6: f64 = 1.589_690_995_211_550_102_21e-10;
+const C1: f64 = 4.166_666_666_666_660_190_37e-2;
+const C2: f64 = -1.388_888_888_887_410_957_49e-3;
+const C3: f64 = 2.480_158_728_947_672_941_78e-5;
+const C4: f64 = -2.755_731_435_139_066_330_35e-7;
+const C5: f64 = 2.087_572_321_298_174_827_90e-9;
+const C6: f64 = -1.135_964_755_778_819_482_65e-11;
+/// π/2 split in two parts for an exact-enough argument reduction.
+const PIO2_HI: f64 = 1.570_796_326_734_125_614_17;
+const PIO2_LO: f64 = 6.077_100_506_506_192_249_30e-11;
+
+/// (sin x, cos x) for |x| ≤ π/4.
+#[inline(always)]
+fn kernel(x: f64) -> (f64, f64) {
+    let z = x * x;
+    let v = z * x;
+    let z2 = z * z;
+    // Estrin's scheme for both polynomials.
+    let r = (S2 + z * S3) + z2 * ((S4 + z * S5) + z2 * S6);
+    let sin = x + v * (S1 + z * r);
+    let rc = z * ((C1 + z * C2) + z2 * ((C3 + z * C4) + z2 * (C5 + z * C6)));
+    let hz = 0.5 * z;
+    let w = 1.0 - hz;
+    let cos = w + (((1.0 - w) - hz) + z * rc);
+    (sin, cos)
+}
+
+/// `x.sin_cos()`, inlined for |x| ≤ 8 (std beyond).
+#[inline(always)]
+pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
+    if !(x.abs() <= 8.0) {
+        return x.sin_cos();
+    }
+    // Nearest integer to x / (π/2) without a libm call: |x| ≤ 8 keeps the shifted value positive.
+    let ki = (x * (2.0 / PI) + 8.5) as i64 - 8;
+    let k = ki as f64;
+    let r = (x - k * PIO2_HI) - k * PIO2_LO;
+    let (s, c) = kernel(r);
+    match ki & 3 {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A deterministic pseudo-random sequence in [0, 1).
+    fn lcg(state: &mut u64) -> f64 {
+        *state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (*state >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    #[test]
+    fn atan2_matches_std_to_an_ulp() {
+        let mut s = 7;
+        let mut worst = 0.0f64;
+        for _ in 0..200_000 {
+            let scale = 10f64.powf(lcg(&mut s) * 12.0 - 6.0);
+            let (y, x) = (
+                (lcg(&mut s) - 0.5) * scale,
+                (lcg(&mut s) - 0.5) * 10f64.powf(lcg(&mut s) * 4.0 - 2.0),
+            );
+            let (a, b) = (atan2(y, x), y.atan2(x));
+            worst = worst.max((a - b).abs() / b.abs().max(f64::MIN_POSITIVE));
+        }
+        assert!(worst <= 4.0 * f64::EPSILON, "relative error {worst:e}");
+        for (y, x) in [
+            (0.0, 1.0),
+            (1.0, 0.0),
+            (0.0, -1.0),
+            (-0.0, -1.0),
+            (1.0, 1.0),
+            (1.0, -1.0),
+            (3.0, 4.0),
+        ] {
+            assert!((atan2(y, x) - f64::atan2(y, x)).abs() <= 2.0 * f64::EPSILON);
+        }
+    }
+
+    #[test]
+    fn sin_cos_matches_std_to_an_ulp() {
+        let mut s = 11;
+        let mut worst = 0.0f64;
+        for _ in 0..200_000 {
+            let x = (lcg(&mut s) - 0.3) * 9.0;
+            let (a, b) = (sin_cos(x), x.sin_cos());
+            worst = worst.max((a.0 - b.0).abs()).max((a.1 - b.1).abs());
+        }
+        assert!(worst <= 2.0 * f64::EPSILON, "absolute error {worst:e}");
+        assert_eq!(sin_cos(0.0), (0.0, 1.0));
+        assert_eq!(sin_cos(100.0), 100f64.sin_cos());
+    }
+}
