@@ -167,7 +167,7 @@ pub fn make_cluster(
     }
     let meta = GraphMeta {
         name: Some(cluster_id.to_string()),
-        description: None,
+        ..GraphMeta::default()
     };
     let cluster = Cluster::new(ClusterSource::Inline, sub, meta, None)
         .map_err(ClusterEditError::Interface)?;

@@ -82,12 +82,14 @@ impl fmt::Display for LoadError {
 impl std::error::Error for LoadError {}
 
 /// Metadata of a graph file besides nodes and edges.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct GraphMeta {
     /// Short title.
     pub name: Option<String>,
     /// What the graph is for.
     pub description: Option<String>,
+    /// A stored optimization setup (see [`crate::optimize`]).
+    pub optimization: Option<crate::optimize::Setup>,
 }
 
 /// A loaded graph file.
@@ -268,6 +270,7 @@ fn load_root(loader: &mut Loader<'_>, root: &Node, registry: &Arc<Registry>) -> 
         return document;
     };
     let mut version = None;
+    let mut optimization = None;
     let mut nodes = None;
     let mut edges = None;
     for (field, value) in fields {
@@ -276,11 +279,12 @@ fn load_root(loader: &mut Loader<'_>, root: &Node, registry: &Arc<Registry>) -> 
             "nodes" => nodes = Some(value),
             "edges" => edges = Some(value),
             "name" => document.meta.name = text_field(loader, value, "name"),
+            "optimization" => optimization = Some(value),
             "description" => document.meta.description = text_field(loader, value, "description"),
             other => loader.error(
                 field.pos,
                 format!(
-                    "unknown field '{other}'; expected version, name, description, nodes, edges"
+                    "unknown field '{other}'; expected version, name, description, nodes, edges, optimization"
                 ),
             ),
         }
@@ -313,7 +317,52 @@ fn load_root(loader: &mut Loader<'_>, root: &Node, registry: &Arc<Registry>) -> 
     if let Some(nodes) = nodes {
         warn_unset_inputs(loader, nodes, &document.graph);
     }
+    if let Some(section) = optimization {
+        document.meta.optimization = load_optimization(loader, section, &document.graph);
+    }
     document
+}
+
+/// Reads the optimization setup and checks that the nodes and ports it names exist.
+fn load_optimization(
+    loader: &mut Loader<'_>,
+    section: &Node,
+    graph: &Graph,
+) -> Option<crate::optimize::Setup> {
+    let setup = match crate::optimize::Setup::parse(section) {
+        Ok(s) => s,
+        Err((pos, message)) => {
+            loader.error(pos, format!("optimization: {message}"));
+            return None;
+        }
+    };
+    let refs = std::iter::once((&setup.objective, false))
+        .chain(setup.variables.iter().map(|v| (&v.input, true)))
+        .chain(setup.penalties.iter().map(|p| (&p.output, false)));
+    let mut ok = true;
+    for (path, is_input) in refs {
+        let problem = match graph.node(&path.node) {
+            None => Some(format!("no node '{}'", path.node)),
+            Some(n) if is_input && n.def.input_index(&path.port).is_none() => Some(format!(
+                "node '{}' has no input '{}'; its inputs are: {}",
+                path.node,
+                path.port,
+                n.def.input_names()
+            )),
+            Some(n) if !is_input && n.def.output_index(&path.port).is_none() => Some(format!(
+                "node '{}' has no output '{}'; its outputs are: {}",
+                path.node,
+                path.port,
+                n.def.output_names()
+            )),
+            Some(_) => None,
+        };
+        if let Some(p) = problem {
+            loader.error(section.pos, format!("optimization: {path}: {p}"));
+            ok = false;
+        }
+    }
+    ok.then_some(setup)
 }
 
 /// Warns about required inputs that are neither wired nor set (at the node's position).
@@ -722,6 +771,12 @@ pub fn to_ron(graph: &Graph, meta: &GraphMeta) -> String {
             quote(&mut out, v);
             out.push_str(",\n");
         }
+    }
+    if let Some(setup) = &meta.optimization {
+        push_indent(&mut out, 1);
+        out.push_str("optimization: ");
+        out.push_str(&setup.to_ron(1));
+        out.push_str(",\n");
     }
     push_indent(&mut out, 1);
     out.push_str("nodes: {\n");

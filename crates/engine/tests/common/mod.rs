@@ -157,6 +157,34 @@ node! {
     }
 }
 
+node! {
+    /// Squares a number.
+    #[node(id = "t.sq", category = "Test")]
+    pub fn sq(
+        /// Input.
+        x: k::Number,
+    ) -> (
+        /// x².
+        out: k::Number,
+    ) {
+        Ok((x * x,))
+    }
+}
+
+node! {
+    /// Absolute value (not smooth at 0).
+    #[node(id = "t.abs", category = "Test")]
+    pub fn abs(
+        /// Input.
+        x: k::Number,
+    ) -> (
+        /// |x|.
+        out: k::Number,
+    ) {
+        Ok((x.abs(),))
+    }
+}
+
 /// A registry with all test nodes.
 pub fn registry() -> Arc<Registry> {
     let mut r = Registry::new();
@@ -171,6 +199,8 @@ pub fn registry() -> Arc<Registry> {
         series(),
         text(),
         maybe(),
+        sq(),
+        abs(),
     ] {
         r.register(def);
     }

@@ -1,0 +1,362 @@
+//! The built-in optimizer: drives a graph's number inputs to minimize a number output.
+//!
+//! A graph file may store an optimization [`Setup`] (variables with bounds, an objective, soft
+//! constraints as penalties). [`optimize`] runs it with bounded L-BFGS on finite-difference gradients
+//! (central differences, one-sided at a bound) and falls back to Nelder–Mead when the objective is not
+//! smooth (a failed line search, a non-finite value). Every objective evaluation re-runs only the part
+//! of the graph that depends on the changed variable — the incremental engine at work — and the
+//! evaluations and node runs are counted. Runs are deterministic (bit for bit), cancellable through
+//! the context's cancel flag, and report every iteration.
+
+mod lbfgsb;
+mod nelder_mead;
+pub mod path;
+mod problem;
+pub mod setup;
+
+pub use path::ValuePath;
+pub use problem::{Problem, SetupMismatch};
+pub use setup::{Method, Penalty, PenaltyKind, Setup, Variable};
+
+use crate::graph::Graph;
+use crate::node::NodeContext;
+use lbfgsb::{Memory, project, projected_gradient};
+use nelder_mead::{Simplex, initial_points};
+
+/// Settings of one run.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Overrides the setup's iteration limit.
+    pub max_iter: Option<usize>,
+    /// Overrides the setup's method.
+    pub method: Option<Method>,
+    /// Re-evaluate incrementally (true) or from scratch every time (the baseline for comparisons).
+    pub incremental: bool,
+    /// Stop when the projected gradient's largest component is at most this times the starting one.
+    pub gradient_tolerance: f64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            max_iter: None,
+            method: None,
+            incremental: true,
+            gradient_tolerance: 1e-12,
+        }
+    }
+}
+
+/// What one iteration reached.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Iteration {
+    /// Iteration number (0 = the start).
+    pub iteration: usize,
+    /// Objective (with penalties) at the current point.
+    pub objective: f64,
+    /// Largest projected-gradient component (NaN for Nelder–Mead).
+    pub gradient: f64,
+    /// Objective evaluations so far.
+    pub evaluations: u64,
+    /// Node runs so far.
+    pub node_runs: u64,
+    /// The method that made the step.
+    pub method: Method,
+}
+
+/// Why the run stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Stop {
+    /// A convergence test passed (which one).
+    Converged(String),
+    /// The iteration limit was reached.
+    MaxIterations,
+    /// Cancellation was requested.
+    Cancelled,
+}
+
+/// The result of a run.
+#[derive(Debug)]
+pub struct Outcome {
+    /// Best variable values found.
+    pub x: Vec<f64>,
+    /// Objective at the start.
+    pub start: f64,
+    /// Objective at `x`.
+    pub objective: f64,
+    /// Iterations made.
+    pub iterations: usize,
+    /// Objective evaluations.
+    pub evaluations: u64,
+    /// Node runs over all evaluations.
+    pub node_runs: u64,
+    /// Gradients computed.
+    pub gradients: u64,
+    /// Whether the run switched to Nelder–Mead.
+    pub fell_back: bool,
+    /// Why it stopped.
+    pub stop: Stop,
+    /// The graph with `x` applied.
+    pub graph: Graph,
+}
+
+/// Why an optimization could not run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OptimizeError {
+    /// The setup refers to something the graph does not have.
+    #[error(transparent)]
+    Setup(#[from] SetupMismatch),
+    /// The objective cannot be evaluated at the start.
+    #[error("the objective cannot be evaluated at the start: {0}")]
+    Start(String),
+}
+
+struct Run<'a> {
+    problem: Problem,
+    ctx: &'a NodeContext,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    best: (Vec<f64>, f64),
+    gradients: u64,
+}
+
+impl Run<'_> {
+    /// The objective, `+∞` where the graph fails; remembers the best point.
+    fn f(&mut self, x: &[f64]) -> f64 {
+        let v = self.problem.value(x, self.ctx).unwrap_or(f64::INFINITY);
+        if v < self.best.1 {
+            self.best = (x.to_vec(), v);
+        }
+        v
+    }
+
+    /// Central differences (one-sided at a bound).
+    fn gradient(&mut self, x: &[f64], fx: f64) -> Vec<f64> {
+        self.gradients += 1;
+        let mut g = vec![0.0; x.len()];
+        let mut probe = x.to_vec();
+        for i in 0..x.len() {
+            let h = 1e-6 * x[i].abs().max(1.0);
+            let (up, down) = (x[i] + h <= self.hi[i], x[i] - h >= self.lo[i]);
+            probe[i] = x[i] + h;
+            let fp = if up { self.f(&probe) } else { fx };
+            probe[i] = x[i] - h;
+            let fm = if down { self.f(&probe) } else { fx };
+            probe[i] = x[i];
+            let span = h * (f64::from(u8::from(up)) + f64::from(u8::from(down)));
+            g[i] = if span > 0.0 { (fp - fm) / span } else { 0.0 };
+        }
+        g
+    }
+
+    fn cancelled(&self) -> bool {
+        self.ctx.cancelled()
+    }
+
+    fn iteration(
+        &self,
+        iteration: usize,
+        objective: f64,
+        gradient: f64,
+        method: Method,
+    ) -> Iteration {
+        Iteration {
+            iteration,
+            objective,
+            gradient,
+            evaluations: self.problem.evaluations,
+            node_runs: self.problem.node_runs,
+            method,
+        }
+    }
+}
+
+/// Runs the optimization of `setup` on a copy of `graph`.
+pub fn optimize(
+    graph: &Graph,
+    setup: &Setup,
+    options: &Options,
+    ctx: &NodeContext,
+    report: &mut dyn FnMut(&Iteration),
+) -> Result<Outcome, OptimizeError> {
+    let problem = Problem::new(graph.clone(), setup.clone(), options.incremental)?;
+    let (lo, hi) = problem.bounds();
+    let mut x = problem.start();
+    project(&mut x, &lo, &hi);
+    let mut run = Run {
+        problem,
+        ctx,
+        lo,
+        hi,
+        best: (x.clone(), f64::INFINITY),
+        gradients: 0,
+    };
+    let start = run.problem.value(&x, ctx).map_err(OptimizeError::Start)?;
+    run.best = (x.clone(), start);
+    let max_iter = options.max_iter.unwrap_or(setup.max_iter);
+    let method = options.method.unwrap_or(setup.method);
+    let mut iterations = 0;
+    let mut fell_back = false;
+    let mut stop = Stop::MaxIterations;
+    if method != Method::NelderMead {
+        let (s, done, smooth) = lbfgs(&mut run, x.clone(), start, max_iter, options, report);
+        iterations = done;
+        stop = s;
+        if !smooth && method == Method::Auto && iterations < max_iter {
+            fell_back = true;
+        }
+    }
+    if method == Method::NelderMead || fell_back {
+        let from = run.best.0.clone();
+        let (s, done) = nelder_mead(&mut run, from, max_iter - iterations, iterations, report);
+        iterations += done;
+        stop = s;
+    }
+    let (x, objective) = run.best.clone();
+    run.problem.apply(&x).map_err(OptimizeError::Start)?;
+    Ok(Outcome {
+        x,
+        start,
+        objective,
+        iterations,
+        evaluations: run.problem.evaluations,
+        node_runs: run.problem.node_runs,
+        gradients: run.gradients,
+        fell_back,
+        stop,
+        graph: run.problem.into_graph(),
+    })
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+/// Bounded L-BFGS. Returns the stop reason, the iterations made and whether the objective behaved
+/// smoothly (false: fall back to Nelder–Mead).
+fn lbfgs(
+    run: &mut Run<'_>,
+    mut x: Vec<f64>,
+    mut f: f64,
+    max_iter: usize,
+    options: &Options,
+    report: &mut dyn FnMut(&Iteration),
+) -> (Stop, usize, bool) {
+    let mut g = run.gradient(&x, f);
+    let g0 = max_abs(&projected_gradient(&x, &g, &run.lo, &run.hi)).max(f64::MIN_POSITIVE);
+    report(&run.iteration(0, f, g0, Method::Lbfgsb));
+    let mut memory = Memory::default();
+    let mut stalls = 0;
+    for it in 1..=max_iter {
+        if run.cancelled() {
+            return (Stop::Cancelled, it - 1, true);
+        }
+        if g.iter().any(|v| !v.is_finite()) {
+            return (Stop::Converged("non-finite gradient".into()), it - 1, false);
+        }
+        let pg = projected_gradient(&x, &g, &run.lo, &run.hi);
+        let gnorm = max_abs(&pg);
+        if gnorm <= options.gradient_tolerance * g0 || f == 0.0 {
+            return (
+                Stop::Converged(format!("projected gradient {gnorm:.3e}")),
+                it - 1,
+                true,
+            );
+        }
+        let free: Vec<bool> = pg.iter().map(|v| *v != 0.0).collect();
+        let mut d = memory.direction(&g, &free);
+        if dot(&d, &pg) >= 0.0 || d.iter().any(|v| !v.is_finite()) {
+            memory.clear();
+            d = pg.iter().map(|v| -v).collect();
+        }
+        let mut t = if memory.is_empty() {
+            (1.0 / max_abs(&d)).min(1.0)
+        } else {
+            1.0
+        };
+        let mut accepted = None;
+        for _ in 0..50 {
+            let mut xn: Vec<f64> = x.iter().zip(&d).map(|(xi, di)| xi + t * di).collect();
+            project(&mut xn, &run.lo, &run.hi);
+            if xn == x {
+                break;
+            }
+            let step: Vec<f64> = xn.iter().zip(&x).map(|(a, b)| a - b).collect();
+            let fn_ = run.f(&xn);
+            if fn_.is_finite() && fn_ <= f + 1e-4 * dot(&g, &step) {
+                accepted = Some((xn, fn_, step));
+                break;
+            }
+            t *= 0.5;
+        }
+        let Some((xn, fn_, step)) = accepted else {
+            if !memory.is_empty() {
+                memory.clear();
+                continue;
+            }
+            let smooth = f.is_finite() && gnorm < 1e-8 * g0;
+            return (
+                Stop::Converged("no descent step found".into()),
+                it - 1,
+                smooth,
+            );
+        };
+        let gn = run.gradient(&xn, fn_);
+        let dg: Vec<f64> = gn.iter().zip(&g).map(|(a, b)| a - b).collect();
+        memory.push(step, dg);
+        stalls = if f - fn_ <= 1e-15 * f.abs() {
+            stalls + 1
+        } else {
+            0
+        };
+        x = xn;
+        f = fn_;
+        g = gn;
+        report(&run.iteration(
+            it,
+            f,
+            max_abs(&projected_gradient(&x, &g, &run.lo, &run.hi)),
+            Method::Lbfgsb,
+        ));
+        if stalls >= 3 {
+            return (Stop::Converged("no further decrease".into()), it, true);
+        }
+    }
+    (Stop::MaxIterations, max_iter, true)
+}
+
+fn nelder_mead(
+    run: &mut Run<'_>,
+    x0: Vec<f64>,
+    max_iter: usize,
+    offset: usize,
+    report: &mut dyn FnMut(&Iteration),
+) -> (Stop, usize) {
+    let points = initial_points(&x0, &run.lo, &run.hi);
+    let mut simplex = Simplex {
+        points: points.into_iter().map(|p| (p.clone(), run.f(&p))).collect(),
+    };
+    simplex.sort();
+    for it in 1..=max_iter {
+        if run.cancelled() {
+            return (Stop::Cancelled, it - 1);
+        }
+        let (lo, hi) = (run.lo.clone(), run.hi.clone());
+        simplex.step(&lo, &hi, &mut |p| run.f(p));
+        report(&run.iteration(
+            offset + it,
+            simplex.points[0].1,
+            f64::NAN,
+            Method::NelderMead,
+        ));
+        let (spread, size) = simplex.spread();
+        if spread <= 1e-15 * simplex.points[0].1.abs() && size <= 1e-12 {
+            return (Stop::Converged("simplex collapsed".into()), it);
+        }
+    }
+    (Stop::MaxIterations, max_iter)
+}
