@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs what the tests need, when it is missing: lavapipe (apt), gltf-validator (npm, into
+# Installs what the tests need, when it is missing: lavapipe and xvfb (apt), gltf-validator (npm, into
 # ./node_modules), ezdxf (pip, user site). Uses sudo when not root; says what to install otherwise.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,6 +13,12 @@ if ! ls /usr/share/vulkan/icd.d/lvp_icd*.json >/dev/null 2>&1; then
   echo "== installing the software Vulkan driver (mesa-vulkan-drivers, libvulkan1)"
   as_root apt-get update -qq
   DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq mesa-vulkan-drivers libvulkan1 >/dev/null
+fi
+
+if ! command -v xvfb-run >/dev/null 2>&1; then
+  echo "== installing a virtual X server for the editor's window test (xvfb, xauth)"
+  as_root apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq xvfb xauth >/dev/null
 fi
 
 if [ -f package.json ] && [ ! -d node_modules ]; then

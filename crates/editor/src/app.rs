@@ -75,7 +75,11 @@ impl Clipboard {
                 _ => {}
             }
         }
-        Self { nodes, inner, incoming }
+        Self {
+            nodes,
+            inner,
+            incoming,
+        }
     }
 
     /// Whether nothing was copied.
@@ -86,7 +90,12 @@ impl Clipboard {
     /// Adds the copied nodes to `graph` under fresh ids, shifted by `offset`, with their inner
     /// wires (and, when `keep_incoming`, the wires from nodes outside the copy that still exist).
     /// Returns the new ids.
-    pub fn paste(&self, graph: &mut Graph, offset: [f32; 2], keep_incoming: bool) -> Result<Vec<String>, String> {
+    pub fn paste(
+        &self,
+        graph: &mut Graph,
+        offset: [f32; 2],
+        keep_incoming: bool,
+    ) -> Result<Vec<String>, String> {
         let err = |e: cnets_engine::GraphError| e.to_string();
         let mut new_ids = Vec::new();
         for n in &self.nodes {
@@ -103,12 +112,16 @@ impl Clipboard {
             new_ids.push(id);
         }
         for (a, output, b, input) in &self.inner {
-            graph.connect(&new_ids[*a], output, &new_ids[*b], input).map_err(err)?;
+            graph
+                .connect(&new_ids[*a], output, &new_ids[*b], input)
+                .map_err(err)?;
         }
         if keep_incoming {
             for (from, output, b, input) in &self.incoming {
                 if graph.node(from).is_some() {
-                    graph.connect(from, output, &new_ids[*b], input).map_err(err)?;
+                    graph
+                        .connect(from, output, &new_ids[*b], input)
+                        .map_err(err)?;
                 }
             }
         }
@@ -191,7 +204,11 @@ impl EditorApp {
         let offer_restore = recovery.find();
         let mut message = String::new();
         let torus = options.examples_dir.join("torus-monge.ron");
-        let doc = match options.file.as_deref().or(torus.is_file().then_some(torus.as_path())) {
+        let doc = match options
+            .file
+            .as_deref()
+            .or(torus.is_file().then_some(torus.as_path()))
+        {
             Some(path) => match GraphDocument::open(path, &registry) {
                 Ok(d) => Some(d),
                 Err(e) => {
@@ -335,10 +352,12 @@ impl EditorApp {
                 self.message = "new graph".into();
             }
             MenuAction::Open => {
-                let start = self.doc.path.as_deref().and_then(Path::parent).map_or_else(
-                    || self.examples_dir.clone(),
-                    Path::to_path_buf,
-                );
+                let start = self
+                    .doc
+                    .path
+                    .as_deref()
+                    .and_then(Path::parent)
+                    .map_or_else(|| self.examples_dir.clone(), Path::to_path_buf);
                 self.dialog = Some(FileDialog::new(Purpose::Open, &start));
             }
             MenuAction::OpenPath(p) => self.open(&p),
@@ -348,7 +367,9 @@ impl EditorApp {
             },
             MenuAction::SaveAs => {
                 let start = self.doc.path.clone().unwrap_or_else(|| {
-                    std::env::current_dir().unwrap_or_default().join("untitled.ron")
+                    std::env::current_dir()
+                        .unwrap_or_default()
+                        .join("untitled.ron")
                 });
                 self.dialog = Some(FileDialog::new(Purpose::SaveAs, &start));
             }
@@ -359,12 +380,10 @@ impl EditorApp {
                         format.extension()
                     );
                 } else {
-                    let start = self
-                        .doc
-                        .path
-                        .as_deref()
-                        .and_then(Path::parent)
-                        .map_or_else(|| std::env::current_dir().unwrap_or_default(), Path::to_path_buf);
+                    let start = self.doc.path.as_deref().and_then(Path::parent).map_or_else(
+                        || std::env::current_dir().unwrap_or_default(),
+                        Path::to_path_buf,
+                    );
                     self.dialog = Some(FileDialog::new(Purpose::ExportFolder(format), &start));
                 }
             }
@@ -398,7 +417,9 @@ impl EditorApp {
             MenuAction::Paste => {
                 let clip = self.clipboard.clone();
                 if !clip.is_empty() {
-                    let r = self.doc.edit(None, |g, _| clip.paste(g, [40.0, 40.0], false));
+                    let r = self
+                        .doc
+                        .edit(None, |g, _| clip.paste(g, [40.0, 40.0], false));
                     if let Err(e) = r {
                         self.message = e;
                     }
@@ -470,13 +491,28 @@ impl EditorApp {
     /// Sends the graph to the worker when it (or the display options) changed since the last
     /// submission.
     pub fn submit_if_changed(&mut self) {
-        let key = (self.doc.generation(), self.doc.version(), self.viewport.options);
+        let key = (
+            self.doc.generation(),
+            self.doc.version(),
+            self.viewport.options,
+        );
         if self.submitted == Some(key) {
             return;
         }
         let changed_at = self.pending_change.take().unwrap_or_else(Instant::now);
-        let base = self.doc.path.as_deref().and_then(Path::parent).map(Path::to_path_buf);
-        self.worker.submit(self.doc.graph.clone(), self.doc.generation(), self.viewport.options, base, changed_at);
+        let base = self
+            .doc
+            .path
+            .as_deref()
+            .and_then(Path::parent)
+            .map(Path::to_path_buf);
+        self.worker.submit(
+            self.doc.graph.clone(),
+            self.doc.generation(),
+            self.viewport.options,
+            base,
+            changed_at,
+        );
         self.submitted = Some(key);
     }
 
@@ -527,7 +563,7 @@ impl EditorApp {
                         ui.spinner();
                     }
                     ui.weak(format!(
-                        "eval {:.1} ms · scene {:.1} ms · change→picture {:.1} ms",
+                        "eval {:.1} ms · scene {:.1} ms · change-to-picture {:.1} ms",
                         self.latency.eval_ms, self.latency.scene_ms, self.latency.last_ms
                     ));
                 }
@@ -557,12 +593,14 @@ impl EditorApp {
                 });
                 self.viewport.show(ui, self.gpu.as_ref());
             });
-        egui::CentralPanel::default().frame(egui::Frame::NONE).show(ui, |ui| {
-            let actions = self.canvas.show(ui, &self.doc.graph, &self.statuses);
-            for a in actions {
-                self.apply(a);
-            }
-        });
+        egui::CentralPanel::default()
+            .frame(egui::Frame::NONE)
+            .show(ui, |ui| {
+                let actions = self.canvas.show(ui, &self.doc.graph, &self.statuses);
+                for a in actions {
+                    self.apply(a);
+                }
+            });
 
         if let Some(type_id) = palette::show(&ctx, &mut self.palette, &self.registry) {
             let at = self.palette.at;
@@ -588,10 +626,18 @@ impl EditorApp {
             }
             self.awaiting_picture = None;
         }
-        let (dirty, version, path) = (self.doc.is_dirty(), self.doc.version(), self.doc.path.clone());
+        let (dirty, version, path) = (
+            self.doc.is_dirty(),
+            self.doc.version(),
+            self.doc.path.clone(),
+        );
         let doc = &self.doc;
-        self.recovery.tick(dirty, version, path.as_deref(), || doc.to_ron());
-        ctx.send_viewport_cmd(egui::ViewportCommand::Title(format!("{} — cnets editor", self.doc.title())));
+        self.recovery
+            .tick(dirty, version, path.as_deref(), || doc.to_ron());
+        ctx.send_viewport_cmd(egui::ViewportCommand::Title(format!(
+            "{} — cnets editor",
+            self.doc.title()
+        )));
         if self.worker.busy() {
             ctx.request_repaint_after(Duration::from_millis(30));
         }
@@ -616,15 +662,28 @@ impl EditorApp {
                             .path
                             .as_deref()
                             .and_then(Path::file_stem)
-                            .map_or_else(|| "cone-net".to_string(), |s| s.to_string_lossy().into_owned());
-                        let base = self.doc.path.as_deref().and_then(Path::parent).map(Path::to_path_buf);
-                        self.message = match export::export(&self.doc.graph, base, format, &path, &name) {
-                            Ok(files) => format!(
-                                "exported {}",
-                                files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>().join(", ")
-                            ),
-                            Err(e) => format!("export failed: {e}"),
-                        };
+                            .map_or_else(
+                                || "cone-net".to_string(),
+                                |s| s.to_string_lossy().into_owned(),
+                            );
+                        let base = self
+                            .doc
+                            .path
+                            .as_deref()
+                            .and_then(Path::parent)
+                            .map(Path::to_path_buf);
+                        self.message =
+                            match export::export(&self.doc.graph, base, format, &path, &name) {
+                                Ok(files) => format!(
+                                    "exported {}",
+                                    files
+                                        .iter()
+                                        .map(|f| f.display().to_string())
+                                        .collect::<Vec<_>>()
+                                        .join(", ")
+                                ),
+                                Err(e) => format!("export failed: {e}"),
+                            };
                     }
                 }
             }
@@ -635,10 +694,10 @@ impl EditorApp {
         let Some(r) = &self.offer_restore else {
             return;
         };
-        let what = r
-            .path
-            .as_ref()
-            .map_or_else(|| "an untitled graph".to_string(), |p| p.display().to_string());
+        let what = r.path.as_ref().map_or_else(
+            || "an untitled graph".to_string(),
+            |p| p.display().to_string(),
+        );
         let mut choice = None;
         egui::Modal::new(egui::Id::new("cnets-restore")).show(ctx, |ui| {
             ui.heading("Restore unsaved work?");
@@ -679,12 +738,26 @@ mod tests {
         let mut g = d.graph;
         let clip = Clipboard::copy(&g, &["construct".to_string(), "planarity".to_string()]);
         let ids = clip.paste(&mut g, [10.0, 10.0], true).unwrap();
-        assert_eq!(ids, vec!["construct_2".to_string(), "planarity_2".to_string()]);
+        assert_eq!(
+            ids,
+            vec!["construct_2".to_string(), "planarity_2".to_string()]
+        );
         let wires = g.wires();
-        assert!(wires.iter().any(|w| w.from == "construct_2" && w.to == "planarity_2"));
-        assert!(wires.iter().any(|w| w.from == "directrix" && w.to == "construct_2"));
+        assert!(
+            wires
+                .iter()
+                .any(|w| w.from == "construct_2" && w.to == "planarity_2")
+        );
+        assert!(
+            wires
+                .iter()
+                .any(|w| w.from == "directrix" && w.to == "construct_2")
+        );
         let mut g2 = g.clone();
         let ids = clip.paste(&mut g2, [10.0, 10.0], false).unwrap();
-        assert!(!g2.wires().iter().any(|w| w.to == ids[0]), "paste does not keep incoming wires");
+        assert!(
+            !g2.wires().iter().any(|w| w.to == ids[0]),
+            "paste does not keep incoming wires"
+        );
     }
 }

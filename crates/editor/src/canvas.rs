@@ -17,7 +17,9 @@ use std::rc::Rc;
 use cnets_engine::{Access, Graph, NodeFlag, PortDef, Value, ValueType};
 use egui::emath::TSTransform;
 use egui::{Color32, Pos2, Rect, Stroke, Ui};
-use egui_snarl::ui::{PinInfo, PinShape, PinWireInfo, SnarlPin, SnarlStyle, SnarlViewer, SnarlWidget};
+use egui_snarl::ui::{
+    PinInfo, PinShape, PinWireInfo, SnarlPin, SnarlStyle, SnarlViewer, SnarlWidget,
+};
 use egui_snarl::{InPin, InPinId, NodeId, OutPin, OutPinId, Snarl};
 
 use crate::history::EditKey;
@@ -148,7 +150,10 @@ fn style() -> SnarlStyle {
     s.pin_size = Some(9.0);
     s.wire_width = Some(2.0);
     s.select_rect_contained = Some(false);
-    s.bg_pattern = Some(egui_snarl::ui::BackgroundPattern::grid(egui::vec2(40.0, 40.0), 0.0));
+    s.bg_pattern = Some(egui_snarl::ui::BackgroundPattern::grid(
+        egui::vec2(40.0, 40.0),
+        0.0,
+    ));
     s
 }
 
@@ -163,7 +168,9 @@ impl Canvas {
             rects: HashMap::new(),
             focused: None,
             selected: Vec::new(),
-            widget: SnarlWidget::new().id(egui::Id::new("cnets-canvas")).style(style()),
+            widget: SnarlWidget::new()
+                .id(egui::Id::new("cnets-canvas"))
+                .style(style()),
             fit_pending: true,
             ui_rect: Rect::NOTHING,
         }
@@ -185,8 +192,13 @@ impl Canvas {
             return None;
         }
         let bb = bb.expand(30.0);
-        let scale = (ui.width() / bb.width()).min(ui.height() / bb.height()).clamp(0.3, 1.0);
-        Some(TSTransform::new(ui.center().to_vec2() - bb.center().to_vec2() * scale, scale))
+        let scale = (ui.width() / bb.width())
+            .min(ui.height() / bb.height())
+            .clamp(0.3, 1.0);
+        Some(TSTransform::new(
+            ui.center().to_vec2() - bb.center().to_vec2() * scale,
+            scale,
+        ))
     }
 
     /// Makes the snarl mirror `graph`: adds and removes nodes, copies positions, diffs wires.
@@ -212,7 +224,12 @@ impl Canvas {
                     }
                 }
                 None => {
-                    let nid = self.snarl.insert_node(pos, CanvasNode { id: node.id.clone() });
+                    let nid = self.snarl.insert_node(
+                        pos,
+                        CanvasNode {
+                            id: node.id.clone(),
+                        },
+                    );
                     self.ids.insert(node.id.clone(), nid);
                 }
             }
@@ -229,7 +246,10 @@ impl Canvas {
             else {
                 continue;
             };
-            wanted.insert((OutPinId { node: a, output: o }, InPinId { node: b, input: i }));
+            wanted.insert((
+                OutPinId { node: a, output: o },
+                InPinId { node: b, input: i },
+            ));
         }
         let existing: Vec<(OutPinId, InPinId)> = self.snarl.wires().collect();
         for (o, i) in &existing {
@@ -368,22 +388,28 @@ pub fn apply(doc: &mut crate::document::GraphDocument, action: CanvasAction) -> 
             if replace {
                 for w in g.wires() {
                     if w.to == to && w.input == input {
-                        g.disconnect(&w.from, &w.output, &w.to, &w.input).map_err(err)?;
+                        g.disconnect(&w.from, &w.output, &w.to, &w.input)
+                            .map_err(err)?;
                     }
                 }
             }
-            g.connect(&from, &output, &to, &input).map(|_| ()).map_err(err)
+            g.connect(&from, &output, &to, &input)
+                .map(|_| ())
+                .map_err(err)
         }),
         CanvasAction::Disconnect {
             from,
             output,
             to,
             input,
-        } => doc.edit(None, |g, _| g.disconnect(&from, &output, &to, &input).map_err(err)),
+        } => doc.edit(None, |g, _| {
+            g.disconnect(&from, &output, &to, &input).map_err(err)
+        }),
         CanvasAction::DropInputs { node, input } => doc.edit(None, |g, _| {
             for w in g.wires() {
                 if w.to == node && w.input == input {
-                    g.disconnect(&w.from, &w.output, &w.to, &w.input).map_err(err)?;
+                    g.disconnect(&w.from, &w.output, &w.to, &w.input)
+                        .map_err(err)?;
                 }
             }
             Ok(())
@@ -391,18 +417,21 @@ pub fn apply(doc: &mut crate::document::GraphDocument, action: CanvasAction) -> 
         CanvasAction::DropOutputs { node, output } => doc.edit(None, |g, _| {
             for w in g.wires() {
                 if w.from == node && w.output == output {
-                    g.disconnect(&w.from, &w.output, &w.to, &w.input).map_err(err)?;
+                    g.disconnect(&w.from, &w.output, &w.to, &w.input)
+                        .map_err(err)?;
                 }
             }
             Ok(())
         }),
         CanvasAction::SetValue { node, input, value } => {
             let key = EditKey::Value(node.clone(), input.clone());
-            doc.edit(Some(key), |g, _| g.set_value(&node, &input, value).map(|_| ()).map_err(err))
+            doc.edit(Some(key), |g, _| {
+                g.set_value(&node, &input, value).map(|_| ()).map_err(err)
+            })
         }
-        CanvasAction::ClearValue { node, input } => {
-            doc.edit(None, |g, _| g.clear_value(&node, &input).map(|_| ()).map_err(err))
-        }
+        CanvasAction::ClearValue { node, input } => doc.edit(None, |g, _| {
+            g.clear_value(&node, &input).map(|_| ()).map_err(err)
+        }),
         CanvasAction::SetValues { node, values } => {
             doc.edit(Some(EditKey::Mapper(node.clone())), |g, _| {
                 for (input, value) in values {
@@ -411,8 +440,12 @@ pub fn apply(doc: &mut crate::document::GraphDocument, action: CanvasAction) -> 
                 Ok(())
             })
         }
-        CanvasAction::SetPreview(node, on) => doc.edit(None, |g, _| g.set_preview(&node, on).map_err(err)),
-        CanvasAction::SetEnabled(node, on) => doc.edit(None, |g, _| g.set_enabled(&node, on).map_err(err)),
+        CanvasAction::SetPreview(node, on) => {
+            doc.edit(None, |g, _| g.set_preview(&node, on).map_err(err))
+        }
+        CanvasAction::SetEnabled(node, on) => {
+            doc.edit(None, |g, _| g.set_enabled(&node, on).map_err(err))
+        }
         CanvasAction::Move(moves) => doc.edit(Some(EditKey::Move), |g, _| {
             for (id, pos) in moves {
                 g.set_position(&id, pos).map_err(err)?;
@@ -439,7 +472,9 @@ pub fn type_color(ty: &ValueType) -> Color32 {
         ValueType::Number | ValueType::Integer => Color32::from_rgb(0x4c, 0x8b, 0xd6),
         ValueType::Boolean => Color32::from_rgb(0xd6, 0x4c, 0x8b),
         ValueType::Text => Color32::from_rgb(0x5a, 0xa0, 0x5a),
-        ValueType::Point | ValueType::Vector | ValueType::Plane => Color32::from_rgb(0xe0, 0x9a, 0x2b),
+        ValueType::Point | ValueType::Vector | ValueType::Plane => {
+            Color32::from_rgb(0xe0, 0x9a, 0x2b)
+        }
         ValueType::Polyline | ValueType::Lines => Color32::from_rgb(0x1f, 0x5f, 0xbf),
         ValueType::QuadMesh | ValueType::Mesh => Color32::from_rgb(0x8a, 0x4f, 0xc8),
         ValueType::Record => Color32::from_rgb(0x80, 0x80, 0x80),
@@ -493,7 +528,12 @@ struct Viewer<'a> {
 }
 
 impl Viewer<'_> {
-    fn names(&self, snarl: &Snarl<CanvasNode>, from: &OutPin, to: &InPin) -> Option<(String, String, String, String)> {
+    fn names(
+        &self,
+        snarl: &Snarl<CanvasNode>,
+        from: &OutPin,
+        to: &InPin,
+    ) -> Option<(String, String, String, String)> {
         let a = snarl.get_node(from.id.node)?;
         let b = snarl.get_node(to.id.node)?;
         let na = self.graph.node(&a.id)?;
@@ -527,7 +567,12 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             return default;
         };
         let mut frame = default;
-        if self.statuses.get(&n.id).and_then(NodeStatus::error).is_some() {
+        if self
+            .statuses
+            .get(&n.id)
+            .and_then(NodeStatus::error)
+            .is_some()
+        {
             frame.stroke = Stroke::new(2.0, ERROR_COLOR);
         }
         if self.focused.as_deref() == Some(n.id.as_str()) {
@@ -555,7 +600,9 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         };
         ui.horizontal(|ui| {
             let title = ui
-                .add(egui::Label::new(egui::RichText::new(&id).strong()).sense(egui::Sense::hover()))
+                .add(
+                    egui::Label::new(egui::RichText::new(&id).strong()).sense(egui::Sense::hover()),
+                )
                 .on_hover_ui(|ui| {
                     ui.set_max_width(360.0);
                     ui.strong(instance.def.id.as_ref());
@@ -569,15 +616,17 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 .on_hover_text("preview this node's geometry in the viewport")
                 .changed()
             {
-                self.actions.push(CanvasAction::SetPreview(id.clone(), preview));
+                self.actions
+                    .push(CanvasAction::SetPreview(id.clone(), preview));
             }
             let mut enabled = instance.enabled;
             if ui
-                .toggle_value(&mut enabled, "⏻")
+                .toggle_value(&mut enabled, "✔")
                 .on_hover_text("enable / disable this node (disabled nodes do not run)")
                 .changed()
             {
-                self.actions.push(CanvasAction::SetEnabled(id.clone(), enabled));
+                self.actions
+                    .push(CanvasAction::SetEnabled(id.clone(), enabled));
             }
             match self.statuses.get(&id) {
                 Some(NodeStatus::Error(m)) => {
@@ -604,14 +653,30 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
     }
 
     #[allow(refining_impl_trait)]
-    fn show_input(&mut self, pin: &InPin, ui: &mut Ui, snarl: &mut Snarl<CanvasNode>) -> RecordingPin {
-        let id = snarl.get_node(pin.id.node).map(|n| n.id.clone()).unwrap_or_default();
+    fn show_input(
+        &mut self,
+        pin: &InPin,
+        ui: &mut Ui,
+        snarl: &mut Snarl<CanvasNode>,
+    ) -> RecordingPin {
+        let id = snarl
+            .get_node(pin.id.node)
+            .map(|n| n.id.clone())
+            .unwrap_or_default();
         let key = (id.clone(), true, pin.id.input);
         let Some(instance) = self.graph.node(&id) else {
-            return RecordingPin { info: PinInfo::circle(), key, sink: self.pins.clone() };
+            return RecordingPin {
+                info: PinInfo::circle(),
+                key,
+                sink: self.pins.clone(),
+            };
         };
         let Some(port) = instance.def.inputs.get(pin.id.input) else {
-            return RecordingPin { info: PinInfo::circle(), key, sink: self.pins.clone() };
+            return RecordingPin {
+                info: PinInfo::circle(),
+                key,
+                sink: self.pins.clone(),
+            };
         };
         let wired = !pin.remotes.is_empty();
         let missing = !wired && port.required() && instance.value(pin.id.input).is_none();
@@ -624,7 +689,11 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 "{} — {}{}",
                 port.type_name(),
                 port.doc,
-                if missing { "\n(required: connect it or set a value)" } else { "" }
+                if missing {
+                    "\n(required: connect it or set a value)"
+                } else {
+                    ""
+                }
             ));
             if !wired && widgets::has_editor(instance, pin.id.input) {
                 ui.spacing_mut().slider_width = 110.0;
@@ -645,11 +714,27 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
     }
 
     #[allow(refining_impl_trait)]
-    fn show_output(&mut self, pin: &OutPin, ui: &mut Ui, snarl: &mut Snarl<CanvasNode>) -> RecordingPin {
-        let id = snarl.get_node(pin.id.node).map(|n| n.id.clone()).unwrap_or_default();
+    fn show_output(
+        &mut self,
+        pin: &OutPin,
+        ui: &mut Ui,
+        snarl: &mut Snarl<CanvasNode>,
+    ) -> RecordingPin {
+        let id = snarl
+            .get_node(pin.id.node)
+            .map(|n| n.id.clone())
+            .unwrap_or_default();
         let key = (id.clone(), false, pin.id.output);
-        let Some(port) = self.graph.node(&id).and_then(|n| n.def.outputs.get(pin.id.output)) else {
-            return RecordingPin { info: PinInfo::circle(), key, sink: self.pins.clone() };
+        let Some(port) = self
+            .graph
+            .node(&id)
+            .and_then(|n| n.def.outputs.get(pin.id.output))
+        else {
+            return RecordingPin {
+                info: PinInfo::circle(),
+                key,
+                sink: self.pins.clone(),
+            };
         };
         let summary = match self.statuses.get(&id) {
             Some(NodeStatus::Ok { outputs, .. }) => outputs.get(pin.id.output).cloned(),
@@ -659,8 +744,11 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             if let Some(s) = summary {
                 ui.weak(s);
             }
-            ui.label(port.name.as_ref())
-                .on_hover_text(format!("{} — {}", port.type_name(), port.doc));
+            ui.label(port.name.as_ref()).on_hover_text(format!(
+                "{} — {}",
+                port.type_name(),
+                port.doc
+            ));
         });
         RecordingPin {
             info: pin_info(port),
@@ -687,11 +775,18 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         if let Some(instance) = self.graph.node(&id)
             && let Some(values) = mapper::show(ui, self.graph, instance)
         {
-            self.actions.push(CanvasAction::SetValues { node: id, values });
+            self.actions
+                .push(CanvasAction::SetValues { node: id, values });
         }
     }
 
-    fn final_node_rect(&mut self, node: NodeId, rect: Rect, ui: &mut Ui, snarl: &mut Snarl<CanvasNode>) {
+    fn final_node_rect(
+        &mut self,
+        node: NodeId,
+        rect: Rect,
+        ui: &mut Ui,
+        snarl: &mut Snarl<CanvasNode>,
+    ) {
         let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
             return;
         };
@@ -763,7 +858,12 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
 
     fn disconnect(&mut self, from: &OutPin, to: &InPin, snarl: &mut Snarl<CanvasNode>) {
         if let Some((from, output, to, input)) = self.names(snarl, from, to) {
-            self.actions.push(CanvasAction::Disconnect { from, output, to, input });
+            self.actions.push(CanvasAction::Disconnect {
+                from,
+                output,
+                to,
+                input,
+            });
         }
     }
 
@@ -771,8 +871,15 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         let Some(id) = snarl.get_node(pin.id.node).map(|n| n.id.clone()) else {
             return;
         };
-        if let Some(port) = self.graph.node(&id).and_then(|n| n.def.inputs.get(pin.id.input)) {
-            self.actions.push(CanvasAction::DropInputs { node: id, input: port.name.to_string() });
+        if let Some(port) = self
+            .graph
+            .node(&id)
+            .and_then(|n| n.def.inputs.get(pin.id.input))
+        {
+            self.actions.push(CanvasAction::DropInputs {
+                node: id,
+                input: port.name.to_string(),
+            });
         }
     }
 
@@ -780,8 +887,15 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         let Some(id) = snarl.get_node(pin.id.node).map(|n| n.id.clone()) else {
             return;
         };
-        if let Some(port) = self.graph.node(&id).and_then(|n| n.def.outputs.get(pin.id.output)) {
-            self.actions.push(CanvasAction::DropOutputs { node: id, output: port.name.to_string() });
+        if let Some(port) = self
+            .graph
+            .node(&id)
+            .and_then(|n| n.def.outputs.get(pin.id.output))
+        {
+            self.actions.push(CanvasAction::DropOutputs {
+                node: id,
+                output: port.name.to_string(),
+            });
         }
     }
 
@@ -804,9 +918,13 @@ mod tests {
         d.edit(None, |g, _| {
             g.add_node("n", "param.number").map_err(|e| e.to_string())?;
             g.add_node("arc", "curve.arc").map_err(|e| e.to_string())?;
-            g.add_node("len", "curve.length").map_err(|e| e.to_string())?;
-            g.connect("n", "value", "arc", "radius").map_err(|e| e.to_string())?;
-            g.connect("arc", "curve", "len", "curve").map(|_| ()).map_err(|e| e.to_string())
+            g.add_node("len", "curve.length")
+                .map_err(|e| e.to_string())?;
+            g.connect("n", "value", "arc", "radius")
+                .map_err(|e| e.to_string())?;
+            g.connect("arc", "curve", "len", "curve")
+                .map(|_| ())
+                .map_err(|e| e.to_string())
         })
         .unwrap();
         d
@@ -860,8 +978,12 @@ mod tests {
     #[test]
     fn plain_connect_replaces_shift_connect_adds() {
         let mut d = doc();
-        d.edit(None, |g, _| g.add_node("m", "param.number").map(|_| ()).map_err(|e| e.to_string()))
-            .unwrap();
+        d.edit(None, |g, _| {
+            g.add_node("m", "param.number")
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
         let connect = |replace| CanvasAction::Connect {
             from: "m".into(),
             output: "value".into(),
@@ -871,9 +993,21 @@ mod tests {
         };
         apply(&mut d, connect(false)).unwrap();
         assert_eq!(d.graph.wires().iter().filter(|w| w.to == "arc").count(), 2);
-        apply(&mut d, CanvasAction::DropInputs { node: "arc".into(), input: "radius".into() }).unwrap();
+        apply(
+            &mut d,
+            CanvasAction::DropInputs {
+                node: "arc".into(),
+                input: "radius".into(),
+            },
+        )
+        .unwrap();
         apply(&mut d, connect(true)).unwrap();
-        let into: Vec<_> = d.graph.wires().into_iter().filter(|w| w.to == "arc").collect();
+        let into: Vec<_> = d
+            .graph
+            .wires()
+            .into_iter()
+            .filter(|w| w.to == "arc")
+            .collect();
         assert_eq!(into.len(), 1);
         assert_eq!(into[0].from, "m");
     }

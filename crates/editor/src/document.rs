@@ -51,7 +51,11 @@ impl GraphDocument {
     /// Loads a graph file. The error text lists every diagnostic (`file:line:col: message`).
     pub fn open(path: &Path, registry: &Arc<Registry>) -> Result<Self, String> {
         let doc = file::load_file(path, registry).map_err(|e| e.to_string())?;
-        Ok(Self::from_parts(doc.graph, doc.meta, Some(path.to_path_buf())))
+        Ok(Self::from_parts(
+            doc.graph,
+            doc.meta,
+            Some(path.to_path_buf()),
+        ))
     }
 
     /// Parses graph text (e.g. a recovery file) into a document with the given path.
@@ -108,11 +112,10 @@ impl GraphDocument {
 
     /// The title shown in the window: file name (or "untitled") and a `*` when dirty.
     pub fn title(&self) -> String {
-        let name = self
-            .path
-            .as_deref()
-            .and_then(Path::file_name)
-            .map_or_else(|| "untitled".to_string(), |n| n.to_string_lossy().into_owned());
+        let name = self.path.as_deref().and_then(Path::file_name).map_or_else(
+            || "untitled".to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        );
         format!("{name}{}", if self.dirty { " *" } else { "" })
     }
 
@@ -202,7 +205,11 @@ pub fn fresh_id(graph: &Graph, base: &str) -> String {
             }
         })
         .collect();
-    let stem = if stem.is_empty() { "node".to_string() } else { stem };
+    let stem = if stem.is_empty() {
+        "node".to_string()
+    } else {
+        stem
+    };
     // Strip a numeric suffix so that copies of `arc_2` become `arc_3`, not `arc_2_2`.
     let root = match stem.rsplit_once('_') {
         Some((root, n)) if !root.is_empty() && n.parse::<u32>().is_ok() => root.to_string(),

@@ -9,7 +9,9 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use cnets_engine::{Evaluator, Graph, NodeContext, NodeDef, NodeFlag, NodeResult, Registry, ValueType};
+use cnets_engine::{
+    Evaluator, Graph, NodeContext, NodeDef, NodeFlag, NodeResult, Registry, ValueType,
+};
 
 /// An export format of the File menu.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -26,7 +28,12 @@ pub enum ExportFormat {
 
 impl ExportFormat {
     /// All formats.
-    pub const ALL: [ExportFormat; 4] = [ExportFormat::Glb, ExportFormat::Obj, ExportFormat::Svg, ExportFormat::Dxf];
+    pub const ALL: [ExportFormat; 4] = [
+        ExportFormat::Glb,
+        ExportFormat::Obj,
+        ExportFormat::Svg,
+        ExportFormat::Dxf,
+    ];
 
     /// File extension and menu label.
     pub fn extension(self) -> &'static str {
@@ -80,19 +87,25 @@ pub fn export(
     name: &str,
 ) -> Result<Vec<PathBuf>, String> {
     let def = export_node(graph.registry(), format).ok_or_else(|| {
-        format!("no {} export node is registered in this build", format.extension())
+        format!(
+            "no {} export node is registered in this build",
+            format.extension()
+        )
     })?;
-    let (source, output, ty) = export_source(graph).ok_or("nothing to export: no previewed mesh")?;
+    let (source, output, ty) =
+        export_source(graph).ok_or("nothing to export: no previewed mesh")?;
     let mut g = graph.clone();
     let id = crate::document::fresh_id(&g, &format!("export_{}", format.extension()));
-    g.add_node_with_def(&id, def.clone()).map_err(|e| e.to_string())?;
+    g.add_node_with_def(&id, def.clone())
+        .map_err(|e| e.to_string())?;
     let input = def
         .inputs
         .iter()
         .find(|p| ty.converts_to(&p.ty) && p.ty != ValueType::Any)
         .or_else(|| def.inputs.iter().find(|p| ty.converts_to(&p.ty)))
         .ok_or_else(|| format!("{} has no input for a mesh", def.id))?;
-    g.connect(&source, &output, &id, &input.name).map_err(|e| e.to_string())?;
+    g.connect(&source, &output, &id, &input.name)
+        .map_err(|e| e.to_string())?;
     if let Some(file_port) = def.inputs.iter().find(|p| {
         p.ty == ValueType::Text && ["file", "name", "path"].iter().any(|w| p.name.contains(w))
     }) {
@@ -100,7 +113,8 @@ pub fn export(
         g.set_value(&id, &file_port.name, cnets_engine::Value::text(file))
             .map_err(|e| e.to_string())?;
     }
-    std::fs::create_dir_all(folder).map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
+    std::fs::create_dir_all(folder)
+        .map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
     let ctx = NodeContext::new(Some(folder.to_path_buf()), base_dir);
     let mut eval = Evaluator::new();
     let index = g.index(&id).map_err(|e| e.to_string())?;
@@ -122,11 +136,16 @@ mod tests {
     fn stand_in() -> NodeDef {
         NodeDef::new("io.export_obj", "Export", "Test OBJ export.")
             .input(PortDef::new("mesh", ValueType::Mesh, Access::Item))
-            .input(PortDef::new("file", ValueType::Text, Access::Item).with_default(Value::text("out.obj")))
+            .input(
+                PortDef::new("file", ValueType::Text, Access::Item)
+                    .with_default(Value::text("out.obj")),
+            )
             .output(PortDef::new("path", ValueType::Text, Access::Item))
             .flag(NodeFlag::Export)
             .run(|ctx, inputs| {
-                let Value::Text(name) = &inputs[1] else { return Err("no name".into()) };
+                let Value::Text(name) = &inputs[1] else {
+                    return Err("no name".into());
+                };
                 let path = ctx.output_path(name)?;
                 let n = match &inputs[0] {
                     Value::Mesh(m) => m.vertices.len(),
@@ -151,7 +170,10 @@ mod tests {
         assert_eq!(files, vec![dir.join("net.obj")]);
         let count: usize = std::fs::read_to_string(&files[0]).unwrap().parse().unwrap();
         assert_eq!(count, 11 * 19);
-        assert!(export(&doc.graph, None, ExportFormat::Dxf, &dir, "net").is_err() || export_node(&registry, ExportFormat::Dxf).is_some());
+        assert!(
+            export(&doc.graph, None, ExportFormat::Dxf, &dir, "net").is_err()
+                || export_node(&registry, ExportFormat::Dxf).is_some()
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

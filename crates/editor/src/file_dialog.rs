@@ -60,8 +60,8 @@ pub fn list_dir(dir: &Path, folders_only: bool) -> Vec<(String, bool)> {
         .filter_map(|e| {
             let name = e.file_name().to_string_lossy().into_owned();
             let is_dir = e.file_type().ok()?.is_dir();
-            let keep = !name.starts_with('.')
-                && (is_dir || (!folders_only && name.ends_with(".ron")));
+            let keep =
+                !name.starts_with('.') && (is_dir || (!folders_only && name.ends_with(".ron")));
             keep.then_some((name, is_dir))
         })
         .collect();
@@ -85,7 +85,9 @@ impl FileDialog {
         if p.is_dir() {
             p
         } else {
-            p.parent().map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from("."))
+            p.parent()
+                .map(Path::to_path_buf)
+                .unwrap_or_else(|| PathBuf::from("."))
         }
     }
 
@@ -97,7 +99,11 @@ impl FileDialog {
             Purpose::Open => Err(format!("{} is not a file", p.display())),
             Purpose::SaveAs if p.is_dir() => Err("type a file name".into()),
             Purpose::SaveAs => {
-                let p = if p.extension().is_none() { p.with_extension("ron") } else { p };
+                let p = if p.extension().is_none() {
+                    p.with_extension("ron")
+                } else {
+                    p
+                };
                 match p.parent() {
                     Some(d) if d.as_os_str().is_empty() || d.is_dir() => Ok(p),
                     _ => Err(format!("the folder of {} does not exist", p.display())),
@@ -120,7 +126,8 @@ impl FileDialog {
             .default_height(360.0)
             .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
             .show(ctx, |ui| {
-                let field = ui.add(egui::TextEdit::singleline(&mut self.path).desired_width(f32::INFINITY));
+                let field =
+                    ui.add(egui::TextEdit::singleline(&mut self.path).desired_width(f32::INFINITY));
                 let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
                 let folder = self.folder();
                 ui.horizontal(|ui| {
@@ -131,18 +138,24 @@ impl FileDialog {
                         self.path = parent.display().to_string();
                     }
                 });
-                egui::ScrollArea::vertical().max_height(240.0).show(ui, |ui| {
-                    for (name, is_dir) in list_dir(&folder, self.purpose.wants_folder()) {
-                        let label = if is_dir { format!("📁 {name}") } else { name.clone() };
-                        let r = ui.selectable_label(false, label);
-                        if r.clicked() {
-                            self.path = folder.join(&name).display().to_string();
+                egui::ScrollArea::vertical()
+                    .max_height(240.0)
+                    .show(ui, |ui| {
+                        for (name, is_dir) in list_dir(&folder, self.purpose.wants_folder()) {
+                            let label = if is_dir {
+                                format!("📁 {name}")
+                            } else {
+                                name.clone()
+                            };
+                            let r = ui.selectable_label(false, label);
+                            if r.clicked() {
+                                self.path = folder.join(&name).display().to_string();
+                            }
+                            if r.double_clicked() && !is_dir {
+                                outcome = Outcome::Chosen(folder.join(&name));
+                            }
                         }
-                        if r.double_clicked() && !is_dir {
-                            outcome = Outcome::Chosen(folder.join(&name));
-                        }
-                    }
-                });
+                    });
                 if let Some(e) = &self.error {
                     ui.colored_label(egui::Color32::from_rgb(0xd6, 0x2f, 0x2f), e);
                 }
@@ -163,11 +176,7 @@ impl FileDialog {
                     }
                 });
             });
-        if !open {
-            Outcome::Cancelled
-        } else {
-            outcome
-        }
+        if !open { Outcome::Cancelled } else { outcome }
     }
 }
 
@@ -183,7 +192,10 @@ mod tests {
         std::fs::write(dir.join("b.ron"), "x").unwrap();
         std::fs::write(dir.join("a.txt"), "x").unwrap();
         let l = list_dir(&dir, false);
-        assert_eq!(l, vec![("sub".to_string(), true), ("b.ron".to_string(), false)]);
+        assert_eq!(
+            l,
+            vec![("sub".to_string(), true), ("b.ron".to_string(), false)]
+        );
         assert_eq!(list_dir(&dir, true).len(), 1);
         let mut d = FileDialog::new(Purpose::Open, &dir);
         assert!(d.validate().is_err());

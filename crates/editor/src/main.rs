@@ -29,9 +29,14 @@ fn parse_args() -> anyhow::Result<Args> {
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         match a.as_str() {
-            "--screenshot" => args.screenshot = Some(it.next().context("--screenshot needs a path")?.into()),
+            "--screenshot" => {
+                args.screenshot = Some(it.next().context("--screenshot needs a path")?.into())
+            }
             "--quit-after-frames" => {
-                args.quit_after = it.next().context("--quit-after-frames needs a number")?.parse()?
+                args.quit_after = it
+                    .next()
+                    .context("--quit-after-frames needs a number")?
+                    .parse()?
             }
             "--size" => {
                 let s = it.next().context("--size needs WxH")?;
@@ -39,7 +44,9 @@ fn parse_args() -> anyhow::Result<Args> {
                 args.size = [w.parse()?, h.parse()?];
             }
             "-h" | "--help" => {
-                println!("cnets-editor [FILE] [--screenshot OUT.png] [--quit-after-frames N] [--size WxH]");
+                println!(
+                    "cnets-editor [FILE] [--screenshot OUT.png] [--quit-after-frames N] [--size WxH]"
+                );
                 std::process::exit(0);
             }
             s if s.starts_with('-') => bail!("unknown option {s}"),
@@ -90,7 +97,10 @@ impl eframe::App for Window {
             };
             let saved = png.save_png(&out).map_err(anyhow::Error::from);
             if saved.is_ok() {
-                eprintln!("cnets-editor: screenshot {w}x{h} written to {}", out.display());
+                eprintln!(
+                    "cnets-editor: screenshot {w}x{h} written to {}",
+                    out.display()
+                );
             }
             *self.result.lock().unwrap_or_else(|p| p.into_inner()) = Some(saved);
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
@@ -104,6 +114,38 @@ impl eframe::App for Window {
     fn on_exit(&mut self) {
         self.app.on_exit();
     }
+}
+
+/// Fails when the screenshot is (nearly) blank: too few colours, or the right half (the 3D view)
+/// one flat colour.
+fn check_not_blank(image: &cnets_render::Image) -> anyhow::Result<()> {
+    let mut colours = std::collections::HashSet::new();
+    let mut right = std::collections::HashMap::<[u8; 4], usize>::new();
+    for y in 0..image.height {
+        for x in 0..image.width {
+            let p = image.pixel(x, y).unwrap_or_default();
+            colours.insert(p);
+            if x > image.width * 6 / 10 && y > image.height / 10 && y < image.height * 9 / 10 {
+                *right.entry(p).or_default() += 1;
+            }
+        }
+    }
+    let total: usize = right.values().sum();
+    let background = right.values().copied().max().unwrap_or(0);
+    let covered = 1.0 - background as f64 / total.max(1) as f64;
+    eprintln!(
+        "cnets-editor: {} colours; {:.0}% of the 3D view differs from its background",
+        colours.len(),
+        covered * 100.0
+    );
+    if colours.len() < 64 || covered < 0.05 {
+        bail!(
+            "the screenshot looks blank ({} colours, {:.1}% of the 3D view drawn)",
+            colours.len(),
+            covered * 100.0
+        );
+    }
+    Ok(())
 }
 
 fn main() -> anyhow::Result<()> {

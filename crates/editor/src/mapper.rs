@@ -17,7 +17,15 @@ use crate::widgets::effective_value;
 
 /// Curve types offered in the picker (the names of the design-inputs issue).
 pub const CURVE_TYPES: [&str; 10] = [
-    "linear", "bezier", "parabola", "power", "sine", "gaussian", "sqrt", "conic", "piecewise",
+    "linear",
+    "bezier",
+    "parabola",
+    "power",
+    "sine",
+    "gaussian",
+    "sqrt",
+    "conic",
+    "piecewise",
     "spline",
 ];
 
@@ -70,7 +78,13 @@ pub fn sample_curve(node: &NodeInstance) -> Option<Vec<f64>> {
         })
         .collect();
     let out = evaluate_node(&node.def, &NodeContext::default(), &inputs).ok()?;
-    let ys: Vec<f64> = out.values.first()?.as_list()?.iter().filter_map(Value::as_f64).collect();
+    let ys: Vec<f64> = out
+        .values
+        .first()?
+        .as_list()?
+        .iter()
+        .filter_map(Value::as_f64)
+        .collect();
     (ys.len() >= 2 && ys.iter().all(|y| y.is_finite())).then_some(ys)
 }
 
@@ -84,7 +98,11 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> Option<Vec<(Str
             _ => String::new(),
         };
         egui::ComboBox::from_id_salt(("mapper-type", &node.id))
-            .selected_text(if current.is_empty() { "type" } else { current.as_str() })
+            .selected_text(if current.is_empty() {
+                "type"
+            } else {
+                current.as_str()
+            })
             .show_ui(ui, |ui| {
                 for t in CURVE_TYPES {
                     if ui.selectable_label(current == t, t).clicked() {
@@ -97,16 +115,25 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> Option<Vec<(Str
     let (rect, _) = ui.allocate_exact_size(size, Sense::hover());
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 2.0, Color32::from_gray(245));
-    painter.rect_stroke(rect, 2.0, Stroke::new(1.0, Color32::from_gray(160)), egui::StrokeKind::Inside);
-    let to_screen = |p: DVec3| Pos2::new(
-        rect.left() + (p.x.clamp(0.0, 1.0) as f32) * rect.width(),
-        rect.bottom() - (p.y.clamp(0.0, 1.0) as f32) * rect.height(),
+    painter.rect_stroke(
+        rect,
+        2.0,
+        Stroke::new(1.0, Color32::from_gray(160)),
+        egui::StrokeKind::Inside,
     );
-    let to_unit = |p: Pos2| DVec3::new(
-        f64::from((p.x - rect.left()) / rect.width()).clamp(0.0, 1.0),
-        f64::from((rect.bottom() - p.y) / rect.height()).clamp(0.0, 1.0),
-        0.0,
-    );
+    let to_screen = |p: DVec3| {
+        Pos2::new(
+            rect.left() + (p.x.clamp(0.0, 1.0) as f32) * rect.width(),
+            rect.bottom() - (p.y.clamp(0.0, 1.0) as f32) * rect.height(),
+        )
+    };
+    let to_unit = |p: Pos2| {
+        DVec3::new(
+            f64::from((p.x - rect.left()) / rect.width()).clamp(0.0, 1.0),
+            f64::from((rect.bottom() - p.y) / rect.height()).clamp(0.0, 1.0),
+            0.0,
+        )
+    };
     let handles = handles(node);
     let curve: Vec<Pos2> = match sample_curve(node) {
         Some(ys) => {
@@ -118,7 +145,10 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> Option<Vec<(Str
         }
         None => handles.iter().map(|&h| to_screen(h)).collect(),
     };
-    painter.add(egui::Shape::line(curve, Stroke::new(1.5, Color32::from_rgb(0x1f, 0x5f, 0xbf))));
+    painter.add(egui::Shape::line(
+        curve,
+        Stroke::new(1.5, Color32::from_rgb(0x1f, 0x5f, 0xbf)),
+    ));
     let mut moved = handles.clone();
     let mut any = false;
     for (k, h) in handles.iter().enumerate() {
@@ -134,8 +164,17 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> Option<Vec<(Str
             moved[k] = to_unit(p);
             any = true;
         }
-        let fill = if r.hovered() || r.dragged() { Color32::from_rgb(0xd0, 0x31, 0x2d) } else { Color32::WHITE };
-        painter.circle(center, 5.0, fill, Stroke::new(1.5, Color32::from_rgb(0xd0, 0x31, 0x2d)));
+        let fill = if r.hovered() || r.dragged() {
+            Color32::from_rgb(0xd0, 0x31, 0x2d)
+        } else {
+            Color32::WHITE
+        };
+        painter.circle(
+            center,
+            5.0,
+            fill,
+            Stroke::new(1.5, Color32::from_rgb(0xd0, 0x31, 0x2d)),
+        );
     }
     if any && let Some(k) = handles_port(node) {
         changes.push((
@@ -155,20 +194,41 @@ mod tests {
     /// A stand-in with the documented shape of `mapper.graph`: type, handles, count → values.
     fn stand_in() -> NodeDef {
         NodeDef::new("mapper.test", "Mappers", "A linear test mapper.")
-            .input(PortDef::new("type", ValueType::Text, Access::Item).with_default(Value::text("linear")))
             .input(
-                PortDef::new("handles", ValueType::Point, Access::List).with_default(Value::list(vec![
-                    Value::Point(DVec3::new(0.0, 0.2, 0.0)),
-                    Value::Point(DVec3::new(1.0, 0.8, 0.0)),
-                ])),
+                PortDef::new("type", ValueType::Text, Access::Item)
+                    .with_default(Value::text("linear")),
             )
-            .input(PortDef::new("count", ValueType::Integer, Access::Item).with_default(Value::Integer(10)))
+            .input(
+                PortDef::new("handles", ValueType::Point, Access::List).with_default(Value::list(
+                    vec![
+                        Value::Point(DVec3::new(0.0, 0.2, 0.0)),
+                        Value::Point(DVec3::new(1.0, 0.8, 0.0)),
+                    ],
+                )),
+            )
+            .input(
+                PortDef::new("count", ValueType::Integer, Access::Item)
+                    .with_default(Value::Integer(10)),
+            )
             .output(PortDef::new("values", ValueType::Number, Access::List))
             .run(|_, inputs| {
-                let h = inputs[1].as_list().unwrap_or(&[]).iter().filter_map(Value::as_vec3).collect::<Vec<_>>();
-                let n = match inputs[2] { Value::Integer(n) => n, _ => 0 };
-                let (a, b) = (h.first().map_or(0.0, |p| p.y), h.last().map_or(1.0, |p| p.y));
-                let ys = (0..n).map(|k| Value::Number(a + (b - a) * k as f64 / (n - 1).max(1) as f64)).collect();
+                let h = inputs[1]
+                    .as_list()
+                    .unwrap_or(&[])
+                    .iter()
+                    .filter_map(Value::as_vec3)
+                    .collect::<Vec<_>>();
+                let n = match inputs[2] {
+                    Value::Integer(n) => n,
+                    _ => 0,
+                };
+                let (a, b) = (
+                    h.first().map_or(0.0, |p| p.y),
+                    h.last().map_or(1.0, |p| p.y),
+                );
+                let ys = (0..n)
+                    .map(|k| Value::Number(a + (b - a) * k as f64 / (n - 1).max(1) as f64))
+                    .collect();
                 Ok(vec![Value::list(ys)])
             })
     }

@@ -62,20 +62,24 @@ pub struct MenuContext<'a> {
 }
 
 fn file_label(p: &Path) -> String {
-    p.file_name().map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into_owned())
+    p.file_name().map_or_else(
+        || p.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
 }
 
 /// Shows the menu bar; returns what was picked.
 pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
     let mut action = None;
     let mut pick_preview = None;
-    let mut pick = |ui: &mut egui::Ui, label: &str, shortcut: &str, a: MenuAction, enabled: bool| {
-        let button = egui::Button::new(label).shortcut_text(shortcut);
-        if ui.add_enabled(enabled, button).clicked() {
-            action = Some(a);
-            ui.close();
-        }
-    };
+    let mut pick =
+        |ui: &mut egui::Ui, label: &str, shortcut: &str, a: MenuAction, enabled: bool| {
+            let button = egui::Button::new(label).shortcut_text(shortcut);
+            if ui.add_enabled(enabled, button).clicked() {
+                action = Some(a);
+                ui.close();
+            }
+        };
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
             pick(ui, "New", "", MenuAction::New, true);
@@ -85,7 +89,13 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                     ui.weak("no graphs/ folder found");
                 }
                 for p in mc.examples {
-                    pick(ui, &file_label(p), "", MenuAction::OpenPath(p.clone()), true);
+                    pick(
+                        ui,
+                        &file_label(p),
+                        "",
+                        MenuAction::OpenPath(p.clone()),
+                        true,
+                    );
                 }
             });
             ui.menu_button("Recent files", |ui| {
@@ -93,7 +103,13 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                     ui.weak("none yet");
                 }
                 for p in mc.recent {
-                    pick(ui, &p.display().to_string(), "", MenuAction::OpenPath(p.clone()), true);
+                    pick(
+                        ui,
+                        &p.display().to_string(),
+                        "",
+                        MenuAction::OpenPath(p.clone()),
+                        true,
+                    );
                 }
             });
             ui.separator();
@@ -101,7 +117,13 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
             pick(ui, "Save as…", "Ctrl+Shift+S", MenuAction::SaveAs, true);
             ui.menu_button("Export", |ui| {
                 for f in ExportFormat::ALL {
-                    pick(ui, &format!("{}…", f.extension().to_uppercase()), "", MenuAction::Export(f), true);
+                    pick(
+                        ui,
+                        &format!("{}…", f.extension().to_uppercase()),
+                        "",
+                        MenuAction::Export(f),
+                        true,
+                    );
                 }
             });
             ui.separator();
@@ -117,7 +139,13 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
             pick(ui, "Delete", "Delete", MenuAction::Delete, true);
         });
         ui.menu_button("Add", |ui| {
-            pick(ui, "Node…", "double-click canvas", MenuAction::AddNode, true);
+            pick(
+                ui,
+                "Node…",
+                "double-click canvas",
+                MenuAction::AddNode,
+                true,
+            );
         });
         ui.menu_button("View", |ui| {
             pick(ui, "Frame geometry", "F", MenuAction::Fit, true);

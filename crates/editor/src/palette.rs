@@ -10,10 +10,7 @@ use cnets_engine::{NodeDef, Registry};
 /// grouped by category in registry order. Ids that start with the query come first within a
 /// category.
 pub fn search(registry: &Registry, query: &str) -> Vec<(String, Vec<Arc<NodeDef>>)> {
-    let words: Vec<String> = query
-        .split_whitespace()
-        .map(str::to_lowercase)
-        .collect();
+    let words: Vec<String> = query.split_whitespace().map(str::to_lowercase).collect();
     let mut groups: Vec<(String, Vec<Arc<NodeDef>>)> = Vec::new();
     for def in registry.iter() {
         let haystack = format!("{} {} {}", def.id, def.category, def.doc).to_lowercase();
@@ -127,10 +124,17 @@ mod tests {
         let total: usize = all.iter().map(|(_, d)| d.len()).sum();
         assert_eq!(total, registry.len());
         let arcs = search(&registry, "ARC");
-        assert!(arcs.iter().any(|(c, d)| c == "Curves" && d[0].id == "curve.arc"));
+        assert!(
+            arcs.iter()
+                .any(|(c, d)| c == "Curves" && d[0].id == "curve.arc")
+        );
         let none = search(&registry, "no-such-node-xyz");
         assert!(none.is_empty());
         let two = search(&registry, "cone construct");
-        assert!(two.iter().flat_map(|(_, d)| d).all(|d| d.category == "Cone-nets"));
+        assert!(
+            two.iter()
+                .flat_map(|(_, d)| d)
+                .all(|d| d.category == "Cone-nets")
+        );
     }
 }

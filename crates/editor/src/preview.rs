@@ -13,9 +13,7 @@ use cnets_engine::{Evaluator, Graph, Value};
 use cnets_geometry::conenet::quad_planarity;
 use cnets_geometry::{DVec3, QuadGrid};
 use cnets_render::palette::{self, SequentialMap};
-use cnets_render::{
-    Color, ConfigClass, FaceColors, LineStyle, MeshStyle, PointStyle, Scene,
-};
+use cnets_render::{Color, ConfigClass, FaceColors, LineStyle, MeshStyle, PointStyle, Scene};
 
 /// How surfaces are coloured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -158,7 +156,11 @@ pub struct PreviewStats {
 }
 
 /// Builds the preview scene from the evaluator's results for `graph`.
-pub fn build_scene(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> (Scene, PreviewStats) {
+pub fn build_scene(
+    graph: &Graph,
+    eval: &Evaluator,
+    opts: &PreviewOptions,
+) -> (Scene, PreviewStats) {
     let start = Instant::now();
     let mut b = Builder {
         scene: Scene::new(),
@@ -197,7 +199,9 @@ pub fn build_scene(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> (S
         .flatten()
         .copied()
         .filter(|v| v.is_finite())
-        .fold(None, |acc: Option<f64>, v| Some(acc.map_or(v, |a| a.max(v))));
+        .fold(None, |acc: Option<f64>, v| {
+            Some(acc.map_or(v, |a| a.max(v)))
+        });
     b.stats.max_planarity = max;
     if opts.color_mode == ColorMode::Planarity {
         let all: Vec<f64> = planarities.iter().flatten().copied().collect();
@@ -212,9 +216,9 @@ pub fn build_scene(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> (S
             let c = b.class_counts;
             LegendInfo::Classes([0, 1, 2, 3].map(|k| (ConfigClass::ALL[k], c[k])))
         }
-        ColorMode::Planarity => b
-            .planarity_range
-            .map_or(LegendInfo::None, |m| LegendInfo::Planarity(m.legend("planarity", 5))),
+        ColorMode::Planarity => b.planarity_range.map_or(LegendInfo::None, |m| {
+            LegendInfo::Planarity(m.legend("planarity", 5))
+        }),
         _ => LegendInfo::None,
     };
     b.stats.build_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -250,9 +254,7 @@ const CURVE_COLOR: Color = palette::LINE;
 
 impl Builder {
     fn edges(&self) -> Option<LineStyle> {
-        self.opts
-            .shows(Layer::Edges)
-            .then(MeshStyle::default_edges)
+        self.opts.shows(Layer::Edges).then(MeshStyle::default_edges)
     }
 
     fn collect(
@@ -281,7 +283,11 @@ impl Builder {
                 }
             }
             Value::QuadMesh(grid) => {
-                let layer = if layer == Layer::Supports { layer } else { Layer::Surfaces };
+                let layer = if layer == Layer::Supports {
+                    layer
+                } else {
+                    Layer::Surfaces
+                };
                 meshes.push((grid.clone(), configurations.clone(), layer));
             }
             Value::Mesh(mesh) => {
@@ -293,7 +299,11 @@ impl Builder {
                 self.stats.vertices += mesh.vertices.len();
                 self.stats.faces += mesh.face_count();
                 if show {
-                    let color = if layer == Layer::Supports { SUPPORT_COLOR } else { palette::SURFACE };
+                    let color = if layer == Layer::Supports {
+                        SUPPORT_COLOR
+                    } else {
+                        palette::SURFACE
+                    };
                     let style = MeshStyle::new(FaceColors::Uniform(color)).edges(self.edges());
                     let _ = self.scene.add_polygon_mesh(mesh, style);
                 }
@@ -356,17 +366,26 @@ impl Builder {
                 let classes = face_classes(grid, c)?;
                 self.any_classes = true;
                 for class in &classes {
-                    self.class_counts[ConfigClass::ALL.iter().position(|c| c == class).unwrap_or(0)] += 1;
+                    self.class_counts[ConfigClass::ALL
+                        .iter()
+                        .position(|c| c == class)
+                        .unwrap_or(0)] += 1;
                 }
                 Some(classes.into_iter().map(ConfigClass::color).collect())
             }),
             (ColorMode::Planarity, _) => {
-                let map = self.planarity_range.unwrap_or_else(|| SequentialMap::fit(planarity));
+                let map = self
+                    .planarity_range
+                    .unwrap_or_else(|| SequentialMap::fit(planarity));
                 Some(planarity.iter().map(|&v| map.color(v)).collect())
             }
             (ColorMode::Plain, _) => None,
         };
-        let uniform = if layer == Layer::Supports { SUPPORT_COLOR } else { palette::SURFACE };
+        let uniform = if layer == Layer::Supports {
+            SUPPORT_COLOR
+        } else {
+            palette::SURFACE
+        };
         let faces = match &colors {
             Some(c) => FaceColors::PerFace(c),
             None => FaceColors::Uniform(uniform),
@@ -442,7 +461,7 @@ mod tests {
     fn table(rows: usize, labels: &[&str]) -> Value {
         Value::list(
             (0..rows)
-                .map(|_| Value::list(labels.iter().map(|l| Value::text(l)).collect()))
+                .map(|_| Value::list(labels.iter().map(Value::text).collect()))
                 .collect(),
         )
     }
@@ -456,9 +475,16 @@ mod tests {
         // 2 touches 2 (--) and 3 (none).
         assert_eq!(
             classes[..3],
-            [ConfigClass::PlusPlus, ConfigClass::MinusMinus, ConfigClass::MinusMinus]
+            [
+                ConfigClass::PlusPlus,
+                ConfigClass::MinusMinus,
+                ConfigClass::MinusMinus
+            ]
         );
-        assert!(face_classes(&g, &table(2, &["++", "--"])).is_none(), "row count must match");
+        assert!(
+            face_classes(&g, &table(2, &["++", "--"])).is_none(),
+            "row count must match"
+        );
     }
 
     #[test]

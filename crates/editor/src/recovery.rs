@@ -84,7 +84,10 @@ impl Recovery {
         if !dirty || self.saved_version == Some(version) {
             return false;
         }
-        if self.last_write.is_some_and(|t| t.elapsed() < AUTOSAVE_EVERY) {
+        if self
+            .last_write
+            .is_some_and(|t| t.elapsed() < AUTOSAVE_EVERY)
+        {
             return false;
         }
         self.write(&text(), path, version).is_ok()
@@ -108,10 +111,19 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
         let mut r = Recovery::new(&dir);
         assert!(r.find().is_none());
-        assert!(!r.tick(false, 1, None, || "x".into()), "clean documents are not saved");
+        assert!(
+            !r.tick(false, 1, None, || "x".into()),
+            "clean documents are not saved"
+        );
         assert!(r.tick(true, 1, Some(Path::new("/tmp/a.ron")), || "one".into()));
-        assert!(!r.tick(true, 1, None, || "one".into()), "same version: nothing to do");
-        assert!(!r.tick(true, 2, None, || "two".into()), "too soon after the last write");
+        assert!(
+            !r.tick(true, 1, None, || "one".into()),
+            "same version: nothing to do"
+        );
+        assert!(
+            !r.tick(true, 2, None, || "two".into()),
+            "too soon after the last write"
+        );
         let found = r.find().unwrap();
         assert_eq!(found.text, "one");
         assert_eq!(found.path, Some(PathBuf::from("/tmp/a.ron")));

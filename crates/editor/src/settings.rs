@@ -87,7 +87,14 @@ mod tests {
         assert_eq!(again.recent.len(), MAX_RECENT);
         assert_eq!(again.recent[0], PathBuf::from("/tmp/g5.ron"));
         assert_eq!(again.recent[1], PathBuf::from("/tmp/g11.ron"));
-        assert_eq!(again.recent.iter().filter(|p| p.ends_with("g5.ron")).count(), 1);
+        assert_eq!(
+            again
+                .recent
+                .iter()
+                .filter(|p| p.ends_with("g5.ron"))
+                .count(),
+            1
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

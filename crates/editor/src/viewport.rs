@@ -106,19 +106,26 @@ impl CallbackTrait for ViewportCallback {
         resources: &mut CallbackResources,
     ) -> Vec<wgpu::CommandBuffer> {
         let t = self.target;
-        let gpu = resources.entry::<ViewportGpu>().or_insert_with(|| ViewportGpu {
-            renderer: SceneRenderer::new(device, t.options),
-            blitter: Blitter::new(device, t.target_format, t.msaa_samples, t.depth_format),
-            source: None,
-            version: u64::MAX,
-        });
+        let gpu = resources
+            .entry::<ViewportGpu>()
+            .or_insert_with(|| ViewportGpu {
+                renderer: SceneRenderer::new(device, t.options),
+                blitter: Blitter::new(device, t.target_format, t.msaa_samples, t.depth_format),
+                source: None,
+                version: u64::MAX,
+            });
         if gpu.version != self.version {
             gpu.renderer.set_scene(device, queue, &self.scene);
             gpu.version = self.version;
         }
         let [w, h] = self.size_px;
-        if gpu.renderer.render(device, queue, encoder, &self.camera, w, h).is_ok() {
-            gpu.blitter.update_source(device, &gpu.renderer, &mut gpu.source);
+        if gpu
+            .renderer
+            .render(device, queue, encoder, &self.camera, w, h)
+            .is_ok()
+        {
+            gpu.blitter
+                .update_source(device, &gpu.renderer, &mut gpu.source);
         }
         Vec::new()
     }
@@ -250,29 +257,58 @@ impl Viewport {
                 ink,
             );
         }
-        let swatch = |painter: &egui::Painter, y: f32, color: cnets_render::Color, label: String| {
-            let [r, g, b, _] = color.0;
-            let x = rect.right() - 150.0;
-            painter.rect_filled(
-                Rect::from_min_size(egui::pos2(x, y), egui::vec2(14.0, 12.0)),
-                2.0,
-                Color32::from_rgb(r, g, b),
-            );
-            painter.text(egui::pos2(x + 20.0, y), egui::Align2::LEFT_TOP, label, font.clone(), ink);
-        };
+        let swatch =
+            |painter: &egui::Painter, y: f32, color: cnets_render::Color, label: String| {
+                let [r, g, b, _] = color.0;
+                let x = rect.right() - 150.0;
+                painter.rect_filled(
+                    Rect::from_min_size(egui::pos2(x, y), egui::vec2(14.0, 12.0)),
+                    2.0,
+                    Color32::from_rgb(r, g, b),
+                );
+                painter.text(
+                    egui::pos2(x + 20.0, y),
+                    egui::Align2::LEFT_TOP,
+                    label,
+                    font.clone(),
+                    ink,
+                );
+            };
         let top = rect.top() + 8.0;
         match &s.legend {
             LegendInfo::None => {}
             LegendInfo::Classes(classes) => {
-                painter.text(egui::pos2(rect.right() - 150.0, top), egui::Align2::LEFT_TOP, "configuration", font.clone(), ink);
+                painter.text(
+                    egui::pos2(rect.right() - 150.0, top),
+                    egui::Align2::LEFT_TOP,
+                    "configuration",
+                    font.clone(),
+                    ink,
+                );
                 for (k, (class, count)) in classes.iter().enumerate() {
-                    swatch(&painter, top + 18.0 + 16.0 * k as f32, class.color(), format!("{}  {count}", class.label()));
+                    swatch(
+                        &painter,
+                        top + 18.0 + 16.0 * k as f32,
+                        class.color(),
+                        format!("{}  {count}", class.label()),
+                    );
                 }
             }
             LegendInfo::Planarity(legend) => {
-                painter.text(egui::pos2(rect.right() - 150.0, top), egui::Align2::LEFT_TOP, &legend.title, font.clone(), ink);
+                painter.text(
+                    egui::pos2(rect.right() - 150.0, top),
+                    egui::Align2::LEFT_TOP,
+                    &legend.title,
+                    font.clone(),
+                    ink,
+                );
                 for (k, (value, color)) in legend.stops.iter().rev().enumerate() {
-                    swatch(&painter, top + 18.0 + 16.0 * k as f32, *color, format_number(*value));
+                    swatch(
+                        &painter,
+                        top + 18.0 + 16.0 * k as f32,
+                        *color,
+                        format_number(*value),
+                    );
                 }
             }
         }

@@ -53,10 +53,12 @@ pub fn has_editor(node: &NodeInstance, k: usize) -> bool {
     }
     match port.access {
         Access::Item => true,
-        _ => matches!(
-            effective_value(node, k),
-            Some(Value::Number(_) | Value::Integer(_)) | None
-        ) && matches!(port.ty, ValueType::Number | ValueType::Integer),
+        _ => {
+            matches!(
+                effective_value(node, k),
+                Some(Value::Number(_) | Value::Integer(_)) | None
+            ) && matches!(port.ty, ValueType::Number | ValueType::Integer)
+        }
     }
 }
 
@@ -70,7 +72,8 @@ pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<
             let mut x = current.as_ref().and_then(Value::as_f64).unwrap_or(0.0);
             let changed = if node.def.id == "param.number" && port.name == "value" {
                 let (min, max, step) = slider_range(node);
-                let mut slider = egui::Slider::new(&mut x, min..=max).clamping(egui::SliderClamping::Never);
+                let mut slider =
+                    egui::Slider::new(&mut x, min..=max).clamping(egui::SliderClamping::Never);
                 if step > 0.0 {
                     slider = slider.step_by(step);
                 }
@@ -94,7 +97,9 @@ pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<
         }
         ValueType::Boolean => {
             let mut b = matches!(current, Some(Value::Boolean(true)));
-            ui.checkbox(&mut b, "").changed().then_some(Value::Boolean(b))
+            ui.checkbox(&mut b, "")
+                .changed()
+                .then_some(Value::Boolean(b))
         }
         ValueType::Text => {
             let mut s = match &current {
@@ -106,7 +111,10 @@ pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<
                 .then(|| Value::text(&s))
         }
         ValueType::Point | ValueType::Vector => {
-            let v = current.as_ref().and_then(Value::as_vec3).unwrap_or(DVec3::ZERO);
+            let v = current
+                .as_ref()
+                .and_then(Value::as_vec3)
+                .unwrap_or(DVec3::ZERO);
             let mut xyz = [v.x, v.y, v.z];
             let mut changed = false;
             ui.horizontal(|ui| {
@@ -177,8 +185,14 @@ mod tests {
         g.add_node("c", "cnets.construct").unwrap();
         let n = g.node("c").unwrap();
         let k = |name| n.def.input_index(name).unwrap();
-        assert!(!has_editor(n, k("directrix")), "polylines have no inline editor");
-        assert!(has_editor(n, k("apex")), "a list port holding one number gets a number field");
+        assert!(
+            !has_editor(n, k("directrix")),
+            "polylines have no inline editor"
+        );
+        assert!(
+            has_editor(n, k("apex")),
+            "a list port holding one number gets a number field"
+        );
         assert!(has_editor(n, k("normalized")));
     }
 }

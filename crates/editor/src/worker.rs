@@ -207,7 +207,11 @@ impl Drop for Worker {
     }
 }
 
-fn run(requests: Receiver<EvalRequest>, responses: Sender<EvalResponse>, wake: Arc<dyn Fn() + Send + Sync>) {
+fn run(
+    requests: Receiver<EvalRequest>,
+    responses: Sender<EvalResponse>,
+    wake: Arc<dyn Fn() + Send + Sync>,
+) {
     let mut evaluator = Evaluator::new();
     let mut generation = None;
     while let Ok(mut request) = requests.recv() {
@@ -345,7 +349,8 @@ mod tests {
         let mut g = graph();
         let opts = PreviewOptions::default();
         for k in 1..=20 {
-            g.set_value("n", "value", Value::Number(k as f64 / 20.0)).unwrap();
+            g.set_value("n", "value", Value::Number(k as f64 / 20.0))
+                .unwrap();
             worker.submit(g.clone(), 0, opts, None, Instant::now());
         }
         let last = worker.wait(Duration::from_secs(20)).expect("an answer");
@@ -358,7 +363,10 @@ mod tests {
         while *woken.lock().unwrap() == 0 && Instant::now() < deadline {
             std::thread::sleep(Duration::from_millis(5));
         }
-        assert!(*woken.lock().unwrap() >= 1, "the UI is woken after a result");
+        assert!(
+            *woken.lock().unwrap() >= 1,
+            "the UI is woken after a result"
+        );
     }
 
     #[test]
@@ -391,7 +399,11 @@ mod tests {
             changed_at: Instant::now(),
         };
         let r = evaluate(&mut Evaluator::new(), &request).unwrap();
-        assert!(r.statuses["arc"].error().is_some(), "{:?}", r.statuses["arc"]);
+        assert!(
+            r.statuses["arc"].error().is_some(),
+            "{:?}",
+            r.statuses["arc"]
+        );
         assert!(matches!(r.statuses["n"], NodeStatus::Ok { .. }));
     }
 

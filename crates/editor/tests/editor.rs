@@ -15,7 +15,12 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
 fn face_positions(app: &EditorApp) -> Vec<[f32; 3]> {
-    app.viewport.scene().face_vertices().iter().map(|v| v.position).collect()
+    app.viewport
+        .scene()
+        .face_vertices()
+        .iter()
+        .map(|v| v.position)
+        .collect()
 }
 
 /// Drags with the primary button from `a` to `b` in a few moves.
@@ -35,7 +40,12 @@ fn drag(h: &mut Harness<'static, EditorApp>, a: Pos2, b: Pos2) {
 fn pin(h: &Harness<'static, EditorApp>, node: &str, input: bool, port: &str) -> Pos2 {
     let app = h.state();
     let def = &app.doc.graph.node(node).unwrap().def;
-    let k = if input { def.input_index(port) } else { def.output_index(port) }.unwrap();
+    let k = if input {
+        def.input_index(port)
+    } else {
+        def.output_index(port)
+    }
+    .unwrap();
     app.canvas
         .pin_screen_pos(node, input, k)
         .unwrap_or_else(|| panic!("pin {node}.{port} was not drawn"))
@@ -45,7 +55,10 @@ fn pin(h: &Harness<'static, EditorApp>, node: &str, input: bool, port: &str) -> 
 fn snapshot_default_graph_shows_canvas_and_mesh() {
     let mut h = harness("snap-default");
     let app = h.state();
-    assert!(app.viewport.scene().triangle_count() > 0, "the cone-net is in the scene");
+    assert!(
+        app.viewport.scene().triangle_count() > 0,
+        "the cone-net is in the scene"
+    );
     assert_eq!(app.viewport.stats.vertices, 11 * 19);
     assert!(app.viewport.stats.max_planarity.unwrap() < 1e-9);
     assert!(matches!(app.statuses["construct"], NodeStatus::Ok { .. }));
@@ -60,7 +73,11 @@ fn snapshot_palette_open() {
     h.get_by_role(Role::TextInput).type_text("arc");
     h.run_steps(3);
     // Once in the palette, once as the type label of the two arc nodes on the canvas.
-    assert_eq!(h.query_all_by_label("curve.arc").count(), 3, "the palette lists curve.arc");
+    assert_eq!(
+        h.query_all_by_label("curve.arc").count(),
+        3,
+        "the palette lists curve.arc"
+    );
     h.snapshot("editor_palette");
 }
 
@@ -70,16 +87,30 @@ fn snapshot_node_in_error_with_message_on_hover() {
     h.state_mut()
         .doc
         .edit(None, |g, _| {
-            g.set_value("generatrix", "count", Value::Integer(1)).map_err(|e| e.to_string())
+            g.set_value("generatrix", "count", Value::Integer(1))
+                .map_err(|e| e.to_string())
         })
         .unwrap();
     settle(&mut h);
-    let message = h.state().statuses["generatrix"].error().expect("generatrix fails").to_string();
-    assert!(matches!(h.state().statuses["construct"], NodeStatus::Blocked(_)));
-    let badge = h.state().canvas.to_screen(h.get_by_label("⛔").rect().center());
+    let message = h.state().statuses["generatrix"]
+        .error()
+        .expect("generatrix fails")
+        .to_string();
+    assert!(matches!(
+        h.state().statuses["construct"],
+        NodeStatus::Blocked(_)
+    ));
+    let badge = h
+        .state()
+        .canvas
+        .to_screen(h.get_by_label("⛔").rect().center());
     h.hover_at(badge);
     h.run_steps(90);
-    assert!(h.query_by_label_contains(&message[..message.len().min(20)]).is_some(), "tooltip shows {message}");
+    assert!(
+        h.query_by_label_contains(&message[..message.len().min(20)])
+            .is_some(),
+        "tooltip shows {message}"
+    );
     h.snapshot("editor_node_error");
 }
 
@@ -93,20 +124,48 @@ fn dragging_a_slider_changes_the_mesh_and_undo_restores_the_graph_exactly() {
     let node = canvas.node_screen_rect("apex").unwrap();
     let r = h
         .get_all_by_role(Role::Slider)
-        .map(|s| egui::Rect::from_min_max(canvas.to_screen(s.rect().min), canvas.to_screen(s.rect().max)))
+        .map(|s| {
+            egui::Rect::from_min_max(
+                canvas.to_screen(s.rect().min),
+                canvas.to_screen(s.rect().max),
+            )
+        })
         .find(|r| node.contains(r.center()))
         .expect("the apex node's slider");
     // The handle sits in the middle (value 1 in 0.5..1.5): drag it to the right.
-    drag(&mut h, r.center(), r.center() + egui::vec2(r.width() * 0.3, 0.0));
+    drag(
+        &mut h,
+        r.center(),
+        r.center() + egui::vec2(r.width() * 0.3, 0.0),
+    );
     settle(&mut h);
     let app = h.state();
-    let value = app.doc.graph.node("apex").unwrap().value_of("value").and_then(Value::as_f64).unwrap();
+    let value = app
+        .doc
+        .graph
+        .node("apex")
+        .unwrap()
+        .value_of("value")
+        .and_then(Value::as_f64)
+        .unwrap();
     assert!(value > 1.05, "the drag raised the apex value: {value}");
-    assert_ne!(face_positions(app), before_mesh, "the mesh in the viewport's scene changed");
-    assert_eq!(app.doc.history.undo_len(), 1, "one undo step for the whole drag");
+    assert_ne!(
+        face_positions(app),
+        before_mesh,
+        "the mesh in the viewport's scene changed"
+    );
+    assert_eq!(
+        app.doc.history.undo_len(),
+        1,
+        "one undo step for the whole drag"
+    );
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     settle(&mut h);
-    assert_eq!(h.state().doc.to_ron(), before_text, "undo restores the graph exactly");
+    assert_eq!(
+        h.state().doc.to_ron(),
+        before_text,
+        "undo restores the graph exactly"
+    );
     assert_eq!(face_positions(h.state()), before_mesh, "and the mesh");
     h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
     settle(&mut h);
@@ -119,24 +178,49 @@ fn incompatible_and_cyclic_wires_are_refused_compatible_ones_connect() {
     let before = h.state().doc.to_ron();
     let wires = h.state().doc.graph.wire_count();
     // A quad mesh into a number input.
-    let (a, b) = (pin(&h, "construct", false, "mesh"), pin(&h, "apex", true, "min"));
+    let (a, b) = (
+        pin(&h, "construct", false, "mesh"),
+        pin(&h, "apex", true, "min"),
+    );
     drag(&mut h, a, b);
     settle(&mut h);
     assert_eq!(h.state().doc.graph.wire_count(), wires);
-    assert!(h.state().message.contains("type mismatch"), "{}", h.state().message);
+    assert!(
+        h.state().message.contains("type mismatch"),
+        "{}",
+        h.state().message
+    );
     assert_eq!(h.state().doc.to_ron(), before);
     // planarity.max into apex.min closes apex -> construct -> planarity -> apex.
-    let (a, b) = (pin(&h, "planarity", false, "max"), pin(&h, "apex", true, "min"));
+    let (a, b) = (
+        pin(&h, "planarity", false, "max"),
+        pin(&h, "apex", true, "min"),
+    );
     drag(&mut h, a, b);
     settle(&mut h);
     assert!(h.state().message.contains("cycle"), "{}", h.state().message);
     assert_eq!(h.state().doc.to_ron(), before);
     // A number into a number: accepted.
-    let (a, b) = (pin(&h, "ratio", false, "value"), pin(&h, "directrix", true, "start"));
+    let (a, b) = (
+        pin(&h, "ratio", false, "value"),
+        pin(&h, "directrix", true, "start"),
+    );
     drag(&mut h, a, b);
     settle(&mut h);
-    assert_eq!(h.state().doc.graph.wire_count(), wires + 1, "{}", h.state().message);
-    assert!(h.state().doc.graph.wires().iter().any(|w| w.from == "ratio" && w.to == "directrix"));
+    assert_eq!(
+        h.state().doc.graph.wire_count(),
+        wires + 1,
+        "{}",
+        h.state().message
+    );
+    assert!(
+        h.state()
+            .doc
+            .graph
+            .wires()
+            .iter()
+            .any(|w| w.from == "ratio" && w.to == "directrix")
+    );
 }
 
 #[test]
@@ -146,20 +230,43 @@ fn double_click_opens_the_palette_and_picking_adds_a_node() {
     // A point of the canvas away from every node.
     let canvas = &h.state().canvas;
     let area = canvas.screen_rect().shrink(30.0);
-    let rects: Vec<egui::Rect> = ["directrix", "generatrix", "apex", "ratio", "construct", "planarity"]
-        .iter()
-        .map(|n| canvas.node_screen_rect(n).unwrap().expand(20.0))
-        .collect();
+    let rects: Vec<egui::Rect> = [
+        "directrix",
+        "generatrix",
+        "apex",
+        "ratio",
+        "construct",
+        "planarity",
+    ]
+    .iter()
+    .map(|n| canvas.node_screen_rect(n).unwrap().expand(20.0))
+    .collect();
     let empty = (0..40)
         .flat_map(|i| (0..40).map(move |j| (i, j)))
-        .map(|(i, j)| area.min + egui::vec2(area.width() * i as f32 / 40.0, area.height() * j as f32 / 40.0))
+        .map(|(i, j)| {
+            area.min
+                + egui::vec2(
+                    area.width() * i as f32 / 40.0,
+                    area.height() * j as f32 / 40.0,
+                )
+        })
         .find(|p| rects.iter().all(|r| !r.contains(*p)))
         .expect("some empty canvas");
     h.hover_at(empty);
     h.run_steps(2);
     for _ in 0..2 {
-        h.event(egui::Event::PointerButton { pos: empty, button: egui::PointerButton::Primary, pressed: true, modifiers: Modifiers::NONE });
-        h.event(egui::Event::PointerButton { pos: empty, button: egui::PointerButton::Primary, pressed: false, modifiers: Modifiers::NONE });
+        h.event(egui::Event::PointerButton {
+            pos: empty,
+            button: egui::PointerButton::Primary,
+            pressed: true,
+            modifiers: Modifiers::NONE,
+        });
+        h.event(egui::Event::PointerButton {
+            pos: empty,
+            button: egui::PointerButton::Primary,
+            pressed: false,
+            modifiers: Modifiers::NONE,
+        });
     }
     h.run_steps(3);
     assert!(h.state().palette.open, "double-click opened the palette");
@@ -172,7 +279,8 @@ fn double_click_opens_the_palette_and_picking_adds_a_node() {
     let added = app.doc.graph.node("length").expect("a curve.length node");
     let expected = app.canvas.to_canvas(empty);
     assert!(
-        (added.position[0] - expected.x).abs() < 1.0 && (added.position[1] - expected.y).abs() < 1.0,
+        (added.position[0] - expected.x).abs() < 1.0
+            && (added.position[1] - expected.y).abs() < 1.0,
         "placed where clicked: {:?} vs {expected:?}",
         added.position
     );
@@ -192,8 +300,19 @@ fn delete_duplicate_copy_paste_and_undo() {
     assert_eq!(h.state().canvas.focused.as_deref(), Some("planarity"));
     h.key_press_modifiers(Modifiers::COMMAND, Key::D);
     h.run_steps(3);
-    assert!(h.state().doc.graph.node("planarity_2").is_some(), "duplicated");
-    assert!(h.state().doc.graph.wires().iter().any(|w| w.to == "planarity_2"), "with its input wire");
+    assert!(
+        h.state().doc.graph.node("planarity_2").is_some(),
+        "duplicated"
+    );
+    assert!(
+        h.state()
+            .doc
+            .graph
+            .wires()
+            .iter()
+            .any(|w| w.to == "planarity_2"),
+        "with its input wire"
+    );
     h.state_mut().canvas.focused = Some("planarity".into());
     h.key_press(Key::Delete);
     h.run_steps(3);
@@ -216,11 +335,18 @@ fn save_is_atomic_recent_files_persist_and_a_crash_offers_restore() {
     h.state_mut().save_as(&file);
     let saved = std::fs::read_to_string(&file).unwrap();
     assert_eq!(saved, h.state().doc.to_ron());
-    assert_eq!(cnets_editor::settings::Settings::load(&config).recent[0], std::fs::canonicalize(&file).unwrap());
+    assert_eq!(
+        cnets_editor::settings::Settings::load(&config).recent[0],
+        std::fs::canonicalize(&file).unwrap()
+    );
     // An edit, then the autosave writes the recovery file.
     h.state_mut()
         .doc
-        .edit(None, |g, _| g.set_value("ratio", "value", Value::Number(0.25)).map(|_| ()).map_err(|e| e.to_string()))
+        .edit(None, |g, _| {
+            g.set_value("ratio", "value", Value::Number(0.25))
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        })
         .unwrap();
     h.run_steps(2);
     let recovery = config.join("recovery.ron");
@@ -240,4 +366,3 @@ fn save_is_atomic_recent_files_persist_and_a_crash_offers_restore() {
     assert!(!recovery.exists(), "a clean exit removes the recovery file");
     let _ = Duration::ZERO;
 }
-

@@ -31,9 +31,16 @@ pub fn harness(name: &str) -> Harness<'static, EditorApp> {
 }
 
 /// Like [`harness`] with a file and settings folder.
-pub fn harness_with(name: &str, file: Option<PathBuf>, config: PathBuf) -> Harness<'static, EditorApp> {
+pub fn harness_with(
+    name: &str,
+    file: Option<PathBuf>,
+    config: PathBuf,
+) -> Harness<'static, EditorApp> {
     let _ = name;
-    let rs = create_render_state(default_wgpu_setup(), egui_wgpu::RendererOptions::PREDICTABLE);
+    let rs = create_render_state(
+        default_wgpu_setup(),
+        egui_wgpu::RendererOptions::PREDICTABLE,
+    );
     let gpu = GpuTarget::from_render_state(&rs, 1, None);
     let mut app = EditorApp::new(AppOptions {
         gpu: Some(gpu),
