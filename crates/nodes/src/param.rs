@@ -1,4 +1,7 @@
 //! Parameters: the values a designer sets (the editor shows them as sliders, toggles and fields).
+//!
+//! Every parameter node has an input `value` and an output `value`, except the list makers
+//! (`param.series`, `param.range`, `param.list`), whose output is `values`.
 
 use cnets_engine::prelude::*;
 
@@ -25,6 +28,9 @@ node! {
         if min > max {
             return Err(format!("min ({min}) is greater than max ({max})").into());
         }
+        if step < 0.0 {
+            return Err(format!("step must be 0 (continuous) or positive, got {step}").into());
+        }
         let mut v = value.clamp(min, max);
         if v != value {
             ctx.warn(format!("value {value} is outside [{min}, {max}]; clamped to {v}"));
@@ -36,19 +42,286 @@ node! {
     }
 }
 
+node! {
+    /// A whole number set by the designer; the editor shows it as a slider from `min` to `max`
+    /// (the value is clamped to that range, with a warning).
+    #[node(id = "param.integer", category = "Params", flags(Parameter))]
+    pub fn integer[ctx](
+        /// The value.
+        value: k::Integer = 1,
+        /// Slider minimum.
+        min: k::Integer = 0,
+        /// Slider maximum.
+        max: k::Integer = 10,
+    ) -> (
+        /// The value, clamped.
+        value: k::Integer,
+    ) {
+        if min > max {
+            return Err(format!("min ({min}) is greater than max ({max})").into());
+        }
+        let v = value.clamp(min, max);
+        if v != value {
+            ctx.warn(format!("value {value} is outside [{min}, {max}]; clamped to {v}"));
+        }
+        Ok((v,))
+    }
+}
+
+node! {
+    /// A true/false toggle set by the designer.
+    #[node(id = "param.boolean", category = "Params", flags(Parameter))]
+    pub fn boolean(
+        /// The value.
+        value: k::Boolean = false,
+    ) -> (
+        /// The value.
+        value: k::Boolean,
+    ) {
+        Ok((value,))
+    }
+}
+
+node! {
+    /// A point set by the designer (x, y, z).
+    #[node(id = "param.point", category = "Params", flags(Parameter))]
+    pub fn point(
+        /// The point.
+        value: k::Point = DVec3::ZERO,
+    ) -> (
+        /// The point.
+        value: k::Point,
+    ) {
+        if !value.is_finite() {
+            return Err(format!("point {value} is not finite").into());
+        }
+        Ok((value,))
+    }
+}
+
+node! {
+    /// A vector set by the designer (x, y, z).
+    #[node(id = "param.vector", category = "Params", flags(Parameter))]
+    pub fn vector(
+        /// The vector.
+        value: k::Vector = DVec3::Z,
+    ) -> (
+        /// The vector.
+        value: k::Vector,
+    ) {
+        if !value.is_finite() {
+            return Err(format!("vector {value} is not finite").into());
+        }
+        Ok((value,))
+    }
+}
+
+node! {
+    /// A piece of text set by the designer (a file name, a graph type, a method name…).
+    #[node(id = "param.text", category = "Params", flags(Parameter))]
+    pub fn text(
+        /// The text.
+        value: k::Text = "",
+    ) -> (
+        /// The text.
+        value: k::Text,
+    ) {
+        Ok((value,))
+    }
+}
+
+/// Largest list a list-making parameter produces.
+const MAX_COUNT: i64 = 10_000_000;
+
+fn check_list_count(count: i64) -> Result<usize, NodeError> {
+    if count < 0 {
+        return Err(format!("count must be 0 or more, got {count}").into());
+    }
+    if count > MAX_COUNT {
+        return Err(format!("count {count} is too large (at most {MAX_COUNT})").into());
+    }
+    Ok(count as usize)
+}
+
+node! {
+    /// An arithmetic series: `count` numbers start, start + step, start + 2·step, … (count 0 gives
+    /// an empty list).
+    #[node(id = "param.series", category = "Params", flags(Parameter))]
+    pub fn series(
+        /// First number.
+        start: k::Number = 0.0,
+        /// Difference between consecutive numbers (may be negative or 0).
+        step: k::Number = 1.0,
+        /// How many numbers (≥ 0).
+        count: k::Integer = 10,
+    ) -> (
+        /// The numbers.
+        values: k::List<k::Number>,
+    ) {
+        if !(start.is_finite() && step.is_finite()) {
+            return Err("start and step must be finite numbers".into());
+        }
+        let n = check_list_count(count)?;
+        let values: Vec<f64> = (0..n).map(|k| start + step * k as f64).collect();
+        if values.iter().any(|v| !v.is_finite()) {
+            return Err("the series overflows".into());
+        }
+        Ok((values,))
+    }
+}
+
+node! {
+    /// `count` evenly spaced numbers from `start` to `end`, both included (the domain is given by
+    /// its two ends; `end` may be smaller than `start`). Count 1 gives `[start]`, count 0 an empty
+    /// list.
+    #[node(id = "param.range", category = "Params", flags(Parameter))]
+    pub fn range(
+        /// Start of the domain (the first number).
+        start: k::Number = 0.0,
+        /// End of the domain (the last number).
+        end: k::Number = 1.0,
+        /// How many numbers (≥ 0).
+        count: k::Integer = 11,
+    ) -> (
+        /// The numbers.
+        values: k::List<k::Number>,
+    ) {
+        if !(start.is_finite() && end.is_finite() && (end - start).is_finite()) {
+            return Err("start and end must be finite numbers".into());
+        }
+        let n = check_list_count(count)?;
+        let values: Vec<f64> = (0..n)
+            .map(|k| {
+                if k + 1 == n && n > 1 {
+                    end
+                } else if n == 1 {
+                    start
+                } else {
+                    start + (end - start) * k as f64 / (n - 1) as f64
+                }
+            })
+            .collect();
+        Ok((values,))
+    }
+}
+
+/// The item types `param.list` accepts.
+const LIST_TYPES: &str = "number, integer, boolean, text, point, vector, any";
+
+/// Converts one leaf of a literal list to `ty`, naming its position on failure.
+fn convert_leaf(v: &Value, ty: &str, at: &str) -> Result<Value, NodeError> {
+    let fail = || NodeError::new(format!("item {at} is {}, expected {ty}", v.type_name()));
+    Ok(match (ty, v) {
+        ("any", _) => v.clone(),
+        ("number", Value::Number(_)) | ("integer", Value::Integer(_)) => v.clone(),
+        ("number", Value::Integer(i)) => Value::Number(*i as f64),
+        ("integer", Value::Number(x)) => {
+            if x.is_finite() && x.fract() == 0.0 && x.abs() < 9.0e15 {
+                Value::Integer(*x as i64)
+            } else {
+                return Err(NodeError::new(format!(
+                    "item {at} is {x}, expected a whole number"
+                )));
+            }
+        }
+        // A literal list of three numbers reads as a point; for number-like types it is a list.
+        ("number" | "integer", Value::Point(p) | Value::Vector(p)) => Value::list(
+            p.to_array()
+                .iter()
+                .enumerate()
+                .map(|(k, x)| convert_leaf(&Value::Number(*x), ty, &format!("{at}[{k}]")))
+                .collect::<Result<Vec<_>, _>>()?,
+        ),
+        ("boolean", Value::Boolean(_)) | ("text", Value::Text(_)) => v.clone(),
+        ("point", Value::Point(p) | Value::Vector(p)) => Value::Point(*p),
+        ("vector", Value::Point(p) | Value::Vector(p)) => Value::Vector(*p),
+        _ => return Err(fail()),
+    })
+}
+
+fn convert_tree(v: &Value, ty: &str, at: &str) -> Result<Value, NodeError> {
+    match v {
+        Value::List(items) => items
+            .iter()
+            .enumerate()
+            .map(|(k, item)| {
+                let at = if at.is_empty() {
+                    k.to_string()
+                } else {
+                    format!("{at}[{k}]")
+                };
+                convert_tree(item, ty, &at)
+            })
+            .collect::<Result<Vec<_>, _>>()
+            .map(Value::list),
+        Value::Null => Err(NodeError::new(format!(
+            "item {} is empty",
+            if at.is_empty() { "0" } else { at }
+        ))),
+        leaf => convert_leaf(leaf, ty, if at.is_empty() { "0" } else { at }),
+    }
+}
+
+node! {
+    /// A literal list typed in by the designer, checked against `item_type` (number, integer,
+    /// boolean, text, point, vector, or any): every item is converted to that type (integers ↔
+    /// numbers, points ↔ vectors) or the node fails naming the first bad item. Nested lists (tables)
+    /// are kept as they are. A single value becomes a one-element list. For number and integer lists
+    /// a three-number row that the file reader took for a point is read back as three numbers.
+    #[node(id = "param.list", category = "Params", flags(Parameter))]
+    pub fn list(
+        /// The items (a list, possibly nested).
+        values: k::Tree<k::Any> = Value::list(vec![]),
+        /// The item type: number, integer, boolean, text, point, vector or any.
+        item_type: k::Text = "number",
+    ) -> (
+        /// The checked list.
+        values: k::Tree<k::Any>,
+    ) {
+        let ty = item_type.trim().to_ascii_lowercase();
+        if !LIST_TYPES.split(", ").any(|t| t == ty) {
+            return Err(format!("unknown item_type '{item_type}': expected one of {LIST_TYPES}").into());
+        }
+        let converted = convert_tree(&values, &ty, "")?;
+        let out = match converted {
+            Value::List(_) => converted,
+            single => Value::list(vec![single]),
+        };
+        Ok((out,))
+    }
+}
+
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
-    vec![number()]
+    vec![
+        number(),
+        integer(),
+        boolean(),
+        point(),
+        vector(),
+        text(),
+        series(),
+        range(),
+        list(),
+    ]
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cnets_engine::eval::run_mapped;
+    use cnets_engine::eval::{evaluate_node, run_mapped};
 
     fn run(def: &NodeDef, inputs: &[f64]) -> Result<Vec<Value>, NodeError> {
         let values: Vec<Value> = inputs.iter().map(|&x| Value::Number(x)).collect();
         run_mapped(def, &NodeContext::default(), &values)
+    }
+
+    fn numbers(v: &Value) -> Vec<f64> {
+        v.as_list()
+            .expect("a list")
+            .iter()
+            .map(|x| x.as_f64().expect("a number"))
+            .collect()
     }
 
     #[test]
@@ -69,5 +342,91 @@ mod tests {
                 .contains("greater than max")
         );
         assert!(run(&def, &[f64::NAN, 0.0, 1.0, 0.0]).is_err());
+        assert!(run(&def, &[0.5, 0.0, 1.0, -0.1]).is_err());
+    }
+
+    #[test]
+    fn integer_clamps_with_a_warning() {
+        let ctx = NodeContext::default();
+        let out = evaluate_node(
+            &integer(),
+            &ctx,
+            &[Value::Integer(12), Value::Integer(0), Value::Integer(10)],
+        )
+        .unwrap();
+        assert_eq!(out.values, vec![Value::Integer(10)]);
+        assert_eq!(out.warnings.len(), 1);
+        let bad = [Value::Integer(1), Value::Integer(3), Value::Integer(2)];
+        assert!(evaluate_node(&integer(), &ctx, &bad).is_err());
+    }
+
+    #[test]
+    fn simple_parameters_pass_their_value_through() {
+        let ctx = NodeContext::default();
+        let b = evaluate_node(&boolean(), &ctx, &[Value::Boolean(true)]).unwrap();
+        assert_eq!(b.values, vec![Value::Boolean(true)]);
+        let p = DVec3::new(1.0, 2.0, 3.0);
+        let out = evaluate_node(&point(), &ctx, &[Value::Point(p)]).unwrap();
+        assert_eq!(out.values, vec![Value::Point(p)]);
+        let out = evaluate_node(&vector(), &ctx, &[Value::Point(p)]).unwrap();
+        assert_eq!(out.values, vec![Value::Vector(p)]);
+        assert!(evaluate_node(&point(), &ctx, &[Value::Point(DVec3::NAN)]).is_err());
+        let t = evaluate_node(&text(), &ctx, &[Value::text("bezier")]).unwrap();
+        assert_eq!(t.values, vec![Value::text("bezier")]);
+    }
+
+    #[test]
+    fn series_and_range() {
+        let out = run(&series(), &[1.0, -0.5, 4.0]).unwrap();
+        assert_eq!(numbers(&out[0]), vec![1.0, 0.5, 0.0, -0.5]);
+        assert_eq!(
+            numbers(&run(&series(), &[1.0, 1.0, 0.0]).unwrap()[0]).len(),
+            0
+        );
+        assert!(run(&series(), &[0.0, 1.0, -1.0]).is_err());
+        let out = run(&range(), &[2.0, 0.0, 5.0]).unwrap();
+        assert_eq!(numbers(&out[0]), vec![2.0, 1.5, 1.0, 0.5, 0.0]);
+        assert_eq!(
+            numbers(&run(&range(), &[2.0, 3.0, 1.0]).unwrap()[0]),
+            vec![2.0]
+        );
+        assert!(numbers(&run(&range(), &[2.0, 3.0, 0.0]).unwrap()[0]).is_empty());
+        assert!(run(&range(), &[f64::NAN, 3.0, 2.0]).is_err());
+        // A list of counts maps: one range per count.
+        let out = run_mapped(
+            &range(),
+            &NodeContext::default(),
+            &[
+                Value::Number(0.0),
+                Value::Number(1.0),
+                Value::list(vec![Value::Integer(2), Value::Integer(3)]),
+            ],
+        )
+        .unwrap();
+        assert_eq!(numbers(&out[0].as_list().unwrap()[1]), vec![0.0, 0.5, 1.0]);
+    }
+
+    #[test]
+    fn list_checks_and_converts_items() {
+        let ctx = NodeContext::default();
+        let mixed = Value::list(vec![Value::Integer(1), Value::Number(2.5)]);
+        let out = evaluate_node(&list(), &ctx, &[mixed.clone(), Value::text("number")]).unwrap();
+        assert_eq!(numbers(&out.values[0]), vec![1.0, 2.5]);
+        let err = evaluate_node(&list(), &ctx, &[mixed, Value::text("integer")]).unwrap_err();
+        assert!(err.contains("item 1"), "{err}");
+        // A row of three numbers parsed as a point is read back as numbers.
+        let table = Value::list(vec![Value::Point(DVec3::new(0.1, 0.2, 0.3))]);
+        let out = evaluate_node(&list(), &ctx, &[table, Value::text("number")]).unwrap();
+        assert_eq!(
+            numbers(&out.values[0].as_list().unwrap()[0]),
+            vec![0.1, 0.2, 0.3]
+        );
+        let words = Value::list(vec![Value::text("a"), Value::Number(1.0)]);
+        let err = evaluate_node(&list(), &ctx, &[words, Value::text("text")]).unwrap_err();
+        assert!(err.contains("item 1 is number"), "{err}");
+        let single =
+            evaluate_node(&list(), &ctx, &[Value::Number(3.0), Value::text("any")]).unwrap();
+        assert_eq!(numbers(&single.values[0]), vec![3.0]);
+        assert!(evaluate_node(&list(), &ctx, &[Value::Number(1.0), Value::text("float")]).is_err());
     }
 }

@@ -806,6 +806,37 @@ mod tests {
         );
     }
 
+    /// Checks that `f` is monotone (non-decreasing when `up`) on [a, b].
+    fn monotone(f: impl Fn(f64) -> f64, a: f64, b: f64, up: bool) -> bool {
+        let n = 400;
+        (0..n).all(|k| {
+            let (u0, u1) = (
+                a + (b - a) * k as f64 / n as f64,
+                a + (b - a) * (k + 1) as f64 / n as f64,
+            );
+            let d = f(u1) - f(u0);
+            if up { d >= -1e-15 } else { d <= 1e-15 }
+        })
+    }
+
+    #[test]
+    fn analytic_kinds_are_monotone_where_documented() {
+        let lin = GraphMapper::new(MapperKind::Linear, &[p(0.2, 0.9), p(0.8, 0.1)]).unwrap();
+        assert!(monotone(|u| lin.eval(u), -1.0, 2.0, false));
+        let sine = GraphMapper::new(MapperKind::Sine, &[p(0.2, 0.9), p(0.6, 0.1)]).unwrap();
+        assert!(monotone(|u| sine.eval(u), 0.2, 0.6, false));
+        assert!(monotone(|u| sine.eval(u), 0.6, 1.0, true));
+        let gauss = GraphMapper::new(MapperKind::Gaussian, &[p(0.4, 0.8), p(0.3, 0.2)]).unwrap();
+        assert!(monotone(|u| gauss.eval(u), -1.0, 0.4, true));
+        assert!(monotone(|u| gauss.eval(u), 0.4, 2.0, false));
+        let par = GraphMapper::new(MapperKind::Parabola, &[p(0.3, 0.1), p(0.9, 0.8)]).unwrap();
+        assert!(monotone(|u| par.eval(u), -1.0, 0.3, false));
+        assert!(monotone(|u| par.eval(u), 0.3, 2.0, true));
+        let sqrt = GraphMapper::new(MapperKind::SquareRoot, &[p(0.1, 0.9), p(0.7, 0.2)]).unwrap();
+        assert!(monotone(|u| sqrt.eval(u), -1.0, 2.0, false));
+        assert!((sqrt.eval(0.1 + 0.6 * 0.25) - (0.9 - 0.7 * 0.5)).abs() < 1e-15);
+    }
+
     #[test]
     fn spline_is_monotone_on_monotone_handles_and_does_not_overshoot() {
         let hs = [

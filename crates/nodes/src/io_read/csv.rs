@@ -1,0 +1,118 @@
+//! CSV polylines: one point per row, `x, y` or `x, y, z` (z = 0 when absent), fields separated by
+//! commas, semicolons, tabs or spaces. A blank line ends a polyline; `#` starts a comment line; a
+//! first non-numeric row is a header and is skipped.
+
+use cnets_engine::prelude::*;
+
+use super::tidy;
+
+/// Parses CSV text into polylines; errors name the line (1-based).
+pub fn parse(text: &str) -> Result<Vec<Polyline>, String> {
+    let mut out = Vec::new();
+    let mut current: Vec<DVec3> = Vec::new();
+    let mut start_line = 0;
+    let mut seen_data = false;
+    let finish = |points: &mut Vec<DVec3>, start: usize, out: &mut Vec<Polyline>| {
+        if points.is_empty() {
+            return Ok(());
+        }
+        if points.len() < 2 {
+            return Err(format!(
+                "line {start}: a polyline needs at least 2 points, this one has 1"
+            ));
+        }
+        out.push(tidy(std::mem::take(points), false));
+        Ok(())
+    };
+    for (k, raw) in text.lines().enumerate() {
+        let line_no = k + 1;
+        let line = raw.trim().trim_start_matches('\u{feff}');
+        if line.is_empty() {
+            finish(&mut current, start_line, &mut out)?;
+            continue;
+        }
+        if line.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<&str> = line
+            .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+            .filter(|f| !f.is_empty())
+            .collect();
+        let numbers: Result<Vec<f64>, _> = fields.iter().map(|f| f.parse::<f64>()).collect();
+        let numbers = match numbers {
+            Ok(n) => n,
+            Err(_) if !seen_data => {
+                seen_data = true; // a header row
+                continue;
+            }
+            Err(_) => {
+                return Err(format!(
+                    "line {line_no}: expected 2 or 3 numbers, got '{line}'"
+                ));
+            }
+        };
+        seen_data = true;
+        let p = match numbers.as_slice() {
+            [x, y] => DVec3::new(*x, *y, 0.0),
+            [x, y, z] => DVec3::new(*x, *y, *z),
+            _ => {
+                return Err(format!(
+                    "line {line_no}: expected 2 or 3 numbers, got {}",
+                    numbers.len()
+                ));
+            }
+        };
+        if !p.is_finite() {
+            return Err(format!("line {line_no}: the point is not finite"));
+        }
+        if current.is_empty() {
+            start_line = line_no;
+        }
+        current.push(p);
+    }
+    finish(&mut current, start_line, &mut out)?;
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_blank_lines_headers_and_comments() {
+        let text = "x,y,z\n0,0,0\n1;0;0\n# comment\n1 1 0\n\n\n5\t5\n6,5\n";
+        let ps = parse(text).unwrap();
+        assert_eq!(ps.len(), 2);
+        assert_eq!(
+            ps[0].points,
+            vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0)]
+        );
+        assert_eq!(ps[1].points[1], DVec3::new(6.0, 5.0, 0.0));
+        assert!(!ps[0].closed);
+    }
+
+    #[test]
+    fn repeated_first_point_closes() {
+        let ps = parse("0,0\n1,0\n1,1\n0,0\n").unwrap();
+        assert!(ps[0].closed);
+        assert_eq!(ps[0].points.len(), 3);
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        assert!(parse("0,0\n1,a\n").unwrap_err().starts_with("line 2"));
+        assert!(parse("0,0,0,0\n").unwrap_err().contains("got 4"));
+        assert!(
+            parse("0,0\n\n1,1\n")
+                .unwrap_err()
+                .starts_with("line 1: a polyline")
+        );
+        assert!(
+            parse("0,0\n1,1\n\n2,2\n")
+                .unwrap_err()
+                .starts_with("line 4")
+        );
+        assert!(parse("0,0\nnan,1\n").unwrap_err().contains("not finite"));
+        assert!(parse("").unwrap().is_empty());
+    }
+}

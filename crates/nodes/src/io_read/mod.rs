@@ -1,0 +1,182 @@
+//! Importing polylines from CSV, JSON, OBJ and SVG files (`io.read_polylines`).
+//!
+//! One parser per format ([`csv`], [`json`], [`obj`], [`svg`]), each a pure function from the
+//! file's text to polylines (errors name the line); the node resolves the path against the graph
+//! file's folder and reads the file. The accepted layouts are documented in `docs/inputs.md`.
+
+pub mod csv;
+pub mod json;
+pub mod obj;
+pub mod svg;
+
+use std::path::Path;
+
+use cnets_engine::prelude::*;
+
+/// The formats `io.read_polylines` reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Comma/semicolon/tab/space separated x, y[, z] rows; blank lines separate polylines.
+    Csv,
+    /// The runner's JSON encoding of polylines.
+    Json,
+    /// Wavefront OBJ `v` and `l` records.
+    Obj,
+    /// SVG `<polyline>`, `<polygon>`, `<line>` and `<path>` elements.
+    Svg,
+}
+
+impl Format {
+    /// Parses a format name (`csv`, `json`, `obj`, `svg`) or, for `auto`, guesses it from the file
+    /// extension (`.csv`/`.txt`/`.xyz` are CSV).
+    pub fn resolve(name: &str, path: &str) -> Result<Self, String> {
+        let name = name.trim().to_ascii_lowercase();
+        let key = if name.is_empty() || name == "auto" {
+            Path::new(path)
+                .extension()
+                .and_then(|e| e.to_str())
+                .unwrap_or("")
+                .to_ascii_lowercase()
+        } else {
+            name.clone()
+        };
+        match key.as_str() {
+            "csv" | "txt" | "xyz" => Ok(Self::Csv),
+            "json" => Ok(Self::Json),
+            "obj" => Ok(Self::Obj),
+            "svg" => Ok(Self::Svg),
+            _ if name.is_empty() || name == "auto" => Err(format!(
+                "cannot tell the format of '{path}' from its extension: set format to csv, json, obj or svg"
+            )),
+            _ => Err(format!(
+                "unknown format '{name}': expected auto, csv, json, obj or svg"
+            )),
+        }
+    }
+}
+
+/// Applies the rules shared by the text formats: consecutive repeated points are merged, and a
+/// polyline whose last point repeats its first (with at least three other points) becomes closed.
+pub(crate) fn tidy(points: Vec<DVec3>, closed: bool) -> Polyline {
+    let mut out: Vec<DVec3> = Vec::with_capacity(points.len());
+    for p in points {
+        if out.last() != Some(&p) {
+            out.push(p);
+        }
+    }
+    let mut closed = closed;
+    if out.len() >= 4 && out.first() == out.last() {
+        out.pop();
+        closed = true;
+    }
+    if closed && out.len() > 1 && out.first() == out.last() {
+        out.pop();
+    }
+    Polyline {
+        points: out,
+        closed,
+    }
+}
+
+/// Parses `text` in `format`; SVG flattening uses `segments` points per curved segment. Returns the
+/// polylines and warnings.
+pub fn parse(
+    text: &str,
+    format: Format,
+    segments: usize,
+) -> Result<(Vec<Polyline>, Vec<String>), String> {
+    match format {
+        Format::Csv => csv::parse(text).map(|p| (p, Vec::new())),
+        Format::Json => json::parse(text).map(|p| (p, Vec::new())),
+        Format::Obj => obj::parse(text),
+        Format::Svg => svg::parse(text, segments),
+    }
+}
+
+node! {
+    /// Reads polylines from a file drawn elsewhere: CSV (x, y[, z] rows, blank lines between
+    /// polylines), JSON (the runner's encoding: `{points, closed}` objects or arrays of [x, y, z],
+    /// or lists of them), OBJ (`v` and `l` records) or SVG (`<polyline>`, `<polygon>`, `<line>`,
+    /// `<path>` with all commands; curves and arcs are flattened into `segments` points each; y is
+    /// flipped so that SVG's downward y axis points up). A relative path is resolved against the
+    /// graph file's folder. Consecutive repeated points are merged; a polyline whose last point
+    /// repeats its first becomes closed. A file that cannot be read or parsed is an error naming it.
+    #[node(id = "io.read_polylines", category = "Import", flags(Import))]
+    pub fn read_polylines[ctx](
+        /// The file (relative to the graph file's folder, or absolute).
+        path: k::Text,
+        /// auto (from the extension), csv, json, obj or svg.
+        format: k::Text = "auto",
+        /// SVG only: points per flattened curve or arc segment (≥ 1).
+        segments: k::Integer = 16,
+    ) -> (
+        /// The polylines, in file order.
+        curves: k::List<k::Polyline>,
+    ) {
+        if path.trim().is_empty() {
+            return Err("no file given: set path".into());
+        }
+        let format = Format::resolve(&format, &path)?;
+        let segments = usize::try_from(segments)
+            .ok()
+            .filter(|s| (1..=10_000).contains(s))
+            .ok_or_else(|| NodeError::new(format!("segments must be 1 to 10000, got {segments}")))?;
+        let file = ctx.input_path(&path);
+        let text = std::fs::read_to_string(&file)
+            .map_err(|e| NodeError::new(format!("cannot read '{}': {e}", file.display())))?;
+        let (curves, warnings) = parse(&text, format, segments)
+            .map_err(|e| NodeError::new(format!("{}: {e}", file.display())))?;
+        if curves.is_empty() {
+            return Err(format!("{}: no polylines found", file.display()).into());
+        }
+        for w in warnings {
+            ctx.warn(format!("{}: {w}", file.display()));
+        }
+        Ok((curves,))
+    }
+}
+
+/// Every node of this module.
+pub fn nodes() -> Vec<NodeDef> {
+    vec![read_polylines()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats_resolve_from_names_and_extensions() {
+        assert_eq!(Format::resolve("auto", "a/b.SVG").unwrap(), Format::Svg);
+        assert_eq!(Format::resolve("", "b.txt").unwrap(), Format::Csv);
+        assert_eq!(Format::resolve("OBJ", "b.txt").unwrap(), Format::Obj);
+        assert!(
+            Format::resolve("auto", "b.dxf")
+                .unwrap_err()
+                .contains("extension")
+        );
+        assert!(
+            Format::resolve("dxf", "b.obj")
+                .unwrap_err()
+                .contains("unknown format")
+        );
+    }
+
+    #[test]
+    fn tidy_merges_repeats_and_closes() {
+        let sq = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::X,
+            DVec3::ONE,
+            DVec3::Y,
+            DVec3::ZERO,
+        ];
+        let p = tidy(sq, false);
+        assert!(p.closed);
+        assert_eq!(p.points.len(), 4);
+        let open = tidy(vec![DVec3::ZERO, DVec3::X, DVec3::ZERO], false);
+        assert!(!open.closed);
+        assert_eq!(open.points.len(), 3);
+    }
+}
