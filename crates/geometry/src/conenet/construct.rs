@@ -28,6 +28,7 @@ pub fn construct(inputs: &ConstructInputs) -> Result<ConeNet, GeometryError> {
         Rule::Ratios(&grid),
         Some(inputs.assistance),
     );
+    sweep.inv_scale = 1.0 / prep.scale;
     sweep.run()?;
     Raw::from_sweep(sweep, prep.wrap_rows).finish()
 }

@@ -16,15 +16,15 @@ use super::tolerance;
 use crate::{GeometryError, Polyline, QuadGrid};
 
 /// One construction step: G_{i,j} from `g = G_{i,j−1}`, `x0 = X_{j−1}`, `x1 = X_j`, `a = a_j` and a
-/// normal `p` of Π_{i,j} (any length). `None` when `|V·P| ≤ 1e-12 |V| |P|` (V parallel to the plane,
-/// or V = 0 because g is the cone apex): the caller reports the offending (i, j).
+/// normal `p` of Π_{i,j} (any length). `None` when `|V·P| ≤ 3·10⁻¹² |V|_∞ |P|_∞` (between 1e-12 and
+/// 3e-12 times |V||P|: V parallel to the plane, or V = 0 because g is the cone apex): the caller
+/// reports the offending (i, j). The bound uses max-norms so it neither overflows nor underflows.
 #[inline(always)]
 pub fn step(g: DVec3, x0: DVec3, x1: DVec3, a: f64, p: DVec3) -> Option<DVec3> {
     let v = (g - x0) * a + x1 - g;
     let vp = v.dot(p);
-    // Compared squared to keep square roots off the critical path.
-    let tol2 = tolerance::PARALLEL * tolerance::PARALLEL;
-    if !(vp * vp > tol2 * v.length_squared() * p.length_squared()) {
+    let bound = 3.0 * tolerance::PARALLEL * v.abs().max_element() * p.abs().max_element();
+    if !(vp.abs() > bound) {
         return None;
     }
     Some(g + v * ((x1 - g).dot(p) / vp))
@@ -36,6 +36,8 @@ pub(crate) struct Prepared {
     pub generatrix: Vec<DVec3>,
     pub wrap_rows: bool,
     pub apex: Vec<f64>,
+    /// The design's size (largest coordinate extent of directrix and generatrix), > 0.
+    pub scale: f64,
 }
 
 /// Validates directrix, generatrix and apex (in this order) and resolves the apex values.
@@ -47,12 +49,28 @@ pub(crate) fn prepare(
     let dx = SweptDirectrix::new(directrix)?;
     generatrix.validate("generatrix", 2)?;
     let apex = resolve_apex(apex, &dx)?;
+    let scale = extent(dx.points.iter().chain(&generatrix.points).copied());
     Ok(Prepared {
         dx,
         generatrix: generatrix.points.clone(),
         wrap_rows: generatrix.closed,
         apex,
+        scale,
     })
+}
+
+/// The largest coordinate extent of a point set (∞-norm of the bounding box), computed without
+/// overflow; 1 for an empty or degenerate set.
+pub(crate) fn extent(points: impl Iterator<Item = DVec3>) -> f64 {
+    let (lo, hi) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(p), hi.max(p))
+    });
+    let half = (hi * 0.5 - lo * 0.5).max_element();
+    if half > 0.0 && half.is_finite() {
+        (2.0 * half).min(f64::MAX)
+    } else {
+        1.0
+    }
 }
 
 /// Orients and normalizes one user normal for column j.

@@ -49,6 +49,7 @@ fn check_mesh(mesh: &QuadGrid) -> Result<(), GeometryError> {
 pub fn planarity(mesh: &QuadGrid) -> Result<Planarity, GeometryError> {
     check_mesh(mesh)?;
     let (qr, qc) = (mesh.quad_rows(), mesh.quad_cols());
+    let inv = 1.0 / normalization(mesh).1;
     let mut per_face = vec![0.0; qr * qc];
     if qc > 0 {
         per_face
@@ -58,7 +59,7 @@ pub fn planarity(mesh: &QuadGrid) -> Result<Planarity, GeometryError> {
                 let (a, b) = row_pair(mesh, i);
                 for (j, o) in out.iter_mut().enumerate() {
                     let j1 = if j + 1 == mesh.cols { 0 } else { j + 1 };
-                    *o = quad_planarity([a[j], a[j1], b[j1], b[j]]);
+                    *o = scaled_planarity([a[j], a[j1], b[j1], b[j]], inv);
                 }
             });
     }
@@ -117,15 +118,16 @@ pub(crate) struct StripFit {
     pub lines: usize,
 }
 
-/// Normalization frame of a mesh: bounding-box center and half diagonal (1 when degenerate).
+/// Normalization frame of a mesh: bounding-box center and half its largest extent (1 when
+/// degenerate), computed without overflow.
 pub(crate) fn normalization(mesh: &QuadGrid) -> (DVec3, f64) {
     match mesh.bounds() {
         Some((lo, hi)) => {
-            let scale = 0.5 * lo.distance(hi);
+            let half = (hi * 0.5 - lo * 0.5).max_element();
             (
                 lo * 0.5 + hi * 0.5,
-                if scale > 0.0 && scale.is_finite() {
-                    scale
+                if half > 0.0 && half.is_finite() {
+                    half
                 } else {
                     1.0
                 },
@@ -133,6 +135,18 @@ pub(crate) fn normalization(mesh: &QuadGrid) -> (DVec3, f64) {
         }
         None => (DVec3::ZERO, 1.0),
     }
+}
+
+/// Planarity of a quad from its corners taken relative to the first corner and scaled by `inv` (the
+/// measure is translation- and scale-invariant; this keeps the squares in range at any magnitude).
+#[inline(always)]
+fn scaled_planarity(q: [DVec3; 4], inv: f64) -> f64 {
+    quad_planarity([
+        DVec3::ZERO,
+        (q[1] - q[0]) * inv,
+        (q[2] - q[0]) * inv,
+        (q[3] - q[0]) * inv,
+    ])
 }
 
 /// One line of a strip in normalized coordinates: a point and the (unnormalized) direction with its
@@ -353,7 +367,7 @@ pub(crate) fn quality(
             let quads = i < qr;
             for j in 0..strips {
                 if quads {
-                    let p = quad_planarity([a[j], a[j + 1], b[j + 1], b[j]]);
+                    let p = scaled_planarity([a[j], a[j + 1], b[j + 1], b[j]], inv);
                     acc.max = acc.max.max(p);
                     acc.sum += p;
                 }

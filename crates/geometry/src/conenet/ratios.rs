@@ -99,7 +99,8 @@ impl SupportFrame {
 /// from `x_prev = X_{j−1}`, `e = ê_j`, `g = G_{i,j−1}` and the Monge normal `b` at X_j. Equal to
 /// `SupportFrame::new(..).ratio_normal(b, r)` up to a positive factor, without normalizing (the
 /// construction step does not depend on the length of P), so only the trigonometric path needs a
-/// square root.
+/// square root. `inv_scale` (1 / design size) keeps the magnitudes near 1 at any scale.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn ratio_normal_unnormalized(
     x_prev: DVec3,
@@ -107,13 +108,14 @@ pub(crate) fn ratio_normal_unnormalized(
     g: DVec3,
     b: DVec3,
     r: f64,
+    inv_scale: f64,
     row: usize,
     column: usize,
 ) -> Result<DVec3, GeometryError> {
-    let d = g - x_prev;
+    let d = (g - x_prev) * inv_scale;
     let perp = d - e * d.dot(e);
     let n2 = perp.length_squared();
-    if !(n2 > tolerance::FRAME * tolerance::FRAME * d.length_squared()) || !n2.is_finite() {
+    if !(perp.abs().max_element() > tolerance::FRAME * d.abs().max_element()) || !n2.is_finite() {
         return Err(GeometryError::DegenerateSupport { row, column });
     }
     // With w = perp / |perp|: ê·b = y > 0 and −w·b = x = −(perp·b) / |perp|.

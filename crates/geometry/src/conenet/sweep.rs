@@ -58,6 +58,8 @@ pub(crate) struct Sweep<'a> {
     pub corrections: Vec<Correction>,
     /// Coplanar mode: ψ of the shared plane at column j (index j).
     pub psi: Vec<f64>,
+    /// 1 / design size (keeps the ratio hot path's magnitudes near 1).
+    pub inv_scale: f64,
 }
 
 /// How one row's sweep ended.
@@ -146,6 +148,7 @@ struct RatioRow<'p> {
     planes: &'p mut [DVec3],
     /// The plane computed last (by `plane`).
     last: DVec3,
+    inv_scale: f64,
     /// α (negative: off).
     alpha: f64,
     epsilon: f64,
@@ -158,8 +161,16 @@ impl PlaneSource for RatioRow<'_> {
         let dx = self.dx;
         let e = dx.edges[jn];
         let r = self.grid.get(self.i, jn);
-        let p =
-            ratio_normal_unnormalized(dx.points[jn - 1], e, g, dx.bisectors[jn], r, self.i, jn)?;
+        let p = ratio_normal_unnormalized(
+            dx.points[jn - 1],
+            e,
+            g,
+            dx.bisectors[jn],
+            r,
+            self.inv_scale,
+            self.i,
+            jn,
+        )?;
         let pe = p.dot(e);
         if !(pe > 0.0
             && pe * pe > tolerance::EDGE_PLANE * tolerance::EDGE_PLANE * p.length_squared())
@@ -477,6 +488,7 @@ impl<'a> Sweep<'a> {
             assistance: assistance.filter(Assistance::enabled),
             corrections: Vec::new(),
             psi: vec![0.0; m],
+            inv_scale: 1.0,
         }
     }
 
@@ -553,6 +565,7 @@ impl<'a> Sweep<'a> {
         let dx = self.dx;
         let rule = self.rule;
         let per_vertex = self.per_vertex;
+        let inv_scale = self.inv_scale;
         let Self {
             verts,
             planes,
@@ -597,6 +610,7 @@ impl<'a> Sweep<'a> {
                             grid,
                             planes: p,
                             last: DVec3::ZERO,
+                            inv_scale,
                             alpha,
                             epsilon,
                             fixes: Vec::new(),
