@@ -26,7 +26,7 @@ pub struct QuadGrid {
 impl QuadGrid {
     /// A grid from row-major vertices; fails when the vertex count is not `rows * cols`.
     pub fn new(rows: usize, cols: usize, vertices: Vec<DVec3>) -> Result<Self, GeometryError> {
-        let expected = rows.checked_mul(cols).unwrap_or(usize::MAX);
+        let expected = rows.saturating_mul(cols);
         if vertices.len() != expected {
             return Err(GeometryError::GridSize {
                 rows,
@@ -53,7 +53,7 @@ impl QuadGrid {
 
     /// Checks the invariants: vertex count and wrap flags that need at least 3 rows/cols.
     pub fn validate(&self) -> Result<(), GeometryError> {
-        let expected = self.rows.checked_mul(self.cols).unwrap_or(usize::MAX);
+        let expected = self.rows.saturating_mul(self.cols);
         if self.vertices.len() != expected {
             return Err(GeometryError::GridSize {
                 rows: self.rows,

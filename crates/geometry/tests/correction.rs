@@ -61,8 +61,8 @@ fn ratio_construction_minus_minus_is_repaired_for_every_assistance() {
         assert!(!net.corrections.is_empty());
         let kinds: Vec<CorrectionKind> = net.corrections.iter().map(|c| c.kind).collect();
         match alpha {
-            a if a == 0.0 => assert!(kinds.iter().all(|k| *k == CorrectionKind::Ratio)),
-            a if a == 1.0 => assert!(kinds.iter().all(|k| *k == CorrectionKind::Apex)),
+            0.0 => assert!(kinds.iter().all(|k| *k == CorrectionKind::Ratio)),
+            1.0 => assert!(kinds.iter().all(|k| *k == CorrectionKind::Apex)),
             _ => {
                 assert!(
                     kinds.contains(&CorrectionKind::Ratio) && kinds.contains(&CorrectionKind::Apex)

@@ -144,7 +144,7 @@ proptest! {
 
     #[test]
     fn mesh_tools_never_panic(points in prop::collection::vec(point(), 0..13), rows in 0usize..5, wrap in any::<(bool, bool)>()) {
-        let cols = if rows == 0 { 0 } else { points.len() / rows };
+        let cols = points.len().checked_div(rows).unwrap_or(0);
         let Ok(mesh) = QuadGrid::new(rows, cols, points[..rows * cols].to_vec()) else { return Ok(()) };
         let mesh = mesh.with_wrap(wrap.0, wrap.1);
         if let Ok(p) = planarity(&mesh) {

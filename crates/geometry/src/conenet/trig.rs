@@ -4,13 +4,17 @@
 //! (same polynomial coefficients as fdlibm / musl) inline into the loop and stay within about one
 //! ulp of the std functions (tested below). Arguments outside the fast range fall back to std.
 
-use std::f64::consts::{FRAC_PI_2, PI};
+// The polynomial coefficients are written with the decimal expansions they were published with;
+// each literal rounds to the intended double.
+#![allow(clippy::excessive_precision)]
+
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 const ATAN_HI: [f64; 4] = [
     4.636_476_090_008_060_935_15e-1,
-    7.853_981_633_974_482_789_99e-1,
+    FRAC_PI_4,
     9.827_937_232_473_290_540_82e-1,
-    1.570_796_326_794_896_558_00,
+    FRAC_PI_2,
 ];
 const ATAN_LO: [f64; 4] = [
     2.269_877_745_296_168_709_24e-17,

@@ -53,7 +53,7 @@ pub fn generatrix_for(directrix: &Polyline, n: usize) -> impl Strategy<Value = P
     let v = e.cross(u);
     (
         prop::collection::vec((0.5..2.0f64, 0.15..0.5f64, -0.2..0.2f64), n),
-        0.0..6.28f64,
+        0.0..std::f64::consts::TAU,
     )
         .prop_map(move |(pts, phi0)| {
             let mut phi = phi0;
