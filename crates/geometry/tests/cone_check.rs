@@ -44,7 +44,7 @@ fn check(net: &ConeNet) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(1000))]
 
     #[test]
     fn strips_meet_at_their_apex(d in design(6, 10)) {

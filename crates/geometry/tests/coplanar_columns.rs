@@ -9,7 +9,7 @@ use common::design;
 use proptest::prelude::*;
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(1000))]
 
     #[test]
     fn every_column_is_planar(d in design(7, 9), alpha in prop_oneof![Just(-1.0), Just(0.0), Just(0.5), Just(1.0)]) {

@@ -68,7 +68,7 @@ fn check(result: Result<ConeNet, GeometryError>) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(ProptestConfig::with_cases(1000))]
 
     #[test]
     fn constructions_never_panic_nor_leak_non_finite_values(

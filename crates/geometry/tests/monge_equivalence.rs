@@ -10,7 +10,7 @@ use common::{design, max_vertex_distance};
 use proptest::prelude::*;
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(1000))]
 
     #[test]
     fn half_ratios_and_half_coplanar_equal_monge(d in design(6, 10)) {

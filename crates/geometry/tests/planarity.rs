@@ -47,7 +47,7 @@ fn ctube_with_normals(d: &Design) -> CtubeInputs {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(1000))]
 
     #[test]
     fn ctube_with_random_normals_has_planar_quads(d in design(6, 10)) {

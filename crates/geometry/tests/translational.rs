@@ -20,7 +20,7 @@ fn straight(dir: DVec3, lengths: &[f64]) -> Polyline {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(1000))]
 
     #[test]
     fn translational_surface(
