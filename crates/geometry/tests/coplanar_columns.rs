@@ -40,3 +40,39 @@ proptest! {
         }
     }
 }
+
+/// On a straight directrix the outgoing edge lies in the support plane of strip 0, so the flip of
+/// n_in is undefined; the kernel then takes ψ_out = π: τ = ½ is the plane perpendicular to the
+/// directrix (the Monge plane) and τ ≠ ½ tilts the plane about the ruling of strip 0, the same way
+/// for every column.
+#[test]
+fn straight_directrix_uses_psi_out_pi() {
+    use cnets_geometry::conenet::{CtubeInputs, construct_ctube};
+    use cnets_geometry::{DVec3, Polyline};
+    let directrix = Polyline::open((0..5).map(|j| DVec3::new(j as f64, 0.0, 0.0)).collect());
+    let generatrix = Polyline::open(vec![
+        DVec3::new(0.0, 1.0, 0.0),
+        DVec3::new(0.0, 1.2, 0.8),
+        DVec3::new(0.0, 0.8, 1.5),
+    ]);
+    let monge = construct_ctube(&CtubeInputs::new(directrix.clone(), generatrix.clone())).unwrap();
+    let half =
+        construct_coplanar(&CoplanarInputs::new(directrix.clone(), generatrix.clone())).unwrap();
+    assert!(common::max_vertex_distance(&monge.mesh, &half.mesh) < 1e-14);
+    for j in 1..5 {
+        assert!((half.normals.get(0, j) - DVec3::X).length() < 1e-15);
+    }
+    // τ = ¾: ψ = ¾ π, P = cos ψ n_in + sin ψ u with n_in = w × ê = ẑ-ish normal of the support plane
+    // of strip 0 (the plane y-x through G_{0,0} = (0, 1, 0), w = ŷ): n_in = ŷ × x̂ = −ẑ, u = x̂.
+    let tilted =
+        construct_coplanar(&CoplanarInputs::new(directrix, generatrix).plane_ratios(0.75)).unwrap();
+    let psi = 0.75 * std::f64::consts::PI;
+    let expected = DVec3::new(psi.sin(), 0.0, -psi.cos());
+    for j in 1..5 {
+        assert!(
+            (tilted.normals.get(0, j) - expected).length() < 1e-14,
+            "{}",
+            tilted.normals.get(0, j)
+        );
+    }
+}

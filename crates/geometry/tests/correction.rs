@@ -303,3 +303,19 @@ fn assistance_off_changes_nothing_and_parameters_are_validated() {
         ));
     }
 }
+
+/// Hybrid assistance at the first column: the apex cannot act on user input, so the plane fix is
+/// applied in full (as for α = 0).
+#[test]
+fn hybrid_assistance_fixes_the_first_column_fully() {
+    let g = Polyline::open(vec![
+        DVec3::new(0.0, 1.0, 0.0),
+        DVec3::new(1.4, 1.0, 1.0),
+        DVec3::new(0.0, 1.0, 2.0),
+    ]);
+    let inputs = ConstructInputs::new(straight(4), g);
+    let full = construct(&inputs.clone().assistance(0.0)).unwrap();
+    let hybrid = construct(&inputs.assistance(0.5)).unwrap();
+    assert_eq!(full.corrections[0], hybrid.corrections[0]);
+    assert_eq!(full.mesh, hybrid.mesh);
+}
