@@ -14,6 +14,7 @@ use cnets_editor::viewport::GpuTarget;
 
 struct Args {
     file: Option<PathBuf>,
+    bench_drag: Option<u32>,
     screenshot: Option<PathBuf>,
     quit_after: u32,
     size: [f32; 2],
@@ -22,6 +23,7 @@ struct Args {
 fn parse_args() -> anyhow::Result<Args> {
     let mut args = Args {
         file: None,
+        bench_drag: None,
         screenshot: None,
         quit_after: 10,
         size: [1400.0, 860.0],
@@ -31,6 +33,13 @@ fn parse_args() -> anyhow::Result<Args> {
         match a.as_str() {
             "--screenshot" => {
                 args.screenshot = Some(it.next().context("--screenshot needs a path")?.into())
+            }
+            "--bench-drag" => {
+                args.bench_drag = Some(
+                    it.next()
+                        .context("--bench-drag needs a frame count")?
+                        .parse()?,
+                )
             }
             "--quit-after-frames" => {
                 args.quit_after = it
@@ -64,6 +73,98 @@ struct Window {
     frames: u32,
     requested: bool,
     result: Arc<Mutex<Option<anyhow::Result<()>>>>,
+    bench: Option<Bench>,
+}
+
+/// `--bench-drag N`: moves the first `param.number` slider every frame for N frames (as a drag
+/// would, one undo step), then prints change-to-picture latency and frame intervals.
+struct Bench {
+    frames: u32,
+    done: u32,
+    last_frame: Option<std::time::Instant>,
+    intervals: Vec<f64>,
+    evals: Vec<f64>,
+    scenes: Vec<f64>,
+    uis: Vec<f64>,
+    seen: usize,
+    reported: bool,
+}
+
+fn stats(v: &mut [f64]) -> String {
+    if v.is_empty() {
+        return "n/a".into();
+    }
+    v.sort_by(f64::total_cmp);
+    let q = |f: f64| v[((v.len() - 1) as f64 * f).round() as usize];
+    format!(
+        "median {:.1} ms, p90 {:.1} ms, max {:.1} ms (n = {})",
+        q(0.5),
+        q(0.9),
+        q(1.0),
+        v.len()
+    )
+}
+
+impl Bench {
+    fn step(&mut self, app: &mut EditorApp, ctx: &egui::Context) {
+        let now = std::time::Instant::now();
+        if let Some(t) = self.last_frame {
+            self.intervals.push((now - t).as_secs_f64() * 1e3);
+        }
+        self.last_frame = Some(now);
+        if app.latency.samples.len() > self.seen {
+            self.seen = app.latency.samples.len();
+            self.evals.push(app.latency.eval_ms);
+            self.scenes.push(app.latency.scene_ms);
+        }
+        if self.done >= self.frames {
+            if std::mem::replace(&mut self.reported, true) {
+                return;
+            }
+            let mut lat = app.latency.samples.clone();
+            println!("bench-drag: {} frames, {} pictures", self.frames, lat.len());
+            println!(
+                "  change-to-picture (CPU side, up to the frame handing the scene to wgpu): {}",
+                stats(&mut lat)
+            );
+            println!(
+                "  frame interval (UI + GPU render + present): {}",
+                stats(&mut self.intervals)
+            );
+            println!(
+                "  UI thread per frame (egui + canvas + edit + submit): {}",
+                stats(&mut self.uis)
+            );
+            println!("  evaluation (worker): {}", stats(&mut self.evals));
+            println!("  scene build (worker): {}", stats(&mut self.scenes));
+            println!("  vertices: {}", app.viewport.stats.vertices);
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            return;
+        }
+        let Some(id) = app
+            .doc
+            .graph
+            .nodes()
+            .find(|(_, n)| n.def.id == "param.number")
+            .map(|(_, n)| n.id.clone())
+        else {
+            return;
+        };
+        let node = app.doc.graph.node(&id).expect("the node");
+        let (min, max, _) = cnets_editor::widgets::slider_range(node);
+        let t = f64::from(self.done) / 60.0;
+        let value = min + (max - min) * (0.5 + 0.4 * (t * std::f64::consts::TAU).sin());
+        let _ = cnets_editor::canvas::apply(
+            &mut app.doc,
+            cnets_editor::canvas::CanvasAction::SetValue {
+                node: id,
+                input: "value".into(),
+                value: cnets_engine::Value::Number(value),
+            },
+        );
+        self.done += 1;
+        ctx.request_repaint();
+    }
 }
 
 impl eframe::App for Window {
@@ -72,8 +173,20 @@ impl eframe::App for Window {
             // Show the evaluated graph in the picture, not the first empty frame.
             self.app.wait_for_worker(Duration::from_secs(60));
         }
+        if self
+            .bench
+            .as_ref()
+            .is_some_and(|b| b.done == 0 && b.last_frame.is_none())
+        {
+            self.app.wait_for_worker(Duration::from_secs(60));
+        }
+        let started = std::time::Instant::now();
         self.app.ui(ui);
         let ctx = ui.ctx().clone();
+        if let Some(b) = &mut self.bench {
+            b.uis.push(started.elapsed().as_secs_f64() * 1e3);
+            b.step(&mut self.app, &ctx);
+        }
         if self.app.quit {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
@@ -95,13 +208,16 @@ impl eframe::App for Window {
                 height: h as u32,
                 pixels,
             };
-            let saved = png.save_png(&out).map_err(anyhow::Error::from);
-            if saved.is_ok() {
-                eprintln!(
-                    "cnets-editor: screenshot {w}x{h} written to {}",
-                    out.display()
-                );
-            }
+            let saved = png
+                .save_png(&out)
+                .map_err(anyhow::Error::from)
+                .and_then(|()| {
+                    eprintln!(
+                        "cnets-editor: screenshot {w}x{h} written to {}",
+                        out.display()
+                    );
+                    check_not_blank(&png)
+                });
             *self.result.lock().unwrap_or_else(|p| p.into_inner()) = Some(saved);
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         } else if self.frames >= self.quit_after && !self.requested {
@@ -186,6 +302,17 @@ fn main() -> anyhow::Result<()> {
                 frames: 0,
                 requested: false,
                 result: result2,
+                bench: args.bench_drag.map(|frames| Bench {
+                    frames,
+                    done: 0,
+                    last_frame: None,
+                    intervals: Vec::new(),
+                    evals: Vec::new(),
+                    scenes: Vec::new(),
+                    uis: Vec::new(),
+                    seen: 0,
+                    reported: false,
+                }),
             }))
         }),
     )
