@@ -29,7 +29,7 @@ pub use transform::Transform;
 
 use glam::DVec3;
 
-use crate::GeometryError;
+use crate::{GeometryError, Polyline};
 
 /// Largest number of points a curve operation will create (guards against runaway counts).
 pub const MAX_POINTS: usize = 10_000_000;
@@ -72,6 +72,16 @@ pub(crate) fn check_finite_vec(what: &'static str, v: DVec3) -> Result<(), Geome
         Ok(())
     } else {
         Err(GeometryError::NonFinite { what, index: 0 })
+    }
+}
+
+/// Checks that every point of a computed curve is finite (huge inputs can overflow).
+pub(crate) fn check_output(what: &str, curve: Polyline) -> Result<Polyline, GeometryError> {
+    match curve.points.iter().position(|p| !p.is_finite()) {
+        None => Ok(curve),
+        Some(index) => Err(GeometryError::Degenerate(format!(
+            "{what}: point {index} overflows (the inputs are too large)"
+        ))),
     }
 }
 

@@ -4,7 +4,7 @@ use std::f64::consts::TAU;
 
 use glam::DVec3;
 
-use super::{check_count, check_finite, check_finite_vec};
+use super::{check_count, check_finite, check_finite_vec, check_output};
 use crate::{GeometryError, Plane, Polyline};
 
 fn check_plane(plane: &Plane) -> Result<(), GeometryError> {
@@ -55,7 +55,7 @@ pub fn line(start: DVec3, end: DVec3, count: usize) -> Result<Polyline, Geometry
             }
         })
         .collect();
-    Ok(Polyline::open(points))
+    check_output("line", Polyline::open(points))
 }
 
 /// A circular arc about `centre` in the orientation of `plane` (its origin is ignored), from angle
@@ -87,7 +87,7 @@ pub fn arc(
             on_circle(centre, plane, radius, t)
         })
         .collect();
-    Ok(Polyline::open(points))
+    check_output("arc", Polyline::open(points))
 }
 
 /// A closed circle about `centre` in the orientation of `plane`, sampled at `count` points (≥ 3);
@@ -119,7 +119,7 @@ pub fn polygon(
     let points = (0..sides)
         .map(|k| on_circle(centre, plane, radius, r0 + TAU * k as f64 / sides as f64))
         .collect();
-    Ok(Polyline::closed(points))
+    check_output("polygon", Polyline::closed(points))
 }
 
 /// A helix about the axis through `centre` along `plane`'s normal, starting on the plane's x axis
@@ -170,7 +170,7 @@ pub fn helix(
             on_circle(centre, plane, r, angle) + plane.normal * (pitch * turns.abs() * s)
         })
         .collect();
-    Ok(Polyline::open(points))
+    check_output("helix", Polyline::open(points))
 }
 
 #[cfg(test)]
@@ -239,5 +239,7 @@ mod tests {
         assert!(helix(DVec3::ZERO, &Plane::XY, 1.0, 1.0, 1.0, 0.0, 5).is_err());
         assert!(helix(DVec3::ZERO, &Plane::XY, 0.0, 0.0, 0.0, 1.0, 5).is_err());
         assert!(helix(DVec3::ZERO, &Plane::XY, -1.0, 1.0, 1.0, 1.0, 5).is_err());
+        let huge = helix(DVec3::ZERO, &Plane::XY, 1.0, 1.0, 1e308, 1e10, 5);
+        assert!(huge.unwrap_err().to_string().contains("overflows"));
     }
 }

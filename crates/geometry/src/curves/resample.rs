@@ -151,6 +151,9 @@ fn walk_chords(points: &[DVec3], chord: f64, steps: usize) -> Option<(Vec<DVec3>
     Some((out, seg, u))
 }
 
+/// Largest point count of [`divide_equal_chords`] (each bisection step walks the whole curve).
+pub const MAX_CHORDS: usize = 1_000_000;
+
 /// Divides `curve` into edges of exactly equal length (chords, as with a pair of dividers): an
 /// open curve into `count − 1` chords from its first to its last point (count ≥ 2), a closed curve
 /// into `count` chords from its first point around back to it (count ≥ 3). The points lie on the
@@ -159,6 +162,11 @@ fn walk_chords(points: &[DVec3], chord: f64, steps: usize) -> Option<(Vec<DVec3>
 pub fn divide_equal_chords(curve: &Polyline, count: usize) -> Result<Polyline, GeometryError> {
     let min = if curve.closed { 3 } else { 2 };
     check_count("count", count, min)?;
+    if count > MAX_CHORDS {
+        return Err(GeometryError::Degenerate(format!(
+            "equal chords: count {count} is too large (at most {MAX_CHORDS})"
+        )));
+    }
     let (points, total) = walk_points(curve)?;
     let chords = if curve.closed { count } else { count - 1 };
     let end = points[points.len() - 1];

@@ -261,10 +261,13 @@ impl Spline {
             };
             points.push(self.eval(t));
         }
-        Ok(Polyline {
-            points,
-            closed: self.closed,
-        })
+        super::check_output(
+            "spline",
+            Polyline {
+                points,
+                closed: self.closed,
+            },
+        )
     }
 
     /// Samples `count` points evenly spaced in the spline parameter (open: both ends included;
@@ -276,10 +279,13 @@ impl Spline {
         let points = (0..count)
             .map(|k| self.eval(t0 + (t1 - t0) * k as f64 / intervals as f64))
             .collect();
-        Ok(Polyline {
-            points,
-            closed: self.closed,
-        })
+        super::check_output(
+            "spline",
+            Polyline {
+                points,
+                closed: self.closed,
+            },
+        )
     }
 }
 
@@ -537,6 +543,13 @@ mod tests {
         let s = Spline::new(k, &zigzag(), false).unwrap();
         assert!(s.sample_even(1).is_err());
         assert!(s.eval(f64::NAN).is_finite());
+        let huge = [
+            DVec3::ZERO,
+            DVec3::splat(1e308),
+            DVec3::new(-1e308, 1e308, 0.0),
+        ];
+        let e = Spline::new(SplineKind::Natural, &huge, false).and_then(|s| s.sample_even(9));
+        assert!(e.is_err());
         assert_eq!(SplineKind::parse(" Natural ").unwrap(), SplineKind::Natural);
         assert_eq!(
             SplineKind::parse("catmull_rom").unwrap(),

@@ -76,10 +76,13 @@ pub fn subdivide(
             SubdivisionScheme::Chaikin => chaikin(&points, curve.closed),
         };
     }
-    Ok(Polyline {
-        points,
-        closed: curve.closed,
-    })
+    super::check_output(
+        "subdivision",
+        Polyline {
+            points,
+            closed: curve.closed,
+        },
+    )
 }
 
 fn edges(points: &[DVec3], closed: bool) -> usize {

@@ -130,10 +130,13 @@ impl Transform {
     pub fn apply_polyline(&self, curve: &Polyline) -> Result<Polyline, GeometryError> {
         check_finite_points("curve", &curve.points)?;
         let prepared = self.prepare()?;
-        Ok(Polyline {
-            points: curve.points.iter().map(|&p| prepared.apply(p)).collect(),
-            closed: curve.closed,
-        })
+        super::check_output(
+            "transform",
+            Polyline {
+                points: curve.points.iter().map(|&p| prepared.apply(p)).collect(),
+                closed: curve.closed,
+            },
+        )
     }
 }
 
@@ -211,6 +214,12 @@ mod tests {
         );
         assert!(Transform::translation(DVec3::NAN).apply(p).is_err());
         assert!(Transform::default().apply(DVec3::NAN).is_err());
+        let far = Polyline::open(vec![DVec3::ZERO, DVec3::splat(1e300)]);
+        assert!(
+            Transform::scaling(DVec3::ZERO, 1e10)
+                .apply_polyline(&far)
+                .is_err()
+        );
         let mut bad = Plane::XY;
         bad.normal = DVec3::ZERO;
         assert!(Transform::mirroring(bad).apply(p).is_err());

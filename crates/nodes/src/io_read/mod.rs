@@ -162,6 +162,28 @@ mod tests {
         );
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+
+        /// Garbage in any format is an error or a result, never a panic.
+        #[test]
+        fn parsers_never_panic(
+            text in "[<>/=\"' a-zA-Z0-9.,;#&+\\-\n\t]{0,120}",
+            prefix in proptest::sample::select(vec![
+                "", "<path d=\"", "<polyline points=\"", "v 0 0 0\nl ", "[{\"points\": [", "0,0\n",
+            ]),
+        ) {
+            let text = format!("{prefix}{text}");
+            for format in [Format::Csv, Format::Json, Format::Obj, Format::Svg] {
+                if let Ok((curves, _)) = parse(&text, format, 3) {
+                    for c in curves {
+                        proptest::prop_assert!(c.points.iter().all(|p| p.is_finite()));
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn tidy_merges_repeats_and_closes() {
         let sq = vec![
