@@ -134,6 +134,8 @@ pub struct Canvas {
     fit_pending: bool,
     /// Screen rectangle of the canvas in the last frame.
     ui_rect: Rect,
+    /// Plot rectangles of graph-mapper widgets (canvas coordinates).
+    plots: HashMap<String, Rect>,
 }
 
 impl Default for Canvas {
@@ -173,6 +175,7 @@ impl Canvas {
                 .style(style()),
             fit_pending: true,
             ui_rect: Rect::NOTHING,
+            plots: HashMap::new(),
         }
     }
 
@@ -283,6 +286,12 @@ impl Canvas {
         self.rects.get(node).map(|r| self.to_global * *r)
     }
 
+    /// Screen position of point (u, v) of a graph mapper's unit square, after the last frame.
+    pub fn mapper_screen_pos(&self, node: &str, u: f32, v: f32) -> Option<Pos2> {
+        let r = self.plots.get(node)?;
+        Some(self.to_global * Pos2::new(r.left() + u * r.width(), r.bottom() - v * r.height()))
+    }
+
     /// Screen position of a canvas point (accessibility rectangles of widgets on the canvas are
     /// in canvas coordinates).
     pub fn to_screen(&self, canvas: Pos2) -> Pos2 {
@@ -333,10 +342,12 @@ impl Canvas {
             focused: self.focused.clone(),
             pressed_node: None,
             fit,
+            plots: HashMap::new(),
         };
         let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
         self.to_global = viewer.to_global;
         self.rects = viewer.rects;
+        self.plots = viewer.plots;
         if let Some(id) = &viewer.pressed_node {
             self.focused = Some(id.clone());
         } else if response.clicked() && !response.double_clicked() {
@@ -525,6 +536,7 @@ struct Viewer<'a> {
     focused: Option<String>,
     pressed_node: Option<String>,
     fit: Option<TSTransform>,
+    plots: HashMap<String, Rect>,
 }
 
 impl Viewer<'_> {
@@ -772,11 +784,13 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
             return;
         };
-        if let Some(instance) = self.graph.node(&id)
-            && let Some(values) = mapper::show(ui, self.graph, instance)
-        {
-            self.actions
-                .push(CanvasAction::SetValues { node: id, values });
+        if let Some(instance) = self.graph.node(&id) {
+            let r = mapper::show(ui, self.graph, instance);
+            self.plots.insert(id.clone(), r.plot);
+            if let Some(values) = r.changes {
+                self.actions
+                    .push(CanvasAction::SetValues { node: id, values });
+            }
         }
     }
 

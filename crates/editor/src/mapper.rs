@@ -1,40 +1,28 @@
-//! The graph-mapper widget: for `mapper.*` nodes (Grasshopper's Graph Mapper), a small plot of
-//! y = f(x) whose handles the designer drags, with a picker for the curve type.
+//! The graph-mapper widget: for `mapper.graph` nodes (Grasshopper's Graph Mapper), a plot of the
+//! curve in its unit square whose handles the designer drags, with a picker for the curve kind.
 //!
-//! The mapper node is being written in parallel with the editor, so the widget reads its ports
-//! from the registry instead of hard-coding them: the handles are the node's first list-of-points
-//! input, the curve type its first text input (the known type names are offered; a name the node
-//! refuses shows as the node's error), and the curve drawn is the node itself evaluated on the UI
-//! thread with `count` samples (when it has a `count` input), else the polyline through the
-//! handles. Handles are edited in the unit square (x and y in 0..1, as the node's domain maps them).
+//! The node's ports (see `docs/inputs.md`) are found from the registry rather than hard-coded:
+//! the handles are its first list-of-points input (`handles`: (u, v) in the unit square), the
+//! kind its first text input (`kind`). The curve is drawn with the same
+//! [`GraphMapper`](cnets_geometry::curves::GraphMapper) the node evaluates, so the picture is
+//! exact; when the node has no handles set, the kind's default handles are shown and dragging
+//! one writes the whole list. A kind or handle set the mapper refuses is drawn as far as possible
+//! and the node shows the error.
 
-use cnets_engine::eval::evaluate_node;
-use cnets_engine::{Access, Graph, NodeContext, NodeInstance, Value, ValueType};
+use cnets_engine::{Access, Graph, NodeInstance, Value, ValueType};
 use cnets_geometry::DVec3;
+use cnets_geometry::curves::{GraphMapper, MapperKind};
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, vec2};
+use glam::DVec2;
 
 use crate::widgets::effective_value;
 
-/// Curve types offered in the picker (the names of the design-inputs issue).
-pub const CURVE_TYPES: [&str; 10] = [
-    "linear",
-    "bezier",
-    "parabola",
-    "power",
-    "sine",
-    "gaussian",
-    "sqrt",
-    "conic",
-    "piecewise",
-    "spline",
-];
-
 /// Samples drawn for the curve.
-const SAMPLES: i64 = 64;
+const SAMPLES: usize = 96;
 
 /// Whether a node gets the graph-mapper widget.
 pub fn is_mapper(node: &NodeInstance) -> bool {
-    node.def.id.starts_with("mapper.") && handles_port(node).is_some()
+    node.def.id.starts_with("mapper.") && handles_port(node).is_some() && kind_port(node).is_some()
 }
 
 /// Index of the handles input: the first list of points.
@@ -45,75 +33,89 @@ pub fn handles_port(node: &NodeInstance) -> Option<usize> {
         .position(|p| p.ty == ValueType::Point && p.access != Access::Item)
 }
 
-/// Index of the curve-type input: the first text input.
-pub fn type_port(node: &NodeInstance) -> Option<usize> {
+/// Index of the curve-kind input: the first text input.
+pub fn kind_port(node: &NodeInstance) -> Option<usize> {
     node.def.inputs.iter().position(|p| p.ty == ValueType::Text)
 }
 
-/// The handles of a mapper node.
-pub fn handles(node: &NodeInstance) -> Vec<DVec3> {
-    let Some(k) = handles_port(node) else {
-        return Vec::new();
-    };
-    match effective_value(node, k) {
-        Some(Value::List(items)) => items.iter().filter_map(Value::as_vec3).collect(),
-        Some(Value::Point(p)) => vec![p],
+/// The kind set on the node (`None` when it is not a known kind).
+pub fn kind(node: &NodeInstance) -> Option<MapperKind> {
+    match effective_value(node, kind_port(node)?) {
+        Some(Value::Text(t)) => MapperKind::parse(&t).ok(),
+        _ => None,
+    }
+}
+
+/// The handles of a mapper node: its literal list, else the kind's defaults.
+pub fn handles(node: &NodeInstance) -> Vec<DVec2> {
+    let set: Vec<DVec2> = match handles_port(node).and_then(|k| effective_value(node, k)) {
+        Some(Value::List(items)) => items
+            .iter()
+            .filter_map(Value::as_vec3)
+            .map(|p| p.truncate())
+            .collect(),
+        Some(Value::Point(p)) => vec![p.truncate()],
         _ => Vec::new(),
+    };
+    if set.is_empty() {
+        kind(node)
+            .map(MapperKind::default_handles)
+            .unwrap_or_default()
+    } else {
+        set
     }
 }
 
-/// The curve of a mapper node as y samples over evenly spaced x, by evaluating the node with its
-/// literal inputs and `count` = 64; `None` when it has no `count` input or fails.
-pub fn sample_curve(node: &NodeInstance) -> Option<Vec<f64>> {
-    let count = node.def.input_index("count")?;
-    let inputs: Vec<Value> = (0..node.def.inputs.len())
+/// The curve as (u, v) points over the unit square; `None` when the mapper refuses the handles.
+pub fn curve(kind: MapperKind, handles: &[DVec2]) -> Option<Vec<DVec2>> {
+    let mapper = GraphMapper::new(kind, handles).ok()?;
+    let points: Vec<DVec2> = (0..=SAMPLES)
         .map(|k| {
-            if k == count {
-                Value::Integer(SAMPLES)
-            } else if node.def.inputs[k].name == "values" {
-                Value::Null
-            } else {
-                effective_value(node, k).unwrap_or(Value::Null)
-            }
+            let u = k as f64 / SAMPLES as f64;
+            DVec2::new(u, mapper.eval(u))
         })
+        .filter(|p| p.is_finite())
         .collect();
-    let out = evaluate_node(&node.def, &NodeContext::default(), &inputs).ok()?;
-    let ys: Vec<f64> = out
-        .values
-        .first()?
-        .as_list()?
-        .iter()
-        .filter_map(Value::as_f64)
-        .collect();
-    (ys.len() >= 2 && ys.iter().all(|y| y.is_finite())).then_some(ys)
+    Some(points)
 }
 
-/// Shows the widget; returns the inputs to set when the designer dragged a handle or picked a
-/// type.
-pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> Option<Vec<(String, Value)>> {
-    let mut changes: Vec<(String, Value)> = Vec::new();
-    if let Some(k) = type_port(node) {
-        let current = match effective_value(node, k) {
-            Some(Value::Text(t)) => t.to_string(),
-            _ => String::new(),
+/// What the widget did in one frame.
+pub struct MapperResponse {
+    /// The inputs to set (a dragged handle, a picked kind).
+    pub changes: Option<Vec<(String, Value)>>,
+    /// The plot's rectangle (unit square: u to the right, v up), in the ui's coordinates.
+    pub plot: Rect,
+}
+
+/// Shows the widget.
+pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse {
+    let (Some(kind_k), Some(handles_k)) = (kind_port(node), handles_port(node)) else {
+        return MapperResponse {
+            changes: None,
+            plot: Rect::NOTHING,
         };
-        egui::ComboBox::from_id_salt(("mapper-type", &node.id))
-            .selected_text(if current.is_empty() {
-                "type"
-            } else {
-                current.as_str()
-            })
-            .show_ui(ui, |ui| {
-                for t in CURVE_TYPES {
-                    if ui.selectable_label(current == t, t).clicked() {
-                        changes.push((node.def.inputs[k].name.to_string(), Value::text(t)));
-                    }
+    };
+    let mut changes: Vec<(String, Value)> = Vec::new();
+    let current = kind(node);
+    egui::ComboBox::from_id_salt(("mapper-kind", &node.id))
+        .selected_text(current.map_or("?", MapperKind::name))
+        .show_ui(ui, |ui| {
+            for k in MapperKind::ALL {
+                if ui.selectable_label(current == Some(k), k.name()).clicked() {
+                    changes.push((
+                        node.def.inputs[kind_k].name.to_string(),
+                        Value::text(k.name()),
+                    ));
+                    // A new kind starts from its own default handles.
+                    changes.push((
+                        node.def.inputs[handles_k].name.to_string(),
+                        Value::list(Vec::new()),
+                    ));
                 }
-            });
-    }
-    let size = vec2(160.0, 120.0);
-    let (rect, _) = ui.allocate_exact_size(size, Sense::hover());
-    let painter = ui.painter_at(rect);
+            }
+        });
+    let (rect, _) = ui.allocate_exact_size(vec2(180.0, 130.0), Sense::hover());
+    let painter = ui.painter_at(rect.expand(6.0));
     painter.rect_filled(rect, 2.0, Color32::from_gray(245));
     painter.rect_stroke(
         rect,
@@ -121,32 +123,25 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> Option<Vec<(Str
         Stroke::new(1.0, Color32::from_gray(160)),
         egui::StrokeKind::Inside,
     );
-    let to_screen = |p: DVec3| {
+    let to_screen = |p: DVec2| {
         Pos2::new(
-            rect.left() + (p.x.clamp(0.0, 1.0) as f32) * rect.width(),
-            rect.bottom() - (p.y.clamp(0.0, 1.0) as f32) * rect.height(),
+            rect.left() + (p.x as f32) * rect.width(),
+            rect.bottom() - (p.y.clamp(-0.05, 1.05) as f32) * rect.height(),
         )
     };
     let to_unit = |p: Pos2| {
-        DVec3::new(
+        DVec2::new(
             f64::from((p.x - rect.left()) / rect.width()).clamp(0.0, 1.0),
             f64::from((rect.bottom() - p.y) / rect.height()).clamp(0.0, 1.0),
-            0.0,
         )
     };
     let handles = handles(node);
-    let curve: Vec<Pos2> = match sample_curve(node) {
-        Some(ys) => {
-            let n = ys.len() - 1;
-            ys.iter()
-                .enumerate()
-                .map(|(k, &y)| to_screen(DVec3::new(k as f64 / n as f64, y, 0.0)))
-                .collect()
-        }
+    let line: Vec<Pos2> = match current.and_then(|k| curve(k, &handles)) {
+        Some(points) => points.into_iter().map(to_screen).collect(),
         None => handles.iter().map(|&h| to_screen(h)).collect(),
     };
     painter.add(egui::Shape::line(
-        curve,
+        line,
         Stroke::new(1.5, Color32::from_rgb(0x1f, 0x5f, 0xbf)),
     ));
     let mut moved = handles.clone();
@@ -154,7 +149,7 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> Option<Vec<(Str
     for (k, h) in handles.iter().enumerate() {
         let center = to_screen(*h);
         let r = ui.interact(
-            Rect::from_center_size(center, vec2(12.0, 12.0)),
+            Rect::from_center_size(center, vec2(14.0, 14.0)),
             ui.id().with(("mapper-handle", &node.id, k)),
             Sense::drag(),
         );
@@ -164,86 +159,84 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> Option<Vec<(Str
             moved[k] = to_unit(p);
             any = true;
         }
+        let red = Color32::from_rgb(0xd0, 0x31, 0x2d);
         let fill = if r.hovered() || r.dragged() {
-            Color32::from_rgb(0xd0, 0x31, 0x2d)
+            red
         } else {
             Color32::WHITE
         };
-        painter.circle(
-            center,
-            5.0,
-            fill,
-            Stroke::new(1.5, Color32::from_rgb(0xd0, 0x31, 0x2d)),
-        );
+        painter.circle(center, 5.0, fill, Stroke::new(1.5, red));
     }
-    if any && let Some(k) = handles_port(node) {
+    if any {
         changes.push((
-            node.def.inputs[k].name.to_string(),
-            Value::list(moved.into_iter().map(Value::Point).collect()),
+            node.def.inputs[handles_k].name.to_string(),
+            Value::list(
+                moved
+                    .into_iter()
+                    .map(|p| Value::Point(DVec3::new(p.x, p.y, 0.0)))
+                    .collect(),
+            ),
         ));
     }
-    (!changes.is_empty()).then_some(changes)
+    MapperResponse {
+        changes: (!changes.is_empty()).then_some(changes),
+        plot: rect,
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cnets_engine::{NodeDef, PortDef, Registry};
     use std::sync::Arc;
 
-    /// A stand-in with the documented shape of `mapper.graph`: type, handles, count → values.
-    fn stand_in() -> NodeDef {
-        NodeDef::new("mapper.test", "Mappers", "A linear test mapper.")
-            .input(
-                PortDef::new("type", ValueType::Text, Access::Item)
-                    .with_default(Value::text("linear")),
-            )
-            .input(
-                PortDef::new("handles", ValueType::Point, Access::List).with_default(Value::list(
-                    vec![
-                        Value::Point(DVec3::new(0.0, 0.2, 0.0)),
-                        Value::Point(DVec3::new(1.0, 0.8, 0.0)),
-                    ],
-                )),
-            )
-            .input(
-                PortDef::new("count", ValueType::Integer, Access::Item)
-                    .with_default(Value::Integer(10)),
-            )
-            .output(PortDef::new("values", ValueType::Number, Access::List))
-            .run(|_, inputs| {
-                let h = inputs[1]
-                    .as_list()
-                    .unwrap_or(&[])
-                    .iter()
-                    .filter_map(Value::as_vec3)
-                    .collect::<Vec<_>>();
-                let n = match inputs[2] {
-                    Value::Integer(n) => n,
-                    _ => 0,
-                };
-                let (a, b) = (
-                    h.first().map_or(0.0, |p| p.y),
-                    h.last().map_or(1.0, |p| p.y),
-                );
-                let ys = (0..n)
-                    .map(|k| Value::Number(a + (b - a) * k as f64 / (n - 1).max(1) as f64))
-                    .collect();
-                Ok(vec![Value::list(ys)])
-            })
+    fn mapper_graph() -> Graph {
+        let mut g = Graph::new(Arc::new(cnets_nodes::registry()));
+        g.add_node("m", "mapper.graph").unwrap();
+        g
     }
 
     #[test]
-    fn ports_are_found_and_the_node_is_sampled() {
-        let mut r = Registry::new();
-        r.register(stand_in());
-        let mut g = Graph::new(Arc::new(r));
-        g.add_node("m", "mapper.test").unwrap();
+    fn the_registered_mapper_gets_the_widget_with_default_handles() {
+        let mut g = mapper_graph();
         let n = g.node("m").unwrap();
         assert!(is_mapper(n));
-        assert_eq!(handles(n).len(), 2);
-        let ys = sample_curve(n).unwrap();
-        assert_eq!(ys.len(), SAMPLES as usize);
-        assert!((ys[0] - 0.2).abs() < 1e-12 && (ys[63] - 0.8).abs() < 1e-12);
+        assert_eq!(kind(n), Some(MapperKind::Linear));
+        assert_eq!(handles(n), MapperKind::Linear.default_handles());
+        g.set_value("m", "kind", Value::text("gaussian")).unwrap();
+        let n = g.node("m").unwrap();
+        assert_eq!(handles(n), MapperKind::Gaussian.default_handles());
+        let c = curve(MapperKind::Gaussian, &handles(n)).unwrap();
+        assert_eq!(c.len(), SAMPLES + 1);
+    }
+
+    #[test]
+    fn the_drawn_curve_passes_through_on_curve_handles() {
+        let h = vec![DVec2::new(0.1, 0.2), DVec2::new(0.9, 0.7)];
+        let c = curve(MapperKind::Linear, &h).unwrap();
+        // Linear through A and B: v(u) = 0.2 + (u − 0.1)·0.5/0.8.
+        for p in c {
+            assert!((p.y - (0.2 + (p.x - 0.1) * 0.625)).abs() < 1e-12);
+        }
+        assert!(
+            curve(
+                MapperKind::Linear,
+                &[DVec2::new(0.5, 0.0), DVec2::new(0.5, 1.0)]
+            )
+            .is_none()
+        );
+    }
+
+    #[test]
+    fn set_handles_are_used_and_the_mapper_evaluates_them() {
+        let mut g = mapper_graph();
+        let pts = [DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.5, 0.0)];
+        g.set_value(
+            "m",
+            "handles",
+            Value::list(pts.iter().map(|p| Value::Point(*p)).collect()),
+        )
+        .unwrap();
+        let n = g.node("m").unwrap();
+        assert_eq!(handles(n), vec![DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.5)]);
     }
 }

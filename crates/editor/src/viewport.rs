@@ -246,7 +246,13 @@ impl Viewport {
         let s = &self.stats;
         let mut lines = vec![format!("{} vertices · {} faces", s.vertices, s.faces)];
         if let Some(p) = s.max_planarity {
-            lines.push(format!("max planarity {}", format_number(p)));
+            // Below 1e-12 the digits are rounding noise (and differ between machines).
+            let shown = if p < 1e-12 {
+                "< 1e-12".to_string()
+            } else {
+                format_number(p)
+            };
+            lines.push(format!("max planarity {shown}"));
         }
         for (k, line) in lines.iter().enumerate() {
             painter.text(

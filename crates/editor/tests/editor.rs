@@ -70,13 +70,16 @@ fn snapshot_palette_open() {
     let mut h = harness("snap-palette");
     h.state_mut().palette.open_at([0.0, 0.0]);
     h.run_steps(2);
-    h.get_by_role(Role::TextInput).type_text("arc");
+    // A query whose answer does not change when other nodes are added to the library.
+    h.get_by_role(Role::TextInput).type_text("cnets.construct");
     h.run_steps(3);
-    // Once in the palette, once as the type label of the two arc nodes on the canvas.
+    // Once in the palette, once as the type label of the construct node on the canvas.
+    assert_eq!(h.query_all_by_label("cnets.construct").count(), 2);
+    assert!(h.query_by_label("cnets.construct_coplanar").is_some());
     assert_eq!(
         h.query_all_by_label("curve.arc").count(),
-        3,
-        "the palette lists curve.arc"
+        2,
+        "non-matching types are not listed"
     );
     h.snapshot("editor_palette");
 }
@@ -365,4 +368,47 @@ fn save_is_atomic_recent_files_persist_and_a_crash_offers_restore() {
     h.state_mut().on_exit();
     assert!(!recovery.exists(), "a clean exit removes the recovery file");
     let _ = Duration::ZERO;
+}
+
+#[test]
+fn dragging_a_graph_mapper_handle_edits_its_handles_in_one_step() {
+    let mut h = harness("mapper");
+    let id = h
+        .state_mut()
+        .add_node("mapper.graph", [420.0, 520.0])
+        .unwrap();
+    h.state_mut().canvas.fit();
+    h.run_steps(4);
+    let steps = h.state().doc.history.undo_len();
+    let before = h.state().doc.to_ron();
+    // The linear kind's default handles; drag the second one down.
+    let handles = cnets_editor::mapper::handles(h.state().doc.graph.node(&id).unwrap());
+    let b = handles[1];
+    let canvas = &h.state().canvas;
+    let from = canvas
+        .mapper_screen_pos(&id, b.x as f32, b.y as f32)
+        .expect("the mapper is drawn");
+    let to = canvas.mapper_screen_pos(&id, b.x as f32, 0.25).unwrap();
+    drag(&mut h, from, to);
+    settle(&mut h);
+    let app = h.state();
+    let now = cnets_editor::mapper::handles(app.doc.graph.node(&id).unwrap());
+    assert_eq!(now.len(), handles.len());
+    assert!(
+        (now[1].y - 0.25).abs() < 0.05,
+        "the handle followed the pointer: {now:?}"
+    );
+    assert_eq!(
+        app.doc.history.undo_len(),
+        steps + 1,
+        "one undo step for the drag"
+    );
+    assert!(
+        matches!(app.statuses[&id], NodeStatus::Ok { .. }),
+        "{:?}",
+        app.statuses[&id]
+    );
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().doc.to_ron(), before);
 }
