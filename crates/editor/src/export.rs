@@ -78,7 +78,83 @@ pub fn export_source(graph: &Graph) -> Option<(String, String, ValueType)> {
     None
 }
 
-/// Exports the graph's mesh into `folder`; returns the files written.
+/// A registered node that lays a quad mesh flat as outlines (e.g. `pq.unroll_strips`): an input
+/// accepting a quad mesh and a polyline output named `outlines`.
+pub fn unroller(registry: &Registry) -> Option<Arc<NodeDef>> {
+    registry
+        .iter()
+        .find(|d| {
+            !d.has_flag(NodeFlag::Export)
+                && d.inputs.iter().any(|p| p.ty == ValueType::QuadMesh)
+                && d.outputs
+                    .iter()
+                    .any(|p| p.name == "outlines" && p.ty == ValueType::Polyline)
+        })
+        .cloned()
+}
+
+/// Wires the graph's geometry into export node `id`: a mesh input gets the previewed mesh; a
+/// polyline input (flat drawings: SVG, DXF) gets a previewed `outlines` output, else the outlines
+/// of an unroller node added for the purpose; other inputs with the same name as an output of
+/// that node (labels, label points) are wired too.
+fn wire_export(g: &mut Graph, id: &str, def: &NodeDef) -> Result<(), String> {
+    let err = |e: cnets_engine::GraphError| e.to_string();
+    let (source, output, ty) = export_source(g).ok_or("nothing to export: no previewed mesh")?;
+    if let Some(input) = def
+        .inputs
+        .iter()
+        .find(|p| p.ty != ValueType::Any && ty.converts_to(&p.ty))
+    {
+        g.connect(&source, &output, id, &input.name).map_err(err)?;
+        return Ok(());
+    }
+    let Some(outlines_in) = def.inputs.iter().find(|p| p.ty == ValueType::Polyline) else {
+        return Err(format!("{} takes neither a mesh nor outlines", def.id));
+    };
+    // A previewed node that already makes outlines (e.g. an unroll node in the graph)?
+    let existing = g.nodes().find_map(|(_, n)| {
+        (n.preview && n.enabled && !n.def.has_flag(NodeFlag::Export))
+            .then(|| n.def.output_index("outlines").map(|_| n.id.clone()))
+            .flatten()
+    });
+    let flat = match existing {
+        Some(node) => node,
+        None => {
+            let unroll = unroller(g.registry()).ok_or_else(|| {
+                format!(
+                    "{} needs flat outlines and no unroll node is registered",
+                    def.id
+                )
+            })?;
+            let flat = crate::document::fresh_id(g, &unroll.id);
+            g.add_node_with_def(&flat, unroll.clone()).map_err(err)?;
+            let mesh_in = unroll
+                .inputs
+                .iter()
+                .find(|p| p.ty == ValueType::QuadMesh)
+                .map(|p| p.name.to_string())
+                .unwrap_or_default();
+            g.connect(&source, &output, &flat, &mesh_in).map_err(err)?;
+            flat
+        }
+    };
+    g.connect(&flat, "outlines", id, &outlines_in.name)
+        .map_err(err)?;
+    let outputs: Vec<String> = g
+        .node(&flat)
+        .map(|n| n.def.outputs.iter().map(|p| p.name.to_string()).collect())
+        .unwrap_or_default();
+    for p in &def.inputs {
+        if p.name != outlines_in.name && outputs.iter().any(|o| *o == p.name) {
+            // Optional extras (labels…): a type mismatch just leaves them out.
+            let _ = g.connect(&flat, &p.name, id, &p.name);
+        }
+    }
+    Ok(())
+}
+
+/// Exports the graph's geometry into `folder` through the format's export node; returns the files
+/// written.
 pub fn export(
     graph: &Graph,
     base_dir: Option<PathBuf>,
@@ -92,20 +168,11 @@ pub fn export(
             format.extension()
         )
     })?;
-    let (source, output, ty) =
-        export_source(graph).ok_or("nothing to export: no previewed mesh")?;
     let mut g = graph.clone();
     let id = crate::document::fresh_id(&g, &format!("export_{}", format.extension()));
     g.add_node_with_def(&id, def.clone())
         .map_err(|e| e.to_string())?;
-    let input = def
-        .inputs
-        .iter()
-        .find(|p| ty.converts_to(&p.ty) && p.ty != ValueType::Any)
-        .or_else(|| def.inputs.iter().find(|p| ty.converts_to(&p.ty)))
-        .ok_or_else(|| format!("{} has no input for a mesh", def.id))?;
-    g.connect(&source, &output, &id, &input.name)
-        .map_err(|e| e.to_string())?;
+    wire_export(&mut g, &id, &def)?;
     if let Some(file_port) = def.inputs.iter().find(|p| {
         p.ty == ValueType::Text && ["file", "name", "path"].iter().any(|w| p.name.contains(w))
     }) {
@@ -155,6 +222,70 @@ mod tests {
                 ctx.record_file(path.clone());
                 Ok(vec![Value::text(path.display().to_string())])
             })
+    }
+
+    /// A stand-in flat-drawing export: outlines and labels, writes "<outlines> <labels>".
+    fn svg_stand_in() -> NodeDef {
+        NodeDef::new("io.export_svg", "Export", "Test SVG export.")
+            .input(
+                PortDef::new("name", ValueType::Text, Access::Item)
+                    .with_default(Value::text("strips.svg")),
+            )
+            .input(PortDef::new("outlines", ValueType::Polyline, Access::List))
+            .input(PortDef::new("labels", ValueType::Text, Access::List).optional())
+            .output(PortDef::new("path", ValueType::Text, Access::Item))
+            .flag(NodeFlag::Export)
+            .run(|ctx, inputs| {
+                let Value::Text(name) = &inputs[0] else {
+                    return Err("no name".into());
+                };
+                let path = ctx.output_path(name)?;
+                let n = inputs[1].as_list().map_or(0, <[Value]>::len);
+                let l = inputs[2].as_list().map_or(0, <[Value]>::len);
+                std::fs::write(&path, format!("{n} {l}"))?;
+                ctx.record_file(path.clone());
+                Ok(vec![Value::text(path.display().to_string())])
+            })
+    }
+
+    /// A stand-in unroller: one outline and one label per quad row.
+    fn unroll_stand_in() -> NodeDef {
+        NodeDef::new("pq.unroll_strips", "PQ", "Test unroll.")
+            .input(PortDef::new("mesh", ValueType::QuadMesh, Access::Item))
+            .output(PortDef::new("outlines", ValueType::Polyline, Access::List))
+            .output(PortDef::new("labels", ValueType::Text, Access::List))
+            .run(|_, inputs| {
+                let Value::QuadMesh(g) = &inputs[0] else {
+                    return Err("no mesh".into());
+                };
+                let rows = g.quad_rows();
+                let outline = Value::Polyline(Arc::new(cnets_geometry::Polyline::open(vec![
+                    cnets_geometry::DVec3::ZERO,
+                    cnets_geometry::DVec3::X,
+                ])));
+                Ok(vec![
+                    Value::list(vec![outline; rows]),
+                    Value::list((0..rows).map(|i| Value::text(format!("D{i}"))).collect()),
+                ])
+            })
+    }
+
+    #[test]
+    fn flat_drawings_export_unrolled_outlines_with_labels() {
+        let mut r = cnets_nodes::registry();
+        r.register(svg_stand_in());
+        if unroller(&r).is_none() {
+            r.register(unroll_stand_in());
+        }
+        let registry = Arc::new(r);
+        let text = include_str!("../../../graphs/editor-default.ron");
+        let doc = cnets_engine::file::load_str(text, "default", &registry).unwrap();
+        let dir = std::env::temp_dir().join(format!("cnets-export-svg-{}", std::process::id()));
+        let files = export(&doc.graph, None, ExportFormat::Svg, &dir, "net").unwrap();
+        assert_eq!(files, vec![dir.join("net.svg")]);
+        // The default net has 10 quad rows along the directrix: 10 strips, each labelled.
+        assert_eq!(std::fs::read_to_string(&files[0]).unwrap(), "10 10");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -184,8 +184,14 @@ pub fn build_scene(
             .output_index("configurations")
             .and_then(|k| outputs.values.get(k))
             .cloned();
+        // Support-layer nodes (e.g. `cnets.conical_support`) name their output just `mesh`.
+        let support_node = node.def.id.contains("support");
         for (port, value) in node.def.outputs.iter().zip(&outputs.values) {
-            let layer = layer_of(&port.name);
+            let layer = if support_node {
+                Layer::Supports
+            } else {
+                layer_of(&port.name)
+            };
             b.collect(value, layer, &configurations, &mut meshes);
         }
     }
