@@ -9,6 +9,7 @@ pub mod curves;
 pub mod error;
 pub mod fabrication;
 pub mod line;
+pub mod measure;
 pub mod plane;
 pub mod polygon_mesh;
 pub mod polyline;

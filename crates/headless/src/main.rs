@@ -31,6 +31,8 @@ enum Command {
     Run(commands::run::Args),
     /// Load and type-check a graph file without evaluating it.
     Check(commands::check::Args),
+    /// Run the optimization stored in a graph file and write the optimized graph.
+    Optimize(commands::optimize::Args),
 }
 
 fn main() -> ExitCode {
@@ -40,6 +42,7 @@ fn main() -> ExitCode {
         Command::Eval(args) => commands::eval::run(args),
         Command::Run(args) => commands::run::run(args),
         Command::Check(args) => commands::check::run(args),
+        Command::Optimize(args) => commands::optimize::run(args),
     };
     match result {
         Ok(code) => code,

@@ -9,11 +9,13 @@ pub mod analysis;
 pub mod cnets;
 pub mod curve;
 pub mod fabrication;
+pub mod grid;
 pub mod io_export;
 pub mod io_read;
 pub mod list;
 pub mod mapper;
 pub mod math;
+pub mod measure;
 pub mod mesh;
 pub mod param;
 pub mod quality;
@@ -34,6 +36,8 @@ pub fn all() -> Vec<NodeDef> {
         io_read::nodes(),
         cnets::nodes(),
         quality::nodes(),
+        grid::nodes(),
+        measure::nodes(),
         analysis::nodes(),
         fabrication::nodes(),
         mesh::nodes(),

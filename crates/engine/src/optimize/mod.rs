@@ -113,6 +113,7 @@ pub enum OptimizeError {
 
 struct Run<'a> {
     problem: Problem,
+    start: f64,
     ctx: &'a NodeContext,
     lo: Vec<f64>,
     hi: Vec<f64>,
@@ -185,6 +186,7 @@ pub fn optimize(
     project(&mut x, &lo, &hi);
     let mut run = Run {
         problem,
+        start: 0.0,
         ctx,
         lo,
         hi,
@@ -192,6 +194,7 @@ pub fn optimize(
         gradients: 0,
     };
     let start = run.problem.value(&x, ctx).map_err(OptimizeError::Start)?;
+    run.start = start;
     run.best = (x.clone(), start);
     let max_iter = options.max_iter.unwrap_or(setup.max_iter);
     let method = options.method.unwrap_or(setup.method);
@@ -298,7 +301,11 @@ fn lbfgs(
                 memory.clear();
                 continue;
             }
-            let smooth = f.is_finite() && gnorm < 1e-8 * g0;
+            // Near a minimum the finite-difference gradient is dominated by rounding and no descent
+            // step exists: that is convergence. Far from it (gradient still large, objective barely
+            // reduced), the objective is not smooth: let Nelder–Mead take over.
+            let reduced = f <= 1e-8 * run.start.abs();
+            let smooth = f.is_finite() && (gnorm < 1e-6 * g0 || reduced);
             return (
                 Stop::Converged("no descent step found".into()),
                 it - 1,
@@ -308,7 +315,7 @@ fn lbfgs(
         let gn = run.gradient(&xn, fn_);
         let dg: Vec<f64> = gn.iter().zip(&g).map(|(a, b)| a - b).collect();
         memory.push(step, dg);
-        stalls = if f - fn_ <= 1e-15 * f.abs() {
+        stalls = if f - fn_ <= 1e-6 * f.abs() {
             stalls + 1
         } else {
             0
@@ -322,7 +329,7 @@ fn lbfgs(
             max_abs(&projected_gradient(&x, &g, &run.lo, &run.hi)),
             Method::Lbfgsb,
         ));
-        if stalls >= 3 {
+        if stalls >= 5 {
             return (Stop::Converged("no further decrease".into()), it, true);
         }
     }
@@ -341,6 +348,8 @@ fn nelder_mead(
         points: points.into_iter().map(|p| (p.clone(), run.f(&p))).collect(),
     };
     simplex.sort();
+    let patience = 10 * x0.len().max(2);
+    let (mut best, mut since) = (simplex.points[0].1, 0);
     for it in 1..=max_iter {
         if run.cancelled() {
             return (Stop::Cancelled, it - 1);
@@ -356,6 +365,14 @@ fn nelder_mead(
         let (spread, size) = simplex.spread();
         if spread <= 1e-15 * simplex.points[0].1.abs() && size <= 1e-12 {
             return (Stop::Converged("simplex collapsed".into()), it);
+        }
+        if simplex.points[0].1 < best * (1.0 - 1e-9) {
+            (best, since) = (simplex.points[0].1, 0);
+        } else {
+            since += 1;
+            if since >= patience {
+                return (Stop::Converged("no further decrease".into()), it);
+            }
         }
     }
     (Stop::MaxIterations, max_iter)

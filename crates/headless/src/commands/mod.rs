@@ -3,4 +3,5 @@
 pub mod check;
 pub mod eval;
 pub mod nodes;
+pub mod optimize;
 pub mod run;

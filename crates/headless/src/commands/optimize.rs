@@ -1,0 +1,147 @@
+//! `cnets optimize <GRAPH.ron> [--max-iter N] [--out FILE] [--method M] [--json]`.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+
+use cnets_engine::NodeContext;
+use cnets_engine::file::{load_file_with, save_file};
+use cnets_engine::optimize::{Method, Options, Stop, optimize};
+use serde_json::json;
+
+use crate::failure::{CommandResult, Failure};
+use crate::library;
+use crate::progress::Progress;
+
+/// Arguments of `cnets optimize`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The graph file; it must contain an `optimization: (…)` setup.
+    graph: PathBuf,
+    /// Iteration limit (overrides the setup's `max_iter`).
+    #[arg(long)]
+    max_iter: Option<usize>,
+    /// Write the graph with the optimized values to this file (atomically).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Minimizer: auto, lbfgsb or nelder_mead (overrides the setup's `method`).
+    #[arg(long)]
+    method: Option<String>,
+    /// Re-evaluate the whole graph for every objective evaluation (baseline for comparisons).
+    #[arg(long)]
+    full: bool,
+    /// Print the result (and every iteration) as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Print every iteration on stderr.
+    #[arg(long, short)]
+    verbose: bool,
+    /// Extra folders searched for cluster graph files.
+    #[arg(long)]
+    library: Vec<PathBuf>,
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> CommandResult {
+    let registry = Arc::new(cnets_nodes::registry());
+    let mut doc = load_file_with(
+        &args.graph,
+        &registry,
+        &library::options(&args.graph, &args.library),
+    )?;
+    let setup = doc.meta.optimization.clone().ok_or_else(|| {
+        Failure::usage(format!(
+            "{}: the graph has no optimization setup (an `optimization: (…)` section)",
+            args.graph.display()
+        ))
+    })?;
+    let method = match &args.method {
+        Some(m) => Some(Method::parse(m).ok_or_else(|| {
+            Failure::usage(format!(
+                "unknown method '{m}'; use auto, lbfgsb or nelder_mead"
+            ))
+        })?),
+        None => None,
+    };
+    let options = Options {
+        max_iter: args.max_iter,
+        method,
+        incremental: !args.full,
+        ..Options::default()
+    };
+    let ctx = NodeContext::new(None, args.graph.parent().map(Path::to_path_buf));
+    let progress = Progress::new("optimizing");
+    let mut history = Vec::new();
+    let limit = args.max_iter.unwrap_or(setup.max_iter);
+    let outcome = optimize(&doc.graph, &setup, &options, &ctx, &mut |it| {
+        progress.message(&format!("iteration {} objective {:.6e}", it.iteration, it.objective));
+        progress.update(it.iteration, limit);
+        if args.verbose {
+            eprintln!(
+                "iteration {:>4}  objective {:.9e}  gradient {:.3e}  evaluations {}  node runs {}  ({})",
+                it.iteration,
+                it.objective,
+                it.gradient,
+                it.evaluations,
+                it.node_runs,
+                it.method.name()
+            );
+        }
+        history.push(json!({"iteration": it.iteration, "objective": it.objective, "evaluations": it.evaluations, "node_runs": it.node_runs}));
+    })
+    .map_err(|e| match e {
+        cnets_engine::optimize::OptimizeError::Setup(m) => Failure::usage(format!("{}: {m}", args.graph.display())),
+        other => Failure::node(format!("{}: {other}", args.graph.display())),
+    })?;
+    progress.finish();
+    let stop = match &outcome.stop {
+        Stop::Converged(why) => format!("converged ({why})"),
+        Stop::MaxIterations => "iteration limit reached".to_string(),
+        Stop::Cancelled => "cancelled".to_string(),
+    };
+    if let Some(out) = &args.out {
+        doc.graph = outcome.graph;
+        save_file(out, &doc.graph, &doc.meta)
+            .map_err(|e| Failure::usage(format!("{}: cannot write: {e}", out.display())))?;
+    }
+    let variables: serde_json::Map<String, serde_json::Value> = setup
+        .variables
+        .iter()
+        .zip(&outcome.x)
+        .map(|(v, x)| (v.input.to_string(), json!(x)))
+        .collect();
+    if args.json {
+        println!(
+            "{}",
+            json!({
+                "start": outcome.start,
+                "objective": outcome.objective,
+                "iterations": outcome.iterations,
+                "evaluations": outcome.evaluations,
+                "gradients": outcome.gradients,
+                "node_runs": outcome.node_runs,
+                "fell_back": outcome.fell_back,
+                "stop": stop,
+                "variables": variables,
+                "history": history,
+            })
+        );
+    } else {
+        println!(
+            "objective {:.6e} -> {:.6e} in {} iterations ({} evaluations, {} gradients, {} node runs); {stop}",
+            outcome.start,
+            outcome.objective,
+            outcome.iterations,
+            outcome.evaluations,
+            outcome.gradients,
+            outcome.node_runs
+        );
+        for (name, x) in &variables {
+            println!("  {name} = {x}");
+        }
+        if let Some(out) = &args.out {
+            println!("wrote {}", out.display());
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,65 @@
+//! Helpers for the workspace-level tests: load a bundled graph, evaluate it, read outputs.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use cnets_engine::file::{Document, load_file};
+use cnets_engine::{Evaluator, NodeContext, Registry, Value};
+
+/// The workspace root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// The node registry shared by the tests.
+pub fn registry() -> Arc<Registry> {
+    Arc::new(cnets_nodes::registry())
+}
+
+/// Loads `graphs/<name>.ron`.
+pub fn load(name: &str) -> Document {
+    let path = root().join("graphs").join(format!("{name}.ron"));
+    load_file(&path, &registry()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// A document evaluated in full, with its evaluator.
+pub struct Evaluated {
+    /// The document.
+    pub doc: Document,
+    /// Its evaluator after one full evaluation.
+    pub evaluator: Evaluator,
+}
+
+impl Evaluated {
+    /// Evaluates every node of the document; panics on a failed node, naming it.
+    pub fn new(doc: Document) -> Self {
+        let mut evaluator = Evaluator::new();
+        evaluator.evaluate_all(&doc.graph, &NodeContext::default());
+        for (_, node) in doc.graph.nodes() {
+            let result = evaluator.result(&doc.graph, &node.id);
+            if let Some(r) = result.filter(|r| r.is_failure()) {
+                panic!(
+                    "node '{}' ({}) failed: {}",
+                    node.id,
+                    node.def.id,
+                    r.error().unwrap_or("")
+                );
+            }
+        }
+        Self { doc, evaluator }
+    }
+
+    /// An output value.
+    pub fn output(&self, node: &str, output: &str) -> &Value {
+        self.evaluator
+            .output(&self.doc.graph, node, output)
+            .unwrap_or_else(|| panic!("{node}.{output} has no value"))
+    }
+
+    /// A number output.
+    pub fn number(&self, node: &str, output: &str) -> f64 {
+        self.output(node, output)
+            .as_f64()
+            .unwrap_or_else(|| panic!("{node}.{output} is not a number"))
+    }
+}
