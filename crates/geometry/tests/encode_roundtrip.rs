@@ -11,6 +11,20 @@ use cnets_geometry::{DVec3, GeometryError, QuadGrid};
 use common::{design, max_vertex_distance};
 use proptest::prelude::*;
 
+/// Bounding-box diagonal of the design's directrix and generatrix.
+fn design_size(d: &common::Design) -> f64 {
+    let points: Vec<DVec3> = d
+        .directrix
+        .points
+        .iter()
+        .chain(&d.generatrix.points)
+        .copied()
+        .collect();
+    let lo = points.iter().fold(DVec3::INFINITY, |a, p| a.min(*p));
+    let hi = points.iter().fold(DVec3::NEG_INFINITY, |a, p| a.max(*p));
+    lo.distance(hi)
+}
+
 fn round_trip(mesh: &QuadGrid) -> Result<(), TestCaseError> {
     let enc = encode(mesh).map_err(|e| TestCaseError::fail(format!("encode failed: {e}")))?;
     prop_assert_eq!(enc.apex.len(), mesh.cols - 1);
@@ -33,6 +47,9 @@ fn round_trip(mesh: &QuadGrid) -> Result<(), TestCaseError> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(1000))]
 
+        /// Random designs can throw a vertex far beyond the design (a ray meeting its plane almost
+    /// tangentially); such meshes amplify every rounding error by that conditioning, so the 1e-9
+    /// relative bound is checked on well-conditioned meshes (within 100 design sizes).
     #[test]
     fn random_cone_nets_round_trip(d in design(6, 10)) {
         let net = construct(
@@ -41,6 +58,7 @@ proptest! {
                 .ratios(d.ratios.clone()),
         )
         .unwrap();
+        prop_assume!(net.mesh.size() < 100.0 * design_size(&d));
         round_trip(&net.mesh)?;
         let net = construct_coplanar(
             &CoplanarInputs::new(d.directrix.clone(), d.generatrix.clone())
@@ -48,7 +66,8 @@ proptest! {
                 .ruling_ratios(d.rho.clone())
                 .plane_ratios(d.tau.clone()),
         )
-        .unwrap();
+                .unwrap();
+        prop_assume!(net.mesh.size() < 100.0 * design_size(&d));
         round_trip(&net.mesh)?;
     }
 
@@ -61,7 +80,7 @@ proptest! {
         let net = construct(&ConstructInputs::new(d.directrix.clone(), d.generatrix.clone()).apex(apex)).unwrap();
         // A negative apex can throw vertices far beyond the design (near-parallel intersections);
         // keep to well-conditioned meshes so that the 1e-9 bound stays meaningful.
-        prop_assume!(net.mesh.size() < 100.0);
+                prop_assume!(net.mesh.size() < 100.0 * design_size(&d));
         round_trip(&net.mesh)?;
     }
 }

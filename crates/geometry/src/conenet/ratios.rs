@@ -47,7 +47,7 @@ impl SupportFrame {
     /// The ruling direction at angle θ from ê.
     #[inline]
     pub fn ruling(&self, theta: f64) -> DVec3 {
-        let (s, c) = theta.sin_cos();
+        let (s, c) = trig::sin_cos(theta);
         self.e * c + self.w * s
     }
 
@@ -55,7 +55,7 @@ impl SupportFrame {
     /// plane and satisfies P·ê = sin θ > 0.
     #[inline]
     pub fn normal(&self, theta: f64) -> DVec3 {
-        let (s, c) = theta.sin_cos();
+        let (s, c) = trig::sin_cos(theta);
         self.e * s - self.w * c
     }
 
@@ -69,7 +69,7 @@ impl SupportFrame {
     #[inline]
     pub fn bisector_angle(&self, b: DVec3) -> f64 {
         let (x, y) = self.bisector_pair(b);
-        y.atan2(x)
+        trig::atan2(y, x)
     }
 
     /// The plane normal for ratio r, given the Monge normal `b` at X_j. r = ½ is computed without
@@ -81,7 +81,7 @@ impl SupportFrame {
             let inv = 1.0 / (x * x + y * y).sqrt();
             self.e * (y * inv) - self.w * (x * inv)
         } else {
-            self.normal(ratio_to_angle(r, y.atan2(x)))
+            self.normal(ratio_to_angle(r, trig::atan2(y, x)))
         }
     }
 
@@ -91,7 +91,7 @@ impl SupportFrame {
     #[inline]
     pub fn angle_of(&self, q: DVec3, x: DVec3) -> f64 {
         let v = q - x;
-        self.w.dot(v).atan2(self.e.dot(v))
+        trig::atan2(self.w.dot(v), self.e.dot(v))
     }
 }
 

@@ -200,22 +200,32 @@ impl PlaneSource for RatioRow<'_> {
             self.fixes.push((0, unfixed(self.i, s)));
             return Ok(Some(p));
         }
-        if j > 0 && self.alpha > 0.0 {
+        if j > 0 && self.alpha >= 1.0 {
             return Ok(None);
         }
-        // Full plane fix: θ = (1 − ε) φ (α = 0, or the first column where the apex cannot help).
+        // Plane fix: θ moves the fraction (1 − α) of the way to (1 − ε) φ (the full way at the first
+        // column, where the apex cannot help). It is row-local; only when the row is still bad does
+        // the coupled apex fix (a stop) follow, and the coupled step then redoes this column.
         let dx = self.dx;
         let frame = SupportFrame::new(dx.points[j], dx.edges[jn], g, self.i, jn)?;
         let theta_b = frame.bisector_angle(dx.bisectors[jn]);
         let r_old = self.grid.get(self.i, jn);
-        let phi = frame.angle_of(g, dx.points[jn]);
-        let theta = (1.0 - self.epsilon) * phi;
+        let theta_old = ratio_to_angle(r_old, theta_b);
+        let target = (1.0 - self.epsilon) * frame.angle_of(g, dx.points[jn]);
+        let theta = if j == 0 {
+            target
+        } else {
+            theta_old + (1.0 - self.alpha) * (target - theta_old)
+        };
         let p = frame.normal(theta);
         if !(p.dot(frame.e) > tolerance::EDGE_PLANE) {
             return Err(GeometryError::PlaneContainsEdge {
                 row: Some(self.i),
                 column: jn,
             });
+        }
+        if !((dx.points[jn] - g).dot(p) > 0.0) {
+            return Ok(None);
         }
         self.fixes.push((
             j,
@@ -533,7 +543,7 @@ impl<'a> Sweep<'a> {
                 Some(j0) => {
                     debug_assert!(coupled);
                     self.correct(j0)?;
-                    block = (2 * (j0 - js)).max(8);
+                    block = (2 * (j0 - js)).max(4);
                     js = j0;
                     plane_final = true;
                 }
