@@ -2,7 +2,11 @@
 
 use cnets_engine::NodeDef;
 
+pub mod faces;
+
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
-    vec![]
+    let mut nodes = vec![];
+    nodes.extend(faces::nodes());
+    nodes
 }

@@ -1,8 +1,204 @@
 //! Supplementary and fabrication tools: apex from widths, node axes, support layers, parallel transform, strips, unrolling.
+//!
+//! Thin wrappers over `cnets_geometry::fabrication` (formulas in `docs/fabrication.md`).
 
-use cnets_engine::NodeDef;
+use cnets_engine::prelude::*;
+use cnets_geometry::fabrication::{self as fab, FabricationError, StripDirection, UnrollOptions};
+
+/// A fabrication error as a node error (its message names the offending indices).
+pub(crate) fn fab_err(e: FabricationError) -> NodeError {
+    NodeError::new(e.to_string())
+}
+
+node! {
+    /// CNets Graph to Apex Function (paper Sec. 4.4.2): the widths y_0 … y_{M−1} of the support strips
+    /// along the directrix (e.g. from a graph mapper) give the apex-locating function
+    /// `a_j = y_j / y_{j−1}` (M−1 values). With `normalized` the output is the normalized function
+    /// `ā_j = 1 − (1 − a_j) L / l_j` for the given directrix (to feed a construction with its
+    /// `normalized` input on).
+    #[node(id = "cnets.graph_to_apex", category = "CNets")]
+    pub fn graph_to_apex(
+        /// Widths y_0 … y_{M−1} (finite, > 0): one per directrix point.
+        widths: k::List<k::Number>,
+        /// Output the normalized apex function ā instead of a.
+        normalized: k::Boolean = false,
+        /// The directrix (needed when `normalized`: its edge lengths l_j).
+        directrix: Option<k::Polyline>,
+        /// Normalization scale L (> 0); empty: directrix length / 5.
+        scale: Option<k::Number>,
+    ) -> (
+        /// The apex values (M−1), a_j or ā_j.
+        apex: k::List<k::Number>,
+    ) {
+        let out = if normalized {
+            let d = directrix.ok_or_else(|| {
+                NodeError::new("normalized output needs the directrix (its edge lengths)")
+            })?;
+            fab::graph_to_normalized_apex(&widths, &d, scale).map_err(fab_err)?
+        } else {
+            fab::graph_to_apex(&widths).map_err(fab_err)?
+        };
+        Ok((out,))
+    }
+}
+
+node! {
+    /// CNet Get Torsion-Free Axes (paper Sec. 4.4.2): the node axis of every mesh vertex, the segment
+    /// from the directrix point X_j to G_{i,j} (row-major, `i * M + j`). Axes of neighbouring vertices
+    /// are coplanar, so they carry support beams and second layers.
+    #[node(id = "cnets.torsion_free_axes", category = "CNets")]
+    pub fn torsion_free_axes(
+        /// The directrix the mesh was built from (one point per mesh column, as swept).
+        directrix: k::Polyline,
+        /// The constructed cone-net.
+        mesh: k::QuadMesh,
+    ) -> (
+        /// One segment X_j → G_{i,j} per vertex.
+        axes: k::Lines,
+    ) {
+        Ok((fab::torsion_free_axes(&directrix, &mesh).map_err(fab_err)?,))
+    }
+}
+
+node! {
+    /// CNet Construct Conical Support (paper Sec. 4.4.2): a second layer that is itself a cone-net with
+    /// the same cone apices. The construction is rerun with the same apex values from
+    /// `G'_{i,0} = X_0 + λ (G_{i,0} − X_0)`; every new vertex lies on its node axis X_j G_{i,j} (the
+    /// construction plane meets the support plane in that axis) and every quad is planar.
+    #[node(id = "cnets.conical_support", category = "CNets")]
+    pub fn conical_support(
+        /// The directrix the mesh was built from.
+        directrix: k::Polyline,
+        /// The constructed cone-net.
+        mesh: k::QuadMesh,
+        /// The construction's `apex` output: the M−1 apex values a_j actually used.
+        apex: k::List<k::Number>,
+        /// λ: scale of the first column about X_0 (finite, ≠ 0; 1 reproduces the mesh).
+        factor: k::Number = 0.8,
+    ) -> (
+        /// The conical support layer (same size and wrap as the mesh).
+        mesh: k::QuadMesh,
+    ) {
+        Ok((fab::conical_support(&directrix, &mesh, &apex, factor).map_err(fab_err)?,))
+    }
+}
+
+node! {
+    /// PQ Mesh Construct Support (paper Sec. 4.4.2): a second layer with every edge parallel to the
+    /// mesh, traced along the torsion-free node axes from H_{0,0} = G_{0,0} moved by `distance` along
+    /// its axis (positive: away from the directrix). Faces are planar.
+    #[node(id = "pq.parallel_support", category = "PQ")]
+    pub fn parallel_support(
+        /// The directrix the mesh was built from (its points define the node axes).
+        directrix: k::Polyline,
+        /// The constructed cone-net.
+        mesh: k::QuadMesh,
+        /// Offset of the start vertex along its axis, in model units.
+        distance: k::Number = 0.1,
+    ) -> (
+        /// The parallel support layer.
+        mesh: k::QuadMesh,
+    ) {
+        Ok((fab::parallel_support(&directrix, &mesh, distance).map_err(fab_err)?,))
+    }
+}
+
+node! {
+    /// PQ Mesh Parallel Transform (paper Sec. 4.4.2): the Combescure transform of any PQ quad grid. The
+    /// edges of the boundary polylines G_{:,0} and G_{0,:} are scaled by μ and ν, every other vertex
+    /// is where the two edge lines through its placed neighbours meet, so every edge stays parallel
+    /// to its counterpart. Unless all μ are equal the result is in general not a cone-net. A wrapped
+    /// mesh keeps its wrap only when the transform closes (otherwise a warning says so).
+    #[node(id = "pq.parallel_transform", category = "PQ")]
+    pub fn parallel_transform[ctx](
+        /// Any PQ quad grid.
+        mesh: k::QuadMesh,
+        /// Scale factors μ_0 … μ_{N−2} of the edges of column 0 (one value: all of them); ≠ 0.
+        mu: k::List<k::Number> = vec![1.0],
+        /// Scale factors ν_0 … ν_{M−2} of the edges of row 0 (one value: all of them); ≠ 0.
+        nu: k::List<k::Number> = vec![1.0],
+    ) -> (
+        /// The transformed mesh.
+        mesh: k::QuadMesh,
+    ) {
+        let t = fab::parallel_transform(&mesh, &mu, &nu).map_err(fab_err)?;
+        if t.dropped_wrap.0 {
+            ctx.warn("the transform of the closed generatrix does not close: the closing quads were dropped");
+        }
+        if t.dropped_wrap.1 {
+            ctx.warn("the transform of the closed directrix does not close: the closing quads were dropped");
+        }
+        Ok((t.mesh,))
+    }
+}
+
+/// Parses the `direction` input.
+fn parse_direction(text: &str) -> Result<StripDirection, NodeError> {
+    text.parse().map_err(fab_err)
+}
+
+node! {
+    /// PQ Mesh Extract Strips (paper Sec. 4.4.2): the strips of a quad grid as meshes. `directrix`:
+    /// strip i is the quads between rows i and i+1 (a 2 × M grid); `generatrix`: strip j is the quads
+    /// between columns j and j+1 (an N × 2 grid). Corner order and wrapping follow the mesh.
+    #[node(id = "pq.extract_strips", category = "PQ")]
+    pub fn extract_strips(
+        /// The quad grid.
+        mesh: k::QuadMesh,
+        /// `"directrix"` or `"generatrix"`.
+        direction: k::Text = "directrix",
+    ) -> (
+        /// The strips, in order.
+        strips: k::List<k::QuadMesh>,
+    ) {
+        Ok((fab::extract_strips(&mesh, parse_direction(&direction)?).map_err(fab_err)?,))
+    }
+}
+
+node! {
+    /// PQ Strip Unroll (paper Sec. 4.4.2): every strip laid flat quad by quad (an isometry per quad,
+    /// each quad sharing its rung with the previous one), turned so its minimum-area rectangle is
+    /// axis-aligned and stacked along +y without overlap, labelled `D<i>` / `G<j>`. Quads less planar
+    /// than `tolerance` are an error naming the strip and quad; `max_length_error` reports the largest
+    /// relative edge-length change (≤ 1e-9 for a planar mesh).
+    #[node(id = "pq.unroll_strips", category = "PQ")]
+    pub fn unroll_strips(
+        /// The quad grid (a cone-net, a support layer, or one extracted strip).
+        mesh: k::QuadMesh,
+        /// `"directrix"` or `"generatrix"`.
+        direction: k::Text = "directrix",
+        /// Largest accepted quad planarity (libigl measure); raise it to unroll nearly planar meshes.
+        tolerance: k::Number = 1e-6,
+        /// Gap between strips in model units; empty: a tenth of the tallest strip.
+        spacing: Option<k::Number>,
+    ) -> (
+        /// One closed outline per strip, in the XY plane.
+        outlines: k::List<k::Polyline>,
+        /// Largest relative edge-length change over all quads.
+        max_length_error: k::Number,
+        /// The strip labels (`D0`, `D1`, … or `G0`, …).
+        labels: k::List<k::Text>,
+        /// Label positions (the midpoint of each strip's middle rung).
+        label_points: k::List<k::Point>,
+    ) {
+        let options = UnrollOptions { tolerance, spacing };
+        let u = fab::unroll_strips(&mesh, parse_direction(&direction)?, options).map_err(fab_err)?;
+        let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
+        let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
+        let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();
+        Ok((outlines, u.max_length_error, labels, points))
+    }
+}
 
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
-    vec![]
+    vec![
+        graph_to_apex(),
+        torsion_free_axes(),
+        conical_support(),
+        parallel_support(),
+        parallel_transform(),
+        extract_strips(),
+        unroll_strips(),
+    ]
 }

@@ -1,8 +1,244 @@
 //! Exports written into the run's output directory: glTF, OBJ, SVG, DXF, JSON, CSV.
+//!
+//! Every export builds its whole file in memory, then writes it atomically into the output directory
+//! (`--out`): names may contain sub-folders but never `..` or a root; a missing extension is added.
+//! The written path is the node's `path` output and is listed in the run summary. File format
+//! details are in `docs/fabrication.md`.
 
-use cnets_engine::NodeDef;
+use std::sync::Arc;
+
+use cnets_engine::prelude::*;
+use cnets_geometry::fabrication::{face_planarity, planarity_colour};
+
+pub mod cad;
+pub mod glb;
+pub mod obj;
+pub mod outlines;
+pub mod svg;
+pub mod table;
+pub mod write;
+
+use write::write_export;
+
+/// Face colours for the glTF meshes: the given list (one per face over all meshes, or one for all),
+/// or the planarity colour map.
+fn mesh_colours(
+    meshes: &[Arc<PolygonMesh>],
+    colours: Option<&[DVec3]>,
+    limit: f64,
+) -> Result<Vec<Vec<DVec3>>, NodeError> {
+    let total: usize = meshes.iter().map(|m| m.face_count()).sum();
+    match colours {
+        Some(c) if c.len() == 1 => Ok(meshes.iter().map(|m| vec![c[0]; m.face_count()]).collect()),
+        Some(c) if c.len() == total => {
+            let mut rest = c;
+            Ok(meshes
+                .iter()
+                .map(|m| {
+                    let (head, tail) = rest.split_at(m.face_count());
+                    rest = tail;
+                    head.to_vec()
+                })
+                .collect())
+        }
+        Some(c) => Err(NodeError::new(format!(
+            "colours has {} entries, expected {total} (one per face of all meshes) or 1",
+            c.len()
+        ))),
+        None => {
+            if !(limit.is_finite() && limit > 0.0) {
+                return Err(
+                    format!("planarity_limit must be a finite number > 0, got {limit}").into(),
+                );
+            }
+            meshes
+                .iter()
+                .map(|m| {
+                    if m.face_count() == 0 {
+                        return Ok(Vec::new());
+                    }
+                    Ok(face_planarity(m)
+                        .map_err(|e| NodeError::new(e.to_string()))?
+                        .iter()
+                        .map(|v| planarity_colour(*v, limit))
+                        .collect())
+                })
+                .collect()
+        }
+    }
+}
+
+node! {
+    /// Writes a binary glTF 2.0 file (.glb): meshes as triangles with positions, flat normals and one
+    /// colour per face (given, e.g. from `analysis.face_classes`, or else the planarity colour map),
+    /// line sets (e.g. node axes) as line primitives, polylines as line strips/loops. Model units;
+    /// the root node turns Z-up into glTF's Y-up. Passes the Khronos glTF validator.
+    #[node(id = "io.export_gltf", category = "Export", flags(Export))]
+    pub fn export_gltf[ctx](
+        /// File name inside the output directory (`.glb` is added when missing).
+        name: k::Text = "model.glb",
+        /// Meshes (quad grids convert).
+        meshes: Option<k::List<k::Mesh>>,
+        /// Face colours (RGB in [0, 1]): one per face of all meshes in order, or one for all; empty:
+        /// planarity colours.
+        colours: Option<k::List<k::Vector>>,
+        /// Line sets, e.g. `cnets.torsion_free_axes`.
+        lines: Option<k::List<k::Lines>>,
+        /// Polylines, e.g. a directrix or strip outlines.
+        polylines: Option<k::List<k::Polyline>>,
+        /// Planarity shown fully red when no colours are given.
+        planarity_limit: k::Number = 1e-3,
+    ) -> (
+        /// The written file.
+        path: k::Text,
+    ) {
+        let meshes = meshes.unwrap_or_default();
+        let lines = lines.unwrap_or_default();
+        let polylines = polylines.unwrap_or_default();
+        let colours = mesh_colours(&meshes, colours.as_deref(), planarity_limit)?;
+        let scene = glb::GlbScene {
+            meshes: meshes.iter().map(|m| &**m).zip(colours).collect(),
+            lines: lines.iter().map(|l| l.as_slice()).collect(),
+            polylines: polylines.iter().map(|p| &**p).collect(),
+        };
+        let bytes = glb::encode_glb(&scene)?;
+        Ok((write_export(ctx, &name, "glb", &bytes)?,))
+    }
+}
+
+node! {
+    /// Writes a Wavefront OBJ file: mesh faces as polygons (quads stay quads, never triangulated),
+    /// line sets and polylines as `l` lines, one object per item. Model units, full f64 precision.
+    #[node(id = "io.export_obj", category = "Export", flags(Export))]
+    pub fn export_obj[ctx](
+        /// File name inside the output directory (`.obj` is added when missing).
+        name: k::Text = "model.obj",
+        /// Meshes (quad grids convert).
+        meshes: Option<k::List<k::Mesh>>,
+        /// Line sets, e.g. `cnets.torsion_free_axes`.
+        lines: Option<k::List<k::Lines>>,
+        /// Polylines.
+        polylines: Option<k::List<k::Polyline>>,
+    ) -> (
+        /// The written file.
+        path: k::Text,
+    ) {
+        let meshes = meshes.unwrap_or_default();
+        let lines = lines.unwrap_or_default();
+        let polylines = polylines.unwrap_or_default();
+        let text = obj::encode_obj(
+            &meshes.iter().map(|m| &**m).collect::<Vec<_>>(),
+            &lines.iter().map(|l| l.as_slice()).collect::<Vec<_>>(),
+            &polylines.iter().map(|p| &**p).collect::<Vec<_>>(),
+        )?;
+        Ok((write_export(ctx, &name, "obj", text.as_bytes())?,))
+    }
+}
+
+/// Warns when an outline was not flat in XY.
+fn warn_z(ctx: &NodeContext, sheet: &outlines::Sheet) {
+    if sheet.dropped_z {
+        ctx.warn("some outlines are not in the XY plane: their z coordinates were ignored");
+    }
+}
+
+node! {
+    /// Writes an SVG cutting sheet: every outline (e.g. `pq.unroll_strips`) as a path (closed ones
+    /// closed), in millimetres, with its label; red 0.1 mm cut lines, blue labels, 5 mm margin.
+    #[node(id = "io.export_svg", category = "Export", flags(Export))]
+    pub fn export_svg[ctx](
+        /// File name inside the output directory (`.svg` is added when missing).
+        name: k::Text = "strips.svg",
+        /// The outlines (their x and y are used).
+        outlines: k::List<k::Polyline>,
+        /// One label per outline.
+        labels: Option<k::List<k::Text>>,
+        /// One label position per outline; empty: the centre of each outline's box.
+        label_points: Option<k::List<k::Point>>,
+        /// Millimetres per model unit (1000: the model is in metres).
+        scale: k::Number = 1000.0,
+    ) -> (
+        /// The written file.
+        path: k::Text,
+    ) {
+        let sheet = outlines::prepare(&outlines, labels.as_deref(), label_points.as_deref(), scale)?;
+        warn_z(ctx, &sheet);
+        let text = svg::encode_svg(&sheet);
+        Ok((write_export(ctx, &name, "svg", text.as_bytes())?,))
+    }
+}
+
+node! {
+    /// Writes a DXF drawing (R2000, millimetres) of the outlines for cutting: one LWPOLYLINE per
+    /// outline on its own layer `STRIP_<label>`, with its label as TEXT on the same layer.
+    #[node(id = "io.export_dxf", category = "Export", flags(Export))]
+    pub fn export_dxf[ctx](
+        /// File name inside the output directory (`.dxf` is added when missing).
+        name: k::Text = "strips.dxf",
+        /// The outlines (their x and y are used).
+        outlines: k::List<k::Polyline>,
+        /// One label per outline (also names its layer).
+        labels: Option<k::List<k::Text>>,
+        /// One label position per outline; empty: the centre of each outline's box.
+        label_points: Option<k::List<k::Point>>,
+        /// Millimetres per model unit (1000: the model is in metres).
+        scale: k::Number = 1000.0,
+    ) -> (
+        /// The written file.
+        path: k::Text,
+    ) {
+        let sheet = outlines::prepare(&outlines, labels.as_deref(), label_points.as_deref(), scale)?;
+        warn_z(ctx, &sheet);
+        let bytes = cad::encode_dxf(&sheet)?;
+        Ok((write_export(ctx, &name, "dxf", &bytes)?,))
+    }
+}
+
+node! {
+    /// Writes any value (a mesh, points, polylines, a quality record, …) as JSON in the runner's
+    /// encoding (as `cnets eval` prints it: meshes are vertex tables `{vertices, faces}`).
+    #[node(id = "io.export_json", category = "Export", flags(Export))]
+    pub fn export_json[ctx](
+        /// File name inside the output directory (`.json` is added when missing).
+        name: k::Text = "data.json",
+        /// The value to write (passed whole, lists included).
+        value: k::Tree<k::Any>,
+    ) -> (
+        /// The written file.
+        path: k::Text,
+    ) {
+        let text = table::encode_json(&value)?;
+        Ok((write_export(ctx, &name, "json", text.as_bytes())?,))
+    }
+}
+
+node! {
+    /// Writes the vertices of points, polylines, lines and meshes as a CSV table
+    /// `item,index,row,col,x,y,z` (row/col for quad-mesh vertices), numbers as the runner's JSON
+    /// writes them.
+    #[node(id = "io.export_csv", category = "Export", flags(Export))]
+    pub fn export_csv[ctx](
+        /// File name inside the output directory (`.csv` is added when missing).
+        name: k::Text = "vertices.csv",
+        /// The geometry whose vertices are listed (passed whole, lists included).
+        value: k::Tree<k::Any>,
+    ) -> (
+        /// The written file.
+        path: k::Text,
+    ) {
+        let text = table::encode_csv(&value)?;
+        Ok((write_export(ctx, &name, "csv", text.as_bytes())?,))
+    }
+}
 
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
-    vec![]
+    vec![
+        export_gltf(),
+        export_obj(),
+        export_svg(),
+        export_dxf(),
+        export_json(),
+        export_csv(),
+    ]
 }

@@ -1,0 +1,125 @@
+//! Cutting outlines shared by the SVG and DXF exports: closed polylines in the XY plane (the output
+//! of `pq.unroll_strips`), scaled to millimetres, with optional labels.
+
+use cnets_geometry::{DVec3, Polyline};
+use glam::DVec2;
+
+/// Outlines prepared for a cutting file: points in millimetres (x right, y up), labels and their
+/// anchor points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sheet {
+    /// One closed (or open) path per outline, in mm.
+    pub paths: Vec<(Vec<DVec2>, bool)>,
+    /// One label per path (empty when none was given).
+    pub labels: Vec<String>,
+    /// Label anchor per path, in mm.
+    pub anchors: Vec<DVec2>,
+    /// Lower-left and upper-right corners of everything, in mm.
+    pub bounds: (DVec2, DVec2),
+    /// Whether some outline was not in the XY plane (its z was dropped).
+    pub dropped_z: bool,
+}
+
+/// Checks and scales the outlines. `scale` is millimetres per model unit (> 0). Labels and label
+/// points, when given, must have one entry per outline; without points a label sits at the centre
+/// of its outline's bounding box.
+pub fn prepare(
+    outlines: &[std::sync::Arc<Polyline>],
+    labels: Option<&[String]>,
+    label_points: Option<&[DVec3]>,
+    scale: f64,
+) -> Result<Sheet, String> {
+    if !(scale.is_finite() && scale > 0.0) {
+        return Err(format!(
+            "scale (millimetres per model unit) must be a finite number > 0, got {scale}"
+        ));
+    }
+    if outlines.is_empty() {
+        return Err("nothing to export: no outline".into());
+    }
+    if let Some(l) = labels
+        && l.len() != outlines.len()
+    {
+        return Err(format!(
+            "labels has {} entries, expected {} (one per outline)",
+            l.len(),
+            outlines.len()
+        ));
+    }
+    if let Some(p) = label_points
+        && p.len() != outlines.len()
+    {
+        return Err(format!(
+            "label_points has {} entries, expected {} (one per outline)",
+            p.len(),
+            outlines.len()
+        ));
+    }
+    let mut paths = Vec::with_capacity(outlines.len());
+    let mut anchors = Vec::with_capacity(outlines.len());
+    let mut lo = DVec2::splat(f64::INFINITY);
+    let mut hi = DVec2::splat(f64::NEG_INFINITY);
+    let mut dropped_z = false;
+    for (k, o) in outlines.iter().enumerate() {
+        if o.points.len() < 2 {
+            return Err(format!(
+                "outline {k} has {} points, expected at least 2",
+                o.points.len()
+            ));
+        }
+        if let Some(v) = o.points.iter().position(|p| !p.is_finite()) {
+            return Err(format!("outline {k}, point {v} is not finite"));
+        }
+        let size =
+            cnets_geometry::quad_grid::bounds_of(&o.points).map_or(0.0, |(a, b)| a.distance(b));
+        if o.points.iter().any(|p| p.z.abs() > 1e-9 * size.max(1.0)) {
+            dropped_z = true;
+        }
+        let pts: Vec<DVec2> = o.points.iter().map(|p| p.truncate() * scale).collect();
+        let (a, b) = pts.iter().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(a, b), p| (a.min(*p), b.max(*p)),
+        );
+        lo = lo.min(a);
+        hi = hi.max(b);
+        let anchor = match label_points {
+            Some(p) => {
+                if !p[k].is_finite() {
+                    return Err(format!("label point {k} is not finite"));
+                }
+                p[k].truncate() * scale
+            }
+            None => (a + b) * 0.5,
+        };
+        anchors.push(anchor);
+        paths.push((pts, o.closed));
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        return Err("the outlines overflow after scaling".into());
+    }
+    Ok(Sheet {
+        paths,
+        labels: labels.map_or_else(|| vec![String::new(); outlines.len()], <[String]>::to_vec),
+        anchors,
+        bounds: (lo, hi),
+        dropped_z,
+    })
+}
+
+impl Sheet {
+    /// A label height in mm: a quarter of the smallest outline's bounding-box side, in [1, 10].
+    pub fn text_height(&self) -> f64 {
+        let smallest = self
+            .paths
+            .iter()
+            .map(|(pts, _)| {
+                let (a, b) = pts.iter().fold(
+                    (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+                    |(a, b), p| (a.min(*p), b.max(*p)),
+                );
+                (b - a).min_element()
+            })
+            .fold(f64::INFINITY, f64::min);
+        (0.25 * smallest).clamp(1.0, 10.0)
+    }
+}
