@@ -177,8 +177,16 @@ pub struct EditorApp {
     pub settings: Settings,
     /// Latency figures.
     pub latency: Latency,
-    /// Whether the window should close.
+    /// Whether the window should close (set by File ▸ Quit and after the unsaved-changes
+    /// question; the window closes when it sees it).
     pub quit: bool,
+    /// The unsaved-changes question is shown (a close was requested with unsaved changes).
+    pub confirm_close: bool,
+    /// The designer answered the question: closing is allowed now.
+    close_confirmed: bool,
+    last_title: String,
+    /// Check once the new document's nodes are measured whether they overlap (hint: Arrange).
+    check_overlaps: bool,
     /// Show timings and the busy spinner in the status bar (snapshot tests turn them off: they
     /// vary from run to run).
     pub show_timings: bool,
@@ -233,6 +241,10 @@ impl EditorApp {
             settings,
             latency: Latency::default(),
             quit: false,
+            confirm_close: false,
+            close_confirmed: false,
+            last_title: String::new(),
+            check_overlaps: true,
             show_timings: true,
             worker: Worker::spawn(options.wake),
             submitted: None,
@@ -281,6 +293,7 @@ impl EditorApp {
         // A new document is a new evaluation generation (fresh evaluator).
         self.doc.start_after(previous);
         self.canvas = Canvas::new();
+        self.check_overlaps = true;
         self.statuses.clear();
         self.viewport.reset();
         self.pending_change = Some(Instant::now());
@@ -428,8 +441,24 @@ impl EditorApp {
             MenuAction::AddNode => self.palette.open_at([0.0, 0.0]),
             MenuAction::Fit => self.viewport.fit(),
             MenuAction::FitCanvas => self.canvas.fit(),
+            MenuAction::Arrange => {
+                let moves = self.canvas.arrangement(&self.doc.graph);
+                if !moves.is_empty() && self.apply(CanvasAction::Move(moves)) {
+                    self.doc.history.end_gesture();
+                    self.canvas.fit();
+                }
+            }
             MenuAction::SetPreview(o) => self.viewport.options = o,
-            MenuAction::Quit => self.quit = true,
+            MenuAction::Quit => self.request_close(),
+        }
+    }
+
+    /// Asks to close: closes at once when everything is saved, else asks first.
+    pub fn request_close(&mut self) {
+        if self.doc.is_dirty() && !self.close_confirmed {
+            self.confirm_close = true;
+        } else {
+            self.quit = true;
         }
     }
 
@@ -454,6 +483,7 @@ impl EditorApp {
                 take(cmd, Key::Z, MenuAction::Undo);
                 take(cmd, Key::Y, MenuAction::Redo);
                 take(cmd, Key::D, MenuAction::Duplicate);
+                take(cmd, Key::L, MenuAction::Arrange);
                 take(cmd, Key::C, MenuAction::Copy);
                 take(cmd, Key::V, MenuAction::Paste);
                 take(Modifiers::NONE, Key::Delete, MenuAction::Delete);
@@ -606,12 +636,30 @@ impl EditorApp {
             let at = self.palette.at;
             self.add_node(&type_id, at);
         }
+        if self.check_overlaps && self.canvas.measured(self.doc.graph.node_count()) {
+            self.check_overlaps = false;
+            if self.canvas.has_overlaps() && self.message.is_empty() {
+                self.message = "nodes overlap: View ▸ Arrange graph (Ctrl+L) lays them out".into();
+            }
+        }
         self.show_dialog(&ctx);
         self.show_restore(&ctx);
 
-        if !ctx.input(|i| i.pointer.any_down()) {
+        // A gesture ends when the pointer is released and no text field is being typed in (so a
+        // drag, or typing a name, is one undo step).
+        if !ctx.input(|i| i.pointer.any_down()) && !ctx.egui_wants_keyboard_input() {
             self.doc.history.end_gesture();
         }
+        // The window's close button: ask first when there are unsaved changes.
+        if ctx.input(|i| i.viewport().close_requested()) && !self.quit {
+            if self.doc.is_dirty() && !self.close_confirmed {
+                ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+                self.confirm_close = true;
+            } else {
+                self.quit = true;
+            }
+        }
+        self.show_close_question(&ctx);
         if self.doc.version() != version_before && self.pending_change.is_none() {
             self.pending_change = Some(Instant::now());
         }
@@ -634,10 +682,11 @@ impl EditorApp {
         let doc = &self.doc;
         self.recovery
             .tick(dirty, version, path.as_deref(), || doc.to_ron());
-        ctx.send_viewport_cmd(egui::ViewportCommand::Title(format!(
-            "{} — cnets editor",
-            self.doc.title()
-        )));
+        let title = format!("{} — cnets editor", self.doc.title());
+        if title != self.last_title {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.last_title = title;
+        }
         if self.worker.busy() {
             ctx.request_repaint_after(Duration::from_millis(30));
         }
@@ -687,6 +736,52 @@ impl EditorApp {
                     }
                 }
             }
+        }
+    }
+
+    fn show_close_question(&mut self, ctx: &egui::Context) {
+        if !self.confirm_close {
+            return;
+        }
+        let mut choice = None;
+        egui::Modal::new(egui::Id::new("cnets-close")).show(ctx, |ui| {
+            ui.heading("Save changes?");
+            ui.label(format!(
+                "{} has unsaved changes.",
+                self.doc.title().trim_end_matches(" *")
+            ));
+            ui.horizontal(|ui| {
+                if ui.button("Save").clicked() {
+                    choice = Some(0);
+                }
+                if ui.button("Don't save").clicked() {
+                    choice = Some(1);
+                }
+                if ui.button("Cancel").clicked() {
+                    choice = Some(2);
+                }
+            });
+        });
+        match choice {
+            Some(0) => {
+                self.confirm_close = false;
+                match self.doc.path.clone() {
+                    Some(p) => {
+                        self.save_as(&p);
+                        if !self.doc.is_dirty() {
+                            self.quit = true;
+                        }
+                    }
+                    None => self.run(MenuAction::SaveAs),
+                }
+            }
+            Some(1) => {
+                self.confirm_close = false;
+                self.close_confirmed = true;
+                self.quit = true;
+            }
+            Some(2) => self.confirm_close = false,
+            _ => {}
         }
     }
 

@@ -184,6 +184,63 @@ impl Canvas {
         self.fit_pending = true;
     }
 
+    /// Positions that lay the graph out in columns by dependency depth (sources on the left),
+    /// using the node sizes measured in the last frame; nodes keep their vertical order within a
+    /// column. Empty until every node has been drawn once.
+    pub fn arrangement(&self, graph: &Graph) -> Vec<(String, [f32; 2])> {
+        if self.rects.len() < graph.node_count() {
+            return Vec::new();
+        }
+        let order = graph.topological_order();
+        let mut depth: HashMap<petgraph::stable_graph::NodeIndex, usize> = HashMap::new();
+        for &k in &order {
+            let d = graph
+                .sources(k)
+                .filter_map(|s| depth.get(&s))
+                .map(|d| d + 1)
+                .max()
+                .unwrap_or(0);
+            depth.insert(k, d);
+        }
+        let columns = depth.values().copied().max().map_or(0, |m| m + 1);
+        let mut by_column: Vec<Vec<(String, Rect)>> = vec![Vec::new(); columns];
+        for (k, n) in graph.nodes() {
+            if let (Some(&d), Some(r)) = (depth.get(&k), self.rects.get(&n.id)) {
+                by_column[d].push((n.id.clone(), *r));
+            }
+        }
+        let (gap_x, gap_y) = (60.0, 30.0);
+        let mut x = 0.0;
+        let mut out = Vec::new();
+        for column in &mut by_column {
+            column.sort_by(|a, b| a.1.top().total_cmp(&b.1.top()));
+            let mut y = 0.0;
+            let mut width: f32 = 0.0;
+            for (id, r) in column.iter() {
+                out.push((id.clone(), [x, y]));
+                y += r.height() + gap_y;
+                width = width.max(r.width());
+            }
+            x += width + gap_x;
+        }
+        out
+    }
+
+    /// Whether all `count` nodes have been drawn (and measured) at least once.
+    pub fn measured(&self, count: usize) -> bool {
+        self.rects.len() >= count
+    }
+
+    /// Whether two nodes overlap on the canvas (measured in the last frame).
+    pub fn has_overlaps(&self) -> bool {
+        let rects: Vec<&Rect> = self.rects.values().collect();
+        rects.iter().enumerate().any(|(i, a)| {
+            rects[i + 1..]
+                .iter()
+                .any(|b| a.shrink(4.0).intersects(b.shrink(4.0)))
+        })
+    }
+
     /// Screen rectangle of the canvas in the last frame.
     pub fn screen_rect(&self) -> Rect {
         self.ui_rect
@@ -497,7 +554,8 @@ fn pin_info(port: &PortDef) -> PinInfo {
     let shape = match port.access {
         Access::Item => PinShape::Circle,
         Access::List => PinShape::Square,
-        Access::Tree => PinShape::Triangle,
+        // Tree (and any deeper access): a triangle.
+        _ => PinShape::Triangle,
     };
     PinInfo::default()
         .with_shape(shape)

@@ -138,7 +138,9 @@ impl Bench {
             println!("  evaluation (worker): {}", stats(&mut self.evals));
             println!("  scene build (worker): {}", stats(&mut self.scenes));
             println!("  vertices: {}", app.viewport.stats.vertices);
-            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            // Quit without the unsaved-changes question.
+            app.quit = true;
+            ctx.request_repaint();
             return;
         }
         let Some(id) = app
@@ -219,6 +221,7 @@ impl eframe::App for Window {
                     check_not_blank(&png)
                 });
             *self.result.lock().unwrap_or_else(|p| p.into_inner()) = Some(saved);
+            self.app.quit = true;
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         } else if self.frames >= self.quit_after && !self.requested {
             ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(egui::UserData::default()));

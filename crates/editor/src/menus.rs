@@ -39,6 +39,8 @@ pub enum MenuAction {
     Fit,
     /// Frame the whole graph on the canvas.
     FitCanvas,
+    /// Lay the graph out in columns by dependency depth.
+    Arrange,
     /// Change the viewport's display options.
     SetPreview(PreviewOptions),
     /// Close the editor.
@@ -150,6 +152,7 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
         ui.menu_button("View", |ui| {
             pick(ui, "Frame geometry", "F", MenuAction::Fit, true);
             pick(ui, "Frame graph", "Home", MenuAction::FitCanvas, true);
+            pick(ui, "Arrange graph", "Ctrl+L", MenuAction::Arrange, true);
             ui.separator();
             ui.label("Colour faces by");
             for mode in ColorMode::ALL {

@@ -176,13 +176,29 @@ impl Viewport {
         self.fit_pending = true;
     }
 
+    /// Points the camera at the surfaces (apices and other markers can lie far away, even near
+    /// infinity, and would shrink the mesh to a dot), or at everything when there are none.
+    fn frame_geometry(&mut self) {
+        let surfaces: Vec<glam::Vec3> = self
+            .scene
+            .face_vertices()
+            .iter()
+            .map(|v| glam::Vec3::from(v.position))
+            .collect();
+        if surfaces.is_empty() {
+            self.camera.fit_scene(&self.scene, self.aspect);
+        } else {
+            self.camera.fit_points(&surfaces, self.aspect);
+        }
+    }
+
     /// Shows the viewport in the rest of `ui`.
     pub fn show(&mut self, ui: &mut Ui, gpu: Option<&GpuTarget>) {
         let rect = ui.available_rect_before_wrap();
         let response = ui.allocate_rect(rect, Sense::click_and_drag());
         self.aspect = rect.width().max(1.0) / rect.height().max(1.0);
         if self.fit_pending && !self.scene.is_empty() {
-            self.camera.fit_scene(&self.scene, self.aspect);
+            self.frame_geometry();
             self.fit_pending = false;
             self.fitted_once = true;
         }

@@ -412,3 +412,65 @@ fn dragging_a_graph_mapper_handle_edits_its_handles_in_one_step() {
     h.run_steps(2);
     assert_eq!(h.state().doc.to_ron(), before);
 }
+
+#[test]
+fn closing_with_unsaved_changes_asks_first() {
+    let mut h = harness("close");
+    h.state_mut().request_close();
+    assert!(h.state().quit, "nothing unsaved: closes at once");
+    let mut h = harness("close2");
+    h.state_mut()
+        .doc
+        .edit(None, |g, _| {
+            g.set_value("ratio", "value", Value::Number(0.3))
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+    h.state_mut().request_close();
+    h.run_steps(2);
+    assert!(!h.state().quit && h.state().confirm_close, "asks first");
+    h.get_by_label("Cancel").click();
+    h.run_steps(2);
+    assert!(!h.state().quit && !h.state().confirm_close);
+    h.state_mut().request_close();
+    h.run_steps(2);
+    h.get_by_label("Don't save").click();
+    h.run_steps(2);
+    assert!(h.state().quit);
+}
+
+#[test]
+fn arrange_lays_nodes_out_without_overlaps_in_one_undo_step() {
+    let mut h = harness("arrange");
+    // Pile every node on one spot.
+    let ids: Vec<String> = h
+        .state()
+        .doc
+        .graph
+        .nodes()
+        .map(|(_, n)| n.id.clone())
+        .collect();
+    h.state_mut()
+        .doc
+        .edit(None, |g, _| {
+            for id in &ids {
+                g.set_position(id, [0.0, 0.0]).map_err(|e| e.to_string())?;
+            }
+            Ok(())
+        })
+        .unwrap();
+    h.run_steps(3);
+    assert!(h.state().canvas.has_overlaps());
+    let steps = h.state().doc.history.undo_len();
+    h.key_press_modifiers(Modifiers::COMMAND, Key::L);
+    h.run_steps(4);
+    assert!(!h.state().canvas.has_overlaps(), "arranged");
+    assert_eq!(h.state().doc.history.undo_len(), steps + 1);
+    let g = &h.state().doc.graph;
+    let x = |id: &str| g.node(id).unwrap().position[0];
+    assert!(
+        x("directrix") < x("construct") && x("construct") < x("planarity"),
+        "sources left of their targets"
+    );
+}

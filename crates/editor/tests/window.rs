@@ -22,6 +22,11 @@ fn the_real_window_renders_the_default_graph_under_xvfb() {
     let status = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1600x1000x24"])
         .arg(env!("CARGO_BIN_EXE_cnets-editor"))
+        // The bundled default graph, whatever else graphs/ holds.
+        .arg(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../graphs/editor-default.ron"
+        ))
         .arg("--screenshot")
         .arg(&out)
         .args(["--quit-after-frames", "10", "--size", "1200x760"])
