@@ -94,7 +94,7 @@ pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Valu
                 .map(Value::list),
             _ => unreachable_shape(),
         },
-        Access::Tree => coerce_tree(v, ty),
+        Access::Table | Access::Tree => coerce_tree(v, ty),
     }
 }
 

@@ -189,6 +189,27 @@ impl<K: PortKind> PortKind for Tree<K> {
     }
 }
 
+/// One item, a list or a table (list of lists) of `K`, passed as a raw value; deeper nesting maps the
+/// node over its outer levels.
+#[derive(Debug, Clone, Copy)]
+pub struct Table<K>(PhantomData<K>);
+
+impl<K: PortKind> PortKind for Table<K> {
+    type In = Value;
+    fn item_type() -> ValueType {
+        K::item_type()
+    }
+    fn access() -> Access {
+        Access::Table
+    }
+    fn extract(v: &Value, name: &str) -> Result<Value, NodeError> {
+        match v {
+            Value::Null => Err(missing(name)),
+            other => Ok(other.clone()),
+        }
+    }
+}
+
 impl<K: PortKind> PortKind for Option<K> {
     type In = Option<K::In>;
     fn item_type() -> ValueType {
@@ -232,6 +253,7 @@ into_port!(QuadMesh: QuadGrid => |x| Value::from(x), Arc<QuadGrid> => |x| Value:
 into_port!(Mesh: PolygonMesh => |x| Value::from(x), Arc<PolygonMesh> => |x| Value::Mesh(x));
 into_port!(Record: RecordValue => |x| Value::from(x));
 into_port!(Tree<Number>: f64 => |x| Value::Number(x));
+into_port!(Table<Number>: f64 => |x| Value::Number(x));
 // A single value as the default of a list port (the engine passes it as a one-element list).
 into_port!(List<Number>: f64 => |x| Value::Number(x));
 into_port!(List<Integer>: i64 => |x| Value::Integer(x), i32 => |x| Value::Integer(x as i64));
@@ -244,6 +266,12 @@ impl<K: PortKind, T: IntoPort<K>> IntoPort<List<K>> for Vec<T> {
 }
 
 impl<K: PortKind> IntoPort<List<K>> for Value {
+    fn into_port(self) -> Value {
+        self
+    }
+}
+
+impl<K: PortKind> IntoPort<Table<K>> for Value {
     fn into_port(self) -> Value {
         self
     }

@@ -208,7 +208,7 @@ node! {
         /// Apex-locating function a_j: one number or one per directrix edge (M−1); 1 = translation.
         apex: k::List<k::Number> = 1.0,
         /// Plane normals: M−1 vectors shared by all rows, or N lists of M−1; empty = Monge planes.
-        normals: Option<k::Tree<k::Vector>>,
+        normals: Option<k::Table<k::Vector>>,
         /// Whether `apex` is the normalized apex function ā (paper Sec. 4.3).
         normalized: k::Boolean = false,
         /// Normalization scale L (default: directrix length / 5).
@@ -253,7 +253,7 @@ node! {
         /// Apex-locating function a_j: one number or one per directrix edge (M−1); 1 = translation.
         apex: k::List<k::Number> = 1.0,
         /// Ratios r_ij: one number, a list of M−1 (shared by rows), or N lists of M−1.
-        ratios: k::Tree<k::Number> = 0.5,
+        ratios: k::Table<k::Number> = 0.5,
         /// Assisted correction α: negative = off, 0 = planes only, 1 = apex only, between = hybrid.
         assistance: k::Number = -1.0,
         /// Whether `apex` is the normalized apex function ā (paper Sec. 4.3).

@@ -20,6 +20,12 @@ pub fn parse_port_type(text: &str) -> Option<(ValueType, Access)> {
     if let Some(inner) = text.strip_prefix("tree<").and_then(|r| r.strip_suffix('>')) {
         return Some((ValueType::parse(inner)?, Access::Tree));
     }
+    if let Some(inner) = text
+        .strip_prefix("table<")
+        .and_then(|r| r.strip_suffix('>'))
+    {
+        return Some((ValueType::parse(inner)?, Access::Table));
+    }
     if let Some(inner) = text.strip_prefix("list<").and_then(|r| r.strip_suffix('>')) {
         let ty = ValueType::parse(inner)?;
         if matches!(ty, ValueType::List(_)) {

@@ -44,7 +44,10 @@ pub enum Access {
     /// A whole list per run. A single value arrives as a one-element list; a list of lists runs the
     /// node once per inner list.
     List,
-    /// Any nesting, passed as it is (e.g. a number, a list, or a table of numbers).
+    /// Up to two list levels, passed as they are: one item, a list, or a table (a list of lists).
+    /// Deeper nesting (a list of tables) runs the node once per table.
+    Table,
+    /// Any nesting, passed as it is.
     Tree,
 }
 
@@ -54,6 +57,7 @@ impl Access {
         match self {
             Access::Item => Some(0),
             Access::List => Some(1),
+            Access::Table => Some(2),
             Access::Tree => None,
         }
     }
@@ -121,6 +125,7 @@ impl ValueType {
         match access {
             Access::Item => self.to_string(),
             Access::List => format!("list<{self}>"),
+            Access::Table => format!("table<{self}>"),
             Access::Tree => format!("tree<{self}>"),
         }
     }
