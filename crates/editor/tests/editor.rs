@@ -474,3 +474,58 @@ fn arrange_lays_nodes_out_without_overlaps_in_one_undo_step() {
         "sources left of their targets"
     );
 }
+
+#[test]
+fn viewport_orbits_pans_zooms_fits_and_switches_colours_and_layers() {
+    use cnets_editor::preview::{ColorMode, Layer, LegendInfo};
+    let mut h = harness("viewport");
+    let view = h.state().canvas.screen_rect();
+    // The viewport is the panel right of the canvas.
+    let center = Pos2::new(view.right() + 300.0, view.center().y);
+    let camera = h.state().viewport.camera;
+    drag(&mut h, center, center + egui::vec2(80.0, 30.0));
+    let orbited = h.state().viewport.camera;
+    assert!((orbited.yaw - camera.yaw).abs() > 0.1, "left-drag orbits");
+    assert_eq!(orbited.distance, camera.distance);
+    h.hover_at(center);
+    h.event(egui::Event::MouseWheel {
+        unit: egui::MouseWheelUnit::Point,
+        delta: egui::vec2(0.0, 120.0),
+        phase: egui::TouchPhase::Move,
+        modifiers: Modifiers::NONE,
+    });
+    h.run_steps(10);
+    assert!(
+        h.state().viewport.camera.distance < orbited.distance,
+        "the wheel zooms in"
+    );
+    h.key_press(Key::F);
+    h.run_steps(2);
+    assert!(
+        h.state().viewport.camera != orbited,
+        "F frames the geometry again"
+    );
+
+    let mut o = h.state().viewport.options;
+    o.color_mode = ColorMode::Planarity;
+    h.state_mut()
+        .run(cnets_editor::menus::MenuAction::SetPreview(o));
+    settle(&mut h);
+    assert!(matches!(
+        h.state().viewport.stats.legend,
+        LegendInfo::Planarity(_)
+    ));
+    o.set(Layer::Surfaces, false);
+    h.state_mut()
+        .run(cnets_editor::menus::MenuAction::SetPreview(o));
+    settle(&mut h);
+    assert_eq!(
+        h.state().viewport.scene().triangle_count(),
+        0,
+        "surfaces hidden"
+    );
+    assert!(
+        !h.state().viewport.scene().segments().is_empty(),
+        "curves still shown"
+    );
+}
