@@ -765,13 +765,43 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                     ""
                 }
             ));
-            if !wired && widgets::has_editor(instance, pin.id.input) {
-                ui.spacing_mut().slider_width = 110.0;
-                if let Some(value) = widgets::input_editor(ui, instance, pin.id.input) {
+            let k = pin.id.input;
+            let unset_optional =
+                port.optional && port.default.is_none() && instance.value(k).is_none();
+            if !wired && unset_optional && widgets::has_editor(instance, k) {
+                // An optional input left empty: the node sees "none", which differs from any value
+                // an editor would show. Offer to set one.
+                if ui
+                    .small_button("set")
+                    .on_hover_text("give this optional input a value")
+                    .clicked()
+                    && let Some(value) = widgets::initial_value(&port.ty)
+                {
                     self.actions.push(CanvasAction::SetValue {
                         node: id.clone(),
                         input: port.name.to_string(),
                         value,
+                    });
+                }
+            } else if !wired && widgets::has_editor(instance, k) {
+                ui.spacing_mut().slider_width = 110.0;
+                if let Some(value) = widgets::input_editor(ui, instance, k) {
+                    self.actions.push(CanvasAction::SetValue {
+                        node: id.clone(),
+                        input: port.name.to_string(),
+                        value,
+                    });
+                }
+                if port.optional
+                    && port.default.is_none()
+                    && ui
+                        .small_button("×")
+                        .on_hover_text("clear: leave this optional input empty")
+                        .clicked()
+                {
+                    self.actions.push(CanvasAction::ClearValue {
+                        node: id.clone(),
+                        input: port.name.to_string(),
                     });
                 }
             }

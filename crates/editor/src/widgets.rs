@@ -62,6 +62,21 @@ pub fn has_editor(node: &NodeInstance, k: usize) -> bool {
     }
 }
 
+/// The value an "unset" optional input gets when the designer sets it: zero, false, empty text,
+/// the origin, the XY plane.
+pub fn initial_value(ty: &ValueType) -> Option<Value> {
+    Some(match ty {
+        ValueType::Number => Value::Number(0.0),
+        ValueType::Integer => Value::Integer(0),
+        ValueType::Boolean => Value::Boolean(false),
+        ValueType::Text => Value::text(""),
+        ValueType::Point => Value::Point(DVec3::ZERO),
+        ValueType::Vector => Value::Vector(DVec3::Z),
+        ValueType::Plane => Value::Plane(Arc::new(Plane::XY)),
+        _ => return None,
+    })
+}
+
 /// Shows the editor of input `k`; returns the new value when it changed.
 pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<Value> {
     let port: &PortDef = node.def.inputs.get(k)?;
