@@ -143,6 +143,12 @@ impl Bench {
             ctx.request_repaint();
             return;
         }
+        self.done += 1;
+        ctx.request_repaint();
+        if std::env::var_os("CNETS_BENCH_IDLE").is_some() {
+            // Baseline: frames without changes (nothing re-evaluated, the 3D view not re-rendered).
+            return;
+        }
         let Some(id) = app
             .doc
             .graph
@@ -154,7 +160,7 @@ impl Bench {
         };
         let node = app.doc.graph.node(&id).expect("the node");
         let (min, max, _) = cnets_editor::widgets::slider_range(node);
-        let t = f64::from(self.done) / 60.0;
+        let t = f64::from(self.done - 1) / 60.0;
         let value = min + (max - min) * (0.5 + 0.4 * (t * std::f64::consts::TAU).sin());
         let _ = cnets_editor::canvas::apply(
             &mut app.doc,
@@ -164,8 +170,6 @@ impl Bench {
                 value: cnets_engine::Value::Number(value),
             },
         );
-        self.done += 1;
-        ctx.request_repaint();
     }
 }
 
