@@ -288,6 +288,34 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
+    /// With the library's own export nodes (when this build registers them): every format
+    /// writes a non-empty file.
+    #[test]
+    fn the_library_export_nodes_write_files() {
+        let registry = Arc::new(cnets_nodes::registry());
+        let text = include_str!("../../../graphs/editor-default.ron");
+        let doc = cnets_engine::file::load_str(text, "default", &registry).unwrap();
+        let dir = std::env::temp_dir().join(format!("cnets-export-real-{}", std::process::id()));
+        for f in ExportFormat::ALL {
+            let flat = matches!(f, ExportFormat::Svg | ExportFormat::Dxf);
+            if export_node(&registry, f).is_none() || (flat && unroller(&registry).is_none()) {
+                eprintln!("{f:?}: no export node registered yet, skipped");
+                continue;
+            }
+            let files =
+                export(&doc.graph, None, f, &dir, "net").unwrap_or_else(|e| panic!("{f:?}: {e}"));
+            assert!(!files.is_empty(), "{f:?} wrote nothing");
+            for file in files {
+                assert!(
+                    std::fs::metadata(&file).unwrap().len() > 0,
+                    "{} is empty",
+                    file.display()
+                );
+            }
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn exports_the_previewed_mesh_through_the_export_node() {
         let mut r = cnets_nodes::registry();
