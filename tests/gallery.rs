@@ -205,3 +205,243 @@ fn correction_repairs_fold_overs_for_every_assistance() {
         }
     }
 }
+
+fn width(m: &QuadGrid, j: usize) -> f64 {
+    m.at(0, j).distance(m.at(m.rows - 1, j))
+}
+
+#[test]
+fn graph_to_apex_outline_follows_the_widths_graph() {
+    let e = Evaluated::new(load("graph-to-apex"));
+    assert_clean(&e, "net");
+    let net = meshes(e.output("net", "mesh"))[0];
+    let y: Vec<f64> = e
+        .output("outline", "y")
+        .as_list()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(y.len(), net.cols);
+    for j in 0..net.cols {
+        let expected = y[j] / y[0];
+        let got = width(net, j) / width(net, 0);
+        assert!(
+            (got - expected).abs() <= 1e-9 * expected,
+            "column {j}: {got} vs {expected}"
+        );
+    }
+}
+
+fn distance_to_line(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    (p - a).cross(b - a).length() / (b - a).length()
+}
+
+fn polyline_points(v: &Value) -> Vec<DVec3> {
+    match v {
+        Value::Polyline(p) => p.points.clone(),
+        other => panic!("polyline expected, got {}", other.type_name()),
+    }
+}
+
+fn edge_angle(a: DVec3, b: DVec3) -> f64 {
+    a.cross(b).length().atan2(a.dot(b).abs())
+}
+
+/// Every edge of `b` is parallel to the corresponding edge of `a`.
+fn max_edge_angle(a: &QuadGrid, b: &QuadGrid) -> f64 {
+    let mut worst = 0.0f64;
+    for i in 0..a.rows {
+        for j in 0..a.cols {
+            if j + 1 < a.cols {
+                worst = worst.max(edge_angle(
+                    a.at(i, j + 1) - a.at(i, j),
+                    b.at(i, j + 1) - b.at(i, j),
+                ));
+            }
+            if i + 1 < a.rows {
+                worst = worst.max(edge_angle(
+                    a.at(i + 1, j) - a.at(i, j),
+                    b.at(i + 1, j) - b.at(i, j),
+                ));
+            }
+        }
+    }
+    worst
+}
+
+fn max_planarity(m: &QuadGrid) -> f64 {
+    cnets_geometry::conenet::planarity(m).unwrap().max
+}
+
+#[test]
+fn support_layers_follow_the_node_axes() {
+    let e = Evaluated::new(load("support-layers"));
+    assert_clean(&e, "net");
+    let net = meshes(e.output("net", "mesh"))[0];
+    let conical = meshes(e.output("conical", "mesh"))[0];
+    let parallel = meshes(e.output("parallel", "mesh"))[0];
+    let x = polyline_points(e.output("directrix", "curve"));
+    let size = net.size();
+    for i in 0..net.rows {
+        for j in 0..net.cols {
+            let d = distance_to_line(conical.at(i, j), x[j], net.at(i, j));
+            assert!(
+                d <= 1e-12 * size,
+                "conical vertex ({i}, {j}) is {d} off its axis"
+            );
+            let d = distance_to_line(parallel.at(i, j), x[j], net.at(i, j));
+            assert!(
+                d <= 1e-9 * size,
+                "parallel vertex ({i}, {j}) is {d} off its axis"
+            );
+        }
+    }
+    assert!(max_planarity(conical) <= 1e-12 && max_planarity(parallel) <= 1e-12);
+    let check = cnets_geometry::conenet::cone_check(conical).unwrap();
+    let apices = e.output("net", "apices").as_list().unwrap();
+    for (k, (fitted, apex)) in check.apices.iter().zip(apices).enumerate() {
+        if let (Some(f), Value::Point(p)) = (fitted, apex) {
+            assert!(
+                f.distance(*p) <= 1e-6 * p.length().max(size),
+                "strip {k}: apices differ ({f} vs {p})"
+            );
+        }
+    }
+    assert!(
+        max_edge_angle(net, parallel) <= 1e-9,
+        "parallel layer edges are parallel"
+    );
+}
+
+#[test]
+fn parallel_transform_keeps_faces_planar_and_edges_parallel() {
+    let e = Evaluated::new(load("parallel-transform"));
+    let net = meshes(e.output("net", "mesh"))[0];
+    let transformed = meshes(e.output("transformed", "mesh"))[0];
+    assert!(max_planarity(transformed) <= 1e-12);
+    assert!(max_edge_angle(net, transformed) <= 1e-9);
+    let residual = cnets_geometry::conenet::cone_check(transformed)
+        .unwrap()
+        .max;
+    assert!(
+        residual > 1e-6,
+        "with varying mu the transform is no longer a cone-net ({residual})"
+    );
+    let moved = meshes(e.output("beside", "mesh"))[0];
+    assert_eq!(moved.vertices.len(), transformed.vertices.len());
+}
+
+#[test]
+fn facade_profiles_share_their_vertex_along_the_whole_sweep() {
+    let e = Evaluated::new(load("facade"));
+    assert_clean(&e, "facade");
+    let nets = meshes(e.output("facade", "mesh"));
+    let (wall, canopy) = (nets[0], nets[1]);
+    assert_eq!(
+        wall.row(2).points,
+        canopy.row(0).points,
+        "the shared vertex traces one line"
+    );
+    assert!(wall.rows > 5, "the generatrix is subdivided");
+    let axes: usize = match e.output("axes", "axes") {
+        Value::List(items) => items
+            .iter()
+            .map(|a| match a {
+                Value::Lines(l) => l.len(),
+                _ => 0,
+            })
+            .sum(),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(
+        axes,
+        wall.vertices.len() + canopy.vertices.len(),
+        "one axis per vertex"
+    );
+    for support in meshes(e.output("support", "mesh")) {
+        assert!(max_planarity(support) <= 1e-12);
+    }
+}
+
+fn polygon_vertices(v: &Value) -> &[DVec3] {
+    match v {
+        Value::Mesh(m) => &m.vertices,
+        other => panic!("mesh expected, got {}", other.type_name()),
+    }
+}
+
+#[test]
+fn catamaran_hull_is_cut_and_mirrored_exactly() {
+    let e = Evaluated::new(load("catamaran-hull"));
+    assert_clean(&e, "hull");
+    let half = polygon_vertices(e.output("half", "mesh"));
+    assert!(half.iter().all(|p| p.y >= 0.0), "the cut keeps one side");
+    let whole = polygon_vertices(e.output("whole", "mesh"));
+    let key = |p: &DVec3| (p.x.to_bits(), p.y.to_bits(), p.z.to_bits());
+    let set: std::collections::HashSet<_> = whole.iter().map(key).collect();
+    for p in whole {
+        let mirrored = DVec3::new(p.x, if p.y == 0.0 { 0.0 } else { -p.y }, p.z);
+        assert!(
+            set.contains(&key(&mirrored)),
+            "{p} has no exact mirror image"
+        );
+    }
+    let on_plane = half.iter().filter(|p| p.y == 0.0).count();
+    assert_eq!(
+        whole.len(),
+        2 * half.len() - on_plane,
+        "vertices on the plane are welded"
+    );
+}
+
+#[test]
+fn catamaran_fit_to_reference_improves_the_fit() {
+    let doc = load("catamaran-hull");
+    let setup = doc.meta.optimization.clone().unwrap();
+    let out = cnets_engine::optimize::optimize(
+        &doc.graph,
+        &setup,
+        &cnets_engine::optimize::Options {
+            max_iter: Some(15),
+            ..Default::default()
+        },
+        &cnets_engine::NodeContext::default(),
+        &mut |_| {},
+    )
+    .unwrap();
+    assert!(
+        out.objective < 0.1 * out.start,
+        "{} -> {}",
+        out.start,
+        out.objective
+    );
+}
+
+#[test]
+fn pedestrian_bridge_has_planar_frames_and_exports_cutting_sheets() {
+    let out = std::env::temp_dir().join(format!("cnets-bridge-{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let e = Evaluated::with_output(load("pedestrian-bridge"), &out);
+    assert_clean(&e, "bridge");
+    let bridge = meshes(e.output("bridge", "mesh"))[0];
+    let size = bridge.size();
+    for j in 0..bridge.cols {
+        let c = bridge.column(j).points;
+        let n = (c[1] - c[0]).cross(c[c.len() - 1] - c[0]).normalize();
+        for p in &c {
+            assert!(
+                (*p - c[0]).dot(n).abs() <= 1e-12 * size,
+                "column {j} is not planar"
+            );
+        }
+    }
+    assert!(e.number("strips", "max_length_error") <= 1e-9);
+    for name in ["bridge-strips.svg", "bridge-strips.dxf"] {
+        let len = std::fs::metadata(out.join(name))
+            .map(|m| m.len())
+            .unwrap_or(0);
+        assert!(len > 1000, "{name} written ({len} bytes)");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}

@@ -33,8 +33,17 @@ pub struct Evaluated {
 impl Evaluated {
     /// Evaluates every node of the document; panics on a failed node, naming it.
     pub fn new(doc: Document) -> Self {
+        Self::with_context(doc, &NodeContext::default())
+    }
+
+    /// Evaluates every node with exports written into `out_dir`.
+    pub fn with_output(doc: Document, out_dir: &std::path::Path) -> Self {
+        Self::with_context(doc, &NodeContext::new(Some(out_dir.to_path_buf()), None))
+    }
+
+    fn with_context(doc: Document, ctx: &NodeContext) -> Self {
         let mut evaluator = Evaluator::new();
-        evaluator.evaluate_all(&doc.graph, &NodeContext::default());
+        evaluator.evaluate_all(&doc.graph, ctx);
         for (_, node) in doc.graph.nodes() {
             let result = evaluator.result(&doc.graph, &node.id);
             if let Some(r) = result.filter(|r| r.is_failure()) {
