@@ -131,10 +131,16 @@ mod tests {
         let none = search(&registry, "no-such-node-xyz");
         assert!(none.is_empty());
         let two = search(&registry, "cone construct");
-        assert!(
-            two.iter()
-                .flat_map(|(_, d)| d)
-                .all(|d| d.category == "Cone-nets")
-        );
+        let found: Vec<_> = two.iter().flat_map(|(_, d)| d).collect();
+        assert!(found.iter().any(|d| d.id == "cnets.construct"));
+        for d in &found {
+            let text = format!("{} {} {}", d.id, d.category, d.doc).to_lowercase();
+            assert!(
+                text.contains("cone") && text.contains("construct"),
+                "{} matches every word",
+                d.id
+            );
+        }
+        assert!(found.len() < registry.len());
     }
 }
