@@ -6,7 +6,7 @@ use glam::DVec3;
 use super::ctube::{Raw, prepare};
 use super::inputs::{ConstructInputs, CoplanarInputs, check_unit_interval};
 use super::result::ConeNet;
-use super::sweep::{Rule, Sweep};
+use super::sweep::{Rule, Sweep, zeroed_points};
 use crate::GeometryError;
 
 /// CNets Construct (`cnets.construct`): ratios r_{i,j} pick the rulings of the support strips, the
@@ -23,7 +23,7 @@ pub fn construct(inputs: &ConstructInputs) -> Result<ConeNet, GeometryError> {
         &prep.dx,
         &prep.generatrix,
         prep.apex.clone(),
-        vec![DVec3::ZERO; n * (m - 1)],
+        zeroed_points(n * (m - 1)),
         true,
         Rule::Ratios(&grid),
         Some(inputs.assistance),

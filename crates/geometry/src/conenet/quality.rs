@@ -137,6 +137,35 @@ pub(crate) fn normalization(mesh: &QuadGrid) -> (DVec3, f64) {
     }
 }
 
+/// [`normalization`] computed with a parallel reduction (for large constructed meshes).
+fn parallel_normalization(mesh: &QuadGrid) -> (DVec3, f64) {
+    let (lo, hi) = mesh
+        .vertices
+        .par_chunks(4096)
+        .map(|c| {
+            c.iter()
+                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
+                    (l.min(*p), h.max(*p))
+                })
+        })
+        .reduce(
+            || (DVec3::INFINITY, DVec3::NEG_INFINITY),
+            |a, b| (a.0.min(b.0), a.1.max(b.1)),
+        );
+    if mesh.vertices.is_empty() {
+        return (DVec3::ZERO, 1.0);
+    }
+    let half = (hi * 0.5 - lo * 0.5).max_element();
+    (
+        lo * 0.5 + hi * 0.5,
+        if half > 0.0 && half.is_finite() {
+            half
+        } else {
+            1.0
+        },
+    )
+}
+
 /// Planarity of a quad from its corners taken relative to the first corner and scaled by `inv` (the
 /// measure is translation- and scale-invariant; this keeps the squares in range at any magnitude).
 #[inline(always)]
@@ -334,8 +363,9 @@ pub(crate) fn quality(
     apex: &[f64],
     configurations: &Configurations,
 ) -> Result<Quality, GeometryError> {
-    check_mesh(mesh)?;
-    let (center, scale) = normalization(mesh);
+    // The sweep has checked every vertex for finiteness already.
+    mesh.validate()?;
+    let (center, scale) = parallel_normalization(mesh);
     let inv = 1.0 / scale;
     let strips = mesh.cols.saturating_sub(1);
     let hs: Vec<[f64; 4]> = (0..strips)

@@ -62,6 +62,14 @@ pub(crate) struct Sweep<'a> {
     pub inv_scale: f64,
 }
 
+/// `len` zero points, written in parallel straight into the new buffer (rayon's in-place collect):
+/// the first touch of the pages, and the page faults, are spread over the threads.
+pub(crate) fn zeroed_points(len: usize) -> Vec<DVec3> {
+    let mut v = Vec::with_capacity(len);
+    v.par_extend(rayon::iter::repeat_n(DVec3::ZERO, len));
+    v
+}
+
 /// How one row's sweep ended.
 enum RowEnd {
     Done,
@@ -481,7 +489,7 @@ impl<'a> Sweep<'a> {
         assistance: Option<Assistance>,
     ) -> Self {
         let (n, m) = (generatrix.len(), dx.columns());
-        let mut verts = vec![DVec3::ZERO; n * m];
+        let mut verts = zeroed_points(n * m);
         for (i, g) in generatrix.iter().enumerate() {
             verts[i * m] = *g;
         }
@@ -492,7 +500,11 @@ impl<'a> Sweep<'a> {
             verts,
             planes,
             per_vertex,
-            configs: vec![Configuration::PlusPlus; n * (m - 1)],
+            configs: {
+                let mut c = Vec::with_capacity(n * (m - 1));
+                c.par_extend(rayon::iter::repeat_n(Configuration::PlusPlus, n * (m - 1)));
+                c
+            },
             apex,
             rule,
             assistance: assistance.filter(Assistance::enabled),
@@ -517,20 +529,9 @@ impl<'a> Sweep<'a> {
         self.verts[i * self.m + j]
     }
 
-    /// Whether a failing Eq. 2 at some column needs the coupled (all-rows) correction.
-    fn coupled(&self) -> bool {
-        match (&self.rule, self.assistance) {
-            (_, None) => false,
-            (Rule::Given, _) => false,
-            (Rule::Ratios(_), Some(a)) => a.alpha > 0.0,
-            (Rule::Coplanar { .. }, Some(_)) => true,
-        }
-    }
-
     /// Runs the whole sweep.
     pub fn run(&mut self) -> Result<(), GeometryError> {
         let steps = self.m - 1;
-        let coupled = self.coupled();
         let (mut js, mut plane_final, mut block) = (0, false, steps);
         while js < steps {
             let je = (js + block).min(steps);
@@ -541,7 +542,8 @@ impl<'a> Sweep<'a> {
                     block = block.saturating_mul(2);
                 }
                 Some(j0) => {
-                    debug_assert!(coupled);
+                    // A stop: the coupled correction (an α = 0 plane fix that is numerically
+                    // insufficient also ends here and falls back to the apex fix).
                     self.correct(j0)?;
                     block = (2 * (j0 - js)).max(4);
                     js = j0;
