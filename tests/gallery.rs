@@ -284,13 +284,13 @@ fn support_layers_follow_the_node_axes() {
     let x = polyline_points(e.output("directrix", "curve"));
     let size = net.size();
     for i in 0..net.rows {
-        for j in 0..net.cols {
-            let d = distance_to_line(conical.at(i, j), x[j], net.at(i, j));
+        for (j, &xj) in x.iter().enumerate() {
+            let d = distance_to_line(conical.at(i, j), xj, net.at(i, j));
             assert!(
                 d <= 1e-12 * size,
                 "conical vertex ({i}, {j}) is {d} off its axis"
             );
-            let d = distance_to_line(parallel.at(i, j), x[j], net.at(i, j));
+            let d = distance_to_line(parallel.at(i, j), xj, net.at(i, j));
             assert!(
                 d <= 1e-9 * size,
                 "parallel vertex ({i}, {j}) is {d} off its axis"
