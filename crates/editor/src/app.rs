@@ -262,6 +262,11 @@ impl EditorApp {
         app
     }
 
+    /// The GPU target of the 3D view (`None`: no wgpu renderer).
+    pub fn gpu(&self) -> Option<&GpuTarget> {
+        self.gpu.as_ref()
+    }
+
     /// Whether a restore from a previous session's recovery file is being offered.
     pub fn restore_offered(&self) -> bool {
         self.offer_restore.is_some()

@@ -227,7 +227,11 @@ impl eframe::App for Window {
             *self.result.lock().unwrap_or_else(|p| p.into_inner()) = Some(saved);
             self.app.quit = true;
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
-        } else if self.frames >= self.quit_after && !self.requested {
+        } else if self.frames >= self.quit_after
+            && !self.requested
+            && self.app.viewport.render_scale >= 1.0
+        {
+            // (On a software rasterizer the view renders at full resolution once it settles.)
             ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(egui::UserData::default()));
             self.requested = true;
         }

@@ -26,6 +26,10 @@ pub struct GpuTarget {
     pub depth_format: Option<wgpu::TextureFormat>,
     /// Renderer options for the adapter (no MSAA on software rasterizers).
     pub options: RendererOptions,
+    /// The adapter is a software rasterizer (lavapipe, llvmpipe): while the picture changes
+    /// (slider drags, orbiting) the view renders at half resolution, then once more at full
+    /// resolution when it settles.
+    pub software: bool,
 }
 
 impl GpuTarget {
@@ -41,6 +45,7 @@ impl GpuTarget {
             msaa_samples: msaa_samples.max(1),
             depth_format,
             options: RendererOptions::for_adapter(&rs.adapter.get_info()),
+            software: rs.adapter.get_info().device_type == wgpu::DeviceType::Cpu,
         }
     }
 }
@@ -61,7 +66,16 @@ pub struct Viewport {
     /// Scene versions handed to the GPU (one per frame at most): the app reads it to know when a
     /// change reached the picture.
     pub drawn_version: u64,
+    /// egui time of the last change of scene or camera.
+    last_change: f64,
+    /// Resolution factor of the last frame (1 or [`INTERACTIVE_SCALE`]).
+    pub render_scale: f32,
 }
+
+/// Resolution factor while the picture changes on a software rasterizer.
+pub const INTERACTIVE_SCALE: f32 = 0.5;
+/// Seconds without changes after which the view is rendered at full resolution again.
+const SETTLE_SECONDS: f64 = 0.3;
 
 impl Default for Viewport {
     fn default() -> Self {
@@ -75,6 +89,8 @@ impl Default for Viewport {
             fitted_once: false,
             aspect: 1.0,
             drawn_version: 0,
+            last_change: f64::NEG_INFINITY,
+            render_scale: 1.0,
         }
     }
 }
@@ -150,6 +166,7 @@ impl Viewport {
         self.scene = scene;
         self.stats = stats;
         self.scene_version += 1;
+        self.last_change = f64::NAN; // stamped with egui's time in the next `show`
         if !self.fitted_once && !self.scene.is_empty() {
             self.fit_pending = true;
         }
@@ -202,8 +219,22 @@ impl Viewport {
             self.fit_pending = false;
             self.fitted_once = true;
         }
+        let camera_before = self.camera;
         self.handle_input(ui, &response, rect);
-        let ppp = ui.ctx().pixels_per_point();
+        let now = ui.input(|i| i.time);
+        if self.camera != camera_before || self.last_change.is_nan() {
+            self.last_change = now;
+        }
+        let changing = now - self.last_change < SETTLE_SECONDS;
+        self.render_scale = if changing && gpu.is_some_and(|g| g.software) {
+            // Come back for the full-resolution picture once things settle.
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_secs_f64(SETTLE_SECONDS));
+            INTERACTIVE_SCALE
+        } else {
+            1.0
+        };
+        let ppp = ui.ctx().pixels_per_point() * self.render_scale;
         let size_px = [
             (rect.width() * ppp).round().max(1.0) as u32,
             (rect.height() * ppp).round().max(1.0) as u32,

@@ -529,3 +529,41 @@ fn viewport_orbits_pans_zooms_fits_and_switches_colours_and_layers() {
         "curves still shown"
     );
 }
+
+#[test]
+fn a_changing_view_renders_at_half_resolution_on_software_then_settles() {
+    let mut h = harness("scale");
+    assert_eq!(
+        h.state().viewport.render_scale,
+        1.0,
+        "settled: full resolution"
+    );
+    h.state_mut()
+        .doc
+        .edit(None, |g, _| {
+            g.set_value("ratio", "value", Value::Number(0.4))
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+    h.state_mut().wait_for_worker(Duration::from_secs(60));
+    h.run_steps(2);
+    // lavapipe in CI: half resolution while changing; a hardware adapter keeps full resolution.
+    let software = h.state().gpu().is_some_and(|g| g.software);
+    let expected = if software {
+        cnets_editor::viewport::INTERACTIVE_SCALE
+    } else {
+        1.0
+    };
+    assert_eq!(
+        h.state().viewport.render_scale,
+        expected,
+        "software rasterizer: {software}"
+    );
+    h.run_steps(30);
+    assert_eq!(
+        h.state().viewport.render_scale,
+        1.0,
+        "back to full resolution"
+    );
+}

@@ -70,5 +70,7 @@ pub fn settle(h: &mut Harness<'static, EditorApp>) {
             break;
         }
     }
-    h.run_steps(2);
+    // Past the viewport's settle time (0.3 s of egui time at 1/60 s a step), so the 3D view is
+    // rendered at full resolution.
+    h.run_steps(30);
 }
