@@ -532,7 +532,10 @@ impl<'a> Sweep<'a> {
     /// Runs the whole sweep.
     pub fn run(&mut self) -> Result<(), GeometryError> {
         let steps = self.m - 1;
-        let (mut js, mut plane_final, mut block) = (0, false, steps);
+        // Without assistance nothing can stop a row: one block. With assistance start short and
+        // double, so that an early stop wastes little of the optimistic work.
+        let first = if self.assistance.is_some() { 16 } else { steps };
+        let (mut js, mut plane_final, mut block) = (0, false, first);
         while js < steps {
             let je = (js + block).min(steps);
             match self.block(js, je, plane_final)? {
