@@ -132,7 +132,10 @@ mod tests {
     fn closest_points_in_each_region() {
         let (a, b, c) = (DVec3::ZERO, DVec3::X, DVec3::Y);
         let inside = closest_point_on_triangle(DVec3::new(0.2, 0.2, 5.0), a, b, c);
-        assert!((inside - DVec3::new(0.2, 0.2, 0.0)).length() < 1e-15, "{inside}");
+        assert!(
+            (inside - DVec3::new(0.2, 0.2, 0.0)).length() < 1e-15,
+            "{inside}"
+        );
         assert_eq!(
             closest_point_on_triangle(DVec3::new(-1.0, -1.0, 0.0), a, b, c),
             a
