@@ -101,7 +101,8 @@ fn torus_monge_is_a_surface_of_revolution_and_its_variants_stay_clean() {
         meshes(e.output("varying_apex", "mesh"))[0],
         meshes(e.output("varying_ratios", "mesh"))[0],
     );
-    let shift = DVec3::new(e.number("spacing", "value"), 0.0, 0.0);
+    let s = e.number("spacing", "value");
+    let shift = DVec3::new(s, s, 0.0);
     let moved = a
         .vertices
         .iter()

@@ -4,8 +4,9 @@
 //!
 //! - [`document`]: the graph document (engine graph + metadata + path), the source of truth;
 //!   [`history`]: undo / redo by snapshots, one step per gesture.
-//! - [`worker`]: evaluation on a background thread, latest change wins; [`preview`]: the render
-//!   scene and figures built from the results.
+//! - [`worker`]: evaluation on a background thread, latest change wins; [`preview`] (the
+//!   `cnets-preview` crate, shared with `cnets render`): the render scene and figures built from the
+//!   results.
 //! - [`canvas`]: the node canvas (an egui-snarl view of the graph, kept in sync both ways);
 //!   [`palette`]: the searchable node palette; [`widgets`]: inline value editors;
 //!   [`mapper`]: the graph-mapper widget.
@@ -24,7 +25,6 @@ pub mod history;
 pub mod mapper;
 pub mod menus;
 pub mod palette;
-pub mod preview;
 pub mod recovery;
 pub mod settings;
 pub mod viewport;
@@ -32,3 +32,4 @@ pub mod widgets;
 pub mod worker;
 
 pub use app::{EditorApp, GpuTarget};
+pub use cnets_preview as preview;

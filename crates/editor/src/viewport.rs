@@ -196,17 +196,7 @@ impl Viewport {
     /// Points the camera at the surfaces (apices and other markers can lie far away, even near
     /// infinity, and would shrink the mesh to a dot), or at everything when there are none.
     fn frame_geometry(&mut self) {
-        let surfaces: Vec<glam::Vec3> = self
-            .scene
-            .face_vertices()
-            .iter()
-            .map(|v| glam::Vec3::from(v.position))
-            .collect();
-        if surfaces.is_empty() {
-            self.camera.fit_scene(&self.scene, self.aspect);
-        } else {
-            self.camera.fit_points(&surfaces, self.aspect);
-        }
+        self.camera.fit_surfaces(&self.scene, self.aspect);
     }
 
     /// Shows the viewport in the rest of `ui`.
@@ -342,8 +332,8 @@ impl Viewport {
                     swatch(
                         &painter,
                         top + 18.0 + 16.0 * k as f32,
-                        class.color(),
-                        format!("{}  {count}", class.label()),
+                        crate::preview::class_color(*class),
+                        format!("{}  {count}", class.name()),
                     );
                 }
             }

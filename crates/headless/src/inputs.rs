@@ -4,7 +4,7 @@
 use std::io::Read;
 
 use cnets_engine::value::json::from_json;
-use cnets_engine::{NodeDef, Value};
+use cnets_engine::{Graph, NodeDef, Value, ValueType};
 use serde_json::Value as Json;
 
 use crate::failure::Failure;
@@ -78,4 +78,31 @@ pub fn node_inputs(def: &NodeDef, json: &Json) -> Result<Vec<Value>, Failure> {
             },
         )
         .collect()
+}
+
+/// Applies one `--set node.input=value`.
+pub fn apply_set(graph: &mut Graph, set: &str) -> Result<(), Failure> {
+    let bad = || Failure::usage(format!("--set '{set}': expected <node>.<input>=<value>"));
+    let (target, raw) = set.split_once('=').ok_or_else(bad)?;
+    let (node_id, input) = target.split_once('.').ok_or_else(bad)?;
+    let node = graph
+        .node(node_id)
+        .ok_or_else(|| Failure::usage(format!("--set '{set}': no node '{node_id}'")))?;
+    let def = node.def.clone();
+    let port_ty = def.input_index(input).map(|k| def.inputs[k].ty.clone());
+    let json = match serde_json::from_str::<Json>(raw) {
+        Ok(j) => j,
+        Err(_) if port_ty == Some(ValueType::Text) => Json::String(raw.to_string()),
+        Err(e) => {
+            return Err(Failure::usage(format!(
+                "--set '{set}': the value is not valid JSON: {e}"
+            )));
+        }
+    };
+    let value = decode_input(&def, input, &json)
+        .map_err(|f| Failure::usage(format!("--set '{set}': {}", f.messages.join("; "))))?;
+    graph
+        .set_value(node_id, input, value)
+        .map_err(|e| Failure::usage(format!("--set '{set}': {e}")))?;
+    Ok(())
 }

@@ -33,6 +33,8 @@ enum Command {
     Check(commands::check::Args),
     /// Run the optimization stored in a graph file and write the optimized graph.
     Optimize(commands::optimize::Args),
+    /// Render the previewed geometry of a graph off-screen to a PNG.
+    Render(commands::render::Args),
 }
 
 fn main() -> ExitCode {
@@ -43,6 +45,7 @@ fn main() -> ExitCode {
         Command::Run(args) => commands::run::run(args),
         Command::Check(args) => commands::check::run(args),
         Command::Optimize(args) => commands::optimize::run(args),
+        Command::Render(args) => commands::render::run(args),
     };
     match result {
         Ok(code) => code,

@@ -1,5 +1,6 @@
-//! What the viewport shows: the geometry outputs of every node whose preview is on, turned into a
-//! render [`Scene`], plus the figures shown with it (vertex count, max planarity, legend).
+//! What a graph shows: the geometry outputs of every node whose preview is on, turned into a render
+//! [`Scene`], plus the figures shown with it (vertex count, max planarity, legend). Shared by the
+//! editor's viewport and `cnets render`, so both show the same picture.
 //!
 //! Outputs are sorted into layers by type and port name, so each layer can be toggled:
 //! quad / polygon meshes are surfaces (coloured by configuration class, planarity or plainly),
@@ -11,15 +12,16 @@ use std::time::Instant;
 
 use cnets_engine::{Evaluator, Graph, Value};
 use cnets_geometry::conenet::quad_planarity;
+use cnets_geometry::fabrication::FaceClass;
 use cnets_geometry::{DVec3, QuadGrid};
 use cnets_render::palette::{self, SequentialMap};
-use cnets_render::{Color, ConfigClass, FaceColors, LineStyle, MeshStyle, PointStyle, Scene};
+use cnets_render::{Color, FaceColors, LineStyle, MeshStyle, PointStyle, Scene};
 
 /// How surfaces are coloured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ColorMode {
-    /// By configuration class (`++`, `--`, `+-`, `-+`) from the construction node's
-    /// `configurations` output; plain when the node has none.
+    /// By face class (paper Fig. 5b: the configurations of a face's two support-strip quads) from
+    /// the construction node's `configurations` output; plain when the node has none.
     #[default]
     Configuration,
     /// By per-face planarity (viridis, range fitted to the values).
@@ -90,6 +92,26 @@ impl Layer {
         }
     }
 
+    /// Short name for command lines: surfaces, edges, curves, apices, axes, supports, points.
+    pub fn name(self) -> &'static str {
+        match self {
+            Layer::Surfaces => "surfaces",
+            Layer::Edges => "edges",
+            Layer::Curves => "curves",
+            Layer::Apices => "apices",
+            Layer::Axes => "axes",
+            Layer::Supports => "supports",
+            Layer::Points => "points",
+        }
+    }
+
+    /// The layer with this short name.
+    pub fn parse(name: &str) -> Option<Layer> {
+        Layer::ALL
+            .into_iter()
+            .find(|l| l.name().eq_ignore_ascii_case(name.trim()))
+    }
+
     fn bit(self) -> u8 {
         1 << (self as u8)
     }
@@ -134,8 +156,8 @@ pub enum LegendInfo {
     /// Nothing coloured.
     #[default]
     None,
-    /// Configuration classes with their face counts.
-    Classes([(ConfigClass, usize); 4]),
+    /// Face classes with their face counts (classes that occur).
+    Classes(Vec<(FaceClass, usize)>),
     /// A planarity colour scale.
     Planarity(cnets_render::Legend),
 }
@@ -166,7 +188,7 @@ pub fn build_scene(
         scene: Scene::new(),
         stats: PreviewStats::default(),
         opts: *opts,
-        class_counts: [0; 4],
+        class_counts: [0; 5],
         any_classes: false,
         planarity_range: None,
     };
@@ -218,10 +240,13 @@ pub fn build_scene(
     }
     b.stats.legend = match opts.color_mode {
         _ if b.stats.faces == 0 || !opts.shows(Layer::Surfaces) => LegendInfo::None,
-        ColorMode::Configuration if b.any_classes => {
-            let c = b.class_counts;
-            LegendInfo::Classes([0, 1, 2, 3].map(|k| (ConfigClass::ALL[k], c[k])))
-        }
+        ColorMode::Configuration if b.any_classes => LegendInfo::Classes(
+            FaceClass::ALL
+                .iter()
+                .map(|&c| (c, b.class_counts[c.index()]))
+                .filter(|&(c, n)| n > 0 || c == FaceClass::Convex)
+                .collect(),
+        ),
         ColorMode::Planarity => b.planarity_range.map_or(LegendInfo::None, |m| {
             LegendInfo::Planarity(m.legend("planarity", 5))
         }),
@@ -249,7 +274,7 @@ struct Builder {
     scene: Scene,
     stats: PreviewStats,
     opts: PreviewOptions,
-    class_counts: [usize; 4],
+    class_counts: [usize; 5],
     any_classes: bool,
     planarity_range: Option<SequentialMap>,
 }
@@ -372,12 +397,9 @@ impl Builder {
                 let classes = face_classes(grid, c)?;
                 self.any_classes = true;
                 for class in &classes {
-                    self.class_counts[ConfigClass::ALL
-                        .iter()
-                        .position(|c| c == class)
-                        .unwrap_or(0)] += 1;
+                    self.class_counts[class.index()] += 1;
                 }
-                Some(classes.into_iter().map(ConfigClass::color).collect())
+                Some(classes.into_iter().map(class_color).collect())
             }),
             (ColorMode::Planarity, _) => {
                 let map = self
@@ -402,49 +424,30 @@ impl Builder {
     }
 }
 
+/// The render colour of a face class (the same colours the glTF export uses).
+pub fn class_color(class: FaceClass) -> Color {
+    let c = class.colour();
+    Color::from_f32([c.x as f32, c.y as f32, c.z as f32, 1.0])
+}
+
 /// The class of every face of `grid` (row-major over quads) from a construction node's
-/// `configurations` output (N lists of M−2 labels, one per interior directrix vertex): a face
-/// takes the worst class among its corners (`--` over `+-` over `-+` over `++`); corners on the
-/// first and last column have none. `None` when the table does not fit the grid.
-pub fn face_classes(grid: &QuadGrid, configurations: &Value) -> Option<Vec<ConfigClass>> {
-    let rows = configurations.as_list()?;
-    if rows.len() != grid.rows || grid.cols < 2 {
-        return None;
-    }
-    let table: Vec<Vec<ConfigClass>> = rows
+/// `configurations` output (N lists of M−2 labels), as [`cnets_geometry::fabrication::face_classes`]
+/// defines it. `None` when the value is not such a table or does not fit the grid.
+pub fn face_classes(grid: &QuadGrid, configurations: &Value) -> Option<Vec<FaceClass>> {
+    let labels: Vec<Vec<String>> = configurations
+        .as_list()?
         .iter()
         .map(|row| {
             row.as_list()?
                 .iter()
                 .map(|v| match v {
-                    Value::Text(t) => t.parse::<ConfigClass>().ok(),
+                    Value::Text(t) => Some(t.to_string()),
                     _ => None,
                 })
-                .collect::<Option<Vec<_>>>()
+                .collect()
         })
-        .collect::<Option<Vec<_>>>()?;
-    let rank = |c: ConfigClass| match c {
-        ConfigClass::PlusPlus => 0,
-        ConfigClass::MinusPlus => 1,
-        ConfigClass::PlusMinus => 2,
-        ConfigClass::MinusMinus => 3,
-    };
-    let at = |i: usize, j: usize| -> Option<ConfigClass> {
-        // Vertex column j has a class when 1 <= j <= M-2.
-        let row = table.get(i % grid.rows)?;
-        j.checked_sub(1).and_then(|k| row.get(k)).copied()
-    };
-    let mut out = Vec::with_capacity(grid.quad_count());
-    for ((i, j), _) in grid.quads() {
-        let j1 = (j + 1) % grid.cols;
-        let worst = [at(i, j), at(i, j1), at(i + 1, j), at(i + 1, j1)]
-            .into_iter()
-            .flatten()
-            .max_by_key(|&c| rank(c))
-            .unwrap_or(ConfigClass::PlusPlus);
-        out.push(worst);
-    }
-    Some(out)
+        .collect::<Option<_>>()?;
+    cnets_geometry::fabrication::face_classes(grid, &labels).ok()
 }
 
 #[cfg(test)]
@@ -473,24 +476,27 @@ mod tests {
     }
 
     #[test]
-    fn faces_take_the_worst_corner_class() {
-        let g = grid(3, 4); // interior columns 1 and 2
+    fn faces_are_classed_by_their_two_support_strip_quads() {
+        let g = grid(3, 4); // interior vertex columns 1 and 2
         let classes = face_classes(&g, &table(3, &["++", "--"])).unwrap();
         assert_eq!(classes.len(), 2 * 3);
-        // Quad column 0 touches vertex columns 0 and 1 (++), 1 touches 1 and 2 (-- wins),
-        // 2 touches 2 (--) and 3 (none).
+        // Quad column 0 has no plane before it; column 1 pairs (++, ++); column 2 pairs (--, --).
         assert_eq!(
             classes[..3],
             [
-                ConfigClass::PlusPlus,
-                ConfigClass::MinusMinus,
-                ConfigClass::MinusMinus
+                FaceClass::Unclassified,
+                FaceClass::Convex,
+                FaceClass::MinusMinus
             ]
         );
         assert!(
             face_classes(&g, &table(2, &["++", "--"])).is_none(),
             "row count must match"
         );
+        assert_eq!(class_color(FaceClass::NonConvex), {
+            let c = FaceClass::NonConvex.colour();
+            Color::from_f32([c.x as f32, c.y as f32, c.z as f32, 1.0])
+        });
     }
 
     #[test]

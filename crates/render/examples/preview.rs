@@ -7,8 +7,8 @@ use std::time::Instant;
 
 use cnets_geometry::{DVec3, Polyline, QuadGrid};
 use cnets_render::{
-    Camera, ConfigClass, FaceColors, LineStyle, MeshStyle, Offscreen, PointStyle, RendererOptions,
-    Scene, SceneRenderer, SequentialMap, View, palette, wgpu,
+    Camera, FaceColors, LineStyle, MeshStyle, Offscreen, PointStyle, RendererOptions, Scene,
+    SceneRenderer, SequentialMap, View, palette, wgpu,
 };
 
 fn wavy_grid(n: usize) -> QuadGrid {
@@ -53,7 +53,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             if j < qc / 2 {
                 palette::SURFACE
             } else {
-                ConfigClass::ALL[(k / qc) * 4 / grid.quad_rows()].color()
+                palette::viridis(((k / qc) * 4 / grid.quad_rows()) as f32 / 3.0)
             }
         })
         .collect();
@@ -155,7 +155,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let torus = QuadGrid::new(rows, cols, torus)?.with_wrap(true, true);
     let tc: Vec<_> = torus
         .quads()
-        .map(|((i, _), _)| ConfigClass::ALL[i * 4 / rows].color())
+        .map(|((i, _), _)| palette::viridis((i * 4 / rows) as f32 / 3.0))
         .collect();
     scene.clear();
     scene.add_quad_grid(&torus, FaceColors::PerFace(&tc))?;

@@ -254,6 +254,21 @@ impl Camera {
         self.fit_points(&points, aspect);
     }
 
+    /// Frames the surfaces of `scene` (apices and other markers can lie far away, even near infinity,
+    /// and would shrink the mesh to a dot), or everything when it has no surfaces.
+    pub fn fit_surfaces(&mut self, scene: &crate::Scene, aspect: f32) {
+        let surfaces: Vec<Vec3> = scene
+            .face_vertices()
+            .iter()
+            .map(|v| Vec3::from(v.position))
+            .collect();
+        if surfaces.is_empty() {
+            self.fit_scene(scene, aspect);
+        } else {
+            self.fit_points(&surfaces, aspect);
+        }
+    }
+
     fn fit_points_inner(&mut self, points: &[Vec3], b: Bounds, aspect: f32, recenter: bool) {
         let (hx, hy) = self.half_fovs(aspect);
         let (tx, ty) = (hx.tan() * FIT_MARGIN, hy.tan() * FIT_MARGIN);

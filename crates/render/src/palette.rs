@@ -4,9 +4,6 @@
 //! All colours are sRGB-encoded 8-bit RGBA ([`Color`]); the renderer lights them in linear space and
 //! writes sRGB-encoded values again, so what you pick is what you see on a flat, facing surface.
 
-use std::fmt;
-use std::str::FromStr;
-
 use bytemuck::{Pod, Zeroable};
 
 /// An sRGB-encoded RGBA colour, 8 bits per channel (alpha 255 = opaque).
@@ -79,74 +76,6 @@ pub const LINE: Color = Color::hex(0x1f5fbf);
 pub const POINT: Color = Color::hex(0xd0312d);
 /// Colour used for values that cannot be mapped (NaN).
 pub const INVALID: Color = Color::hex(0xff00ff);
-
-/// The configuration class of a cone-net quad strip pair: the signs of the two cone parameters.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ConfigClass {
-    /// "++": the regular, clean configuration.
-    PlusPlus,
-    /// "--": both signs flipped.
-    MinusMinus,
-    /// "+-": mixed signs.
-    PlusMinus,
-    /// "-+": mixed signs, the other way round.
-    MinusPlus,
-}
-
-impl ConfigClass {
-    /// All four classes, in legend order.
-    pub const ALL: [ConfigClass; 4] = [
-        ConfigClass::PlusPlus,
-        ConfigClass::MinusMinus,
-        ConfigClass::PlusMinus,
-        ConfigClass::MinusPlus,
-    ];
-
-    /// The short label: "++", "--", "+-" or "-+".
-    pub fn label(self) -> &'static str {
-        match self {
-            ConfigClass::PlusPlus => "++",
-            ConfigClass::MinusMinus => "--",
-            ConfigClass::PlusMinus => "+-",
-            ConfigClass::MinusPlus => "-+",
-        }
-    }
-
-    /// The fixed colour of the class: ++ calm blue, -- red, +- orange, -+ purple.
-    pub fn color(self) -> Color {
-        match self {
-            ConfigClass::PlusPlus => Color::hex(0x8fb4d9),
-            ConfigClass::MinusMinus => Color::hex(0xd62f2f),
-            ConfigClass::PlusMinus => Color::hex(0xf28e1c),
-            ConfigClass::MinusPlus => Color::hex(0x7b3fa8),
-        }
-    }
-}
-
-impl fmt::Display for ConfigClass {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.label())
-    }
-}
-
-/// Error of parsing a [`ConfigClass`] from text.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown configuration class {0:?} (expected ++, --, +- or -+)")]
-pub struct ParseClassError(pub String);
-
-impl FromStr for ConfigClass {
-    type Err = ParseClassError;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim() {
-            "++" => Ok(ConfigClass::PlusPlus),
-            "--" => Ok(ConfigClass::MinusMinus),
-            "+-" => Ok(ConfigClass::PlusMinus),
-            "-+" => Ok(ConfigClass::MinusPlus),
-            other => Err(ParseClassError(other.to_string())),
-        }
-    }
-}
 
 /// Viridis (matplotlib) sampled at 0, 0.1, …, 1; interpolated linearly in between.
 const VIRIDIS: [u32; 11] = [
@@ -250,11 +179,6 @@ pub struct Legend {
     pub stops: Vec<(f64, Color)>,
 }
 
-/// The legend of the configuration classes: label and colour of each.
-pub fn class_legend() -> [(&'static str, Color); 4] {
-    ConfigClass::ALL.map(|c| (c.label(), c.color()))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -286,22 +210,5 @@ mod tests {
         assert_eq!(legend.stops.len(), 5);
         assert_eq!(legend.stops[4], (3.0, viridis(1.0)));
         assert_eq!(SequentialMap::fit(&[]).max, 1.0);
-    }
-
-    #[test]
-    fn classes_parse_and_are_distinct() {
-        for c in ConfigClass::ALL {
-            assert_eq!(c.label().parse::<ConfigClass>().unwrap(), c);
-        }
-        assert!("+".parse::<ConfigClass>().is_err());
-        let colors = ConfigClass::ALL.map(ConfigClass::color);
-        for i in 0..4 {
-            for j in i + 1..4 {
-                let d: i32 = (0..3)
-                    .map(|k| (i32::from(colors[i].0[k]) - i32::from(colors[j].0[k])).abs())
-                    .sum();
-                assert!(d > 120, "classes {i} and {j} too similar");
-            }
-        }
     }
 }

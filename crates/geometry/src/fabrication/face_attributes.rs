@@ -94,14 +94,15 @@ impl FaceClass {
         }
     }
 
-    /// Its colour: green, red, orange, purple, grey.
+    /// Its colour (sRGB, 0–1): calm blue for the desired case, red, orange and purple for the others,
+    /// and a pale neutral (the plain surface colour) for the unclassified first column.
     pub fn colour(self) -> DVec3 {
         match self {
-            Self::Convex => DVec3::new(0.20, 0.65, 0.30),
+            Self::Convex => DVec3::new(0.56, 0.71, 0.85),
             Self::NonConvex => DVec3::new(0.85, 0.15, 0.15),
             Self::MinusMinus => DVec3::new(0.95, 0.60, 0.10),
             Self::NegativeApex => DVec3::new(0.55, 0.30, 0.75),
-            Self::Unclassified => DVec3::new(0.60, 0.60, 0.60),
+            Self::Unclassified => DVec3::new(0.72, 0.78, 0.84),
         }
     }
 }

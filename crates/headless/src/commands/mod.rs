@@ -4,4 +4,5 @@ pub mod check;
 pub mod eval;
 pub mod nodes;
 pub mod optimize;
+pub mod render;
 pub mod run;

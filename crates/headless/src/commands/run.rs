@@ -7,11 +7,11 @@ use std::time::Instant;
 
 use cnets_engine::file::load_file_with;
 use cnets_engine::value::json::to_json;
-use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag, NodeResult, ValueType};
+use cnets_engine::{Evaluator, NodeContext, NodeFlag, NodeResult};
 use serde_json::{Map, Value as Json, json};
 
 use crate::failure::{CommandResult, Failure};
-use crate::inputs::decode_input;
+use crate::inputs::apply_set;
 use crate::library;
 use crate::progress::Progress;
 
@@ -33,33 +33,6 @@ pub struct Args {
     /// Print `{ "nodes": { "<id>": { "outputs", "errors", "time_ms" } } }` instead of a summary.
     #[arg(long)]
     json: bool,
-}
-
-/// Applies one `--set node.input=value`.
-fn apply_set(graph: &mut Graph, set: &str) -> Result<(), Failure> {
-    let bad = || Failure::usage(format!("--set '{set}': expected <node>.<input>=<value>"));
-    let (target, raw) = set.split_once('=').ok_or_else(bad)?;
-    let (node_id, input) = target.split_once('.').ok_or_else(bad)?;
-    let node = graph
-        .node(node_id)
-        .ok_or_else(|| Failure::usage(format!("--set '{set}': no node '{node_id}'")))?;
-    let def = node.def.clone();
-    let port_ty = def.input_index(input).map(|k| def.inputs[k].ty.clone());
-    let json = match serde_json::from_str::<Json>(raw) {
-        Ok(j) => j,
-        Err(_) if port_ty == Some(ValueType::Text) => Json::String(raw.to_string()),
-        Err(e) => {
-            return Err(Failure::usage(format!(
-                "--set '{set}': the value is not valid JSON: {e}"
-            )));
-        }
-    };
-    let value = decode_input(&def, input, &json)
-        .map_err(|f| Failure::usage(format!("--set '{set}': {}", f.messages.join("; "))))?;
-    graph
-        .set_value(node_id, input, value)
-        .map_err(|e| Failure::usage(format!("--set '{set}': {e}")))?;
-    Ok(())
 }
 
 fn errors_of(result: Option<&NodeResult>) -> Vec<String> {

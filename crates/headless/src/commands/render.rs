@@ -1,0 +1,152 @@
+//! `cnets render <GRAPH.ron> --png <FILE> [--size WxH] [--view iso|top|front|side] [--color …]`.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+
+use cnets_engine::file::load_file_with;
+use cnets_engine::{Evaluator, NodeContext, NodeFlag};
+use cnets_preview::{ColorMode, Layer, PreviewOptions, build_scene};
+use cnets_render::{Camera, Offscreen, View};
+
+use crate::failure::{CommandResult, Failure};
+use crate::inputs::apply_set;
+use crate::library;
+
+/// Arguments of `cnets render`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The graph file.
+    graph: PathBuf,
+    /// The PNG file to write (atomically).
+    #[arg(long)]
+    png: PathBuf,
+    /// Image size in pixels, `WIDTHxHEIGHT`.
+    #[arg(long, default_value = "1280x720")]
+    size: String,
+    /// Camera direction: iso, top, front or side.
+    #[arg(long, default_value = "iso")]
+    view: String,
+    /// Face colours: config (face class from the construction's configurations), planarity or plain.
+    #[arg(long, default_value = "config")]
+    color: String,
+    /// Hide a layer: surfaces, edges, curves, apices, axes, supports or points (repeatable).
+    #[arg(long, value_name = "LAYER")]
+    hide: Vec<String>,
+    /// Override an input before rendering: `node.input=value` (as for `cnets run`).
+    #[arg(long = "set", value_name = "NODE.INPUT=VALUE")]
+    sets: Vec<String>,
+    /// Extra folders searched for cluster graph files.
+    #[arg(long)]
+    library: Vec<PathBuf>,
+}
+
+fn parse_size(text: &str) -> Result<(u32, u32), Failure> {
+    let bad = || {
+        Failure::usage(format!(
+            "--size '{text}': expected WIDTHxHEIGHT, e.g. 1280x720"
+        ))
+    };
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h): (u32, u32) = (
+        w.trim().parse().map_err(|_| bad())?,
+        h.trim().parse().map_err(|_| bad())?,
+    );
+    if w == 0 || h == 0 || w > 8192 || h > 8192 {
+        return Err(Failure::usage(format!(
+            "--size '{text}': each side must be between 1 and 8192"
+        )));
+    }
+    Ok((w, h))
+}
+
+fn parse_color(text: &str) -> Result<ColorMode, Failure> {
+    match text {
+        "config" | "configuration" | "class" => Ok(ColorMode::Configuration),
+        "planarity" => Ok(ColorMode::Planarity),
+        "plain" | "none" => Ok(ColorMode::Plain),
+        other => Err(Failure::usage(format!(
+            "--color '{other}': use config, planarity or plain"
+        ))),
+    }
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> CommandResult {
+    let (width, height) = parse_size(&args.size)?;
+    let view: View = args.view.parse().map_err(|_| {
+        Failure::usage(format!(
+            "--view '{}': use iso, top, front or side",
+            args.view
+        ))
+    })?;
+    let color_mode = parse_color(&args.color)?;
+    let registry = Arc::new(cnets_nodes::registry());
+    let mut doc = load_file_with(
+        &args.graph,
+        &registry,
+        &library::options(&args.graph, &args.library),
+    )?;
+    for set in &args.sets {
+        apply_set(&mut doc.graph, set)?;
+    }
+    let graph = doc.graph;
+    // Pull only what is previewed (exports are not run by a render).
+    let request: Vec<_> = graph
+        .nodes()
+        .filter(|(_, n)| n.preview && n.enabled && !n.def.has_flag(NodeFlag::Export))
+        .map(|(k, _)| k)
+        .collect();
+    let ctx = NodeContext::new(None, args.graph.parent().map(Path::to_path_buf));
+    let mut evaluator = Evaluator::new();
+    evaluator.evaluate(&graph, &request, &ctx, &mut |_, _| {});
+    for (index, node) in graph.nodes() {
+        if let Some(r) = evaluator
+            .result_at(&graph, index)
+            .filter(|r| r.is_failure())
+        {
+            eprintln!(
+                "warning: node '{}' ({}): {}",
+                node.id,
+                node.def.id,
+                r.error().unwrap_or("")
+            );
+        }
+    }
+    let mut options = PreviewOptions::default();
+    options.color_mode = color_mode;
+    for name in &args.hide {
+        let layer = Layer::parse(name).ok_or_else(|| {
+            let names: Vec<_> = Layer::ALL.iter().map(|l| l.name()).collect();
+            Failure::usage(format!("--hide '{name}': use one of {}", names.join(", ")))
+        })?;
+        options.set(layer, false);
+    }
+    let (scene, stats) = build_scene(&graph, &evaluator, &options);
+    if scene.is_empty() {
+        return Err(Failure::node(format!(
+            "{}: nothing to render (no previewed geometry)",
+            args.graph.display()
+        )));
+    }
+    let mut camera = Camera::new(view);
+    camera.fit_surfaces(&scene, width as f32 / height as f32);
+    let mut gpu = Offscreen::new().map_err(|e| Failure::node(format!("cannot render: {e}")))?;
+    let image = gpu
+        .render(&scene, &camera, width, height)
+        .map_err(|e| Failure::node(format!("cannot render: {e}")))?;
+    image
+        .save_png(&args.png)
+        .map_err(|e| Failure::usage(format!("{}: cannot write: {e}", args.png.display())))?;
+    let planarity = stats
+        .max_planarity
+        .map_or(String::new(), |p| format!(", max planarity {p:.1e}"));
+    println!(
+        "wrote {} ({width}x{height}, {} view, {} vertices, {} faces{planarity})",
+        args.png.display(),
+        args.view,
+        stats.vertices,
+        stats.faces
+    );
+    Ok(ExitCode::SUCCESS)
+}
