@@ -282,16 +282,18 @@ fn support_layers_follow_the_node_axes() {
     let net = meshes(e.output("net", "mesh"))[0];
     let conical = meshes(e.output("conical", "mesh"))[0];
     let parallel = meshes(e.output("parallel", "mesh"))[0];
+    let net_2 = meshes(e.output("net_2", "mesh"))[0];
     let x = polyline_points(e.output("directrix", "curve"));
+    let x_2 = polyline_points(e.output("directrix_2", "curve"));
     let size = net.size();
     for i in 0..net.rows {
-        for (j, &xj) in x.iter().enumerate() {
+        for (j, (&xj, &xj_2)) in x.iter().zip(&x_2).enumerate() {
             let d = distance_to_line(conical.at(i, j), xj, net.at(i, j));
             assert!(
                 d <= 1e-12 * size,
                 "conical vertex ({i}, {j}) is {d} off its axis"
             );
-            let d = distance_to_line(parallel.at(i, j), xj, net.at(i, j));
+            let d = distance_to_line(parallel.at(i, j), xj_2, net_2.at(i, j));
             assert!(
                 d <= 1e-9 * size,
                 "parallel vertex ({i}, {j}) is {d} off its axis"

@@ -279,7 +279,8 @@ struct Builder {
     planarity_range: Option<SequentialMap>,
 }
 
-const SUPPORT_COLOR: Color = Color::hex(0xc9a66b);
+/// Support layers are drawn translucent so the surface they support stays visible.
+const SUPPORT_COLOR: Color = Color::hex(0xc9a66b).with_alpha(170);
 const AXIS_COLOR: Color = Color::hex(0x2a9d5c);
 const CURVE_COLOR: Color = palette::LINE;
 

@@ -93,23 +93,32 @@ pub fn design(max_n: usize, max_m: usize) -> impl Strategy<Value = Design> {
     })
 }
 
-/// Distance between the diagonal lines of quad (i, j) (absolute).
-pub fn diagonal_distance(q: [DVec3; 4]) -> f64 {
-    let d1 = q[2] - q[0];
-    let d2 = q[3] - q[1];
-    let n = d1.cross(d2);
-    let nl = n.length();
-    if nl <= 1e-14 * d1.length() * d2.length() {
-        // Parallel diagonals: distance of q1 from the first diagonal line (coplanar lines).
-        return 0.0;
-    }
-    (q[1] - q[0]).dot(n).abs() / nl
+/// How far a quad is from planar, measured robustly (absolute): the distance of one vertex from the
+/// plane through the other three, using the three that span the largest triangle. The distance
+/// between the diagonal lines (the libigl measure) is ill-conditioned when the diagonals are nearly
+/// parallel (folded quads): rounding of the coordinates alone then shows up amplified by 1/sin of
+/// their angle, which random designs do produce.
+pub fn plane_distance(q: [DVec3; 4]) -> f64 {
+    (0..4)
+        .map(|k| {
+            let t: Vec<DVec3> = (0..4).filter(|&m| m != k).map(|m| q[m]).collect();
+            let n = (t[1] - t[0]).cross(t[2] - t[0]);
+            (n.length(), q[k] - t[0], n)
+        })
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .map_or(0.0, |(area, d, n)| {
+            if area > 0.0 {
+                d.dot(n).abs() / area
+            } else {
+                0.0
+            }
+        })
 }
 
-/// The largest absolute diagonal distance over all quads.
-pub fn max_diagonal_distance(mesh: &QuadGrid) -> f64 {
+/// The largest [`plane_distance`] over all quads.
+pub fn max_plane_distance(mesh: &QuadGrid) -> f64 {
     mesh.quads()
-        .map(|(_, q)| diagonal_distance(q))
+        .map(|(_, q)| plane_distance(q))
         .fold(0.0, f64::max)
 }
 
