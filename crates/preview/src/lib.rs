@@ -309,8 +309,18 @@ impl Builder {
                         .collect();
                     self.add_points(&points, layer);
                 } else {
-                    for item in items.iter() {
-                        self.collect(item, layer, configurations, meshes);
+                    // A node run per item gives lists of meshes and, alongside, lists of their
+                    // configuration tables: pair them item by item.
+                    let paired = match configurations {
+                        Some(Value::List(confs)) if confs.len() == items.len() => Some(confs),
+                        _ => None,
+                    };
+                    for (k, item) in items.iter().enumerate() {
+                        let confs = match paired {
+                            Some(c) => Some(c[k].clone()),
+                            None => configurations.clone(),
+                        };
+                        self.collect(item, layer, &confs, meshes);
                     }
                 }
             }

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 use std::sync::Arc;
 
 use cnets_engine::file::load_file_with;
-use cnets_engine::{Evaluator, NodeContext, NodeFlag};
+use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag};
 use cnets_preview::{ColorMode, Layer, PreviewOptions, build_scene};
 use cnets_render::{Camera, Offscreen, View};
 
@@ -71,16 +71,77 @@ fn parse_color(text: &str) -> Result<ColorMode, Failure> {
     }
 }
 
+/// How a picture is taken: size, camera direction and display options.
+pub struct Look {
+    /// Width and height in pixels.
+    pub size: (u32, u32),
+    /// Camera direction.
+    pub view: View,
+    /// Colours and visible layers.
+    pub options: PreviewOptions,
+}
+
+impl Look {
+    /// Parses the command-line forms of size, view, colour mode and hidden layers.
+    pub fn parse(size: &str, view: &str, color: &str, hide: &[String]) -> Result<Self, Failure> {
+        let size = parse_size(size)?;
+        let view: View = view
+            .parse()
+            .map_err(|_| Failure::usage(format!("--view '{view}': use iso, top, front or side")))?;
+        let mut options = PreviewOptions::default();
+        options.color_mode = parse_color(color)?;
+        for name in hide {
+            let layer = Layer::parse(name).ok_or_else(|| {
+                let names: Vec<_> = Layer::ALL.iter().map(|l| l.name()).collect();
+                Failure::usage(format!("--hide '{name}': use one of {}", names.join(", ")))
+            })?;
+            options.set(layer, false);
+        }
+        Ok(Self {
+            size,
+            view,
+            options,
+        })
+    }
+}
+
+/// Renders the previewed geometry of an evaluated graph to a PNG (atomically); returns a one-line
+/// summary.
+pub fn render_png(
+    graph: &Graph,
+    evaluator: &Evaluator,
+    look: &Look,
+    png: &Path,
+) -> Result<String, Failure> {
+    let (width, height) = look.size;
+    let (scene, stats) = build_scene(graph, evaluator, &look.options);
+    if scene.is_empty() {
+        return Err(Failure::node("nothing to render (no previewed geometry)"));
+    }
+    let mut camera = Camera::new(look.view);
+    camera.fit_surfaces(&scene, width as f32 / height as f32);
+    let mut gpu = Offscreen::new().map_err(|e| Failure::node(format!("cannot render: {e}")))?;
+    let image = gpu
+        .render(&scene, &camera, width, height)
+        .map_err(|e| Failure::node(format!("cannot render: {e}")))?;
+    image
+        .save_png(png)
+        .map_err(|e| Failure::usage(format!("{}: cannot write: {e}", png.display())))?;
+    let planarity = stats
+        .max_planarity
+        .map_or(String::new(), |p| format!(", max planarity {p:.1e}"));
+    Ok(format!(
+        "wrote {} ({width}x{height}, {} view, {} vertices, {} faces{planarity})",
+        png.display(),
+        look.view,
+        stats.vertices,
+        stats.faces
+    ))
+}
+
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let (width, height) = parse_size(&args.size)?;
-    let view: View = args.view.parse().map_err(|_| {
-        Failure::usage(format!(
-            "--view '{}': use iso, top, front or side",
-            args.view
-        ))
-    })?;
-    let color_mode = parse_color(&args.color)?;
+    let look = Look::parse(&args.size, &args.view, &args.color, &args.hide)?;
     let registry = Arc::new(cnets_nodes::registry());
     let mut doc = load_file_with(
         &args.graph,
@@ -113,40 +174,6 @@ pub fn run(args: Args) -> CommandResult {
             );
         }
     }
-    let mut options = PreviewOptions::default();
-    options.color_mode = color_mode;
-    for name in &args.hide {
-        let layer = Layer::parse(name).ok_or_else(|| {
-            let names: Vec<_> = Layer::ALL.iter().map(|l| l.name()).collect();
-            Failure::usage(format!("--hide '{name}': use one of {}", names.join(", ")))
-        })?;
-        options.set(layer, false);
-    }
-    let (scene, stats) = build_scene(&graph, &evaluator, &options);
-    if scene.is_empty() {
-        return Err(Failure::node(format!(
-            "{}: nothing to render (no previewed geometry)",
-            args.graph.display()
-        )));
-    }
-    let mut camera = Camera::new(view);
-    camera.fit_surfaces(&scene, width as f32 / height as f32);
-    let mut gpu = Offscreen::new().map_err(|e| Failure::node(format!("cannot render: {e}")))?;
-    let image = gpu
-        .render(&scene, &camera, width, height)
-        .map_err(|e| Failure::node(format!("cannot render: {e}")))?;
-    image
-        .save_png(&args.png)
-        .map_err(|e| Failure::usage(format!("{}: cannot write: {e}", args.png.display())))?;
-    let planarity = stats
-        .max_planarity
-        .map_or(String::new(), |p| format!(", max planarity {p:.1e}"));
-    println!(
-        "wrote {} ({width}x{height}, {} view, {} vertices, {} faces{planarity})",
-        args.png.display(),
-        args.view,
-        stats.vertices,
-        stats.faces
-    );
+    println!("{}", render_png(&graph, &evaluator, &look, &args.png)?);
     Ok(ExitCode::SUCCESS)
 }

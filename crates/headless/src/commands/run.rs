@@ -10,6 +10,7 @@ use cnets_engine::value::json::to_json;
 use cnets_engine::{Evaluator, NodeContext, NodeFlag, NodeResult};
 use serde_json::{Map, Value as Json, json};
 
+use crate::commands::render::{Look, render_png};
 use crate::failure::{CommandResult, Failure};
 use crate::inputs::apply_set;
 use crate::library;
@@ -33,6 +34,9 @@ pub struct Args {
     /// Print `{ "nodes": { "<id>": { "outputs", "errors", "time_ms" } } }` instead of a summary.
     #[arg(long)]
     json: bool,
+    /// Also render the previewed geometry to this PNG (as `cnets render` with its defaults).
+    #[arg(long)]
+    png: Option<PathBuf>,
 }
 
 fn errors_of(result: Option<&NodeResult>) -> Vec<String> {
@@ -154,6 +158,15 @@ pub fn run(args: Args) -> CommandResult {
         }
         for f in &files {
             println!("wrote {}", f.display());
+        }
+    }
+    if let Some(png) = &args.png {
+        let look = Look::parse("1280x720", "iso", "config", &[])?;
+        let line = render_png(&graph, &evaluator, &look, png)?;
+        if args.json {
+            eprintln!("{line}");
+        } else {
+            println!("{line}");
         }
     }
     if failed.is_empty() {
