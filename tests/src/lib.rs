@@ -31,9 +31,14 @@ pub struct Evaluated {
 }
 
 impl Evaluated {
-    /// Evaluates every node of the document; panics on a failed node, naming it.
+    /// Evaluates every node of the document (exports go to a fresh temporary folder); panics on a
+    /// failed node, naming it.
     pub fn new(doc: Document) -> Self {
-        Self::with_context(doc, &NodeContext::default())
+        static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        let k = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("cnets-tests-{}-{k}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a temporary output folder");
+        Self::with_output(doc, &dir)
     }
 
     /// Evaluates every node with exports written into `out_dir`.

@@ -113,6 +113,12 @@ pub(crate) fn ratio_normal_unnormalized(
     column: usize,
 ) -> Result<DVec3, GeometryError> {
     let d = (g - x_prev) * inv_scale;
+    if d.abs().max_element() <= tolerance::FRAME {
+        // G_{i,j−1} = X_{j−1}: a generatrix vertex on the directrix (a wall standing on it). The
+        // support plane is undefined, but the vertex is not: the step runs along the directrix edge
+        // and meets any plane through X_j at X_j. Use the Monge plane.
+        return Ok(b);
+    }
     let perp = d - e * d.dot(e);
     let n2 = perp.length_squared();
     if !(perp.abs().max_element() > tolerance::FRAME * d.abs().max_element()) || !n2.is_finite() {
