@@ -143,6 +143,14 @@ impl Cluster {
         def.extension.clone()?.downcast::<Cluster>().ok()
     }
 
+    /// Runs `f` on this instance's working copy of the subgraph (its `graph.input` values as the
+    /// last run set them) and its evaluator, e.g. for an editor showing the inner nodes' results.
+    pub fn inspect<R>(&self, f: impl FnOnce(&Graph, &mut Evaluator) -> R) -> R {
+        let mut guard = self.lock();
+        let state = &mut *guard;
+        f(&state.graph, &mut state.evaluator)
+    }
+
     /// Node runs inside this instance so far (all inner nodes).
     pub fn inner_runs(&self) -> u64 {
         self.lock().evaluator.total_runs()

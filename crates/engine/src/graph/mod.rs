@@ -502,6 +502,80 @@ impl Graph {
         Ok(())
     }
 
+    /// Gives node `id` a new definition (e.g. a cluster rebuilt from its edited subgraph), keeping
+    /// its id, creation order, position and flags. Literal values are kept for inputs of the same
+    /// name that accept them; wires are kept where a port of the same name still exists and the
+    /// types still connect (in their original order). Returns the wires that were dropped.
+    pub fn replace_def(&mut self, id: &str, def: Arc<NodeDef>) -> Result<Vec<WireRef>, GraphError> {
+        let index = self.index(id)?;
+        let old = self.inner[index].def.clone();
+        let old_values = std::mem::take(&mut self.inner[index].values);
+        let mut values = vec![None; def.inputs.len()];
+        for (k, port) in def.inputs.iter().enumerate() {
+            let kept = old
+                .input_index(&port.name)
+                .and_then(|j| old_values.get(j).cloned().flatten())
+                .and_then(|v| coerce_leaves(&v, &port.ty).ok());
+            values[k] = kept;
+        }
+        let edges: Vec<(EdgeIndex, NodeIndex, NodeIndex, Wire)> = self
+            .inner
+            .edges_directed(index, Direction::Incoming)
+            .chain(self.inner.edges_directed(index, Direction::Outgoing))
+            .map(|e| (e.id(), e.source(), e.target(), *e.weight()))
+            .collect();
+        let mut dropped = Vec::new();
+        let mut kept = Vec::new();
+        for (edge, a, b, wire) in edges {
+            let (from, to) = (&self.inner[a], &self.inner[b]);
+            let reference = WireRef {
+                from: from.id.clone(),
+                output: from.def.outputs[wire.from_output].name.to_string(),
+                to: to.id.clone(),
+                input: to.def.inputs[wire.to_input].name.to_string(),
+            };
+            let (out_def, in_def) = (
+                if a == index { &def } else { &from.def },
+                if b == index { &def } else { &to.def },
+            );
+            let ports = out_def
+                .output_index(&reference.output)
+                .zip(in_def.input_index(&reference.input))
+                .filter(|&(o, i)| out_def.outputs[o].ty.converts_to(&in_def.inputs[i].ty));
+            match ports {
+                Some((o, i)) => kept.push((
+                    edge,
+                    Wire {
+                        from_output: o,
+                        to_input: i,
+                        order: wire.order,
+                    },
+                )),
+                None => {
+                    self.inner.remove_edge(edge);
+                    dropped.push(reference);
+                }
+            }
+        }
+        for (edge, wire) in kept {
+            if let Some(w) = self.inner.edge_weight_mut(edge) {
+                *w = wire;
+            }
+        }
+        let dependents: Vec<NodeIndex> = self
+            .inner
+            .neighbors_directed(index, Direction::Outgoing)
+            .collect();
+        let node = &mut self.inner[index];
+        node.def = def;
+        node.values = values;
+        self.bump(index);
+        for d in dependents {
+            self.bump(d);
+        }
+        Ok(dropped)
+    }
+
     /// Node indices in a topological order (sources first).
     pub fn topological_order(&self) -> Vec<NodeIndex> {
         petgraph::algo::toposort(&self.inner, None)
