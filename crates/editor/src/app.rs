@@ -5,6 +5,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use cnets_engine::cluster::Cluster;
+use cnets_engine::optimize::Variable;
 use cnets_engine::{Graph, NodeDef, Registry, Value};
 use egui::{Key, KeyboardShortcut, Modifiers, Ui};
 
@@ -12,8 +14,10 @@ use crate::canvas::{self, Canvas, CanvasAction};
 use crate::document::{GraphDocument, fresh_id};
 use crate::export;
 use crate::file_dialog::{FileDialog, Outcome, Purpose};
+use crate::library::{ClusterWatch, Library, LibraryEntry};
 use crate::menus::{self, MenuAction, MenuContext};
-use crate::palette::{self, PaletteState};
+use crate::optimization::OptimizationPanel;
+use crate::palette::{self, PaletteState, Pick};
 use crate::recovery::{Recovered, Recovery};
 use crate::settings::Settings;
 use crate::viewport::Viewport;
@@ -100,7 +104,12 @@ impl Clipboard {
         let mut new_ids = Vec::new();
         for n in &self.nodes {
             let id = fresh_id(graph, &n.id);
-            graph.add_node_with_def(&id, n.def.clone()).map_err(err)?;
+            // A pasted cluster gets its own instance, so the two cache separately.
+            let def = match Cluster::shared(&n.def) {
+                Some(c) => Arc::new(c.duplicate().node_def()),
+                None => n.def.clone(),
+            };
+            graph.add_node_with_def(&id, def).map_err(err)?;
             for (input, value) in &n.values {
                 graph.set_value(&id, input, value.clone()).map_err(err)?;
             }
@@ -201,7 +210,20 @@ pub struct EditorApp {
     gpu: Option<GpuTarget>,
     examples: Vec<PathBuf>,
     examples_dir: PathBuf,
+    /// The user library (and the examples folder), listed in the palette.
+    pub library: Library,
+    /// Cluster files of the graph being edited, checked about once a second.
+    watch: ClusterWatch,
+    last_watch: Instant,
+    /// The optimization panel.
+    pub optimization: OptimizationPanel,
+    /// The opened clusters the canvas was showing in the last frame.
+    canvas_view: Vec<String>,
+    palette_was_open: bool,
 }
+
+/// How often cluster files are checked for changes.
+pub const WATCH_INTERVAL: Duration = Duration::from_secs(1);
 
 impl EditorApp {
     /// The editor on the given file, the gallery's `torus-monge.ron`, or the built-in default.
@@ -211,13 +233,18 @@ impl EditorApp {
         let recovery = Recovery::new(&options.config_dir);
         let offer_restore = recovery.find();
         let mut message = String::new();
+        let library_dirs = vec![settings.library_dir(), options.examples_dir.clone()];
         let torus = options.examples_dir.join("torus-monge.ron");
         let doc = match options
             .file
             .as_deref()
             .or(torus.is_file().then_some(torus.as_path()))
         {
-            Some(path) => match GraphDocument::open(path, &registry) {
+            Some(path) => match GraphDocument::open_with(
+                path,
+                &registry,
+                &crate::library::load_options(Some(path), &library_dirs),
+            ) {
                 Ok(d) => Some(d),
                 Err(e) => {
                     message = e;
@@ -246,7 +273,7 @@ impl EditorApp {
             last_title: String::new(),
             check_overlaps: true,
             show_timings: true,
-            worker: Worker::spawn(options.wake),
+            worker: Worker::spawn(options.wake.clone()),
             submitted: None,
             pending_change: Some(Instant::now()),
             awaiting_picture: None,
@@ -257,7 +284,14 @@ impl EditorApp {
             gpu: options.gpu,
             examples: menus::examples_in(&options.examples_dir),
             examples_dir: options.examples_dir,
+            library: Library::new(library_dirs),
+            watch: ClusterWatch::default(),
+            last_watch: Instant::now(),
+            optimization: OptimizationPanel::new(options.wake),
+            canvas_view: Vec::new(),
+            palette_was_open: false,
         };
+        app.watch.changed(&app.doc.graph);
         app.submit_if_changed();
         app
     }
@@ -298,15 +332,142 @@ impl EditorApp {
         // A new document is a new evaluation generation (fresh evaluator).
         self.doc.start_after(previous);
         self.canvas = Canvas::new();
+        self.canvas_view.clear();
         self.check_overlaps = true;
         self.statuses.clear();
         self.viewport.reset();
         self.pending_change = Some(Instant::now());
+        self.optimization.reset();
+        self.watch.clear();
+        self.watch.changed(&self.doc.graph);
+    }
+
+    /// The folders library graphs come from: the user library, then the examples folder.
+    pub fn library_dirs(&self) -> Vec<PathBuf> {
+        self.library.dirs.clone()
+    }
+
+    /// Load options for the document (its folder, then the library folders).
+    fn load_options(&self) -> cnets_engine::file::LoadOptions {
+        crate::library::load_options(self.doc.path.as_deref(), &self.library.dirs)
+    }
+
+    /// Opens the cluster node `id` in place (the canvas shows its subgraph).
+    pub fn open_cluster(&mut self, id: &str) {
+        match self.doc.enter(id) {
+            Ok(()) => {
+                self.message = format!("inside cluster '{id}' — Esc or the breadcrumbs go back")
+            }
+            Err(e) => self.message = e,
+        }
+    }
+
+    /// Goes back out of opened clusters to breadcrumb level `depth` (0: the document's graph),
+    /// rebuilding each cluster from its edited subgraph.
+    pub fn leave_to(&mut self, depth: usize) {
+        let mut notes = Vec::new();
+        while self.doc.depth() > depth {
+            let id = self.doc.view_path().last().cloned().unwrap_or_default();
+            match self.doc.leave() {
+                Ok(r) => {
+                    let m = r.message();
+                    if !m.is_empty() {
+                        notes.push(format!("'{id}': {m}"));
+                    }
+                }
+                Err(e) => {
+                    self.message = format!("cannot leave the cluster: {e}");
+                    return;
+                }
+            }
+        }
+        self.message = if notes.is_empty() {
+            "back".to_string()
+        } else {
+            notes.join("; ")
+        };
+    }
+
+    /// Inserts a library graph as a cluster node at a canvas position; returns its id.
+    pub fn add_library_cluster(&mut self, entry: &LibraryEntry, at: [f32; 2]) -> Option<String> {
+        let def = match crate::library::cluster_def(
+            &entry.source,
+            &self.registry,
+            &self.load_options(),
+        ) {
+            Ok(d) => d,
+            Err(e) => {
+                self.message = format!("cannot insert {}: {e}", entry.name);
+                return None;
+            }
+        };
+        let id = self.doc.fresh_id(&entry.name);
+        let r = self.doc.edit(None, |g, _| {
+            g.add_node_with_def(&id, def).map_err(|e| e.to_string())?;
+            g.set_position(&id, at).map_err(|e| e.to_string())
+        });
+        match r {
+            Ok(()) => {
+                self.canvas.focused = Some(id.clone());
+                self.watch.changed(&self.doc.graph);
+                Some(id)
+            }
+            Err(e) => {
+                self.message = e;
+                None
+            }
+        }
+    }
+
+    /// Checks the files of the graph's file clusters now and reloads the cluster nodes whose file
+    /// changed (new definition, wires kept where the ports still exist; no undo step: the graph's
+    /// text does not change). Returns whether anything was reloaded.
+    pub fn check_cluster_files(&mut self) -> bool {
+        self.last_watch = Instant::now();
+        let changed = self.watch.changed(&self.doc.graph);
+        if changed.is_empty() {
+            return false;
+        }
+        let options = self.load_options();
+        let nodes: Vec<(String, String)> = crate::library::file_clusters(&self.doc.graph)
+            .into_iter()
+            .filter(|(_, _, path)| changed.contains(path))
+            .map(|(id, written, _)| (id, written))
+            .collect();
+        let mut notes = Vec::new();
+        let registry = self.registry.clone();
+        for (id, written) in nodes {
+            match crate::library::cluster_def(&written, &registry, &options) {
+                Ok(def) => {
+                    match self
+                        .doc
+                        .update_quietly(|g| g.replace_def(&id, def).map_err(|e| e.to_string()))
+                    {
+                        Ok(dropped) if dropped.is_empty() => {
+                            notes.push(format!("reloaded '{id}' from {written}"))
+                        }
+                        Ok(dropped) => notes.push(format!(
+                            "reloaded '{id}' from {written}; dropped wires: {}",
+                            dropped
+                                .iter()
+                                .map(ToString::to_string)
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        )),
+                        Err(e) => notes.push(format!("cannot reload '{id}': {e}")),
+                    }
+                }
+                Err(e) => notes.push(format!("cannot reload '{id}' from {written}: {e}")),
+            }
+        }
+        self.message = notes.join("; ");
+        true
     }
 
     /// Opens a graph file.
     pub fn open(&mut self, path: &Path) {
-        match GraphDocument::open(path, &self.registry) {
+        let options = crate::library::load_options(Some(path), &self.library.dirs);
+        match GraphDocument::open_with(path, &self.registry, &options) {
             Ok(d) => {
                 self.replace_doc(d);
                 self.settings.add_recent(path);
@@ -349,12 +510,53 @@ impl EditorApp {
 
     /// Applies a canvas action; a refusal becomes the status message. Returns whether it applied.
     pub fn apply(&mut self, action: CanvasAction) -> bool {
-        if let CanvasAction::OpenPalette(at) = action {
-            self.palette.open_at(at);
-            return true;
-        }
-        match canvas::apply(&mut self.doc, action) {
-            Ok(()) => true,
+        let handled = match action {
+            CanvasAction::OpenPalette(at) => {
+                self.palette.open_at(at);
+                return true;
+            }
+            CanvasAction::OpenCluster(id) => {
+                self.open_cluster(&id);
+                return true;
+            }
+            CanvasAction::Optimize {
+                path,
+                min,
+                max,
+                prepare,
+            } => {
+                let variable = Variable {
+                    input: path,
+                    min,
+                    max,
+                };
+                self.optimization.open = true;
+                self.optimization
+                    .add_variable(&mut self.doc, variable, prepare)
+            }
+            CanvasAction::Minimize(path) => {
+                self.optimization.open = true;
+                self.optimization.set_objective(&mut self.doc, path)
+            }
+            CanvasAction::Penalize(path) => {
+                self.optimization.open = true;
+                self.optimization.add_penalty(&mut self.doc, path)
+            }
+            other => {
+                return match canvas::apply(&mut self.doc, other) {
+                    Ok(()) => true,
+                    Err(e) => {
+                        self.message = format!("refused: {e}");
+                        false
+                    }
+                };
+            }
+        };
+        match handled {
+            Ok(m) => {
+                self.message = m;
+                true
+            }
             Err(e) => {
                 self.message = format!("refused: {e}");
                 false
@@ -454,6 +656,48 @@ impl EditorApp {
                 }
             }
             MenuAction::SetPreview(o) => self.viewport.options = o,
+            MenuAction::MakeCluster => {
+                let targets = self.canvas.targets();
+                if targets.is_empty() {
+                    self.message =
+                        "select the nodes to put in a cluster (Shift+click, Shift+drag)".into();
+                } else if self.apply(CanvasAction::MakeCluster(targets)) {
+                    self.canvas.selected.clear();
+                    self.message = "made a cluster: double-click its title to open it".into();
+                }
+            }
+            MenuAction::ExplodeCluster => {
+                let cluster = self.canvas.targets().into_iter().find(|id| {
+                    self.doc
+                        .graph
+                        .node(id)
+                        .is_some_and(|n| Cluster::of(&n.def).is_some())
+                });
+                match cluster {
+                    Some(id) => {
+                        self.apply(CanvasAction::ExplodeCluster(id));
+                    }
+                    None => self.message = "focus a cluster node to explode it".into(),
+                }
+            }
+            MenuAction::OpenCluster => {
+                let cluster = self.canvas.targets().into_iter().find(|id| {
+                    self.doc
+                        .graph
+                        .node(id)
+                        .is_some_and(|n| Cluster::of(&n.def).is_some())
+                });
+                match cluster {
+                    Some(id) => self.open_cluster(&id),
+                    None => self.message = "focus a cluster node to open it".into(),
+                }
+            }
+            MenuAction::LeaveTo(depth) => self.leave_to(depth),
+            MenuAction::ToggleOptimization => self.optimization.open = !self.optimization.open,
+            MenuAction::LibraryFolder => {
+                let start = self.settings.library_dir();
+                self.dialog = Some(FileDialog::new(Purpose::LibraryFolder, &start));
+            }
             MenuAction::Quit => self.request_close(),
         }
     }
@@ -480,6 +724,7 @@ impl EditorApp {
                 }
             };
             take(shift_cmd, Key::Z, MenuAction::Redo);
+            take(shift_cmd, Key::G, MenuAction::ExplodeCluster);
             take(shift_cmd, Key::S, MenuAction::SaveAs);
             take(cmd, Key::S, MenuAction::Save);
             take(cmd, Key::O, MenuAction::Open);
@@ -489,6 +734,7 @@ impl EditorApp {
                 take(cmd, Key::Y, MenuAction::Redo);
                 take(cmd, Key::D, MenuAction::Duplicate);
                 take(cmd, Key::L, MenuAction::Arrange);
+                take(cmd, Key::G, MenuAction::MakeCluster);
                 take(cmd, Key::C, MenuAction::Copy);
                 take(cmd, Key::V, MenuAction::Paste);
                 take(Modifiers::NONE, Key::Delete, MenuAction::Delete);
@@ -496,6 +742,16 @@ impl EditorApp {
                 take(Modifiers::NONE, Key::Home, MenuAction::FitCanvas);
             }
         });
+        // Esc backs out of an opened cluster (the palette and dialogs take it first).
+        let depth = self.doc.depth();
+        if depth > 0
+            && !typing
+            && !self.palette.open
+            && self.dialog.is_none()
+            && ctx.input(|i| i.key_pressed(Key::Escape))
+        {
+            actions.push(MenuAction::LeaveTo(depth - 1));
+        }
         // Copy and paste arrive as events, not key presses, on some platforms.
         if !typing {
             ctx.input(|i| {
@@ -541,8 +797,9 @@ impl EditorApp {
             .as_deref()
             .and_then(Path::parent)
             .map(Path::to_path_buf);
-        self.worker.submit(
-            self.doc.graph.clone(),
+        self.worker.submit_view(
+            self.doc.eval_graph(),
+            self.doc.view_path(),
             self.doc.generation(),
             self.viewport.options,
             base,
@@ -573,7 +830,11 @@ impl EditorApp {
     pub fn ui(&mut self, ui: &mut Ui) {
         let ctx = ui.ctx().clone();
         self.poll_worker();
+        self.optimization.poll();
         self.shortcuts(&ctx);
+        if self.last_watch.elapsed() >= WATCH_INTERVAL {
+            self.check_cluster_files();
+        }
         let version_before = self.doc.version();
 
         egui::Panel::top("cnets-menu").show(ui, |ui| {
@@ -584,6 +845,9 @@ impl EditorApp {
                 can_redo: self.doc.history.can_redo(),
                 can_paste: !self.clipboard.is_empty(),
                 preview: self.viewport.options,
+                depth: self.doc.depth(),
+                optimization: self.optimization.open,
+                library: &self.library.dirs[0],
             };
             if let Some(a) = menus::menu_bar(ui, &mc) {
                 self.run(a);
@@ -606,6 +870,25 @@ impl EditorApp {
                 ui.label(&self.message);
             });
         });
+        if self.optimization.open {
+            let base = self
+                .doc
+                .path
+                .as_deref()
+                .and_then(Path::parent)
+                .map(Path::to_path_buf);
+            egui::Panel::bottom("cnets-optimization")
+                .resizable(true)
+                .default_size(270.0)
+                .min_size(120.0)
+                .show(ui, |ui| {
+                    if let Some(m) = self.optimization.show(ui, &mut self.doc, base)
+                        && !m.is_empty()
+                    {
+                        self.message = m;
+                    }
+                });
+        }
         egui::Panel::right("cnets-viewport")
             .resizable(true)
             .default_size(ui.available_width() * 0.45)
@@ -631,15 +914,42 @@ impl EditorApp {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {
+                if self.canvas_view != self.doc.view_path() {
+                    // Another graph level: a fresh canvas framing it, no stale statuses.
+                    self.canvas = Canvas::new();
+                    self.canvas_view = self.doc.view_path();
+                    self.statuses.clear();
+                }
+                if self.doc.depth() > 0
+                    && let Some(to) = breadcrumbs(ui, &self.doc)
+                {
+                    self.leave_to(to);
+                }
                 let actions = self.canvas.show(ui, &self.doc.graph, &self.statuses);
                 for a in actions {
                     self.apply(a);
                 }
             });
 
-        if let Some(type_id) = palette::show(&ctx, &mut self.palette, &self.registry) {
-            let at = self.palette.at;
-            self.add_node(&type_id, at);
+        if self.palette.open && !self.palette_was_open {
+            self.library.scan(&self.registry);
+        }
+        self.palette_was_open = self.palette.open;
+        match palette::show(
+            &ctx,
+            &mut self.palette,
+            &self.registry,
+            self.library.entries(),
+        ) {
+            Some(Pick::Type(type_id)) => {
+                let at = self.palette.at;
+                self.add_node(&type_id, at);
+            }
+            Some(Pick::Library(entry)) => {
+                let at = self.palette.at;
+                self.add_library_cluster(&entry, at);
+            }
+            None => {}
         }
         if self.check_overlaps && self.canvas.measured(self.doc.graph.node_count()) {
             self.check_overlaps = false;
@@ -695,6 +1005,10 @@ impl EditorApp {
         if self.worker.busy() {
             ctx.request_repaint_after(Duration::from_millis(30));
         }
+        if !crate::library::file_clusters(&self.doc.graph).is_empty() {
+            // Keep checking cluster files while idle.
+            ctx.request_repaint_after(WATCH_INTERVAL);
+        }
     }
 
     fn show_dialog(&mut self, ctx: &egui::Context) {
@@ -709,6 +1023,17 @@ impl EditorApp {
                 self.dialog = None;
                 match purpose {
                     Purpose::Open => self.open(&path),
+                    Purpose::LibraryFolder => {
+                        let _ = std::fs::create_dir_all(&path);
+                        self.settings.set_library(&path);
+                        self.library.dirs[0] = path.clone();
+                        self.library.scan(&self.registry);
+                        self.message = format!(
+                            "library folder: {} ({} graphs with an interface)",
+                            path.display(),
+                            self.library.entries().len()
+                        );
+                    }
                     Purpose::SaveAs => self.save_as(&path),
                     Purpose::ExportFolder(format) => {
                         let name = self
@@ -825,6 +1150,41 @@ impl EditorApp {
     pub fn on_exit(&mut self) {
         self.recovery.clear();
     }
+}
+
+/// The breadcrumb bar above the canvas inside an opened cluster: `main ▸ bay (inline)`; returns
+/// the level clicked (0: the document's own graph).
+fn breadcrumbs(ui: &mut Ui, doc: &GraphDocument) -> Option<usize> {
+    let mut picked = None;
+    let crumbs = doc.breadcrumbs();
+    egui::Frame::new()
+        .fill(ui.visuals().faint_bg_color)
+        .inner_margin(egui::Margin::symmetric(8, 4))
+        .show(ui, |ui| {
+            ui.set_width(ui.available_width());
+            ui.horizontal(|ui| {
+                let last = crumbs.len() - 1;
+                for (k, crumb) in crumbs.iter().enumerate() {
+                    if k > 0 {
+                        ui.weak("▸");
+                    }
+                    if k == last {
+                        ui.strong(crumb);
+                    } else if ui
+                        .link(crumb)
+                        .on_hover_text("go back to this graph (the cluster is rebuilt)")
+                        .clicked()
+                    {
+                        picked = Some(k);
+                    }
+                }
+                ui.weak("   Esc: back");
+                if let Some(e) = &doc.live_error {
+                    ui.colored_label(egui::Color32::from_rgb(0xd6, 0x2f, 0x2f), e);
+                }
+            });
+        });
+    picked
 }
 
 #[cfg(test)]

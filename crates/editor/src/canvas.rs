@@ -14,6 +14,8 @@ use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 
+use cnets_engine::cluster::{Cluster, explode, make_cluster};
+use cnets_engine::optimize::ValuePath;
 use cnets_engine::{Access, Graph, NodeFlag, PortDef, Value, ValueType};
 use egui::emath::TSTransform;
 use egui::{Color32, Pos2, Rect, Stroke, Ui};
@@ -110,6 +112,28 @@ pub enum CanvasAction {
     Duplicate(Vec<String>),
     /// Open the node palette at a canvas position.
     OpenPalette([f32; 2]),
+    /// Replace these nodes by one cluster node (wires crossing the selection become its ports).
+    MakeCluster(Vec<String>),
+    /// Replace a cluster node by the nodes of its subgraph.
+    ExplodeCluster(String),
+    /// Open a cluster node to edit its subgraph in place.
+    OpenCluster(String),
+    /// Make a number inside an input's literal value an optimization variable.
+    Optimize {
+        /// The number (`node.input[...]`).
+        path: ValuePath,
+        /// Lower bound.
+        min: f64,
+        /// Upper bound.
+        max: f64,
+        /// A literal to set on the input first (a graph mapper's default handles, which have no
+        /// literal yet).
+        prepare: Option<Value>,
+    },
+    /// Make a number output the optimization objective.
+    Minimize(ValuePath),
+    /// Add a number output as an optimization penalty (kept at most at its current value).
+    Penalize(ValuePath),
 }
 
 /// Where a pin is, for tests that drag wires: (node id, is input, port index).
@@ -400,6 +424,7 @@ impl Canvas {
             pressed_node: None,
             fit,
             plots: HashMap::new(),
+            selected: self.selected.clone(),
         };
         let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
         self.to_global = viewer.to_global;
@@ -530,7 +555,23 @@ pub fn apply(doc: &mut crate::document::GraphDocument, action: CanvasAction) -> 
             let clip = crate::app::Clipboard::copy(&doc.graph, &ids);
             doc.edit(None, |g, _| clip.paste(g, [30.0, 30.0], true).map(|_| ()))
         }
-        CanvasAction::OpenPalette(_) => Ok(()),
+        CanvasAction::MakeCluster(ids) => {
+            let id = crate::document::fresh_id(&doc.graph, "cluster");
+            doc.edit(None, |g, _| {
+                let selection: Vec<&str> = ids.iter().map(String::as_str).collect();
+                make_cluster(g, &selection, &id)
+                    .map(|_| ())
+                    .map_err(|e| e.to_string())
+            })
+        }
+        CanvasAction::ExplodeCluster(id) => doc.edit(None, |g, _| {
+            explode(g, &id).map(|_| ()).map_err(|e| e.to_string())
+        }),
+        CanvasAction::OpenPalette(_)
+        | CanvasAction::OpenCluster(_)
+        | CanvasAction::Optimize { .. }
+        | CanvasAction::Minimize(_)
+        | CanvasAction::Penalize(_) => Ok(()),
     }
 }
 
@@ -595,6 +636,7 @@ struct Viewer<'a> {
     pressed_node: Option<String>,
     fit: Option<TSTransform>,
     plots: HashMap<String, Rect>,
+    selected: Vec<String>,
 }
 
 impl Viewer<'_> {
@@ -668,18 +710,35 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         let Some(instance) = self.graph.node(&id) else {
             return;
         };
+        let cluster = Cluster::of(&instance.def);
         ui.horizontal(|ui| {
+            let sense = if cluster.is_some() {
+                egui::Sense::click()
+            } else {
+                egui::Sense::hover()
+            };
             let title = ui
-                .add(
-                    egui::Label::new(egui::RichText::new(&id).strong()).sense(egui::Sense::hover()),
-                )
+                .add(egui::Label::new(egui::RichText::new(&id).strong()).sense(sense))
                 .on_hover_ui(|ui| {
                     ui.set_max_width(360.0);
                     ui.strong(instance.def.id.as_ref());
                     ui.label(instance.def.doc.as_ref());
+                    if cluster.is_some() {
+                        ui.weak("double-click to open it");
+                    }
                 });
-            let _ = title;
-            ui.weak(instance.def.id.as_ref());
+            if cluster.is_some() && title.double_clicked() {
+                self.actions.push(CanvasAction::OpenCluster(id.clone()));
+            }
+            match cluster {
+                Some(c) => {
+                    ui.weak(format!("cluster · {}", c.label()))
+                        .on_hover_text(instance.def.doc.as_ref());
+                }
+                None => {
+                    ui.weak(instance.def.id.as_ref());
+                }
+            }
             let mut preview = instance.preview;
             if ui
                 .toggle_value(&mut preview, "👁")
@@ -755,17 +814,29 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             if missing {
                 text = text.color(ERROR_COLOR);
             }
-            ui.label(text).on_hover_text(format!(
-                "{} — {}{}",
-                port.type_name(),
-                port.doc,
-                if missing {
-                    "\n(required: connect it or set a value)"
-                } else {
-                    ""
-                }
-            ));
             let k = pin.id.input;
+            let label = ui
+                .add(egui::Label::new(text).sense(egui::Sense::click()))
+                .on_hover_text(format!(
+                    "{} — {}{}",
+                    port.type_name(),
+                    port.doc,
+                    if missing {
+                        "\n(required: connect it or set a value)"
+                    } else {
+                        ""
+                    }
+                ));
+            if !wired {
+                let candidates = crate::optimization::variable_candidates(instance, k);
+                if !candidates.is_empty() {
+                    label.context_menu(|ui| {
+                        if let Some(c) = crate::optimization::variable_menu(ui, &candidates) {
+                            self.actions.push(c);
+                        }
+                    });
+                }
+            }
             let unset_optional =
                 port.optional && port.default.is_none() && instance.value(k).is_none();
             if !wired && unset_optional && widgets::has_editor(instance, k) {
@@ -844,11 +915,36 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             if let Some(s) = summary {
                 ui.weak(s);
             }
-            ui.label(port.name.as_ref()).on_hover_text(format!(
-                "{} — {}",
-                port.type_name(),
-                port.doc
-            ));
+            let label = ui
+                .add(egui::Label::new(port.name.as_ref()).sense(egui::Sense::click()))
+                .on_hover_text(format!("{} — {}", port.type_name(), port.doc));
+            if port.ty == ValueType::Number {
+                label.context_menu(|ui| {
+                    let path = ValuePath {
+                        node: id.clone(),
+                        port: port.name.to_string(),
+                        indices: Vec::new(),
+                    };
+                    if ui
+                        .button("Minimize this output")
+                        .on_hover_text("make it the optimization objective")
+                        .clicked()
+                    {
+                        self.actions.push(CanvasAction::Minimize(path.clone()));
+                        ui.close();
+                    }
+                    if ui
+                        .button("Add as penalty")
+                        .on_hover_text(
+                            "a soft constraint of the optimization (edit it in the panel)",
+                        )
+                        .clicked()
+                    {
+                        self.actions.push(CanvasAction::Penalize(path));
+                        ui.close();
+                    }
+                });
+            }
         });
         RecordingPin {
             info: pin_info(port),
@@ -878,6 +974,9 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             if let Some(values) = r.changes {
                 self.actions
                     .push(CanvasAction::SetValues { node: id, values });
+            }
+            if let Some(a) = r.optimize {
+                self.actions.push(a);
             }
         }
     }
@@ -927,6 +1026,38 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         if ui.button("Delete").clicked() {
             self.actions.push(CanvasAction::Remove(vec![id.clone()]));
             ui.close();
+        }
+        ui.separator();
+        let group = if self.selected.contains(&id) {
+            self.selected.clone()
+        } else {
+            vec![id.clone()]
+        };
+        if ui
+            .button(format!("Make cluster ({} nodes)", group.len()))
+            .on_hover_text("replace the selected nodes by one cluster node (Ctrl+G)")
+            .clicked()
+        {
+            self.actions.push(CanvasAction::MakeCluster(group));
+            ui.close();
+        }
+        if self
+            .graph
+            .node(&id)
+            .is_some_and(|n| Cluster::of(&n.def).is_some())
+        {
+            if ui.button("Open cluster").clicked() {
+                self.actions.push(CanvasAction::OpenCluster(id.clone()));
+                ui.close();
+            }
+            if ui
+                .button("Explode cluster")
+                .on_hover_text("put the cluster's nodes back in its place (Ctrl+Shift+G)")
+                .clicked()
+            {
+                self.actions.push(CanvasAction::ExplodeCluster(id.clone()));
+                ui.close();
+            }
         }
         if let Some(n) = self.graph.node(&id)
             && n.def.has_flag(NodeFlag::Export)

@@ -1,14 +1,108 @@
 //! The graph document: the engine [`Graph`] with its [`GraphMeta`] and file path — the single source
 //! of truth of the editor. Every edit goes through [`GraphDocument::edit`], which records an undo
 //! step (see [`crate::history`]) and marks the document dirty.
+//!
+//! A cluster can be opened in place ([`GraphDocument::enter`]): the document then edits the
+//! cluster's subgraph, with the graphs around it kept on a stack of [`Level`]s (the breadcrumbs).
+//! Leaving ([`GraphDocument::leave`]) rebuilds the cluster from the edited subgraph and gives the
+//! cluster node the new definition, keeping its wires where the ports still exist. While inside,
+//! the worker evaluates a *live* copy of the document's own graph in which the cluster is rebuilt
+//! after every edit, so the inner nodes show the values the cluster really receives. Edits inside
+//! a cluster loaded from a file make it an inline cluster (its file is left unchanged).
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use cnets_engine::file::{self, GraphMeta};
-use cnets_engine::{Graph, Registry};
+use cnets_engine::cluster::{Cluster, ClusterSource};
+use cnets_engine::file::{self, GraphMeta, LoadOptions};
+use cnets_engine::{Graph, Registry, WireRef};
 
 use crate::history::{EditKey, History, Snapshot};
+
+/// A graph around a cluster opened in place: the graph as it was when the cluster was opened.
+#[derive(Clone, Debug)]
+pub struct Level {
+    /// The graph holding the cluster node.
+    pub graph: Graph,
+    /// Its metadata.
+    pub meta: GraphMeta,
+    /// The cluster node's id in `graph`.
+    pub node: String,
+    /// The cluster as it was opened.
+    pub cluster: Arc<Cluster>,
+}
+
+impl Level {
+    /// The breadcrumb of the opened cluster: its node id and its label (`bay (bay.ron)`).
+    pub fn crumb(&self) -> String {
+        format!("{} ({})", self.node, self.cluster.label())
+    }
+}
+
+/// What leaving a cluster (or rebuilding it for evaluation) did to the graph around it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Rebuilt {
+    /// Whether the subgraph changed (the cluster node got a new definition).
+    pub changed: bool,
+    /// Wires of the cluster node dropped because their port no longer exists (or no longer
+    /// takes the type).
+    pub dropped: Vec<WireRef>,
+    /// The cluster came from a file and is now inline (set when its subgraph changed).
+    pub made_inline: Option<String>,
+}
+
+impl Rebuilt {
+    /// A status-bar summary, empty when nothing needs saying.
+    pub fn message(&self) -> String {
+        let mut parts = Vec::new();
+        if let Some(file) = &self.made_inline {
+            parts.push(format!(
+                "the cluster from '{file}' was edited: it is now inline (the file is unchanged)"
+            ));
+        }
+        if !self.dropped.is_empty() {
+            let wires: Vec<String> = self.dropped.iter().map(ToString::to_string).collect();
+            parts.push(format!(
+                "dropped wires whose ports are gone: {}",
+                wires.join(", ")
+            ));
+        }
+        parts.join("; ")
+    }
+}
+
+/// Rebuilds the cluster of `level` from an edited subgraph: the graph around it with the cluster
+/// node's new definition (the level's own graph when the subgraph is unchanged).
+pub fn rebuild(level: &Level, graph: &Graph, meta: &GraphMeta) -> Result<(Graph, Rebuilt), String> {
+    let unchanged =
+        file::to_ron(graph, meta) == file::to_ron(&level.cluster.template, &level.cluster.meta);
+    if unchanged {
+        return Ok((level.graph.clone(), Rebuilt::default()));
+    }
+    let made_inline = match &level.cluster.source {
+        ClusterSource::File { written, .. } => Some(written.clone()),
+        ClusterSource::Inline => None,
+    };
+    let cluster = Cluster::new(
+        ClusterSource::Inline,
+        graph.clone(),
+        meta.clone(),
+        level.cluster.base_dir.clone(),
+    )
+    .map_err(|e| format!("cluster '{}': {e}", level.node))?;
+    let mut parent = level.graph.clone();
+    let dropped = parent
+        .replace_def(&level.node, Arc::new(cluster.node_def()))
+        .map_err(|e| e.to_string())?;
+    Ok((
+        parent,
+        Rebuilt {
+            changed: true,
+            dropped,
+            made_inline,
+        },
+    ))
+}
 
 /// A graph being edited.
 pub struct GraphDocument {
@@ -20,6 +114,13 @@ pub struct GraphDocument {
     pub path: Option<PathBuf>,
     /// Undo / redo.
     pub history: History,
+    /// Clusters opened in place, outermost first; `graph` is the innermost one's subgraph.
+    stack: Vec<Level>,
+    /// While inside a cluster: the document's own graph with the opened clusters rebuilt from the
+    /// subgraphs being edited (what the worker evaluates).
+    live: Option<Graph>,
+    /// Why the live graph could not be rebuilt after the last edit (e.g. an invalid port name).
+    pub live_error: Option<String>,
     /// Changes since the last save.
     dirty: bool,
     /// Bumped when the graph was replaced wholesale (open, new, undo, redo): the evaluator must
@@ -42,6 +143,9 @@ impl GraphDocument {
             meta,
             path,
             history: History::default(),
+            stack: Vec::new(),
+            live: None,
+            live_error: None,
             dirty: false,
             generation: 0,
             version: 0,
@@ -50,7 +154,16 @@ impl GraphDocument {
 
     /// Loads a graph file. The error text lists every diagnostic (`file:line:col: message`).
     pub fn open(path: &Path, registry: &Arc<Registry>) -> Result<Self, String> {
-        let doc = file::load_file(path, registry).map_err(|e| e.to_string())?;
+        Self::open_with(path, registry, &LoadOptions::for_file(path))
+    }
+
+    /// Loads a graph file with explicit options (library folders for cluster sources).
+    pub fn open_with(
+        path: &Path,
+        registry: &Arc<Registry>,
+        options: &LoadOptions,
+    ) -> Result<Self, String> {
+        let doc = file::load_file_with(path, registry, options).map_err(|e| e.to_string())?;
         Ok(Self::from_parts(
             doc.graph,
             doc.meta,
@@ -69,18 +182,203 @@ impl GraphDocument {
         Ok(Self::from_parts(doc.graph, doc.meta, path))
     }
 
-    /// Saves atomically to `path` (and remembers it as the document's path).
+    /// Saves atomically to `path` (and remembers it as the document's path). Inside a cluster,
+    /// the document's own graph is saved with the cluster rebuilt from its edited subgraph.
     pub fn save_as(&mut self, path: &Path) -> Result<(), String> {
-        file::save_file(path, &self.graph, &self.meta)
+        let (graph, meta, _) = self.compose()?;
+        file::save_file(path, &graph, &meta)
             .map_err(|e| format!("cannot save {}: {e}", path.display()))?;
         self.path = Some(path.to_path_buf());
         self.dirty = false;
         Ok(())
     }
 
-    /// The canonical file text of the current graph.
+    /// The canonical file text of the document (inside a cluster: the document's own graph with
+    /// the cluster rebuilt from the edited subgraph, as a save would write it; when the subgraph
+    /// cannot be rebuilt, the graph as it was when the cluster was opened).
     pub fn to_ron(&self) -> String {
+        match self.compose() {
+            Ok((graph, meta, _)) => file::to_ron(&graph, &meta),
+            Err(_) => {
+                let root = &self.stack[0];
+                file::to_ron(&root.graph, &root.meta)
+            }
+        }
+    }
+
+    /// The canonical text of the graph being edited (the opened cluster's subgraph when inside one).
+    pub fn level_ron(&self) -> String {
         file::to_ron(&self.graph, &self.meta)
+    }
+
+    /// The document's own graph with every opened cluster rebuilt from its edited subgraph.
+    pub fn compose(&self) -> Result<(Graph, GraphMeta, Rebuilt), String> {
+        let (mut graph, mut meta) = (self.graph.clone(), self.meta.clone());
+        let mut last = Rebuilt::default();
+        for level in self.stack.iter().rev() {
+            let (parent, rebuilt) = rebuild(level, &graph, &meta)?;
+            graph = parent;
+            meta = level.meta.clone();
+            last = rebuilt;
+        }
+        Ok((graph, meta, last))
+    }
+
+    /// How deep in opened clusters the document is (0: its own graph).
+    pub fn depth(&self) -> usize {
+        self.stack.len()
+    }
+
+    /// The opened clusters, outermost first.
+    pub fn levels(&self) -> &[Level] {
+        &self.stack
+    }
+
+    /// The ids of the opened cluster nodes, outermost first (the path the worker descends).
+    pub fn view_path(&self) -> Vec<String> {
+        self.stack.iter().map(|l| l.node.clone()).collect()
+    }
+
+    /// The breadcrumbs: the document's name, then each opened cluster.
+    pub fn breadcrumbs(&self) -> Vec<String> {
+        let root = self
+            .path
+            .as_deref()
+            .and_then(Path::file_stem)
+            .map_or_else(|| "main".to_string(), |s| s.to_string_lossy().into_owned());
+        std::iter::once(root)
+            .chain(self.stack.iter().map(Level::crumb))
+            .collect()
+    }
+
+    /// The graph the worker evaluates: the document's own graph (inside a cluster, the live copy
+    /// with the opened clusters rebuilt from their edited subgraphs).
+    pub fn eval_graph(&self) -> Graph {
+        match &self.live {
+            Some(g) if !self.stack.is_empty() => g.clone(),
+            _ => self.graph.clone(),
+        }
+    }
+
+    /// Opens the cluster node `id` of the graph being edited: from now on edits apply to its
+    /// subgraph. Not an undo step (undo restores where each step was made).
+    pub fn enter(&mut self, id: &str) -> Result<(), String> {
+        let node = self
+            .graph
+            .node(id)
+            .ok_or_else(|| format!("no node '{id}'"))?;
+        let cluster =
+            Cluster::shared(&node.def).ok_or_else(|| format!("node '{id}' is not a cluster"))?;
+        if self.stack.is_empty() {
+            // The live copy starts as the document's graph itself: same revisions, so the worker's
+            // results stay valid.
+            self.live = Some(self.graph.clone());
+        }
+        self.stack.push(Level {
+            graph: std::mem::replace(&mut self.graph, cluster.template.clone()),
+            meta: std::mem::replace(&mut self.meta, cluster.meta.clone()),
+            node: id.to_string(),
+            cluster,
+        });
+        self.live_error = None;
+        self.version += 1;
+        Ok(())
+    }
+
+    /// Closes the innermost opened cluster: rebuilds it from the edited subgraph and gives the
+    /// cluster node its new definition (one undo step when anything changed). Refused (staying
+    /// inside) when the subgraph's interface is invalid.
+    pub fn leave(&mut self) -> Result<Rebuilt, String> {
+        let Some(level) = self.stack.last() else {
+            return Err("not inside a cluster".into());
+        };
+        let (parent, rebuilt) = rebuild(level, &self.graph, &self.meta)?;
+        let level = self.stack.pop().unwrap_or_else(|| unreachable!());
+        if rebuilt.changed {
+            let before = Snapshot {
+                graph: std::mem::replace(&mut self.graph, parent),
+                meta: std::mem::replace(&mut self.meta, level.meta.clone()),
+                stack: {
+                    let mut s = self.stack.clone();
+                    s.push(level);
+                    s
+                },
+            };
+            self.history.record(before, None);
+            self.dirty = true;
+        } else {
+            self.graph = parent;
+            self.meta = level.meta;
+        }
+        if self.stack.is_empty() {
+            self.live = None;
+        } else {
+            self.refresh_live();
+        }
+        self.live_error = None;
+        // The rebuilt graph's revisions are not comparable with the live copy the worker saw.
+        self.generation += 1;
+        self.version += 1;
+        Ok(rebuilt)
+    }
+
+    /// Rebuilds the live graph after an edit inside a cluster. The live graph keeps increasing
+    /// revisions (the worker evaluates it incrementally); wires of the cluster node that were
+    /// dropped by an earlier rebuild come back when their ports exist again.
+    fn refresh_live(&mut self) {
+        if self.stack.is_empty() {
+            self.live = None;
+            return;
+        }
+        let (mut graph, mut meta) = (self.graph.clone(), self.meta.clone());
+        for level in self.stack[1..].iter().rev() {
+            match rebuild(level, &graph, &meta) {
+                Ok((parent, _)) => {
+                    graph = parent;
+                    meta = level.meta.clone();
+                }
+                Err(e) => {
+                    self.live_error = Some(e);
+                    return;
+                }
+            }
+        }
+        let root = &self.stack[0];
+        let def = match rebuild(root, &graph, &meta) {
+            Ok((g, _)) => g.node(&root.node).map(|n| n.def.clone()),
+            Err(e) => {
+                self.live_error = Some(e);
+                return;
+            }
+        };
+        let Some(def) = def else { return };
+        let live = self.live.get_or_insert_with(|| root.graph.clone());
+        if live.replace_def(&root.node, def).is_err() {
+            *live = root.graph.clone();
+        }
+        let present = live.wires();
+        for w in root.graph.wires() {
+            if (w.from == root.node || w.to == root.node) && !present.contains(&w) {
+                let _ = live.connect(&w.from, &w.output, &w.to, &w.input);
+            }
+        }
+        self.live_error = None;
+    }
+
+    /// Changes the graph being edited without an undo step (e.g. a cluster file reloaded from
+    /// disk: the file text does not change).
+    pub fn update_quietly<R>(
+        &mut self,
+        f: impl FnOnce(&mut Graph) -> Result<R, String>,
+    ) -> Result<R, String> {
+        let mut graph = self.graph.clone();
+        let r = f(&mut graph)?;
+        self.graph = graph;
+        self.version += 1;
+        if !self.stack.is_empty() {
+            self.refresh_live();
+        }
+        Ok(r)
     }
 
     /// Whether there are unsaved changes.
@@ -123,6 +421,7 @@ impl GraphDocument {
         Snapshot {
             graph: self.graph.clone(),
             meta: self.meta.clone(),
+            stack: self.stack.clone(),
         }
     }
 
@@ -146,6 +445,9 @@ impl GraphDocument {
             self.meta = meta;
             self.dirty = true;
             self.version += 1;
+            if !self.stack.is_empty() {
+                self.refresh_live();
+            }
         }
         Ok(result)
     }
@@ -154,6 +456,9 @@ impl GraphDocument {
     fn restore(&mut self, snapshot: Snapshot) {
         self.graph = snapshot.graph;
         self.meta = snapshot.meta;
+        self.stack = snapshot.stack;
+        self.live = None;
+        self.refresh_live();
         self.dirty = true;
         self.generation += 1;
         self.version += 1;

@@ -12,6 +12,8 @@ pub enum Purpose {
     SaveAs,
     /// Pick the folder exports are written into.
     ExportFolder(crate::export::ExportFormat),
+    /// Pick the user library folder.
+    LibraryFolder,
 }
 
 impl Purpose {
@@ -20,11 +22,12 @@ impl Purpose {
             Purpose::Open => "Open graph",
             Purpose::SaveAs => "Save graph as",
             Purpose::ExportFolder(_) => "Export into folder",
+            Purpose::LibraryFolder => "Library folder",
         }
     }
 
     fn wants_folder(self) -> bool {
-        matches!(self, Purpose::ExportFolder(_))
+        matches!(self, Purpose::ExportFolder(_) | Purpose::LibraryFolder)
     }
 }
 
@@ -111,6 +114,8 @@ impl FileDialog {
             }
             Purpose::ExportFolder(_) if p.is_dir() || p.parent().is_some_and(Path::is_dir) => Ok(p),
             Purpose::ExportFolder(_) => Err(format!("{} is not a folder", p.display())),
+            Purpose::LibraryFolder if p.is_dir() || p.parent().is_some_and(Path::is_dir) => Ok(p),
+            Purpose::LibraryFolder => Err(format!("{} is not a folder", p.display())),
         }
     }
 
@@ -164,6 +169,7 @@ impl FileDialog {
                         Purpose::Open => "Open",
                         Purpose::SaveAs => "Save",
                         Purpose::ExportFolder(_) => "Export here",
+                        Purpose::LibraryFolder => "Use this folder",
                     };
                     if ui.button(ok).clicked() || enter {
                         match self.validate() {

@@ -9,16 +9,21 @@
 use cnets_engine::Graph;
 use cnets_engine::file::GraphMeta;
 
+use crate::document::Level;
+
 /// Most steps kept; older ones are dropped.
 pub const MAX_STEPS: usize = 200;
 
 /// A document state.
 #[derive(Clone, Debug)]
 pub struct Snapshot {
-    /// The graph.
+    /// The graph being edited (the document's, or a cluster's subgraph opened in place).
     pub graph: Graph,
     /// Its metadata.
     pub meta: GraphMeta,
+    /// The clusters opened in place, outermost first (empty at the document's own graph): undo
+    /// and redo also restore where the designer was.
+    pub stack: Vec<Level>,
 }
 
 /// Identifies a continuous gesture whose edits merge into one undo step.
@@ -30,6 +35,8 @@ pub enum EditKey {
     Move,
     /// Dragging a graph mapper's handles (node id).
     Mapper(String),
+    /// Editing a field of the optimization setup (which one).
+    Optimization(String),
 }
 
 /// The undo and redo stacks.
@@ -107,6 +114,7 @@ mod tests {
         Snapshot {
             graph: Graph::new(Arc::new(cnets_engine::Registry::new())),
             meta: GraphMeta::default(),
+            stack: Vec::new(),
         }
     }
 

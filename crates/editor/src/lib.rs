@@ -13,7 +13,9 @@
 //! - [`viewport`]: the 3D view (a wgpu paint callback through `cnets-render`) and its camera.
 //! - [`menus`], [`file_dialog`]: the menu bar and a built-in path dialog; [`export`]: exports
 //!   through the export nodes.
-//! - [`recovery`]: autosave and restore after a crash; [`settings`]: recent files.
+//! - [`library`]: the user library of graphs used as cluster nodes, and reloading cluster files
+//!   changed on disk; [`optimization`]: the optimization panel and its runs.
+//! - [`recovery`]: autosave and restore after a crash; [`settings`]: recent files, library folder.
 //! - [`app`]: the editor state and one frame of UI, shared by the window (`main.rs`) and tests.
 
 pub mod app;
@@ -22,8 +24,10 @@ pub mod document;
 pub mod export;
 pub mod file_dialog;
 pub mod history;
+pub mod library;
 pub mod mapper;
 pub mod menus;
+pub mod optimization;
 pub mod palette;
 pub mod recovery;
 pub mod settings;

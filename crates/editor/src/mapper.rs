@@ -85,6 +85,8 @@ pub struct MapperResponse {
     pub changes: Option<Vec<(String, Value)>>,
     /// The plot's rectangle (unit square: u to the right, v up), in the ui's coordinates.
     pub plot: Rect,
+    /// A handle coordinate picked in the plot's context menu ("Optimize a value").
+    pub optimize: Option<crate::canvas::CanvasAction>,
 }
 
 /// Shows the widget.
@@ -93,6 +95,7 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse 
         return MapperResponse {
             changes: None,
             plot: Rect::NOTHING,
+            optimize: None,
         };
     };
     let mut changes: Vec<(String, Value)> = Vec::new();
@@ -114,7 +117,12 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse 
                 }
             }
         });
-    let (rect, _) = ui.allocate_exact_size(vec2(180.0, 130.0), Sense::hover());
+    let (rect, plot_response) = ui.allocate_exact_size(vec2(180.0, 130.0), Sense::click());
+    let mut optimize = None;
+    plot_response.context_menu(|ui| {
+        let candidates = crate::optimization::variable_candidates(node, handles_k);
+        optimize = crate::optimization::variable_menu(ui, &candidates);
+    });
     let painter = ui.painter_at(rect.expand(6.0));
     painter.rect_filled(rect, 2.0, Color32::from_gray(245));
     painter.rect_stroke(
@@ -181,6 +189,7 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse 
     MapperResponse {
         changes: (!changes.is_empty()).then_some(changes),
         plot: rect,
+        optimize,
     }
 }
 

@@ -43,6 +43,18 @@ pub enum MenuAction {
     Arrange,
     /// Change the viewport's display options.
     SetPreview(PreviewOptions),
+    /// Replace the selected nodes by one cluster node.
+    MakeCluster,
+    /// Replace the focused (or selected) cluster node by its nodes.
+    ExplodeCluster,
+    /// Open the focused cluster node to edit its subgraph in place.
+    OpenCluster,
+    /// Go back out to breadcrumb level `n` (0: the document's own graph).
+    LeaveTo(usize),
+    /// Show or hide the optimization panel.
+    ToggleOptimization,
+    /// Choose the user library folder.
+    LibraryFolder,
     /// Close the editor.
     Quit,
 }
@@ -61,6 +73,12 @@ pub struct MenuContext<'a> {
     pub can_paste: bool,
     /// Viewport options.
     pub preview: PreviewOptions,
+    /// How deep in opened clusters the canvas is.
+    pub depth: usize,
+    /// Whether the optimization panel is shown.
+    pub optimization: bool,
+    /// The user library folder.
+    pub library: &'a Path,
 }
 
 fn file_label(p: &Path) -> String {
@@ -139,6 +157,29 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
             pick(ui, "Paste", "Ctrl+V", MenuAction::Paste, mc.can_paste);
             pick(ui, "Duplicate", "Ctrl+D", MenuAction::Duplicate, true);
             pick(ui, "Delete", "Delete", MenuAction::Delete, true);
+            ui.separator();
+            pick(ui, "Make cluster", "Ctrl+G", MenuAction::MakeCluster, true);
+            pick(
+                ui,
+                "Explode cluster",
+                "Ctrl+Shift+G",
+                MenuAction::ExplodeCluster,
+                true,
+            );
+            pick(
+                ui,
+                "Open cluster",
+                "double-click its title",
+                MenuAction::OpenCluster,
+                true,
+            );
+            pick(
+                ui,
+                "Back out of cluster",
+                "Esc",
+                MenuAction::LeaveTo(mc.depth.saturating_sub(1)),
+                mc.depth > 0,
+            );
         });
         ui.menu_button("Add", |ui| {
             pick(
@@ -148,11 +189,20 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                 MenuAction::AddNode,
                 true,
             );
+            ui.separator();
+            ui.weak(format!("library: {}", mc.library.display()));
+            pick(ui, "Library folder…", "", MenuAction::LibraryFolder, true);
         });
         ui.menu_button("View", |ui| {
             pick(ui, "Frame geometry", "F", MenuAction::Fit, true);
             pick(ui, "Frame graph", "Home", MenuAction::FitCanvas, true);
             pick(ui, "Arrange graph", "Ctrl+L", MenuAction::Arrange, true);
+            let label = if mc.optimization {
+                "Hide optimization"
+            } else {
+                "Optimization"
+            };
+            pick(ui, label, "", MenuAction::ToggleOptimization, true);
             ui.separator();
             ui.label("Colour faces by");
             for mode in ColorMode::ALL {

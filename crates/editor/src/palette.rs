@@ -30,6 +30,31 @@ pub fn search(registry: &Registry, query: &str) -> Vec<(String, Vec<Arc<NodeDef>
     groups
 }
 
+/// Library graphs whose name, file or doc match `query` (every word, case-insensitive).
+pub fn search_library<'a>(
+    entries: &'a [crate::library::LibraryEntry],
+    query: &str,
+) -> Vec<&'a crate::library::LibraryEntry> {
+    let words: Vec<String> = query.split_whitespace().map(str::to_lowercase).collect();
+    entries
+        .iter()
+        .filter(|e| {
+            let haystack =
+                format!("library cluster {} {} {}", e.name, e.source, e.doc).to_lowercase();
+            words.iter().all(|w| haystack.contains(w.as_str()))
+        })
+        .collect()
+}
+
+/// What was picked in the palette.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Pick {
+    /// A registered node type.
+    Type(String),
+    /// A library graph, inserted as a cluster node.
+    Library(crate::library::LibraryEntry),
+}
+
 /// The palette window's state.
 #[derive(Clone, Debug, Default)]
 pub struct PaletteState {
@@ -53,8 +78,14 @@ impl PaletteState {
     }
 }
 
-/// Shows the palette window; returns the type id picked, if any.
-pub fn show(ctx: &egui::Context, state: &mut PaletteState, registry: &Registry) -> Option<String> {
+/// Shows the palette window (registered types by category, then the "Library" category); returns
+/// what was picked, if anything.
+pub fn show(
+    ctx: &egui::Context,
+    state: &mut PaletteState,
+    registry: &Registry,
+    library: &[crate::library::LibraryEntry],
+) -> Option<Pick> {
     if !state.open {
         return None;
     }
@@ -79,13 +110,18 @@ pub fn show(ctx: &egui::Context, state: &mut PaletteState, registry: &Registry) 
                 state.focus = false;
             }
             let groups = search(registry, &state.query);
+            let graphs = search_library(library, &state.query);
             let enter = edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-            if enter && let Some(def) = groups.first().and_then(|(_, d)| d.first()) {
-                picked = Some(def.id.to_string());
+            if enter {
+                if let Some(def) = groups.first().and_then(|(_, d)| d.first()) {
+                    picked = Some(Pick::Type(def.id.to_string()));
+                } else if let Some(e) = graphs.first() {
+                    picked = Some(Pick::Library((*e).clone()));
+                }
             }
             ui.separator();
             egui::ScrollArea::vertical().show(ui, |ui| {
-                if groups.is_empty() {
+                if groups.is_empty() && graphs.is_empty() {
                     ui.weak("no node matches");
                 }
                 for (category, defs) in &groups {
@@ -95,10 +131,27 @@ pub fn show(ctx: &egui::Context, state: &mut PaletteState, registry: &Registry) 
                             .selectable_label(false, def.id.as_ref())
                             .on_hover_text(def.doc.as_ref());
                         if r.clicked() {
-                            picked = Some(def.id.to_string());
+                            picked = Some(Pick::Type(def.id.to_string()));
                         }
                     }
                     ui.add_space(4.0);
+                }
+                if !graphs.is_empty() {
+                    ui.strong("Library");
+                    for e in graphs {
+                        let r = ui
+                            .selectable_label(false, format!("{} (cluster)", e.name))
+                            .on_hover_text(format!(
+                                "{}\n{}\ninputs: {}\noutputs: {}",
+                                e.path.display(),
+                                e.doc,
+                                e.ports.0.join(", "),
+                                e.ports.1.join(", ")
+                            ));
+                        if r.clicked() {
+                            picked = Some(Pick::Library(e.clone()));
+                        }
+                    }
                 }
             });
         });

@@ -1,4 +1,4 @@
-//! Persistent settings: the editor's own folder and the recent-files list.
+//! Persistent settings: the editor's own folder, the recent-files list and the library folder.
 //!
 //! The folder is `$CNETS_EDITOR_HOME` when set (tests use a temporary one), else
 //! `$XDG_CONFIG_HOME/cnets-editor`, else `~/.config/cnets-editor`. Files in it are small text
@@ -30,6 +30,9 @@ pub struct Settings {
     pub dir: PathBuf,
     /// Recently opened or saved files, newest first.
     pub recent: Vec<PathBuf>,
+    /// The user library folder chosen in the editor (`None`: the default,
+    /// [`crate::library::default_library_dir`]).
+    pub library: Option<PathBuf>,
 }
 
 impl Settings {
@@ -42,10 +45,29 @@ impl Settings {
             .map(PathBuf::from)
             .take(MAX_RECENT)
             .collect();
+        let library = std::fs::read_to_string(dir.join("library.txt"))
+            .ok()
+            .map(|t| t.trim().to_string())
+            .filter(|t| !t.is_empty())
+            .map(PathBuf::from);
         Self {
             dir: dir.to_path_buf(),
             recent,
+            library,
         }
+    }
+
+    /// The user library folder: the chosen one, else the default.
+    pub fn library_dir(&self) -> PathBuf {
+        self.library
+            .clone()
+            .unwrap_or_else(crate::library::default_library_dir)
+    }
+
+    /// Chooses the user library folder and saves the choice.
+    pub fn set_library(&mut self, dir: &Path) {
+        self.library = Some(dir.to_path_buf());
+        let _ = self.save();
     }
 
     /// Puts `path` first in the recent list and saves the list.
@@ -65,7 +87,14 @@ impl Settings {
             .iter()
             .map(|p| format!("{}\n", p.display()))
             .collect();
-        write_atomic(&self.dir.join("recent.txt"), text.as_bytes())
+        write_atomic(&self.dir.join("recent.txt"), text.as_bytes())?;
+        if let Some(lib) = &self.library {
+            write_atomic(
+                &self.dir.join("library.txt"),
+                format!("{}\n", lib.display()).as_bytes(),
+            )?;
+        }
+        Ok(())
     }
 }
 

@@ -15,6 +15,7 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
+use cnets_engine::cluster::Cluster;
 use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag, NodeResult, Value};
 use cnets_render::Scene;
 
@@ -72,6 +73,9 @@ pub struct EvalRequest {
     pub options: PreviewOptions,
     /// Folder relative import paths resolve against.
     pub base_dir: Option<PathBuf>,
+    /// Cluster nodes opened in place, outermost first: statuses and the preview are those of the
+    /// innermost cluster's subgraph, as its instance evaluated it inside `graph`.
+    pub view: Vec<String>,
     /// Set by the UI when a newer request supersedes this one.
     pub cancel: Arc<AtomicBool>,
     /// When the change was made (for latency figures).
@@ -137,6 +141,20 @@ impl Worker {
         base_dir: Option<PathBuf>,
         changed_at: Instant,
     ) -> u64 {
+        self.submit_view(graph, Vec::new(), generation, options, base_dir, changed_at)
+    }
+
+    /// Like [`Worker::submit`], showing the subgraph of the cluster at `view` (node ids from the
+    /// outermost cluster in).
+    pub fn submit_view(
+        &mut self,
+        graph: Graph,
+        view: Vec<String>,
+        generation: u64,
+        options: PreviewOptions,
+        base_dir: Option<PathBuf>,
+        changed_at: Instant,
+    ) -> u64 {
         if let Some(flag) = self.running_cancel.take() {
             flag.store(true, Ordering::Relaxed);
         }
@@ -150,6 +168,7 @@ impl Worker {
                 graph,
                 options,
                 base_dir,
+                view,
                 cancel,
                 changed_at,
             });
@@ -249,7 +268,53 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
     if summary.cancelled || request.cancel.load(Ordering::Relaxed) {
         return None;
     }
-    let statuses = graph
+    let (statuses, (scene, stats)) = if request.view.is_empty() {
+        (
+            statuses(graph, evaluator),
+            build_scene(graph, evaluator, &request.options),
+        )
+    } else {
+        // Inside opened clusters: the innermost instance's subgraph, with the values the cluster
+        // received; every inner node is evaluated (not only those feeding the outputs).
+        let inner = descend(graph, &request.view, &mut |g, ev| {
+            let wanted: Vec<_> = g
+                .nodes()
+                .filter(|(_, n)| !n.def.has_flag(NodeFlag::Export))
+                .map(|(k, _)| k)
+                .collect();
+            ev.evaluate(g, &wanted, &ctx, &mut |_, _| {});
+            (statuses(g, ev), build_scene(g, ev, &request.options))
+        });
+        match inner {
+            Some(r) => r,
+            None => (
+                HashMap::new(),
+                build_scene(
+                    &Graph::new(graph.registry().clone()),
+                    evaluator,
+                    &request.options,
+                ),
+            ),
+        }
+    };
+    if request.cancel.load(Ordering::Relaxed) {
+        return None;
+    }
+    Some(EvalResponse {
+        seq: request.seq,
+        statuses,
+        scene: Arc::new(scene),
+        stats,
+        eval_ms,
+        ran: summary.ran,
+        changed_at: request.changed_at,
+        finished_at: Instant::now(),
+    })
+}
+
+/// The status of every node of `graph` after an evaluation with `evaluator`.
+pub fn statuses(graph: &Graph, evaluator: &Evaluator) -> HashMap<String, NodeStatus> {
+    graph
         .nodes()
         .map(|(k, n)| {
             let status = if n.def.has_flag(NodeFlag::Export) {
@@ -273,17 +338,25 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
             };
             (n.id.clone(), status)
         })
-        .collect();
-    let (scene, stats) = build_scene(graph, evaluator, &request.options);
-    Some(EvalResponse {
-        seq: request.seq,
-        statuses,
-        scene: Arc::new(scene),
-        stats,
-        eval_ms,
-        ran: summary.ran,
-        changed_at: request.changed_at,
-        finished_at: Instant::now(),
+        .collect()
+}
+
+/// Runs `f` on the working subgraph and evaluator of the cluster instance at `view` inside
+/// `graph` (node ids from the outermost cluster in); `None` when a node on the way is missing or
+/// not a cluster.
+pub fn descend<R>(
+    graph: &Graph,
+    view: &[String],
+    f: &mut dyn FnMut(&Graph, &mut Evaluator) -> R,
+) -> Option<R> {
+    let (first, rest) = view.split_first()?;
+    let cluster = Cluster::shared(&graph.node(first)?.def)?;
+    cluster.inspect(|inner, ev| {
+        if rest.is_empty() {
+            Some(f(inner, ev))
+        } else {
+            descend(inner, rest, f)
+        }
     })
 }
 
@@ -379,6 +452,7 @@ mod tests {
             graph: g,
             options: PreviewOptions::default(),
             base_dir: None,
+            view: Vec::new(),
             cancel,
             changed_at: Instant::now(),
         };
@@ -395,6 +469,7 @@ mod tests {
             graph: g,
             options: PreviewOptions::default(),
             base_dir: None,
+            view: Vec::new(),
             cancel: Arc::new(AtomicBool::new(false)),
             changed_at: Instant::now(),
         };
