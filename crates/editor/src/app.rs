@@ -180,6 +180,8 @@ pub struct EditorApp {
     pub palette: PaletteState,
     /// Status of every node after the last finished evaluation.
     pub statuses: HashMap<String, NodeStatus>,
+    /// The opened clusters `statuses` belong to.
+    statuses_view: Vec<String>,
     /// The message in the status bar (e.g. why a wire was refused).
     pub message: String,
     /// Recent files.
@@ -264,6 +266,7 @@ impl EditorApp {
             viewport: Viewport::default(),
             palette: PaletteState::default(),
             statuses: HashMap::new(),
+            statuses_view: Vec::new(),
             message,
             settings,
             latency: Latency::default(),
@@ -350,6 +353,65 @@ impl EditorApp {
     /// Load options for the document (its folder, then the library folders).
     fn load_options(&self) -> cnets_engine::file::LoadOptions {
         crate::library::load_options(self.doc.path.as_deref(), &self.library.dirs)
+    }
+
+    /// Replaces the nodes `ids` by one inline cluster node (one undo step). Inside the cluster,
+    /// its `graph.input` nodes are placed left of the nodes and its `graph.output` nodes right of
+    /// them, using the node sizes measured on the canvas. Returns whether it was made.
+    pub fn make_cluster(&mut self, ids: &[String]) -> bool {
+        let id = fresh_id(&self.doc.graph, "cluster");
+        let bounds = ids
+            .iter()
+            .filter_map(|n| self.canvas.node_rect(n))
+            .reduce(|a, b| a.union(b));
+        let r = self.doc.edit(None, |g, _| {
+            let selection: Vec<&str> = ids.iter().map(String::as_str).collect();
+            let cluster = cnets_engine::cluster::make_cluster(g, &selection, &id)
+                .map_err(|e| e.to_string())?;
+            let Some(b) = bounds else { return Ok(()) };
+            let mut sub = cluster.template.clone();
+            let mut order: Vec<(u64, String, bool)> = sub
+                .nodes()
+                .filter_map(|(_, n)| {
+                    let input = n.def.id == cnets_engine::cluster::INPUT_TYPE;
+                    (input || n.def.id == cnets_engine::cluster::OUTPUT_TYPE)
+                        .then(|| (n.uid(), n.id.clone(), input))
+                })
+                .collect();
+            order.sort();
+            let (mut k_in, mut k_out) = (0.0, 0.0);
+            for (_, n, input) in order {
+                let at = if input {
+                    k_in += 1.0;
+                    [b.left() - 300.0, b.top() + 150.0 * (k_in - 1.0)]
+                } else {
+                    k_out += 1.0;
+                    [b.right() + 80.0, b.top() + 150.0 * (k_out - 1.0)]
+                };
+                sub.set_position(&n, at).map_err(|e| e.to_string())?;
+            }
+            let laid_out = Cluster::new(
+                cnets_engine::cluster::ClusterSource::Inline,
+                sub,
+                cluster.meta.clone(),
+                cluster.base_dir.clone(),
+            )?;
+            g.replace_def(&id, Arc::new(laid_out.node_def()))
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        });
+        match r {
+            Ok(()) => {
+                self.canvas.selected.clear();
+                self.canvas.focused = Some(id.clone());
+                self.message = format!("made cluster '{id}': double-click its title to open it");
+                true
+            }
+            Err(e) => {
+                self.message = format!("refused: {e}");
+                false
+            }
+        }
     }
 
     /// Opens the cluster node `id` in place (the canvas shows its subgraph).
@@ -519,6 +581,7 @@ impl EditorApp {
                 self.open_cluster(&id);
                 return true;
             }
+            CanvasAction::MakeCluster(ids) => return self.make_cluster(&ids),
             CanvasAction::Optimize {
                 path,
                 min,
@@ -661,9 +724,8 @@ impl EditorApp {
                 if targets.is_empty() {
                     self.message =
                         "select the nodes to put in a cluster (Shift+click, Shift+drag)".into();
-                } else if self.apply(CanvasAction::MakeCluster(targets)) {
-                    self.canvas.selected.clear();
-                    self.message = "made a cluster: double-click its title to open it".into();
+                } else {
+                    self.make_cluster(&targets);
                 }
             }
             MenuAction::ExplodeCluster => {
@@ -772,6 +834,11 @@ impl EditorApp {
     fn poll_worker(&mut self) {
         if let Some(r) = self.worker.poll() {
             self.statuses = r.statuses;
+            if r.view != self.statuses_view {
+                // The first results of another graph level: frame it once they are drawn.
+                self.canvas.fit_later();
+            }
+            self.statuses_view = r.view;
             self.latency.eval_ms = r.eval_ms;
             self.latency.scene_ms = r.stats.build_ms;
             self.viewport.set_scene(r.scene, r.stats);
@@ -819,6 +886,11 @@ impl EditorApp {
         self.submit_if_changed();
         if let Some(r) = self.worker.wait(timeout) {
             self.statuses = r.statuses;
+            if r.view != self.statuses_view {
+                // The first results of another graph level: frame it once they are drawn.
+                self.canvas.fit_later();
+            }
+            self.statuses_view = r.view;
             self.latency.eval_ms = r.eval_ms;
             self.latency.scene_ms = r.stats.build_ms;
             self.viewport.set_scene(r.scene, r.stats);
@@ -915,17 +987,24 @@ impl EditorApp {
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {
                 if self.canvas_view != self.doc.view_path() {
-                    // Another graph level: a fresh canvas framing it, no stale statuses.
+                    // Another graph level: a fresh canvas framing it.
                     self.canvas = Canvas::new();
+                    self.canvas.fit_later();
                     self.canvas_view = self.doc.view_path();
-                    self.statuses.clear();
                 }
                 if self.doc.depth() > 0
                     && let Some(to) = breadcrumbs(ui, &self.doc)
                 {
                     self.leave_to(to);
                 }
-                let actions = self.canvas.show(ui, &self.doc.graph, &self.statuses);
+                // Statuses of another level (the worker has not answered yet) are not shown.
+                let none = HashMap::new();
+                let statuses = if self.statuses_view == self.canvas_view {
+                    &self.statuses
+                } else {
+                    &none
+                };
+                let actions = self.canvas.show(ui, &self.doc.graph, statuses);
                 for a in actions {
                     self.apply(a);
                 }
@@ -1166,7 +1245,7 @@ fn breadcrumbs(ui: &mut Ui, doc: &GraphDocument) -> Option<usize> {
                 let last = crumbs.len() - 1;
                 for (k, crumb) in crumbs.iter().enumerate() {
                     if k > 0 {
-                        ui.weak("▸");
+                        ui.weak("›");
                     }
                     if k == last {
                         ui.strong(crumb);

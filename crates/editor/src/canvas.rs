@@ -156,6 +156,8 @@ pub struct Canvas {
     widget: SnarlWidget,
     /// Frame the whole graph once its nodes have been measured (after a new document).
     fit_pending: bool,
+    /// Frames to wait before framing (the nodes grow when their first results arrive).
+    fit_delay: u8,
     /// Screen rectangle of the canvas in the last frame.
     ui_rect: Rect,
     /// Plot rectangles of graph-mapper widgets (canvas coordinates).
@@ -198,6 +200,7 @@ impl Canvas {
                 .id(egui::Id::new("cnets-canvas"))
                 .style(style()),
             fit_pending: true,
+            fit_delay: 0,
             ui_rect: Rect::NOTHING,
             plots: HashMap::new(),
         }
@@ -206,6 +209,13 @@ impl Canvas {
     /// Frames the whole graph on the next frames (on a new document, or View ▸ Frame graph).
     pub fn fit(&mut self) {
         self.fit_pending = true;
+    }
+
+    /// Frames the whole graph after two more frames (once nodes have their new sizes, e.g. when
+    /// the first results of a newly shown graph arrive).
+    pub fn fit_later(&mut self) {
+        self.fit_pending = true;
+        self.fit_delay = 2;
     }
 
     /// Positions that lay the graph out in columns by dependency depth (sources on the left),
@@ -362,6 +372,11 @@ impl Canvas {
         Some(self.to_global * p)
     }
 
+    /// Rectangle of a node in canvas coordinates, as measured in the last frame.
+    pub fn node_rect(&self, node: &str) -> Option<Rect> {
+        self.rects.get(node).copied()
+    }
+
     /// Screen rectangle of a node after the last frame.
     pub fn node_screen_rect(&self, node: &str) -> Option<Rect> {
         self.rects.get(node).map(|r| self.to_global * *r)
@@ -405,7 +420,12 @@ impl Canvas {
         self.ui_rect = ui.available_rect_before_wrap();
         // Frame the graph once every node has been measured in an earlier frame.
         let mut fit = None;
-        if self.fit_pending && !self.rects.is_empty() && self.rects.len() == graph.node_count() {
+        if self.fit_delay > 0 {
+            self.fit_delay -= 1;
+        } else if self.fit_pending
+            && !self.rects.is_empty()
+            && self.rects.len() == graph.node_count()
+        {
             let bb = self.rects.values().fold(Rect::NOTHING, |a, r| a.union(*r));
             fit = Self::framing(bb, self.ui_rect);
             self.fit_pending = false;

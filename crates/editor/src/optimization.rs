@@ -537,7 +537,7 @@ impl OptimizationPanel {
             Ok(())
         })?;
         let message = format!(
-            "accepted the optimized values: objective {} → {}",
+            "accepted the optimized values: objective {} -> {}",
             fmt(finished.outcome.start),
             fmt(finished.outcome.objective)
         );
@@ -569,21 +569,30 @@ impl OptimizationPanel {
                 ui.weak(format!("inside {}", l.node));
             }
         });
-        egui::ScrollArea::vertical()
-            .id_salt("cnets-optimization")
-            .show(ui, |ui| {
-                match doc.meta.optimization.clone() {
-                    Some(setup) => {
-                        if let Some(m) = setup_editor(ui, doc, &setup) {
-                            say(m);
+        let width = ui.available_width();
+        let height = ui.available_height();
+        ui.horizontal_top(|ui| {
+            ui.vertical(|ui| {
+                ui.set_width((width * 0.55).max(200.0));
+                egui::ScrollArea::vertical()
+                    .id_salt("cnets-optimization")
+                    .max_height(height)
+                    .auto_shrink([false, true])
+                    .show(ui, |ui| match doc.meta.optimization.clone() {
+                        Some(setup) => {
+                            if let Some(m) = setup_editor(ui, doc, &setup) {
+                                say(m);
+                            }
                         }
-                    }
-                    None => self.draft_view(ui),
-                }
-                ui.separator();
+                        None => self.draft_view(ui),
+                    });
+            });
+            ui.separator();
+            ui.vertical(|ui| {
                 self.run_controls(ui, doc, base_dir, &mut say);
                 self.plot_and_result(ui, doc, &mut say);
             });
+        });
         if self.running.is_some() {
             ui.ctx().request_repaint_after(Duration::from_millis(50));
         }
@@ -691,7 +700,7 @@ impl OptimizationPanel {
             Some(Ok(f)) => {
                 let o = &f.outcome;
                 ui.label(format!(
-                    "{}: objective {:.3e} → {:.3e} in {} iterations, {} evaluations, {} node runs ({:.1} s)",
+                    "{}: objective {:.3e} -> {:.3e} in {} iterations, {} evaluations, {} node runs",
                     match &o.stop {
                         Stop::Converged(why) => format!("converged ({why})"),
                         Stop::MaxIterations => "iteration limit".to_string(),
@@ -702,7 +711,6 @@ impl OptimizationPanel {
                     o.iterations,
                     o.evaluations,
                     o.node_runs,
-                    f.seconds
                 ));
                 ui.horizontal(|ui| {
                     if ui

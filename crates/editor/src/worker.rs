@@ -86,6 +86,8 @@ pub struct EvalRequest {
 pub struct EvalResponse {
     /// The request's sequence number.
     pub seq: u64,
+    /// The opened clusters the statuses and the scene belong to (see [`EvalRequest::view`]).
+    pub view: Vec<String>,
     /// Status per node id.
     pub statuses: HashMap<String, NodeStatus>,
     /// The preview scene.
@@ -302,6 +304,7 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
     }
     Some(EvalResponse {
         seq: request.seq,
+        view: request.view.clone(),
         statuses,
         scene: Arc::new(scene),
         stats,

@@ -1,0 +1,249 @@
+//! The optimization panel, driven through egui_kittest: variables and the objective picked with
+//! the canvas's context menus, a run on `graphs/tube-closure.ron` (live plot, objective down),
+//! Stop, Accept (one undo step) and Revert.
+
+mod common;
+
+use std::time::Duration;
+
+use cnets_editor::app::EditorApp;
+use cnets_engine::optimize::{Method, Stop};
+use common::{graphs_dir, harness, harness_with, settle, temp_config};
+use egui::{Modifiers, Pos2};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+
+/// Right-clicks at `at` (opens a context menu).
+fn right_click(h: &mut Harness<'static, EditorApp>, at: Pos2) {
+    h.hover_at(at);
+    h.run_steps(2);
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Secondary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+    }
+    h.run_steps(3);
+}
+
+/// Screen centre of the label `name` drawn inside node `node` on its input (left) or output
+/// (right) side.
+fn port_label(h: &Harness<'static, EditorApp>, node: &str, name: &str, input: bool) -> Pos2 {
+    let canvas = &h.state().canvas;
+    let rect = canvas.node_screen_rect(node).expect("the node is drawn");
+    h.get_all_by_label(name)
+        .map(|l| canvas.to_screen(l.rect().center()))
+        .find(|p| rect.contains(*p) && ((p.x < rect.center().x) == input))
+        .unwrap_or_else(|| panic!("label {name} of {node}"))
+}
+
+#[test]
+fn variables_and_the_objective_are_picked_on_the_canvas_as_one_undo_step() {
+    let mut h = harness("opt-pick");
+    let before = h.state().doc.to_ron();
+    let steps = h.state().doc.history.undo_len();
+    // The apex slider's value: bounds from the slider's own range.
+    let at = port_label(&h, "apex", "value", true);
+    right_click(&mut h, at);
+    h.get_by_label("Optimize this value").click();
+    h.run_steps(3);
+    assert!(h.state().optimization.open, "the panel opens");
+    assert_eq!(h.state().optimization.draft.variables.len(), 1);
+    assert!(
+        h.state().doc.meta.optimization.is_none(),
+        "no objective yet: a draft"
+    );
+    assert!(
+        h.state().message.contains("objective"),
+        "{}",
+        h.state().message
+    );
+    // planarity.max as the objective: the setup is complete and stored.
+    let at = port_label(&h, "planarity", "max", false);
+    right_click(&mut h, at);
+    h.get_by_label("Minimize this output").click();
+    h.run_steps(3);
+    let app = h.state();
+    let setup = app
+        .doc
+        .meta
+        .optimization
+        .clone()
+        .expect("stored in the document");
+    assert_eq!(setup.objective.to_string(), "planarity.max");
+    assert_eq!(setup.variables.len(), 1);
+    assert_eq!(setup.variables[0].input.to_string(), "apex.value");
+    assert_eq!((setup.variables[0].min, setup.variables[0].max), (0.5, 1.5));
+    assert_eq!(app.doc.history.undo_len(), steps + 1);
+    assert!(app.doc.to_ron().contains("objective: \"planarity.max\""));
+
+    // A graph-mapper handle coordinate, from the widget's context menu: bounds [0, 1], and the
+    // default handles are written so the variable has a literal to live in.
+    let id = h
+        .state_mut()
+        .add_node("mapper.graph", [420.0, 560.0])
+        .unwrap();
+    h.state_mut().canvas.fit();
+    h.run_steps(4);
+    let handles = cnets_editor::mapper::handles(h.state().doc.graph.node(&id).unwrap());
+    let at = h
+        .state()
+        .canvas
+        .mapper_screen_pos(&id, 0.5, 0.9)
+        .expect("the mapper plot");
+    right_click(&mut h, at);
+    h.get_by_label_contains("Optimize a value").hover();
+    h.run_steps(3);
+    let entry = format!(
+        "[1][1] = {}",
+        cnets_editor::worker::format_number(handles[1].y)
+    );
+    h.get_by_label(&entry).click();
+    h.run_steps(3);
+    let app = h.state();
+    let setup = app.doc.meta.optimization.clone().unwrap();
+    assert_eq!(setup.variables.len(), 2, "{}", app.message);
+    assert_eq!(
+        setup.variables[1].input.to_string(),
+        format!("{id}.handles[1][1]")
+    );
+    assert_eq!((setup.variables[1].min, setup.variables[1].max), (0.0, 1.0));
+    assert!(
+        app.doc
+            .graph
+            .node(&id)
+            .unwrap()
+            .value_of("handles")
+            .is_some(),
+        "the handles are set"
+    );
+    // Undo twice: no variable, no setup, the original text.
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().doc.to_ron(), before);
+}
+
+fn tube() -> Harness<'static, EditorApp> {
+    let mut h = harness_with(
+        "opt-tube",
+        Some(graphs_dir().join("tube-closure.ron")),
+        temp_config("opt-tube"),
+    );
+    h.state_mut()
+        .run(cnets_editor::menus::MenuAction::ToggleOptimization);
+    h.run_steps(2);
+    h
+}
+
+fn set_run(h: &mut Harness<'static, EditorApp>, max_iter: usize, method: Method) {
+    h.state_mut()
+        .doc
+        .edit(None, |_, meta| {
+            let s = meta.optimization.as_mut().ok_or("no setup")?;
+            s.max_iter = max_iter;
+            s.method = method;
+            Ok(())
+        })
+        .unwrap();
+    h.run_steps(2);
+}
+
+#[test]
+fn a_run_plots_the_objective_going_down_and_accept_is_one_undo_step() {
+    let mut h = tube();
+    set_run(&mut h, 6, Method::Auto);
+    let before = h.state().doc.to_ron();
+    let steps = h.state().doc.history.undo_len();
+    h.get_by_label("▶ Run").click();
+    h.run_steps(2);
+    assert!(
+        h.state().optimization.running() || h.state().optimization.result.is_some(),
+        "{}",
+        h.state().message
+    );
+    assert!(h.state_mut().optimization.wait(Duration::from_secs(120)));
+    h.run_steps(3);
+    let app = h.state();
+    let its = &app.optimization.iterations;
+    assert!(its.len() >= 2, "the plot has points: {}", its.len());
+    let (first, last) = (its[0].objective, its[its.len() - 1].objective);
+    assert!(
+        last < first * 0.5,
+        "the objective decreased: {first} -> {last}"
+    );
+    assert!(its.windows(2).all(|w| w[1].evaluations > w[0].evaluations));
+    let finished = app.optimization.result.as_ref().unwrap().as_ref().unwrap();
+    assert_eq!(finished.outcome.stop, Stop::MaxIterations);
+    assert_eq!(
+        app.doc.to_ron(),
+        before,
+        "the document is unchanged until Accept"
+    );
+    assert!(h.query_by_label("Accept").is_some());
+    h.remove_cursor();
+    h.run_steps(2);
+    h.snapshot("editor_optimization_panel");
+
+    h.get_by_label("Accept").click();
+    settle(&mut h);
+    let app = h.state();
+    assert_ne!(app.doc.to_ron(), before, "Accept changes the document");
+    assert_eq!(app.doc.history.undo_len(), steps + 1, "one undo step");
+    assert!(app.optimization.result.is_none());
+    assert!(app.message.contains("accepted"), "{}", app.message);
+    // The accepted values are the optimizer's best point.
+    let best = cnets_editor::optimization::current_value(
+        &app.doc.graph,
+        &app.doc.meta.optimization.as_ref().unwrap().variables[3].input,
+    )
+    .unwrap();
+    assert!((0.1..=0.9).contains(&best));
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().doc.to_ron(), before, "undo restores the text");
+}
+
+#[test]
+fn stop_cancels_a_run_and_revert_leaves_the_document_alone() {
+    let mut h = tube();
+    // Nelder–Mead with a huge limit: it would run for a long time.
+    set_run(&mut h, 1_000_000, Method::NelderMead);
+    let before = h.state().doc.to_ron();
+    let steps = h.state().doc.history.undo_len();
+    h.get_by_label("▶ Run").click();
+    h.run_steps(2);
+    // Wait for a few iterations, then Stop.
+    for _ in 0..2000 {
+        h.state_mut().optimization.poll();
+        if h.state().optimization.iterations.len() >= 3 {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    h.run_steps(1);
+    h.get_by_label("■ Stop").click();
+    h.run_steps(1);
+    assert!(
+        h.state_mut().optimization.wait(Duration::from_secs(30)),
+        "Stop ends the run"
+    );
+    h.run_steps(2);
+    let app = h.state();
+    let finished = app.optimization.result.as_ref().unwrap().as_ref().unwrap();
+    assert_eq!(finished.outcome.stop, Stop::Cancelled);
+    assert!(finished.outcome.iterations < 1_000_000);
+    h.get_by_label("Revert").click();
+    h.run_steps(2);
+    let app = h.state();
+    assert!(app.optimization.result.is_none());
+    assert_eq!(
+        app.doc.to_ron(),
+        before,
+        "Revert does not change the document"
+    );
+    assert_eq!(app.doc.history.undo_len(), steps);
+}
