@@ -6,6 +6,7 @@ mod failure;
 mod inputs;
 mod library;
 mod progress;
+mod runtime_dir;
 
 use std::process::ExitCode;
 
@@ -39,6 +40,14 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let renders = match &cli.command {
+        Command::Render(_) => true,
+        Command::Run(args) => args.renders(),
+        _ => false,
+    };
+    if renders && let Some(code) = runtime_dir::rerun_with_runtime_dir() {
+        return code;
+    }
     let result = match cli.command {
         Command::Nodes(args) => commands::nodes::run(args),
         Command::Eval(args) => commands::eval::run(args),

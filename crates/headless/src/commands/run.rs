@@ -57,6 +57,13 @@ fn status(result: Option<&NodeResult>) -> &'static str {
     }
 }
 
+impl Args {
+    /// Whether this run renders a picture (`--png`).
+    pub fn renders(&self) -> bool {
+        self.png.is_some()
+    }
+}
+
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
     let registry = Arc::new(cnets_nodes::registry());
