@@ -312,7 +312,14 @@ impl EditorApp {
     /// Restores the recovery file (the crash-restore dialog's "Restore").
     pub fn restore(&mut self) {
         if let Some(r) = self.offer_restore.take() {
-            match GraphDocument::from_text(&r.text, "recovery", r.path.clone(), &self.registry) {
+            let options = crate::library::load_options(r.path.as_deref(), &self.library.dirs);
+            match GraphDocument::from_text_with(
+                &r.text,
+                "recovery",
+                r.path.clone(),
+                &self.registry,
+                &options,
+            ) {
                 Ok(mut d) => {
                     d.mark_dirty();
                     self.replace_doc(d);
@@ -1297,6 +1304,23 @@ mod tests {
         assert!(
             !g2.wires().iter().any(|w| w.to == ids[0]),
             "paste does not keep incoming wires"
+        );
+    }
+
+    #[test]
+    fn a_pasted_cluster_gets_its_own_instance() {
+        let registry = Arc::new(cnets_nodes::registry());
+        let d = cnets_engine::file::load_str(DEFAULT_GRAPH, "default", &registry).unwrap();
+        let mut g = d.graph;
+        cnets_engine::cluster::make_cluster(&mut g, &["apex", "ratio"], "c").unwrap();
+        let clip = Clipboard::copy(&g, &["c".to_string()]);
+        let ids = clip.paste(&mut g, [10.0, 10.0], false).unwrap();
+        let a = Cluster::shared(&g.node("c").unwrap().def).unwrap();
+        let b = Cluster::shared(&g.node(&ids[0]).unwrap().def).unwrap();
+        assert!(!Arc::ptr_eq(&a, &b), "separate instances (separate caches)");
+        assert_eq!(
+            cnets_engine::file::to_ron(&a.template, &a.meta),
+            cnets_engine::file::to_ron(&b.template, &b.meta)
         );
     }
 }

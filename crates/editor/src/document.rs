@@ -178,7 +178,18 @@ impl GraphDocument {
         path: Option<PathBuf>,
         registry: &Arc<Registry>,
     ) -> Result<Self, String> {
-        let doc = file::load_str(text, name, registry).map_err(|e| e.to_string())?;
+        Self::from_text_with(text, name, path, registry, &LoadOptions::default())
+    }
+
+    /// Like [`GraphDocument::from_text`], with explicit options (where cluster sources resolve).
+    pub fn from_text_with(
+        text: &str,
+        name: &str,
+        path: Option<PathBuf>,
+        registry: &Arc<Registry>,
+        options: &LoadOptions,
+    ) -> Result<Self, String> {
+        let doc = file::load_str_with(text, name, registry, options).map_err(|e| e.to_string())?;
         Ok(Self::from_parts(doc.graph, doc.meta, path))
     }
 
@@ -584,5 +595,110 @@ mod tests {
         assert!(doc.generation() > generation);
         assert!(doc.redo());
         assert_eq!(doc.to_ron(), two);
+    }
+
+    const SUB: &str = r#"(
+    version: 1,
+    nodes: {
+        "x": (type: "graph.input", inputs: {"name": "x", "type": "number", "default": 1.0}),
+        "m": (type: "math.multiply", inputs: {"b": 2.0}),
+        "y": (type: "graph.output", inputs: {"name": "y", "type": "number"}),
+    },
+    edges: ["x.value -> m.a", "m.result -> y.value"],
+)"#;
+
+    const MAIN: &str = r#"(
+    version: 1,
+    nodes: {
+        "n": (type: "param.number", inputs: {"value": 3.0}),
+        "c": (type: "cluster", source: "sub.ron"),
+        "after": (type: "math.add"),
+    },
+    edges: ["n.value -> c.x", "c.y -> after.a"],
+)"#;
+
+    fn file_doc(name: &str) -> (GraphDocument, PathBuf) {
+        let dir = std::env::temp_dir().join(format!("cnets-doc-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("sub.ron"), SUB).unwrap();
+        std::fs::write(dir.join("main.ron"), MAIN).unwrap();
+        let doc = GraphDocument::open(&dir.join("main.ron"), &registry()).unwrap();
+        (doc, dir)
+    }
+
+    #[test]
+    fn editing_a_file_cluster_in_place_makes_it_inline_and_leaves_the_file_alone() {
+        let (mut doc, dir) = file_doc("inline");
+        let before = doc.to_ron();
+        doc.enter("c").unwrap();
+        assert_eq!(doc.depth(), 1);
+        assert_eq!(doc.to_ron(), before, "entering changes nothing");
+        let r = doc.leave().unwrap();
+        assert!(!r.changed, "leaving without edits keeps the file cluster");
+        assert_eq!(doc.to_ron(), before);
+        doc.enter("c").unwrap();
+        doc.edit(None, |g, _| {
+            g.set_value("m", "b", cnets_engine::Value::Number(5.0))
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+        let live = doc.eval_graph();
+        let inner = Cluster::of(&live.node("c").unwrap().def).unwrap();
+        assert!(
+            file::to_ron(&inner.template, &inner.meta).contains("5.0"),
+            "the live graph follows the edit"
+        );
+        let r = doc.leave().unwrap();
+        assert!(r.changed);
+        assert_eq!(r.made_inline.as_deref(), Some("sub.ron"));
+        assert!(r.message().contains("now inline"), "{}", r.message());
+        let text = doc.to_ron();
+        assert!(
+            text.contains("graph: (") && !text.contains("source:"),
+            "{text}"
+        );
+        assert_eq!(std::fs::read_to_string(dir.join("sub.ron")).unwrap(), SUB);
+        assert!(
+            doc.graph.wires().iter().any(|w| w.from == "c"),
+            "wires kept"
+        );
+        assert!(doc.undo(), "leaving was one step");
+        assert_eq!(doc.depth(), 1, "undo goes back inside");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn an_invalid_interface_keeps_the_designer_inside() {
+        let (mut doc, dir) = file_doc("invalid");
+        doc.enter("c").unwrap();
+        doc.edit(None, |g, _| {
+            g.set_value("y", "name", cnets_engine::Value::text("not valid"))
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+        assert!(doc.live_error.is_some(), "the live graph says why");
+        let e = doc.leave().unwrap_err();
+        assert!(e.contains("port name"), "{e}");
+        assert_eq!(doc.depth(), 1);
+        assert!(
+            doc.save_as(&dir.join("out.ron")).is_err(),
+            "nothing half-built is saved"
+        );
+        // A renamed output: leaving drops the outer wire and reports it.
+        doc.edit(None, |g, _| {
+            g.set_value("y", "name", cnets_engine::Value::text("z"))
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+        assert!(doc.live_error.is_none());
+        let r = doc.leave().unwrap();
+        assert_eq!(r.dropped.len(), 1);
+        assert_eq!(r.dropped[0].to_string(), "c.y -> after.a");
+        assert!(r.message().contains("c.y -> after.a"));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
