@@ -98,7 +98,8 @@ pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Valu
     }
 }
 
-fn coerce_tree(v: &Value, ty: &ValueType) -> Result<Value, String> {
+/// Converts every item of a (possibly nested) value to the item type `ty`, keeping the nesting.
+pub fn coerce_tree(v: &Value, ty: &ValueType) -> Result<Value, String> {
     if is_item(v, ty) {
         return coerce_item(v, ty);
     }

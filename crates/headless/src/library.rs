@@ -4,13 +4,24 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use cnets_engine::cluster::{Cluster, ClusterSource};
-use cnets_engine::file::{LoadOptions, load_file_with};
+use cnets_engine::file::{Document, LoadOptions, load_file_with};
 use cnets_engine::{NodeDef, Registry};
 
 use crate::failure::Failure;
 
 /// The prefix that names a graph file as a node type in `cnets eval`.
 pub const PREFIX: &str = "cluster:";
+
+/// Loads a graph file (cluster sources next to it, then in the library folders) and applies the
+/// `--set node.input=value` overrides.
+pub fn load_graph(path: &Path, library: &[PathBuf], sets: &[String]) -> Result<Document, Failure> {
+    let registry = Arc::new(cnets_nodes::registry());
+    let mut doc = load_file_with(path, &registry, &options(path, library))?;
+    for set in sets {
+        crate::inputs::apply_set(&mut doc.graph, set)?;
+    }
+    Ok(doc)
+}
 
 /// Load options for a graph file, with extra library folders.
 pub fn options(path: &Path, library: &[PathBuf]) -> LoadOptions {

@@ -122,18 +122,8 @@ pub fn make_cluster(
                     None => {
                         let name = unique(&w.input, &mut names_in);
                         let node_id = unique(&format!("in_{name}"), &mut ids);
-                        let source = graph
-                            .node(&w.from)
-                            .ok_or_else(|| GraphError::UnknownNode(w.from.clone()))?;
-                        let port = source.def.outputs.iter().find(|p| p.name == w.output);
-                        let ty = port.map_or("any".to_string(), |p| p.type_name());
-                        sub.add_node(&node_id, INPUT_TYPE)?;
-                        sub.set_value(&node_id, "name", Value::text(&name))?;
-                        sub.set_value(&node_id, "type", Value::text(ty))?;
-                        sub.set_position(
-                            &node_id,
-                            [x_min - 220.0, y_mean + 80.0 * inputs.len() as f32],
-                        )?;
+                        let at = [x_min - 220.0, y_mean + 80.0 * inputs.len() as f32];
+                        add_interface(&mut sub, graph, w, INPUT_TYPE, &node_id, &name, at)?;
                         inputs.push((key, name.clone()));
                         name
                     }
@@ -146,18 +136,8 @@ pub fn make_cluster(
                 if !outputs.iter().any(|(k, _)| *k == key) {
                     let name = unique(&w.output, &mut names_out);
                     let node_id = unique(&format!("out_{name}"), &mut ids);
-                    let source = graph
-                        .node(&w.from)
-                        .ok_or_else(|| GraphError::UnknownNode(w.from.clone()))?;
-                    let port = source.def.outputs.iter().find(|p| p.name == w.output);
-                    let ty = port.map_or("any".to_string(), |p| p.type_name());
-                    sub.add_node(&node_id, OUTPUT_TYPE)?;
-                    sub.set_value(&node_id, "name", Value::text(&name))?;
-                    sub.set_value(&node_id, "type", Value::text(ty))?;
-                    sub.set_position(
-                        &node_id,
-                        [x_max + 220.0, y_mean + 80.0 * outputs.len() as f32],
-                    )?;
+                    let at = [x_max + 220.0, y_mean + 80.0 * outputs.len() as f32];
+                    add_interface(&mut sub, graph, w, OUTPUT_TYPE, &node_id, &name, at)?;
                     sub.connect(&w.from, &w.output, &node_id, "value")?;
                     outputs.push((key, name));
                 }
@@ -200,6 +180,28 @@ pub fn make_cluster(
         }
     }
     Ok(cluster)
+}
+
+/// Adds a `graph.input` or `graph.output` node for the wire `w` crossing the selection, typed like
+/// the wire's source output.
+fn add_interface(
+    sub: &mut Graph,
+    graph: &Graph,
+    w: &WireRef,
+    kind: &str,
+    node_id: &str,
+    name: &str,
+    position: [f32; 2],
+) -> Result<(), GraphError> {
+    let source = graph
+        .node(&w.from)
+        .ok_or_else(|| GraphError::UnknownNode(w.from.clone()))?;
+    let port = source.def.outputs.iter().find(|p| p.name == w.output);
+    let ty = port.map_or("any".to_string(), |p| p.type_name());
+    sub.add_node(node_id, kind)?;
+    sub.set_value(node_id, "name", Value::text(name))?;
+    sub.set_value(node_id, "type", Value::text(ty))?;
+    sub.set_position(node_id, position)
 }
 
 /// The id of the interface node of `kind` whose `name` literal is `name`.

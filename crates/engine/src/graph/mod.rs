@@ -15,10 +15,10 @@ use petgraph::Direction;
 use petgraph::stable_graph::{EdgeIndex, NodeIndex, StableDiGraph};
 use petgraph::visit::{EdgeRef, IntoEdgeReferences, NodeIndexable};
 
-use crate::convert::{coerce_item, is_item};
+use crate::convert::coerce_tree;
 use crate::node::NodeDef;
 use crate::registry::Registry;
-use crate::value::{Value, ValueType};
+use crate::value::Value;
 
 /// A revision number: bumped on every semantic edit of a graph.
 pub type Revision = u64;
@@ -349,7 +349,7 @@ impl Graph {
         let index = self.index(id)?;
         let k = self.input_port(index, input)?;
         let port = &self.inner[index].def.inputs[k];
-        let value = coerce_leaves(&value, &port.ty).map_err(|message| GraphError::BadValue {
+        let value = coerce_tree(&value, &port.ty).map_err(|message| GraphError::BadValue {
             node: id.to_string(),
             port: input.to_string(),
             message,
@@ -515,7 +515,7 @@ impl Graph {
             let kept = old
                 .input_index(&port.name)
                 .and_then(|j| old_values.get(j).cloned().flatten())
-                .and_then(|v| coerce_leaves(&v, &port.ty).ok());
+                .and_then(|v| coerce_tree(&v, &port.ty).ok());
             values[k] = kept;
         }
         let edges: Vec<(EdgeIndex, NodeIndex, NodeIndex, Wire)> = self
@@ -580,21 +580,5 @@ impl Graph {
     pub fn topological_order(&self) -> Vec<NodeIndex> {
         petgraph::algo::toposort(&self.inner, None)
             .unwrap_or_else(|_| self.inner.node_indices().collect())
-    }
-}
-
-/// Converts every item of a (possibly nested) literal to the port's item type.
-fn coerce_leaves(v: &Value, ty: &ValueType) -> Result<Value, String> {
-    if is_item(v, ty) {
-        return coerce_item(v, ty);
-    }
-    match v {
-        Value::List(items) => items
-            .iter()
-            .enumerate()
-            .map(|(k, item)| coerce_leaves(item, ty).map_err(|e| format!("item {k}: {e}")))
-            .collect::<Result<Vec<_>, _>>()
-            .map(Value::list),
-        other => coerce_item(other, ty),
     }
 }

@@ -2,9 +2,6 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::sync::Arc;
-
-use cnets_engine::file::load_file_with;
 
 use crate::failure::CommandResult;
 use crate::library;
@@ -22,12 +19,7 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let registry = Arc::new(cnets_nodes::registry());
-    let doc = load_file_with(
-        &args.graph,
-        &registry,
-        &library::options(&args.graph, &args.library),
-    )?;
+    let doc = library::load_graph(&args.graph, &args.library, &[])?;
     for w in &doc.warnings {
         eprintln!("warning: {w}");
     }

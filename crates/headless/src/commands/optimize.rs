@@ -2,10 +2,9 @@
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Arc;
 
 use cnets_engine::NodeContext;
-use cnets_engine::file::{load_file_with, save_file};
+use cnets_engine::file::save_file;
 use cnets_engine::optimize::{Method, Options, Stop, optimize};
 use serde_json::json;
 
@@ -43,12 +42,7 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let registry = Arc::new(cnets_nodes::registry());
-    let mut doc = load_file_with(
-        &args.graph,
-        &registry,
-        &library::options(&args.graph, &args.library),
-    )?;
+    let mut doc = library::load_graph(&args.graph, &args.library, &[])?;
     let setup = doc.meta.optimization.clone().ok_or_else(|| {
         Failure::usage(format!(
             "{}: the graph has no optimization setup (an `optimization: (…)` section)",

@@ -2,15 +2,12 @@
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Arc;
 
-use cnets_engine::file::load_file_with;
 use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag};
 use cnets_preview::{ColorMode, Layer, PreviewOptions, build_scene};
 use cnets_render::{Camera, Offscreen, View};
 
 use crate::failure::{CommandResult, Failure};
-use crate::inputs::apply_set;
 use crate::library;
 
 /// Arguments of `cnets render`.
@@ -142,15 +139,7 @@ pub fn render_png(
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
     let look = Look::parse(&args.size, &args.view, &args.color, &args.hide)?;
-    let registry = Arc::new(cnets_nodes::registry());
-    let mut doc = load_file_with(
-        &args.graph,
-        &registry,
-        &library::options(&args.graph, &args.library),
-    )?;
-    for set in &args.sets {
-        apply_set(&mut doc.graph, set)?;
-    }
+    let doc = library::load_graph(&args.graph, &args.library, &args.sets)?;
     let graph = doc.graph;
     // Pull only what is previewed (exports are not run by a render).
     let request: Vec<_> = graph

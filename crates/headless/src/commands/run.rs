@@ -2,17 +2,14 @@
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Arc;
 use std::time::Instant;
 
-use cnets_engine::file::load_file_with;
 use cnets_engine::value::json::to_json;
 use cnets_engine::{Evaluator, NodeContext, NodeFlag, NodeResult};
 use serde_json::{Map, Value as Json, json};
 
 use crate::commands::render::{Look, render_png};
 use crate::failure::{CommandResult, Failure};
-use crate::inputs::apply_set;
 use crate::library;
 use crate::progress::Progress;
 
@@ -66,15 +63,7 @@ impl Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let registry = Arc::new(cnets_nodes::registry());
-    let mut doc = load_file_with(
-        &args.graph,
-        &registry,
-        &library::options(&args.graph, &args.library),
-    )?;
-    for set in &args.sets {
-        apply_set(&mut doc.graph, set)?;
-    }
+    let doc = library::load_graph(&args.graph, &args.library, &args.sets)?;
     let graph = doc.graph;
     let exports = graph
         .nodes()
