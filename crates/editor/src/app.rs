@@ -221,6 +221,8 @@ pub struct EditorApp {
     pub optimization: OptimizationPanel,
     /// The opened clusters the canvas was showing in the last frame.
     canvas_view: Vec<String>,
+    /// Counts the canvases made for graph levels (each gets its own view state).
+    canvas_serial: u64,
     palette_was_open: bool,
 }
 
@@ -292,6 +294,7 @@ impl EditorApp {
             last_watch: Instant::now(),
             optimization: OptimizationPanel::new(options.wake),
             canvas_view: Vec::new(),
+            canvas_serial: 0,
             palette_was_open: false,
         };
         app.watch.changed(&app.doc.graph);
@@ -390,10 +393,10 @@ impl EditorApp {
             for (_, n, input) in order {
                 let at = if input {
                     k_in += 1.0;
-                    [b.left() - 300.0, b.top() + 150.0 * (k_in - 1.0)]
+                    [b.left() - 380.0, b.top() + 190.0 * (k_in - 1.0)]
                 } else {
                     k_out += 1.0;
-                    [b.right() + 80.0, b.top() + 150.0 * (k_out - 1.0)]
+                    [b.right() + 100.0, b.top() + 190.0 * (k_out - 1.0)]
                 };
                 sub.set_position(&n, at).map_err(|e| e.to_string())?;
             }
@@ -995,7 +998,9 @@ impl EditorApp {
             .show(ui, |ui| {
                 if self.canvas_view != self.doc.view_path() {
                     // Another graph level: a fresh canvas framing it.
-                    self.canvas = Canvas::new();
+                    self.canvas_serial += 1;
+                    self.canvas =
+                        Canvas::with_id(egui::Id::new(("cnets-canvas", self.canvas_serial)));
                     self.canvas.fit_later();
                     self.canvas_view = self.doc.view_path();
                 }

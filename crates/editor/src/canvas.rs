@@ -188,6 +188,13 @@ fn style() -> SnarlStyle {
 impl Canvas {
     /// An empty canvas.
     pub fn new() -> Self {
+        Self::with_id(egui::Id::new("cnets-canvas"))
+    }
+
+    /// An empty canvas whose view state (selection, node order, zoom) is kept under its own
+    /// id, e.g. one per graph level shown (an opened cluster must not inherit the selection of
+    /// the graph around it).
+    pub fn with_id(id: egui::Id) -> Self {
         Self {
             snarl: Snarl::new(),
             ids: HashMap::new(),
@@ -196,9 +203,7 @@ impl Canvas {
             rects: HashMap::new(),
             focused: None,
             selected: Vec::new(),
-            widget: SnarlWidget::new()
-                .id(egui::Id::new("cnets-canvas"))
-                .style(style()),
+            widget: SnarlWidget::new().id(id).style(style()),
             fit_pending: true,
             fit_delay: 0,
             ui_rect: Rect::NOTHING,
@@ -211,11 +216,11 @@ impl Canvas {
         self.fit_pending = true;
     }
 
-    /// Frames the whole graph after two more frames (once nodes have their new sizes, e.g. when
+    /// Frames the whole graph after six more frames (once nodes have their new sizes, e.g. when
     /// the first results of a newly shown graph arrive).
     pub fn fit_later(&mut self) {
         self.fit_pending = true;
-        self.fit_delay = 2;
+        self.fit_delay = 6;
     }
 
     /// Positions that lay the graph out in columns by dependency depth (sources on the left),

@@ -74,17 +74,25 @@ impl Rebuilt {
 /// Rebuilds the cluster of `level` from an edited subgraph: the graph around it with the cluster
 /// node's new definition (the level's own graph when the subgraph is unchanged).
 pub fn rebuild(level: &Level, graph: &Graph, meta: &GraphMeta) -> Result<(Graph, Rebuilt), String> {
-    let unchanged =
-        file::to_ron(graph, meta) == file::to_ron(&level.cluster.template, &level.cluster.meta);
-    if unchanged {
+    let template = &level.cluster.template;
+    let same_text = file::to_ron(graph, meta) == file::to_ron(template, &level.cluster.meta);
+    // The same node definitions too (a cluster inside may have been reloaded from its file).
+    let same_defs = graph.nodes().all(|(_, n)| {
+        template
+            .node(&n.id)
+            .is_some_and(|t| Arc::ptr_eq(&t.def, &n.def))
+    });
+    if same_text && same_defs {
         return Ok((level.graph.clone(), Rebuilt::default()));
     }
-    let made_inline = match &level.cluster.source {
-        ClusterSource::File { written, .. } => Some(written.clone()),
-        ClusterSource::Inline => None,
+    let (source, made_inline) = match &level.cluster.source {
+        // Unchanged text: a file cluster stays a reference to its file.
+        source if same_text => (source.clone(), None),
+        ClusterSource::File { written, .. } => (ClusterSource::Inline, Some(written.clone())),
+        ClusterSource::Inline => (ClusterSource::Inline, None),
     };
     let cluster = Cluster::new(
-        ClusterSource::Inline,
+        source,
         graph.clone(),
         meta.clone(),
         level.cluster.base_dir.clone(),
