@@ -278,13 +278,16 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
     } else {
         // Inside opened clusters: the innermost instance's subgraph, with the values the cluster
         // received; every inner node is evaluated (not only those feeding the outputs).
-        let inner = descend(graph, &request.view, &mut |g, ev| {
+        let inner = descend(graph, &request.view, &mut |cluster, g, ev| {
             let wanted: Vec<_> = g
                 .nodes()
                 .filter(|(_, n)| !n.def.has_flag(NodeFlag::Export))
                 .map(|(k, _)| k)
                 .collect();
-            ev.evaluate(g, &wanted, &ctx, &mut |_, _| {});
+            // Relative paths inside resolve against the cluster's own folder, as when it runs.
+            let mut inner = NodeContext::new(None, cluster.base_dir.clone());
+            inner.cancel = request.cancel.clone();
+            ev.evaluate(g, &wanted, &inner, &mut |_, _| {});
             (statuses(g, ev), build_scene(g, ev, &request.options))
         });
         match inner {
@@ -344,19 +347,19 @@ pub fn statuses(graph: &Graph, evaluator: &Evaluator) -> HashMap<String, NodeSta
         .collect()
 }
 
-/// Runs `f` on the working subgraph and evaluator of the cluster instance at `view` inside
-/// `graph` (node ids from the outermost cluster in); `None` when a node on the way is missing or
-/// not a cluster.
+/// Runs `f` on the cluster instance at `view` inside `graph` (node ids from the outermost cluster
+/// in), with its working subgraph and evaluator; `None` when a node on the way is missing or not a
+/// cluster.
 pub fn descend<R>(
     graph: &Graph,
     view: &[String],
-    f: &mut dyn FnMut(&Graph, &mut Evaluator) -> R,
+    f: &mut dyn FnMut(&Cluster, &Graph, &mut Evaluator) -> R,
 ) -> Option<R> {
     let (first, rest) = view.split_first()?;
     let cluster = Cluster::shared(&graph.node(first)?.def)?;
     cluster.inspect(|inner, ev| {
         if rest.is_empty() {
-            Some(f(inner, ev))
+            Some(f(&cluster, inner, ev))
         } else {
             descend(inner, rest, f)
         }
