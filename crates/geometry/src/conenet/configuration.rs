@@ -143,12 +143,17 @@ impl Configurations {
     pub fn counts(&self) -> ConfigurationCounts {
         let mut n = [0usize; 4];
         for i in 0..self.rows {
-            for &k in self.row(i) {
-                n[k as usize] += 1;
+            let row = self.row(i);
+            // Usually every vertex is (++): one vectorizable test, the histogram only otherwise.
+            if row.iter().any(|c| !c.is_good()) {
+                for &c in row {
+                    n[c as usize] += 1;
+                }
             }
         }
+        let total = self.rows * self.cols;
         ConfigurationCounts {
-            plus_plus: n[0],
+            plus_plus: total - n[1] - n[2] - n[3],
             minus_minus: n[1],
             plus_minus: n[2],
             minus_plus: n[3],
@@ -158,11 +163,14 @@ impl Configurations {
     /// The first vertex (i, j) not in (++), in the order the correction visits them: by column j,
     /// then row i.
     pub fn first_bad(&self) -> Option<(usize, usize)> {
-        (1..=self.cols).find_map(|j| {
-            (0..self.rows)
-                .find(|&i| !self.get(i, j).is_good())
-                .map(|i| (i, j))
-        })
+        // Row by row (the storage order), keeping the smallest (j, i).
+        (0..self.rows)
+            .filter_map(|i| {
+                let k = self.row(i).iter().position(|c| !c.is_good())?;
+                Some((k + 1, i))
+            })
+            .min()
+            .map(|(j, i)| (i, j))
     }
 }
 

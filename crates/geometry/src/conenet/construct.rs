@@ -20,15 +20,12 @@ pub fn construct(inputs: &ConstructInputs) -> Result<ConeNet, GeometryError> {
     inputs.assistance.validate()?;
     prep.dx.check_bisectors()?;
     let mut sweep = Sweep::new(
-        &prep.dx,
-        &prep.generatrix,
-        prep.apex.clone(),
+        &prep,
         zeroed_points(n * (m - 1)),
         true,
         Rule::Ratios(&grid),
         Some(inputs.assistance),
     );
-    sweep.inv_scale = 1.0 / prep.scale;
     sweep.run()?;
     Raw::from_sweep(sweep, prep.wrap_rows).finish()
 }
@@ -46,9 +43,7 @@ pub fn construct_coplanar(inputs: &CoplanarInputs) -> Result<ConeNet, GeometryEr
     inputs.assistance.validate()?;
     prep.dx.check_bisectors()?;
     let mut sweep = Sweep::new(
-        &prep.dx,
-        &prep.generatrix,
-        prep.apex.clone(),
+        &prep,
         vec![DVec3::ZERO; m - 1],
         false,
         Rule::Coplanar {

@@ -169,15 +169,7 @@ fn run_ctube(inputs: &CtubeInputs) -> Result<Raw, GeometryError> {
     let prep = prepare(&inputs.directrix, &inputs.generatrix, &inputs.apex)?;
     let n = prep.generatrix.len();
     let (planes, per_vertex) = resolve_normals(&inputs.normals, &prep.dx, n)?;
-    let mut sweep = Sweep::new(
-        &prep.dx,
-        &prep.generatrix,
-        prep.apex.clone(),
-        planes,
-        per_vertex,
-        Rule::Given,
-        None,
-    );
+    let mut sweep = Sweep::new(&prep, planes, per_vertex, Rule::Given, None);
     sweep.run()?;
     Ok(Raw::from_sweep(sweep, prep.wrap_rows))
 }
@@ -190,6 +182,8 @@ pub(crate) struct Raw {
     pub normals: PlaneNormals,
     pub configurations: Configurations,
     pub corrections: Vec<super::correction::Correction>,
+    /// 1 / design size (see [`Prepared::scale`]).
+    pub inv_scale: f64,
 }
 
 impl Raw {
@@ -213,6 +207,7 @@ impl Raw {
             normals,
             configurations: Configurations::from_padded(n, m - 2, m - 1, sweep.configs),
             corrections: sweep.corrections,
+            inv_scale: sweep.inv_scale,
         }
     }
 
@@ -231,6 +226,7 @@ impl Raw {
             &self.directrix,
             &self.apex,
             &self.configurations,
+            self.inv_scale,
         )?;
         Ok(ConeNet {
             mesh: self.mesh,

@@ -5,6 +5,7 @@
 //! index `j − 1`. Row values are indexed by the generatrix point i = 0 … N−1.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::{GeometryError, Polyline};
 
@@ -93,26 +94,30 @@ impl From<Vec<Vec<f64>>> for GridValues {
     }
 }
 
-/// A validated [`GridValues`]: constant-time lookup of the value at (i, j).
+/// A validated [`GridValues`]: the values of one row as a slice (entry `j − 1` is column j). A
+/// per-vertex table is borrowed, not copied.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Grid {
-    /// Values; layout given by `per_row`.
-    values: Vec<f64>,
-    /// M − 1.
-    columns: usize,
-    /// Whether `values` holds N × (M−1) entries (else M−1 shared by the rows).
-    per_row: bool,
+pub(crate) enum Grid<'a> {
+    /// M−1 values shared by the rows.
+    Shared(Vec<f64>),
+    /// N lists of M−1 values.
+    PerRow(&'a [Vec<f64>]),
 }
 
-impl Grid {
+impl Grid<'_> {
+    /// The values of row i (entry `j − 1` is column j = 1 … M−1).
+    #[inline]
+    pub(crate) fn row(&self, i: usize) -> &[f64] {
+        match self {
+            Self::Shared(values) => values,
+            Self::PerRow(rows) => &rows[i],
+        }
+    }
+
     /// The value at row i, column j (1 … M−1).
     #[inline]
     pub(crate) fn get(&self, i: usize, j: usize) -> f64 {
-        if self.per_row {
-            self.values[i * self.columns + j - 1]
-        } else {
-            self.values[j - 1]
-        }
+        self.row(i)[j - 1]
     }
 }
 
@@ -124,7 +129,7 @@ impl GridValues {
         rows: usize,
         columns: usize,
         (lo, hi, expected): (f64, f64, &'static str),
-    ) -> Result<Grid, GeometryError> {
+    ) -> Result<Grid<'_>, GeometryError> {
         let check = |v: f64, row: Option<usize>, column: usize| -> Result<(), GeometryError> {
             if !v.is_finite() {
                 return Err(match row {
@@ -149,11 +154,7 @@ impl GridValues {
         match self {
             Self::Uniform(v) => {
                 check(*v, None, 1)?;
-                Ok(Grid {
-                    values: vec![*v; columns],
-                    columns,
-                    per_row: false,
-                })
+                Ok(Grid::Shared(vec![*v; columns]))
             }
             Self::PerColumn(list) => {
                 if list.len() != columns {
@@ -166,11 +167,7 @@ impl GridValues {
                 for (k, v) in list.iter().enumerate() {
                     check(*v, None, k + 1)?;
                 }
-                Ok(Grid {
-                    values: list.clone(),
-                    columns,
-                    per_row: false,
-                })
+                Ok(Grid::Shared(list.clone()))
             }
             Self::PerVertex(table) => {
                 if table.len() != rows {
@@ -180,26 +177,28 @@ impl GridValues {
                         got: table.len(),
                     });
                 }
-                let mut values = Vec::with_capacity(rows * columns);
-                for (i, row) in table.iter().enumerate() {
+                // Rows in parallel (a large table is read once here); the first bad row reports.
+                let first_error = table.par_iter().enumerate().find_map_first(|(i, row)| {
                     if row.len() != columns {
-                        return Err(GeometryError::WrongRowLength {
+                        return Some(GeometryError::WrongRowLength {
                             what,
                             row: i,
                             expected: columns,
                             got: row.len(),
                         });
                     }
-                    for (k, v) in row.iter().enumerate() {
-                        check(*v, Some(i), k + 1)?;
+                    // Cheap test first, the error (and its column) only for a bad row.
+                    if row.iter().all(|v| (lo..=hi).contains(v)) {
+                        return None;
                     }
-                    values.extend_from_slice(row);
+                    row.iter()
+                        .enumerate()
+                        .find_map(|(k, v)| check(*v, Some(i), k + 1).err())
+                });
+                match first_error {
+                    Some(e) => Err(e),
+                    None => Ok(Grid::PerRow(table)),
                 }
-                Ok(Grid {
-                    values,
-                    columns,
-                    per_row: true,
-                })
             }
         }
     }

@@ -23,6 +23,7 @@ pub mod directrix;
 mod eigen;
 pub mod encode;
 pub mod inputs;
+mod lanes;
 pub mod normalize;
 pub mod quality;
 pub mod ratios;

@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use super::configuration::{ConfigurationCounts, Configurations};
 use super::eigen::smallest_eigenvector;
+use super::lanes::{F, LANES, M, V3};
 use crate::{GeometryError, QuadGrid};
 
 /// Planarity of a quad `p1 p2 p3 p4` as in libigl: with diagonals `d1 = p3 − p1`, `d2 = p4 − p2`, the
@@ -122,39 +123,14 @@ pub(crate) struct StripFit {
 /// degenerate), computed without overflow.
 pub(crate) fn normalization(mesh: &QuadGrid) -> (DVec3, f64) {
     match mesh.bounds() {
-        Some((lo, hi)) => {
-            let half = (hi * 0.5 - lo * 0.5).max_element();
-            (
-                lo * 0.5 + hi * 0.5,
-                if half > 0.0 && half.is_finite() {
-                    half
-                } else {
-                    1.0
-                },
-            )
-        }
+        Some((lo, hi)) => normalization_of(lo, hi),
         None => (DVec3::ZERO, 1.0),
     }
 }
 
-/// [`normalization`] computed with a parallel reduction (for large constructed meshes).
-fn parallel_normalization(mesh: &QuadGrid) -> (DVec3, f64) {
-    let (lo, hi) = mesh
-        .vertices
-        .par_chunks(4096)
-        .map(|c| {
-            c.iter()
-                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
-                    (l.min(*p), h.max(*p))
-                })
-        })
-        .reduce(
-            || (DVec3::INFINITY, DVec3::NEG_INFINITY),
-            |a, b| (a.0.min(b.0), a.1.max(b.1)),
-        );
-    if mesh.vertices.is_empty() {
-        return (DVec3::ZERO, 1.0);
-    }
+/// The normalization frame of the bounding box `lo`–`hi`: its center and half its largest extent
+/// (1 when degenerate), computed without overflow.
+fn normalization_of(lo: DVec3, hi: DVec3) -> (DVec3, f64) {
     let half = (hi * 0.5 - lo * 0.5).max_element();
     (
         lo * 0.5 + hi * 0.5,
@@ -353,87 +329,150 @@ pub struct Quality {
     pub first_bad: Option<(usize, usize)>,
 }
 
-/// Computes the quality record of a constructed mesh in one pass over the rows: planarity of every
-/// quad (max, mean) and the cone residual of every line against the construction's own apex
-/// `C_j = (X_{j+1} − a_{j+1} X_j) / (1 − a_{j+1})`, taken homogeneously as
-/// `(X_{j+1} − a X_j, 1 − a)` in normalized coordinates (exact for a = 1, a point at infinity).
+/// Per-strip constants of the cone residual, one array per component (see [`quality`]).
+struct StripConstants {
+    /// (X_{j+1} − X_j) · inv_scale.
+    e: [Vec<f64>; 3],
+    /// X_j.
+    x: [Vec<f64>; 3],
+    /// (1 − a_{j+1}) · inv_scale.
+    one_minus_a: Vec<f64>,
+}
+
+impl StripConstants {
+    /// Lanes of component array `c` from strip j0.
+    #[inline(always)]
+    fn lanes(c: &[Vec<f64>; 3], j0: usize) -> V3 {
+        V3 {
+            x: F::load(&c[0], j0),
+            y: F::load(&c[1], j0),
+            z: F::load(&c[2], j0),
+        }
+    }
+}
+
+/// What one task of the quality pass accumulates.
+struct QualityAcc {
+    /// The scale of the coordinates.
+    inv_scale: f64,
+    /// Largest planarity per lane.
+    max: F,
+    /// Sum of planarities per lane.
+    sum: F,
+    /// Bounding box per lane.
+    lo: V3,
+    hi: V3,
+    /// Per strip, the largest squared residual as a fraction (numerator, denominator): fractions
+    /// are compared by cross-multiplication, so no division per line.
+    num: Vec<f64>,
+    den: Vec<f64>,
+}
+
+impl QualityAcc {
+    /// The normalization frame (see [`normalization`]) of the bounding box of the vertices seen.
+    fn normalization(&self) -> (DVec3, f64) {
+        let lo = (0..LANES).fold(DVec3::INFINITY, |m, l| m.min(self.lo.lane(l)));
+        let hi = (0..LANES).fold(DVec3::NEG_INFINITY, |m, l| m.max(self.hi.lane(l)));
+        normalization_of(lo, hi)
+    }
+
+    /// Adds the quads (or, when not `quads`, only the lines) of strips j0 … j0 + LANES − 1 of one
+    /// row pair, given their corners `G_{i,j}, G_{i,j+1}, G_{i+1,j+1}, G_{i+1,j}`; lanes outside
+    /// `valid` repeat a valid quad.
+    #[inline(always)]
+    fn add(
+        &mut self,
+        strip: &StripConstants,
+        j0: usize,
+        [p, p1, q1, q]: [V3; 4],
+        quads: bool,
+        valid: M,
+    ) {
+        let inv_scale = self.inv_scale;
+        self.lo = self.lo.min(p).min(p1);
+        self.hi = self.hi.max(p).max(p1);
+        // Corners relative to the first, scaled: the line direction d is the first edge.
+        let d = (p1 - p) * inv_scale;
+        if quads {
+            let planarity = planarity_lanes(d, (q1 - p) * inv_scale, (q - p) * inv_scale);
+            self.max = self.max.max(planarity);
+            self.sum = self.sum + F::select(valid, planarity, F::splat(0.0));
+        }
+        let e = StripConstants::lanes(&strip.e, j0);
+        let x = StripConstants::lanes(&strip.x, j0);
+        let k = e + (x - p) * F::load(&strip.one_minus_a, j0);
+        let num = k.cross(d).length_squared();
+        let den = d.length_squared();
+        let (r0, r1) = (F::load(&self.num, j0), F::load(&self.den, j0));
+        // num / den > r0 / r1, skipping zero-length edges (den = 0).
+        let up = den.gt(F::splat(0.0)) & (num * r1).gt(r0 * den);
+        F::select(up, num, r0).store(&mut self.num, j0);
+        F::select(up, den, r1).store(&mut self.den, j0);
+    }
+}
+
+/// Computes the quality record of a constructed mesh in one pass over the rows, [`LANES`] quads at a
+/// time: planarity of every quad (max, mean), the cone residual of every line against the
+/// construction's own apex, and the bounding box the residuals are normalized with.
+///
+/// The residual of the line through `p = G_{i,j}`, `d = G_{i,j+1} − G_{i,j}` against the apex
+/// `C_j = (X_{j+1} − a X_j) / (1 − a)` (a = a_{j+1}), taken homogeneously as `(v, w) = (X_{j+1} −
+/// a X_j, 1 − a)` in the mesh's normalized coordinates (center c, scale s; exact for a = 1, a point
+/// at infinity) and made unit, is `|(v − w p) × d̂|` (see [`cone_check`]). The center cancels in
+/// `v − w p = (K / s) / |(v, w)|` with `K = (X_{j+1} − X_j) + (1 − a)(X_j − G_{i,j})`, so the pass
+/// accumulates `max_i |K × d|² / |d|²` per strip (in coordinates scaled by `inv_scale`, 1 / design
+/// size, which keeps the magnitudes near 1) and the bounding box, and applies the per-strip factor
+/// at the end. The planarity measure is scale-invariant; `inv_scale` only keeps its squares in range.
 pub(crate) fn quality(
     mesh: &QuadGrid,
     directrix: &[DVec3],
     apex: &[f64],
     configurations: &Configurations,
+    inv_scale: f64,
 ) -> Result<Quality, GeometryError> {
     // The sweep has checked every vertex for finiteness already.
     mesh.validate()?;
-    let (center, scale) = parallel_normalization(mesh);
-    let inv = 1.0 / scale;
     let strips = mesh.cols.saturating_sub(1);
-    let hs: Vec<[f64; 4]> = (0..strips)
+    let counts = configurations.counts();
+    let first_bad = if counts.bad() == 0 {
+        None
+    } else {
+        configurations.first_bad()
+    };
+    if mesh.rows == 0 || strips == 0 {
+        return Ok(Quality {
+            configurations: counts,
+            first_bad,
+            ..Quality::default()
+        });
+    }
+    let mut acc = quality_pass(mesh, directrix, apex, inv_scale);
+    let (center, scale) = acc.normalization();
+    // The mesh can be far larger (or smaller) than its design, e.g. for extreme apex values: then
+    // the pass is redone in the mesh's own scale, which keeps every square in range.
+    if !(scale * inv_scale < 1e30 && scale * inv_scale > 1e-30) {
+        acc = quality_pass(mesh, directrix, apex, 1.0 / scale);
+    }
+    let inv = 1.0 / scale;
+    let residuals: Vec<f64> = (0..strips)
         .map(|j| {
+            // |(v, w)| for the apex in normalized coordinates, as in `cone_check`.
             let a = apex[j];
             let v = (directrix[j + 1] - center) * inv - (directrix[j] - center) * (inv * a);
             let w = 1.0 - a;
             let norm = (v.length_squared() + w * w).sqrt();
-            [v.x / norm, v.y / norm, v.z / norm, w / norm]
+            (acc.num[j] / acc.den[j]).sqrt() * (inv / acc.inv_scale) / norm
         })
         .collect();
-    let qr = mesh.quad_rows();
-    struct Acc {
-        max: f64,
-        sum: f64,
-        /// Per strip, the largest squared residual as a fraction (numerator, denominator): fractions
-        /// are compared by cross-multiplication, so no division per line.
-        residuals: Vec<(f64, f64)>,
-    }
-    let empty = || Acc {
-        max: 0.0,
-        sum: 0.0,
-        residuals: vec![(0.0, 1.0); strips],
-    };
-    let acc = (0..mesh.rows)
-        .into_par_iter()
-        .fold(empty, |mut acc, i| {
-            let (a, b) = row_pair(mesh, i);
-            let quads = i < qr;
-            for j in 0..strips {
-                if quads {
-                    let p = scaled_planarity([a[j], a[j + 1], b[j + 1], b[j]], inv);
-                    acc.max = acc.max.max(p);
-                    acc.sum += p;
-                }
-                let (p, d) = ((a[j] - center) * inv, (a[j + 1] - a[j]) * inv);
-                let den = d.length_squared();
-                let h = hs[j];
-                let num = (DVec3::new(h[0], h[1], h[2]) - p * h[3])
-                    .cross(d)
-                    .length_squared();
-                let r = &mut acc.residuals[j];
-                // num / den > r.0 / r.1, skipping zero-length edges (den = 0).
-                if den > 0.0 && num * r.1 > r.0 * den {
-                    *r = (num, den);
-                }
-            }
-            acc
-        })
-        .reduce(empty, |mut x, y| {
-            x.max = x.max.max(y.max);
-            x.sum += y.sum;
-            for (r, s) in x.residuals.iter_mut().zip(&y.residuals) {
-                if s.0 * r.1 > r.0 * s.1 {
-                    *r = *s;
-                }
-            }
-            x
-        });
     let count = mesh.quad_count();
+    let max = acc.max.0.iter().copied().fold(0.0, f64::max);
     let mean = if count == 0 {
         0.0
     } else {
-        acc.sum / count as f64
+        acc.sum.0.iter().sum::<f64>() / count as f64
     };
-    let residuals: Vec<f64> = acc.residuals.iter().map(|(n, d)| (n / d).sqrt()).collect();
     let max_cone = residuals.iter().copied().fold(0.0, f64::max);
-    if !(acc.max.is_finite() && mean.is_finite() && max_cone.is_finite()) {
+    if !(max.is_finite() && mean.is_finite() && residuals.iter().all(|r| r.is_finite())) {
         return Err(GeometryError::NonFiniteOutput {
             what: "quality",
             row: 0,
@@ -441,18 +480,185 @@ pub(crate) fn quality(
         });
     }
     Ok(Quality {
-        max_planarity: acc.max,
+        max_planarity: max,
         mean_planarity: mean,
         cone_residuals: residuals,
         max_cone_residual: max_cone,
-        configurations: configurations.counts(),
-        first_bad: configurations.first_bad(),
+        configurations: counts,
+        first_bad,
     })
+}
+
+/// The pass of [`quality`] over all rows (in parallel), in coordinates scaled by `inv_scale`.
+fn quality_pass(mesh: &QuadGrid, directrix: &[DVec3], apex: &[f64], inv_scale: f64) -> QualityAcc {
+    let strips = mesh.cols - 1;
+    let padded = strips.div_ceil(LANES) * LANES;
+    // Per-strip constants, one array per component, padded by repeating the last strip.
+    let constant = |f: &dyn Fn(usize) -> f64| -> Vec<f64> {
+        (0..padded).map(|k| f(k.min(strips - 1))).collect()
+    };
+    let edge = |j: usize| (directrix[j + 1] - directrix[j]) * inv_scale;
+    let strip = StripConstants {
+        e: [
+            constant(&|j| edge(j).x),
+            constant(&|j| edge(j).y),
+            constant(&|j| edge(j).z),
+        ],
+        x: [
+            constant(&|j| directrix[j].x),
+            constant(&|j| directrix[j].y),
+            constant(&|j| directrix[j].z),
+        ],
+        one_minus_a: constant(&|j| (1.0 - apex[j]) * inv_scale),
+    };
+    let quad_rows = mesh.quad_rows();
+    let empty = || QualityAcc {
+        inv_scale,
+        max: F::splat(0.0),
+        sum: F::splat(0.0),
+        lo: V3::splat(DVec3::INFINITY),
+        hi: V3::splat(DVec3::NEG_INFINITY),
+        num: vec![0.0; padded],
+        den: vec![1.0; padded],
+    };
+    (0..mesh.rows)
+        .into_par_iter()
+        .fold(empty, |mut acc, i| {
+            let (a, b) = row_pair(mesh, i);
+            let quads = i < quad_rows;
+            // Full groups of LANES strips, then the last group padded by repeating its last strip.
+            let full = strips / LANES * LANES;
+            for j0 in (0..full).step_by(LANES) {
+                let corners = [
+                    V3::gather(&a[j0..j0 + LANES]),
+                    V3::gather(&a[j0 + 1..j0 + 1 + LANES]),
+                    V3::gather(&b[j0 + 1..j0 + 1 + LANES]),
+                    V3::gather(&b[j0..j0 + LANES]),
+                ];
+                acc.add(&strip, j0, corners, quads, M::splat(true));
+            }
+            if full < strips {
+                let mut valid = M::splat(true);
+                let mut corners = [V3::ZERO; 4];
+                for l in 0..LANES {
+                    let j = (full + l).min(strips - 1);
+                    valid.set(l, full + l < strips);
+                    corners[0].set_lane(l, a[j]);
+                    corners[1].set_lane(l, a[j + 1]);
+                    corners[2].set_lane(l, b[j + 1]);
+                    corners[3].set_lane(l, b[j]);
+                }
+                acc.add(&strip, full, corners, quads, valid);
+            }
+            acc
+        })
+        .reduce(empty, |mut x, y| {
+            x.max = x.max.max(y.max);
+            x.sum = x.sum + y.sum;
+            x.lo = x.lo.min(y.lo);
+            x.hi = x.hi.max(y.hi);
+            for j in 0..padded {
+                if y.num[j] * x.den[j] > x.num[j] * y.den[j] {
+                    (x.num[j], x.den[j]) = (y.num[j], y.den[j]);
+                }
+            }
+            x
+        })
+}
+
+/// [`quad_planarity`] per lane for the quads `[0, d, q2, q3]` (corners relative to the first).
+#[inline(always)]
+fn planarity_lanes(q1: V3, q2: V3, q3: V3) -> F {
+    let d1 = q2;
+    let d2 = q3 - q1;
+    let (a, b) = (d1.length_squared(), d2.length_squared());
+    let n = d1.cross(d2);
+    let n2 = n.length_squared();
+    let t = q1.dot(n);
+    let mean2 = (a + b + (a * b).sqrt() * 2.0) * 0.25;
+    let p = (t * t / (n2 * mean2)).sqrt();
+    F::select(n2.gt(F::splat(1e-28) * a * b), p, F::splat(0.0))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The quality record computed the direct way: every quad and line on its own, in coordinates
+    /// normalized by the mesh's bounding box.
+    fn reference(mesh: &QuadGrid, directrix: &[DVec3], apex: &[f64]) -> (f64, f64, Vec<f64>) {
+        let p = planarity(mesh).unwrap();
+        let (center, scale) = normalization(mesh);
+        let inv = 1.0 / scale;
+        let residuals = (0..mesh.cols - 1)
+            .map(|j| {
+                let a = apex[j];
+                let v = (directrix[j + 1] - center) * inv - (directrix[j] - center) * (inv * a);
+                let w = 1.0 - a;
+                let norm = (v.length_squared() + w * w).sqrt();
+                let h = v / norm;
+                (0..mesh.rows)
+                    .map(|i| {
+                        let q = (mesh.at(i, j) - center) * inv;
+                        let d = (mesh.at(i, j + 1) - mesh.at(i, j)) * inv;
+                        ((h - q * (w / norm)).cross(d).length_squared() / d.length_squared()).sqrt()
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        (p.max, p.mean, residuals)
+    }
+
+    #[test]
+    fn quality_pass_matches_the_definitions() {
+        let mut state = 9u64;
+        let mut rnd = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        // Column counts around the lane width, open and closed rows, and a mesh far larger than
+        // its design scale (the pass is redone in the mesh's own scale).
+        for (rows, cols, wrap, size, design) in [
+            (3, 2, false, 1.0, 4.0),
+            (4, 9, true, 1.0, 4.0),
+            (5, 17, false, 3.0, 12.0),
+            (2, 8, false, 1.0, 4.0),
+            (6, 23, true, 1e200, 1.0),
+        ] {
+            let directrix: Vec<DVec3> = (0..cols)
+                .map(|j| DVec3::new(j as f64, 0.3 * rnd(), 0.2 * rnd()) * size)
+                .collect();
+            let apex: Vec<f64> = (0..cols - 1).map(|j| [1.0, 0.9 + rnd()][j % 2]).collect();
+            let vertices = (0..rows * cols)
+                .map(|k| {
+                    let (i, j) = (k / cols, k % cols);
+                    (DVec3::new(j as f64, 1.0 + i as f64, 0.5 * i as f64)
+                        + DVec3::new(rnd(), rnd(), rnd()) * 0.2)
+                        * size
+                })
+                .collect();
+            let mesh = QuadGrid::new(rows, cols, vertices)
+                .unwrap()
+                .with_wrap(wrap, false);
+            let configurations = Configurations::from_padded(
+                rows,
+                cols.saturating_sub(2),
+                cols - 1,
+                vec![Default::default(); rows * (cols - 1)],
+            );
+            let q = quality(&mesh, &directrix, &apex, &configurations, 1.0 / design).unwrap();
+            let (max, mean, residuals) = reference(&mesh, &directrix, &apex);
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-300);
+            assert!(max > 1e-3 && close(q.max_planarity, max), "{q:?} vs {max}");
+            assert!(close(q.mean_planarity, mean), "{q:?} vs {mean}");
+            assert_eq!(q.cone_residuals.len(), residuals.len());
+            for (a, b) in q.cone_residuals.iter().zip(&residuals) {
+                assert!(*b > 1e-4 && close(*a, *b), "{a} vs {b}");
+            }
+        }
+    }
 
     #[test]
     fn planar_and_twisted_quads() {

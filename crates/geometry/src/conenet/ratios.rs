@@ -9,6 +9,8 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
+use super::directrix::SweptDirectrix;
+use super::lanes::{F, M, V3};
 use super::{tolerance, trig};
 use crate::GeometryError;
 
@@ -95,47 +97,121 @@ impl SupportFrame {
     }
 }
 
-/// Hot path of the ratio construction: a positive multiple of the normal of Π_{i,j} for ratio r,
-/// from `x_prev = X_{j−1}`, `e = ê_j`, `g = G_{i,j−1}` and the Monge normal `b` at X_j. Equal to
-/// `SupportFrame::new(..).ratio_normal(b, r)` up to a positive factor, without normalizing (the
-/// construction step does not depend on the length of P), so only the trigonometric path needs a
-/// square root. `inv_scale` (1 / design size) keeps the magnitudes near 1 at any scale.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub(crate) fn ratio_normal_unnormalized(
+/// The per-column constants of the ratio hot path at X_j: `X_{j−1}`, `ê_j`, the Monge normal `b`
+/// and `ê_j · b` (sin θ_b times a positive factor, the same for every row).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RatioColumn {
     x_prev: DVec3,
     e: DVec3,
-    g: DVec3,
     b: DVec3,
-    r: f64,
-    inv_scale: f64,
-    row: usize,
-    column: usize,
-) -> Result<DVec3, GeometryError> {
-    let d = (g - x_prev) * inv_scale;
-    if d.abs().max_element() <= tolerance::FRAME {
-        // G_{i,j−1} = X_{j−1}: a generatrix vertex on the directrix (a wall standing on it). The
-        // support plane is undefined, but the vertex is not: the step runs along the directrix edge
-        // and meets any plane through X_j at X_j. Use the Monge plane.
-        return Ok(b);
+    eb: f64,
+}
+
+impl RatioColumn {
+    /// The constants of column j (1 … M−1).
+    #[inline(always)]
+    pub(crate) fn new(dx: &SweptDirectrix, j: usize) -> Self {
+        let (e, b) = (dx.edges[j], dx.bisectors[j]);
+        Self {
+            x_prev: dx.points[j - 1],
+            e,
+            b,
+            eb: e.dot(b),
+        }
     }
+}
+
+/// The construction planes of [`LANES`](super::lanes::LANES) rows at one column (see
+/// [`ratio_planes`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RatioPlanes {
+    /// Unit normals.
+    pub p: V3,
+    /// The support plane is undefined (G_{i,j−1} on the line of the edge, elsewhere than X_{j−1}).
+    pub degenerate: M,
+    /// The plane can be used: the support plane is defined and the plane does not (nearly) contain
+    /// the edge (`P·ê > EDGE_PLANE`).
+    pub usable: M,
+}
+
+impl RatioPlanes {
+    /// Lane `l`'s normal, or its typed error (row i, column j).
+    pub(crate) fn get(&self, l: usize, row: usize, column: usize) -> Result<DVec3, GeometryError> {
+        if self.degenerate.get(l) {
+            Err(GeometryError::DegenerateSupport { row, column })
+        } else if !self.usable.get(l) {
+            Err(GeometryError::PlaneContainsEdge {
+                row: Some(row),
+                column,
+            })
+        } else {
+            Ok(self.p.lane(l))
+        }
+    }
+}
+
+/// Hot path of the ratio construction: the unit normals of Π_{i,j} for
+/// [`LANES`](super::lanes::LANES) rows at once, from `g = G_{i,j−1}` and the ratios `r` (equal to
+/// `SupportFrame::new(..).ratio_normal(b, r)` up to rounding), branch-free per row. `inv_scale`
+/// (1 / design size) keeps the magnitudes near 1 at any scale. The frame's `w` is `perp / |perp|`
+/// with `perp` the part of `G_{i,j−1} − X_{j−1}` perpendicular to ê, and
+/// `(cos θ_b, sin θ_b) ∝ (−w·b, ê·b)`. r = ½ uses the bisecting ruling without trigonometry (the
+/// trigonometry is skipped when no row needs it).
+///
+/// When `G_{i,j−1} = X_{j−1}` (a generatrix vertex on the directrix, e.g. a wall standing on it)
+/// the support plane is undefined but the vertex is not: the step runs along the directrix edge and
+/// meets any plane through X_j at X_j, so the Monge plane is used.
+#[inline(always)]
+pub(crate) fn ratio_planes(col: &RatioColumn, g: &V3, r: F, inv_scale: f64) -> RatioPlanes {
+    let (e, b) = (V3::splat(col.e), V3::splat(col.b));
+    let d = (*g - V3::splat(col.x_prev)) * inv_scale;
+    let d_max = d.abs().max_element();
     let perp = d - e * d.dot(e);
-    let n2 = perp.length_squared();
-    if !(perp.abs().max_element() > tolerance::FRAME * d.abs().max_element()) || !n2.is_finite() {
-        return Err(GeometryError::DegenerateSupport { row, column });
-    }
-    // With w = perp / |perp|: ê·b = y > 0 and −w·b = x = −(perp·b) / |perp|.
-    let y = e.dot(b);
-    let pb = perp.dot(b);
-    if r == 0.5 {
-        // (y ê − x w) · |perp|² = y |perp|² ê + (perp·b) perp.
-        Ok(e * (y * n2) + perp * pb)
+    let n2 = perp.dot(perp);
+    let inv_len = F::splat(1.0) / n2.sqrt();
+    // −w·b and ê·b.
+    let wb = -(perp.dot(b) * inv_len);
+    let eb = F::splat(col.eb);
+    let on_directrix = d_max.le(F::splat(tolerance::FRAME));
+    let degenerate =
+        !on_directrix & (!perp.abs().max_element().gt(d_max * tolerance::FRAME) | !n2.is_finite());
+    let half = r.eq(F::splat(0.5));
+    let (s, c) = if half.all() {
+        bisector_sin_cos(eb, wb)
+    } else if !half.any() {
+        ratio_sin_cos(r, eb, wb)
     } else {
-        let n = n2.sqrt();
-        let (s, c) = trig::sin_cos(ratio_to_angle(r, trig::atan2(y * n, -pb)));
-        // (sin θ ê − cos θ w) · |perp|.
-        Ok(e * (s * n) - perp * c)
+        let ((s0, c0), (s1, c1)) = (bisector_sin_cos(eb, wb), ratio_sin_cos(r, eb, wb));
+        (F::select(half, s0, s1), F::select(half, c0, c1))
+    };
+    // P = sin θ ê − cos θ w.
+    let p = V3::select(on_directrix, b, e * s - perp * (c * inv_len));
+    RatioPlanes {
+        p,
+        degenerate,
+        usable: !degenerate & p.dot(e).gt(F::splat(tolerance::EDGE_PLANE)),
     }
+}
+
+/// (sin θ_b, cos θ_b) from `(eb, wb) ∝ (sin θ_b, cos θ_b)` without trigonometry (r = ½).
+#[inline(always)]
+fn bisector_sin_cos(eb: F, wb: F) -> (F, F) {
+    let h = F::splat(1.0) / (eb * eb + wb * wb).sqrt();
+    (eb * h, wb * h)
+}
+
+/// (sin θ, cos θ) for ratios r, with θ_b = atan2(eb, wb).
+#[inline(always)]
+fn ratio_sin_cos(r: F, eb: F, wb: F) -> (F, F) {
+    trig::sin_cos_upper(ratio_to_angle_lanes(r, trig::atan2_upper(eb, wb)))
+}
+
+/// [`ratio_to_angle`] per lane.
+#[inline(always)]
+fn ratio_to_angle_lanes(r: F, theta_b: F) -> F {
+    let low = r * 2.0 * theta_b;
+    let high = theta_b + (r * 2.0 - 1.0) * (F::splat(PI) - theta_b);
+    F::select(r.le(F::splat(0.5)), low, high)
 }
 
 /// The ratio → angle map: `θ = 2 r θ_b` for r ≤ ½, `θ = θ_b + (2r − 1)(π − θ_b)` for r ≥ ½.
@@ -191,6 +267,67 @@ mod tests {
         assert!(p.dot(ruling).abs() < 1e-15 && p.dot(DVec3::X) > 0.0);
         // The plane is perpendicular to the support plane (normal ê × w).
         assert!(p.dot(frame.e.cross(frame.w)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn lane_planes_match_the_support_frame() {
+        use super::super::lanes::LANES;
+        let dx = SweptDirectrix::new(&crate::Polyline::open(vec![
+            DVec3::ZERO,
+            DVec3::new(1.0, 0.2, 0.1),
+            DVec3::new(1.8, 1.0, 0.3),
+        ]))
+        .unwrap();
+        let col = RatioColumn::new(&dx, 1);
+        let mut state = 3u64;
+        let mut rnd = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for trial in 0..500 {
+            let (mut g, mut r) = (V3::ZERO, F::splat(0.5));
+            for l in 0..LANES {
+                let q = DVec3::new(rnd() - 0.5, rnd() + 0.1, rnd() - 0.5) * 3.0;
+                g.set_lane(l, q);
+                // Mixed lanes, all-½ and no-½ groups.
+                r.0[l] = match trial % 3 {
+                    0 if l % 3 == 0 => 0.5,
+                    1 => 0.5,
+                    _ => 0.02 + 0.96 * rnd(),
+                };
+            }
+            let planes = ratio_planes(&col, &g, r, 0.7);
+            for l in 0..LANES {
+                let frame = SupportFrame::new(dx.points[0], dx.edges[1], g.lane(l), 0, 1).unwrap();
+                let expected = frame.ratio_normal(dx.bisectors[1], r.0[l]);
+                let p = planes.p.lane(l);
+                assert!((p - expected).length() < 1e-14, "{p} vs {expected}");
+                assert!(planes.usable.get(l) && !planes.degenerate.get(l));
+            }
+        }
+        // Lane 0 on the directrix point X_0 (Monge plane), lane 1 on the line of the edge
+        // (undefined support plane), lane 2 with r = 0 (the plane contains the edge).
+        let mut g = V3::splat(DVec3::new(0.2, 1.0, 0.3));
+        g.set_lane(0, DVec3::ZERO);
+        g.set_lane(1, dx.edges[1] * -2.0);
+        let mut r = F::splat(0.3);
+        r.0[2] = 0.0;
+        let planes = ratio_planes(&col, &g, r, 1.0);
+        assert_eq!(planes.get(0, 0, 1), Ok(dx.bisectors[1]));
+        assert_eq!(
+            planes.get(1, 4, 1),
+            Err(GeometryError::DegenerateSupport { row: 4, column: 1 })
+        );
+        assert_eq!(
+            planes.get(2, 5, 1),
+            Err(GeometryError::PlaneContainsEdge {
+                row: Some(5),
+                column: 1
+            })
+        );
+        assert!(planes.get(3, 0, 1).is_ok());
     }
 
     #[test]

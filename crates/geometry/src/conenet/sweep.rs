@@ -9,6 +9,10 @@
 //! is applied at j0 over all rows, and the sweep resumes at j0. The block length adapts (doubling
 //! after each block, restarting from the distance covered before the last stop), so the work wasted
 //! beyond a stop stays proportional to the useful work. Results do not depend on the thread count.
+//!
+//! Within a task, [`LANES`] rows advance in lock-step as the lanes of packed vectors
+//! ([`super::lanes`]): each step computes the planes and vertices of all of them without branches,
+//! and only a row that needs more (an error, an inline fix, a stop) redoes its step on its own.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -16,10 +20,11 @@ use rayon::prelude::*;
 use super::configuration::Configuration;
 use super::coplanar::PlanePencil;
 use super::correction::{Correction, CorrectionKind, apex_fix_value};
-use super::ctube::step;
+use super::ctube::{Prepared, step};
 use super::directrix::SweptDirectrix;
 use super::inputs::{Assistance, Grid};
-use super::ratios::{SupportFrame, angle_to_ratio, ratio_normal_unnormalized, ratio_to_angle};
+use super::lanes::{F, LANES, M, V3};
+use super::ratios::{RatioColumn, SupportFrame, angle_to_ratio, ratio_planes, ratio_to_angle};
 use super::tolerance;
 use crate::GeometryError;
 
@@ -29,7 +34,7 @@ pub(crate) enum Rule<'a> {
     /// Planes are given (shared per column or per vertex): the C-tube construction.
     Given,
     /// CNets Construct: per-vertex planes from ratios.
-    Ratios(&'a Grid),
+    Ratios(&'a Grid<'a>),
     /// CNets Construct Coplanar: one plane per column from ρ_j, τ_j and support strip 0.
     Coplanar {
         /// ρ_j at index j − 1.
@@ -58,7 +63,7 @@ pub(crate) struct Sweep<'a> {
     pub corrections: Vec<Correction>,
     /// Coplanar mode: ψ of the shared plane at column j (index j).
     pub psi: Vec<f64>,
-    /// 1 / design size (keeps the ratio hot path's magnitudes near 1).
+    /// 1 / design size (keeps the magnitudes of the ratio hot path and the quality pass near 1).
     pub inv_scale: f64,
 }
 
@@ -104,9 +109,30 @@ trait PlaneSource {
     fn stored(&self, j: usize) -> DVec3;
     /// Stores the final plane of column `j`.
     fn store(&mut self, j: usize, p: DVec3);
-    /// Eq. 2 fails at step j (vertex G_{i,j} = `g` against plane j + 1): a row-local fix (new plane)
-    /// or `None` when the fix couples the rows.
-    fn fix_inline(&mut self, j: usize, g: DVec3) -> Result<Option<DVec3>, GeometryError>;
+    /// Eq. 2 fails at step j (vertex G_{i,j} = `g` against the plane `p` of column j + 1): a
+    /// row-local fix (new plane) or `None` when the fix couples the rows.
+    fn fix_inline(&mut self, j: usize, g: DVec3, p: DVec3) -> Result<Option<DVec3>, GeometryError>;
+    /// The planes for building column `jn` of a batch of rows (lane l is row `slots[l]`) from the
+    /// lanes `g` = G_{·,jn−1}, with the mask of the lanes whose plane can be used; for the others
+    /// [`PlaneSource::plane`] gives the error. Lanes of ended rows and lanes beyond the batch may
+    /// hold anything.
+    #[inline(always)]
+    fn planes(slots: &mut [Slot<'_, Self>], jn: usize, g: &V3) -> (V3, M)
+    where
+        Self: Sized,
+    {
+        let mut p = *g;
+        let mut ok = M::splat(false);
+        for (l, s) in slots.iter_mut().enumerate() {
+            if s.end.is_none()
+                && let Ok(q) = s.src.plane(jn, g.lane(l))
+            {
+                p.set_lane(l, q);
+                ok.set(l, true);
+            }
+        }
+        (p, ok)
+    }
 }
 
 /// Shared planes, read only.
@@ -123,7 +149,7 @@ impl PlaneSource for SharedRead<'_> {
     }
     #[inline]
     fn store(&mut self, _: usize, _: DVec3) {}
-    fn fix_inline(&mut self, _: usize, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
+    fn fix_inline(&mut self, _: usize, _: DVec3, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
         Ok(None)
     }
 }
@@ -142,20 +168,18 @@ impl PlaneSource for RowRead<'_> {
     }
     #[inline]
     fn store(&mut self, _: usize, _: DVec3) {}
-    fn fix_inline(&mut self, _: usize, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
+    fn fix_inline(&mut self, _: usize, _: DVec3, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
         Ok(None)
     }
 }
 
-/// Ratio planes of one row, computed and stored as the row advances. The planes used by the sweep are
-/// unnormalized (see [`ratio_normal_unnormalized`]); they are normalized when stored.
+/// Ratio planes of one row, computed and stored as the row advances.
 struct RatioRow<'p> {
     i: usize,
     dx: &'p SweptDirectrix,
-    grid: &'p Grid,
+    /// The row's ratios (entry j − 1 is column j).
+    ratios: &'p [f64],
     planes: &'p mut [DVec3],
-    /// The plane computed last (by `plane`).
-    last: DVec3,
     inv_scale: f64,
     /// α (negative: off).
     alpha: f64,
@@ -164,32 +188,10 @@ struct RatioRow<'p> {
 }
 
 impl PlaneSource for RatioRow<'_> {
-    #[inline(always)]
     fn plane(&mut self, jn: usize, g: DVec3) -> Result<DVec3, GeometryError> {
-        let dx = self.dx;
-        let e = dx.edges[jn];
-        let r = self.grid.get(self.i, jn);
-        let p = ratio_normal_unnormalized(
-            dx.points[jn - 1],
-            e,
-            g,
-            dx.bisectors[jn],
-            r,
-            self.inv_scale,
-            self.i,
-            jn,
-        )?;
-        let pe = p.dot(e);
-        if !(pe > 0.0
-            && pe * pe > tolerance::EDGE_PLANE * tolerance::EDGE_PLANE * p.length_squared())
-        {
-            return Err(GeometryError::PlaneContainsEdge {
-                row: Some(self.i),
-                column: jn,
-            });
-        }
-        self.last = p;
-        Ok(p)
+        let col = RatioColumn::new(self.dx, jn);
+        let r = F::splat(self.ratios[jn - 1]);
+        ratio_planes(&col, &V3::splat(g), r, self.inv_scale).get(0, self.i, jn)
     }
     #[inline]
     fn stored(&self, j: usize) -> DVec3 {
@@ -197,13 +199,12 @@ impl PlaneSource for RatioRow<'_> {
     }
     #[inline(always)]
     fn store(&mut self, j: usize, p: DVec3) {
-        self.planes[j - 1] = p * (1.0 / p.length());
+        self.planes[j - 1] = p;
     }
-    fn fix_inline(&mut self, j: usize, g: DVec3) -> Result<Option<DVec3>, GeometryError> {
+    fn fix_inline(&mut self, j: usize, g: DVec3, p: DVec3) -> Result<Option<DVec3>, GeometryError> {
         let jn = j + 1;
         if j == 0 && self.alpha >= 1.0 {
             // Apex fixes only, and the apex cannot move user input: report and keep the plane.
-            let p = self.last;
             let s = (self.dx.points[jn] - g).dot(p) / p.length();
             self.fixes.push((0, unfixed(self.i, s)));
             return Ok(Some(p));
@@ -217,7 +218,7 @@ impl PlaneSource for RatioRow<'_> {
         let dx = self.dx;
         let frame = SupportFrame::new(dx.points[j], dx.edges[jn], g, self.i, jn)?;
         let theta_b = frame.bisector_angle(dx.bisectors[jn]);
-        let r_old = self.grid.get(self.i, jn);
+        let r_old = self.ratios[jn - 1];
         let theta_old = ratio_to_angle(r_old, theta_b);
         let target = (1.0 - self.epsilon) * frame.angle_of(g, dx.points[jn]);
         let theta = if j == 0 {
@@ -246,6 +247,18 @@ impl PlaneSource for RatioRow<'_> {
             },
         ));
         Ok(Some(p))
+    }
+
+    #[inline(always)]
+    fn planes(slots: &mut [Slot<'_, Self>], jn: usize, g: &V3) -> (V3, M) {
+        let last = slots.len() - 1;
+        let mut r = F::splat(0.5);
+        for l in 0..LANES {
+            r.0[l] = slots[l.min(last)].src.ratios[jn - 1];
+        }
+        let src = &slots[0].src;
+        let planes = ratio_planes(&RatioColumn::new(src.dx, jn), g, r, src.inv_scale);
+        (planes.p, planes.usable)
     }
 }
 
@@ -288,7 +301,7 @@ impl PlaneSource for CoplanarRow0<'_> {
     fn store(&mut self, j: usize, p: DVec3) {
         self.planes[j - 1] = p;
     }
-    fn fix_inline(&mut self, _: usize, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
+    fn fix_inline(&mut self, _: usize, _: DVec3, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
         Ok(None)
     }
 }
@@ -329,14 +342,11 @@ impl<'r, S> Slot<'r, S> {
     }
 }
 
-/// Rows swept in lockstep by one task. Each step depends on the previous vertex of its row, so a
-/// single row is latency-bound; interleaving independent rows lets the CPU overlap their chains.
-const BATCH: usize = 8;
-
-/// Sweeps a batch of rows over steps `js..je` (building columns js+1 … je). Columns ≤ js are built;
-/// when `plane_final`, the plane of column js+1 is already final (set by a coupled correction).
-/// Each step runs in two phases over the batch (all planes, then all vertices) so that the
-/// independent per-row chains sit next to each other in the instruction stream.
+/// Sweeps a batch of at most [`LANES`] rows in lock-step over steps `js..je` (building columns
+/// js+1 … je). Columns ≤ js are built; when `plane_final`, the plane of column js+1 is already final
+/// (set by a coupled correction). Each step computes the planes and vertices of all rows as lanes
+/// ([`super::lanes`]); a row whose step needs more (an error, an inline fix, a stop) redoes it on its
+/// own with [`advance`].
 fn run_batch<S: PlaneSource>(
     ctx: &Ctx<'_>,
     slots: &mut [Slot<'_, S>],
@@ -344,52 +354,123 @@ fn run_batch<S: PlaneSource>(
     je: usize,
     plane_final: bool,
 ) {
-    debug_assert!(slots.len() <= BATCH);
-    for s in slots.iter_mut() {
-        s.g = s.row[js];
-        s.p_prev = if js >= 1 {
-            s.src.stored(js)
-        } else {
-            DVec3::ZERO
-        };
-    }
-    let mut planes = [DVec3::ZERO; BATCH];
-    for j in js..je {
-        let fixed = plane_final && j == js;
-        let mut active = false;
-        for (s, p) in slots.iter_mut().zip(planes.iter_mut()) {
-            if s.end.is_none() {
-                active = true;
-                let jn = j + 1;
-                *p = if fixed {
-                    s.src.stored(jn)
-                } else {
-                    match s.src.plane(jn, s.g) {
-                        Ok(p) => p,
-                        Err(e) => {
-                            s.end = Some(RowEnd::Error(j, 0, e));
-                            continue;
-                        }
-                    }
-                };
-            }
+    debug_assert!(!slots.is_empty() && slots.len() <= LANES);
+    let last = slots.len() - 1;
+    // Lane state: G_{·,j} and P_{·,j}. Lanes beyond the batch repeat its last row.
+    let mut g = V3::ZERO;
+    let mut p_prev = V3::ZERO;
+    for l in 0..LANES {
+        let s = &slots[l.min(last)];
+        g.set_lane(l, s.row[js]);
+        if js >= 1 {
+            p_prev.set_lane(l, s.src.stored(js));
         }
-        if !active {
+    }
+    // Bit l: row `slots[l]` is still running.
+    let all = (1u32 << slots.len()) - 1;
+    let mut live = all;
+    for j in js..je {
+        if live == 0 {
             break;
         }
-        for (s, p) in slots.iter_mut().zip(planes.iter()) {
-            if s.end.is_none()
-                && let Err(end) = advance(ctx, s, j, fixed, *p)
-            {
-                s.end = Some(end);
+        let jn = j + 1;
+        let fixed = plane_final && j == js;
+        let (mut p, usable) = if fixed {
+            let mut p = V3::ZERO;
+            for l in 0..LANES {
+                p.set_lane(l, slots[l.min(last)].src.stored(jn));
+            }
+            (p, M::splat(true))
+        } else {
+            S::planes(slots, jn, &g)
+        };
+        let mut step = step_lanes(ctx, j, &g, &p, &p_prev, ctx.check && !fixed);
+        let fine = usable & step.ok;
+        if live == all && fine.all() {
+            for (l, s) in slots.iter_mut().enumerate() {
+                commit(s, j, l, &p, &step);
+            }
+        } else {
+            for (l, s) in slots.iter_mut().enumerate() {
+                if live & (1 << l) == 0 {
+                    continue;
+                }
+                if fine.get(l) {
+                    commit(s, j, l, &p, &step);
+                    continue;
+                }
+                // The row on its own: the plane's error, an inline fix, a stop or a step error.
+                (s.g, s.p_prev) = (g.lane(l), p_prev.lane(l));
+                let plane = if fixed || usable.get(l) {
+                    Ok(p.lane(l))
+                } else {
+                    s.src.plane(jn, s.g)
+                };
+                let end = match plane {
+                    Ok(plane) => advance(ctx, s, j, fixed, plane).err(),
+                    Err(e) => Some(RowEnd::Error(j, 0, e)),
+                };
+                if end.is_some() {
+                    s.end = end;
+                    live &= !(1 << l);
+                } else {
+                    step.g1.set_lane(l, s.g);
+                    p.set_lane(l, s.p_prev);
+                }
             }
         }
+        g.assign(&step.g1);
+        p_prev.assign(&p);
+    }
+}
+
+/// Writes lane l of a step (plane of column j + 1, vertex G_{i,j+1}, configuration c_{i,j}) to its
+/// row.
+#[inline(always)]
+fn commit<S: PlaneSource>(s: &mut Slot<'_, S>, j: usize, l: usize, p: &V3, step: &StepLanes) {
+    s.src.store(j + 1, p.lane(l));
+    s.row[j + 1] = step.g1.lane(l);
+    if j >= 1 {
+        s.cfg[j - 1] = Configuration::from_signs(step.s1.0[l], step.s2.0[l]);
+    }
+}
+
+/// One construction step of a batch of rows (see [`step_lanes`]).
+struct StepLanes {
+    /// G_{·,j+1}.
+    g1: V3,
+    /// s1 = (G_{·,j+1} − X_j) · P_{·,j}.
+    s1: F,
+    /// s2 = (X_{j+1} − G_{·,j}) · P_{·,j+1}.
+    s2: F,
+    /// The step is well defined, its vertex finite and, with `check`, Eq. 2 holds (s2 > 0).
+    ok: M,
+}
+
+/// Step j of every lane: G_{·,j+1} from G_{·,j} = `g` and the planes `p` of column j + 1; `p_prev`
+/// are the planes of column j (for s1). The same arithmetic as [`super::ctube::step`].
+#[inline(always)]
+fn step_lanes(ctx: &Ctx<'_>, j: usize, g: &V3, p: &V3, p_prev: &V3, check: bool) -> StepLanes {
+    let (x0, x1, a) = (V3::splat(ctx.x[j]), V3::splat(ctx.x[j + 1]), ctx.apex[j]);
+    let s2 = (x1 - *g).dot(*p);
+    let v = (*g - x0) * a + x1 - *g;
+    let vp = v.dot(*p);
+    let bound = v.abs().max_element() * (3.0 * tolerance::PARALLEL) * p.abs().max_element();
+    let g1 = *g + v * (s2 / vp);
+    let mut ok = vp.abs().gt(bound) & g1.is_finite();
+    if check {
+        ok = ok & s2.gt(F::splat(0.0));
+    }
+    StepLanes {
+        g1,
+        s1: (g1 - x0).dot(*p_prev),
+        s2,
+        ok,
     }
 }
 
 /// One step of one row given its plane for column j+1: Eq. 2 check (inline fix or stop), vertex
 /// G_{i,j+1}, configuration c_{i,j}.
-#[inline(always)]
 fn advance<S: PlaneSource>(
     ctx: &Ctx<'_>,
     s: &mut Slot<'_, S>,
@@ -403,7 +484,7 @@ fn advance<S: PlaneSource>(
     let mut p = plane;
     let mut s2 = (x[jn] - g).dot(p);
     if ctx.check && !fixed && !(s2 > 0.0) {
-        match s.src.fix_inline(j, g) {
+        match s.src.fix_inline(j, g, p) {
             Ok(Some(q)) => {
                 p = q;
                 s2 = (x[jn] - g).dot(p);
@@ -449,7 +530,7 @@ fn sweep_slots<S: PlaneSource + Send>(
     plane_final: bool,
 ) {
     slots
-        .par_chunks_mut(BATCH)
+        .par_chunks_mut(LANES)
         .for_each(|batch| run_batch(ctx, batch, js, je, plane_final));
 }
 
@@ -478,16 +559,15 @@ fn first_event(ends: Vec<RowEnd>) -> Option<(usize, Option<GeometryError>)> {
 }
 
 impl<'a> Sweep<'a> {
-    /// A sweep over `generatrix` (N points) with the given planes and apex values.
+    /// A sweep over the prepared inputs (N generatrix points) with the given planes.
     pub fn new(
-        dx: &'a SweptDirectrix,
-        generatrix: &[DVec3],
-        apex: Vec<f64>,
+        prep: &'a Prepared,
         planes: Vec<DVec3>,
         per_vertex: bool,
         rule: Rule<'a>,
         assistance: Option<Assistance>,
     ) -> Self {
+        let (dx, generatrix) = (&prep.dx, &prep.generatrix);
         let (n, m) = (generatrix.len(), dx.columns());
         let mut verts = zeroed_points(n * m);
         for (i, g) in generatrix.iter().enumerate() {
@@ -505,12 +585,12 @@ impl<'a> Sweep<'a> {
                 c.par_extend(rayon::iter::repeat_n(Configuration::PlusPlus, n * (m - 1)));
                 c
             },
-            apex,
+            apex: prep.apex.clone(),
             rule,
             assistance: assistance.filter(Assistance::enabled),
             corrections: Vec::new(),
             psi: vec![0.0; m],
-            inv_scale: 1.0,
+            inv_scale: 1.0 / prep.scale,
         }
     }
 
@@ -622,9 +702,8 @@ impl<'a> Sweep<'a> {
                         let src = RatioRow {
                             i,
                             dx,
-                            grid,
+                            ratios: grid.row(i),
                             planes: p,
-                            last: DVec3::ZERO,
                             inv_scale,
                             alpha,
                             epsilon,
@@ -710,7 +789,7 @@ impl<'a> Sweep<'a> {
             .collect()
     }
 
-    fn correct_ratio(&mut self, j0: usize, grid: &Grid) -> Result<(), GeometryError> {
+    fn correct_ratio(&mut self, j0: usize, grid: &Grid<'_>) -> Result<(), GeometryError> {
         let a = self
             .assistance
             .expect("correction only runs with assistance");

@@ -1,14 +1,48 @@
-//! Inlinable `atan2` and `sin_cos` for the ratio hot path (one of each per vertex).
+//! Inlinable `atan2` and `sin_cos` for the ratio construction (one of each per vertex).
 //!
 //! The libm calls are opaque function calls on the sweep's critical path; these fdlibm-style kernels
 //! (same polynomial coefficients as fdlibm / musl) inline into the loop and stay within about one
-//! ulp of the std functions (tested below). Arguments outside the fast range fall back to std.
+//! ulp of the std functions (tested below). [`atan2`] and [`sin_cos`] take one argument of any
+//! value (outside the fast range they fall back to std). [`atan2_upper`] and [`sin_cos_upper`]
+//! serve the sweep, which runs [`LANES`](super::lanes::LANES) rows in lock-step with angles in
+//! [0, π]: they work on lanes and are branch-free (selects only), so they compile to packed SIMD.
+//! The polynomial kernels are shared ([`Real`]).
 
 // The polynomial coefficients are written with the decimal expansions they were published with;
 // each literal rounds to the intended double.
 #![allow(clippy::excessive_precision)]
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+use std::ops::{Add, Mul, Sub};
+
+use super::lanes::F;
+
+/// The arithmetic the polynomial kernels need, for one double or a group of lanes.
+pub(crate) trait Real:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Add<f64, Output = Self>
+    + Mul<f64, Output = Self>
+{
+    /// `v` (in every lane).
+    fn splat(v: f64) -> Self;
+}
+
+impl Real for f64 {
+    #[inline(always)]
+    fn splat(v: f64) -> Self {
+        v
+    }
+}
+
+impl Real for F {
+    #[inline(always)]
+    fn splat(v: f64) -> Self {
+        F::splat(v)
+    }
+}
 
 const ATAN_HI: [f64; 4] = [
     4.636_476_090_008_060_935_15e-1,
@@ -50,17 +84,45 @@ fn atan_pos(t: f64) -> f64 {
     } else {
         (3, -1.0 / t)
     };
+    let p = atan_poly(x);
+    if id == usize::MAX {
+        x - p
+    } else {
+        ATAN_HI[id] - ((p - ATAN_LO[id]) - x)
+    }
+}
+
+/// The fdlibm polynomial part of atan: `x · (s1 + s2)` with atan(x) ≈ x − x·(s1 + s2) for
+/// |x| ≤ 7/16.
+#[inline(always)]
+fn atan_poly<T: Real>(x: T) -> T {
     let z = x * x;
     let w = z * z;
     let w2 = w * w;
-    // Estrin's scheme: shorter dependency chains than Horner, same polynomials.
-    let s1 = z * ((AT[0] + w * AT[2]) + w2 * ((AT[4] + w * AT[6]) + w2 * (AT[8] + w * AT[10])));
-    let s2 = w * ((AT[1] + w * AT[3]) + w2 * ((AT[5] + w * AT[7]) + w2 * AT[9]));
-    if id == usize::MAX {
-        x - x * (s1 + s2)
-    } else {
-        ATAN_HI[id] - ((x * (s1 + s2) - ATAN_LO[id]) - x)
-    }
+    // Estrin's scheme: shorter dependency chains than Horner, same polynomials. (`w·c + c'` is
+    // `c' + w·c`: IEEE addition commutes.)
+    let s1 = z * ((w * AT[2] + AT[0]) + w2 * ((w * AT[6] + AT[4]) + w2 * (w * AT[10] + AT[8])));
+    let s2 = w * ((w * AT[3] + AT[1]) + w2 * ((w * AT[7] + AT[5]) + w2 * AT[9]));
+    x * (s1 + s2)
+}
+
+/// `y.atan2(x)` per lane for `y ≥ 0` (an angle in [0, π]), branch-free. Both arguments must be
+/// finite and not both zero (else the result is NaN). The argument of the polynomial is `|x|/y` or
+/// `y/|x|` (whichever is ≤ 1), reduced to |t| ≤ 7/16 by `atan(u) = π/4 + atan((u − 1)/(u + 1))`
+/// when u ≥ 7/16: one division in all.
+#[inline(always)]
+pub(crate) fn atan2_upper(y: F, x: F) -> F {
+    let ax = x.abs();
+    let swap = y.gt(ax);
+    let (lo, hi) = (ax.min(y), y.max(ax));
+    let mid = lo.ge(hi * 0.4375);
+    // t = (lo − hi) / (lo + hi) for mid, else lo / hi.
+    let t = (lo - hi.and(mid)) / (hi + lo.and(mid));
+    // atan(lo / hi) ∈ [0, π/4], as fdlibm writes it (offset 0 gives exactly t − t·(s1 + s2)).
+    let (off_hi, off_lo) = (F::splat(ATAN_HI[1]).and(mid), F::splat(ATAN_LO[1]).and(mid));
+    let a = off_hi - ((atan_poly(t) - off_lo) - t);
+    let a = F::select(swap, F::splat(FRAC_PI_2) - a, a);
+    F::select(x.lt(F::splat(0.0)), F::splat(PI) - a, a)
 }
 
 /// `y.atan2(x)`, inlined. Falls back to std for zero, non-finite or extreme ratios.
@@ -98,18 +160,44 @@ const PIO2_LO: f64 = 6.077_100_506_506_192_249_30e-11;
 
 /// (sin x, cos x) for |x| ≤ π/4.
 #[inline(always)]
-fn kernel(x: f64) -> (f64, f64) {
+fn kernel<T: Real>(x: T) -> (T, T) {
     let z = x * x;
     let v = z * x;
     let z2 = z * z;
     // Estrin's scheme for both polynomials.
-    let r = (S2 + z * S3) + z2 * ((S4 + z * S5) + z2 * S6);
-    let sin = x + v * (S1 + z * r);
-    let rc = z * ((C1 + z * C2) + z2 * ((C3 + z * C4) + z2 * (C5 + z * C6)));
-    let hz = 0.5 * z;
-    let w = 1.0 - hz;
-    let cos = w + (((1.0 - w) - hz) + z * rc);
+    let r = (z * S3 + S2) + z2 * ((z * S5 + S4) + z2 * S6);
+    let sin = x + v * (z * r + S1);
+    let rc = z * ((z * C2 + C1) + z2 * ((z * C4 + C3) + z2 * (z * C6 + C5)));
+    let hz = z * 0.5;
+    let one = T::splat(1.0);
+    let w = one - hz;
+    let cos = w + (((one - w) - hz) + z * rc);
     (sin, cos)
+}
+
+/// Adding and subtracting this rounds a double of magnitude < 2⁵¹ to an integer (ties to even).
+const ROUND_SHIFT: f64 = 6_755_399_441_055_744.0;
+
+/// `k = round(x / (π/2))` (as a double) and the reduced argument `x − k π/2` (|·| ≤ π/4 + tiny),
+/// for |x| ≤ 8.
+#[inline(always)]
+fn reduce<T: Real>(x: T) -> (T, T) {
+    let k = (x * (2.0 / PI) + ROUND_SHIFT) - T::splat(ROUND_SHIFT);
+    (k, (x - k * PIO2_HI) - k * PIO2_LO)
+}
+
+/// `x.sin_cos()` per lane for x ∈ [0, π] (the ruling angles of the ratio construction),
+/// branch-free. Within the same error as [`sin_cos`] on that interval; arguments up to about 5π/4
+/// are still reduced correctly.
+#[inline(always)]
+pub(crate) fn sin_cos_upper(x: F) -> (F, F) {
+    let (k, r) = reduce(x);
+    let (s, c) = kernel(r);
+    // Quadrant k ∈ {0, 1, 2}: (s, c), (c, −s), (−s, −c).
+    let odd = k.eq(F::splat(1.0));
+    let (s, c) = (F::select(odd, c, s), F::select(odd, s, c).neg_where(odd));
+    let half_turn = k.eq(F::splat(2.0));
+    (s.neg_where(half_turn), c.neg_where(half_turn))
 }
 
 /// `x.sin_cos()`, inlined for |x| ≤ 8 (std beyond).
@@ -118,12 +206,9 @@ pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
     if !(x.abs() <= 8.0) {
         return x.sin_cos();
     }
-    // Nearest integer to x / (π/2) without a libm call: |x| ≤ 8 keeps the shifted value positive.
-    let ki = (x * (2.0 / PI) + 8.5) as i64 - 8;
-    let k = ki as f64;
-    let r = (x - k * PIO2_HI) - k * PIO2_LO;
+    let (k, r) = reduce(x);
     let (s, c) = kernel(r);
-    match ki & 3 {
+    match (k as i64) & 3 {
         0 => (s, c),
         1 => (c, -s),
         2 => (-s, -c),
@@ -133,6 +218,7 @@ pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
 
 #[cfg(test)]
 mod tests {
+    use super::super::lanes::LANES;
     use super::*;
 
     /// A deterministic pseudo-random sequence in [0, 1).
@@ -167,6 +253,55 @@ mod tests {
             (3.0, 4.0),
         ] {
             assert!((atan2(y, x) - f64::atan2(y, x)).abs() <= 2.0 * f64::EPSILON);
+        }
+    }
+
+    #[test]
+    fn lane_variants_match_std_on_their_domain() {
+        let mut s = 5;
+        let (mut worst_atan, mut worst_sc) = (0.0f64, 0.0f64);
+        for _ in 0..50_000 {
+            let mut y = F::splat(0.0);
+            let mut x = F::splat(0.0);
+            let mut t = F::splat(0.0);
+            for l in 0..LANES {
+                y.0[l] = lcg(&mut s) * 10f64.powf(lcg(&mut s) * 12.0 - 6.0);
+                x.0[l] = (lcg(&mut s) - 0.5) * 10f64.powf(lcg(&mut s) * 4.0 - 2.0);
+                t.0[l] = lcg(&mut s) * PI;
+            }
+            let a = atan2_upper(y, x);
+            let (sin, cos) = sin_cos_upper(t);
+            for l in 0..LANES {
+                let b = y.0[l].atan2(x.0[l]);
+                worst_atan = worst_atan.max((a.0[l] - b).abs() / b.abs().max(f64::MIN_POSITIVE));
+                let (bs, bc) = t.0[l].sin_cos();
+                worst_sc = worst_sc
+                    .max((sin.0[l] - bs).abs())
+                    .max((cos.0[l] - bc).abs());
+            }
+        }
+        assert!(
+            worst_atan <= 4.0 * f64::EPSILON,
+            "atan2 relative error {worst_atan:e}"
+        );
+        assert!(
+            worst_sc <= 2.0 * f64::EPSILON,
+            "sin_cos absolute error {worst_sc:e}"
+        );
+        for (y, x) in [
+            (0.0, 1.0),
+            (1.0, 0.0),
+            (0.0, -1.0),
+            (1.0, 1.0),
+            (1.0, -1.0),
+            (3.0, 4.0),
+        ] {
+            let a = atan2_upper(F::splat(y), F::splat(x)).0[0];
+            assert!((a - f64::atan2(y, x)).abs() <= 2.0 * f64::EPSILON);
+        }
+        for t in [0.0, FRAC_PI_4, FRAC_PI_2, 3.0 * FRAC_PI_4, PI] {
+            let ((sin, cos), (bs, bc)) = (sin_cos_upper(F::splat(t)), t.sin_cos());
+            assert!((sin.0[0] - bs).abs() <= f64::EPSILON && (cos.0[0] - bc).abs() <= f64::EPSILON);
         }
     }
 
