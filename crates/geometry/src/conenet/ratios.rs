@@ -173,8 +173,9 @@ pub(crate) fn ratio_planes(col: &RatioColumn, g: &V3, r: F, inv_scale: f64) -> R
     let wb = -(perp.dot(b) * inv_len);
     let eb = F::splat(col.eb);
     let on_directrix = d_max.le(F::splat(tolerance::FRAME));
-    let degenerate =
-        !on_directrix & (!perp.abs().max_element().gt(d_max * tolerance::FRAME) | !n2.is_finite());
+    // (An infinite |perp|² gives inv_len = 0, a NaN one a NaN: both fail `inv_len > 0`.)
+    let degenerate = !on_directrix
+        & (!perp.abs().max_element().gt(d_max * tolerance::FRAME) | !inv_len.gt(F::splat(0.0)));
     let half = r.eq(F::splat(0.5));
     let (s, c) = if half.all() {
         bisector_sin_cos(eb, wb)
@@ -184,8 +185,11 @@ pub(crate) fn ratio_planes(col: &RatioColumn, g: &V3, r: F, inv_scale: f64) -> R
         let ((s0, c0), (s1, c1)) = (bisector_sin_cos(eb, wb), ratio_sin_cos(r, eb, wb));
         (F::select(half, s0, s1), F::select(half, c0, c1))
     };
-    // P = sin θ ê − cos θ w.
-    let p = V3::select(on_directrix, b, e * s - perp * (c * inv_len));
+    // P = sin θ ê − cos θ w; the Monge plane for a vertex on the directrix (rare: tested first).
+    let mut p = e * s - perp * (c * inv_len);
+    if on_directrix.any() {
+        p = V3::select(on_directrix, b, p);
+    }
     RatioPlanes {
         p,
         degenerate,
