@@ -274,19 +274,6 @@ impl CtubeInputs {
         }
     }
 
-    /// Sets the apex values (builder style).
-    pub fn apex(mut self, values: impl Into<ColumnValues>) -> Self {
-        self.apex.values = values.into();
-        self
-    }
-
-    /// Marks the apex values as normalized, with an optional scale L (builder style).
-    pub fn normalized(mut self, normalized: bool, scale: Option<f64>) -> Self {
-        self.apex.normalized = normalized;
-        self.apex.scale = scale;
-        self
-    }
-
     /// Sets the plane normals (builder style).
     pub fn normals(mut self, normals: impl Into<NormalsInput>) -> Self {
         self.normals = normals.into();
@@ -373,34 +360,9 @@ impl ConstructInputs {
         }
     }
 
-    /// Sets the apex values (builder style).
-    pub fn apex(mut self, values: impl Into<ColumnValues>) -> Self {
-        self.apex.values = values.into();
-        self
-    }
-
-    /// Marks the apex values as normalized, with an optional scale L (builder style).
-    pub fn normalized(mut self, normalized: bool, scale: Option<f64>) -> Self {
-        self.apex.normalized = normalized;
-        self.apex.scale = scale;
-        self
-    }
-
     /// Sets the ratios (builder style).
     pub fn ratios(mut self, ratios: impl Into<GridValues>) -> Self {
         self.ratios = ratios.into();
-        self
-    }
-
-    /// Sets the assistance α (builder style).
-    pub fn assistance(mut self, alpha: f64) -> Self {
-        self.assistance.alpha = alpha;
-        self
-    }
-
-    /// Sets ε (builder style).
-    pub fn epsilon(mut self, epsilon: f64) -> Self {
-        self.assistance.epsilon = epsilon;
         self
     }
 }
@@ -436,19 +398,6 @@ impl CoplanarInputs {
         }
     }
 
-    /// Sets the apex values (builder style).
-    pub fn apex(mut self, values: impl Into<ColumnValues>) -> Self {
-        self.apex.values = values.into();
-        self
-    }
-
-    /// Marks the apex values as normalized, with an optional scale L (builder style).
-    pub fn normalized(mut self, normalized: bool, scale: Option<f64>) -> Self {
-        self.apex.normalized = normalized;
-        self.apex.scale = scale;
-        self
-    }
-
     /// Sets the ruling ratios ρ (builder style).
     pub fn ruling_ratios(mut self, values: impl Into<ColumnValues>) -> Self {
         self.ruling_ratios = values.into();
@@ -460,19 +409,49 @@ impl CoplanarInputs {
         self.plane_ratios = values.into();
         self
     }
-
-    /// Sets the assistance α (builder style).
-    pub fn assistance(mut self, alpha: f64) -> Self {
-        self.assistance.alpha = alpha;
-        self
-    }
-
-    /// Sets ε (builder style).
-    pub fn epsilon(mut self, epsilon: f64) -> Self {
-        self.assistance.epsilon = epsilon;
-        self
-    }
 }
+
+/// Builder methods for the apex function, shared by the three input records.
+macro_rules! apex_builders {
+    ($($t:ty),*) => {$(
+        impl $t {
+            /// Sets the apex values (builder style).
+            pub fn apex(mut self, values: impl Into<ColumnValues>) -> Self {
+                self.apex.values = values.into();
+                self
+            }
+
+            /// Marks the apex values as normalized, with an optional scale L (builder style).
+            pub fn normalized(mut self, normalized: bool, scale: Option<f64>) -> Self {
+                self.apex.normalized = normalized;
+                self.apex.scale = scale;
+                self
+            }
+        }
+    )*};
+}
+
+/// Builder methods for the assisted correction, shared by both CNets constructions.
+macro_rules! assistance_builders {
+    ($($t:ty),*) => {$(
+        impl $t {
+            /// Sets the assistance α (builder style).
+            pub fn assistance(mut self, alpha: f64) -> Self {
+                self.assistance.alpha = alpha;
+                self
+            }
+
+            /// Sets ε (builder style).
+            pub fn epsilon(mut self, epsilon: f64) -> Self {
+                self.assistance.epsilon = epsilon;
+                self
+            }
+        }
+    )*};
+}
+
+apex_builders!(CtubeInputs, ConstructInputs, CoplanarInputs);
+assistance_builders!(ConstructInputs, CoplanarInputs);
 
 /// Checks a list of ratios lies in `[0, 1]` (per column).
 pub(crate) fn check_unit_interval(what: &'static str, values: &[f64]) -> Result<(), GeometryError> {
