@@ -78,14 +78,48 @@ pub fn excess_depth(v: &Value, ty: &ValueType, access: Access) -> usize {
     }
 }
 
+/// True when the item `v` is already what a port of item type `ty` receives, so that
+/// [`coerce_item`] would return it unchanged.
+fn is_exact_item(v: &Value, ty: &ValueType) -> bool {
+    use ValueType as T;
+    match (ty, v) {
+        (_, Value::Null) | (T::Any, _) => true,
+        (T::List(inner), _) => is_exact_item(v, inner),
+        (T::Number, Value::Number(_))
+        | (T::Integer, Value::Integer(_))
+        | (T::Boolean, Value::Boolean(_))
+        | (T::Text, Value::Text(_))
+        | (T::Point, Value::Point(_))
+        | (T::Vector, Value::Vector(_))
+        | (T::Plane, Value::Plane(_))
+        | (T::Lines, Value::Lines(_))
+        | (T::Polyline, Value::Polyline(_))
+        | (T::QuadMesh, Value::QuadMesh(_))
+        | (T::Mesh, Value::Mesh(_))
+        | (T::Record, Value::Record(_)) => true,
+        _ => false,
+    }
+}
+
+/// True when every item of the (possibly nested) value `v` is already of item type `ty`: the value
+/// can be shared as it is instead of being rebuilt. One walk, no allocation.
+fn is_exact_tree(v: &Value, ty: &ValueType) -> bool {
+    match v {
+        Value::List(items) if !is_item(v, ty) => items.iter().all(|item| is_exact_tree(item, ty)),
+        _ => is_exact_item(v, ty),
+    }
+}
+
 /// Converts a value that needs no more mapping into exactly what the port receives: an item, a list
-/// of items (a single value becomes a one-element list), or a tree with converted leaves.
+/// of items (a single value becomes a one-element list), or a tree with converted leaves. A value
+/// that needs no conversion is shared, not copied.
 pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Value, String> {
     match access {
         Access::Item => coerce_item(v, ty),
         Access::List => match v {
             Value::Null => Ok(Value::Null),
             v if is_item(v, ty) => Ok(Value::list(vec![coerce_item(v, ty)?])),
+            Value::List(items) if items.iter().all(|item| is_exact_item(item, ty)) => Ok(v.clone()),
             Value::List(items) => items
                 .iter()
                 .enumerate()
@@ -102,6 +136,9 @@ pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Valu
 pub fn coerce_tree(v: &Value, ty: &ValueType) -> Result<Value, String> {
     if is_item(v, ty) {
         return coerce_item(v, ty);
+    }
+    if is_exact_tree(v, ty) {
+        return Ok(v.clone());
     }
     match v {
         Value::List(items) => items
@@ -157,5 +194,38 @@ mod tests {
         let single =
             coerce_for_port(&Value::Number(0.5), &ValueType::Number, Access::List).unwrap();
         assert_eq!(single, Value::list(vec![Value::Number(0.5)]));
+    }
+
+    fn same_list(a: &Value, b: &Value) -> bool {
+        matches!((a, b), (Value::List(x), Value::List(y)) if Arc::ptr_eq(x, y))
+    }
+
+    #[test]
+    fn values_of_the_port_type_are_shared_not_rebuilt() {
+        let row = Value::list(vec![Value::Number(0.25), Value::Number(0.5)]);
+        let table = Value::list(vec![row.clone(), row]);
+        for access in [Access::Table, Access::Tree] {
+            let got = coerce_for_port(&table, &ValueType::Number, access).unwrap();
+            assert!(same_list(&got, &table), "{access:?}");
+        }
+        let list = Value::list(vec![Value::Number(1.0), Value::Null]);
+        let got = coerce_for_port(&list, &ValueType::Number, Access::List).unwrap();
+        assert!(same_list(&got, &list));
+        // One item needing a conversion rebuilds the value, converting only that item.
+        let mixed = Value::list(vec![
+            Value::list(vec![Value::Number(0.25)]),
+            Value::list(vec![Value::Integer(1)]),
+        ]);
+        let got = coerce_for_port(&mixed, &ValueType::Number, Access::Table).unwrap();
+        assert!(!same_list(&got, &mixed));
+        let expected = Value::list(vec![
+            Value::list(vec![Value::Number(0.25)]),
+            Value::list(vec![Value::Number(1.0)]),
+        ]);
+        assert_eq!(got, expected);
+        // A list of points for a polyline port is one item and is still converted.
+        let points = Value::list(vec![Value::Point(DVec3::ZERO), Value::Point(DVec3::X)]);
+        let got = coerce_for_port(&points, &ValueType::Polyline, Access::Tree).unwrap();
+        assert!(matches!(got, Value::Polyline(_)));
     }
 }

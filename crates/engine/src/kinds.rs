@@ -161,7 +161,10 @@ impl<K: PortKind> PortKind for List<K> {
             Value::List(items) => items
                 .iter()
                 .enumerate()
-                .map(|(k, item)| K::extract(item, &format!("{name}[{k}]")))
+                // The indexed name is only formatted for an error (lists can be long).
+                .map(|(k, item)| {
+                    K::extract(item, name).or_else(|_| K::extract(item, &format!("{name}[{k}]")))
+                })
                 .collect(),
             Value::Null => Err(missing(name)),
             other => Ok(vec![K::extract(other, name)?]),

@@ -4,13 +4,14 @@
 //! infinity), `planes` (N lists of M−1 normals), `configurations` (N lists of M−2 labels),
 //! `corrections` (text) and `quality` (a record).
 
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 use cnets_engine::prelude::*;
 use cnets_geometry::conenet::{
-    self, ApexInput, ColumnValues, ConeNet, ConstructInputs, CoplanarInputs, CtubeInputs,
-    GridValues, NormalsInput,
+    self, ApexInput, ColumnValues, ConeNet, Configuration, ConstructInputs, CoplanarInputs,
+    CtubeInputs, GridValues, NormalsInput,
 };
+use rayon::prelude::*;
 
 /// The apex input: one number broadcast to every column, or one value per directrix edge.
 fn apex_input(values: Vec<f64>, normalized: bool, scale: Option<f64>) -> ApexInput {
@@ -27,23 +28,26 @@ fn apex_input(values: Vec<f64>, normalized: bool, scale: Option<f64>) -> ApexInp
 
 /// Reads a number, a list of numbers, or a list of lists of numbers.
 fn grid_values(value: &Value, what: &str) -> Result<GridValues, NodeError> {
-    let number = |v: &Value, at: String| -> Result<f64, NodeError> {
+    // The location is only formatted for an error: tables have a million entries.
+    let number = |v: &Value, at: &(dyn Fn() -> String + Sync)| -> Result<f64, NodeError> {
         v.as_f64().ok_or_else(|| {
             NodeError::new(format!(
-                "{what}{at} must be a number, got {}",
+                "{what}{} must be a number, got {}",
+                at(),
                 v.type_name()
             ))
         })
     };
     match value {
+        // A per-vertex table (a million entries at 1000 × 1000) is read in parallel by rows.
         Value::List(items) if items.iter().any(|v| v.as_list().is_some()) => items
-            .iter()
+            .par_iter()
             .enumerate()
             .map(|(i, row)| match row.as_list() {
                 Some(row) => row
                     .iter()
                     .enumerate()
-                    .map(|(j, v)| number(v, format!("[{i}][{j}]")))
+                    .map(|(j, v)| number(v, &|| format!("[{i}][{j}]")))
                     .collect(),
                 None => Err(NodeError::new(format!(
                     "{what}[{i}] must be a list (a table needs one list per generatrix point)"
@@ -52,15 +56,15 @@ fn grid_values(value: &Value, what: &str) -> Result<GridValues, NodeError> {
             .collect::<Result<Vec<Vec<f64>>, _>>()
             .map(GridValues::PerVertex),
         Value::List(items) => match items.as_slice() {
-            [single] => number(single, "[0]".into()).map(GridValues::Uniform),
+            [single] => number(single, &|| "[0]".into()).map(GridValues::Uniform),
             _ => items
                 .iter()
                 .enumerate()
-                .map(|(j, v)| number(v, format!("[{j}]")))
+                .map(|(j, v)| number(v, &|| format!("[{j}]")))
                 .collect::<Result<_, _>>()
                 .map(GridValues::PerColumn),
         },
-        other => number(other, String::new()).map(GridValues::Uniform),
+        other => number(other, &String::new).map(GridValues::Uniform),
     }
 }
 
@@ -69,10 +73,11 @@ fn normals_input(value: Option<Value>) -> Result<NormalsInput, NodeError> {
     let Some(value) = value else {
         return Ok(NormalsInput::Monge);
     };
-    let vector = |v: &Value, at: String| -> Result<DVec3, NodeError> {
+    let vector = |v: &Value, at: &dyn Fn() -> String| -> Result<DVec3, NodeError> {
         v.as_vec3().ok_or_else(|| {
             NodeError::new(format!(
-                "normals{at} must be a vector, got {}",
+                "normals{} must be a vector, got {}",
+                at(),
                 v.type_name()
             ))
         })
@@ -85,7 +90,7 @@ fn normals_input(value: Option<Value>) -> Result<NormalsInput, NodeError> {
                 Some(row) => row
                     .iter()
                     .enumerate()
-                    .map(|(j, v)| vector(v, format!("[{i}][{j}]")))
+                    .map(|(j, v)| vector(v, &|| format!("[{i}][{j}]")))
                     .collect(),
                 None => Err(NodeError::new(format!(
                     "normals[{i}] must be a list of vectors"
@@ -96,23 +101,23 @@ fn normals_input(value: Option<Value>) -> Result<NormalsInput, NodeError> {
         Value::List(items) => items
             .iter()
             .enumerate()
-            .map(|(j, v)| vector(v, format!("[{j}]")))
+            .map(|(j, v)| vector(v, &|| format!("[{j}]")))
             .collect::<Result<Vec<DVec3>, _>>()
             .map(NormalsInput::PerColumn),
-        other => vector(other, String::new()).map(|v| NormalsInput::PerColumn(vec![v])),
+        other => vector(other, &String::new).map(|v| NormalsInput::PerColumn(vec![v])),
     }
 }
 
-/// The four configuration labels, shared so that large outputs do not allocate per vertex.
-fn label(text: &'static str) -> Value {
-    static LABELS: OnceLock<[Value; 4]> = OnceLock::new();
-    let labels = LABELS.get_or_init(|| ["++", "--", "+-", "-+"].map(Value::text));
-    match text {
-        "++" => labels[0].clone(),
-        "--" => labels[1].clone(),
-        "+-" => labels[2].clone(),
-        _ => labels[3].clone(),
-    }
+/// The configuration labels by [`Configuration`] discriminant. Each output row makes its own four
+/// shared texts, so rows convert in parallel without contending for one reference count.
+fn labels() -> [Value; 4] {
+    [
+        Configuration::PlusPlus,
+        Configuration::MinusMinus,
+        Configuration::PlusMinus,
+        Configuration::MinusPlus,
+    ]
+    .map(|c| Value::text(c.as_str()))
 }
 
 /// The quality record of a cone-net.
@@ -158,21 +163,31 @@ type Outputs = (
 );
 
 fn outputs(net: ConeNet) -> Outputs {
+    // A 1000 × 1000 net has a million normals and labels: rows convert in parallel.
     let planes = Value::list(
-        net.normals
-            .to_rows()
-            .into_iter()
-            .map(|row| Value::list(row.into_iter().map(Value::Vector).collect()))
+        (0..net.normals.rows())
+            .into_par_iter()
+            .map(|i| {
+                Value::list(
+                    net.normals
+                        .row(i)
+                        .iter()
+                        .map(|&p| Value::Vector(p))
+                        .collect(),
+                )
+            })
             .collect(),
     );
     let configurations = Value::list(
         (0..net.configurations.rows())
+            .into_par_iter()
             .map(|i| {
+                let labels = labels();
                 Value::list(
                     net.configurations
                         .row(i)
                         .iter()
-                        .map(|c| label(c.as_str()))
+                        .map(|&c| labels[c as usize].clone())
                         .collect(),
                 )
             })

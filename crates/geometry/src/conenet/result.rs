@@ -70,11 +70,19 @@ impl PlaneNormals {
         }
     }
 
+    /// The normals P_{i,1} … P_{i,M−1} of row i.
+    pub fn row(&self, i: usize) -> &[DVec3] {
+        assert!(i < self.rows, "plane row {i} out of range");
+        if self.shared {
+            &self.data
+        } else {
+            &self.data[i * self.cols..(i + 1) * self.cols]
+        }
+    }
+
     /// N lists of M−1 normals, as the nodes output them.
     pub fn to_rows(&self) -> Vec<Vec<DVec3>> {
-        (0..self.rows)
-            .map(|i| (1..=self.cols).map(|j| self.get(i, j)).collect())
-            .collect()
+        (0..self.rows).map(|i| self.row(i).to_vec()).collect()
     }
 }
 

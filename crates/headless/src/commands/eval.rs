@@ -56,6 +56,8 @@ pub fn run(args: Args) -> CommandResult {
     };
     let json = read_json(&args.inputs)?;
     let inputs = node_inputs(def, &json)?;
+    // The parsed document can be large (a ratio table): give its memory back before the node runs.
+    drop(json);
     let out_dir = def.has_flag(NodeFlag::Export).then(|| args.out.clone());
     if let Some(dir) = &out_dir {
         std::fs::create_dir_all(dir).map_err(|e| {

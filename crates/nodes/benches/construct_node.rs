@@ -1,0 +1,91 @@
+//! The construction nodes as the engine runs them (`cnets eval … --timing` measures the same
+//! call): typed inputs in, the kernel, the output values (mesh, planes, configurations, quality)
+//! out. The kernel alone is benchmarked in `cnets-geometry`'s `construction` bench.
+
+use std::f64::consts::PI;
+use std::hint::black_box;
+
+use cnets_engine::eval::evaluate_node;
+use cnets_engine::{NodeContext, Value};
+use cnets_geometry::{DVec3, Polyline};
+use criterion::{Criterion, criterion_group, criterion_main};
+
+/// The same smooth design as the kernel benchmark: a helix-like directrix of `m` points and an
+/// arc generatrix of `n` points around its first point.
+fn design(n: usize, m: usize) -> (Polyline, Polyline) {
+    let d: Vec<DVec3> = (0..m)
+        .map(|j| {
+            let t = j as f64 / (m - 1) as f64;
+            DVec3::new(10.0 * (1.2 * t).cos(), 10.0 * (1.2 * t).sin(), 3.0 * t)
+        })
+        .collect();
+    let (x0, x1) = (d[0], d[1]);
+    let e = (x1 - x0).normalize();
+    let inward = (-x0).reject_from(e).normalize();
+    let up = e.cross(inward);
+    let g = (0..n)
+        .map(|i| {
+            let phi = PI * (0.2 + 0.6 * i as f64 / (n - 1) as f64);
+            x0 + inward * (1.5 * phi.sin()) + up * (1.5 * phi.cos())
+        })
+        .collect();
+    (Polyline::open(d), Polyline::open(g))
+}
+
+fn numbers(values: impl Iterator<Item = f64>) -> Value {
+    Value::list(values.map(Value::Number).collect())
+}
+
+/// The inputs of `cnets.construct` in port order: a per-vertex ratio table and assistance α.
+fn construct_inputs(size: usize, alpha: f64) -> Vec<Value> {
+    let (d, g) = design(size, size);
+    let apex = numbers((0..size - 1).map(|k| 1.0 + 0.3 / size as f64 * (k as f64 * 0.05).sin()));
+    let ratios = Value::list(
+        (0..size)
+            .map(|i| {
+                numbers(
+                    (0..size - 1)
+                        .map(|k| 0.5 + 0.1 * ((i as f64 * 0.01) + (k as f64 * 0.02)).sin()),
+                )
+            })
+            .collect(),
+    );
+    let def = cnets_nodes::registry();
+    let def = def.get("cnets.construct").expect("registered");
+    def.inputs
+        .iter()
+        .map(|port| match port.name.as_ref() {
+            "directrix" => Value::Polyline(d.clone().into()),
+            "generatrix" => Value::Polyline(g.clone().into()),
+            "apex" => apex.clone(),
+            "ratios" => ratios.clone(),
+            "assistance" => Value::Number(alpha),
+            _ => port.default.clone().unwrap_or(Value::Null),
+        })
+        .collect()
+}
+
+fn bench(c: &mut Criterion) {
+    let registry = cnets_nodes::registry();
+    let def = registry.get("cnets.construct").expect("registered");
+    let ctx = NodeContext::default();
+    for &size in &[100usize, 1000] {
+        let mut group = c.benchmark_group(format!("node {size}x{size}"));
+        if size >= 1000 {
+            group.sample_size(20);
+        }
+        for (name, alpha) in [
+            ("cnets.construct ratios", -1.0),
+            ("cnets.construct ratios + assistance", 0.5),
+        ] {
+            let inputs = construct_inputs(size, alpha);
+            group.bench_function(name, |b| {
+                b.iter(|| evaluate_node(def, &ctx, black_box(&inputs)).expect("constructs"))
+            });
+        }
+        group.finish();
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
