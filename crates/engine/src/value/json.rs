@@ -81,10 +81,20 @@ pub fn from_json(json: &Json, ty: &ValueType) -> Result<Value, String> {
     match json {
         Json::Array(items) => items
             .iter()
-            .map(|j| from_json(j, ty))
+            .enumerate()
+            .map(|(k, j)| from_json(j, ty).map_err(|e| at_index(k, &e)))
             .collect::<Result<Vec<_>, _>>()
             .map(Value::list),
         other => Err(format!("expected {}, got {}", ty.base(), kind(other))),
+    }
+}
+
+/// Prefixes an error inside array item `k` with its position: `[2]: …`, nested `[0][2]: …`.
+fn at_index(k: usize, error: &str) -> String {
+    if error.starts_with('[') {
+        format!("[{k}]{error}")
+    } else {
+        format!("[{k}]: {error}")
     }
 }
 
@@ -359,6 +369,10 @@ mod tests {
             from_json(&json!("x"), &ValueType::Number)
                 .unwrap_err()
                 .contains("expected number")
+        );
+        assert_eq!(
+            from_json(&json!([[0.5, "x"], [0.5, 0.5]]), &ValueType::Number).unwrap_err(),
+            "[0][1]: expected number, got a string"
         );
         assert!(from_json(&json!(1.5), &ValueType::Integer).is_err());
         assert_eq!(
