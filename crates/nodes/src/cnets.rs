@@ -391,3 +391,21 @@ pub fn nodes() -> Vec<NodeDef> {
         encode(),
     ]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_are_indexed_by_configuration() {
+        let labels = labels();
+        for c in [
+            Configuration::PlusPlus,
+            Configuration::MinusMinus,
+            Configuration::PlusMinus,
+            Configuration::MinusPlus,
+        ] {
+            assert_eq!(labels[c as usize], Value::text(c.as_str()), "{c}");
+        }
+    }
+}
