@@ -365,6 +365,16 @@ impl EditorApp {
         crate::library::load_options(self.doc.path.as_deref(), &self.library.dirs)
     }
 
+    /// The first cluster node among the nodes commands act on (selection, else focus).
+    fn targeted_cluster(&self) -> Option<String> {
+        self.canvas.targets().into_iter().find(|id| {
+            self.doc
+                .graph
+                .node(id)
+                .is_some_and(|n| Cluster::of(&n.def).is_some())
+        })
+    }
+
     /// Replaces the nodes `ids` by one inline cluster node (one undo step). Inside the cluster,
     /// its `graph.input` nodes are placed left of the nodes and its `graph.output` nodes right of
     /// them, using the node sizes measured on the canvas. Returns whether it was made.
@@ -738,32 +748,16 @@ impl EditorApp {
                     self.make_cluster(&targets);
                 }
             }
-            MenuAction::ExplodeCluster => {
-                let cluster = self.canvas.targets().into_iter().find(|id| {
-                    self.doc
-                        .graph
-                        .node(id)
-                        .is_some_and(|n| Cluster::of(&n.def).is_some())
-                });
-                match cluster {
-                    Some(id) => {
-                        self.apply(CanvasAction::ExplodeCluster(id));
-                    }
-                    None => self.message = "focus a cluster node to explode it".into(),
+            MenuAction::ExplodeCluster => match self.targeted_cluster() {
+                Some(id) => {
+                    self.apply(CanvasAction::ExplodeCluster(id));
                 }
-            }
-            MenuAction::OpenCluster => {
-                let cluster = self.canvas.targets().into_iter().find(|id| {
-                    self.doc
-                        .graph
-                        .node(id)
-                        .is_some_and(|n| Cluster::of(&n.def).is_some())
-                });
-                match cluster {
-                    Some(id) => self.open_cluster(&id),
-                    None => self.message = "focus a cluster node to open it".into(),
-                }
-            }
+                None => self.message = "focus a cluster node to explode it".into(),
+            },
+            MenuAction::OpenCluster => match self.targeted_cluster() {
+                Some(id) => self.open_cluster(&id),
+                None => self.message = "focus a cluster node to open it".into(),
+            },
             MenuAction::LeaveTo(depth) => self.leave_to(depth),
             MenuAction::ToggleOptimization => self.optimization.open = !self.optimization.open,
             MenuAction::LibraryFolder => {

@@ -10,20 +10,10 @@ use crate::value::{Access, Value, ValueType};
 /// [`ValueType::converts_to`]. `Null` passes through (the node decides whether it may be empty).
 pub fn coerce_item(v: &Value, ty: &ValueType) -> Result<Value, String> {
     use ValueType as T;
+    if is_exact_item(v, ty) {
+        return Ok(v.clone());
+    }
     Ok(match (ty, v) {
-        (_, Value::Null) | (T::Any, _) => v.clone(),
-        (T::Number, Value::Number(_))
-        | (T::Integer, Value::Integer(_))
-        | (T::Boolean, Value::Boolean(_))
-        | (T::Text, Value::Text(_))
-        | (T::Point, Value::Point(_))
-        | (T::Vector, Value::Vector(_))
-        | (T::Plane, Value::Plane(_))
-        | (T::Lines, Value::Lines(_))
-        | (T::Polyline, Value::Polyline(_))
-        | (T::QuadMesh, Value::QuadMesh(_))
-        | (T::Mesh, Value::Mesh(_))
-        | (T::Record, Value::Record(_)) => v.clone(),
         (T::Number, Value::Integer(i)) => Value::Number(*i as f64),
         (T::Integer, Value::Number(x)) => {
             if x.is_finite() && x.fract() == 0.0 && x.abs() < 9.0e15 {
@@ -78,8 +68,8 @@ pub fn excess_depth(v: &Value, ty: &ValueType, access: Access) -> usize {
     }
 }
 
-/// True when the item `v` is already what a port of item type `ty` receives, so that
-/// [`coerce_item`] would return it unchanged.
+/// True when the item `v` is already what a port of item type `ty` receives: [`coerce_item`]
+/// returns it unchanged.
 fn is_exact_item(v: &Value, ty: &ValueType) -> bool {
     use ValueType as T;
     match (ty, v) {
