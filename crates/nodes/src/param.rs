@@ -5,6 +5,16 @@
 
 use cnets_engine::prelude::*;
 
+/// A number as a designer reads it: plain digits for everyday magnitudes, scientific notation for
+/// huge or tiny ones (`1e308`, not 309 digits).
+fn readable(x: f64) -> String {
+    if x == 0.0 || (1e-6..1e15).contains(&x.abs()) {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
+}
+
 node! {
     /// A number set by the designer; the editor shows it as a slider from `min` to `max`. The value
     /// is clamped to that range and snapped to multiples of `step` from `min` (`step` 0: no snapping).
@@ -33,7 +43,10 @@ node! {
         }
         let mut v = value.clamp(min, max);
         if v != value {
-            ctx.warn(format!("value {value} is outside [{min}, {max}]; clamped to {v}"));
+            ctx.warn(format!(
+                "value {} is outside [{min}, {max}]; clamped to {v}",
+                readable(value)
+            ));
         }
         if step > 0.0 {
             v = (min + ((v - min) / step).round() * step).clamp(min, max);
@@ -343,6 +356,20 @@ mod tests {
         );
         assert!(run(&def, &[f64::NAN, 0.0, 1.0, 0.0]).is_err());
         assert!(run(&def, &[0.5, 0.0, 1.0, -0.1]).is_err());
+    }
+
+    #[test]
+    fn clamping_warns_with_a_readable_value() {
+        let ctx = NodeContext::default();
+        let inputs = [1e308, 4.0, 30.0, 0.0].map(Value::Number);
+        let out = evaluate_node(&number(), &ctx, &inputs).unwrap();
+        assert_eq!(out.values, vec![Value::Number(30.0)]);
+        assert_eq!(
+            out.warnings,
+            vec!["value 1e308 is outside [4, 30]; clamped to 30".to_string()]
+        );
+        assert_eq!(readable(35.5), "35.5");
+        assert_eq!(readable(-2e-9), "-2e-9");
     }
 
     #[test]
