@@ -21,7 +21,7 @@ use petgraph::stable_graph::NodeIndex;
 
 use crate::graph::{Graph, NodeInstance, Revision};
 use crate::node::{NodeContext, NodeDef};
-use crate::value::{Value, content_hash};
+use crate::value::{Value, content_hash, first_non_finite, is_all_finite};
 
 /// The memo of one node instance.
 #[derive(Debug, Clone)]
@@ -238,17 +238,9 @@ impl Evaluator {
     }
 
     fn call(&self, instance: &NodeInstance, inputs: &[Value], ctx: &NodeContext) -> NodeResult {
-        let outcome = panic_guard::catch(|| run_mapped(&instance.def, ctx, inputs));
-        let warnings = ctx.take_warnings();
-        let files = ctx.take_files();
-        match outcome {
-            Ok(Ok(values)) => NodeResult::Ok(Arc::new(NodeOutputs {
-                values,
-                warnings,
-                files,
-            })),
-            Ok(Err(e)) => NodeResult::Failed(e.message),
-            Err(panic) => NodeResult::Failed(panic),
+        match evaluate_node(&instance.def, ctx, inputs) {
+            Ok(outputs) => NodeResult::Ok(Arc::new(outputs)),
+            Err(message) => NodeResult::Failed(message),
         }
     }
 
@@ -370,8 +362,9 @@ impl Evaluator {
     }
 }
 
-/// Runs one node type on raw input values (one per input port, `Null` for empty), outside any graph:
-/// maps over lists like a graph run, catches panics, and collects warnings and written files.
+/// Runs one node type on raw input values (one per input port, `Null` for empty), as a graph run
+/// does and outside any graph: maps over lists, catches panics, collects warnings and written
+/// files, and fails the node when an output holds a non-finite number.
 pub fn evaluate_node(
     def: &NodeDef,
     ctx: &NodeContext,
@@ -381,14 +374,34 @@ pub fn evaluate_node(
     let warnings = ctx.take_warnings();
     let files = ctx.take_files();
     match outcome {
-        Ok(Ok(values)) => Ok(NodeOutputs {
-            values,
-            warnings,
-            files,
-        }),
+        Ok(Ok(values)) => match non_finite_output(def, &values) {
+            Some(message) => Err(message),
+            None => Ok(NodeOutputs {
+                values,
+                warnings,
+                files,
+            }),
+        },
         Ok(Err(e)) => Err(e.message),
         Err(panic) => Err(panic),
     }
+}
+
+/// NaN or ±∞ in an output (an overflow, a division by zero, NaN passed along) is the node's error:
+/// downstream nodes are blocked with a reason instead of computing on garbage, and no non-finite
+/// number reaches a file or the JSON output.
+fn non_finite_output(def: &NodeDef, values: &[Value]) -> Option<String> {
+    if values.iter().all(is_all_finite) {
+        return None;
+    }
+    def.outputs.iter().zip(values).find_map(|(port, value)| {
+        first_non_finite(value).map(|at| {
+            format!(
+                "output '{}' is not a finite number at {at} (an overflow or an undefined result: check the inputs' values and scale)",
+                port.name
+            )
+        })
+    })
 }
 
 /// Several wires into one input: their values are concatenated into one list (lists contribute

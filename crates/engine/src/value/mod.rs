@@ -1,11 +1,13 @@
 //! The typed value model: everything that flows along a wire.
 
 mod equality;
+mod finite;
 pub mod json;
 mod record;
 mod types;
 
 pub use equality::content_hash;
+pub use finite::{first_non_finite, is_all_finite};
 pub use record::Record;
 pub use types::{Access, ValueType};
 

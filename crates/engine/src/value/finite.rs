@@ -1,0 +1,101 @@
+//! Finding non-finite numbers (NaN, ±∞) inside a value: node outputs must not hold any.
+
+use glam::DVec3;
+
+use super::Value;
+
+/// True when every number inside `v` is finite. The fast check (one pass, leaf values tested
+/// inline, nothing allocated); [`first_non_finite`] describes the place when it fails.
+pub fn is_all_finite(v: &Value) -> bool {
+    match v {
+        Value::Number(x) => x.is_finite(),
+        Value::Point(p) | Value::Vector(p) => p.is_finite(),
+        Value::Null | Value::Integer(_) | Value::Boolean(_) | Value::Text(_) => true,
+        Value::Polyline(p) => p.points.iter().all(|p| p.is_finite()),
+        Value::QuadMesh(g) => g.vertices.iter().all(|p| p.is_finite()),
+        Value::Mesh(m) => m.vertices.iter().all(|p| p.is_finite()),
+        Value::List(items) => items.iter().all(|item| match item {
+            Value::Number(x) => x.is_finite(),
+            Value::Point(p) | Value::Vector(p) => p.is_finite(),
+            Value::Text(_) | Value::Null | Value::Integer(_) | Value::Boolean(_) => true,
+            other => is_all_finite(other),
+        }),
+        Value::Plane(_) | Value::Lines(_) | Value::Record(_) => first_non_finite(v).is_none(),
+    }
+}
+
+/// Where the first non-finite number inside `v` is, described for an error message (`"item 3"`,
+/// `"vertex 12"`, `"field max_planarity"`), or `None` when every number is finite. Nulls are fine:
+/// they stand for "no value" (an apex at infinity).
+pub fn first_non_finite(v: &Value) -> Option<String> {
+    let in_points = |what: &str, points: &[DVec3]| {
+        points
+            .iter()
+            .position(|p| !p.is_finite())
+            .map(|k| format!("{what} {k}"))
+    };
+    match v {
+        Value::Number(x) => (!x.is_finite()).then(|| "the number".to_string()),
+        Value::Point(p) | Value::Vector(p) => (!p.is_finite()).then(|| "the point".to_string()),
+        Value::Plane(p) => (!(p.origin.is_finite()
+            && p.normal.is_finite()
+            && p.x_axis.is_finite()
+            && p.y_axis.is_finite()))
+        .then(|| "the plane".to_string()),
+        Value::Lines(lines) => lines
+            .iter()
+            .position(|l| !(l.start.is_finite() && l.end.is_finite()))
+            .map(|k| format!("line {k}")),
+        Value::Polyline(p) => in_points("point", &p.points),
+        Value::QuadMesh(g) => in_points("vertex", &g.vertices),
+        Value::Mesh(m) => in_points("vertex", &m.vertices),
+        Value::List(items) => items
+            .iter()
+            .enumerate()
+            .find_map(|(k, item)| first_non_finite(item).map(|inner| format!("item {k}, {inner}"))),
+        Value::Record(r) => r.fields().iter().find_map(|(name, item)| {
+            first_non_finite(item).map(|inner| format!("field {name}, {inner}"))
+        }),
+        Value::Null | Value::Integer(_) | Value::Boolean(_) | Value::Text(_) => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use cnets_geometry::Polyline;
+
+    use super::*;
+    use crate::Record;
+
+    #[test]
+    fn finds_the_first_non_finite_number_and_says_where() {
+        assert_eq!(first_non_finite(&Value::Number(1.0)), None);
+        assert!(is_all_finite(&Value::Number(1.0)));
+        assert!(!is_all_finite(&Value::Number(f64::NAN)));
+        assert_eq!(first_non_finite(&Value::Null), None);
+        assert!(first_non_finite(&Value::Number(f64::NAN)).is_some());
+        let list = Value::list(vec![
+            Value::Number(1.0),
+            Value::Polyline(Arc::new(Polyline::open(vec![
+                DVec3::ZERO,
+                DVec3::new(0.0, f64::INFINITY, 0.0),
+            ]))),
+        ]);
+        assert_eq!(first_non_finite(&list).as_deref(), Some("item 1, point 1"));
+        assert!(!is_all_finite(&list));
+        assert!(!is_all_finite(&Value::list(vec![Value::list(vec![
+            Value::Vector(DVec3::NAN)
+        ])])));
+        let record = Value::Record(Arc::new(
+            Record::new()
+                .with("ok", 1.0)
+                .with("length", f64::NEG_INFINITY),
+        ));
+        assert_eq!(
+            first_non_finite(&record).as_deref(),
+            Some("field length, the number")
+        );
+    }
+}
