@@ -63,6 +63,29 @@ fn panics_inside_nodes_are_caught() {
 }
 
 #[test]
+fn an_overflow_to_infinity_fails_the_node_and_blocks_its_dependents() {
+    let mut g = setup("t.sq");
+    g.set_value("x", "value", Value::Number(1e200)).unwrap();
+    let mut ev = Evaluator::new();
+    let ctx = NodeContext::default();
+    ev.evaluate_all(&g, &ctx);
+    assert_eq!(
+        ev.result(&g, "bad").unwrap().error(),
+        Some(
+            "output 'out' is not a finite number (an overflow or an undefined result: check the inputs' values and scale)"
+        )
+    );
+    assert_eq!(ev.output(&g, "bad", "out"), None);
+    assert!(matches!(
+        ev.result(&g, "after"),
+        Some(NodeResult::Blocked(_))
+    ));
+    g.set_value("x", "value", Value::Number(1e100)).unwrap();
+    ev.evaluate_all(&g, &ctx);
+    assert_eq!(ev.output(&g, "bad", "out"), Some(&Value::Number(1e200)));
+}
+
+#[test]
 fn missing_required_input_is_reported_on_the_node() {
     let mut g = common::graph();
     g.add_node("s", "t.sign").unwrap();

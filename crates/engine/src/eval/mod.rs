@@ -396,8 +396,9 @@ fn non_finite_output(def: &NodeDef, values: &[Value]) -> Option<String> {
     }
     def.outputs.iter().zip(values).find_map(|(port, value)| {
         first_non_finite(value).map(|at| {
+            let at = if at.is_empty() { at } else { format!(" at {at}") };
             format!(
-                "output '{}' is not a finite number at {at} (an overflow or an undefined result: check the inputs' values and scale)",
+                "output '{}' is not a finite number{at} (an overflow or an undefined result: check the inputs' values and scale)",
                 port.name
             )
         })

@@ -25,8 +25,9 @@ pub fn is_all_finite(v: &Value) -> bool {
 }
 
 /// Where the first non-finite number inside `v` is, described for an error message (`"item 3"`,
-/// `"vertex 12"`, `"field max_planarity"`), or `None` when every number is finite. Nulls are fine:
-/// they stand for "no value" (an apex at infinity).
+/// `"item 0, vertex 12"`, `"field max_planarity"`; empty when `v` itself is the number, point or
+/// plane), or `None` when every number is finite. Nulls are fine: they stand for "no value" (an
+/// apex at infinity).
 pub fn first_non_finite(v: &Value) -> Option<String> {
     let in_points = |what: &str, points: &[DVec3]| {
         points
@@ -35,13 +36,13 @@ pub fn first_non_finite(v: &Value) -> Option<String> {
             .map(|k| format!("{what} {k}"))
     };
     match v {
-        Value::Number(x) => (!x.is_finite()).then(|| "the number".to_string()),
-        Value::Point(p) | Value::Vector(p) => (!p.is_finite()).then(|| "the point".to_string()),
+        Value::Number(x) => (!x.is_finite()).then(String::new),
+        Value::Point(p) | Value::Vector(p) => (!p.is_finite()).then(String::new),
         Value::Plane(p) => (!(p.origin.is_finite()
             && p.normal.is_finite()
             && p.x_axis.is_finite()
             && p.y_axis.is_finite()))
-        .then(|| "the plane".to_string()),
+        .then(String::new),
         Value::Lines(lines) => lines
             .iter()
             .position(|l| !(l.start.is_finite() && l.end.is_finite()))
@@ -49,14 +50,22 @@ pub fn first_non_finite(v: &Value) -> Option<String> {
         Value::Polyline(p) => in_points("point", &p.points),
         Value::QuadMesh(g) => in_points("vertex", &g.vertices),
         Value::Mesh(m) => in_points("vertex", &m.vertices),
-        Value::List(items) => items
-            .iter()
-            .enumerate()
-            .find_map(|(k, item)| first_non_finite(item).map(|inner| format!("item {k}, {inner}"))),
+        Value::List(items) => items.iter().enumerate().find_map(|(k, item)| {
+            first_non_finite(item).map(|inner| within(format!("item {k}"), inner))
+        }),
         Value::Record(r) => r.fields().iter().find_map(|(name, item)| {
-            first_non_finite(item).map(|inner| format!("field {name}, {inner}"))
+            first_non_finite(item).map(|inner| within(format!("field {name}"), inner))
         }),
         Value::Null | Value::Integer(_) | Value::Boolean(_) | Value::Text(_) => None,
+    }
+}
+
+/// `outer, inner`, or `outer` alone when the inner value is the number itself.
+fn within(outer: String, inner: String) -> String {
+    if inner.is_empty() {
+        outer
+    } else {
+        format!("{outer}, {inner}")
     }
 }
 
@@ -93,9 +102,6 @@ mod tests {
                 .with("ok", 1.0)
                 .with("length", f64::NEG_INFINITY),
         ));
-        assert_eq!(
-            first_non_finite(&record).as_deref(),
-            Some("field length, the number")
-        );
+        assert_eq!(first_non_finite(&record).as_deref(), Some("field length"));
     }
 }
