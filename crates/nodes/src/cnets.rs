@@ -111,13 +111,7 @@ fn normals_input(value: Option<Value>) -> Result<NormalsInput, NodeError> {
 /// The configuration labels by [`Configuration`] discriminant. Each output row makes its own four
 /// shared texts, so rows convert in parallel without contending for one reference count.
 fn labels() -> [Value; 4] {
-    [
-        Configuration::PlusPlus,
-        Configuration::MinusMinus,
-        Configuration::PlusMinus,
-        Configuration::MinusPlus,
-    ]
-    .map(|c| Value::text(c.as_str()))
+    Configuration::ALL.map(|c| Value::text(c.as_str()))
 }
 
 /// The quality record of a cone-net.
@@ -399,13 +393,9 @@ mod tests {
     #[test]
     fn labels_are_indexed_by_configuration() {
         let labels = labels();
-        for c in [
-            Configuration::PlusPlus,
-            Configuration::MinusMinus,
-            Configuration::PlusMinus,
-            Configuration::MinusPlus,
-        ] {
-            assert_eq!(labels[c as usize], Value::text(c.as_str()), "{c}");
+        for (k, c) in Configuration::ALL.into_iter().enumerate() {
+            assert_eq!(c as usize, k, "{c}");
+            assert_eq!(labels[k], Value::text(c.as_str()), "{c}");
         }
     }
 }

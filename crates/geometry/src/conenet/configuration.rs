@@ -20,6 +20,14 @@ pub enum Configuration {
 }
 
 impl Configuration {
+    /// The four configurations in discriminant order (`ALL[c as usize] == c`).
+    pub const ALL: [Configuration; 4] = [
+        Self::PlusPlus,
+        Self::MinusMinus,
+        Self::PlusMinus,
+        Self::MinusPlus,
+    ];
+
     /// Classifies from s1 and s2.
     #[inline]
     pub fn from_signs(s1: f64, s2: f64) -> Self {
