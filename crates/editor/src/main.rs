@@ -12,6 +12,12 @@ use anyhow::{Context as _, bail};
 use cnets_editor::app::{AppOptions, EditorApp};
 use cnets_editor::viewport::GpuTarget;
 
+/// The process allocator: mimalloc keeps freed memory for reuse, where glibc's malloc hands large
+/// freed blocks (a 1000 × 1000 construction's 49 MB) back to the kernel and page-faults them in again
+/// on the next evaluation (docs/geometry.md, Performance).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 struct Args {
     file: Option<PathBuf>,
     bench_drag: Option<u32>,

@@ -10,6 +10,10 @@ use cnets_geometry::conenet::{
 use cnets_geometry::{DVec3, Polyline};
 use criterion::{Criterion, criterion_group, criterion_main};
 
+/// The allocator of the `cnets` and editor binaries, so that the figures are what they see.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// A smooth open directrix (helix-like arc) with `m` points.
 fn directrix(m: usize) -> Polyline {
     Polyline::open(

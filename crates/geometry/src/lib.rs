@@ -14,6 +14,7 @@ pub mod plane;
 pub mod polygon_mesh;
 pub mod polyline;
 pub mod quad_grid;
+pub mod simd;
 
 pub use conenet::{
     ConeNet, ConstructInputs, CoplanarInputs, CtubeInputs, construct, construct_coplanar,

@@ -14,6 +14,12 @@ use clap::{Parser, Subcommand};
 
 use crate::failure::Failure;
 
+/// The process allocator: mimalloc keeps freed memory for reuse, where glibc's malloc hands large
+/// freed blocks (a 1000 × 1000 construction's 49 MB) back to the kernel and page-faults them in again
+/// on the next evaluation (docs/geometry.md, Performance).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// cnets: design cone-nets (planar-quad meshes on discrete cones) from node graphs.
 #[derive(Debug, Parser)]
 #[command(name = "cnets", version, about, long_about = None)]

@@ -10,6 +10,10 @@ use cnets_engine::{NodeContext, Value};
 use cnets_geometry::{DVec3, Polyline};
 use criterion::{Criterion, criterion_group, criterion_main};
 
+/// The allocator of the `cnets` and editor binaries, so that the figures are what they see.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// The same smooth design as the kernel benchmark: a helix-like directrix of `m` points and an
 /// arc generatrix of `n` points around its first point.
 fn design(n: usize, m: usize) -> (Polyline, Polyline) {

@@ -511,7 +511,6 @@ fn quality_pass(mesh: &QuadGrid, directrix: &[DVec3], apex: &[f64], inv_scale: f
         ],
         one_minus_a: constant(&|j| (1.0 - apex[j]) * inv_scale),
     };
-    let quad_rows = mesh.quad_rows();
     let empty = || QualityAcc {
         inv_scale,
         max: F::splat(0.0),
@@ -524,32 +523,10 @@ fn quality_pass(mesh: &QuadGrid, directrix: &[DVec3], apex: &[f64], inv_scale: f
     (0..mesh.rows)
         .into_par_iter()
         .fold(empty, |mut acc, i| {
-            let (a, b) = row_pair(mesh, i);
-            let quads = i < quad_rows;
-            // Full groups of LANES strips, then the last group padded by repeating its last strip.
-            let full = strips / LANES * LANES;
-            for j0 in (0..full).step_by(LANES) {
-                let corners = [
-                    V3::gather(&a[j0..j0 + LANES]),
-                    V3::gather(&a[j0 + 1..j0 + 1 + LANES]),
-                    V3::gather(&b[j0 + 1..j0 + 1 + LANES]),
-                    V3::gather(&b[j0..j0 + LANES]),
-                ];
-                acc.add(&strip, j0, corners, quads, M::splat(true));
-            }
-            if full < strips {
-                let mut valid = M::splat(true);
-                let mut corners = [V3::ZERO; 4];
-                for l in 0..LANES {
-                    let j = (full + l).min(strips - 1);
-                    valid.set(l, full + l < strips);
-                    corners[0].set_lane(l, a[j]);
-                    corners[1].set_lane(l, a[j + 1]);
-                    corners[2].set_lane(l, b[j + 1]);
-                    corners[3].set_lane(l, b[j]);
-                }
-                acc.add(&strip, full, corners, quads, valid);
-            }
+            crate::simd::run(
+                #[inline(always)]
+                || add_row(&mut acc, &strip, mesh, i),
+            );
             acc
         })
         .reduce(empty, |mut x, y| {
@@ -564,6 +541,39 @@ fn quality_pass(mesh: &QuadGrid, directrix: &[DVec3], apex: &[f64], inv_scale: f
             }
             x
         })
+}
+
+/// Adds the quads between rows i and i + 1 (none when i is the last row of an open mesh) and the
+/// cone residuals of row i to `acc`, [`LANES`] strips at a time.
+#[inline(always)]
+fn add_row(acc: &mut QualityAcc, strip: &StripConstants, mesh: &QuadGrid, i: usize) {
+    let strips = mesh.cols - 1;
+    let (a, b) = row_pair(mesh, i);
+    let quads = i < mesh.quad_rows();
+    // Full groups of LANES strips, then the last group padded by repeating its last strip.
+    let full = strips / LANES * LANES;
+    for j0 in (0..full).step_by(LANES) {
+        let corners = [
+            V3::gather(&a[j0..j0 + LANES]),
+            V3::gather(&a[j0 + 1..j0 + 1 + LANES]),
+            V3::gather(&b[j0 + 1..j0 + 1 + LANES]),
+            V3::gather(&b[j0..j0 + LANES]),
+        ];
+        acc.add(strip, j0, corners, quads, M::splat(true));
+    }
+    if full < strips {
+        let mut valid = M::splat(true);
+        let mut corners = [V3::ZERO; 4];
+        for l in 0..LANES {
+            let j = (full + l).min(strips - 1);
+            valid.set(l, full + l < strips);
+            corners[0].set_lane(l, a[j]);
+            corners[1].set_lane(l, a[j + 1]);
+            corners[2].set_lane(l, b[j + 1]);
+            corners[3].set_lane(l, b[j]);
+        }
+        acc.add(strip, full, corners, quads, valid);
+    }
 }
 
 /// [`quad_planarity`] per lane for the quads `[0, d, q2, q3]` (corners relative to the first).

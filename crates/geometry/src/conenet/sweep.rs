@@ -346,7 +346,8 @@ impl<'r, S> Slot<'r, S> {
 /// js+1 … je). Columns ≤ js are built; when `plane_final`, the plane of column js+1 is already final
 /// (set by a coupled correction). Each step computes the planes and vertices of all rows as lanes
 /// ([`super::lanes`]); a row whose step needs more (an error, an inline fix, a stop) redoes it on its
-/// own with [`advance`].
+/// own with [`advance`]. Inlined into its callers so that [`crate::simd::run`] compiles it wide.
+#[inline(always)]
 fn run_batch<S: PlaneSource>(
     ctx: &Ctx<'_>,
     slots: &mut [Slot<'_, S>],
@@ -529,9 +530,12 @@ fn sweep_slots<S: PlaneSource + Send>(
     je: usize,
     plane_final: bool,
 ) {
-    slots
-        .par_chunks_mut(LANES)
-        .for_each(|batch| run_batch(ctx, batch, js, je, plane_final));
+    slots.par_chunks_mut(LANES).for_each(|batch| {
+        crate::simd::run(
+            #[inline(always)]
+            || run_batch(ctx, batch, js, je, plane_final),
+        )
+    });
 }
 
 /// The ends of all slots, in row order.
