@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use cnets_geometry::{PolygonMesh, Polyline};
 
-use crate::value::{Access, Value, ValueType};
+use crate::value::{Access, Value, ValueType, walk};
 
 /// Converts one item to the item type `ty`, using only the implicit conversions of
 /// [`ValueType::converts_to`]. `Null` passes through (the node decides whether it may be empty).
@@ -92,10 +92,13 @@ fn is_exact_item(v: &Value, ty: &ValueType) -> bool {
 }
 
 /// True when every item of the (possibly nested) value `v` is already of item type `ty`: the value
-/// can be shared as it is instead of being rebuilt. One walk, no allocation.
+/// can be shared as it is instead of being rebuilt. One walk (large lists on several threads), no
+/// allocation.
 fn is_exact_tree(v: &Value, ty: &ValueType) -> bool {
     match v {
-        Value::List(items) if !is_item(v, ty) => items.iter().all(|item| is_exact_tree(item, ty)),
+        Value::List(items) if !is_item(v, ty) => {
+            walk::all_items(items, |item| is_exact_tree(item, ty))
+        }
         _ => is_exact_item(v, ty),
     }
 }
@@ -109,7 +112,9 @@ pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Valu
         Access::List => match v {
             Value::Null => Ok(Value::Null),
             v if is_item(v, ty) => Ok(Value::list(vec![coerce_item(v, ty)?])),
-            Value::List(items) if items.iter().all(|item| is_exact_item(item, ty)) => Ok(v.clone()),
+            Value::List(items) if walk::all_items(items, |item| is_exact_item(item, ty)) => {
+                Ok(v.clone())
+            }
             Value::List(items) => items
                 .iter()
                 .enumerate()

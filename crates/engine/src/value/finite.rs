@@ -5,7 +5,7 @@ use glam::DVec3;
 use super::Value;
 
 /// True when every number inside `v` is finite. The fast check (one pass, leaf values tested
-/// inline, nothing allocated); [`first_non_finite`] describes the place when it fails.
+/// inline, nothing allocated, large lists on several threads); [`first_non_finite`] describes the place when it fails.
 pub fn is_all_finite(v: &Value) -> bool {
     match v {
         Value::Number(x) => x.is_finite(),
@@ -16,7 +16,7 @@ pub fn is_all_finite(v: &Value) -> bool {
         Value::Mesh(m) => m.vertices.iter().all(|p| p.is_finite()),
         // Leaves are tested inline, not through the recursive call: half the time on a million
         // normals (3.1 ms against 7.7 ms for a 1000 × 1000 construction's outputs).
-        Value::List(items) => items.iter().all(|item| match item {
+        Value::List(items) => super::walk::all_items(items, |item| match item {
             Value::Number(x) => x.is_finite(),
             Value::Point(p) | Value::Vector(p) => p.is_finite(),
             Value::Text(_) | Value::Null | Value::Integer(_) | Value::Boolean(_) => true,

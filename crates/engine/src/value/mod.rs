@@ -5,6 +5,7 @@ mod finite;
 pub mod json;
 mod record;
 mod types;
+pub(crate) mod walk;
 
 pub use equality::content_hash;
 pub use finite::{first_non_finite, is_all_finite};
