@@ -4,8 +4,9 @@
 //! doubles. Compiled for the x86-64 baseline they become SSE2 instructions (2 doubles each); the
 //! same source compiled with AVX2 enabled uses 4 doubles an instruction. [`run`] runs a closure
 //! through a copy compiled with AVX2 when the CPU has it (checked once, then cached by `std`), and
-//! through the baseline copy otherwise. FMA stays off: without fused multiply-adds both copies round
-//! every operation identically, so results are bit for bit the same on every x86-64 CPU (tested).
+//! through the baseline copy otherwise. FMA stays off: without fused multiply-adds both copies
+//! round every operation identically, so results are bit for bit the same on every x86-64 CPU
+//! (tested).
 //!
 //! This module holds the crate's only `unsafe`: calling a `#[target_feature]` function is unsafe
 //! because it is undefined on a CPU without the feature, and the call is made only after

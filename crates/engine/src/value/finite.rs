@@ -5,7 +5,8 @@ use glam::DVec3;
 use super::Value;
 
 /// True when every number inside `v` is finite. The fast check (one pass, leaf values tested
-/// inline, nothing allocated, large lists on several threads); [`first_non_finite`] describes the place when it fails.
+/// inline, nothing allocated, large lists on several threads); [`first_non_finite`] describes the
+/// place when it fails.
 pub fn is_all_finite(v: &Value) -> bool {
     match v {
         Value::Number(x) => x.is_finite(),
