@@ -742,7 +742,10 @@ impl<'a> Sweep<'a> {
                         psi,
                     },
                 )];
-                run_batch(&ctx, &mut first, js, je, plane_final);
+                crate::simd::run(
+                    #[inline(always)]
+                    || run_batch(&ctx, &mut first, js, je, plane_final),
+                );
                 let [first] = first;
                 let end0 = first.end.unwrap_or(RowEnd::Done);
                 // The other rows can go as far as row 0 has produced planes.
