@@ -3,8 +3,9 @@
 use std::sync::Arc;
 
 use cnets_geometry::{PolygonMesh, Polyline};
+use glam::DVec3;
 
-use crate::value::{Access, Value, ValueType, walk};
+use crate::value::{Access, Items, Packed, Value, ValueType, walk};
 
 /// Converts one item to the item type `ty`, using only the implicit conversions of
 /// [`ValueType::converts_to`]. `Null` passes through (the node decides whether it may be empty).
@@ -96,10 +97,19 @@ fn is_exact_item(v: &Value, ty: &ValueType) -> bool {
 /// allocation.
 fn is_exact_tree(v: &Value, ty: &ValueType) -> bool {
     match v {
-        Value::List(items) if !is_item(v, ty) => {
-            walk::all_items(items, |item| is_exact_tree(item, ty))
-        }
+        Value::List(items) if !is_item(v, ty) => all_items(items, |item| is_exact_tree(item, ty)),
         _ => is_exact_item(v, ty),
+    }
+}
+
+/// True when `each` (a test of an item's variant) holds for every item of `items`. A packed list
+/// is tested without building its values: a vector stands for all its items, and each label for
+/// the items that carry it.
+fn all_items(items: &Items, each: impl Fn(&Value) -> bool + Sync) -> bool {
+    match items.as_packed() {
+        Some(Packed::Vectors { .. }) => items.is_empty() || each(&Value::Vector(DVec3::ZERO)),
+        Some(Packed::Labels { labels, .. }) => labels.iter().all(each),
+        None => walk::all_items(items, each),
     }
 }
 
@@ -112,9 +122,7 @@ pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Valu
         Access::List => match v {
             Value::Null => Ok(Value::Null),
             v if is_item(v, ty) => Ok(Value::list(vec![coerce_item(v, ty)?])),
-            Value::List(items) if walk::all_items(items, |item| is_exact_item(item, ty)) => {
-                Ok(v.clone())
-            }
+            Value::List(items) if all_items(items, |item| is_exact_item(item, ty)) => Ok(v.clone()),
             Value::List(items) => items
                 .iter()
                 .enumerate()
@@ -192,7 +200,7 @@ mod tests {
     }
 
     fn same_list(a: &Value, b: &Value) -> bool {
-        matches!((a, b), (Value::List(x), Value::List(y)) if Arc::ptr_eq(x, y))
+        matches!((a, b), (Value::List(x), Value::List(y)) if Items::ptr_eq(x, y))
     }
 
     #[test]

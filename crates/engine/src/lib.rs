@@ -24,12 +24,12 @@ pub use graph::{Graph, GraphError, NodeInstance, Revision, WireRef};
 pub use kinds::{IntoPort, PortKind};
 pub use node::{NodeContext, NodeDef, NodeError, NodeFlag, PortDef};
 pub use registry::Registry;
-pub use value::{Access, Record, Value, ValueType};
+pub use value::{Access, Items, Record, Value, ValueType};
 
 /// What node modules usually import.
 pub mod prelude {
     pub use crate::kinds as k;
     pub use crate::node;
-    pub use crate::{NodeContext, NodeDef, NodeError, Record, Value};
+    pub use crate::{Items, NodeContext, NodeDef, NodeError, Record, Value};
     pub use cnets_geometry::{DVec3, Line, Plane, PolygonMesh, Polyline, QuadGrid};
 }

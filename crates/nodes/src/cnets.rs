@@ -55,7 +55,7 @@ fn grid_values(value: &Value, what: &str) -> Result<GridValues, NodeError> {
             })
             .collect::<Result<Vec<Vec<f64>>, _>>()
             .map(GridValues::PerVertex),
-        Value::List(items) => match items.as_slice() {
+        Value::List(items) => match &items[..] {
             [single] => number(single, &|| "[0]".into()).map(GridValues::Uniform),
             _ => items
                 .iter()
@@ -157,38 +157,31 @@ type Outputs = (
 );
 
 fn outputs(net: ConeNet) -> Outputs {
-    // A 1000 × 1000 net has a million normals and labels: rows convert in parallel.
-    let planes = Value::list(
-        (0..net.normals.rows())
-            .into_par_iter()
-            .map(|i| {
-                Value::list(
-                    net.normals
-                        .row(i)
-                        .iter()
-                        .map(|&p| Value::Vector(p))
-                        .collect(),
-                )
-            })
-            .collect(),
-    );
-    let configurations = Value::list(
-        (0..net.configurations.rows())
-            .into_par_iter()
-            .map(|i| {
-                let labels = labels();
-                Value::list(
-                    net.configurations
-                        .row(i)
-                        .iter()
-                        .map(|&c| labels[c as usize].clone())
-                        .collect(),
-                )
-            })
-            .collect(),
-    );
     let quality = quality_record(&net);
     let corrections = net.correction_lines();
+    // A 1000 × 1000 net has a million normals and labels: each output row is a packed row of one
+    // shared table (the construction's own normals, moved; one byte per label), not a million
+    // values.
+    let normal_rows: Vec<_> = (0..net.normals.rows())
+        .map(|i| net.normals.row_range(i))
+        .collect();
+    let normals = Arc::new(net.normals.into_data());
+    let planes = Value::list(
+        normal_rows
+            .into_iter()
+            .map(|range| Value::List(Items::vectors(normals.clone(), range)))
+            .collect(),
+    );
+    let codes = Arc::new(net.configurations.codes());
+    let labels: Arc<[Value]> = labels().into();
+    let configurations = Value::list(
+        (0..net.configurations.rows())
+            .map(|i| {
+                let range = net.configurations.row_range(i);
+                Value::List(Items::labels(codes.clone(), range, labels.clone()))
+            })
+            .collect(),
+    );
     (
         net.mesh,
         net.apex,

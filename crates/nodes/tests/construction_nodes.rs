@@ -257,3 +257,63 @@ fn planarity_node_reports_per_face_values() {
     assert_eq!(out[2].as_list().unwrap().len(), 3 * 4);
     assert!(out[0].as_f64().unwrap() <= 1e-12);
 }
+
+/// The `planes` and `configurations` outputs (packed rows of the construction's own tables) read
+/// as exactly the kernel's normals and labels, row by row: per-vertex normals with a (−−)
+/// configuration (ratios), and normals shared by all rows (Monge planes).
+#[test]
+fn planes_and_configurations_read_as_the_kernel_result() {
+    use cnets_geometry::conenet::{ConstructInputs, CtubeInputs, construct, construct_ctube};
+    let directrix = Polyline::open((0..6).map(|j| DVec3::new(j as f64, 0.0, 0.0)).collect());
+    let generatrix = Polyline::open(vec![
+        DVec3::new(0.0, 1.0, 0.0),
+        DVec3::new(0.0, 1.5, 0.5),
+        DVec3::new(0.0, 2.0, 0.2),
+    ]);
+    let ratios = vec![0.5, 0.9, 0.5, 0.5, 0.5];
+    let ratio_net = construct(
+        &ConstructInputs::new(directrix.clone(), generatrix.clone()).ratios(ratios.clone()),
+    )
+    .unwrap();
+    let monge_net =
+        construct_ctube(&CtubeInputs::new(directrix.clone(), generatrix.clone())).unwrap();
+    let named = |extra: Option<(&'static str, Value)>| {
+        let mut v = vec![
+            ("directrix", Value::from(directrix.clone())),
+            ("generatrix", Value::from(generatrix.clone())),
+        ];
+        v.extend(extra);
+        v
+    };
+    let ratio_list = Value::list(ratios.iter().map(|&r| Value::Number(r)).collect());
+    for (id, net, inputs) in [
+        (
+            "cnets.construct",
+            &ratio_net,
+            named(Some(("ratios", ratio_list))),
+        ),
+        ("ctube.construct", &monge_net, named(None)),
+    ] {
+        let out = run(id, &inputs).unwrap();
+        let expected_planes = Value::list(
+            net.normals
+                .to_rows()
+                .into_iter()
+                .map(|row| Value::list(row.into_iter().map(Value::Vector).collect()))
+                .collect(),
+        );
+        assert_eq!(output(id, &out, "planes"), &expected_planes, "{id}");
+        let expected_labels = Value::list(
+            net.configurations
+                .to_strings()
+                .into_iter()
+                .map(|row| Value::list(row.iter().map(Value::text).collect()))
+                .collect(),
+        );
+        assert_eq!(output(id, &out, "configurations"), &expected_labels, "{id}");
+    }
+    assert!(
+        ratio_net.configurations.counts().minus_minus > 0,
+        "the ratio case has a (−−) label"
+    );
+}

@@ -2,7 +2,6 @@
 //! then point/vector components 0–2).
 
 use std::fmt;
-use std::sync::Arc;
 
 use crate::value::Value;
 
@@ -113,9 +112,9 @@ fn set_at(value: &Value, indices: &[usize], x: f64) -> Result<Value, String> {
                 .get(i)
                 .ok_or_else(|| format!("index [{i}] is out of range (length {})", items.len()))?;
             let new = set_at(item, rest, x)?;
-            let mut items = Arc::clone(items);
-            Arc::make_mut(&mut items)[i] = new;
-            Ok(Value::List(items))
+            let mut items = items.to_vec();
+            items[i] = new;
+            Ok(Value::list(items))
         }
         Value::Point(p) | Value::Vector(p) if rest.is_empty() && i < 3 => {
             let mut q = *p;

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use rustc_hash::FxHasher;
 
-use super::Value;
+use super::{Items, Packed, Value};
 
 /// Structural equality with numbers compared by bits. Shared payloads compare by pointer first.
 pub(super) fn same(a: &Value, b: &Value) -> bool {
@@ -49,10 +49,7 @@ pub(super) fn same(a: &Value, b: &Value) -> bool {
                     && x.face_starts == y.face_starts
                     && same_points(&x.vertices, &y.vertices))
         }
-        (List(x), List(y)) => {
-            Arc::ptr_eq(x, y)
-                || (x.len() == y.len() && x.iter().zip(y.iter()).all(|(p, q)| same(p, q)))
-        }
+        (List(x), List(y)) => Items::ptr_eq(x, y) || same_items(x, y),
         (Record(x), Record(y)) => {
             Arc::ptr_eq(x, y)
                 || (x.len() == y.len()
@@ -62,6 +59,32 @@ pub(super) fn same(a: &Value, b: &Value) -> bool {
                         .all(|((n, v), (m, w))| n == m && same(v, w)))
         }
         _ => false,
+    }
+}
+
+/// Lists item by item; two packed lists of the same kind compare their plain data.
+fn same_items(x: &Items, y: &Items) -> bool {
+    if x.len() != y.len() {
+        return false;
+    }
+    match (x.as_packed(), y.as_packed()) {
+        (
+            Some(Packed::Vectors { table: a, range: r }),
+            Some(Packed::Vectors { table: b, range: s }),
+        ) => same_points(&a[r.clone()], &b[s.clone()]),
+        (
+            Some(Packed::Labels {
+                table: a,
+                range: r,
+                labels: la,
+            }),
+            Some(Packed::Labels {
+                table: b,
+                range: s,
+                labels: lb,
+            }),
+        ) if Arc::ptr_eq(la, lb) => a[r.clone()] == b[s.clone()],
+        _ => x.iter().zip(y.iter()).all(|(p, q)| same(p, q)),
     }
 }
 
@@ -152,8 +175,27 @@ fn hash_into(value: &Value, h: &mut FxHasher) {
         List(items) => {
             h.write_u8(12);
             h.write_usize(items.len());
-            for item in items.iter() {
-                hash_into(item, h);
+            // A packed list hashes exactly as its values would, without building them.
+            match items.as_packed() {
+                Some(Packed::Vectors { table, range }) => {
+                    for &p in &table[range.clone()] {
+                        hash_into(&Vector(p), h);
+                    }
+                }
+                Some(Packed::Labels {
+                    table,
+                    range,
+                    labels,
+                }) => {
+                    for &code in &table[range.clone()] {
+                        hash_into(labels.get(code as usize).unwrap_or(&Null), h);
+                    }
+                }
+                None => {
+                    for item in items.iter() {
+                        hash_into(item, h);
+                    }
+                }
             }
         }
         Record(r) => {

@@ -2,7 +2,8 @@
 
 use glam::DVec3;
 
-use super::Value;
+use super::walk::all_finite;
+use super::{Packed, Value};
 
 /// True when every number inside `v` is finite. The fast check (one pass, leaf values tested
 /// inline, nothing allocated, large lists on several threads); [`first_non_finite`] describes the
@@ -12,19 +13,30 @@ pub fn is_all_finite(v: &Value) -> bool {
         Value::Number(x) => x.is_finite(),
         Value::Point(p) | Value::Vector(p) => p.is_finite(),
         Value::Null | Value::Integer(_) | Value::Boolean(_) | Value::Text(_) => true,
-        Value::Polyline(p) => p.points.iter().all(|p| p.is_finite()),
-        Value::QuadMesh(g) => g.vertices.iter().all(|p| p.is_finite()),
-        Value::Mesh(m) => m.vertices.iter().all(|p| p.is_finite()),
+        Value::Polyline(p) => all_finite(&p.points),
+        Value::QuadMesh(g) => all_finite(&g.vertices),
+        Value::Mesh(m) => all_finite(&m.vertices),
         // Leaves are tested inline, not through the recursive call: half the time on a million
         // normals (3.1 ms against 7.7 ms for a 1000 × 1000 construction's outputs).
-        Value::List(items) => super::walk::all_items(items, |item| match item {
-            Value::Number(x) => x.is_finite(),
-            Value::Point(p) | Value::Vector(p) => p.is_finite(),
-            Value::Text(_) | Value::Null | Value::Integer(_) | Value::Boolean(_) => true,
-            other => is_all_finite(other),
-        }),
+        Value::List(items) => match items.as_packed() {
+            Some(Packed::Vectors { table, range }) => {
+                super::walk::all_finite(&table[range.clone()])
+            }
+            Some(Packed::Labels { labels, .. }) => labels.iter().all(is_all_finite),
+            None => all_items_finite(items),
+        },
         Value::Plane(_) | Value::Lines(_) | Value::Record(_) => first_non_finite(v).is_none(),
     }
+}
+
+/// [`is_all_finite`] of the items of an unpacked list.
+fn all_items_finite(items: &[Value]) -> bool {
+    super::walk::all_items(items, |item| match item {
+        Value::Number(x) => x.is_finite(),
+        Value::Point(p) | Value::Vector(p) => p.is_finite(),
+        Value::Text(_) | Value::Null | Value::Integer(_) | Value::Boolean(_) => true,
+        other => is_all_finite(other),
+    })
 }
 
 /// Where the first non-finite number inside `v` is, described for an error message (`"item 3"`,

@@ -47,7 +47,15 @@ pub fn to_json(value: &Value) -> Json {
             "vertices": points(&m.vertices),
             "faces": m.faces().map(|f| json!(f)).collect::<Vec<_>>(),
         }),
-        Value::List(items) => Json::Array(items.iter().map(to_json).collect()),
+        Value::List(items) => match items.as_packed() {
+            // Item by item, without building the values first.
+            Some(packed) => Json::Array(
+                (0..packed.len())
+                    .map(|k| to_json(&packed.value(k)))
+                    .collect(),
+            ),
+            None => Json::Array(items.iter().map(to_json).collect()),
+        },
         Value::Record(r) => Json::Object(
             r.fields()
                 .iter()

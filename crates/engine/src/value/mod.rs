@@ -3,12 +3,14 @@
 mod equality;
 mod finite;
 pub mod json;
+mod list;
 mod record;
 mod types;
 pub(crate) mod walk;
 
 pub use equality::content_hash;
 pub use finite::{first_non_finite, is_all_finite};
+pub use list::{Items, Packed};
 pub use record::Record;
 pub use types::{Access, ValueType};
 
@@ -46,7 +48,7 @@ pub enum Value {
     /// A general polygon mesh.
     Mesh(Arc<PolygonMesh>),
     /// An ordered list (lists may nest).
-    List(Arc<Vec<Value>>),
+    List(Items),
     /// Named fields, e.g. a quality report.
     Record(Arc<Record>),
 }
@@ -68,9 +70,10 @@ impl Value {
             Value::QuadMesh(_) => ValueType::QuadMesh,
             Value::Mesh(_) => ValueType::Mesh,
             Value::Record(_) => ValueType::Record,
-            Value::List(items) => ValueType::List(Box::new(
-                items.first().map_or(ValueType::Any, Value::value_type),
-            )),
+            Value::List(items) => ValueType::List(Box::new(match items.as_packed() {
+                Some(packed) if !packed.is_empty() => packed.value(0).value_type(),
+                _ => items.first().map_or(ValueType::Any, Value::value_type),
+            })),
         }
     }
 
@@ -81,7 +84,7 @@ impl Value {
 
     /// Builds a list value.
     pub fn list(items: Vec<Value>) -> Value {
-        Value::List(Arc::new(items))
+        Value::List(Items::new(items))
     }
 
     /// Builds a text value.

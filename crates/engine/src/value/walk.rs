@@ -1,6 +1,7 @@
-//! Walking the items of a list: on several threads when the list is large (a 1000 × 1000 table
+//! Walking the items of a list (or a table of points): on several threads when the list is large (a 1000 × 1000 table
 //! holds a million values), on the calling thread otherwise.
 
+use glam::DVec3;
 use rayon::prelude::*;
 
 use super::Value;
@@ -23,6 +24,17 @@ pub(crate) fn all_items(items: &[Value], pred: impl Fn(&Value) -> bool + Sync) -
     }
     let chunk = CHUNK_MIN_VALUES.div_ceil(per_item);
     items.par_chunks(chunk).all(|chunk| chunk.iter().all(&pred))
+}
+
+/// True when every point of `points` is finite; in parallel for at least [`PARALLEL_MIN_VALUES`]
+/// points.
+pub(crate) fn all_finite(points: &[DVec3]) -> bool {
+    if points.len() < PARALLEL_MIN_VALUES {
+        return points.iter().all(|p| p.is_finite());
+    }
+    points
+        .par_chunks(CHUNK_MIN_VALUES)
+        .all(|chunk| chunk.iter().all(|p| p.is_finite()))
 }
 
 #[cfg(test)]

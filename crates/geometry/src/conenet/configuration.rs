@@ -2,6 +2,7 @@
 //! `s1 = (G_{i,j+1} − X_j)·P_{i,j}`, `s2 = (X_{j+1} − G_{i,j})·P_{i,j+1}`, for j = 1 … M−2.
 
 use std::fmt;
+use std::ops::Range;
 
 /// The configuration c_{i,j} of support-strip quad (i, j) from the signs of s1 and s2.
 /// A sign is `+` when the value is strictly positive, `−` otherwise (zero counts as `−`).
@@ -137,7 +138,18 @@ impl Configurations {
 
     /// Row i as a slice (entry k is c_{i,k+1}).
     pub fn row(&self, i: usize) -> &[Configuration] {
-        &self.data[i * self.stride..i * self.stride + self.cols]
+        &self.data[self.row_range(i)]
+    }
+
+    /// Where row i's configurations are in the table [`Configurations::codes`] returns.
+    pub fn row_range(&self, i: usize) -> Range<usize> {
+        i * self.stride..i * self.stride + self.cols
+    }
+
+    /// Every configuration as its code (`c as u8`, the index in [`Configuration::ALL`]), in the
+    /// layout [`Configurations::row_range`] describes.
+    pub fn codes(&self) -> Vec<u8> {
+        self.data.iter().map(|&c| c as u8).collect()
     }
 
     /// N lists of M−2 labels (`"++"`, …), as the nodes output them.

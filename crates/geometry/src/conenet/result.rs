@@ -1,5 +1,7 @@
 //! The result of a construction: everything a construction node outputs.
 
+use std::ops::Range;
+
 use glam::DVec3;
 
 use super::configuration::Configurations;
@@ -72,12 +74,23 @@ impl PlaneNormals {
 
     /// The normals P_{i,1} … P_{i,M−1} of row i.
     pub fn row(&self, i: usize) -> &[DVec3] {
+        &self.data[self.row_range(i)]
+    }
+
+    /// Where row i's normals are in the table [`PlaneNormals::into_data`] returns (all rows
+    /// share one range when the normals are shared).
+    pub fn row_range(&self, i: usize) -> Range<usize> {
         assert!(i < self.rows, "plane row {i} out of range");
         if self.shared {
-            &self.data
+            0..self.cols
         } else {
-            &self.data[i * self.cols..(i + 1) * self.cols]
+            i * self.cols..(i + 1) * self.cols
         }
+    }
+
+    /// The table of normals, moved out; [`PlaneNormals::row_range`] locates each row in it.
+    pub fn into_data(self) -> Vec<DVec3> {
+        self.data
     }
 
     /// N lists of M−1 normals, as the nodes output them.
