@@ -56,7 +56,14 @@ pub fn depth(v: &Value, ty: &ValueType) -> usize {
         return 0;
     }
     match v {
-        Value::List(items) => 1 + items.first().map_or(0, |first| depth(first, ty)),
+        // A packed list's items are all of one kind: its first, read without building the rest.
+        Value::List(items) => {
+            1 + match items.as_packed() {
+                Some(packed) if !packed.is_empty() => depth(&packed.value(0), ty),
+                Some(_) => 0,
+                None => items.first().map_or(0, |first| depth(first, ty)),
+            }
+        }
         _ => 0,
     }
 }
@@ -103,11 +110,13 @@ fn is_exact_tree(v: &Value, ty: &ValueType) -> bool {
 }
 
 /// True when `each` (a test of an item's variant) holds for every item of `items`. A packed list
-/// is tested without building its values: a vector stands for all its items, and each label for
+/// is tested without building its values: a vector or a number stands for all its items, and each
+/// label for
 /// the items that carry it.
 fn all_items(items: &Items, each: impl Fn(&Value) -> bool + Sync) -> bool {
     match items.as_packed() {
         Some(Packed::Vectors { .. }) => items.is_empty() || each(&Value::Vector(DVec3::ZERO)),
+        Some(Packed::Numbers { .. }) => items.is_empty() || each(&Value::Number(0.0)),
         Some(Packed::Labels { labels, .. }) => labels.iter().all(each),
         None => walk::all_items(items, each),
     }

@@ -7,6 +7,7 @@
 use std::sync::Arc;
 
 use cnets_engine::prelude::*;
+use cnets_engine::value::Packed;
 use cnets_geometry::conenet::{
     self, ApexInput, ColumnValues, ConeNet, Configuration, ConstructInputs, CoplanarInputs,
     CtubeInputs, GridValues, NormalsInput,
@@ -40,16 +41,20 @@ fn grid_values(value: &Value, what: &str) -> Result<GridValues, NodeError> {
     };
     match value {
         // A per-vertex table (a million entries at 1000 × 1000) is read in parallel by rows.
-        Value::List(items) if items.iter().any(|v| v.as_list().is_some()) => items
+        Value::List(items) if items.iter().any(|v| matches!(v, Value::List(_))) => items
             .par_iter()
             .enumerate()
-            .map(|(i, row)| match row.as_list() {
-                Some(row) => row
-                    .iter()
-                    .enumerate()
-                    .map(|(j, v)| number(v, &|| format!("[{i}][{j}]")))
-                    .collect(),
-                None => Err(NodeError::new(format!(
+            .map(|(i, row)| match row {
+                // A packed row of numbers (JSON input) is copied as it is.
+                Value::List(row) => match row.as_packed() {
+                    Some(Packed::Numbers { table, range }) => Ok(table[range.clone()].to_vec()),
+                    _ => row
+                        .iter()
+                        .enumerate()
+                        .map(|(j, v)| number(v, &|| format!("[{i}][{j}]")))
+                        .collect(),
+                },
+                _ => Err(NodeError::new(format!(
                     "{what}[{i}] must be a list (a table needs one list per generatrix point)"
                 ))),
             })

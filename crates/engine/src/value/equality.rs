@@ -73,6 +73,13 @@ fn same_items(x: &Items, y: &Items) -> bool {
             Some(Packed::Vectors { table: b, range: s }),
         ) => same_points(&a[r.clone()], &b[s.clone()]),
         (
+            Some(Packed::Numbers { table: a, range: r }),
+            Some(Packed::Numbers { table: b, range: s }),
+        ) => a[r.clone()]
+            .iter()
+            .zip(&b[s.clone()])
+            .all(|(x, y)| x.to_bits() == y.to_bits()),
+        (
             Some(Packed::Labels {
                 table: a,
                 range: r,
@@ -180,6 +187,11 @@ fn hash_into(value: &Value, h: &mut FxHasher) {
                 Some(Packed::Vectors { table, range }) => {
                     for &p in &table[range.clone()] {
                         hash_into(&Vector(p), h);
+                    }
+                }
+                Some(Packed::Numbers { table, range }) => {
+                    for &x in &table[range.clone()] {
+                        hash_into(&Number(x), h);
                     }
                 }
                 Some(Packed::Labels {

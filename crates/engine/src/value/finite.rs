@@ -22,6 +22,9 @@ pub fn is_all_finite(v: &Value) -> bool {
             Some(Packed::Vectors { table, range }) => {
                 super::walk::all_finite(&table[range.clone()])
             }
+            Some(Packed::Numbers { table, range }) => {
+                super::walk::all_finite_numbers(&table[range.clone()])
+            }
             Some(Packed::Labels { labels, .. }) => labels.iter().all(is_all_finite),
             None => all_items_finite(items),
         },

@@ -12,7 +12,7 @@ use cnets_geometry::{Line, Plane, PolygonMesh, Polyline, QuadGrid};
 use glam::DVec3;
 use serde_json::{Map, Value as Json, json};
 
-use super::{Record, Value, ValueType};
+use super::{Items, Record, Value, ValueType};
 
 /// Encodes a value as JSON. Non-finite numbers become `null`.
 pub fn to_json(value: &Value) -> Json {
@@ -87,14 +87,30 @@ pub fn from_json(json: &Json, ty: &ValueType) -> Result<Value, String> {
         return Ok(v);
     }
     match json {
-        Json::Array(items) => items
-            .iter()
-            .enumerate()
-            .map(|(k, j)| from_json(j, ty).map_err(|e| at_index(k, &e)))
-            .collect::<Result<Vec<_>, _>>()
-            .map(Value::list),
+        // An array of numbers where numbers are expected: one packed row (a ratio table of a
+        // million entries is a thousand rows, not a million values).
+        Json::Array(items) if *ty.base() == ValueType::Number && !items.is_empty() => {
+            match items.iter().map(Json::as_f64).collect::<Option<Vec<f64>>>() {
+                Some(row) => {
+                    let len = row.len();
+                    Ok(Value::List(Items::numbers(Arc::new(row), 0..len)))
+                }
+                None => decode_items(items, ty),
+            }
+        }
+        Json::Array(items) => decode_items(items, ty),
         other => Err(format!("expected {}, got {}", ty.base(), kind(other))),
     }
+}
+
+/// Decodes the items of a JSON array one by one, naming the position of a failing item.
+fn decode_items(items: &[Json], ty: &ValueType) -> Result<Value, String> {
+    items
+        .iter()
+        .enumerate()
+        .map(|(k, j)| from_json(j, ty).map_err(|e| at_index(k, &e)))
+        .collect::<Result<Vec<_>, _>>()
+        .map(Value::list)
 }
 
 /// Prefixes an error inside array item `k` with its position: `[2]: …`, nested `[0][2]: …`.

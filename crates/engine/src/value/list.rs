@@ -1,9 +1,10 @@
 //! The items of a list value.
 //!
 //! [`Items`] are shared and cheap to clone. Usually they are [`Value`]s. A list a node builds
-//! from plain data can instead be *packed*: one row of a shared table of vectors or of label codes,
+//! from plain data can instead be *packed*: one row of a shared table of vectors, numbers or label codes,
 //! the table being the node's own result moved in, not copied (a 1000 × 1000 construction's plane
-//! normals are one table of a million `DVec3`s, its configurations one table of a million bytes). A
+//! normals are one table of a million `DVec3`s, its configurations one table of a million bytes),
+//! or a row of numbers (JSON decodes an array of numbers into one). A
 //! packed list is the same list as its values in every respect: it builds them (once) only when
 //! something reads it as values, while the hot paths (finiteness, equality, hashing, JSON) read the
 //! plain data directly.
@@ -38,6 +39,13 @@ pub enum Packed {
         /// This row's items.
         range: Range<usize>,
     },
+    /// Numbers ([`Value::Number`] each): `table[range]`.
+    Numbers {
+        /// The shared table (all rows).
+        table: Arc<Vec<f64>>,
+        /// This row's items.
+        range: Range<usize>,
+    },
     /// Labels: item k is `labels[table[range][k]]` ([`Value::Null`] for a code without a label).
     Labels {
         /// The shared table of codes (all rows).
@@ -53,7 +61,9 @@ impl Packed {
     /// The number of items.
     pub fn len(&self) -> usize {
         match self {
-            Packed::Vectors { range, .. } | Packed::Labels { range, .. } => range.len(),
+            Packed::Vectors { range, .. }
+            | Packed::Numbers { range, .. }
+            | Packed::Labels { range, .. } => range.len(),
         }
     }
 
@@ -66,6 +76,7 @@ impl Packed {
     pub fn value(&self, k: usize) -> Value {
         match self {
             Packed::Vectors { table, range } => Value::Vector(table[range.start + k]),
+            Packed::Numbers { table, range } => Value::Number(table[range.start + k]),
             Packed::Labels {
                 table,
                 range,
@@ -83,6 +94,10 @@ impl Packed {
             Packed::Vectors { table, range } => table[range.clone()]
                 .iter()
                 .map(|&p| Value::Vector(p))
+                .collect(),
+            Packed::Numbers { table, range } => table[range.clone()]
+                .iter()
+                .map(|&x| Value::Number(x))
                 .collect(),
             Packed::Labels {
                 table,
@@ -106,6 +121,12 @@ impl Items {
     pub fn vectors(table: Arc<Vec<DVec3>>, range: Range<usize>) -> Self {
         let range = clamp(range, table.len());
         Self::packed(Packed::Vectors { table, range })
+    }
+
+    /// A packed list of numbers: `table[range]` (the range is clamped to the table).
+    pub fn numbers(table: Arc<Vec<f64>>, range: Range<usize>) -> Self {
+        let range = clamp(range, table.len());
+        Self::packed(Packed::Numbers { table, range })
     }
 
     /// A packed list of labels: item k is `labels[table[range][k]]` (the range is clamped to the
@@ -211,6 +232,13 @@ mod tests {
         assert_eq!(row[1], Value::Vector(DVec3::new(5.0, 0.5, -1.0)));
         assert_eq!(row.as_packed().unwrap().value(3), expected[3]);
         assert_eq!(row.clone().into_vec(), expected);
+    }
+
+    #[test]
+    fn packed_numbers_read_as_number_values() {
+        let row = Items::numbers(Arc::new(vec![0.5, -1.0, 2.0]), 1..3);
+        assert_eq!(row.to_vec(), vec![Value::Number(-1.0), Value::Number(2.0)]);
+        assert_eq!(row.as_packed().unwrap().value(0), Value::Number(-1.0));
     }
 
     #[test]

@@ -26,15 +26,26 @@ pub(crate) fn all_items(items: &[Value], pred: impl Fn(&Value) -> bool + Sync) -
     items.par_chunks(chunk).all(|chunk| chunk.iter().all(&pred))
 }
 
-/// True when every point of `points` is finite; in parallel for at least [`PARALLEL_MIN_VALUES`]
-/// points.
+/// True when every number of `points` is finite; in parallel for at least
+/// [`PARALLEL_MIN_VALUES`] points.
 pub(crate) fn all_finite(points: &[DVec3]) -> bool {
-    if points.len() < PARALLEL_MIN_VALUES {
-        return points.iter().all(|p| p.is_finite());
+    all_of(points, |p| p.is_finite())
+}
+
+/// True when every number of `numbers` is finite; in parallel for at least
+/// [`PARALLEL_MIN_VALUES`] numbers.
+pub(crate) fn all_finite_numbers(numbers: &[f64]) -> bool {
+    all_of(numbers, |x| x.is_finite())
+}
+
+/// True when `pred` holds for every element of a plain slice; in parallel when it is large.
+fn all_of<T: Sync>(items: &[T], pred: impl Fn(&T) -> bool + Sync) -> bool {
+    if items.len() < PARALLEL_MIN_VALUES {
+        return items.iter().all(pred);
     }
-    points
+    items
         .par_chunks(CHUNK_MIN_VALUES)
-        .all(|chunk| chunk.iter().all(|p| p.is_finite()))
+        .all(|chunk| chunk.iter().all(&pred))
 }
 
 #[cfg(test)]
