@@ -78,6 +78,7 @@ pub fn excess_depth(v: &Value, ty: &ValueType, access: Access) -> usize {
 
 /// True when the item `v` is already what a port of item type `ty` receives: [`coerce_item`]
 /// returns it unchanged.
+#[inline]
 fn is_exact_item(v: &Value, ty: &ValueType) -> bool {
     use ValueType as T;
     match (ty, v) {
@@ -104,7 +105,11 @@ fn is_exact_item(v: &Value, ty: &ValueType) -> bool {
 /// allocation.
 fn is_exact_tree(v: &Value, ty: &ValueType) -> bool {
     match v {
-        Value::List(items) if !is_item(v, ty) => all_items(items, |item| is_exact_tree(item, ty)),
+        // Leaves are tested inline: a table of a million numbers is a million leaves.
+        Value::List(items) if !is_item(v, ty) => all_items(items, |item| match item {
+            Value::List(_) => is_exact_tree(item, ty),
+            leaf => is_exact_item(leaf, ty),
+        }),
         _ => is_exact_item(v, ty),
     }
 }

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use cnets_engine::eval::evaluate_node;
-use cnets_engine::{Access, NodeContext, NodeDef, Record, Value, ValueType};
+use cnets_engine::{Access, Items, NodeContext, NodeDef, Record, Value, ValueType};
 use cnets_geometry::{DVec3, Line, Plane, PolygonMesh, Polyline, QuadGrid};
 use proptest::prelude::*;
 
@@ -159,8 +159,34 @@ impl Rng {
         }
     }
 
+    /// A list of items; sometimes packed (a row of plain numbers or vectors, as JSON input and the
+    /// construction nodes make them) when all its items allow it.
     fn list(&mut self, ty: &ValueType) -> Value {
-        Value::list((0..self.below(6)).map(|_| self.item(ty)).collect())
+        let items: Vec<Value> = (0..self.below(6)).map(|_| self.item(ty)).collect();
+        if self.chance(30) {
+            let len = items.len();
+            let numbers: Option<Vec<f64>> = items
+                .iter()
+                .map(|v| match v {
+                    Value::Number(x) => Some(*x),
+                    _ => None,
+                })
+                .collect();
+            if let Some(numbers) = numbers {
+                return Value::List(Items::numbers(Arc::new(numbers), 0..len));
+            }
+            let vectors: Option<Vec<DVec3>> = items
+                .iter()
+                .map(|v| match v {
+                    Value::Vector(p) => Some(*p),
+                    _ => None,
+                })
+                .collect();
+            if let Some(vectors) = vectors {
+                return Value::List(Items::vectors(Arc::new(vectors), 0..len));
+            }
+        }
+        Value::list(items)
     }
 
     /// A value for an input port: absent (its default), empty, an item, a list or a table.
