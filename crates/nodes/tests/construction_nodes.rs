@@ -295,25 +295,22 @@ fn planes_and_configurations_read_as_the_kernel_result() {
         ("ctube.construct", &monge_net, named(None)),
     ] {
         let out = run(id, &inputs).unwrap();
-        let expected_planes = Value::list(
-            net.normals
-                .to_rows()
-                .into_iter()
-                .map(|row| Value::list(row.into_iter().map(Value::Vector).collect()))
-                .collect(),
-        );
-        assert_eq!(output(id, &out, "planes"), &expected_planes, "{id}");
-        let expected_labels = Value::list(
-            net.configurations
-                .to_strings()
-                .into_iter()
-                .map(|row| Value::list(row.iter().map(Value::text).collect()))
-                .collect(),
-        );
-        assert_eq!(output(id, &out, "configurations"), &expected_labels, "{id}");
+        let planes = value_table(net.normals.to_rows(), Value::Vector);
+        assert_eq!(output(id, &out, "planes"), &planes, "{id}");
+        let labels = value_table(net.configurations.to_strings(), Value::text);
+        assert_eq!(output(id, &out, "configurations"), &labels, "{id}");
     }
     assert!(
         ratio_net.configurations.counts().minus_minus > 0,
         "the ratio case has a (−−) label"
     );
+}
+
+/// A list of lists of values, one per entry of `rows`.
+fn value_table<T>(rows: Vec<Vec<T>>, item: impl Fn(T) -> Value + Copy) -> Value {
+    Value::list(
+        rows.into_iter()
+            .map(|row| Value::list(row.into_iter().map(item).collect()))
+            .collect(),
+    )
 }

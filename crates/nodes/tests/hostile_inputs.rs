@@ -165,24 +165,16 @@ impl Rng {
         let items: Vec<Value> = (0..self.below(6)).map(|_| self.item(ty)).collect();
         if self.chance(30) {
             let len = items.len();
-            let numbers: Option<Vec<f64>> = items
-                .iter()
-                .map(|v| match v {
-                    Value::Number(x) => Some(*x),
-                    _ => None,
-                })
-                .collect();
-            if let Some(numbers) = numbers {
+            if let Some(numbers) = plain_items(&items, |v| match v {
+                Value::Number(x) => Some(*x),
+                _ => None,
+            }) {
                 return Value::List(Items::numbers(Arc::new(numbers), 0..len));
             }
-            let vectors: Option<Vec<DVec3>> = items
-                .iter()
-                .map(|v| match v {
-                    Value::Vector(p) => Some(*p),
-                    _ => None,
-                })
-                .collect();
-            if let Some(vectors) = vectors {
+            if let Some(vectors) = plain_items(&items, |v| match v {
+                Value::Vector(p) => Some(*p),
+                _ => None,
+            }) {
                 return Value::List(Items::vectors(Arc::new(vectors), 0..len));
             }
         }
@@ -201,6 +193,11 @@ impl Rng {
             _ => self.item(ty),
         }
     }
+}
+
+/// The plain data of every item, when `read` accepts them all.
+fn plain_items<T>(items: &[Value], read: impl Fn(&Value) -> Option<T>) -> Option<Vec<T>> {
+    items.iter().map(read).collect()
 }
 
 /// Where a non-finite number hides in `v`, if anywhere.
