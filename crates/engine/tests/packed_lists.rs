@@ -140,3 +140,69 @@ fn items_read_through_the_slice() {
         Some(DVec3::new(19.0, -9.5, 1.0 / 20.0))
     );
 }
+
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Numbers including the ones bitwise equality must tell apart: ±0, NaN, ±∞.
+    fn number() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            4 => -1e6..1e6f64,
+            1 => Just(0.0),
+            1 => Just(-0.0),
+            1 => Just(f64::NAN),
+            1 => Just(f64::INFINITY),
+            1 => Just(f64::NEG_INFINITY),
+        ]
+    }
+
+    fn numbers_row(x: &[f64]) -> (Value, Value) {
+        (
+            Value::List(Items::numbers(Arc::new(x.to_vec()), 0..x.len())),
+            Value::list(x.iter().map(|&v| Value::Number(v)).collect()),
+        )
+    }
+
+    fn vectors_row(x: &[f64]) -> (Value, Value) {
+        let points: Vec<DVec3> = x
+            .chunks_exact(3)
+            .map(|c| DVec3::new(c[0], c[1], c[2]))
+            .collect();
+        let plain = Value::list(points.iter().map(|&p| Value::Vector(p)).collect());
+        let len = points.len();
+        (Value::List(Items::vectors(Arc::new(points), 0..len)), plain)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(500))]
+
+        /// Packed and plain rows agree on equality, hash, finiteness, JSON and type; changing one
+        /// bit of one number is seen by equality, packed against packed and against plain.
+        #[test]
+        fn packed_rows_behave_as_their_values(
+            x in prop::collection::vec(number(), 0..40),
+            flip in any::<prop::sample::Index>(),
+        ) {
+            for (packed, plain) in [numbers_row(&x), vectors_row(&x)] {
+                prop_assert!(packed.same_as(&plain) && plain.same_as(&packed));
+                prop_assert_eq!(content_hash(&packed), content_hash(&plain));
+                prop_assert_eq!(is_all_finite(&packed), is_all_finite(&plain));
+                prop_assert_eq!(first_non_finite(&packed), first_non_finite(&plain));
+                prop_assert_eq!(to_json(&packed), to_json(&plain));
+                prop_assert_eq!(packed.value_type(), plain.value_type());
+            }
+            if x.len() >= 3 {
+                let mut y = x.clone();
+                let k = flip.index(x.len() / 3 * 3);
+                y[k] = f64::from_bits(y[k].to_bits() ^ 1);
+                for ((a, _), (b, b_plain)) in [
+                    (numbers_row(&x), numbers_row(&y)),
+                    (vectors_row(&x), vectors_row(&y)),
+                ] {
+                    prop_assert!(!a.same_as(&b) && !a.same_as(&b_plain));
+                }
+            }
+        }
+    }
+}
