@@ -5,42 +5,9 @@
 
 mod common;
 
-use cnets_geometry::conenet::{
-    ConstructInputs, CoplanarInputs, CtubeInputs, construct, construct_coplanar, construct_ctube,
-};
 use cnets_geometry::simd::{set_wide_vectors, wide_vectors};
-use common::{Design, design};
+use common::{all_constructions, design};
 use proptest::prelude::*;
-
-/// Every construction of `d` (results and errors alike) as text: `{:?}` prints each f64 as its
-/// shortest round-trip form, so equal texts mean equal bits.
-fn all_constructions(d: &Design) -> Vec<String> {
-    let wide_ratios: Vec<Vec<f64>> = d
-        .ratios
-        .iter()
-        .map(|row| row.iter().map(|r| 0.5 + (r - 0.5) * 2.2).collect())
-        .collect();
-    let ratios = ConstructInputs::new(d.directrix.clone(), d.generatrix.clone())
-        .apex(d.apex.clone())
-        .ratios(wide_ratios);
-    let coplanar = CoplanarInputs::new(d.directrix.clone(), d.generatrix.clone())
-        .apex(d.apex.clone())
-        .ruling_ratios(d.rho.clone())
-        .plane_ratios(d.tau.clone());
-    let ctube = CtubeInputs::new(d.directrix.clone(), d.generatrix.clone()).apex(d.apex.clone());
-    let mut out = vec![format!("{:?}", construct_ctube(&ctube))];
-    for alpha in [-1.0, 0.0, 0.5, 1.0] {
-        out.push(format!(
-            "{:?}",
-            construct(&ratios.clone().assistance(alpha))
-        ));
-        out.push(format!(
-            "{:?}",
-            construct_coplanar(&coplanar.clone().assistance(alpha))
-        ));
-    }
-    out
-}
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]

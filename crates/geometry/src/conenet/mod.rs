@@ -25,6 +25,7 @@ pub mod encode;
 pub mod inputs;
 mod lanes;
 pub mod normalize;
+mod ordered;
 pub mod quality;
 pub mod ratios;
 pub mod result;

@@ -7,6 +7,7 @@ use rayon::prelude::*;
 use super::configuration::{ConfigurationCounts, Configurations};
 use super::eigen::smallest_eigenvector;
 use super::lanes::{F, LANES, M, V3};
+use super::ordered::fold_rows;
 use crate::{GeometryError, QuadGrid};
 
 /// Planarity of a quad `p1 p2 p3 p4` as in libigl: with diagonals `d1 = p3 − p1`, `d2 = p4 − p2`, the
@@ -182,9 +183,10 @@ pub(crate) fn fit_strips(mesh: &QuadGrid, center: DVec3, scale: f64) -> Vec<Stri
     let strips = mesh.quad_cols();
     let inv = 1.0 / scale;
     let zero = || vec![[0.0f64; 11]; strips];
-    let sums = (0..mesh.rows)
-        .into_par_iter()
-        .fold(zero, |mut acc, i| {
+    let sums = fold_rows(
+        mesh.rows,
+        zero,
+        |acc, i| {
             let row = &mesh.vertices[i * mesh.cols..(i + 1) * mesh.cols];
             for (j, s) in acc.iter_mut().enumerate() {
                 if let Some((p, dd, inv_l2)) = strip_line(row, j, center, inv) {
@@ -212,16 +214,15 @@ pub(crate) fn fit_strips(mesh: &QuadGrid, center: DVec3, scale: f64) -> Vec<Stri
                     s[10] += 1.0;
                 }
             }
-            acc
-        })
-        .reduce(zero, |mut a, b| {
+        },
+        |a, b| {
             for (x, y) in a.iter_mut().zip(&b) {
                 for k in 0..11 {
                     x[k] += y[k];
                 }
             }
-            a
-        });
+        },
+    );
     let hs: Vec<[f64; 4]> = sums
         .par_iter()
         .map(|s| {
@@ -520,16 +521,18 @@ fn quality_pass(mesh: &QuadGrid, directrix: &[DVec3], apex: &[f64], inv_scale: f
         num: vec![0.0; padded],
         den: vec![1.0; padded],
     };
-    (0..mesh.rows)
-        .into_par_iter()
-        .fold(empty, |mut acc, i| {
+    // In fixed blocks, merged in order: the mean planarity is a sum of floats, and its bits must
+    // not depend on how threads were scheduled.
+    fold_rows(
+        mesh.rows,
+        empty,
+        |acc, i| {
             crate::simd::run(
                 #[inline(always)]
-                || add_row(&mut acc, &strip, mesh, i),
-            );
-            acc
-        })
-        .reduce(empty, |mut x, y| {
+                || add_row(acc, &strip, mesh, i),
+            )
+        },
+        |x, y| {
             x.max = x.max.max(y.max);
             x.sum = x.sum + y.sum;
             x.lo = x.lo.min(y.lo);
@@ -539,8 +542,8 @@ fn quality_pass(mesh: &QuadGrid, directrix: &[DVec3], apex: &[f64], inv_scale: f
                     (x.num[j], x.den[j]) = (y.num[j], y.den[j]);
                 }
             }
-            x
-        })
+        },
+    )
 }
 
 /// Adds the quads between rows i and i + 1 (none when i is the last row of an open mesh) and the
