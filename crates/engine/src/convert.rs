@@ -3,7 +3,6 @@
 use std::sync::Arc;
 
 use cnets_geometry::{PolygonMesh, Polyline};
-use glam::DVec3;
 
 use crate::value::{Access, Items, Packed, Value, ValueType, walk};
 
@@ -115,14 +114,12 @@ fn is_exact_tree(v: &Value, ty: &ValueType) -> bool {
 }
 
 /// True when `each` (a test of an item's variant) holds for every item of `items`. A packed list
-/// is tested without building its values: a vector or a number stands for all its items, and each
-/// label for
-/// the items that carry it.
+/// is tested without building its values: its first item stands for all (they share a variant),
+/// and each label for the items that carry it.
 fn all_items(items: &Items, each: impl Fn(&Value) -> bool + Sync) -> bool {
     match items.as_packed() {
-        Some(Packed::Vectors { .. }) => items.is_empty() || each(&Value::Vector(DVec3::ZERO)),
-        Some(Packed::Numbers { .. }) => items.is_empty() || each(&Value::Number(0.0)),
         Some(Packed::Labels { labels, .. }) => labels.iter().all(each),
+        Some(packed) => packed.is_empty() || each(&packed.value(0)),
         None => walk::all_items(items, each),
     }
 }

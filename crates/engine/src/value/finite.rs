@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use super::walk::all_finite;
+use super::walk::{all_finite, all_finite_numbers, all_items};
 use super::{Packed, Value};
 
 /// True when every number inside `v` is finite. The fast check (one pass, leaf values tested
@@ -19,12 +19,8 @@ pub fn is_all_finite(v: &Value) -> bool {
         // Leaves are tested inline, not through the recursive call: half the time on a million
         // normals (3.1 ms against 7.7 ms for a 1000 × 1000 construction's outputs).
         Value::List(items) => match items.as_packed() {
-            Some(Packed::Vectors { table, range }) => {
-                super::walk::all_finite(&table[range.clone()])
-            }
-            Some(Packed::Numbers { table, range }) => {
-                super::walk::all_finite_numbers(&table[range.clone()])
-            }
+            Some(Packed::Vectors { table, range }) => all_finite(&table[range.clone()]),
+            Some(Packed::Numbers { table, range }) => all_finite_numbers(&table[range.clone()]),
             Some(Packed::Labels { labels, .. }) => labels.iter().all(is_all_finite),
             None => all_items_finite(items),
         },
@@ -34,7 +30,7 @@ pub fn is_all_finite(v: &Value) -> bool {
 
 /// [`is_all_finite`] of the items of an unpacked list.
 fn all_items_finite(items: &[Value]) -> bool {
-    super::walk::all_items(items, |item| match item {
+    all_items(items, |item| match item {
         Value::Number(x) => x.is_finite(),
         Value::Point(p) | Value::Vector(p) => p.is_finite(),
         Value::Text(_) | Value::Null | Value::Integer(_) | Value::Boolean(_) => true,

@@ -1,5 +1,5 @@
-//! Walking the items of a list (or a table of points): on several threads when the list is large (a 1000 × 1000 table
-//! holds a million values), on the calling thread otherwise.
+//! Walking the items of a list, or a plain table of points or numbers: on several threads when
+//! it is large (a 1000 × 1000 table holds a million values), on the calling thread otherwise.
 
 use glam::DVec3;
 use rayon::prelude::*;
