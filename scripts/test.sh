@@ -13,6 +13,8 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
   chmod 700 "$XDG_RUNTIME_DIR"
 fi
 export WGPU_BACKEND="${WGPU_BACKEND:-vulkan}"
+# A one-off build gains nothing from incremental caches; they would cost ~2 GB of disk.
+export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
 export PATH="$PWD/node_modules/.bin:$PATH"
 
 echo "== cargo fmt --check"
