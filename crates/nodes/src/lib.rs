@@ -21,6 +21,10 @@ pub mod param;
 pub mod quality;
 pub mod reference;
 pub mod vector;
+pub mod view;
+
+#[cfg(test)]
+pub(crate) mod testing;
 
 use cnets_engine::{NodeDef, Registry};
 
@@ -42,6 +46,7 @@ pub fn all() -> Vec<NodeDef> {
         fabrication::nodes(),
         mesh::nodes(),
         io_export::nodes(),
+        view::nodes(),
         cnets_engine::cluster::nodes(),
     ]
     .into_iter()
