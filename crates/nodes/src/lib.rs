@@ -17,6 +17,7 @@ pub mod mapper;
 pub mod math;
 pub mod measure;
 pub mod mesh;
+pub mod mesh_parts;
 pub mod param;
 pub mod quality;
 pub mod reference;
@@ -45,6 +46,7 @@ pub fn all() -> Vec<NodeDef> {
         analysis::nodes(),
         fabrication::nodes(),
         mesh::nodes(),
+        mesh_parts::nodes(),
         io_export::nodes(),
         view::nodes(),
         cnets_engine::cluster::nodes(),
