@@ -114,7 +114,9 @@ mod tests {
         }
         let id = |i: usize, j: usize| (i * (n + 1) + j) as u32;
         let faces: Vec<Vec<u32>> = (0..n)
-            .flat_map(|i| (0..n).map(move |j| vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]))
+            .flat_map(|i| {
+                (0..n).map(move |j| vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])
+            })
             .collect();
         PolygonMesh::from_faces(vertices, &faces).unwrap()
     }
@@ -127,7 +129,9 @@ mod tests {
         let mut seed = 12345u64;
         for _ in 0..300 {
             let mut r = || {
-                seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
                 (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 0.5
             };
             let p = DVec3::new(r(), r(), r());
@@ -135,18 +139,32 @@ mod tests {
                 .faces()
                 .flat_map(|f| (1..f.len() - 1).map(move |c| [f[0], f[c], f[c + 1]]))
                 .map(|t| {
-                    closest_point_on_triangle(p, v[t[0] as usize], v[t[1] as usize], v[t[2] as usize])
-                        .distance(p)
+                    closest_point_on_triangle(
+                        p,
+                        v[t[0] as usize],
+                        v[t[1] as usize],
+                        v[t[2] as usize],
+                    )
+                    .distance(p)
                 })
                 .fold(f64::INFINITY, f64::min);
             let hit = query.closest(p).unwrap();
-            assert!((hit.distance - brute).abs() <= 1e-12, "{} vs {brute}", hit.distance);
+            assert!(
+                (hit.distance - brute).abs() <= 1e-12,
+                "{} vs {brute}",
+                hit.distance
+            );
             // The reported face really holds the point.
             let f = mesh.face(hit.face);
             let on_face = (1..f.len() - 1)
                 .map(|c| {
-                    closest_point_on_triangle(hit.point, v[f[0] as usize], v[f[c] as usize], v[f[c + 1] as usize])
-                        .distance(hit.point)
+                    closest_point_on_triangle(
+                        hit.point,
+                        v[f[0] as usize],
+                        v[f[c] as usize],
+                        v[f[c + 1] as usize],
+                    )
+                    .distance(hit.point)
                 })
                 .fold(f64::INFINITY, f64::min);
             assert!(on_face < 1e-12, "face {} is {on_face} away", hit.face);

@@ -28,10 +28,17 @@ node! {
 /// One face of `mesh.construct`'s input: a list of at least three vertex indices.
 fn face_indices(k: usize, face: &Value, vertex_count: usize) -> Result<Vec<u32>, NodeError> {
     let items = face.as_list().ok_or_else(|| {
-        NodeError::new(format!("face {k} is a {}, not a list of vertex indices", face.type_name()))
+        NodeError::new(format!(
+            "face {k} is a {}, not a list of vertex indices",
+            face.type_name()
+        ))
     })?;
     if items.len() < 3 {
-        return Err(format!("face {k} has {} corners: a face needs at least 3", items.len()).into());
+        return Err(format!(
+            "face {k} has {} corners: a face needs at least 3",
+            items.len()
+        )
+        .into());
     }
     items
         .iter()
@@ -126,7 +133,13 @@ mod tests {
     use crate::testing::{ints, nums, points, run_named};
 
     fn square_and_triangle() -> (Value, Value) {
-        let vertices = points(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [2.0, 0.0, 0.0]]);
+        let vertices = points(&[
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.0, 0.0],
+        ]);
         let faces = Value::list(vec![ints(&[0, 1, 2, 3]), ints(&[1, 4, 2])]);
         (vertices, faces)
     }
@@ -134,14 +147,27 @@ mod tests {
     #[test]
     fn construct_and_deconstruct_round_trip_polygons() {
         let (vertices, faces) = square_and_triangle();
-        let out = run_named(&construct(), &[("vertices", vertices.clone()), ("faces", faces.clone())]).unwrap();
-        let Value::Mesh(mesh) = &out[0] else { panic!("a mesh") };
+        let out = run_named(
+            &construct(),
+            &[("vertices", vertices.clone()), ("faces", faces.clone())],
+        )
+        .unwrap();
+        let Value::Mesh(mesh) = &out[0] else {
+            panic!("a mesh")
+        };
         assert_eq!(mesh.face_count(), 2);
         assert_eq!(mesh.face(0), &[0, 1, 2, 3], "a quad stays a quad");
         let parts = run_named(&deconstruct(), &[("mesh", out[0].clone())]).unwrap();
         assert_eq!(parts, vec![vertices, faces]);
         // A quad grid converts.
-        let grid = QuadGrid::new(2, 3, (0..6).map(|k| DVec3::new(k as f64, 0.0, (k / 3) as f64)).collect()).unwrap();
+        let grid = QuadGrid::new(
+            2,
+            3,
+            (0..6)
+                .map(|k| DVec3::new(k as f64, 0.0, (k / 3) as f64))
+                .collect(),
+        )
+        .unwrap();
         let parts = run_named(&deconstruct(), &[("mesh", Value::from(grid))]).unwrap();
         assert_eq!(parts[1].as_list().unwrap().len(), 2);
     }
@@ -150,24 +176,52 @@ mod tests {
     fn construct_names_the_bad_face() {
         let (vertices, _) = square_and_triangle();
         let bad = Value::list(vec![ints(&[0, 1, 2]), ints(&[1, 2, 9])]);
-        let e = run_named(&construct(), &[("vertices", vertices.clone()), ("faces", bad)]).unwrap_err();
-        assert!(e.contains("face 1") && e.contains("9 is not a vertex index"), "{e}");
+        let e = run_named(
+            &construct(),
+            &[("vertices", vertices.clone()), ("faces", bad)],
+        )
+        .unwrap_err();
+        assert!(
+            e.contains("face 1") && e.contains("9 is not a vertex index"),
+            "{e}"
+        );
         let short = Value::list(vec![ints(&[0, 1])]);
-        let e = run_named(&construct(), &[("vertices", vertices.clone()), ("faces", short)]).unwrap_err();
+        let e = run_named(
+            &construct(),
+            &[("vertices", vertices.clone()), ("faces", short)],
+        )
+        .unwrap_err();
         assert!(e.contains("face 0 has 2 corners"), "{e}");
         let negative = Value::list(vec![ints(&[0, -1, 2])]);
-        assert!(run_named(&construct(), &[("vertices", vertices.clone()), ("faces", negative)]).is_err());
+        assert!(
+            run_named(
+                &construct(),
+                &[("vertices", vertices.clone()), ("faces", negative)]
+            )
+            .is_err()
+        );
         let fractional = Value::list(vec![nums(&[0.0, 1.5, 2.0])]);
-        assert!(run_named(&construct(), &[("vertices", vertices), ("faces", fractional)]).is_err());
+        assert!(
+            run_named(
+                &construct(),
+                &[("vertices", vertices), ("faces", fractional)]
+            )
+            .is_err()
+        );
     }
 
     #[test]
     fn closest_points_report_distance_and_face() {
         let (vertices, faces) = square_and_triangle();
-        let mesh = run_named(&construct(), &[("vertices", vertices), ("faces", faces)]).unwrap().remove(0);
+        let mesh = run_named(&construct(), &[("vertices", vertices), ("faces", faces)])
+            .unwrap()
+            .remove(0);
         let probes = points(&[[0.5, 0.5, 2.0], [1.9, 0.05, -1.0], [-1.0, 0.5, 0.0]]);
         let out = run_named(&closest_point(), &[("mesh", mesh), ("points", probes)]).unwrap();
-        assert_eq!(out[0], points(&[[0.5, 0.5, 0.0], [1.9, 0.05, 0.0], [0.0, 0.5, 0.0]]));
+        assert_eq!(
+            out[0],
+            points(&[[0.5, 0.5, 0.0], [1.9, 0.05, 0.0], [0.0, 0.5, 0.0]])
+        );
         assert_eq!(out[1], nums(&[2.0, 1.0, 1.0]));
         assert_eq!(out[2], ints(&[0, 1, 0]));
     }
