@@ -6,6 +6,7 @@
 
 pub mod csv;
 pub mod json;
+pub mod mesh;
 pub mod obj;
 pub mod svg;
 
@@ -137,7 +138,7 @@ node! {
 
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
-    vec![read_polylines()]
+    vec![read_polylines(), mesh::read_mesh()]
 }
 
 #[cfg(test)]
