@@ -11,6 +11,7 @@
 
 pub mod join;
 pub mod mapper;
+pub mod nurbs;
 pub mod offset;
 pub mod primitives;
 #[cfg(test)]
@@ -23,6 +24,7 @@ pub mod transform;
 
 pub use join::{join, reverse};
 pub use mapper::{Domains, GraphMapper, MapperKind};
+pub use nurbs::Nurbs;
 pub use offset::offset;
 pub use primitives::{arc, circle, helix, line, polygon};
 pub use query::{closest_point, evaluate};
