@@ -64,11 +64,11 @@ fn torus_monge_is_a_surface_of_revolution_and_its_variants_stay_clean() {
     }
     let monge = meshes(e.output("monge", "mesh"))[0];
     let size = monge.size();
-    // Every column but the last lies in a bisecting plane, which contains the axis; the last one lies
-    // in the plane normal to the last directrix edge (construction notes §2), so it is checked apart.
+    // Every column lies in a bisecting plane, which contains the axis; the last one too, since the
+    // graph mirrors the end plane (`end_planes: "mirror"`, the meridian plane at the arc's end).
     for i in 0..monge.rows {
         let (rho0, z0) = radial(monge.at(i, 0));
-        for j in 1..monge.cols - 1 {
+        for j in 1..monge.cols {
             let (rho, z) = radial(monge.at(i, j));
             assert!(
                 (rho - rho0).abs() <= 1e-12 * size && (z - z0).abs() <= 1e-12 * size,
@@ -339,14 +339,42 @@ fn parallel_transform_keeps_faces_planar_and_edges_parallel() {
 fn facade_profiles_share_their_vertex_along_the_whole_sweep() {
     let e = Evaluated::new(load("facade"));
     assert_clean(&e, "facade");
-    let nets = meshes(e.output("facade", "mesh"));
+    let coarse = meshes(e.output("facade", "mesh"));
+    let nets = meshes(e.output("panels", "mesh"));
     let (wall, canopy) = (nets[0], nets[1]);
     assert_eq!(
         wall.row(2).points,
         canopy.row(0).points,
         "the shared vertex traces one line"
     );
-    assert!(wall.rows > 5, "the generatrix is subdivided");
+    assert_eq!(
+        wall.rows,
+        (coarse[0].rows - 1) * 2 + 1,
+        "the rows are subdivided"
+    );
+    // Every panel vertex lies on a coarse face: coarse rows kept, new rows in the coarse planes.
+    for (fine, coarse) in nets.iter().zip(&coarse) {
+        let size = coarse.size();
+        for i in 0..fine.rows {
+            for j in 0..fine.cols {
+                let v = fine.at(i, j);
+                let (s, k) = (i / 2, i % 2);
+                if k == 0 {
+                    assert_eq!(v, coarse.at(s, j));
+                    continue;
+                }
+                for jf in [j.checked_sub(1), Some(j)].into_iter().flatten() {
+                    if jf + 1 < fine.cols {
+                        let q = coarse.quad(s, jf);
+                        let n = (q[2] - q[0]).cross(q[3] - q[1]).normalize();
+                        let d = (v - q[0]).dot(n).abs() / size;
+                        assert!(d <= 1e-12, "({i}, {j}) off its coarse face by {d:e}");
+                    }
+                }
+            }
+        }
+        assert!(max_planarity(fine) <= 1e-12);
+    }
     let axes: usize = match e.output("axes", "axes") {
         Value::List(items) => items
             .iter()
