@@ -190,6 +190,53 @@ node! {
     }
 }
 
+node! {
+    /// CNet Support Strips (paper Sec. 4.4.2, Fig. 3). With `directrix`: the support strips, one per
+    /// directrix-aligned polyline G_{i,:}, the planar quads X_j X_{j+1} G_{i,j+1} G_{i,j} (a 2 × M
+    /// grid: the directrix, then the mesh row). With `layer` (a second layer from
+    /// `cnets.conical_support` or `pq.parallel_support`): the beams on the torsion-free node axes
+    /// between the mesh and the layer, one strip per polyline of `direction`, quads G G' G' G. Every
+    /// quad is planar (to rounding error); `pq.unroll_strips` unrolls them for cutting.
+    #[node(id = "cnets.support_strips", category = "CNets")]
+    pub fn support_strips(
+        /// The constructed cone-net.
+        mesh: k::QuadMesh,
+        /// The directrix the mesh was built from (gives the support strips of Fig. 3).
+        directrix: Option<k::Polyline>,
+        /// A second layer of the same size (gives the beams between the layers).
+        layer: Option<k::QuadMesh>,
+        /// The beams' polylines: `"directrix"` or `"generatrix"` (support strips: `"directrix"`).
+        direction: k::Text = "directrix",
+    ) -> (
+        /// One strip per polyline (2 × M or 2 × N quad grids).
+        strips: k::List<k::QuadMesh>,
+    ) {
+        let direction = parse_direction(&direction)?;
+        let strips = match (directrix, layer) {
+            (Some(_), Some(_)) => {
+                return Err(NodeError::new(
+                    "give either directrix (support strips) or layer (beams), not both",
+                ));
+            }
+            (None, None) => {
+                return Err(NodeError::new(
+                    "give the directrix (support strips) or a second layer (beams)",
+                ));
+            }
+            (Some(directrix), None) => {
+                if direction != StripDirection::Directrix {
+                    return Err(NodeError::new(
+                        "the support strips of the directrix run along the directrix: direction must be \"directrix\"",
+                    ));
+                }
+                fab::directrix_support_strips(&directrix, &mesh).map_err(fab_err)?
+            }
+            (None, Some(layer)) => fab::beam_strips(&mesh, &layer, direction).map_err(fab_err)?,
+        };
+        Ok((strips,))
+    }
+}
+
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
     vec![
@@ -200,5 +247,6 @@ pub fn nodes() -> Vec<NodeDef> {
         parallel_transform(),
         extract_strips(),
         unroll_strips(),
+        support_strips(),
     ]
 }
