@@ -476,3 +476,75 @@ fn pedestrian_bridge_has_planar_frames_and_exports_cutting_sheets() {
     }
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+/// The polylines of an output (a list, possibly nested).
+fn polylines(v: &Value) -> Vec<cnets_geometry::Polyline> {
+    match v {
+        Value::Polyline(p) => vec![(**p).clone()],
+        Value::List(items) => items.iter().flat_map(polylines).collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// Nests outlines on sheets 1.05 × the longest outline by `height` and compares with stacking their
+/// boxes: (nested sheets, nested utilization, stacked sheets, stacked utilization).
+fn nest_against_stacking(
+    outlines: &[cnets_geometry::Polyline],
+    height: f64,
+) -> (usize, f64, usize, f64) {
+    use cnets_geometry::fabrication::{nest, stack_sheets};
+    let longest = outlines
+        .iter()
+        .map(|o| {
+            let (lo, hi) = cnets_geometry::quad_grid::bounds_of(&o.points).unwrap();
+            (hi.x - lo.x).max(hi.y - lo.y)
+        })
+        .fold(0.0, f64::max);
+    let width = 1.05 * longest;
+    let nested = nest(outlines, width, height, 0.005, 4).unwrap();
+    // Every placed outline is the input moved rigidly, and inside its sheet.
+    for (placed, input) in nested.outlines.iter().zip(outlines) {
+        let n = input.points.len();
+        for i in 0..n {
+            let a = input.points[i].distance(input.points[(i + 1) % n]);
+            let b = placed.points[i].distance(placed.points[(i + 1) % n]);
+            assert!((a - b).abs() <= 1e-9 * a.max(1.0));
+        }
+    }
+    for (placed, &s) in nested.outlines.iter().zip(&nested.sheets) {
+        let x0 = s as f64 * (width + nested.gap);
+        for p in &placed.points {
+            assert!(
+                p.x >= x0 - 1e-9
+                    && p.x <= x0 + width + 1e-9
+                    && p.y >= -1e-9
+                    && p.y <= height + 1e-9
+            );
+        }
+    }
+    let (stacked, stacked_utilization) = stack_sheets(outlines, width, height, 0.005).unwrap();
+    (
+        nested.sheet_count,
+        nested.utilization,
+        stacked,
+        stacked_utilization,
+    )
+}
+
+#[test]
+fn bridge_strips_nest_on_fewer_sheets_than_stacked_boxes() {
+    let e = Evaluated::new(load("pedestrian-bridge"));
+    let outlines = polylines(e.output("strips", "outlines"));
+    assert!(outlines.len() > 3);
+    let (nested, nested_u, stacked, stacked_u) = nest_against_stacking(&outlines, 8.0);
+    eprintln!(
+        "bridge: {} strips; stacked boxes {stacked} sheets ({:.1} %), nested {nested} sheets ({:.1} %)",
+        outlines.len(),
+        100.0 * stacked_u,
+        100.0 * nested_u
+    );
+    assert!(
+        nested < stacked,
+        "nested {nested} sheets, stacked {stacked}"
+    );
+}

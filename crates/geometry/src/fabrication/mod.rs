@@ -17,6 +17,7 @@ pub mod join;
 pub mod layout;
 pub mod lines;
 pub mod mirror;
+pub mod nest;
 pub mod parallel_support;
 pub mod parallel_transform;
 pub mod polygon;
@@ -34,6 +35,7 @@ pub use face_attributes::{
 };
 pub use join::{join, weld};
 pub use mirror::mirror;
+pub use nest::{Nested, nest, stack_sheets};
 pub use parallel_support::parallel_support;
 pub use parallel_transform::{ParallelTransform, parallel_transform};
 pub use polygon::triangulate;
