@@ -548,3 +548,52 @@ fn bridge_strips_nest_on_fewer_sheets_than_stacked_boxes() {
         "nested {nested} sheets, stacked {stacked}"
     );
 }
+
+#[test]
+fn facade_beams_are_planar_nested_and_written() {
+    let out = std::env::temp_dir().join(format!("cnets-facade-{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let e = Evaluated::with_output(load("facade"), &out);
+    assert_clean(&e, "facade");
+    let beams = meshes(e.output("beams", "strips"));
+    assert_eq!(
+        beams.len(),
+        2 * 25,
+        "one beam per generatrix polyline of both nets"
+    );
+    for b in &beams {
+        assert!(max_planarity(b) <= 1e-12);
+    }
+    let outlines = polylines(e.output("beam_list", "list"));
+    assert_eq!(outlines.len(), beams.len());
+    let longest = outlines
+        .iter()
+        .map(|o| {
+            let (lo, hi) = cnets_geometry::quad_grid::bounds_of(&o.points).unwrap();
+            (hi.x - lo.x).max(hi.y - lo.y)
+        })
+        .fold(0.0, f64::max);
+    let (nested, nested_u, stacked, stacked_u) = nest_against_stacking(&outlines, 8.0);
+    eprintln!(
+        "facade beams: {} outlines, longest {longest:.3}; stacked boxes {stacked} sheets ({:.1} %), nested {nested} sheets ({:.1} %); graph: {} sheets, {:.1} %",
+        outlines.len(),
+        100.0 * stacked_u,
+        100.0 * nested_u,
+        e.output("nest", "sheets")
+            .as_list()
+            .unwrap()
+            .iter()
+            .filter_map(Value::as_f64)
+            .fold(0.0, f64::max)
+            + 1.0,
+        100.0 * e.number("nest", "utilization"),
+    );
+    assert!(nested <= stacked);
+    for name in ["facade-beams.svg", "facade-beams.dxf"] {
+        let len = std::fs::metadata(out.join(name))
+            .map(|m| m.len())
+            .unwrap_or(0);
+        assert!(len > 1000, "{name} written ({len} bytes)");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
