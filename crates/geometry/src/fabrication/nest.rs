@@ -76,6 +76,13 @@ pub fn nest(
             });
         }
     }
+    if width.min(height) < 1e-6 * width.max(height) {
+        return Err(FabricationError::BadParameter {
+            what: "sheet_width",
+            value: width,
+            expected: "a sheet whose sides differ by less than a factor of 10⁶",
+        });
+    }
     if !(spacing.is_finite() && spacing >= 0.0 && spacing < width.min(height)) {
         return Err(FabricationError::BadParameter {
             what: "spacing",
@@ -147,6 +154,13 @@ pub fn nest(
         }
         let flat: Vec<DVec2> = o.points.iter().map(|p| p.truncate()).collect();
         let lo = flat.iter().fold(DVec2::INFINITY, |a, p| a.min(*p));
+        let hi = flat.iter().fold(DVec2::NEG_INFINITY, |a, p| a.max(*p));
+        // Larger than the sheet's diagonal: fits in no rotation (and keeps f32 coordinates small).
+        if !((hi - lo).max_element() <= width.hypot(height)) {
+            return Err(FabricationError::Nesting(format!(
+                "outline {k} does not fit on a {width} × {height} sheet in any allowed rotation"
+            )));
+        }
         area += polygon_area(&flat).abs();
         let item = import_item(&importer, &flat, lo, unit, &angles, k)?;
         items.push(item);
