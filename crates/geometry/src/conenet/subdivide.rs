@@ -73,20 +73,11 @@ pub fn subdivide_rows(mesh: &QuadGrid, count: usize) -> Result<QuadGrid, Geometr
                 let u = k as f64 / count as f64;
                 let mut f = mesh.at(i, 0).lerp(mesh.at(i1, 0), u);
                 out[0] = f;
-                for j in 1..m {
-                    f = project(
-                    [mesh.at(i, j - 1), mesh.at(i1, j - 1)],
-                    [mesh.at(i, j), mesh.at(i1, j)],
-                    f,
-                )
-                .ok_or_else(|| {
-                    GeometryError::Degenerate(format!(
-                        "subdivide_rows: the coarse face at row {i}, column {} has no projection \
-                         (collinear corners, or the new vertex at its apex)",
-                        j - 1
-                    ))
-                })?;
-                    out[j] = f;
+                for (j, slot) in out.iter_mut().enumerate().skip(1) {
+                    let from = [mesh.at(i, j - 1), mesh.at(i1, j - 1)];
+                    let to = [mesh.at(i, j), mesh.at(i1, j)];
+                    f = project(from, to, f).ok_or_else(|| no_projection(i, j - 1))?;
+                    *slot = f;
                 }
                 Ok(())
             });
@@ -98,6 +89,14 @@ pub fn subdivide_rows(mesh: &QuadGrid, count: usize) -> Result<QuadGrid, Geometr
         wrap_cols: false,
         vertices,
     })
+}
+
+/// The error of a coarse face (row i, column j) whose projection is undefined.
+fn no_projection(i: usize, j: usize) -> GeometryError {
+    GeometryError::Degenerate(format!(
+        "subdivide_rows: the coarse face at row {i}, column {j} has no projection (collinear \
+         corners, or the new vertex at its apex)"
+    ))
 }
 
 /// The central projection of `f` (on the edge `from`) through the apex of the face `from`, `to` (the
