@@ -64,6 +64,8 @@ fn torus_monge_is_a_surface_of_revolution_and_its_variants_stay_clean() {
     }
     let monge = meshes(e.output("monge", "mesh"))[0];
     let size = monge.size();
+    let directrix = polylines(e.output("directrix", "curve")).remove(0);
+    assert_eq!(directrix.points.len(), monge.cols);
     // Every column lies in a bisecting plane, which contains the axis; the last one too, since the
     // graph mirrors the end plane (`end_planes: "mirror"`, the meridian plane at the arc's end).
     for i in 0..monge.rows {
@@ -73,6 +75,14 @@ fn torus_monge_is_a_surface_of_revolution_and_its_variants_stay_clean() {
             assert!(
                 (rho - rho0).abs() <= 1e-12 * size && (z - z0).abs() <= 1e-12 * size,
                 "({i}, {j}) leaves its circle"
+            );
+            // …and its meridian plane, through the z axis and X_j.
+            let x = directrix.points[j];
+            let normal = DVec3::new(-x.y, x.x, 0.0).normalize();
+            let off = monge.at(i, j).dot(normal).abs();
+            assert!(
+                off <= 1e-12 * size,
+                "({i}, {j}) off its meridian by {off:e}"
             );
         }
     }
