@@ -42,9 +42,10 @@ impl Nurbs {
                 n + self.degree + 1
             ));
         }
-        if self.knots.windows(2).any(|w| !(w[0] <= w[1]))
-            || self.knots.iter().any(|k| !k.is_finite())
-        {
+        // `!(a <= b)` also rejects NaN knots.
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        let decreasing = self.knots.windows(2).any(|w| !(w[0] <= w[1]));
+        if decreasing || self.knots.iter().any(|k| !k.is_finite()) {
             return bad("the spline's knots are not finite and non-decreasing".into());
         }
         if !self.weights.is_empty()
