@@ -1,5 +1,7 @@
 //! Reversing and joining polylines.
 
+use std::collections::VecDeque;
+
 use glam::DVec3;
 
 use crate::error::check_finite_points;
@@ -59,7 +61,8 @@ pub fn join(curves: &[Polyline], tolerance: f64) -> Result<Vec<Polyline>, Geomet
             out.push(curves[first].clone());
             continue;
         }
-        let mut chain = curves[first].points.clone();
+        // A deque: pieces are added at both ends in O(piece) each.
+        let mut chain: VecDeque<DVec3> = curves[first].points.iter().copied().collect();
         loop {
             let (start, end) = (chain[0], chain[chain.len() - 1]);
             if chain.len() > 2 && meets(start, end) {
@@ -93,19 +96,20 @@ pub fn join(curves: &[Polyline], tolerance: f64) -> Result<Vec<Polyline>, Geomet
                 piece.reverse();
             }
             if at_end {
-                chain.extend_from_slice(&piece[1..]);
+                chain.extend(&piece[1..]);
             } else {
                 piece.pop();
-                piece.extend_from_slice(&chain);
-                chain = piece;
+                for p in piece.into_iter().rev() {
+                    chain.push_front(p);
+                }
             }
         }
         let closed = chain.len() > 3 && meets(chain[0], chain[chain.len() - 1]);
         if closed {
-            chain.pop();
+            chain.pop_back();
         }
         out.push(Polyline {
-            points: chain,
+            points: chain.into(),
             closed,
         });
     }
@@ -379,6 +383,7 @@ mod tests {
         let started = std::time::Instant::now();
         let joined = join(&curves, 1e-9).unwrap();
         let took = started.elapsed();
+        eprintln!("40 000 segments joined in {took:?}");
         assert_eq!(joined.len(), 1);
         assert_eq!(joined[0].points.len(), n + 1);
         assert!(took.as_secs_f64() < 2.0, "{took:?}");
