@@ -162,6 +162,10 @@ pub struct Canvas {
     ui_rect: Rect,
     /// Plot rectangles of graph-mapper widgets (canvas coordinates).
     plots: HashMap<String, Rect>,
+    /// Rectangles of the inline value editors, by (node, input) (canvas coordinates).
+    editors: HashMap<(String, String), Rect>,
+    /// A zoom asked for with [`Canvas::zoom_to`], applied on the next frame.
+    zoom_pending: Option<(f32, Option<Pos2>)>,
 }
 
 impl Default for Canvas {
@@ -170,9 +174,22 @@ impl Default for Canvas {
     }
 }
 
+/// The smallest canvas zoom. Text on the canvas is laid out at its normal size and its glyph
+/// quads are scaled with the canvas (egui transform layer); a quad less than one pixel tall can
+/// fall between pixel centres and not be drawn at all — which is how the minus sign of `-1`
+/// (Ubuntu Light's hyphen is the thinnest glyph the canvas draws: a 2-pixel-tall bitmap at
+/// 14 px) disappeared at some zoom levels while the digits stayed. At this zoom and above every
+/// glyph quad is at least one pixel tall (`tests/glyphs.rs` checks it for the fonts in use).
+pub const MIN_ZOOM: f32 = 0.5;
+
+/// The zoom a graph opens at when it does not fit: node text (14 px) at 10 px.
+pub const READABLE_ZOOM: f32 = 10.0 / 14.0;
+
 /// The snarl style of the canvas.
 fn style() -> SnarlStyle {
     let mut s = SnarlStyle::new();
+    s.min_scale = Some(MIN_ZOOM);
+    s.max_scale = Some(2.0);
     s.centering = Some(false);
     s.collapsible = Some(true);
     s.pin_size = Some(9.0);
@@ -208,10 +225,12 @@ impl Canvas {
             fit_delay: 0,
             ui_rect: Rect::NOTHING,
             plots: HashMap::new(),
+            editors: HashMap::new(),
+            zoom_pending: None,
         }
     }
 
-    /// Frames the whole graph on the next frames (on a new document, or View ▸ Frame graph).
+    /// Frames the whole graph on the next frames (on a new document, or View › Frame graph).
     pub fn fit(&mut self) {
         self.fit_pending = true;
     }
@@ -223,46 +242,35 @@ impl Canvas {
         self.fit_delay = 6;
     }
 
-    /// Positions that lay the graph out in columns by dependency depth (sources on the left),
-    /// using the node sizes measured in the last frame; nodes keep their vertical order within a
-    /// column. Empty until every node has been drawn once.
+    /// Positions of a layered layout of the graph ([`crate::layout::layered`]: sources left,
+    /// sinks right, few crossings, no overlaps), using the node sizes measured in the last frame.
+    /// Empty until every node has been drawn once.
     pub fn arrangement(&self, graph: &Graph) -> Vec<(String, [f32; 2])> {
         if self.rects.len() < graph.node_count() {
             return Vec::new();
         }
-        let order = graph.topological_order();
-        let mut depth: HashMap<petgraph::stable_graph::NodeIndex, usize> = HashMap::new();
-        for &k in &order {
-            let d = graph
-                .sources(k)
-                .filter_map(|s| depth.get(&s))
-                .map(|d| d + 1)
-                .max()
-                .unwrap_or(0);
-            depth.insert(k, d);
-        }
-        let columns = depth.values().copied().max().map_or(0, |m| m + 1);
-        let mut by_column: Vec<Vec<(String, Rect)>> = vec![Vec::new(); columns];
-        for (k, n) in graph.nodes() {
-            if let (Some(&d), Some(r)) = (depth.get(&k), self.rects.get(&n.id)) {
-                by_column[d].push((n.id.clone(), *r));
-            }
-        }
-        let (gap_x, gap_y) = (60.0, 30.0);
-        let mut x = 0.0;
-        let mut out = Vec::new();
-        for column in &mut by_column {
-            column.sort_by(|a, b| a.1.top().total_cmp(&b.1.top()));
-            let mut y = 0.0;
-            let mut width: f32 = 0.0;
-            for (id, r) in column.iter() {
-                out.push((id.clone(), [x, y]));
-                y += r.height() + gap_y;
-                width = width.max(r.width());
-            }
-            x += width + gap_x;
-        }
-        out
+        // In file order (stable), with the measured sizes.
+        let ids: Vec<String> = graph.nodes().map(|(_, n)| n.id.clone()).collect();
+        let index: HashMap<&str, usize> = ids
+            .iter()
+            .enumerate()
+            .map(|(k, id)| (id.as_str(), k))
+            .collect();
+        let sizes: Vec<[f32; 2]> = ids
+            .iter()
+            .map(|id| {
+                self.rects
+                    .get(id)
+                    .map_or([200.0, 100.0], |r| [r.width(), r.height()])
+            })
+            .collect();
+        let edges: Vec<(usize, usize)> = graph
+            .wires()
+            .iter()
+            .filter_map(|w| Some((*index.get(w.from.as_str())?, *index.get(w.to.as_str())?)))
+            .collect();
+        let pos = crate::layout::layered(&sizes, &edges, [70.0, 36.0]);
+        ids.into_iter().zip(pos).collect()
     }
 
     /// Whether all `count` nodes have been drawn (and measured) at least once.
@@ -285,19 +293,40 @@ impl Canvas {
         self.ui_rect
     }
 
-    /// The transform that frames canvas rectangle `bb` in screen rectangle `ui` (scale ≤ 1).
-    fn framing(bb: Rect, ui: Rect) -> Option<TSTransform> {
+    /// The transform that frames canvas rectangle `bb` in screen rectangle `ui`: the whole graph
+    /// when it fits at a readable zoom ([`READABLE_ZOOM`] ..= 1), else its top-left corner (the
+    /// sources) at the readable zoom; pan from there.
+    pub fn framing(bb: Rect, ui: Rect) -> Option<TSTransform> {
         if !(bb.is_positive() && ui.is_positive()) {
             return None;
         }
         let bb = bb.expand(30.0);
-        let scale = (ui.width() / bb.width())
-            .min(ui.height() / bb.height())
-            .clamp(0.3, 1.0);
-        Some(TSTransform::new(
-            ui.center().to_vec2() - bb.center().to_vec2() * scale,
-            scale,
-        ))
+        let fits = (ui.width() / bb.width()).min(ui.height() / bb.height());
+        let scale = fits.clamp(READABLE_ZOOM, 1.0);
+        let translation = if fits >= READABLE_ZOOM {
+            ui.center().to_vec2() - bb.center().to_vec2() * scale
+        } else {
+            // Centred along an axis that fits, the top-left corner otherwise.
+            let x = if bb.width() * scale <= ui.width() {
+                ui.center().x - bb.center().x * scale
+            } else {
+                ui.left() - bb.left() * scale
+            };
+            let y = if bb.height() * scale <= ui.height() {
+                ui.center().y - bb.center().y * scale
+            } else {
+                ui.top() - bb.top() * scale
+            };
+            egui::vec2(x, y)
+        };
+        Some(TSTransform::new(translation, scale))
+    }
+
+    /// Sets the canvas zoom (clamped to [`MIN_ZOOM`] ..= 2) on the next frame, with the canvas
+    /// point `around` at the centre of the view (`None`: the graph's top-left corner at the
+    /// view's top-left).
+    pub fn zoom_to(&mut self, zoom: f32, around: Option<Pos2>) {
+        self.zoom_pending = Some((zoom.clamp(MIN_ZOOM, 2.0), around));
     }
 
     /// Makes the snarl mirror `graph`: adds and removes nodes, copies positions, diffs wires.
@@ -393,6 +422,20 @@ impl Canvas {
         Some(self.to_global * Pos2::new(r.left() + u * r.width(), r.bottom() - v * r.height()))
     }
 
+    /// The canvas zoom of the last frame (screen points per canvas point).
+    pub fn zoom(&self) -> f32 {
+        self.to_global.scaling
+    }
+
+    /// Screen rectangle of the inline editor of `node`'s `input` after the last frame (e.g. a
+    /// `param.number` slider: the rail starts at its left edge, `slider_width` 110 points wide
+    /// at zoom 1).
+    pub fn editor_screen_rect(&self, node: &str, input: &str) -> Option<Rect> {
+        self.editors
+            .get(&(node.to_string(), input.to_string()))
+            .map(|r| self.to_global * *r)
+    }
+
     /// Screen position of a canvas point (accessibility rectangles of widgets on the canvas are
     /// in canvas coordinates).
     pub fn to_screen(&self, canvas: Pos2) -> Pos2 {
@@ -437,6 +480,21 @@ impl Canvas {
         } else if self.fit_pending && graph.node_count() == 0 {
             self.fit_pending = false;
         }
+        if let Some((z, around)) = self.zoom_pending.take() {
+            let translation = match around {
+                Some(p) => self.ui_rect.center().to_vec2() - p.to_vec2() * z,
+                None => {
+                    let bb = self.rects.values().fold(Rect::NOTHING, |a, r| a.union(*r));
+                    let corner = if bb.is_positive() {
+                        bb.min - egui::vec2(20.0, 20.0)
+                    } else {
+                        Pos2::ZERO
+                    };
+                    self.ui_rect.min.to_vec2() - corner.to_vec2() * z
+                }
+            };
+            fit = Some(TSTransform::new(translation, z));
+        }
         let mut viewer = Viewer {
             graph,
             statuses,
@@ -449,12 +507,14 @@ impl Canvas {
             pressed_node: None,
             fit,
             plots: HashMap::new(),
+            editors: HashMap::new(),
             selected: self.selected.clone(),
         };
         let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
         self.to_global = viewer.to_global;
         self.rects = viewer.rects;
         self.plots = viewer.plots;
+        self.editors = viewer.editors;
         if let Some(id) = &viewer.pressed_node {
             self.focused = Some(id.clone());
         } else if response.clicked() && !response.double_clicked() {
@@ -661,6 +721,7 @@ struct Viewer<'a> {
     pressed_node: Option<String>,
     fit: Option<TSTransform>,
     plots: HashMap<String, Rect>,
+    editors: HashMap<(String, String), Rect>,
     selected: Vec<String>,
 }
 
@@ -881,7 +942,10 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 }
             } else if !wired && widgets::has_editor(instance, k) {
                 ui.spacing_mut().slider_width = 110.0;
-                if let Some(value) = widgets::input_editor(ui, instance, k) {
+                let (changed, rect) = widgets::input_editor_with_rect(ui, instance, k);
+                self.editors
+                    .insert((id.clone(), port.name.to_string()), rect);
+                if let Some(value) = changed {
                     self.actions.push(CanvasAction::SetValue {
                         node: id.clone(),
                         input: port.name.to_string(),
@@ -1087,7 +1151,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         if let Some(n) = self.graph.node(&id)
             && n.def.has_flag(NodeFlag::Export)
         {
-            ui.weak("runs on File ▸ Export");
+            ui.weak("runs on File › Export");
         }
     }
 

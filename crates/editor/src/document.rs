@@ -118,8 +118,12 @@ pub struct GraphDocument {
     pub graph: Graph,
     /// Name and description written into the file.
     pub meta: GraphMeta,
-    /// Where the document was loaded from or last saved to; `None` for a new document.
+    /// Where the document was loaded from or last saved to; `None` for a new document (and for
+    /// an untitled copy of an example: saving it asks where).
     pub path: Option<PathBuf>,
+    /// The shipped example an untitled copy was opened from (File › Open example, the start-up
+    /// graph): file paths in the graph resolve next to it, but a save never writes there.
+    pub origin: Option<PathBuf>,
     /// Undo / redo.
     pub history: History,
     /// Clusters opened in place, outermost first; `graph` is the innermost one's subgraph.
@@ -150,6 +154,7 @@ impl GraphDocument {
             graph,
             meta,
             path,
+            origin: None,
             history: History::default(),
             stack: Vec::new(),
             live: None,
@@ -199,6 +204,28 @@ impl GraphDocument {
     ) -> Result<Self, String> {
         let doc = file::load_str_with(text, name, registry, options).map_err(|e| e.to_string())?;
         Ok(Self::from_parts(doc.graph, doc.meta, path))
+    }
+
+    /// Turns the document into an untitled copy of the file it was loaded from (a shipped
+    /// example): the file is remembered as [`GraphDocument::origin`], the first save asks where.
+    pub fn into_untitled_copy(mut self) -> Self {
+        if let Some(p) = self.path.take() {
+            self.origin = Some(p);
+        }
+        self
+    }
+
+    /// The file relative paths of the graph resolve against: the document's own path, else the
+    /// example it is a copy of.
+    pub fn resolve_file(&self) -> Option<&Path> {
+        self.path.as_deref().or(self.origin.as_deref())
+    }
+
+    /// The folder relative paths of the graph resolve in (see [`GraphDocument::resolve_file`]).
+    pub fn base_dir(&self) -> Option<PathBuf> {
+        self.resolve_file()
+            .and_then(Path::parent)
+            .map(Path::to_path_buf)
     }
 
     /// Saves atomically to `path` (and remembers it as the document's path). Inside a cluster,
@@ -427,12 +454,19 @@ impl GraphDocument {
         self.version
     }
 
-    /// The title shown in the window: file name (or "untitled") and a `*` when dirty.
+    /// The title shown in the window: file name (or "untitled", naming the example an untitled
+    /// copy came from) and a `*` when dirty.
     pub fn title(&self) -> String {
-        let name = self.path.as_deref().and_then(Path::file_name).map_or_else(
-            || "untitled".to_string(),
-            |n| n.to_string_lossy().into_owned(),
-        );
+        let file_name = |p: &Path| {
+            p.file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        };
+        let name = match (&self.path, &self.origin) {
+            (Some(p), _) => file_name(p),
+            (None, Some(o)) => format!("untitled (copy of example {})", file_name(o)),
+            (None, None) => "untitled".to_string(),
+        };
         format!("{name}{}", if self.dirty { " *" } else { "" })
     }
 

@@ -13,8 +13,10 @@ pub enum MenuAction {
     New,
     /// Show the open dialog.
     Open,
-    /// Open this file (examples, recent files).
+    /// Open this file (recent files).
     OpenPath(PathBuf),
+    /// Open an untitled copy of this shipped example.
+    OpenExample(PathBuf),
     /// Save (save-as for an untitled graph).
     Save,
     /// Show the save-as dialog.
@@ -113,7 +115,7 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                         ui,
                         &file_label(p),
                         "",
-                        MenuAction::OpenPath(p.clone()),
+                        MenuAction::OpenExample(p.clone()),
                         true,
                     );
                 }

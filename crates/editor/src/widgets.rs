@@ -79,10 +79,27 @@ pub fn initial_value(ty: &ValueType) -> Option<Value> {
 
 /// Shows the editor of input `k`; returns the new value when it changed.
 pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<Value> {
-    let port: &PortDef = node.def.inputs.get(k)?;
+    input_editor_with_rect(ui, node, k).0
+}
+
+/// Like [`input_editor`], also returning the rectangle the editor took.
+pub fn input_editor_with_rect(
+    ui: &mut egui::Ui,
+    node: &NodeInstance,
+    k: usize,
+) -> (Option<Value>, egui::Rect) {
+    let Some(port) = node.def.inputs.get(k) else {
+        return (None, egui::Rect::NOTHING);
+    };
+    let r = ui.push_id(ui.id().with((&node.id, k)), |ui| {
+        editor_body(ui, node, k, port)
+    });
+    (r.inner, r.response.rect)
+}
+
+fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef) -> Option<Value> {
     let current = effective_value(node, k);
-    let id = ui.id().with((&node.id, k));
-    ui.push_id(id, |ui| match port.ty {
+    match port.ty {
         ValueType::Number => {
             let mut x = current.as_ref().and_then(Value::as_f64).unwrap_or(0.0);
             let changed = if node.def.id == "param.number" && port.name == "value" {
@@ -165,8 +182,7 @@ pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<
             picked
         }
         _ => None,
-    })
-    .inner
+    }
 }
 
 fn plane_name(p: &Plane) -> &'static str {

@@ -39,7 +39,7 @@ pub enum NodeStatus {
     Blocked(String),
     /// Disabled by the designer.
     Disabled,
-    /// Not evaluated in the editor (export nodes run on File ▸ Export only).
+    /// Not evaluated in the editor (export nodes run on File › Export only).
     Idle,
 }
 

@@ -375,9 +375,11 @@ fn dragging_a_graph_mapper_handle_edits_its_handles_in_one_step() {
     let mut h = harness("mapper");
     let id = h
         .state_mut()
-        .add_node("mapper.graph", [420.0, 520.0])
+        .add_node("mapper.graph", [760.0, 0.0])
         .unwrap();
-    h.state_mut().canvas.fit();
+    h.run_steps(2);
+    let centre = h.state().canvas.node_rect(&id).expect("drawn").center();
+    h.state_mut().canvas.zoom_to(1.0, Some(centre));
     h.run_steps(4);
     let steps = h.state().doc.history.undo_len();
     let before = h.state().doc.to_ron();
@@ -429,10 +431,13 @@ fn closing_with_unsaved_changes_asks_first() {
         .unwrap();
     h.state_mut().request_close();
     h.run_steps(2);
-    assert!(!h.state().quit && h.state().confirm_close, "asks first");
+    assert!(
+        !h.state().quit && h.state().unsaved_question.is_some(),
+        "asks first"
+    );
     h.get_by_label("Cancel").click();
     h.run_steps(2);
-    assert!(!h.state().quit && !h.state().confirm_close);
+    assert!(!h.state().quit && h.state().unsaved_question.is_none());
     h.state_mut().request_close();
     h.run_steps(2);
     h.get_by_label("Don't save").click();
