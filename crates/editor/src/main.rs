@@ -406,8 +406,8 @@ impl eframe::App for Window {
     }
 }
 
-/// Fails when the screenshot is (nearly) blank: too few colours, or the right half (the 3D view)
-/// one flat colour.
+/// Fails when the screenshot is (nearly) blank: too few colours, or the right part (the 3D view)
+/// one flat colour (less than 0.2 % of it drawn).
 fn check_not_blank(image: &cnets_render::Image) -> anyhow::Result<()> {
     let mut colours = std::collections::HashSet::new();
     let mut right = std::collections::HashMap::<[u8; 4], usize>::new();
@@ -428,7 +428,8 @@ fn check_not_blank(image: &cnets_render::Image) -> anyhow::Result<()> {
         colours.len(),
         covered * 100.0
     );
-    if colours.len() < 64 || covered < 0.05 {
+    // A design of curves only (curves-demo) draws thin lines: half a percent of the view.
+    if colours.len() < 64 || covered < 0.002 {
         bail!(
             "the screenshot looks blank ({} colours, {:.1}% of the 3D view drawn)",
             colours.len(),

@@ -154,3 +154,49 @@ fn a_window_killed_right_after_a_slider_drag_restores_the_values_it_showed() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn every_shipped_graph_opens_with_its_design_drawn_in_the_real_window() {
+    if std::env::var_os("CNETS_SKIP_WINDOW_TEST").is_some() {
+        eprintln!("skipped: CNETS_SKIP_WINDOW_TEST is set");
+        return;
+    }
+    let graphs = std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../graphs"));
+    let dir = std::env::temp_dir().join(format!("cnets-editor-gallery-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut files: Vec<_> = std::fs::read_dir(&graphs)
+        .unwrap()
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    files.sort();
+    let mut failed = Vec::new();
+    for file in &files {
+        let name = file.file_stem().unwrap().to_string_lossy().into_owned();
+        let out = dir.join(format!("{name}.png"));
+        // The editor checks the picture itself (enough colours, the 3D view drawn).
+        let run = Command::new("xvfb-run")
+            .args(["-a", "-s", "-screen 0 1600x1000x24"])
+            .arg(env!("CARGO_BIN_EXE_cnets-editor"))
+            .arg(file)
+            .arg("--screenshot")
+            .arg(&out)
+            .args(["--quit-after-frames", "10", "--size", "1400x860"])
+            .env("CNETS_EDITOR_HOME", dir.join(format!("home-{name}")))
+            .output()
+            .expect("xvfb-run runs");
+        if !run.status.success() {
+            failed.push(format!(
+                "{name}: {}",
+                String::from_utf8_lossy(&run.stderr)
+                    .lines()
+                    .filter(|l| l.starts_with("cnets-editor") || l.starts_with("Error"))
+                    .collect::<Vec<_>>()
+                    .join(" / ")
+            ));
+        }
+    }
+    assert!(failed.is_empty(), "blank or failed:\n{}", failed.join("\n"));
+    std::fs::remove_dir_all(&dir).ok();
+}
