@@ -505,15 +505,25 @@ impl GraphDocument {
         Ok(result)
     }
 
-    /// Replaces the graph wholesale with a snapshot (undo, redo).
+    /// Restores a snapshot (undo, redo). At the document's own graph the snapshot becomes the
+    /// successor of the current graph ([`Graph::succeed`]): a new revision, with only the nodes
+    /// that differ stamped as edited, so the worker keeps its evaluator and re-runs only their
+    /// downstream cone. Across opened clusters (the levels differ) a new generation starts a
+    /// fresh evaluator.
     fn restore(&mut self, snapshot: Snapshot) {
-        self.graph = snapshot.graph;
+        let same_level = self.stack.is_empty() && snapshot.stack.is_empty();
+        let mut graph = snapshot.graph;
+        if same_level {
+            graph.succeed(&self.graph);
+        } else {
+            self.generation += 1;
+        }
+        self.graph = graph;
         self.meta = snapshot.meta;
         self.stack = snapshot.stack;
         self.live = None;
         self.refresh_live();
         self.dirty = true;
-        self.generation += 1;
         self.version += 1;
     }
 
@@ -634,9 +644,61 @@ mod tests {
         let generation = doc.generation();
         assert!(doc.undo());
         assert_eq!(doc.to_ron(), one);
-        assert!(doc.generation() > generation);
+        assert_eq!(doc.generation(), generation, "the evaluator is kept");
         assert!(doc.redo());
         assert_eq!(doc.to_ron(), two);
+    }
+
+    #[test]
+    fn undoing_a_slider_change_reruns_only_its_downstream_cone() {
+        use cnets_engine::{Evaluator, NodeContext, Value};
+        let text = r#"(
+    version: 1,
+    nodes: {
+        "n": (type: "param.number", inputs: {"value": 3.0, "min": 0.0, "max": 10.0}),
+        "m": (type: "math.multiply", inputs: {"b": 2.0}),
+        "after": (type: "math.add", inputs: {"b": 1.0}),
+        "side": (type: "param.number", inputs: {"value": 5.0, "min": 0.0, "max": 10.0}),
+        "other": (type: "math.add", inputs: {"b": 1.0}),
+    },
+    edges: ["n.value -> m.a", "m.result -> after.a", "side.value -> other.a"],
+)"#;
+        let mut doc = GraphDocument::from_text(text, "t.ron", None, &registry()).unwrap();
+        let mut ev = Evaluator::new();
+        let ctx = NodeContext::default();
+        ev.evaluate_all(&doc.graph, &ctx);
+        let generation = doc.generation();
+        doc.edit(Some(EditKey::Value("n".into(), "value".into())), |g, _| {
+            g.set_value("n", "value", Value::Number(4.0))
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+        doc.history.end_gesture();
+        ev.evaluate_all(&doc.graph, &ctx);
+        let runs = |ev: &Evaluator, doc: &GraphDocument| -> Vec<u64> {
+            ["n", "m", "after", "side", "other"]
+                .iter()
+                .map(|id| ev.runs(&doc.graph, id))
+                .collect()
+        };
+        assert_eq!(runs(&ev, &doc), vec![2, 2, 2, 1, 1], "the edit's cone ran");
+        assert!(doc.undo());
+        assert_eq!(doc.generation(), generation, "same evaluator");
+        let s = ev.evaluate_all(&doc.graph, &ctx);
+        assert_eq!(s.ran, 3, "n, m and after re-run; side and other do not");
+        assert_eq!(runs(&ev, &doc), vec![3, 3, 3, 1, 1]);
+        assert_eq!(
+            ev.output(&doc.graph, "after", "result"),
+            Some(&Value::Number(7.0)),
+            "the undone value's result: 3 × 2 + 1"
+        );
+        assert!(doc.redo());
+        assert_eq!(ev.evaluate_all(&doc.graph, &ctx).ran, 3);
+        assert_eq!(
+            ev.output(&doc.graph, "after", "result"),
+            Some(&Value::Number(9.0))
+        );
     }
 
     const SUB: &str = r#"(
@@ -652,7 +714,7 @@ mod tests {
     const MAIN: &str = r#"(
     version: 1,
     nodes: {
-        "n": (type: "param.number", inputs: {"value": 3.0}),
+        "n": (type: "param.number", inputs: {"value": 3.0, "min": 0.0, "max": 10.0}),
         "c": (type: "cluster", source: "sub.ron"),
         "after": (type: "math.add"),
     },
