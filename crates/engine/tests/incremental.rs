@@ -147,8 +147,8 @@ fn a_restored_snapshot_reruns_only_what_differs_and_its_downstream_cone() {
     assert!(restored.revision() > g.revision());
     let s = ev.evaluate_all(&restored, &ctx);
     assert_eq!(s.ran, 5, "n5..n9 re-run, nothing else");
-    for k in 0..10 {
-        let expected = before[k] + u64::from(k >= 5);
+    for (k, was) in before.iter().enumerate() {
+        let expected = was + u64::from(k >= 5);
         assert_eq!(runs(&ev, &restored, &format!("n{k}")), expected, "n{k}");
     }
     assert_eq!(
