@@ -7,6 +7,7 @@ use std::sync::Arc;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use crate::eval::FileStamp;
 use crate::kinds::PortKind;
 use crate::value::{Access, Value, ValueType};
 
@@ -306,6 +307,7 @@ pub struct NodeContext {
     pub cancel: Arc<AtomicBool>,
     warnings: Mutex<Vec<String>>,
     files: Mutex<Vec<PathBuf>>,
+    reads: Mutex<Vec<FileStamp>>,
 }
 
 impl Default for NodeContext {
@@ -323,6 +325,7 @@ impl NodeContext {
             cancel: Arc::new(AtomicBool::new(false)),
             warnings: Mutex::new(Vec::new()),
             files: Mutex::new(Vec::new()),
+            reads: Mutex::new(Vec::new()),
         }
     }
 
@@ -371,6 +374,38 @@ impl NodeContext {
             )));
         }
         Ok(dir.join(rel))
+    }
+
+    /// Reads a file (a relative name resolves against the graph's folder) and records what was read,
+    /// so that the evaluator re-runs the node when the file changes (`eval::reads`). Every node
+    /// that reads files reads them through here. Errors name the file.
+    pub fn read_file(&self, name: &str) -> Result<Vec<u8>, NodeError> {
+        let path = self.input_path(name);
+        let result = std::fs::read(&path);
+        lock(&self.reads).push(FileStamp::of(&path, result.as_deref().ok()));
+        result.map_err(|e| NodeError::new(format!("cannot read '{}': {e}", path.display())))
+    }
+
+    /// [`NodeContext::read_file`] for a text file (UTF-8).
+    pub fn read_text(&self, name: &str) -> Result<String, NodeError> {
+        let bytes = self.read_file(name)?;
+        String::from_utf8(bytes).map_err(|e| {
+            NodeError::new(format!(
+                "'{}' is not UTF-8 text (invalid byte at offset {})",
+                self.input_path(name).display(),
+                e.utf8_error().valid_up_to()
+            ))
+        })
+    }
+
+    /// Records reads made elsewhere on the node's behalf (a cluster's inner nodes).
+    pub fn record_reads(&self, stamps: impl IntoIterator<Item = FileStamp>) {
+        lock(&self.reads).extend(stamps);
+    }
+
+    /// Takes the file reads recorded so far.
+    pub fn take_reads(&self) -> Vec<FileStamp> {
+        std::mem::take(&mut *lock(&self.reads))
     }
 
     /// Resolves a path for reading: relative paths resolve against the graph's folder.

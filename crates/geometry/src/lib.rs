@@ -10,6 +10,8 @@ pub mod error;
 pub mod fabrication;
 pub mod line;
 pub mod measure;
+pub mod mesh_query;
+pub mod mesh_weld;
 pub mod plane;
 pub mod polygon_mesh;
 pub mod polyline;

@@ -87,39 +87,25 @@ fn closest_on_segment(p: DVec3, s: DVec3, e: DVec3) -> DVec3 {
 }
 
 /// Distances from `points` to the surface of `reference` (polygons fanned into triangles): mean of
-/// the squared distances and the largest distance.
+/// the squared distances and the largest distance. The closest points come from a BVH
+/// ([`crate::mesh_query::MeshQuery`]); the sum runs in point order, so the result does not depend on
+/// the thread count.
 pub fn surface_distance(
     points: &[DVec3],
     reference: &PolygonMesh,
 ) -> Result<(f64, f64), GeometryError> {
-    reference.validate()?;
+    let query = crate::mesh_query::MeshQuery::new(reference)
+        .map_err(|e| GeometryError::Degenerate(format!("the reference mesh: {e}")))?;
     crate::error::check_finite_points("points", points)?;
-    crate::error::check_finite_points("reference", &reference.vertices)?;
-    if reference.face_count() == 0 {
-        return Err(GeometryError::Degenerate(
-            "the reference mesh has no faces".into(),
-        ));
-    }
     if points.is_empty() {
         return Ok((0.0, 0.0));
     }
-    let v = &reference.vertices;
-    let triangles: Vec<[DVec3; 3]> = reference
-        .faces()
-        .flat_map(|f| {
-            (1..f.len() - 1)
-                .map(move |k| [v[f[0] as usize], v[f[k] as usize], v[f[k + 1] as usize]])
-        })
-        .collect();
+    let hits = query.closest_all(points)?;
     let mut sum = 0.0;
     let mut max = 0.0f64;
-    for &p in points {
-        let d2 = triangles
-            .iter()
-            .map(|t| closest_point_on_triangle(p, t[0], t[1], t[2]).distance_squared(p))
-            .fold(f64::INFINITY, f64::min);
-        sum += d2;
-        max = max.max(d2.sqrt());
+    for hit in &hits {
+        sum += hit.distance * hit.distance;
+        max = max.max(hit.distance);
     }
     Ok((sum / points.len() as f64, max))
 }

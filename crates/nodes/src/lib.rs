@@ -17,10 +17,15 @@ pub mod mapper;
 pub mod math;
 pub mod measure;
 pub mod mesh;
+pub mod mesh_parts;
 pub mod param;
 pub mod quality;
 pub mod reference;
 pub mod vector;
+pub mod view;
+
+#[cfg(test)]
+pub(crate) mod testing;
 
 use cnets_engine::{NodeDef, Registry};
 
@@ -41,7 +46,9 @@ pub fn all() -> Vec<NodeDef> {
         analysis::nodes(),
         fabrication::nodes(),
         mesh::nodes(),
+        mesh_parts::nodes(),
         io_export::nodes(),
+        view::nodes(),
         cnets_engine::cluster::nodes(),
     ]
     .into_iter()

@@ -143,6 +143,39 @@ node! {
     }
 }
 
+node! {
+    /// One of a list of options, picked by the designer (Grasshopper's Value List): the editor shows
+    /// a drop-down of `options`. Outputs the chosen text and its index; an index outside the
+    /// options is an error naming the options.
+    #[node(id = "param.choice", category = "Params", flags(Parameter))]
+    pub fn choice(
+        /// The options offered, in order.
+        options: k::List<k::Text>,
+        /// Index of the chosen option (0 = first).
+        index: k::Integer = 0,
+    ) -> (
+        /// The chosen option.
+        value: k::Text,
+        /// Its index.
+        index: k::Integer,
+    ) {
+        if options.is_empty() {
+            return Err("there are no options to choose from: set options".into());
+        }
+        let k = usize::try_from(index)
+            .ok()
+            .filter(|&k| k < options.len())
+            .ok_or_else(|| {
+                NodeError::new(format!(
+                    "index {index} is out of range: there are {} options ({})",
+                    options.len(),
+                    options.join(", ")
+                ))
+            })?;
+        Ok((options[k].clone(), index))
+    }
+}
+
 /// Largest list a list-making parameter produces.
 const MAX_COUNT: i64 = 10_000_000;
 
@@ -313,6 +346,7 @@ pub fn nodes() -> Vec<NodeDef> {
         point(),
         vector(),
         text(),
+        choice(),
         series(),
         range(),
         list(),
@@ -335,6 +369,18 @@ mod tests {
             .iter()
             .map(|x| x.as_f64().expect("a number"))
             .collect()
+    }
+
+    #[test]
+    fn choice_picks_an_option_and_names_them_when_out_of_range() {
+        let options = Value::list(vec![Value::text("graph"), Value::text("bezier")]);
+        let ctx = NodeContext::default();
+        let out = evaluate_node(&choice(), &ctx, &[options.clone(), Value::Integer(1)]).unwrap();
+        assert_eq!(out.values, vec![Value::text("bezier"), Value::Integer(1)]);
+        let e = evaluate_node(&choice(), &ctx, &[options, Value::Integer(2)]).unwrap_err();
+        assert!(e.contains("index 2") && e.contains("graph, bezier"), "{e}");
+        let e = evaluate_node(&choice(), &ctx, &[Value::list(vec![]), Value::Integer(0)]);
+        assert!(e.unwrap_err().contains("no options"));
     }
 
     #[test]

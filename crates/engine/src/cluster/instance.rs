@@ -189,6 +189,9 @@ impl Cluster {
         if summary.cancelled {
             return Err(NodeError::new("cancelled"));
         }
+        // The files inner nodes read count as the cluster node's reads: a change re-runs it (and,
+        // inside, only the nodes that read the file and what depends on them).
+        ctx.record_reads(state.evaluator.all_reads());
         for (_, node) in state.graph.nodes() {
             if let Some(outputs) = state
                 .evaluator

@@ -1,5 +1,11 @@
 //! Running a node over lists: item ports fed lists run the node once per item, with longest-list
 //! matching (the last item of a shorter list repeats), as Grasshopper does.
+//!
+//! When inputs are nested to different depths, the deeper ones are split first and the shallower
+//! ones are matched, whole, against every branch of the deeper ones (Grasshopper's rule for trees: a
+//! flat list is one branch, matched against every branch of a grafted input). So a grafted list of 9
+//! numbers times a flat list of 13 gives 9 lists of 13 products. Inputs of equal depth are matched
+//! branch by branch, the last branch repeating.
 
 use crate::convert::{coerce_for_port, excess_depth};
 use crate::node::{NodeContext, NodeDef, NodeError};
@@ -37,10 +43,13 @@ pub fn run_mapped(
         }
         return Ok(outputs);
     }
+    // Only the deepest inputs are split at this level; shallower ones stay whole until the deeper
+    // ones have come down to their depth.
+    let deepest = excess.iter().copied().max().unwrap_or(0);
     let lists: Vec<Option<&[Value]>> = inputs
         .iter()
         .zip(&excess)
-        .map(|(v, &e)| if e > 0 { v.as_list() } else { None })
+        .map(|(v, &e)| if e == deepest { v.as_list() } else { None })
         .collect();
     let count = lists.iter().flatten().map(|l| l.len()).max().unwrap_or(0);
     let empty = lists.iter().flatten().any(|l| l.is_empty());

@@ -9,9 +9,11 @@
 
 mod mapping;
 mod panic_guard;
+pub mod reads;
 mod result;
 
 pub use mapping::run_mapped;
+pub use reads::FileStamp;
 pub use result::{NodeOutputs, NodeResult};
 
 use std::sync::Arc;
@@ -23,16 +25,24 @@ use crate::graph::{Graph, NodeInstance, Revision};
 use crate::node::{NodeContext, NodeDef};
 use crate::value::{Value, content_hash, first_non_finite, is_all_finite};
 
+/// The evaluator's clock: the graph's revision, then a count of the times files read by nodes
+/// changed while the graph stood still (ordered lexicographically).
+type Tick = (Revision, u64);
+
 /// The memo of one node instance.
 #[derive(Debug, Clone)]
 struct Memo {
     uid: u64,
-    verified_at: Revision,
-    changed_at: Revision,
+    verified_at: Tick,
+    changed_at: Tick,
     result: NodeResult,
     hashes: Vec<u64>,
     time: Duration,
     runs: u64,
+    /// Files the node read on its last run.
+    reads: Vec<FileStamp>,
+    /// One of those files changed since: the node must re-run.
+    stale: bool,
 }
 
 /// What one call to [`Evaluator::evaluate`] did.
@@ -59,6 +69,7 @@ pub struct Evaluator {
     stamp: u32,
     total_runs: u64,
     swept_at: Revision,
+    file_epoch: u64,
 }
 
 impl Evaluator {
@@ -84,6 +95,10 @@ impl Evaluator {
     ) -> EvalSummary {
         let revision = graph.revision();
         self.prepare(graph, revision);
+        if self.mark_changed_files() {
+            self.file_epoch += 1;
+        }
+        let revision: Tick = (revision, self.file_epoch);
         self.plan(graph, request, revision);
         let mut summary = EvalSummary {
             visited: self.order.len(),
@@ -108,8 +123,18 @@ impl Evaluator {
             let start = Instant::now();
             let (result, executed) = self.run_node(graph, node, instance, ctx);
             let time = start.elapsed();
+            let reads = ctx.take_reads();
             summary.ran += usize::from(executed);
-            if self.store(node, instance.uid(), revision, result, time, executed) && executed {
+            if self.store(
+                node,
+                instance.uid(),
+                revision,
+                result,
+                time,
+                executed,
+                reads,
+            ) && executed
+            {
                 summary.cut_off += 1;
             }
         }
@@ -135,8 +160,20 @@ impl Evaluator {
         }
     }
 
+    /// Marks the memos whose read files changed; true when there was one.
+    fn mark_changed_files(&mut self) -> bool {
+        let mut any = false;
+        for memo in self.memos.iter_mut().flatten() {
+            if !memo.stale && memo.reads.iter().any(FileStamp::changed) {
+                memo.stale = true;
+                any = true;
+            }
+        }
+        any
+    }
+
     /// Fills `self.order` with the out-of-date part of the request, sources before targets.
-    fn plan(&mut self, graph: &Graph, request: &[NodeIndex], revision: Revision) {
+    fn plan(&mut self, graph: &Graph, request: &[NodeIndex], revision: Tick) {
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 {
             self.marks.iter_mut().for_each(|m| *m = 0);
@@ -175,7 +212,7 @@ impl Evaluator {
         let Some(memo) = &self.memos[node.index()] else {
             return true;
         };
-        if memo.uid != instance.uid() || instance.edited_at() > memo.verified_at {
+        if memo.uid != instance.uid() || memo.stale || instance.edited_at() > memo.verified_at.0 {
             return true;
         }
         graph.sources(node).any(|s| {
@@ -190,10 +227,11 @@ impl Evaluator {
         &mut self,
         node: NodeIndex,
         uid: u64,
-        revision: Revision,
+        revision: Tick,
         result: NodeResult,
         time: Duration,
         executed: bool,
+        reads: Vec<FileStamp>,
     ) -> bool {
         let ran = u64::from(executed);
         self.total_runs += ran;
@@ -218,6 +256,8 @@ impl Evaluator {
             hashes,
             time,
             runs,
+            reads,
+            stale: false,
         });
         unchanged
     }
@@ -344,7 +384,21 @@ impl Evaluator {
 
     /// Revision at which the node's outputs last changed.
     pub fn changed_at(&self, graph: &Graph, id: &str) -> Option<Revision> {
-        self.memo(graph, id).map(|m| m.changed_at)
+        self.memo(graph, id).map(|m| m.changed_at.0)
+    }
+
+    /// Every file read by the memoized nodes.
+    pub fn all_reads(&self) -> Vec<FileStamp> {
+        self.memos
+            .iter()
+            .flatten()
+            .flat_map(|m| m.reads.iter().cloned())
+            .collect()
+    }
+
+    /// The files the node read on its last run.
+    pub fn reads(&self, graph: &Graph, id: &str) -> &[FileStamp] {
+        self.memo(graph, id).map_or(&[], |m| m.reads.as_slice())
     }
 
     /// Total node runs over the life of this evaluator.

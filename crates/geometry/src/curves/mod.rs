@@ -11,9 +11,12 @@
 
 pub mod join;
 pub mod mapper;
+pub mod nurbs;
+pub mod offset;
 pub mod primitives;
 #[cfg(test)]
 mod props;
+pub mod query;
 pub mod resample;
 pub mod spline;
 pub mod subdivide;
@@ -21,7 +24,10 @@ pub mod transform;
 
 pub use join::{join, reverse};
 pub use mapper::{Domains, GraphMapper, MapperKind};
+pub use nurbs::Nurbs;
+pub use offset::offset;
 pub use primitives::{arc, circle, helix, line, polygon};
+pub use query::{closest_point, evaluate};
 pub use resample::{divide_equal_chords, resample_by_count, resample_by_length};
 pub use spline::{Spline, SplineKind};
 pub use subdivide::{SubdivisionScheme, subdivide};

@@ -1,4 +1,4 @@
-//! Editing curves: transform, reverse, join.
+//! Editing curves: transform, reverse, join, offset.
 
 use cnets_engine::prelude::*;
 use cnets_geometry::curves::{self, Transform};
@@ -76,10 +76,65 @@ node! {
     }
 }
 
+node! {
+    /// The curve offset in a plane by `distance`: positive to the left of the direction of travel
+    /// as seen from the plane's normal (a counter-clockwise closed curve in world XY shrinks),
+    /// corners mitred (consecutive offset edges meet at their intersection). The offset is taken
+    /// in the curve's projection onto the plane; points keep their height above it. A curve that
+    /// turns back on itself has no mitre there and is an error.
+    #[node(id = "curve.offset", category = "Curves")]
+    pub fn offset(
+        /// The curve.
+        curve: k::Polyline,
+        /// Offset distance (negative: to the right).
+        distance: k::Number = 1.0,
+        /// The plane to offset in (world XY by default).
+        plane: k::Plane = Plane::XY,
+    ) -> (
+        /// The offset curve.
+        curve: k::Polyline,
+    ) {
+        Ok((curves::offset(&curve, distance, &plane)?,))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::test_util::{pl, poly, run};
     use super::*;
+
+    #[test]
+    fn offset_moves_left_with_mitres() {
+        let l = [
+            DVec3::ZERO,
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(2.0, 2.0, 0.0),
+        ];
+        let out = run(
+            &offset(),
+            &[("curve", pl(&l, false)), ("distance", Value::Number(0.5))],
+        );
+        let c = poly(&out.unwrap()[0]);
+        assert_eq!(
+            c.points,
+            vec![
+                DVec3::new(0.0, 0.5, 0.0),
+                DVec3::new(1.5, 0.5, 0.0),
+                DVec3::new(1.5, 2.0, 0.0)
+            ]
+        );
+        // Seen from below (plane normal −z) left and right swap.
+        let below = Value::from(Plane::from_normal(DVec3::ZERO, -DVec3::Z).unwrap());
+        let out = run(
+            &offset(),
+            &[
+                ("curve", pl(&l, false)),
+                ("distance", Value::Number(0.5)),
+                ("plane", below),
+            ],
+        );
+        assert!((poly(&out.unwrap()[0]).points[0] - DVec3::new(0.0, -0.5, 0.0)).length() < 1e-15);
+    }
 
     #[test]
     fn transform_applies_scale_rotate_mirror_move_in_order() {

@@ -3,8 +3,8 @@
 //! - [`primitives`]: `curve.polyline`, `curve.line`, `curve.arc`, `curve.circle`, `curve.polygon`,
 //!   `curve.helix`;
 //! - [`sampling`]: `curve.spline`, `curve.resample`, `curve.subdivide`;
-//! - [`edit`]: `curve.transform`, `curve.reverse`, `curve.join`;
-//! - [`query`]: `curve.length`, `curve.points`.
+//! - [`edit`]: `curve.transform`, `curve.reverse`, `curve.join`, `curve.offset`;
+//! - [`query`]: `curve.length`, `curve.points`, `curve.evaluate`, `curve.closest_point`.
 //!
 //! Angles are in degrees. Counts are numbers of points; a closed polyline stores each point once.
 
@@ -13,9 +13,9 @@ pub mod primitives;
 pub mod query;
 pub mod sampling;
 
-pub use edit::{join, reverse, transform};
+pub use edit::{join, offset, reverse, transform};
 pub use primitives::{arc, circle, helix, line, polygon, polyline};
-pub use query::{length, points};
+pub use query::{closest_point, evaluate, length, points};
 pub use sampling::{resample, spline, subdivide};
 
 use cnets_engine::NodeDef;
@@ -43,33 +43,18 @@ pub fn nodes() -> Vec<NodeDef> {
         join(),
         length(),
         points(),
+        evaluate(),
+        closest_point(),
+        offset(),
     ]
 }
 
 #[cfg(test)]
 pub(crate) mod test_util {
-    use cnets_engine::eval::evaluate_node;
     use cnets_engine::prelude::*;
 
     /// Runs `def` with the named inputs (others default or empty).
-    pub fn run(def: &NodeDef, named: &[(&str, Value)]) -> Result<Vec<Value>, String> {
-        for (n, _) in named {
-            assert!(def.input_index(n).is_some(), "{} has no input {n}", def.id);
-        }
-        let inputs: Vec<Value> = def
-            .inputs
-            .iter()
-            .map(|p| {
-                named
-                    .iter()
-                    .find(|(n, _)| *n == p.name)
-                    .map(|(_, v)| v.clone())
-                    .or_else(|| p.default.clone())
-                    .unwrap_or(Value::Null)
-            })
-            .collect();
-        evaluate_node(def, &NodeContext::default(), &inputs).map(|o| o.values)
-    }
+    pub use crate::testing::run_named as run;
 
     /// The polyline in a value.
     pub fn poly(v: &Value) -> Polyline {

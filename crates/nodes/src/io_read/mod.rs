@@ -5,7 +5,9 @@
 //! file's folder and reads the file. The accepted layouts are documented in `docs/inputs.md`.
 
 pub mod csv;
+pub mod dxf;
 pub mod json;
+pub mod mesh;
 pub mod obj;
 pub mod svg;
 
@@ -24,10 +26,12 @@ pub enum Format {
     Obj,
     /// SVG `<polyline>`, `<polygon>`, `<line>` and `<path>` elements.
     Svg,
+    /// DXF curves (LINE, LWPOLYLINE, POLYLINE, ARC, CIRCLE, ELLIPSE, SPLINE).
+    Dxf,
 }
 
 impl Format {
-    /// Parses a format name (`csv`, `json`, `obj`, `svg`) or, for `auto`, guesses it from the file
+    /// Parses a format name (`csv`, `json`, `obj`, `svg`, `dxf`) or, for `auto`, guesses it from the file
     /// extension (`.csv`/`.txt`/`.xyz` are CSV).
     pub fn resolve(name: &str, path: &str) -> Result<Self, String> {
         let name = name.trim().to_ascii_lowercase();
@@ -45,11 +49,12 @@ impl Format {
             "json" => Ok(Self::Json),
             "obj" => Ok(Self::Obj),
             "svg" => Ok(Self::Svg),
+            "dxf" => Ok(Self::Dxf),
             _ if name.is_empty() || name == "auto" => Err(format!(
-                "cannot tell the format of '{path}' from its extension: set format to csv, json, obj or svg"
+                "cannot tell the format of '{path}' from its extension: set format to csv, json, obj, svg or dxf"
             )),
             _ => Err(format!(
-                "unknown format '{name}': expected auto, csv, json, obj or svg"
+                "unknown format '{name}': expected auto, csv, json, obj, svg or dxf"
             )),
         }
     }
@@ -78,36 +83,47 @@ pub(crate) fn tidy(points: Vec<DVec3>, closed: bool) -> Polyline {
     }
 }
 
-/// Parses `text` in `format`; SVG flattening uses `segments` points per curved segment. Returns the
-/// polylines and warnings.
+/// Parses a file's bytes in `format`; SVG flattening uses `segments` points per curved segment,
+/// DXF sampling `segments` edges per curved piece. Returns the polylines and warnings.
 pub fn parse(
-    text: &str,
+    bytes: &[u8],
     format: Format,
     segments: usize,
 ) -> Result<(Vec<Polyline>, Vec<String>), String> {
+    let text = || {
+        std::str::from_utf8(bytes).map_err(|e| {
+            format!(
+                "not UTF-8 text (invalid byte at offset {})",
+                e.valid_up_to()
+            )
+        })
+    };
     match format {
-        Format::Csv => csv::parse(text).map(|p| (p, Vec::new())),
-        Format::Json => json::parse(text).map(|p| (p, Vec::new())),
-        Format::Obj => obj::parse(text),
-        Format::Svg => svg::parse(text, segments),
+        Format::Csv => csv::parse(text()?).map(|p| (p, Vec::new())),
+        Format::Json => json::parse(text()?).map(|p| (p, Vec::new())),
+        Format::Obj => obj::parse(text()?),
+        Format::Svg => svg::parse(text()?, segments),
+        Format::Dxf => dxf::parse(bytes, segments),
     }
 }
 
 node! {
     /// Reads polylines from a file drawn elsewhere: CSV (x, y[, z] rows, blank lines between
     /// polylines), JSON (the runner's encoding: `{points, closed}` objects or arrays of [x, y, z],
-    /// or lists of them), OBJ (`v` and `l` records) or SVG (`<polyline>`, `<polygon>`, `<line>`,
+    /// or lists of them), OBJ (`v` and `l` records), SVG (`<polyline>`, `<polygon>`, `<line>`,
     /// `<path>` with all commands; curves and arcs are flattened into `segments` points each; y is
-    /// flipped so that SVG's downward y axis points up). A relative path is resolved against the
+    /// flipped so that SVG's downward y axis points up) or DXF (LINE, LWPOLYLINE with bulges,
+    /// POLYLINE, ARC, CIRCLE, ELLIPSE, SPLINE — what Rhino and AutoCAD export; curved pieces are
+    /// sampled with `segments` edges, splines `segments` per knot span). A relative path is resolved against the
     /// graph file's folder. Consecutive repeated points are merged; a polyline whose last point
     /// repeats its first becomes closed. A file that cannot be read or parsed is an error naming it.
     #[node(id = "io.read_polylines", category = "Import", flags(Import))]
     pub fn read_polylines[ctx](
         /// The file (relative to the graph file's folder, or absolute).
         path: k::Text,
-        /// auto (from the extension), csv, json, obj or svg.
+        /// auto (from the extension), csv, json, obj, svg or dxf.
         format: k::Text = "auto",
-        /// SVG only: points per flattened curve or arc segment (≥ 1).
+        /// SVG and DXF: points per flattened curve, arc or spline span (≥ 1).
         segments: k::Integer = 16,
     ) -> (
         /// The polylines, in file order.
@@ -122,9 +138,8 @@ node! {
             .filter(|s| (1..=10_000).contains(s))
             .ok_or_else(|| NodeError::new(format!("segments must be 1 to 10000, got {segments}")))?;
         let file = ctx.input_path(&path);
-        let text = std::fs::read_to_string(&file)
-            .map_err(|e| NodeError::new(format!("cannot read '{}': {e}", file.display())))?;
-        let (curves, warnings) = parse(&text, format, segments)
+        let bytes = ctx.read_file(&path)?;
+        let (curves, warnings) = parse(&bytes, format, segments)
             .map_err(|e| NodeError::new(format!("{}: {e}", file.display())))?;
         if curves.is_empty() {
             return Err(format!("{}: no polylines found", file.display()).into());
@@ -138,7 +153,7 @@ node! {
 
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
-    vec![read_polylines()]
+    vec![read_polylines(), mesh::read_mesh()]
 }
 
 #[cfg(test)]
@@ -175,7 +190,7 @@ mod tests {
         ) {
             let text = format!("{prefix}{text}");
             for format in [Format::Csv, Format::Json, Format::Obj, Format::Svg] {
-                if let Ok((curves, _)) = parse(&text, format, 3) {
+                if let Ok((curves, _)) = parse(text.as_bytes(), format, 3) {
                     for c in curves {
                         proptest::prop_assert!(c.points.iter().all(|p| p.is_finite()));
                     }

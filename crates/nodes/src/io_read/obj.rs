@@ -7,7 +7,8 @@ use cnets_engine::prelude::*;
 
 use super::tidy;
 
-fn index(token: &str, vertices: usize, line_no: usize) -> Result<usize, String> {
+/// A 1-based (or negative, relative) OBJ vertex reference (`i`, `i/t`, `i/t/n`) as a 0-based index.
+pub(crate) fn index(token: &str, vertices: usize, line_no: usize) -> Result<usize, String> {
     let head = token.split('/').next().unwrap_or("");
     let i: i64 = head
         .parse()
@@ -22,6 +23,22 @@ fn index(token: &str, vertices: usize, line_no: usize) -> Result<usize, String> 
     Ok(resolved as usize)
 }
 
+/// The position of a `v x y z` record (the tokens after `v`).
+pub(crate) fn vertex<'a>(
+    tokens: impl Iterator<Item = &'a str>,
+    line_no: usize,
+) -> Result<DVec3, String> {
+    let coords: Result<Vec<f64>, _> = tokens.take(3).map(str::parse::<f64>).collect();
+    match coords.as_deref() {
+        Ok([x, y, z]) if x.is_finite() && y.is_finite() && z.is_finite() => {
+            Ok(DVec3::new(*x, *y, *z))
+        }
+        _ => Err(format!(
+            "line {line_no}: expected 'v x y z' with finite numbers"
+        )),
+    }
+}
+
 /// Parses OBJ text into polylines (and a warning when faces were skipped).
 pub fn parse(text: &str) -> Result<(Vec<Polyline>, Vec<String>), String> {
     let mut vertices: Vec<DVec3> = Vec::new();
@@ -31,19 +48,7 @@ pub fn parse(text: &str) -> Result<(Vec<Polyline>, Vec<String>), String> {
         let line_no = k + 1;
         let mut tokens = raw.split_whitespace();
         match tokens.next() {
-            Some("v") => {
-                let coords: Result<Vec<f64>, _> = tokens.take(3).map(str::parse::<f64>).collect();
-                match coords.as_deref() {
-                    Ok([x, y, z]) if x.is_finite() && y.is_finite() && z.is_finite() => {
-                        vertices.push(DVec3::new(*x, *y, *z));
-                    }
-                    _ => {
-                        return Err(format!(
-                            "line {line_no}: expected 'v x y z' with finite numbers"
-                        ));
-                    }
-                }
-            }
+            Some("v") => vertices.push(vertex(tokens, line_no)?),
             Some("l") => {
                 let ids = tokens
                     .map(|t| index(t, vertices.len(), line_no))

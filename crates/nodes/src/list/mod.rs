@@ -1,8 +1,14 @@
-//! List tools: item, length, reverse, repeat, slice, flatten, graft, transpose, tables.
+//! List tools: item, length, reverse, repeat, slice, flatten, graft, transpose, tables; sorting and
+//! shifting ([`order`]), culling, dispatching and weaving ([`pattern`]), cross references
+//! ([`combine`]).
 //!
 //! Nodes with a `list` input take a whole list per run; a list of lists (a table) runs them once per
 //! row, as Grasshopper does per branch. `list.flatten`, `list.repeat` and `list.transpose` take any
 //! nesting as it is.
+
+pub mod combine;
+pub mod order;
+pub mod pattern;
 
 use cnets_engine::prelude::*;
 
@@ -264,6 +270,12 @@ pub fn nodes() -> Vec<NodeDef> {
         graft(),
         transpose(),
         table(),
+        order::sort(),
+        order::shift(),
+        pattern::cull(),
+        pattern::dispatch(),
+        pattern::weave(),
+        combine::cross_reference(),
     ]
 }
 

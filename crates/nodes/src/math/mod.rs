@@ -5,6 +5,12 @@
 //! one repeating its last item), and a list of lists runs it per item of every row. Inputs must be
 //! finite and results must be finite; otherwise the node fails naming what overflowed.
 
+pub mod expression;
+pub mod random;
+
+use std::cell::RefCell;
+use std::sync::Arc;
+
 use cnets_engine::prelude::*;
 
 fn finite(what: &str, x: f64) -> Result<f64, NodeError> {
@@ -251,9 +257,68 @@ node! {
     }
 }
 
+thread_local! {
+    /// The last expression parsed on this thread: a node mapped over a list parses its text once.
+    static LAST_EXPRESSION: RefCell<Option<(String, Arc<expression::Expr>)>> =
+        const { RefCell::new(None) };
+}
+
+fn parsed(text: &str) -> Result<Arc<expression::Expr>, NodeError> {
+    LAST_EXPRESSION.with(|last| {
+        let mut last = last.borrow_mut();
+        if let Some((cached, expr)) = last.as_ref()
+            && cached == text
+        {
+            return Ok(expr.clone());
+        }
+        let expr = Arc::new(
+            expression::parse(text)
+                .map_err(|e| NodeError::new(format!("expression '{text}': {e}")))?,
+        );
+        *last = Some((text.to_string(), expr.clone()));
+        Ok(expr)
+    })
+}
+
+node! {
+    /// Evaluates an arithmetic expression in x, y and z (Grasshopper's Expression). Operators
+    /// `+ - * / ^` (power, right-associative; `-2^2` is −4), unary minus, parentheses; functions
+    /// `sin cos tan asin acos atan atan2(y, x) sqrt abs exp ln log10 floor ceil round min(a, b, …)
+    /// max(a, b, …)` (angles in radians; `round` rounds halves away from zero); constants `pi` and
+    /// `e`. Division is real (`1/2` is 0.5). A syntax error names its column, an unknown name is
+    /// named, and a result that is not a finite number (`sqrt(-1)`, `1/0`) is an error. Lists on x,
+    /// y or z evaluate the expression per item.
+    #[node(id = "math.expression", category = "Math")]
+    pub fn expression(
+        /// The expression, e.g. `sin(pi*x)^2 + y/4`.
+        expression: k::Text,
+        /// The value of x.
+        x: k::Number = 0.0,
+        /// The value of y.
+        y: k::Number = 0.0,
+        /// The value of z.
+        z: k::Number = 0.0,
+    ) -> (
+        /// The expression's value.
+        result: k::Number,
+    ) {
+        let expr = parsed(&expression)?;
+        let value = expr.eval(&[x, y, z]);
+        if !value.is_finite() {
+            return Err(format!(
+                "expression '{expression}' is not a finite number at x = {x}, y = {y}, z = {z} (got {value})"
+            )
+            .into());
+        }
+        Ok((value,))
+    }
+}
+
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
     vec![
+        expression(),
+        random::random(),
         add(),
         subtract(),
         multiply(),
@@ -290,6 +355,33 @@ mod tests {
 
     fn one(def: NodeDef, inputs: &[Value]) -> f64 {
         run(def, inputs).unwrap()[0].as_f64().unwrap()
+    }
+
+    #[test]
+    fn expression_evaluates_the_contract_example_and_maps_over_lists() {
+        let text = Value::text("sin(pi*x)^2 + y/4");
+        let v = one(expression(), &[text.clone(), num(0.5), num(2.0)]);
+        assert!((v - 1.5).abs() < 1e-15, "{v}");
+        let out = run(
+            expression(),
+            &[
+                Value::text("x*y + z"),
+                nums(&[1.0, 2.0, 3.0]),
+                num(10.0),
+                num(0.5),
+            ],
+        )
+        .unwrap();
+        assert_eq!(out[0], nums(&[10.5, 20.5, 30.5]));
+        let e = run(expression(), &[Value::text("sqrt(x)"), num(-1.0)]).unwrap_err();
+        assert!(e.contains("not a finite number"), "{e}");
+        let e = run(expression(), &[Value::text("x + q")]).unwrap_err();
+        assert!(
+            e.contains("unknown name 'q'") && e.contains("column 5"),
+            "{e}"
+        );
+        let e = run(expression(), &[Value::text("(x")]).unwrap_err();
+        assert!(e.contains("column 3"), "{e}");
     }
 
     #[test]

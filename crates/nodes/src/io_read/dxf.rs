@@ -1,0 +1,243 @@
+//! DXF polylines, read with the `dxf` crate: LINE, LWPOLYLINE (bulges become arcs), POLYLINE (2D and
+//! 3D), ARC, CIRCLE, ELLIPSE and SPLINE (NURBS, evaluated exactly and sampled). Entities in an
+//! object coordinate system (their extrusion direction) are mapped to world coordinates by DXF's
+//! arbitrary-axis algorithm. Curved pieces are sampled with `segments` edges each (a circle:
+//! `segments` points; a spline: `segments` edges per knot span). Other entities are counted in a
+//! warning.
+
+use std::f64::consts::TAU;
+
+use cnets_engine::prelude::*;
+use cnets_geometry::curves::Nurbs;
+use dxf::entities::EntityType;
+
+use super::tidy;
+
+fn point(p: &dxf::Point) -> DVec3 {
+    DVec3::new(p.x, p.y, p.z)
+}
+
+fn vector(v: &dxf::Vector) -> DVec3 {
+    DVec3::new(v.x, v.y, v.z)
+}
+
+/// The object coordinate system of an extrusion direction (DXF's arbitrary-axis algorithm): its x
+/// and y axes and the normal.
+fn ocs(normal: DVec3) -> (DVec3, DVec3, DVec3) {
+    let n = if normal.length_squared() > 0.0 && normal.is_finite() {
+        normal.normalize()
+    } else {
+        DVec3::Z
+    };
+    let limit = 1.0 / 64.0;
+    let x = if n.x.abs() < limit && n.y.abs() < limit {
+        DVec3::Y.cross(n)
+    } else {
+        DVec3::Z.cross(n)
+    }
+    .normalize();
+    (x, n.cross(x), n)
+}
+
+fn to_world(axes: (DVec3, DVec3, DVec3), p: DVec3) -> DVec3 {
+    axes.0 * p.x + axes.1 * p.y + axes.2 * p.z
+}
+
+/// Points of the arc from `start` to `start + sweep` (radians) about `center`, `segments` edges.
+fn arc_points(center: DVec3, radius: f64, start: f64, sweep: f64, segments: usize) -> Vec<DVec3> {
+    (0..=segments)
+        .map(|k| {
+            let a = start + sweep * k as f64 / segments as f64;
+            center + DVec3::new(radius * a.cos(), radius * a.sin(), 0.0)
+        })
+        .collect()
+}
+
+/// The points of a polyline with bulges (in its plane's coordinates): each bulged edge becomes an
+/// arc of `segments` edges (bulge = tan(¼ of the included angle), positive counter-clockwise).
+fn bulged(vertices: &[(DVec3, f64)], closed: bool, segments: usize) -> Vec<DVec3> {
+    let mut out = Vec::new();
+    let n = vertices.len();
+    let edges = if closed { n } else { n.saturating_sub(1) };
+    for k in 0..n {
+        let (p, bulge) = vertices[k];
+        out.push(p);
+        if k >= edges || bulge == 0.0 || !bulge.is_finite() {
+            continue;
+        }
+        let q = vertices[(k + 1) % n].0;
+        let chord = q - p;
+        let d = chord.truncate().length();
+        if d == 0.0 {
+            continue;
+        }
+        let left = DVec3::new(-chord.y, chord.x, 0.0) / d;
+        let center = (p + q) * 0.5 + left * (d * 0.5 * (1.0 - bulge * bulge) / (2.0 * bulge));
+        let radius = (p - center).truncate().length();
+        let start = (p.y - center.y).atan2(p.x - center.x);
+        let sweep = 4.0 * bulge.atan();
+        let arc = arc_points(
+            DVec3::new(center.x, center.y, p.z),
+            radius,
+            start,
+            sweep,
+            segments,
+        );
+        out.extend_from_slice(&arc[1..arc.len() - 1]);
+    }
+    out
+}
+
+/// Parses DXF bytes (ascii or binary) into polylines and warnings.
+pub fn parse(bytes: &[u8], segments: usize) -> Result<(Vec<Polyline>, Vec<String>), String> {
+    let drawing =
+        dxf::Drawing::load(&mut std::io::Cursor::new(bytes)).map_err(|e| e.to_string())?;
+    let mut curves = Vec::new();
+    let mut skipped = 0usize;
+    for entity in drawing.entities() {
+        match &entity.specific {
+            EntityType::Line(l) => curves.push(tidy(vec![point(&l.p1), point(&l.p2)], false)),
+            EntityType::LwPolyline(l) => {
+                let axes = ocs(vector(&l.extrusion_direction));
+                let vertices: Vec<(DVec3, f64)> = l
+                    .vertices
+                    .iter()
+                    .map(|v| (DVec3::new(v.x, v.y, 0.0), v.bulge))
+                    .collect();
+                let closed = l.is_closed();
+                let pts = bulged(&vertices, closed, segments);
+                curves.push(tidy(
+                    pts.into_iter().map(|p| to_world(axes, p)).collect(),
+                    closed,
+                ));
+            }
+            EntityType::Polyline(l) => {
+                let three_d = l.flags & 8 != 0;
+                let axes = if three_d {
+                    (DVec3::X, DVec3::Y, DVec3::Z)
+                } else {
+                    ocs(vector(&l.normal))
+                };
+                let vertices: Vec<(DVec3, f64)> = l
+                    .vertices()
+                    .map(|v| (point(&v.location), if three_d { 0.0 } else { v.bulge }))
+                    .collect();
+                let closed = l.is_closed();
+                let pts = bulged(&vertices, closed, segments);
+                curves.push(tidy(
+                    pts.into_iter().map(|p| to_world(axes, p)).collect(),
+                    closed,
+                ));
+            }
+            EntityType::Arc(a) => {
+                let axes = ocs(vector(&a.normal));
+                // The centre is given in the object coordinate system.
+                let center = point(&a.center);
+                let (start, end) = (a.start_angle.to_radians(), a.end_angle.to_radians());
+                let sweep = (end - start).rem_euclid(TAU);
+                let sweep = if sweep == 0.0 { TAU } else { sweep };
+                let pts = arc_points(center, a.radius, start, sweep, segments);
+                curves.push(tidy(
+                    pts.into_iter().map(|p| to_world(axes, p)).collect(),
+                    false,
+                ));
+            }
+            EntityType::Circle(c) => {
+                let axes = ocs(vector(&c.normal));
+                let center = point(&c.center);
+                let mut pts = arc_points(center, c.radius, 0.0, TAU, segments.max(3));
+                pts.pop();
+                curves.push(tidy(
+                    pts.into_iter().map(|p| to_world(axes, p)).collect(),
+                    true,
+                ));
+            }
+            EntityType::Ellipse(e) => {
+                let center = point(&e.center);
+                let major = vector(&e.major_axis);
+                let minor = vector(&e.normal).normalize_or_zero().cross(major) * e.minor_axis_ratio;
+                let (start, end) = (e.start_parameter, e.end_parameter);
+                let sweep = (end - start).rem_euclid(TAU);
+                let full = sweep == 0.0 || (sweep - TAU).abs() < 1e-12;
+                let sweep = if full { TAU } else { sweep };
+                let mut pts: Vec<DVec3> = (0..=segments.max(3))
+                    .map(|k| {
+                        let t = start + sweep * k as f64 / segments.max(3) as f64;
+                        center + major * t.cos() + minor * t.sin()
+                    })
+                    .collect();
+                if full {
+                    pts.pop();
+                }
+                curves.push(tidy(pts, full));
+            }
+            EntityType::Spline(s) => {
+                let closed = s.flags & 1 != 0;
+                let pts = if s.control_points.is_empty() {
+                    s.fit_points.iter().map(point).collect()
+                } else {
+                    let nurbs = Nurbs {
+                        degree: usize::try_from(s.degree_of_curve).unwrap_or(0),
+                        knots: s.knot_values.clone(),
+                        control: s.control_points.iter().map(point).collect(),
+                        weights: if s.weight_values.iter().all(|&w| w == 1.0) {
+                            Vec::new()
+                        } else {
+                            s.weight_values.clone()
+                        },
+                    };
+                    nurbs.sample(segments).map_err(|e| format!("SPLINE: {e}"))?
+                };
+                curves.push(tidy(pts, closed));
+            }
+            _ => skipped += 1,
+        }
+    }
+    if let Some(k) = curves
+        .iter()
+        .position(|c| c.points.iter().any(|p| !p.is_finite()))
+    {
+        return Err(format!("curve {k} has a coordinate that is not finite"));
+    }
+    let curves: Vec<Polyline> = curves.into_iter().filter(|c| c.points.len() >= 2).collect();
+    let warnings = if skipped > 0 {
+        vec![format!(
+            "{skipped} entities that are not curves were ignored"
+        )]
+    } else {
+        Vec::new()
+    };
+    Ok((curves, warnings))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_bulge_of_one_is_a_half_circle() {
+        let pts = bulged(
+            &[(DVec3::ZERO, 1.0), (DVec3::new(2.0, 0.0, 0.0), 0.0)],
+            false,
+            4,
+        );
+        assert_eq!(pts.len(), 5);
+        for p in &pts {
+            assert!(((*p - DVec3::X).length() - 1.0).abs() < 1e-15, "{p}");
+        }
+        // Counter-clockwise from (0,0) to (2,0): the arc passes below the chord.
+        assert!(
+            (pts[2] - DVec3::new(1.0, -1.0, 0.0)).length() < 1e-15,
+            "{}",
+            pts[2]
+        );
+    }
+
+    #[test]
+    fn the_arbitrary_axis_algorithm_keeps_world_z_and_flips_for_minus_z() {
+        let (x, y, n) = ocs(DVec3::Z);
+        assert_eq!((x, y, n), (DVec3::X, DVec3::Y, DVec3::Z));
+        let (x, _, _) = ocs(-DVec3::Z);
+        assert_eq!(x, -DVec3::X);
+    }
+}

@@ -1,0 +1,188 @@
+//! glTF 2.0 meshes (`.gltf` with its buffers, or one `.glb`), read with the `gltf` crate: every
+//! triangle primitive of every mesh a scene node shows, with the node's transforms applied, in
+//! scene order (or every mesh as it is, when the file has no scene). Strips and fans become
+//! triangles; points and lines are skipped with a warning.
+
+use base64::Engine as _;
+use cnets_engine::prelude::*;
+use glam::DMat4;
+use gltf::mesh::Mode;
+
+use super::MeshObject;
+
+/// Reads a buffer the file refers to by a relative name.
+pub type ExternalReader<'a> = dyn Fn(&str) -> Result<Vec<u8>, String> + 'a;
+
+fn buffers(doc: &gltf::Gltf, external: &ExternalReader<'_>) -> Result<Vec<Vec<u8>>, String> {
+    doc.buffers()
+        .map(|buffer| {
+            let data = match buffer.source() {
+                gltf::buffer::Source::Bin => doc.blob.clone().ok_or_else(|| {
+                    format!(
+                        "buffer {} refers to a GLB chunk the file does not have",
+                        buffer.index()
+                    )
+                })?,
+                gltf::buffer::Source::Uri(uri) if uri.starts_with("data:") => {
+                    let (_, payload) = uri.split_once(";base64,").ok_or_else(|| {
+                        format!("buffer {}: only base64 data URIs are read", buffer.index())
+                    })?;
+                    base64::engine::general_purpose::STANDARD
+                        .decode(payload)
+                        .map_err(|e| format!("buffer {}: bad base64 data: {e}", buffer.index()))?
+                }
+                gltf::buffer::Source::Uri(uri) => external(uri)?,
+            };
+            if data.len() < buffer.length() {
+                return Err(format!(
+                    "buffer {} holds {} bytes, the file says {}",
+                    buffer.index(),
+                    data.len(),
+                    buffer.length()
+                ));
+            }
+            Ok(data)
+        })
+        .collect()
+}
+
+fn primitive_mesh(
+    primitive: &gltf::Primitive<'_>,
+    data: &[Vec<u8>],
+    transform: &DMat4,
+    warnings: &mut Vec<String>,
+    what: &str,
+) -> Result<Option<PolygonMesh>, String> {
+    let reader = primitive.reader(|b| data.get(b.index()).map(Vec::as_slice));
+    let Some(positions) = reader.read_positions() else {
+        warnings.push(format!("{what} has no positions: skipped"));
+        return Ok(None);
+    };
+    let vertices: Vec<DVec3> = positions
+        .map(|p| {
+            transform.transform_point3(DVec3::new(
+                f64::from(p[0]),
+                f64::from(p[1]),
+                f64::from(p[2]),
+            ))
+        })
+        .collect();
+    if let Some(k) = vertices.iter().position(|p| !p.is_finite()) {
+        return Err(format!("{what}: position {k} is not finite"));
+    }
+    let indices: Vec<u32> = match reader.read_indices() {
+        Some(i) => i.into_u32().collect(),
+        None => (0..vertices.len() as u32).collect(),
+    };
+    let triangles: Vec<[u32; 3]> = match primitive.mode() {
+        Mode::Triangles => indices
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
+        Mode::TriangleStrip => (2..indices.len())
+            .map(|k| {
+                if k % 2 == 0 {
+                    [indices[k - 2], indices[k - 1], indices[k]]
+                } else {
+                    [indices[k - 1], indices[k - 2], indices[k]]
+                }
+            })
+            .collect(),
+        Mode::TriangleFan => (2..indices.len())
+            .map(|k| [indices[0], indices[k - 1], indices[k]])
+            .collect(),
+        other => {
+            warnings.push(format!("{what} draws {other:?}, not triangles: skipped"));
+            return Ok(None);
+        }
+    };
+    let mut mesh = PolygonMesh {
+        vertices,
+        ..PolygonMesh::default()
+    };
+    for (k, t) in triangles.iter().enumerate() {
+        mesh.push_face(t)
+            .map_err(|e| format!("{what}: triangle {k}: {e}"))?;
+    }
+    // Front faces stay front faces under a mirroring node transform.
+    if transform.determinant() < 0.0 {
+        let faces: Vec<Vec<u32>> = mesh
+            .faces()
+            .map(|f| f.iter().rev().copied().collect())
+            .collect();
+        mesh = PolygonMesh::from_faces(mesh.vertices.clone(), &faces).map_err(|e| e.to_string())?;
+    }
+    Ok(Some(mesh))
+}
+
+fn mesh_objects(
+    mesh: &gltf::Mesh<'_>,
+    data: &[Vec<u8>],
+    transform: &DMat4,
+    out: &mut Vec<MeshObject>,
+    warnings: &mut Vec<String>,
+) -> Result<(), String> {
+    let name = mesh.name().unwrap_or("").to_string();
+    for primitive in mesh.primitives() {
+        let what = format!("mesh {} primitive {}", mesh.index(), primitive.index());
+        if let Some(m) = primitive_mesh(&primitive, data, transform, warnings, &what)? {
+            out.push(MeshObject {
+                name: name.clone(),
+                mesh: m,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Depth of the node hierarchy followed (deeper nodes are reported, not followed).
+const MAX_NODE_DEPTH: usize = 64;
+/// Most node visits (a hostile file can make its hierarchy a graph with shared children).
+const MAX_NODE_VISITS: usize = 100_000;
+
+/// Parses glTF or GLB bytes into one object per primitive.
+pub fn parse(
+    bytes: &[u8],
+    external: &ExternalReader<'_>,
+) -> Result<(Vec<MeshObject>, Vec<String>), String> {
+    let doc = gltf::Gltf::from_slice(bytes).map_err(|e| e.to_string())?;
+    let data = buffers(&doc, external)?;
+    let mut out = Vec::new();
+    let mut warnings = Vec::new();
+    let scene = doc.default_scene().or_else(|| doc.scenes().next());
+    match scene {
+        Some(scene) => {
+            let mut stack: Vec<(gltf::Node<'_>, DMat4, usize)> =
+                scene.nodes().map(|n| (n, DMat4::IDENTITY, 0)).collect();
+            stack.reverse();
+            let mut visits = 0usize;
+            while let Some((node, parent, depth)) = stack.pop() {
+                visits += 1;
+                if visits > MAX_NODE_VISITS {
+                    return Err(format!(
+                        "the scene shows more than {MAX_NODE_VISITS} nodes (a node hierarchy that repeats itself?)"
+                    ));
+                }
+                let local =
+                    DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(f64::from)));
+                let world = parent * local;
+                if let Some(mesh) = node.mesh() {
+                    mesh_objects(&mesh, &data, &world, &mut out, &mut warnings)?;
+                }
+                if depth >= MAX_NODE_DEPTH {
+                    warnings.push(format!("node {} nests deeper than {MAX_NODE_DEPTH} levels: its children are skipped", node.index()));
+                    continue;
+                }
+                let first_child = stack.len();
+                stack.extend(node.children().map(|c| (c, world, depth + 1)));
+                stack[first_child..].reverse();
+            }
+        }
+        None => {
+            for mesh in doc.meshes() {
+                mesh_objects(&mesh, &data, &DMat4::IDENTITY, &mut out, &mut warnings)?;
+            }
+        }
+    }
+    Ok((out, warnings))
+}

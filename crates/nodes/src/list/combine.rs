@@ -1,0 +1,60 @@
+//! Combining lists: `list.cross_reference`.
+
+use cnets_engine::prelude::*;
+
+/// Most pairs one cross reference makes.
+pub const MAX_PAIRS: usize = 10_000_000;
+
+node! {
+    /// Every pair of an item of `a` with an item of `b`, `a` varying slowest (Grasshopper's Cross
+    /// Reference, holistic): [1,2] × [10,20,30] → a = [1,1,1,2,2,2], b = [10,20,30,10,20,30].
+    #[node(id = "list.cross_reference", category = "Lists")]
+    pub fn cross_reference(
+        /// First list (varies slowest).
+        a: k::List<k::Any>,
+        /// Second list (varies fastest).
+        b: k::List<k::Any>,
+    ) -> (
+        /// The item of `a` of each pair.
+        a: k::List<k::Any>,
+        /// The item of `b` of each pair.
+        b: k::List<k::Any>,
+    ) {
+        let pairs = a.len().checked_mul(b.len()).filter(|&n| n <= MAX_PAIRS).ok_or_else(|| {
+            NodeError::new(format!(
+                "{} × {} = {} pairs is more than {MAX_PAIRS}",
+                a.len(),
+                b.len(),
+                a.len() as u128 * b.len() as u128
+            ))
+        })?;
+        let mut first = Vec::with_capacity(pairs);
+        let mut second = Vec::with_capacity(pairs);
+        for x in &a {
+            for y in &b {
+                first.push(x.clone());
+                second.push(y.clone());
+            }
+        }
+        Ok((first, second))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::{nums, run_named};
+
+    #[test]
+    fn every_pair_with_a_slowest() {
+        let out = run_named(
+            &cross_reference(),
+            &[("a", nums(&[1.0, 2.0])), ("b", nums(&[10.0, 20.0, 30.0]))],
+        )
+        .unwrap();
+        assert_eq!(out[0], nums(&[1.0, 1.0, 1.0, 2.0, 2.0, 2.0]));
+        assert_eq!(out[1], nums(&[10.0, 20.0, 30.0, 10.0, 20.0, 30.0]));
+        let out = run_named(&cross_reference(), &[("a", nums(&[])), ("b", nums(&[1.0]))]);
+        assert_eq!(out.unwrap()[0], nums(&[]));
+    }
+}
