@@ -228,6 +228,8 @@ pub struct EditorApp {
     last_watch: Instant,
     /// The optimization panel.
     pub optimization: OptimizationPanel,
+    /// Whether the parameter panel (View › Parameters) is shown.
+    pub parameters_open: bool,
     /// The opened clusters the canvas was showing in the last frame.
     canvas_view: Vec<String>,
     /// Counts the canvases made for graph levels (each gets its own view state).
@@ -313,6 +315,7 @@ impl EditorApp {
             watch: ClusterWatch::default(),
             last_watch: Instant::now(),
             optimization: OptimizationPanel::new(options.wake),
+            parameters_open: false,
             canvas_view: Vec::new(),
             canvas_serial: 0,
             palette_was_open: false,
@@ -703,7 +706,9 @@ impl EditorApp {
     pub fn apply(&mut self, action: CanvasAction) -> bool {
         let handled = match action {
             CanvasAction::OpenPalette(at) => {
-                self.palette.open_at(at);
+                // At the click: the canvas point on screen.
+                let screen = self.canvas.to_screen(egui::pos2(at[0], at[1]));
+                self.palette.open_at_screen(at, screen);
                 return true;
             }
             CanvasAction::OpenCluster(id) => {
@@ -873,6 +878,7 @@ impl EditorApp {
             },
             MenuAction::LeaveTo(depth) => self.leave_to(depth),
             MenuAction::ToggleOptimization => self.optimization.open = !self.optimization.open,
+            MenuAction::ToggleParameters => self.parameters_open = !self.parameters_open,
             MenuAction::LibraryFolder => {
                 let start = self.settings.library_dir();
                 self.dialog = Some(FileDialog::new(Purpose::LibraryFolder, &start));
@@ -909,6 +915,7 @@ impl EditorApp {
                 take(cmd, Key::Y, MenuAction::Redo);
                 take(cmd, Key::D, MenuAction::Duplicate);
                 take(cmd, Key::L, MenuAction::Arrange);
+                take(cmd, Key::P, MenuAction::ToggleParameters);
                 take(cmd, Key::G, MenuAction::MakeCluster);
                 take(cmd, Key::C, MenuAction::Copy);
                 take(cmd, Key::V, MenuAction::Paste);
@@ -1029,6 +1036,7 @@ impl EditorApp {
                 preview: self.viewport.options,
                 depth: self.doc.depth(),
                 optimization: self.optimization.open,
+                parameters: self.parameters_open,
                 library: &self.library.dirs[0],
             };
             if let Some(a) = menus::menu_bar(ui, &mc) {
@@ -1065,6 +1073,20 @@ impl EditorApp {
                         self.message = m;
                     }
                 });
+        }
+        if self.parameters_open {
+            let mut actions = Vec::new();
+            egui::Panel::left("cnets-parameters")
+                .resizable(true)
+                .default_size(260.0)
+                .min_size(180.0)
+                .show(ui, |ui| {
+                    ui.heading("Parameters");
+                    actions = crate::parameters::show(ui, &self.doc.graph);
+                });
+            for a in actions {
+                self.apply(a);
+            }
         }
         egui::Panel::right("cnets-viewport")
             .resizable(true)

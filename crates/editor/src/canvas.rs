@@ -25,7 +25,7 @@ use egui_snarl::ui::{
 use egui_snarl::{InPin, InPinId, NodeId, OutPin, OutPinId, Snarl};
 
 use crate::history::EditKey;
-use crate::worker::NodeStatus;
+use crate::worker::{NodeStatus, PANEL_TYPE};
 use crate::{mapper, widgets};
 
 /// A node on the canvas: the id of the graph node it shows.
@@ -164,6 +164,8 @@ pub struct Canvas {
     plots: HashMap<String, Rect>,
     /// Rectangles of the inline value editors, by (node, input) (canvas coordinates).
     editors: HashMap<(String, String), Rect>,
+    /// Readout rectangles of `view.panel` nodes (canvas coordinates).
+    panels: HashMap<String, Rect>,
     /// A zoom asked for with [`Canvas::zoom_to`], applied on the next frame.
     zoom_pending: Option<(f32, Option<Pos2>)>,
 }
@@ -226,6 +228,7 @@ impl Canvas {
             ui_rect: Rect::NOTHING,
             plots: HashMap::new(),
             editors: HashMap::new(),
+            panels: HashMap::new(),
             zoom_pending: None,
         }
     }
@@ -422,6 +425,12 @@ impl Canvas {
         Some(self.to_global * Pos2::new(r.left() + u * r.width(), r.bottom() - v * r.height()))
     }
 
+    /// Screen rectangle of a `view.panel` node's readout after the last frame (its bottom-right
+    /// corner is the resize handle).
+    pub fn panel_screen_rect(&self, node: &str) -> Option<Rect> {
+        self.panels.get(node).map(|r| self.to_global * *r)
+    }
+
     /// The canvas zoom of the last frame (screen points per canvas point).
     pub fn zoom(&self) -> f32 {
         self.to_global.scaling
@@ -508,6 +517,7 @@ impl Canvas {
             fit,
             plots: HashMap::new(),
             editors: HashMap::new(),
+            panels: HashMap::new(),
             selected: self.selected.clone(),
         };
         let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
@@ -515,6 +525,7 @@ impl Canvas {
         self.rects = viewer.rects;
         self.plots = viewer.plots;
         self.editors = viewer.editors;
+        self.panels = viewer.panels;
         if let Some(id) = &viewer.pressed_node {
             self.focused = Some(id.clone());
         } else if response.clicked() && !response.double_clicked() {
@@ -549,6 +560,43 @@ impl Canvas {
         }
         actions
     }
+}
+
+/// The readout of a `view.panel` node: its text (selectable, monospace, every line) in a
+/// scrolling box the designer resizes by its bottom-right corner (the size is kept per node for
+/// the session). Returns the box's rectangle.
+fn panel_readout(ui: &mut Ui, id: &str, text: Option<&str>) -> Rect {
+    let frame = egui::Frame::new()
+        .fill(ui.visuals().extreme_bg_color)
+        .inner_margin(egui::Margin::same(4));
+    ui.scope(|ui| {
+        egui::Resize::default()
+            .id_salt(("cnets-panel", id))
+            .default_size([220.0, 110.0])
+            .min_size([90.0, 40.0])
+            .max_size([1200.0, 1600.0])
+            .show(ui, |ui| {
+                frame.show(ui, |ui| {
+                    egui::ScrollArea::both()
+                        .id_salt(("cnets-panel-scroll", id))
+                        .auto_shrink(false)
+                        .show(ui, |ui| match text {
+                            Some(t) => {
+                                ui.add(
+                                    egui::Label::new(egui::RichText::new(t).monospace())
+                                        .selectable(true)
+                                        .extend(),
+                                );
+                            }
+                            None => {
+                                ui.weak("(no value yet)");
+                            }
+                        });
+                });
+            });
+    })
+    .response
+    .rect
 }
 
 /// Applies a canvas action to a document as one undoable edit. Errors are messages for the
@@ -722,6 +770,7 @@ struct Viewer<'a> {
     fit: Option<TSTransform>,
     plots: HashMap<String, Rect>,
     editors: HashMap<(String, String), Rect>,
+    panels: HashMap<String, Rect>,
     selected: Vec<String>,
 }
 
@@ -798,13 +847,13 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         };
         let cluster = Cluster::of(&instance.def);
         ui.horizontal(|ui| {
-            let sense = if cluster.is_some() {
-                egui::Sense::click()
-            } else {
-                egui::Sense::hover()
-            };
+            // The header's texts are not selectable and take no clicks: a click (Shift+click:
+            // select, Ctrl+click: deselect) or a drag on the title goes to the node itself.
+            ui.style_mut().interaction.selectable_labels = false;
             let title = ui
-                .add(egui::Label::new(egui::RichText::new(&id).strong()).sense(sense))
+                .add(
+                    egui::Label::new(egui::RichText::new(&id).strong()).sense(egui::Sense::hover()),
+                )
                 .on_hover_ui(|ui| {
                     ui.set_max_width(360.0);
                     ui.strong(instance.def.id.as_ref());
@@ -813,7 +862,12 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                         ui.weak("double-click to open it");
                     }
                 });
-            if cluster.is_some() && title.double_clicked() {
+            let double_clicked = title.contains_pointer()
+                && ui.input(|i| {
+                    i.pointer
+                        .button_double_clicked(egui::PointerButton::Primary)
+                });
+            if cluster.is_some() && double_clicked {
                 self.actions.push(CanvasAction::OpenCluster(id.clone()));
             }
             match cluster {
@@ -1043,7 +1097,9 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
     }
 
     fn has_body(&mut self, node: &CanvasNode) -> bool {
-        self.graph.node(&node.id).is_some_and(mapper::is_mapper)
+        self.graph
+            .node(&node.id)
+            .is_some_and(|n| mapper::is_mapper(n) || n.def.id == PANEL_TYPE)
     }
 
     fn show_body(
@@ -1057,6 +1113,15 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
             return;
         };
+        if self.graph.node(&id).is_some_and(|n| n.def.id == PANEL_TYPE) {
+            let text = match self.statuses.get(&id) {
+                Some(NodeStatus::Ok { readout, .. }) => readout.clone(),
+                _ => None,
+            };
+            let rect = panel_readout(ui, &id, text.as_deref());
+            self.panels.insert(id, rect);
+            return;
+        }
         if let Some(instance) = self.graph.node(&id) {
             let r = mapper::show(ui, self.graph, instance);
             self.plots.insert(id.clone(), r.plot);

@@ -17,7 +17,8 @@
 //!   changed on disk; [`optimization`]: the optimization panel and its runs.
 //! - [`recovery`]: autosave and restore after a crash; [`settings`]: recent files, library folder;
 //!   [`unsaved`]: the Save / Don't save / Cancel guard on everything that replaces the document;
-//!   [`load_failure`]: a file that failed to load, with its diagnostics.
+//!   [`load_failure`]: a file that failed to load, with its diagnostics; [`parameters`]: the
+//!   docked parameter panel.
 //! - [`app`]: the editor state and one frame of UI, shared by the window (`main.rs`) and tests.
 
 pub mod app;
@@ -34,6 +35,7 @@ pub mod mapper;
 pub mod menus;
 pub mod optimization;
 pub mod palette;
+pub mod parameters;
 pub mod recovery;
 pub mod settings;
 pub mod unsaved;

@@ -55,6 +55,8 @@ pub enum MenuAction {
     LeaveTo(usize),
     /// Show or hide the optimization panel.
     ToggleOptimization,
+    /// Show or hide the parameter panel.
+    ToggleParameters,
     /// Choose the user library folder.
     LibraryFolder,
     /// Close the editor.
@@ -79,6 +81,8 @@ pub struct MenuContext<'a> {
     pub depth: usize,
     /// Whether the optimization panel is shown.
     pub optimization: bool,
+    /// Whether the parameter panel is shown.
+    pub parameters: bool,
     /// The user library folder.
     pub library: &'a Path,
 }
@@ -205,6 +209,12 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                 "Optimization"
             };
             pick(ui, label, "", MenuAction::ToggleOptimization, true);
+            let label = if mc.parameters {
+                "Hide parameters"
+            } else {
+                "Parameters"
+            };
+            pick(ui, label, "Ctrl+P", MenuAction::ToggleParameters, true);
             ui.separator();
             ui.label("Colour faces by");
             for mode in ColorMode::ALL {

@@ -73,9 +73,16 @@ fn snapshot_palette_open() {
     // A query whose answer does not change when other nodes are added to the library.
     h.get_by_role(Role::TextInput).type_text("cnets.construct");
     h.run_steps(3);
-    // Once in the palette, once as the type label of the construct node on the canvas.
-    assert_eq!(h.query_all_by_label("cnets.construct").count(), 2);
-    assert!(h.query_by_label("cnets.construct_coplanar").is_some());
+    // In the palette by its name then its id; on the canvas as the construct node's type label.
+    assert!(
+        h.query_by_label("CNets Construct  cnets.construct")
+            .is_some()
+    );
+    assert_eq!(h.query_all_by_label("cnets.construct").count(), 1);
+    assert!(
+        h.query_by_label("CNets Construct Coplanar  cnets.construct_coplanar")
+            .is_some()
+    );
     assert_eq!(
         h.query_all_by_label("curve.arc").count(),
         2,
@@ -273,9 +280,18 @@ fn double_click_opens_the_palette_and_picking_adds_a_node() {
     }
     h.run_steps(3);
     assert!(h.state().palette.open, "double-click opened the palette");
+    let window = h
+        .ctx
+        .memory(|m| m.area_rect(egui::Id::new("cnets-palette")))
+        .expect("the palette window");
+    assert!(
+        window.min.distance(empty) < 2.0 || window.contains(empty),
+        "opened at the click {empty:?}: {window:?}"
+    );
     h.get_by_role(Role::TextInput).type_text("length");
     h.run_steps(2);
-    h.get_by_label("curve.length").click();
+    // The designer's name first, the id after.
+    h.get_by_label("Length  curve.length").click();
     h.run_steps(3);
     let app = h.state();
     assert_eq!(app.doc.graph.node_count(), n + 1);
@@ -570,5 +586,37 @@ fn a_changing_view_renders_at_half_resolution_on_software_then_settles() {
         h.state().viewport.render_scale,
         1.0,
         "back to full resolution"
+    );
+}
+
+#[test]
+fn shift_click_on_a_title_selects_the_node() {
+    let mut h = harness("shift-title");
+    let was = h.state().doc.graph.node("apex").unwrap().position;
+    let title = h
+        .get_all_by_label("apex")
+        .map(|l| h.state().canvas.to_screen(l.rect().center()))
+        .find(|p| {
+            let r = h.state().canvas.node_screen_rect("apex").unwrap();
+            r.contains(*p) && p.y < r.top() + 30.0
+        })
+        .expect("the apex title");
+    h.hover_at(title);
+    h.run_steps(2);
+    h.event(egui::Event::ModifiersChanged(Modifiers::SHIFT));
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: title,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::SHIFT,
+        });
+    }
+    h.run_steps(3);
+    assert_eq!(h.state().canvas.selected, vec!["apex".to_string()]);
+    assert_eq!(
+        h.state().doc.graph.node("apex").unwrap().position,
+        was,
+        "not moved"
     );
 }
