@@ -230,6 +230,8 @@ pub struct EditorApp {
     pub optimization: OptimizationPanel,
     /// Whether the parameter panel (View › Parameters) is shown.
     pub parameters_open: bool,
+    /// The pointer's last position seen by [`EditorApp::raw_input`].
+    pointer: Option<egui::Pos2>,
     /// The opened clusters the canvas was showing in the last frame.
     canvas_view: Vec<String>,
     /// Counts the canvases made for graph levels (each gets its own view state).
@@ -316,6 +318,7 @@ impl EditorApp {
             last_watch: Instant::now(),
             optimization: OptimizationPanel::new(options.wake),
             parameters_open: false,
+            pointer: None,
             canvas_view: Vec::new(),
             canvas_serial: 0,
             palette_was_open: false,
@@ -329,6 +332,35 @@ impl EditorApp {
     /// The GPU target of the 3D view (`None`: no wgpu renderer).
     pub fn gpu(&self) -> Option<&GpuTarget> {
         self.gpu.as_ref()
+    }
+
+    /// Before a frame, on the raw input (the window calls it from eframe's `raw_input_hook`,
+    /// tests directly): over the canvas, the mouse wheel zooms — as in Grasshopper and as in
+    /// the 3D view — instead of scrolling (Shift+wheel still pans; dragging the background
+    /// pans too).
+    pub fn raw_input(&mut self, raw: &mut egui::RawInput) {
+        let canvas = self.canvas.screen_rect();
+        for e in &mut raw.events {
+            match e {
+                egui::Event::PointerMoved(p) => self.pointer = Some(*p),
+                egui::Event::PointerGone => self.pointer = None,
+                egui::Event::MouseWheel {
+                    unit,
+                    delta,
+                    modifiers,
+                    ..
+                } if modifiers.is_none() && self.pointer.is_some_and(|p| canvas.contains(p)) => {
+                    let points = match unit {
+                        egui::MouseWheelUnit::Point => delta.y,
+                        egui::MouseWheelUnit::Line => delta.y * 40.0,
+                        egui::MouseWheelUnit::Page => delta.y * 400.0,
+                    };
+                    // Wheel up (away from you) zooms in.
+                    *e = egui::Event::Zoom((points / 200.0).exp());
+                }
+                _ => {}
+            }
+        }
     }
 
     /// The file dialog being shown, if any (tests type a path into it).

@@ -395,6 +395,7 @@ impl eframe::App for Window {
     }
 
     fn raw_input_hook(&mut self, _ctx: &egui::Context, raw_input: &mut egui::RawInput) {
+        self.app.raw_input(raw_input);
         if let Some(d) = &mut self.drive {
             d.inject(raw_input);
         }

@@ -620,3 +620,54 @@ fn shift_click_on_a_title_selects_the_node() {
         "not moved"
     );
 }
+
+#[test]
+fn the_wheel_zooms_the_canvas_as_in_the_3d_view() {
+    let mut h = harness("wheel");
+    let at = h.state().canvas.screen_rect().center();
+    let before = h.state().canvas.zoom();
+    let mut raw = egui::RawInput {
+        events: vec![
+            egui::Event::PointerMoved(at),
+            egui::Event::MouseWheel {
+                unit: egui::MouseWheelUnit::Line,
+                delta: egui::vec2(0.0, 2.0),
+                modifiers: Modifiers::NONE,
+                phase: egui::TouchPhase::Move,
+            },
+        ],
+        ..Default::default()
+    };
+    h.state_mut().raw_input(&mut raw);
+    assert!(
+        matches!(raw.events[1], egui::Event::Zoom(f) if f > 1.0),
+        "wheel up over the canvas is a zoom in: {:?}",
+        raw.events[1]
+    );
+    for e in raw.events {
+        h.event(e);
+    }
+    h.run_steps(3);
+    assert!(
+        h.state().canvas.zoom() > before * 1.1,
+        "{} → {}",
+        before,
+        h.state().canvas.zoom()
+    );
+    // Over the 3D view the wheel stays a wheel (the viewport zooms with it itself).
+    let view = egui::pos2(h.state().canvas.screen_rect().right() + 200.0, at.y);
+    let mut raw = egui::RawInput {
+        events: vec![
+            egui::Event::PointerMoved(view),
+            egui::Event::MouseWheel {
+                unit: egui::MouseWheelUnit::Line,
+                delta: egui::vec2(0.0, 2.0),
+                modifiers: Modifiers::NONE,
+                phase: egui::TouchPhase::Move,
+            },
+        ],
+        ..Default::default()
+    };
+    h.state_mut().raw_input(&mut raw);
+    assert!(matches!(raw.events[1], egui::Event::MouseWheel { .. }));
+}
