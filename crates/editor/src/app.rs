@@ -15,11 +15,13 @@ use crate::document::{GraphDocument, fresh_id};
 use crate::export;
 use crate::file_dialog::{FileDialog, Outcome, Purpose};
 use crate::library::{ClusterWatch, Library, LibraryEntry};
+use crate::load_failure::LoadFailure;
 use crate::menus::{self, MenuAction, MenuContext};
 use crate::optimization::OptimizationPanel;
 use crate::palette::{self, PaletteState, Pick};
-use crate::recovery::{Recovered, Recovery};
+use crate::recovery::{Autosave, Recovered, Recovery};
 use crate::settings::Settings;
+use crate::unsaved::{self, Answer, Replace};
 use crate::viewport::Viewport;
 use crate::worker::{NodeStatus, Worker};
 
@@ -188,13 +190,20 @@ pub struct EditorApp {
     pub settings: Settings,
     /// Latency figures.
     pub latency: Latency,
-    /// Whether the window should close (set by File ▸ Quit and after the unsaved-changes
+    /// Whether the window should close (set by File › Quit and after the unsaved-changes
     /// question; the window closes when it sees it).
     pub quit: bool,
-    /// The unsaved-changes question is shown (a close was requested with unsaved changes).
-    pub confirm_close: bool,
+    /// The unsaved-changes question being asked: what replaces or closes the document once the
+    /// designer answers (see [`crate::unsaved`]).
+    pub unsaved_question: Option<Replace>,
+    /// Carried out once the Save As dialog opened by the question's "Save" has saved.
+    after_save: Option<Replace>,
     /// The designer answered the question: closing is allowed now.
     close_confirmed: bool,
+    /// A graph file that failed to load, shown with its diagnostics.
+    pub load_failure: Option<LoadFailure>,
+    /// Graph files sent by `cnets-editor FILE` started while this window is open.
+    inbox: Option<std::sync::mpsc::Receiver<PathBuf>>,
     last_title: String,
     /// Check once the new document's nodes are measured whether they overlap (hint: Arrange).
     check_overlaps: bool,
@@ -219,11 +228,18 @@ pub struct EditorApp {
     last_watch: Instant,
     /// The optimization panel.
     pub optimization: OptimizationPanel,
+    /// Whether the parameter panel (View › Parameters) is shown.
+    pub parameters_open: bool,
+    /// The pointer's last position seen by [`EditorApp::raw_input`].
+    pointer: Option<egui::Pos2>,
     /// The opened clusters the canvas was showing in the last frame.
     canvas_view: Vec<String>,
     /// Counts the canvases made for graph levels (each gets its own view state).
     canvas_serial: u64,
     palette_was_open: bool,
+    /// Frame the canvas again once the first results of a new document are drawn (nodes grow
+    /// when their outputs get summaries).
+    refit_on_results: bool,
 }
 
 /// How often cluster files are checked for changes.
@@ -236,23 +252,28 @@ impl EditorApp {
         let settings = Settings::load(&options.config_dir);
         let recovery = Recovery::new(&options.config_dir);
         let offer_restore = recovery.find();
-        let mut message = String::new();
+        let message = String::new();
         let library_dirs = vec![settings.library_dir(), options.examples_dir.clone()];
         let torus = options.examples_dir.join("torus-monge.ron");
-        let doc = match options
-            .file
-            .as_deref()
-            .or(torus.is_file().then_some(torus.as_path()))
-        {
+        let mut load_failure = None;
+        // The start-up graph: the file given (an untitled copy when it is a shipped example), else
+        // an untitled copy of the gallery's torus-monge.ron, else the built-in default.
+        let (start, copy) = match &options.file {
+            Some(f) => (Some(f.as_path()), is_example(&options.examples_dir, f)),
+            None => (torus.is_file().then_some(torus.as_path()), true),
+        };
+        let doc = match start {
             Some(path) => match GraphDocument::open_with(
                 path,
                 &registry,
                 &crate::library::load_options(Some(path), &library_dirs),
             ) {
+                Ok(d) if copy => Some(d.into_untitled_copy()),
                 Ok(d) => Some(d),
                 Err(e) => {
-                    message = e;
-                    None
+                    // Not the default graph in its place: that would look like the file.
+                    load_failure = Some(LoadFailure::new(path, &e));
+                    Some(GraphDocument::new(registry.clone()))
                 }
             },
             None => None,
@@ -273,8 +294,11 @@ impl EditorApp {
             settings,
             latency: Latency::default(),
             quit: false,
-            confirm_close: false,
+            unsaved_question: None,
+            after_save: None,
             close_confirmed: false,
+            load_failure,
+            inbox: None,
             last_title: String::new(),
             check_overlaps: true,
             show_timings: true,
@@ -293,9 +317,12 @@ impl EditorApp {
             watch: ClusterWatch::default(),
             last_watch: Instant::now(),
             optimization: OptimizationPanel::new(options.wake),
+            parameters_open: false,
+            pointer: None,
             canvas_view: Vec::new(),
             canvas_serial: 0,
             palette_was_open: false,
+            refit_on_results: true,
         };
         app.watch.changed(&app.doc.graph);
         app.submit_if_changed();
@@ -307,6 +334,40 @@ impl EditorApp {
         self.gpu.as_ref()
     }
 
+    /// Before a frame, on the raw input (the window calls it from eframe's `raw_input_hook`,
+    /// tests directly): over the canvas, the mouse wheel zooms — as in Grasshopper and as in
+    /// the 3D view — instead of scrolling (Shift+wheel still pans; dragging the background
+    /// pans too).
+    pub fn raw_input(&mut self, raw: &mut egui::RawInput) {
+        let canvas = self.canvas.screen_rect();
+        for e in &mut raw.events {
+            match e {
+                egui::Event::PointerMoved(p) => self.pointer = Some(*p),
+                egui::Event::PointerGone => self.pointer = None,
+                egui::Event::MouseWheel {
+                    unit,
+                    delta,
+                    modifiers,
+                    ..
+                } if modifiers.is_none() && self.pointer.is_some_and(|p| canvas.contains(p)) => {
+                    let points = match unit {
+                        egui::MouseWheelUnit::Point => delta.y,
+                        egui::MouseWheelUnit::Line => delta.y * 40.0,
+                        egui::MouseWheelUnit::Page => delta.y * 400.0,
+                    };
+                    // Wheel up (away from you) zooms in.
+                    *e = egui::Event::Zoom((points / 200.0).exp());
+                }
+                _ => {}
+            }
+        }
+    }
+
+    /// The file dialog being shown, if any (tests type a path into it).
+    pub fn dialog_mut(&mut self) -> Option<&mut FileDialog> {
+        self.dialog.as_mut()
+    }
+
     /// Whether a restore from a previous session's recovery file is being offered.
     pub fn restore_offered(&self) -> bool {
         self.offer_restore.is_some()
@@ -315,7 +376,8 @@ impl EditorApp {
     /// Restores the recovery file (the crash-restore dialog's "Restore").
     pub fn restore(&mut self) {
         if let Some(r) = self.offer_restore.take() {
-            let options = crate::library::load_options(r.path.as_deref(), &self.library.dirs);
+            let resolve = r.path.as_deref().or(r.origin.as_deref());
+            let options = crate::library::load_options(resolve, &self.library.dirs);
             match GraphDocument::from_text_with(
                 &r.text,
                 "recovery",
@@ -324,6 +386,7 @@ impl EditorApp {
                 &options,
             ) {
                 Ok(mut d) => {
+                    d.origin = r.origin.clone();
                     d.mark_dirty();
                     self.replace_doc(d);
                     self.message = "restored unsaved work from the last session".into();
@@ -347,6 +410,7 @@ impl EditorApp {
         self.canvas = Canvas::new();
         self.canvas_view.clear();
         self.check_overlaps = true;
+        self.refit_on_results = true;
         self.statuses.clear();
         self.viewport.reset();
         self.pending_change = Some(Instant::now());
@@ -362,7 +426,7 @@ impl EditorApp {
 
     /// Load options for the document (its folder, then the library folders).
     fn load_options(&self) -> cnets_engine::file::LoadOptions {
-        crate::library::load_options(self.doc.path.as_deref(), &self.library.dirs)
+        crate::library::load_options(self.doc.resolve_file(), &self.library.dirs)
     }
 
     /// The first cluster node among the nodes commands act on (selection, else focus).
@@ -546,17 +610,92 @@ impl EditorApp {
         true
     }
 
-    /// Opens a graph file.
-    pub fn open(&mut self, path: &Path) {
+    /// Asks to replace or close the document: carried out at once when everything is saved,
+    /// else after the Save / Don't save / Cancel question (see [`crate::unsaved`]).
+    pub fn request(&mut self, r: Replace) {
+        if self.doc.is_dirty() && !(r == Replace::Quit && self.close_confirmed) {
+            self.unsaved_question = Some(r);
+        } else {
+            self.perform(r);
+        }
+    }
+
+    /// Carries out a replacement without asking.
+    fn perform(&mut self, r: Replace) {
+        match r {
+            Replace::New => {
+                self.replace_doc(GraphDocument::new(self.registry.clone()));
+                self.message = "new graph".into();
+            }
+            Replace::Open(p) => {
+                self.open(&p);
+            }
+            Replace::Example(p) => {
+                self.open_example(&p);
+            }
+            Replace::Quit => {
+                self.close_confirmed = true;
+                self.quit = true;
+            }
+        }
+    }
+
+    /// Whether `path` is one of the shipped examples (a file in the examples folder).
+    pub fn is_example(&self, path: &Path) -> bool {
+        is_example(&self.examples_dir, path)
+    }
+
+    /// Opens a graph file without asking (see [`EditorApp::request`]); a shipped example opens
+    /// as an untitled copy. When the file does not load, the current document stays and the
+    /// diagnostics are shown. Returns whether it opened.
+    pub fn open(&mut self, path: &Path) -> bool {
+        if self.is_example(path) {
+            return self.open_example(path);
+        }
         let options = crate::library::load_options(Some(path), &self.library.dirs);
         match GraphDocument::open_with(path, &self.registry, &options) {
             Ok(d) => {
                 self.replace_doc(d);
                 self.settings.add_recent(path);
                 self.message = format!("opened {}", path.display());
+                true
             }
-            Err(e) => self.message = e,
+            Err(e) => {
+                self.fail_load(path, &e);
+                false
+            }
         }
+    }
+
+    /// Opens an untitled copy of a shipped example (its first save asks where). Returns whether
+    /// it opened.
+    pub fn open_example(&mut self, path: &Path) -> bool {
+        let options = crate::library::load_options(Some(path), &self.library.dirs);
+        match GraphDocument::open_with(path, &self.registry, &options) {
+            Ok(d) => {
+                self.replace_doc(d.into_untitled_copy());
+                self.message = format!(
+                    "opened a copy of the example {}: saving asks where",
+                    path.display()
+                );
+                true
+            }
+            Err(e) => {
+                self.fail_load(path, &e);
+                false
+            }
+        }
+    }
+
+    fn fail_load(&mut self, path: &Path, error: &str) {
+        self.message = format!("cannot open {}: the document is unchanged", path.display());
+        self.load_failure = Some(LoadFailure::new(path, error));
+    }
+
+    /// Receives graph files to open from elsewhere (`cnets-editor FILE` started while this
+    /// window is open): each goes through [`EditorApp::request`].
+    pub fn set_inbox(&mut self, inbox: std::sync::mpsc::Receiver<PathBuf>) {
+        self.inbox = Some(inbox);
     }
 
     /// Saves to `path` (atomic) and clears the recovery file.
@@ -568,6 +707,11 @@ impl EditorApp {
                 self.message = format!("saved {}", path.display());
             }
             Err(e) => self.message = e,
+        }
+        if !self.doc.is_dirty()
+            && let Some(r) = self.after_save.take()
+        {
+            self.perform(r);
         }
     }
 
@@ -594,7 +738,9 @@ impl EditorApp {
     pub fn apply(&mut self, action: CanvasAction) -> bool {
         let handled = match action {
             CanvasAction::OpenPalette(at) => {
-                self.palette.open_at(at);
+                // At the click: the canvas point on screen.
+                let screen = self.canvas.to_screen(egui::pos2(at[0], at[1]));
+                self.palette.open_at_screen(at, screen);
                 return true;
             }
             CanvasAction::OpenCluster(id) => {
@@ -650,10 +796,7 @@ impl EditorApp {
     /// Carries out a menu action or shortcut.
     pub fn run(&mut self, action: MenuAction) {
         match action {
-            MenuAction::New => {
-                self.replace_doc(GraphDocument::new(self.registry.clone()));
-                self.message = "new graph".into();
-            }
+            MenuAction::New => self.request(Replace::New),
             MenuAction::Open => {
                 let start = self
                     .doc
@@ -663,16 +806,23 @@ impl EditorApp {
                     .map_or_else(|| self.examples_dir.clone(), Path::to_path_buf);
                 self.dialog = Some(FileDialog::new(Purpose::Open, &start));
             }
-            MenuAction::OpenPath(p) => self.open(&p),
+            MenuAction::OpenPath(p) => self.request(Replace::Open(p)),
+            MenuAction::OpenExample(p) => self.request(Replace::Example(p)),
             MenuAction::Save => match self.doc.path.clone() {
                 Some(p) => self.save_as(&p),
                 None => self.run(MenuAction::SaveAs),
             },
             MenuAction::SaveAs => {
                 let start = self.doc.path.clone().unwrap_or_else(|| {
-                    std::env::current_dir()
-                        .unwrap_or_default()
-                        .join("untitled.ron")
+                    // An untitled copy of an example is saved into the designer's own folder
+                    // (never next to the shipped file), under the example's name.
+                    let name = self
+                        .doc
+                        .origin
+                        .as_deref()
+                        .and_then(Path::file_name)
+                        .map_or_else(|| "untitled.ron".into(), |n| n.to_os_string());
+                    user_folder(&self.examples_dir).join(name)
                 });
                 self.dialog = Some(FileDialog::new(Purpose::SaveAs, &start));
             }
@@ -760,6 +910,7 @@ impl EditorApp {
             },
             MenuAction::LeaveTo(depth) => self.leave_to(depth),
             MenuAction::ToggleOptimization => self.optimization.open = !self.optimization.open,
+            MenuAction::ToggleParameters => self.parameters_open = !self.parameters_open,
             MenuAction::LibraryFolder => {
                 let start = self.settings.library_dir();
                 self.dialog = Some(FileDialog::new(Purpose::LibraryFolder, &start));
@@ -770,11 +921,7 @@ impl EditorApp {
 
     /// Asks to close: closes at once when everything is saved, else asks first.
     pub fn request_close(&mut self) {
-        if self.doc.is_dirty() && !self.close_confirmed {
-            self.confirm_close = true;
-        } else {
-            self.quit = true;
-        }
+        self.request(Replace::Quit);
     }
 
     fn shortcuts(&mut self, ctx: &egui::Context) {
@@ -800,6 +947,7 @@ impl EditorApp {
                 take(cmd, Key::Y, MenuAction::Redo);
                 take(cmd, Key::D, MenuAction::Duplicate);
                 take(cmd, Key::L, MenuAction::Arrange);
+                take(cmd, Key::P, MenuAction::ToggleParameters);
                 take(cmd, Key::G, MenuAction::MakeCluster);
                 take(cmd, Key::C, MenuAction::Copy);
                 take(cmd, Key::V, MenuAction::Paste);
@@ -838,8 +986,9 @@ impl EditorApp {
     fn poll_worker(&mut self) {
         if let Some(r) = self.worker.poll() {
             self.statuses = r.statuses;
-            if r.view != self.statuses_view {
-                // The first results of another graph level: frame it once they are drawn.
+            if r.view != self.statuses_view || std::mem::take(&mut self.refit_on_results) {
+                // The first results of a document or of another graph level: frame it once
+                // they are drawn.
                 self.canvas.fit_later();
             }
             self.statuses_view = r.view;
@@ -862,12 +1011,7 @@ impl EditorApp {
             return;
         }
         let changed_at = self.pending_change.take().unwrap_or_else(Instant::now);
-        let base = self
-            .doc
-            .path
-            .as_deref()
-            .and_then(Path::parent)
-            .map(Path::to_path_buf);
+        let base = self.doc.base_dir();
         self.worker.submit_view(
             self.doc.eval_graph(),
             self.doc.view_path(),
@@ -890,8 +1034,9 @@ impl EditorApp {
         self.submit_if_changed();
         if let Some(r) = self.worker.wait(timeout) {
             self.statuses = r.statuses;
-            if r.view != self.statuses_view {
-                // The first results of another graph level: frame it once they are drawn.
+            if r.view != self.statuses_view || std::mem::take(&mut self.refit_on_results) {
+                // The first results of a document or of another graph level: frame it once
+                // they are drawn.
                 self.canvas.fit_later();
             }
             self.statuses_view = r.view;
@@ -923,6 +1068,7 @@ impl EditorApp {
                 preview: self.viewport.options,
                 depth: self.doc.depth(),
                 optimization: self.optimization.open,
+                parameters: self.parameters_open,
                 library: &self.library.dirs[0],
             };
             if let Some(a) = menus::menu_bar(ui, &mc) {
@@ -947,12 +1093,7 @@ impl EditorApp {
             });
         });
         if self.optimization.open {
-            let base = self
-                .doc
-                .path
-                .as_deref()
-                .and_then(Path::parent)
-                .map(Path::to_path_buf);
+            let base = self.doc.base_dir();
             egui::Panel::bottom("cnets-optimization")
                 .resizable(true)
                 .default_size(270.0)
@@ -964,6 +1105,20 @@ impl EditorApp {
                         self.message = m;
                     }
                 });
+        }
+        if self.parameters_open {
+            let mut actions = Vec::new();
+            egui::Panel::left("cnets-parameters")
+                .resizable(true)
+                .default_size(260.0)
+                .min_size(180.0)
+                .show(ui, |ui| {
+                    ui.heading("Parameters");
+                    actions = crate::parameters::show(ui, &self.doc.graph);
+                });
+            for a in actions {
+                self.apply(a);
+            }
         }
         egui::Panel::right("cnets-viewport")
             .resizable(true)
@@ -1039,7 +1194,7 @@ impl EditorApp {
         if self.check_overlaps && self.canvas.measured(self.doc.graph.node_count()) {
             self.check_overlaps = false;
             if self.canvas.has_overlaps() && self.message.is_empty() {
-                self.message = "nodes overlap: View ▸ Arrange graph (Ctrl+L) lays them out".into();
+                self.message = "nodes overlap: View › Arrange graph (Ctrl+L) lays them out".into();
             }
         }
         self.show_dialog(&ctx);
@@ -1054,12 +1209,32 @@ impl EditorApp {
         if ctx.input(|i| i.viewport().close_requested()) && !self.quit {
             if self.doc.is_dirty() && !self.close_confirmed {
                 ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
-                self.confirm_close = true;
-            } else {
-                self.quit = true;
             }
+            self.request(Replace::Quit);
         }
-        self.show_close_question(&ctx);
+        // A graph file dropped on the window, or sent by `cnets-editor FILE`.
+        let dropped: Vec<PathBuf> = ctx.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .map(|f| f.path().to_path_buf())
+                .filter(|p| !p.as_os_str().is_empty())
+                .collect()
+        });
+        let sent: Vec<PathBuf> = self
+            .inbox
+            .as_ref()
+            .map(|r| r.try_iter().collect())
+            .unwrap_or_default();
+        if let Some(p) = dropped.into_iter().chain(sent).last() {
+            self.request(Replace::Open(p));
+        }
+        self.show_unsaved_question(&ctx);
+        if let Some(f) = &mut self.load_failure
+            && !f.show(&ctx)
+        {
+            self.load_failure = None;
+        }
         if self.doc.version() != version_before && self.pending_change.is_none() {
             self.pending_change = Some(Instant::now());
         }
@@ -1074,14 +1249,24 @@ impl EditorApp {
             }
             self.awaiting_picture = None;
         }
-        let (dirty, version, path) = (
-            self.doc.is_dirty(),
-            self.doc.version(),
-            self.doc.path.clone(),
-        );
+        // Autosave: a committed edit (no gesture in progress) at once, a gesture within 1 s.
+        let committed = !self.doc.history.in_gesture();
         let doc = &self.doc;
-        self.recovery
-            .tick(dirty, version, path.as_deref(), || doc.to_ron());
+        let autosave = self.recovery.tick(
+            doc.is_dirty(),
+            doc.version(),
+            committed,
+            (doc.path.as_deref(), doc.origin.as_deref()),
+            || doc.to_ron(),
+        );
+        match autosave {
+            Autosave::Due(after) => ctx.request_repaint_after(after),
+            Autosave::Failed => {
+                self.message = "cannot write the recovery file (autosave)".into();
+                ctx.request_repaint_after(crate::recovery::AUTOSAVE_WITHIN);
+            }
+            Autosave::Idle | Autosave::Wrote => {}
+        }
         let title = format!("{} — cnets editor", self.doc.title());
         if title != self.last_title {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
@@ -1102,12 +1287,18 @@ impl EditorApp {
         };
         match dialog.show(ctx) {
             Outcome::Open => {}
-            Outcome::Cancelled => self.dialog = None,
+            Outcome::Cancelled => {
+                if dialog.purpose == Purpose::SaveAs {
+                    // "Save" in the unsaved-changes question, then Cancel here: nothing happens.
+                    self.after_save = None;
+                }
+                self.dialog = None;
+            }
             Outcome::Chosen(path) => {
                 let purpose = dialog.purpose;
                 self.dialog = None;
                 match purpose {
-                    Purpose::Open => self.open(&path),
+                    Purpose::Open => self.request(Replace::Open(path)),
                     Purpose::LibraryFolder => {
                         let _ = std::fs::create_dir_all(&path);
                         self.settings.set_library(&path);
@@ -1123,19 +1314,13 @@ impl EditorApp {
                     Purpose::ExportFolder(format) => {
                         let name = self
                             .doc
-                            .path
-                            .as_deref()
+                            .resolve_file()
                             .and_then(Path::file_stem)
                             .map_or_else(
                                 || "cone-net".to_string(),
                                 |s| s.to_string_lossy().into_owned(),
                             );
-                        let base = self
-                            .doc
-                            .path
-                            .as_deref()
-                            .and_then(Path::parent)
-                            .map(Path::to_path_buf);
+                        let base = self.doc.base_dir();
                         self.message =
                             match export::export(&self.doc.graph, base, format, &path, &name) {
                                 Ok(files) => format!(
@@ -1154,49 +1339,32 @@ impl EditorApp {
         }
     }
 
-    fn show_close_question(&mut self, ctx: &egui::Context) {
-        if !self.confirm_close {
+    fn show_unsaved_question(&mut self, ctx: &egui::Context) {
+        let Some(pending) = &self.unsaved_question else {
             return;
-        }
-        let mut choice = None;
-        egui::Modal::new(egui::Id::new("cnets-close")).show(ctx, |ui| {
-            ui.heading("Save changes?");
-            ui.label(format!(
-                "{} has unsaved changes.",
-                self.doc.title().trim_end_matches(" *")
-            ));
-            ui.horizontal(|ui| {
-                if ui.button("Save").clicked() {
-                    choice = Some(0);
-                }
-                if ui.button("Don't save").clicked() {
-                    choice = Some(1);
-                }
-                if ui.button("Cancel").clicked() {
-                    choice = Some(2);
-                }
-            });
-        });
-        match choice {
-            Some(0) => {
-                self.confirm_close = false;
-                match self.doc.path.clone() {
-                    Some(p) => {
-                        self.save_as(&p);
-                        if !self.doc.is_dirty() {
-                            self.quit = true;
-                        }
+        };
+        let title = self.doc.title().trim_end_matches(" *").to_string();
+        let Some(answer) = unsaved::ask(ctx, &title, pending) else {
+            return;
+        };
+        let Some(pending) = self.unsaved_question.take() else {
+            return;
+        };
+        match answer {
+            Answer::Save => match self.doc.path.clone() {
+                Some(p) => {
+                    self.save_as(&p);
+                    if !self.doc.is_dirty() {
+                        self.perform(pending);
                     }
-                    None => self.run(MenuAction::SaveAs),
                 }
-            }
-            Some(1) => {
-                self.confirm_close = false;
-                self.close_confirmed = true;
-                self.quit = true;
-            }
-            Some(2) => self.confirm_close = false,
-            _ => {}
+                None => {
+                    self.after_save = Some(pending);
+                    self.run(MenuAction::SaveAs);
+                }
+            },
+            Answer::Discard => self.perform(pending),
+            Answer::Cancel => {}
         }
     }
 
@@ -1237,7 +1405,30 @@ impl EditorApp {
     }
 }
 
-/// The breadcrumb bar above the canvas inside an opened cluster: `main ▸ bay (inline)`; returns
+/// Whether `path` is a file of the examples folder (compared canonically).
+pub fn is_example(examples_dir: &Path, path: &Path) -> bool {
+    let canon = |p: &Path| std::fs::canonicalize(p).ok();
+    match (canon(examples_dir), path.parent().and_then(canon)) {
+        (Some(dir), Some(parent)) => dir == parent,
+        _ => false,
+    }
+}
+
+/// The folder an untitled document is first saved into: the working folder, unless that is the
+/// examples folder (or inside the source tree's `graphs/`), then the home folder.
+fn user_folder(examples_dir: &Path) -> PathBuf {
+    let cwd = std::env::current_dir().unwrap_or_default();
+    let examples = std::fs::canonicalize(examples_dir).ok();
+    let inside =
+        examples.is_some_and(|e| std::fs::canonicalize(&cwd).is_ok_and(|c| c.starts_with(e)));
+    if inside || cwd.as_os_str().is_empty() {
+        std::env::var_os("HOME").map_or(cwd, PathBuf::from)
+    } else {
+        cwd
+    }
+}
+
+/// The breadcrumb bar above the canvas inside an opened cluster: `main › bay (inline)`; returns
 /// the level clicked (0: the document's own graph).
 fn breadcrumbs(ui: &mut Ui, doc: &GraphDocument) -> Option<usize> {
     let mut picked = None;

@@ -25,7 +25,7 @@ use egui_snarl::ui::{
 use egui_snarl::{InPin, InPinId, NodeId, OutPin, OutPinId, Snarl};
 
 use crate::history::EditKey;
-use crate::worker::NodeStatus;
+use crate::worker::{NodeStatus, PANEL_TYPE};
 use crate::{mapper, widgets};
 
 /// A node on the canvas: the id of the graph node it shows.
@@ -162,6 +162,12 @@ pub struct Canvas {
     ui_rect: Rect,
     /// Plot rectangles of graph-mapper widgets (canvas coordinates).
     plots: HashMap<String, Rect>,
+    /// Rectangles of the inline value editors, by (node, input) (canvas coordinates).
+    editors: HashMap<(String, String), Rect>,
+    /// Readout rectangles of `view.panel` nodes (canvas coordinates).
+    panels: HashMap<String, Rect>,
+    /// A zoom asked for with [`Canvas::zoom_to`], applied on the next frame.
+    zoom_pending: Option<(f32, Option<Pos2>)>,
 }
 
 impl Default for Canvas {
@@ -170,9 +176,22 @@ impl Default for Canvas {
     }
 }
 
+/// The smallest canvas zoom. Text on the canvas is laid out at its normal size and its glyph
+/// quads are scaled with the canvas (egui transform layer); a quad less than one pixel tall can
+/// fall between pixel centres and not be drawn at all — which is how the minus sign of `-1`
+/// (Ubuntu Light's hyphen is the thinnest glyph the canvas draws: a 2-pixel-tall bitmap at
+/// 14 px) disappeared at some zoom levels while the digits stayed. At this zoom and above every
+/// glyph quad is at least one pixel tall (`tests/glyphs.rs` checks it for the fonts in use).
+pub const MIN_ZOOM: f32 = 0.5;
+
+/// The zoom a graph opens at when it does not fit: node text (14 px) at 10 px.
+pub const READABLE_ZOOM: f32 = 10.0 / 14.0;
+
 /// The snarl style of the canvas.
 fn style() -> SnarlStyle {
     let mut s = SnarlStyle::new();
+    s.min_scale = Some(MIN_ZOOM);
+    s.max_scale = Some(2.0);
     s.centering = Some(false);
     s.collapsible = Some(true);
     s.pin_size = Some(9.0);
@@ -208,10 +227,13 @@ impl Canvas {
             fit_delay: 0,
             ui_rect: Rect::NOTHING,
             plots: HashMap::new(),
+            editors: HashMap::new(),
+            panels: HashMap::new(),
+            zoom_pending: None,
         }
     }
 
-    /// Frames the whole graph on the next frames (on a new document, or View ▸ Frame graph).
+    /// Frames the whole graph on the next frames (on a new document, or View › Frame graph).
     pub fn fit(&mut self) {
         self.fit_pending = true;
     }
@@ -223,46 +245,35 @@ impl Canvas {
         self.fit_delay = 6;
     }
 
-    /// Positions that lay the graph out in columns by dependency depth (sources on the left),
-    /// using the node sizes measured in the last frame; nodes keep their vertical order within a
-    /// column. Empty until every node has been drawn once.
+    /// Positions of a layered layout of the graph ([`crate::layout::layered`]: sources left,
+    /// sinks right, few crossings, no overlaps), using the node sizes measured in the last frame.
+    /// Empty until every node has been drawn once.
     pub fn arrangement(&self, graph: &Graph) -> Vec<(String, [f32; 2])> {
         if self.rects.len() < graph.node_count() {
             return Vec::new();
         }
-        let order = graph.topological_order();
-        let mut depth: HashMap<petgraph::stable_graph::NodeIndex, usize> = HashMap::new();
-        for &k in &order {
-            let d = graph
-                .sources(k)
-                .filter_map(|s| depth.get(&s))
-                .map(|d| d + 1)
-                .max()
-                .unwrap_or(0);
-            depth.insert(k, d);
-        }
-        let columns = depth.values().copied().max().map_or(0, |m| m + 1);
-        let mut by_column: Vec<Vec<(String, Rect)>> = vec![Vec::new(); columns];
-        for (k, n) in graph.nodes() {
-            if let (Some(&d), Some(r)) = (depth.get(&k), self.rects.get(&n.id)) {
-                by_column[d].push((n.id.clone(), *r));
-            }
-        }
-        let (gap_x, gap_y) = (60.0, 30.0);
-        let mut x = 0.0;
-        let mut out = Vec::new();
-        for column in &mut by_column {
-            column.sort_by(|a, b| a.1.top().total_cmp(&b.1.top()));
-            let mut y = 0.0;
-            let mut width: f32 = 0.0;
-            for (id, r) in column.iter() {
-                out.push((id.clone(), [x, y]));
-                y += r.height() + gap_y;
-                width = width.max(r.width());
-            }
-            x += width + gap_x;
-        }
-        out
+        // In file order (stable), with the measured sizes.
+        let ids: Vec<String> = graph.nodes().map(|(_, n)| n.id.clone()).collect();
+        let index: HashMap<&str, usize> = ids
+            .iter()
+            .enumerate()
+            .map(|(k, id)| (id.as_str(), k))
+            .collect();
+        let sizes: Vec<[f32; 2]> = ids
+            .iter()
+            .map(|id| {
+                self.rects
+                    .get(id)
+                    .map_or([200.0, 100.0], |r| [r.width(), r.height()])
+            })
+            .collect();
+        let edges: Vec<(usize, usize)> = graph
+            .wires()
+            .iter()
+            .filter_map(|w| Some((*index.get(w.from.as_str())?, *index.get(w.to.as_str())?)))
+            .collect();
+        let pos = crate::layout::layered(&sizes, &edges, [70.0, 36.0]);
+        ids.into_iter().zip(pos).collect()
     }
 
     /// Whether all `count` nodes have been drawn (and measured) at least once.
@@ -285,19 +296,40 @@ impl Canvas {
         self.ui_rect
     }
 
-    /// The transform that frames canvas rectangle `bb` in screen rectangle `ui` (scale ≤ 1).
-    fn framing(bb: Rect, ui: Rect) -> Option<TSTransform> {
+    /// The transform that frames canvas rectangle `bb` in screen rectangle `ui`: the whole graph
+    /// when it fits at a readable zoom ([`READABLE_ZOOM`] ..= 1), else its top-left corner (the
+    /// sources) at the readable zoom; pan from there.
+    pub fn framing(bb: Rect, ui: Rect) -> Option<TSTransform> {
         if !(bb.is_positive() && ui.is_positive()) {
             return None;
         }
         let bb = bb.expand(30.0);
-        let scale = (ui.width() / bb.width())
-            .min(ui.height() / bb.height())
-            .clamp(0.3, 1.0);
-        Some(TSTransform::new(
-            ui.center().to_vec2() - bb.center().to_vec2() * scale,
-            scale,
-        ))
+        let fits = (ui.width() / bb.width()).min(ui.height() / bb.height());
+        let scale = fits.clamp(READABLE_ZOOM, 1.0);
+        let translation = if fits >= READABLE_ZOOM {
+            ui.center().to_vec2() - bb.center().to_vec2() * scale
+        } else {
+            // Centred along an axis that fits, the top-left corner otherwise.
+            let x = if bb.width() * scale <= ui.width() {
+                ui.center().x - bb.center().x * scale
+            } else {
+                ui.left() - bb.left() * scale
+            };
+            let y = if bb.height() * scale <= ui.height() {
+                ui.center().y - bb.center().y * scale
+            } else {
+                ui.top() - bb.top() * scale
+            };
+            egui::vec2(x, y)
+        };
+        Some(TSTransform::new(translation, scale))
+    }
+
+    /// Sets the canvas zoom (clamped to [`MIN_ZOOM`] ..= 2) on the next frame, with the canvas
+    /// point `around` at the centre of the view (`None`: the graph's top-left corner at the
+    /// view's top-left).
+    pub fn zoom_to(&mut self, zoom: f32, around: Option<Pos2>) {
+        self.zoom_pending = Some((zoom.clamp(MIN_ZOOM, 2.0), around));
     }
 
     /// Makes the snarl mirror `graph`: adds and removes nodes, copies positions, diffs wires.
@@ -393,6 +425,26 @@ impl Canvas {
         Some(self.to_global * Pos2::new(r.left() + u * r.width(), r.bottom() - v * r.height()))
     }
 
+    /// Screen rectangle of a `view.panel` node's readout after the last frame (its bottom-right
+    /// corner is the resize handle).
+    pub fn panel_screen_rect(&self, node: &str) -> Option<Rect> {
+        self.panels.get(node).map(|r| self.to_global * *r)
+    }
+
+    /// The canvas zoom of the last frame (screen points per canvas point).
+    pub fn zoom(&self) -> f32 {
+        self.to_global.scaling
+    }
+
+    /// Screen rectangle of the inline editor of `node`'s `input` after the last frame (e.g. a
+    /// `param.number` slider: the rail starts at its left edge, `slider_width` 110 points wide
+    /// at zoom 1).
+    pub fn editor_screen_rect(&self, node: &str, input: &str) -> Option<Rect> {
+        self.editors
+            .get(&(node.to_string(), input.to_string()))
+            .map(|r| self.to_global * *r)
+    }
+
     /// Screen position of a canvas point (accessibility rectangles of widgets on the canvas are
     /// in canvas coordinates).
     pub fn to_screen(&self, canvas: Pos2) -> Pos2 {
@@ -437,6 +489,21 @@ impl Canvas {
         } else if self.fit_pending && graph.node_count() == 0 {
             self.fit_pending = false;
         }
+        if let Some((z, around)) = self.zoom_pending.take() {
+            let translation = match around {
+                Some(p) => self.ui_rect.center().to_vec2() - p.to_vec2() * z,
+                None => {
+                    let bb = self.rects.values().fold(Rect::NOTHING, |a, r| a.union(*r));
+                    let corner = if bb.is_positive() {
+                        bb.min - egui::vec2(20.0, 20.0)
+                    } else {
+                        Pos2::ZERO
+                    };
+                    self.ui_rect.min.to_vec2() - corner.to_vec2() * z
+                }
+            };
+            fit = Some(TSTransform::new(translation, z));
+        }
         let mut viewer = Viewer {
             graph,
             statuses,
@@ -449,12 +516,16 @@ impl Canvas {
             pressed_node: None,
             fit,
             plots: HashMap::new(),
+            editors: HashMap::new(),
+            panels: HashMap::new(),
             selected: self.selected.clone(),
         };
         let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
         self.to_global = viewer.to_global;
         self.rects = viewer.rects;
         self.plots = viewer.plots;
+        self.editors = viewer.editors;
+        self.panels = viewer.panels;
         if let Some(id) = &viewer.pressed_node {
             self.focused = Some(id.clone());
         } else if response.clicked() && !response.double_clicked() {
@@ -489,6 +560,43 @@ impl Canvas {
         }
         actions
     }
+}
+
+/// The readout of a `view.panel` node: its text (selectable, monospace, every line) in a
+/// scrolling box the designer resizes by its bottom-right corner (the size is kept per node for
+/// the session). Returns the box's rectangle.
+fn panel_readout(ui: &mut Ui, id: &str, text: Option<&str>) -> Rect {
+    let frame = egui::Frame::new()
+        .fill(ui.visuals().extreme_bg_color)
+        .inner_margin(egui::Margin::same(4));
+    ui.scope(|ui| {
+        egui::Resize::default()
+            .id_salt(("cnets-panel", id))
+            .default_size([220.0, 110.0])
+            .min_size([90.0, 40.0])
+            .max_size([1200.0, 1600.0])
+            .show(ui, |ui| {
+                frame.show(ui, |ui| {
+                    egui::ScrollArea::both()
+                        .id_salt(("cnets-panel-scroll", id))
+                        .auto_shrink(false)
+                        .show(ui, |ui| match text {
+                            Some(t) => {
+                                ui.add(
+                                    egui::Label::new(egui::RichText::new(t).monospace())
+                                        .selectable(true)
+                                        .extend(),
+                                );
+                            }
+                            None => {
+                                ui.weak("(no value yet)");
+                            }
+                        });
+                });
+            });
+    })
+    .response
+    .rect
 }
 
 /// Applies a canvas action to a document as one undoable edit. Errors are messages for the
@@ -661,6 +769,8 @@ struct Viewer<'a> {
     pressed_node: Option<String>,
     fit: Option<TSTransform>,
     plots: HashMap<String, Rect>,
+    editors: HashMap<(String, String), Rect>,
+    panels: HashMap<String, Rect>,
     selected: Vec<String>,
 }
 
@@ -737,13 +847,13 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         };
         let cluster = Cluster::of(&instance.def);
         ui.horizontal(|ui| {
-            let sense = if cluster.is_some() {
-                egui::Sense::click()
-            } else {
-                egui::Sense::hover()
-            };
+            // The header's texts are not selectable and take no clicks: a click (Shift+click:
+            // select, Ctrl+click: deselect) or a drag on the title goes to the node itself.
+            ui.style_mut().interaction.selectable_labels = false;
             let title = ui
-                .add(egui::Label::new(egui::RichText::new(&id).strong()).sense(sense))
+                .add(
+                    egui::Label::new(egui::RichText::new(&id).strong()).sense(egui::Sense::hover()),
+                )
                 .on_hover_ui(|ui| {
                     ui.set_max_width(360.0);
                     ui.strong(instance.def.id.as_ref());
@@ -752,7 +862,12 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                         ui.weak("double-click to open it");
                     }
                 });
-            if cluster.is_some() && title.double_clicked() {
+            let double_clicked = title.contains_pointer()
+                && ui.input(|i| {
+                    i.pointer
+                        .button_double_clicked(egui::PointerButton::Primary)
+                });
+            if cluster.is_some() && double_clicked {
                 self.actions.push(CanvasAction::OpenCluster(id.clone()));
             }
             match cluster {
@@ -881,7 +996,10 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 }
             } else if !wired && widgets::has_editor(instance, k) {
                 ui.spacing_mut().slider_width = 110.0;
-                if let Some(value) = widgets::input_editor(ui, instance, k) {
+                let (changed, rect) = widgets::input_editor_with_rect(ui, instance, k);
+                self.editors
+                    .insert((id.clone(), port.name.to_string()), rect);
+                if let Some(value) = changed {
                     self.actions.push(CanvasAction::SetValue {
                         node: id.clone(),
                         input: port.name.to_string(),
@@ -979,7 +1097,9 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
     }
 
     fn has_body(&mut self, node: &CanvasNode) -> bool {
-        self.graph.node(&node.id).is_some_and(mapper::is_mapper)
+        self.graph
+            .node(&node.id)
+            .is_some_and(|n| mapper::is_mapper(n) || n.def.id == PANEL_TYPE)
     }
 
     fn show_body(
@@ -993,6 +1113,15 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
             return;
         };
+        if self.graph.node(&id).is_some_and(|n| n.def.id == PANEL_TYPE) {
+            let text = match self.statuses.get(&id) {
+                Some(NodeStatus::Ok { readout, .. }) => readout.clone(),
+                _ => None,
+            };
+            let rect = panel_readout(ui, &id, text.as_deref());
+            self.panels.insert(id, rect);
+            return;
+        }
         if let Some(instance) = self.graph.node(&id) {
             let r = mapper::show(ui, self.graph, instance);
             self.plots.insert(id.clone(), r.plot);
@@ -1087,7 +1216,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         if let Some(n) = self.graph.node(&id)
             && n.def.has_flag(NodeFlag::Export)
         {
-            ui.weak("runs on File ▸ Export");
+            ui.weak("runs on File › Export");
         }
     }
 

@@ -118,8 +118,12 @@ pub struct GraphDocument {
     pub graph: Graph,
     /// Name and description written into the file.
     pub meta: GraphMeta,
-    /// Where the document was loaded from or last saved to; `None` for a new document.
+    /// Where the document was loaded from or last saved to; `None` for a new document (and for
+    /// an untitled copy of an example: saving it asks where).
     pub path: Option<PathBuf>,
+    /// The shipped example an untitled copy was opened from (File › Open example, the start-up
+    /// graph): file paths in the graph resolve next to it, but a save never writes there.
+    pub origin: Option<PathBuf>,
     /// Undo / redo.
     pub history: History,
     /// Clusters opened in place, outermost first; `graph` is the innermost one's subgraph.
@@ -150,6 +154,7 @@ impl GraphDocument {
             graph,
             meta,
             path,
+            origin: None,
             history: History::default(),
             stack: Vec::new(),
             live: None,
@@ -199,6 +204,28 @@ impl GraphDocument {
     ) -> Result<Self, String> {
         let doc = file::load_str_with(text, name, registry, options).map_err(|e| e.to_string())?;
         Ok(Self::from_parts(doc.graph, doc.meta, path))
+    }
+
+    /// Turns the document into an untitled copy of the file it was loaded from (a shipped
+    /// example): the file is remembered as [`GraphDocument::origin`], the first save asks where.
+    pub fn into_untitled_copy(mut self) -> Self {
+        if let Some(p) = self.path.take() {
+            self.origin = Some(p);
+        }
+        self
+    }
+
+    /// The file relative paths of the graph resolve against: the document's own path, else the
+    /// example it is a copy of.
+    pub fn resolve_file(&self) -> Option<&Path> {
+        self.path.as_deref().or(self.origin.as_deref())
+    }
+
+    /// The folder relative paths of the graph resolve in (see [`GraphDocument::resolve_file`]).
+    pub fn base_dir(&self) -> Option<PathBuf> {
+        self.resolve_file()
+            .and_then(Path::parent)
+            .map(Path::to_path_buf)
     }
 
     /// Saves atomically to `path` (and remembers it as the document's path). Inside a cluster,
@@ -427,12 +454,19 @@ impl GraphDocument {
         self.version
     }
 
-    /// The title shown in the window: file name (or "untitled") and a `*` when dirty.
+    /// The title shown in the window: file name (or "untitled", naming the example an untitled
+    /// copy came from) and a `*` when dirty.
     pub fn title(&self) -> String {
-        let name = self.path.as_deref().and_then(Path::file_name).map_or_else(
-            || "untitled".to_string(),
-            |n| n.to_string_lossy().into_owned(),
-        );
+        let file_name = |p: &Path| {
+            p.file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        };
+        let name = match (&self.path, &self.origin) {
+            (Some(p), _) => file_name(p),
+            (None, Some(o)) => format!("untitled (copy of example {})", file_name(o)),
+            (None, None) => "untitled".to_string(),
+        };
         format!("{name}{}", if self.dirty { " *" } else { "" })
     }
 
@@ -471,15 +505,25 @@ impl GraphDocument {
         Ok(result)
     }
 
-    /// Replaces the graph wholesale with a snapshot (undo, redo).
+    /// Restores a snapshot (undo, redo). At the document's own graph the snapshot becomes the
+    /// successor of the current graph ([`Graph::succeed`]): a new revision, with only the nodes
+    /// that differ stamped as edited, so the worker keeps its evaluator and re-runs only their
+    /// downstream cone. Across opened clusters (the levels differ) a new generation starts a
+    /// fresh evaluator.
     fn restore(&mut self, snapshot: Snapshot) {
-        self.graph = snapshot.graph;
+        let same_level = self.stack.is_empty() && snapshot.stack.is_empty();
+        let mut graph = snapshot.graph;
+        if same_level {
+            graph.succeed(&self.graph);
+        } else {
+            self.generation += 1;
+        }
+        self.graph = graph;
         self.meta = snapshot.meta;
         self.stack = snapshot.stack;
         self.live = None;
         self.refresh_live();
         self.dirty = true;
-        self.generation += 1;
         self.version += 1;
     }
 
@@ -600,9 +644,61 @@ mod tests {
         let generation = doc.generation();
         assert!(doc.undo());
         assert_eq!(doc.to_ron(), one);
-        assert!(doc.generation() > generation);
+        assert_eq!(doc.generation(), generation, "the evaluator is kept");
         assert!(doc.redo());
         assert_eq!(doc.to_ron(), two);
+    }
+
+    #[test]
+    fn undoing_a_slider_change_reruns_only_its_downstream_cone() {
+        use cnets_engine::{Evaluator, NodeContext, Value};
+        let text = r#"(
+    version: 1,
+    nodes: {
+        "n": (type: "param.number", inputs: {"value": 3.0, "min": 0.0, "max": 10.0}),
+        "m": (type: "math.multiply", inputs: {"b": 2.0}),
+        "after": (type: "math.add", inputs: {"b": 1.0}),
+        "side": (type: "param.number", inputs: {"value": 5.0, "min": 0.0, "max": 10.0}),
+        "other": (type: "math.add", inputs: {"b": 1.0}),
+    },
+    edges: ["n.value -> m.a", "m.result -> after.a", "side.value -> other.a"],
+)"#;
+        let mut doc = GraphDocument::from_text(text, "t.ron", None, &registry()).unwrap();
+        let mut ev = Evaluator::new();
+        let ctx = NodeContext::default();
+        ev.evaluate_all(&doc.graph, &ctx);
+        let generation = doc.generation();
+        doc.edit(Some(EditKey::Value("n".into(), "value".into())), |g, _| {
+            g.set_value("n", "value", Value::Number(4.0))
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+        doc.history.end_gesture();
+        ev.evaluate_all(&doc.graph, &ctx);
+        let runs = |ev: &Evaluator, doc: &GraphDocument| -> Vec<u64> {
+            ["n", "m", "after", "side", "other"]
+                .iter()
+                .map(|id| ev.runs(&doc.graph, id))
+                .collect()
+        };
+        assert_eq!(runs(&ev, &doc), vec![2, 2, 2, 1, 1], "the edit's cone ran");
+        assert!(doc.undo());
+        assert_eq!(doc.generation(), generation, "same evaluator");
+        let s = ev.evaluate_all(&doc.graph, &ctx);
+        assert_eq!(s.ran, 3, "n, m and after re-run; side and other do not");
+        assert_eq!(runs(&ev, &doc), vec![3, 3, 3, 1, 1]);
+        assert_eq!(
+            ev.output(&doc.graph, "after", "result"),
+            Some(&Value::Number(7.0)),
+            "the undone value's result: 3 × 2 + 1"
+        );
+        assert!(doc.redo());
+        assert_eq!(ev.evaluate_all(&doc.graph, &ctx).ran, 3);
+        assert_eq!(
+            ev.output(&doc.graph, "after", "result"),
+            Some(&Value::Number(9.0))
+        );
     }
 
     const SUB: &str = r#"(
@@ -618,7 +714,7 @@ mod tests {
     const MAIN: &str = r#"(
     version: 1,
     nodes: {
-        "n": (type: "param.number", inputs: {"value": 3.0}),
+        "n": (type: "param.number", inputs: {"value": 3.0, "min": 0.0, "max": 10.0}),
         "c": (type: "cluster", source: "sub.ron"),
         "after": (type: "math.add"),
     },

@@ -1,4 +1,4 @@
-//! File ▸ Export: writes the previewed cone-net as glTF binary, OBJ, SVG or DXF through the
+//! File › Export: writes the previewed cone-net as glTF binary, OBJ, SVG or DXF through the
 //! export nodes of the library (flag `Export`), so the editor and `cnets run` write the same files.
 //!
 //! The export node's ports are read from the registry: its first input that accepts the mesh is

@@ -63,6 +63,12 @@ impl History {
         }
     }
 
+    /// Whether a gesture is in progress (its edits are not committed yet: the pointer is still
+    /// held, or a text field is being typed in).
+    pub fn in_gesture(&self) -> bool {
+        self.gesture.is_some()
+    }
+
     /// Ends the gesture in progress: the next edit starts a new step.
     pub fn end_gesture(&mut self) {
         self.gesture = None;

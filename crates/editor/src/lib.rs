@@ -15,7 +15,10 @@
 //!   through the export nodes.
 //! - [`library`]: the user library of graphs used as cluster nodes, and reloading cluster files
 //!   changed on disk; [`optimization`]: the optimization panel and its runs.
-//! - [`recovery`]: autosave and restore after a crash; [`settings`]: recent files, library folder.
+//! - [`recovery`]: autosave and restore after a crash; [`settings`]: recent files, library folder;
+//!   [`unsaved`]: the Save / Don't save / Cancel guard on everything that replaces the document;
+//!   [`load_failure`]: a file that failed to load, with its diagnostics; [`parameters`]: the
+//!   docked parameter panel.
 //! - [`app`]: the editor state and one frame of UI, shared by the window (`main.rs`) and tests.
 
 pub mod app;
@@ -24,13 +27,18 @@ pub mod document;
 pub mod export;
 pub mod file_dialog;
 pub mod history;
+pub mod instance;
+pub mod layout;
 pub mod library;
+pub mod load_failure;
 pub mod mapper;
 pub mod menus;
 pub mod optimization;
 pub mod palette;
+pub mod parameters;
 pub mod recovery;
 pub mod settings;
+pub mod unsaved;
 pub mod viewport;
 pub mod widgets;
 pub mod worker;

@@ -3,6 +3,14 @@
 //! The cnets desktop editor. With `--screenshot`, it waits for the first evaluation, takes an
 //! in-app screenshot (egui `ViewportCommand::Screenshot`) after N frames (default 10), writes it
 //! as PNG and quits: `scripts/editor-screenshot.sh` uses it under Xvfb.
+//!
+//! Started with a FILE while a window with the same settings folder is open, it hands the file
+//! to that window (which asks about unsaved changes first) and exits.
+//!
+//! Test modes (the real window under Xvfb, `tests/window.rs`): `--drive-drag` drags the first
+//! `param.number` slider with injected pointer events (press, moves, release), prints the values
+//! shown once released and keeps running (the test kills it); `--restore-and-print` accepts the
+//! recovery file's restore, prints the values and quits.
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -24,6 +32,8 @@ struct Args {
     screenshot: Option<PathBuf>,
     quit_after: u32,
     size: [f32; 2],
+    drive_drag: bool,
+    restore_and_print: bool,
 }
 
 fn parse_args() -> anyhow::Result<Args> {
@@ -33,6 +43,8 @@ fn parse_args() -> anyhow::Result<Args> {
         screenshot: None,
         quit_after: 10,
         size: [1400.0, 860.0],
+        drive_drag: false,
+        restore_and_print: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -58,6 +70,8 @@ fn parse_args() -> anyhow::Result<Args> {
                 let (w, h) = s.split_once('x').context("--size needs WxH")?;
                 args.size = [w.parse()?, h.parse()?];
             }
+            "--drive-drag" => args.drive_drag = true,
+            "--restore-and-print" => args.restore_and_print = true,
             "-h" | "--help" => {
                 println!(
                     "cnets-editor [FILE] [--screenshot OUT.png] [--quit-after-frames N] [--size WxH]"
@@ -80,6 +94,122 @@ struct Window {
     requested: bool,
     result: Arc<Mutex<Option<anyhow::Result<()>>>>,
     bench: Option<Bench>,
+    drive: Option<Drive>,
+    restore_and_print: bool,
+    config_dir: PathBuf,
+}
+
+/// The values of every `param.number` slider, one `node.value = x` a line (full precision).
+fn slider_values(app: &EditorApp) -> String {
+    let mut lines: Vec<String> = app
+        .doc
+        .graph
+        .nodes()
+        .filter(|(_, n)| n.def.id == "param.number")
+        .map(|(_, n)| {
+            let v = n.value_of("value").and_then(cnets_engine::Value::as_f64);
+            format!("{}.value = {v:?}", n.id)
+        })
+        .collect();
+    lines.sort();
+    lines.join("\n")
+}
+
+/// `--drive-drag`: a slider drag made of real egui pointer events, injected into the window's
+/// raw input (the same path a mouse takes after winit).
+struct Drive {
+    frames: u32,
+    /// Where the press happens and how far the drag goes (screen points), once the slider is
+    /// drawn.
+    from: Option<egui::Pos2>,
+    to: egui::Pos2,
+    step: u32,
+    node: String,
+    /// The dragged slider's value before the drag.
+    was: Option<f64>,
+    reported: bool,
+}
+
+/// Moves between the press and the release.
+const DRIVE_MOVES: u32 = 12;
+
+impl Drive {
+    /// Finds the slider once the canvas has been framed (a few frames after the first results).
+    fn locate(&mut self, app: &EditorApp) {
+        if self.from.is_some() {
+            return;
+        }
+        self.frames += 1;
+        if self.frames < 30 {
+            return;
+        }
+        let Some(id) = app
+            .doc
+            .graph
+            .nodes()
+            .find(|(_, n)| n.def.id == "param.number")
+            .map(|(_, n)| n.id.clone())
+        else {
+            return;
+        };
+        if let Some(r) = app.canvas.editor_screen_rect(&id, "value") {
+            // On the rail: from a quarter of the way to 85 % (the rail is the left part of the
+            // editor; the value box follows it).
+            let rail = r.width().min(110.0 * app.canvas.zoom());
+            let y = r.center().y;
+            self.from = Some(egui::pos2(r.left() + rail * 0.25, y));
+            self.to = egui::pos2(r.left() + rail * 0.85, y);
+            self.was = app
+                .doc
+                .graph
+                .node(&id)
+                .and_then(|n| n.value_of("value"))
+                .and_then(cnets_engine::Value::as_f64);
+            self.node = id;
+        }
+    }
+
+    fn inject(&mut self, raw: &mut egui::RawInput) {
+        let Some(from) = self.from else {
+            return;
+        };
+        let press = |pos, pressed| egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        };
+        let t = self.step as f32 / DRIVE_MOVES as f32;
+        let at = from + (self.to - from) * t.min(1.0);
+        match self.step {
+            0 => {
+                raw.events.push(egui::Event::PointerMoved(from));
+                raw.events.push(press(from, true));
+            }
+            s if s <= DRIVE_MOVES => raw.events.push(egui::Event::PointerMoved(at)),
+            s if s == DRIVE_MOVES + 1 => raw.events.push(press(self.to, false)),
+            _ => return,
+        }
+        self.step += 1;
+    }
+
+    /// After the release frame: prints what the window shows (the test kills the process then).
+    fn report(&mut self, app: &EditorApp) {
+        if self.reported || self.step <= DRIVE_MOVES + 1 {
+            return;
+        }
+        self.reported = true;
+        println!(
+            "drive-drag: released {} pid {}",
+            self.node,
+            std::process::id()
+        );
+        println!("{}.value was {:?}", self.node, self.was);
+        println!("{}", slider_values(app));
+        println!("drive-drag: end");
+        use std::io::Write as _;
+        let _ = std::io::stdout().flush();
+    }
 }
 
 /// `--bench-drag N`: moves the first `param.number` slider every frame for N frames (as a drag
@@ -192,9 +322,29 @@ impl eframe::App for Window {
         {
             self.app.wait_for_worker(Duration::from_secs(60));
         }
+        if std::mem::take(&mut self.restore_and_print) {
+            if self.app.restore_offered() {
+                self.app.restore();
+                self.app.wait_for_worker(Duration::from_secs(60));
+                println!("restored: {}", self.app.message);
+                println!("{}", slider_values(&self.app));
+            } else {
+                println!("restored: nothing to restore");
+            }
+            println!("restored: end");
+            // Quit without the unsaved-changes question, keeping the recovery file.
+            std::process::exit(0);
+        }
         let started = std::time::Instant::now();
         self.app.ui(ui);
         let ctx = ui.ctx().clone();
+        if let Some(d) = &mut self.drive {
+            d.locate(&self.app);
+            d.report(&self.app);
+            if !d.reported {
+                ctx.request_repaint();
+            }
+        }
         if let Some(b) = &mut self.bench {
             b.uis.push(started.elapsed().as_secs_f64() * 1e3);
             b.step(&mut self.app, &ctx);
@@ -244,13 +394,21 @@ impl eframe::App for Window {
         ctx.request_repaint();
     }
 
+    fn raw_input_hook(&mut self, _ctx: &egui::Context, raw_input: &mut egui::RawInput) {
+        self.app.raw_input(raw_input);
+        if let Some(d) = &mut self.drive {
+            d.inject(raw_input);
+        }
+    }
+
     fn on_exit(&mut self) {
         self.app.on_exit();
+        cnets_editor::instance::release(&self.config_dir);
     }
 }
 
-/// Fails when the screenshot is (nearly) blank: too few colours, or the right half (the 3D view)
-/// one flat colour.
+/// Fails when the screenshot is (nearly) blank: too few colours, or the right part (the 3D view)
+/// one flat colour (less than 0.2 % of it drawn).
 fn check_not_blank(image: &cnets_render::Image) -> anyhow::Result<()> {
     let mut colours = std::collections::HashSet::new();
     let mut right = std::collections::HashMap::<[u8; 4], usize>::new();
@@ -271,7 +429,8 @@ fn check_not_blank(image: &cnets_render::Image) -> anyhow::Result<()> {
         colours.len(),
         covered * 100.0
     );
-    if colours.len() < 64 || covered < 0.05 {
+    // A design of curves only (curves-demo) draws thin lines: half a percent of the view.
+    if colours.len() < 64 || covered < 0.002 {
         bail!(
             "the screenshot looks blank ({} colours, {:.1}% of the 3D view drawn)",
             colours.len(),
@@ -283,6 +442,18 @@ fn check_not_blank(image: &cnets_render::Image) -> anyhow::Result<()> {
 
 fn main() -> anyhow::Result<()> {
     let args = parse_args()?;
+    let config_dir = cnets_editor::settings::config_dir();
+    let test_mode = args.screenshot.is_some()
+        || args.bench_drag.is_some()
+        || args.drive_drag
+        || args.restore_and_print;
+    if !test_mode
+        && let Some(file) = &args.file
+        && cnets_editor::instance::hand_over(&config_dir, file)
+    {
+        println!("cnets-editor: {} sent to the open window", file.display());
+        return Ok(());
+    }
     let examples_dir = std::env::var_os("CNETS_GRAPHS")
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../graphs")));
@@ -305,13 +476,17 @@ fn main() -> anyhow::Result<()> {
                 .as_ref()
                 .map(|rs| GpuTarget::from_render_state(rs, 1, None));
             let ctx = cc.egui_ctx.clone();
-            let app = EditorApp::new(AppOptions {
+            let wake: Arc<dyn Fn() + Send + Sync> = Arc::new(move || ctx.request_repaint());
+            let mut app = EditorApp::new(AppOptions {
                 gpu,
-                config_dir: cnets_editor::settings::config_dir(),
+                config_dir: config_dir.clone(),
                 file: args.file.clone(),
                 examples_dir,
-                wake: Arc::new(move || ctx.request_repaint()),
+                wake: wake.clone(),
             });
+            if !test_mode && let Some(inbox) = cnets_editor::instance::listen(&config_dir, wake) {
+                app.set_inbox(inbox);
+            }
             Ok(Box::new(Window {
                 app,
                 screenshot: args.screenshot.clone(),
@@ -330,6 +505,17 @@ fn main() -> anyhow::Result<()> {
                     seen: 0,
                     reported: false,
                 }),
+                drive: args.drive_drag.then(|| Drive {
+                    frames: 0,
+                    from: None,
+                    to: egui::Pos2::ZERO,
+                    step: 0,
+                    node: String::new(),
+                    was: None,
+                    reported: false,
+                }),
+                restore_and_print: args.restore_and_print,
+                config_dir: config_dir.clone(),
             }))
         }),
     )

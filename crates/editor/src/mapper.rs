@@ -89,7 +89,12 @@ pub struct MapperResponse {
     pub optimize: Option<crate::canvas::CanvasAction>,
 }
 
-/// Shows the widget.
+/// A handle coordinate rounded to a thousandth (see `show`).
+pub fn snap(x: f64) -> f64 {
+    (x * 1000.0).round() / 1000.0
+}
+
+/// Shows the graph-mapper widget of `node`; returns the changes and the plot rectangle.
 pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse {
     let (Some(kind_k), Some(handles_k)) = (kind_port(node), handles_port(node)) else {
         return MapperResponse {
@@ -137,10 +142,12 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse 
             rect.bottom() - (p.y.clamp(-0.05, 1.05) as f32) * rect.height(),
         )
     };
+    // Dragged handles snap to a thousandth of the unit square (a pixel is ~1/130 of it): the file
+    // gets 0.402, not 0.40179139375686646.
     let to_unit = |p: Pos2| {
         DVec2::new(
-            f64::from((p.x - rect.left()) / rect.width()).clamp(0.0, 1.0),
-            f64::from((rect.bottom() - p.y) / rect.height()).clamp(0.0, 1.0),
+            snap(f64::from((p.x - rect.left()) / rect.width()).clamp(0.0, 1.0)),
+            snap(f64::from((rect.bottom() - p.y) / rect.height()).clamp(0.0, 1.0)),
         )
     };
     let handles = handles(node);

@@ -13,8 +13,10 @@ pub enum MenuAction {
     New,
     /// Show the open dialog.
     Open,
-    /// Open this file (examples, recent files).
+    /// Open this file (recent files).
     OpenPath(PathBuf),
+    /// Open an untitled copy of this shipped example.
+    OpenExample(PathBuf),
     /// Save (save-as for an untitled graph).
     Save,
     /// Show the save-as dialog.
@@ -53,6 +55,8 @@ pub enum MenuAction {
     LeaveTo(usize),
     /// Show or hide the optimization panel.
     ToggleOptimization,
+    /// Show or hide the parameter panel.
+    ToggleParameters,
     /// Choose the user library folder.
     LibraryFolder,
     /// Close the editor.
@@ -77,6 +81,8 @@ pub struct MenuContext<'a> {
     pub depth: usize,
     /// Whether the optimization panel is shown.
     pub optimization: bool,
+    /// Whether the parameter panel is shown.
+    pub parameters: bool,
     /// The user library folder.
     pub library: &'a Path,
 }
@@ -113,7 +119,7 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                         ui,
                         &file_label(p),
                         "",
-                        MenuAction::OpenPath(p.clone()),
+                        MenuAction::OpenExample(p.clone()),
                         true,
                     );
                 }
@@ -203,6 +209,12 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                 "Optimization"
             };
             pick(ui, label, "", MenuAction::ToggleOptimization, true);
+            let label = if mc.parameters {
+                "Hide parameters"
+            } else {
+                "Parameters"
+            };
+            pick(ui, label, "Ctrl+P", MenuAction::ToggleParameters, true);
             ui.separator();
             ui.label("Colour faces by");
             for mode in ColorMode::ALL {

@@ -1,12 +1,12 @@
-//! The optimization panel (View ▸ Optimization): the graph's stored optimization setup
+//! The optimization panel (View › Optimization): the graph's stored optimization setup
 //! (`cnets_engine::optimize::Setup`: variables with bounds, objective, penalties, method, iteration
 //! limit), picked from the canvas and edited as document edits (undo, saved in the file's
 //! `optimization` section), and runs of the engine's optimizer on a worker thread with a live
 //! objective plot.
 //!
-//! Picking: right-click an unconnected input's label ▸ *Optimize this value* (a number, an item of a
+//! Picking: right-click an unconnected input's label › *Optimize this value* (a number, an item of a
 //! list, a coordinate of a point; bounds: a `param.number`'s slider range, `[0, 1]` for graph-mapper
-//! handles, ±50 % of the value otherwise), right-click a number output ▸ *Minimize this output* or
+//! handles, ±50 % of the value otherwise), right-click a number output › *Minimize this output* or
 //! *Add as penalty*. A setup needs an objective and at least one variable to be stored in the file;
 //! until both are picked the panel keeps a draft.
 //!
@@ -602,8 +602,8 @@ impl OptimizationPanel {
     fn draft_view(&mut self, ui: &mut Ui) {
         ui.label("No optimization setup yet.");
         ui.weak(
-            "Right-click an unconnected number input ▸ Optimize this value, \
-             and a number output ▸ Minimize this output.",
+            "Right-click an unconnected number input › Optimize this value, \
+             and a number output › Minimize this output.",
         );
         let d = &mut self.draft;
         if let Some(o) = &d.objective {

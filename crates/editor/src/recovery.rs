@@ -2,16 +2,22 @@
 //! a clean exit (or a save) removes it, so finding one at start means the last session ended
 //! without saving, and the editor offers to restore it.
 //!
+//! When: every committed edit (a drag or handle release, a text field left, a wire, an added or
+//! deleted node) is written in the frame it is committed; during a gesture (a slider being
+//! dragged) at most once per [`AUTOSAVE_WITHIN`], and the app asks for a frame when a write is
+//! due, so the file is never more than a second behind what the window shows.
+//!
 //! Files in the settings folder: `recovery.ron` (the graph's canonical text, written atomically)
-//! and `recovery.path` (the document's own path, if it had one).
+//! and `recovery.path` (first line: the document's own path, if it had one; second line: the
+//! example an untitled copy came from, if any).
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use cnets_engine::atomic::write_atomic;
 
-/// Seconds between autosaves of a changed document.
-pub const AUTOSAVE_EVERY: Duration = Duration::from_secs(3);
+/// During a gesture, the recovery file is rewritten at least this often.
+pub const AUTOSAVE_WITHIN: Duration = Duration::from_secs(1);
 
 /// A recovery file found at start.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -20,6 +26,21 @@ pub struct Recovered {
     pub text: String,
     /// The path the document had.
     pub path: Option<PathBuf>,
+    /// The example the document was an untitled copy of.
+    pub origin: Option<PathBuf>,
+}
+
+/// What [`Recovery::tick`] did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Autosave {
+    /// Nothing to write (clean document, or already written).
+    Idle,
+    /// Wrote the recovery file.
+    Wrote,
+    /// A write is due after this long (a gesture is in progress): ask for a frame then.
+    Due(Duration),
+    /// Writing failed.
+    Failed,
 }
 
 /// Autosaves into one folder.
@@ -28,6 +49,10 @@ pub struct Recovery {
     dir: PathBuf,
     saved_version: Option<u64>,
     last_write: Option<Instant>,
+}
+
+fn opt_line(p: Option<&Path>) -> String {
+    p.map(|p| p.display().to_string()).unwrap_or_default()
 }
 
 impl Recovery {
@@ -52,18 +77,24 @@ impl Recovery {
     /// The recovery file left by a previous session, if any.
     pub fn find(&self) -> Option<Recovered> {
         let text = std::fs::read_to_string(self.file()).ok()?;
-        let path = std::fs::read_to_string(self.path_file())
-            .ok()
-            .map(|p| p.trim().to_string())
-            .filter(|p| !p.is_empty())
-            .map(PathBuf::from);
-        Some(Recovered { text, path })
+        let paths = std::fs::read_to_string(self.path_file()).unwrap_or_default();
+        let mut lines = paths.lines().map(str::trim);
+        let mut next = || lines.next().filter(|p| !p.is_empty()).map(PathBuf::from);
+        let path = next();
+        let origin = next();
+        Some(Recovered { text, path, origin })
     }
 
     /// Writes the recovery file now (atomically).
-    pub fn write(&mut self, text: &str, path: Option<&Path>, version: u64) -> std::io::Result<()> {
+    pub fn write(
+        &mut self,
+        text: &str,
+        path: Option<&Path>,
+        origin: Option<&Path>,
+        version: u64,
+    ) -> std::io::Result<()> {
         std::fs::create_dir_all(&self.dir)?;
-        let p = path.map(|p| p.display().to_string()).unwrap_or_default();
+        let p = format!("{}\n{}\n", opt_line(path), opt_line(origin));
         write_atomic(&self.path_file(), p.as_bytes())?;
         write_atomic(&self.file(), text.as_bytes())?;
         self.saved_version = Some(version);
@@ -71,26 +102,30 @@ impl Recovery {
         Ok(())
     }
 
-    /// Autosaves when the document is dirty, changed since the last autosave, and the last write
-    /// is at least [`AUTOSAVE_EVERY`] old. `text` is only called when writing. Returns whether it
-    /// wrote.
+    /// Autosaves a dirty document whose `version` was not written yet: at once when `committed`
+    /// (no gesture in progress), else when the last write is [`AUTOSAVE_WITHIN`] old (otherwise
+    /// it says when a write is due). `text` is only called when writing.
     pub fn tick(
         &mut self,
         dirty: bool,
         version: u64,
-        path: Option<&Path>,
+        committed: bool,
+        paths: (Option<&Path>, Option<&Path>),
         text: impl FnOnce() -> String,
-    ) -> bool {
+    ) -> Autosave {
         if !dirty || self.saved_version == Some(version) {
-            return false;
+            return Autosave::Idle;
         }
-        if self
-            .last_write
-            .is_some_and(|t| t.elapsed() < AUTOSAVE_EVERY)
+        if !committed
+            && let Some(t) = self.last_write
+            && t.elapsed() < AUTOSAVE_WITHIN
         {
-            return false;
+            return Autosave::Due(AUTOSAVE_WITHIN - t.elapsed());
         }
-        self.write(&text(), path, version).is_ok()
+        match self.write(&text(), paths.0, paths.1, version) {
+            Ok(()) => Autosave::Wrote,
+            Err(_) => Autosave::Failed,
+        }
     }
 
     /// Removes the recovery files (after a save, a clean exit, or a declined restore).
@@ -106,27 +141,46 @@ mod tests {
     use super::*;
 
     #[test]
-    fn autosave_find_and_clear() {
+    fn committed_edits_are_written_at_once_gestures_within_a_second() {
         let dir = std::env::temp_dir().join(format!("cnets-recovery-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         let mut r = Recovery::new(&dir);
         assert!(r.find().is_none());
-        assert!(
-            !r.tick(false, 1, None, || "x".into()),
+        let none = (None, None);
+        assert_eq!(
+            r.tick(false, 1, true, none, || "x".into()),
+            Autosave::Idle,
             "clean documents are not saved"
         );
-        assert!(r.tick(true, 1, Some(Path::new("/tmp/a.ron")), || "one".into()));
-        assert!(
-            !r.tick(true, 1, None, || "one".into()),
+        let a = Path::new("/tmp/a.ron");
+        assert_eq!(
+            r.tick(true, 1, false, (Some(a), None), || "one".into()),
+            Autosave::Wrote,
+            "the first step of a gesture is written"
+        );
+        assert_eq!(
+            r.tick(true, 1, true, none, || "one".into()),
+            Autosave::Idle,
             "same version: nothing to do"
         );
-        assert!(
-            !r.tick(true, 2, None, || "two".into()),
-            "too soon after the last write"
+        match r.tick(true, 2, false, none, || "two".into()) {
+            Autosave::Due(d) => assert!(d <= AUTOSAVE_WITHIN, "{d:?}"),
+            other => panic!("mid-gesture, right after a write: due later, got {other:?}"),
+        }
+        assert_eq!(r.find().unwrap().text, "one");
+        assert_eq!(
+            r.tick(true, 3, true, (Some(a), None), || "three".into()),
+            Autosave::Wrote,
+            "the gesture's end is written at once"
         );
         let found = r.find().unwrap();
-        assert_eq!(found.text, "one");
+        assert_eq!(found.text, "three");
         assert_eq!(found.path, Some(PathBuf::from("/tmp/a.ron")));
+        assert_eq!(found.origin, None);
+        let example = Path::new("/x/graphs/bridge.ron");
+        r.tick(true, 4, true, (None, Some(example)), || "four".into());
+        let found = r.find().unwrap();
+        assert_eq!((found.path, found.origin), (None, Some(example.into())));
         r.clear();
         assert!(r.find().is_none());
         std::fs::remove_dir_all(&dir).unwrap();

@@ -32,12 +32,43 @@ pub fn slider_range(node: &NodeInstance) -> (f64, f64, f64) {
     (min, max, get("step", 0.0).max(0.0))
 }
 
-/// Whether an input gets an inline editor (an item of a simple type, or a list / tree port whose
-/// current value is a single number).
+/// The node type shown as a drop-down of its options (Grasshopper's Value List).
+pub const CHOICE_TYPE: &str = "param.choice";
+
+/// The options of a `param.choice` node, when its `options` input holds a literal list of texts.
+pub fn choice_options(node: &NodeInstance) -> Option<Vec<String>> {
+    let k = node.def.input_index("options")?;
+    let items = effective_value(node, k)?;
+    let list = items.as_list()?;
+    list.iter()
+        .map(|v| match v {
+            Value::Text(t) => Some(t.to_string()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// `x` rounded to a thousandth of `range` (a power of ten: range 1 → 0.001, range 30 → 0.01).
+pub fn snap_to_range(x: f64, range: f64) -> f64 {
+    if !(range.is_finite() && range > 0.0) {
+        return x;
+    }
+    let unit = 10f64.powf((range.log10() - 3.0).floor());
+    let snapped = (x / unit).round() * unit;
+    // Through the shortest decimal text, so 0.1 + 0.2 is stored as 0.3.
+    let decimals = (-unit.log10()).ceil().max(0.0) as usize;
+    format!("{snapped:.decimals$}").parse().unwrap_or(snapped)
+}
+
+/// Whether an input gets an inline editor (an item of a simple type, a list / tree port whose
+/// current value is a single number, or a `param.choice`'s options: one a line).
 pub fn has_editor(node: &NodeInstance, k: usize) -> bool {
     let Some(port) = node.def.inputs.get(k) else {
         return false;
     };
+    if node.def.id == CHOICE_TYPE && port.name == "options" {
+        return true;
+    }
     let simple = matches!(
         port.ty,
         ValueType::Number
@@ -79,10 +110,37 @@ pub fn initial_value(ty: &ValueType) -> Option<Value> {
 
 /// Shows the editor of input `k`; returns the new value when it changed.
 pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<Value> {
-    let port: &PortDef = node.def.inputs.get(k)?;
+    input_editor_with_rect(ui, node, k).0
+}
+
+/// Like [`input_editor`], also returning the rectangle the editor took.
+pub fn input_editor_with_rect(
+    ui: &mut egui::Ui,
+    node: &NodeInstance,
+    k: usize,
+) -> (Option<Value>, egui::Rect) {
+    let Some(port) = node.def.inputs.get(k) else {
+        return (None, egui::Rect::NOTHING);
+    };
+    let r = ui.push_id(ui.id().with((&node.id, k)), |ui| {
+        editor_body(ui, node, k, port)
+    });
+    (r.inner, r.response.rect)
+}
+
+fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef) -> Option<Value> {
     let current = effective_value(node, k);
-    let id = ui.id().with((&node.id, k));
-    ui.push_id(id, |ui| match port.ty {
+    if node.def.id == CHOICE_TYPE {
+        if port.name == "index"
+            && let Some(options) = choice_options(node).filter(|o| !o.is_empty())
+        {
+            return choice_editor(ui, &options, current.as_ref());
+        }
+        if port.name == "options" {
+            return options_editor(ui, node);
+        }
+    }
+    match port.ty {
         ValueType::Number => {
             let mut x = current.as_ref().and_then(Value::as_f64).unwrap_or(0.0);
             let changed = if node.def.id == "param.number" && port.name == "value" {
@@ -92,7 +150,13 @@ pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<
                 if step > 0.0 {
                     slider = slider.step_by(step);
                 }
-                ui.add(slider).changed()
+                let changed = ui.add(slider).changed();
+                if changed && step == 0.0 {
+                    // No step: a dragged value snaps to a thousandth of the slider's range (a pixel
+                    // is about a hundredth), so the file gets 1.234, not 1.2340169334411621.
+                    x = snap_to_range(x, max - min);
+                }
+                changed
             } else {
                 let speed = (x.abs() * 0.01).max(0.01);
                 ui.add(egui::DragValue::new(&mut x).speed(speed).max_decimals(6))
@@ -165,8 +229,64 @@ pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<
             picked
         }
         _ => None,
-    })
-    .inner
+    }
+}
+
+/// A drop-down of `options` picking the index (an index outside them shows as such).
+fn choice_editor(ui: &mut egui::Ui, options: &[String], current: Option<&Value>) -> Option<Value> {
+    let index = match current {
+        Some(Value::Integer(i)) => *i,
+        Some(v) => v.as_f64().map_or(0, |x| x as i64),
+        None => 0,
+    };
+    let shown = usize::try_from(index)
+        .ok()
+        .and_then(|k| options.get(k))
+        .cloned()
+        .unwrap_or_else(|| format!("(index {index})"));
+    let mut picked = None;
+    egui::ComboBox::from_id_salt("choice")
+        .selected_text(shown)
+        .width(120.0)
+        .show_ui(ui, |ui| {
+            for (k, option) in options.iter().enumerate() {
+                let k = k as i64;
+                if ui.selectable_label(k == index, option).clicked() && k != index {
+                    picked = Some(Value::Integer(k));
+                }
+            }
+        });
+    picked
+}
+
+/// The options of a `param.choice`, one a line (empty lines are dropped). While the field has
+/// the focus its own text is kept (so a new empty line survives until an option is typed on it).
+fn options_editor(ui: &mut egui::Ui, node: &NodeInstance) -> Option<Value> {
+    let current = choice_options(node).unwrap_or_default();
+    let id = ui.make_persistent_id("choice-options");
+    let mut text = ui
+        .data(|d| d.get_temp::<String>(id))
+        .unwrap_or_else(|| current.join("\n"));
+    let r = ui.add(
+        egui::TextEdit::multiline(&mut text)
+            .id(id)
+            .desired_rows(2)
+            .desired_width(120.0)
+            .hint_text("one option a line"),
+    );
+    if r.has_focus() {
+        ui.data_mut(|d| d.insert_temp(id, text.clone()));
+    } else {
+        ui.data_mut(|d| d.remove::<String>(id));
+    }
+    let options: Vec<String> = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .map(str::to_string)
+        .collect();
+    (r.changed() && options != current)
+        .then(|| Value::list(options.iter().map(Value::text).collect()))
 }
 
 fn plane_name(p: &Plane) -> &'static str {
@@ -182,6 +302,16 @@ fn plane_name(p: &Plane) -> &'static str {
 mod tests {
     use super::*;
     use cnets_engine::Graph;
+
+    #[test]
+    fn dragged_values_snap_to_a_sensible_precision() {
+        assert_eq!(snap_to_range(1.2340169334411621, 1.0), 1.234);
+        assert_eq!(snap_to_range(0.40179139375686646, 1.0), 0.402);
+        assert_eq!(snap_to_range(17.436, 30.0), 17.44);
+        assert_eq!(snap_to_range(-0.30000000000000004, 2.0), -0.3);
+        assert_eq!(snap_to_range(5.0, 0.0), 5.0, "no range: unchanged");
+        assert_eq!(crate::mapper::snap(0.40179139375686646), 0.402);
+    }
 
     #[test]
     fn slider_range_comes_from_the_node() {

@@ -32,6 +32,8 @@ pub enum NodeStatus {
         outputs: Vec<String>,
         /// Run time of the last run in milliseconds.
         time_ms: f64,
+        /// The whole text a `view.panel` node shows inside itself (its `text` output).
+        readout: Option<String>,
     },
     /// The node failed, or could not start (missing input, bad value).
     Error(String),
@@ -39,7 +41,7 @@ pub enum NodeStatus {
     Blocked(String),
     /// Disabled by the designer.
     Disabled,
-    /// Not evaluated in the editor (export nodes run on File ▸ Export only).
+    /// Not evaluated in the editor (export nodes run on File › Export only).
     Idle,
 }
 
@@ -318,6 +320,9 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
     })
 }
 
+/// The node type whose text output is shown inside the node (Grasshopper's Panel).
+pub const PANEL_TYPE: &str = "view.panel";
+
 /// The status of every node of `graph` after an evaluation with `evaluator`.
 pub fn statuses(graph: &Graph, evaluator: &Evaluator) -> HashMap<String, NodeStatus> {
     graph
@@ -333,6 +338,12 @@ pub fn statuses(graph: &Graph, evaluator: &Evaluator) -> HashMap<String, NodeSta
                         time_ms: evaluator
                             .time(graph, &n.id)
                             .map_or(0.0, |t| t.as_secs_f64() * 1e3),
+                        readout: (n.def.id == PANEL_TYPE)
+                            .then(|| match out.values.first() {
+                                Some(Value::Text(t)) => Some(t.to_string()),
+                                _ => None,
+                            })
+                            .flatten(),
                     },
                     Some(NodeResult::Failed(m)) | Some(NodeResult::Invalid(m)) => {
                         NodeStatus::Error(m.clone())

@@ -73,9 +73,16 @@ fn snapshot_palette_open() {
     // A query whose answer does not change when other nodes are added to the library.
     h.get_by_role(Role::TextInput).type_text("cnets.construct");
     h.run_steps(3);
-    // Once in the palette, once as the type label of the construct node on the canvas.
-    assert_eq!(h.query_all_by_label("cnets.construct").count(), 2);
-    assert!(h.query_by_label("cnets.construct_coplanar").is_some());
+    // In the palette by its name then its id; on the canvas as the construct node's type label.
+    assert!(
+        h.query_by_label("CNets Construct  cnets.construct")
+            .is_some()
+    );
+    assert_eq!(h.query_all_by_label("cnets.construct").count(), 1);
+    assert!(
+        h.query_by_label("CNets Construct Coplanar  cnets.construct_coplanar")
+            .is_some()
+    );
     assert_eq!(
         h.query_all_by_label("curve.arc").count(),
         2,
@@ -273,9 +280,18 @@ fn double_click_opens_the_palette_and_picking_adds_a_node() {
     }
     h.run_steps(3);
     assert!(h.state().palette.open, "double-click opened the palette");
+    let window = h
+        .ctx
+        .memory(|m| m.area_rect(egui::Id::new("cnets-palette")))
+        .expect("the palette window");
+    assert!(
+        window.min.distance(empty) < 2.0 || window.contains(empty),
+        "opened at the click {empty:?}: {window:?}"
+    );
     h.get_by_role(Role::TextInput).type_text("length");
     h.run_steps(2);
-    h.get_by_label("curve.length").click();
+    // The designer's name first, the id after.
+    h.get_by_label("Length  curve.length").click();
     h.run_steps(3);
     let app = h.state();
     assert_eq!(app.doc.graph.node_count(), n + 1);
@@ -375,9 +391,11 @@ fn dragging_a_graph_mapper_handle_edits_its_handles_in_one_step() {
     let mut h = harness("mapper");
     let id = h
         .state_mut()
-        .add_node("mapper.graph", [420.0, 520.0])
+        .add_node("mapper.graph", [760.0, 0.0])
         .unwrap();
-    h.state_mut().canvas.fit();
+    h.run_steps(2);
+    let centre = h.state().canvas.node_rect(&id).expect("drawn").center();
+    h.state_mut().canvas.zoom_to(1.0, Some(centre));
     h.run_steps(4);
     let steps = h.state().doc.history.undo_len();
     let before = h.state().doc.to_ron();
@@ -429,10 +447,13 @@ fn closing_with_unsaved_changes_asks_first() {
         .unwrap();
     h.state_mut().request_close();
     h.run_steps(2);
-    assert!(!h.state().quit && h.state().confirm_close, "asks first");
+    assert!(
+        !h.state().quit && h.state().unsaved_question.is_some(),
+        "asks first"
+    );
     h.get_by_label("Cancel").click();
     h.run_steps(2);
-    assert!(!h.state().quit && !h.state().confirm_close);
+    assert!(!h.state().quit && h.state().unsaved_question.is_none());
     h.state_mut().request_close();
     h.run_steps(2);
     h.get_by_label("Don't save").click();
@@ -566,4 +587,87 @@ fn a_changing_view_renders_at_half_resolution_on_software_then_settles() {
         1.0,
         "back to full resolution"
     );
+}
+
+#[test]
+fn shift_click_on_a_title_selects_the_node() {
+    let mut h = harness("shift-title");
+    let was = h.state().doc.graph.node("apex").unwrap().position;
+    let title = h
+        .get_all_by_label("apex")
+        .map(|l| h.state().canvas.to_screen(l.rect().center()))
+        .find(|p| {
+            let r = h.state().canvas.node_screen_rect("apex").unwrap();
+            r.contains(*p) && p.y < r.top() + 30.0
+        })
+        .expect("the apex title");
+    h.hover_at(title);
+    h.run_steps(2);
+    h.event(egui::Event::ModifiersChanged(Modifiers::SHIFT));
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: title,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::SHIFT,
+        });
+    }
+    h.run_steps(3);
+    assert_eq!(h.state().canvas.selected, vec!["apex".to_string()]);
+    assert_eq!(
+        h.state().doc.graph.node("apex").unwrap().position,
+        was,
+        "not moved"
+    );
+}
+
+#[test]
+fn the_wheel_zooms_the_canvas_as_in_the_3d_view() {
+    let mut h = harness("wheel");
+    let at = h.state().canvas.screen_rect().center();
+    let before = h.state().canvas.zoom();
+    let mut raw = egui::RawInput {
+        events: vec![
+            egui::Event::PointerMoved(at),
+            egui::Event::MouseWheel {
+                unit: egui::MouseWheelUnit::Line,
+                delta: egui::vec2(0.0, 2.0),
+                modifiers: Modifiers::NONE,
+                phase: egui::TouchPhase::Move,
+            },
+        ],
+        ..Default::default()
+    };
+    h.state_mut().raw_input(&mut raw);
+    assert!(
+        matches!(raw.events[1], egui::Event::Zoom(f) if f > 1.0),
+        "wheel up over the canvas is a zoom in: {:?}",
+        raw.events[1]
+    );
+    for e in raw.events {
+        h.event(e);
+    }
+    h.run_steps(3);
+    assert!(
+        h.state().canvas.zoom() > before * 1.1,
+        "{} → {}",
+        before,
+        h.state().canvas.zoom()
+    );
+    // Over the 3D view the wheel stays a wheel (the viewport zooms with it itself).
+    let view = egui::pos2(h.state().canvas.screen_rect().right() + 200.0, at.y);
+    let mut raw = egui::RawInput {
+        events: vec![
+            egui::Event::PointerMoved(view),
+            egui::Event::MouseWheel {
+                unit: egui::MouseWheelUnit::Line,
+                delta: egui::vec2(0.0, 2.0),
+                modifiers: Modifiers::NONE,
+                phase: egui::TouchPhase::Move,
+            },
+        ],
+        ..Default::default()
+    };
+    h.state_mut().raw_input(&mut raw);
+    assert!(matches!(raw.events[1], egui::Event::MouseWheel { .. }));
 }

@@ -60,7 +60,10 @@ fn variables_and_the_objective_are_picked_on_the_canvas_as_one_undo_step() {
         "{}",
         h.state().message
     );
-    // planarity.max as the objective: the setup is complete and stored.
+    // planarity.max as the objective: the setup is complete and stored. (The panel took the
+    // bottom of the window: zoom out to see the whole graph above it.)
+    h.state_mut().canvas.zoom_to(0.55, None);
+    h.run_steps(3);
     let at = port_label(&h, "planarity", "max", false);
     right_click(&mut h, at);
     h.get_by_label("Minimize this output").click();

@@ -310,3 +310,23 @@ fn make_cluster_save_load_explode_round_trips() {
     assert_eq!(added, vec!["a", "b"]);
     assert_eq!(semantic(&back), semantic(&original.graph));
 }
+
+#[test]
+fn cluster_ports_are_named_after_what_they_carry() {
+    // Two number sources feeding an adder: their outputs are both `out`, which says nothing; the
+    // cluster's outputs take the names of the inputs they feed (`a`, `b`), and an input fed
+    // into an inner `value` takes the feeding node's output or id.
+    let text = r#"(version: 1, nodes: {
+        "width": (type: "t.num", inputs: {"value": 2.0}),
+        "height": (type: "t.num", inputs: {"value": 3.0}),
+        "src": (type: "t.add"),
+        "fed": (type: "t.num"),
+        "add": (type: "t.add"),
+    }, edges: ["width.out -> add.a", "height.out -> add.b", "src.sum -> fed.value"])"#;
+    let registry = common::registry();
+    let mut g = load_str(text, "g.ron", &registry).unwrap().graph;
+    make_cluster(&mut g, &["width", "height"], "sizes").unwrap();
+    assert_eq!(g.node("sizes").unwrap().def.output_names(), "a, b");
+    make_cluster(&mut g, &["fed"], "inner").unwrap();
+    assert_eq!(g.node("inner").unwrap().def.input_names(), "sum");
+}

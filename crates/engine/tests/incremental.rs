@@ -123,3 +123,65 @@ fn a_removed_node_index_reused_by_a_new_node_does_not_inherit_its_memo() {
     assert_eq!(ev.output(&g, "b", "out"), Some(&Value::Number(0.0)));
     assert_eq!(ev.runs(&g, "b"), 1);
 }
+
+#[test]
+fn a_restored_snapshot_reruns_only_what_differs_and_its_downstream_cone() {
+    // head -> n0 -> … -> n9, and an independent branch side -> join <- n4.
+    let mut g = common::chain(10);
+    g.add_node("side", "t.num").unwrap();
+    g.add_node("join", "t.add").unwrap();
+    g.connect("n4", "sum", "join", "a").unwrap();
+    g.connect("side", "out", "join", "b").unwrap();
+    let mut ev = Evaluator::new();
+    let ctx = NodeContext::default();
+    ev.evaluate_all(&g, &ctx);
+    // An edit (a slider change on n5), evaluated, then undone by restoring the snapshot.
+    let snapshot = g.clone();
+    g.set_value("n5", "b", Value::Number(2.0)).unwrap();
+    ev.evaluate_all(&g, &ctx);
+    let runs = |ev: &Evaluator, g: &cnets_engine::Graph, id: &str| ev.runs(g, id);
+    let before: Vec<u64> = (0..10).map(|k| runs(&ev, &g, &format!("n{k}"))).collect();
+    let side_before = (runs(&ev, &g, "side"), runs(&ev, &g, "join"));
+    let mut restored = snapshot;
+    restored.succeed(&g);
+    assert!(restored.revision() > g.revision());
+    let s = ev.evaluate_all(&restored, &ctx);
+    assert_eq!(s.ran, 5, "n5..n9 re-run, nothing else");
+    for (k, was) in before.iter().enumerate() {
+        let expected = was + u64::from(k >= 5);
+        assert_eq!(runs(&ev, &restored, &format!("n{k}")), expected, "n{k}");
+    }
+    assert_eq!(
+        (runs(&ev, &restored, "side"), runs(&ev, &restored, "join")),
+        side_before
+    );
+    assert_eq!(
+        ev.output(&restored, "n9", "sum"),
+        Some(&Value::Number(10.0)),
+        "the old result"
+    );
+    // Without `succeed` the restored graph's stamps are older than the memos: nothing would run
+    // and n9 would keep the edited result.
+    let mut stale = common::chain(10);
+    let mut ev2 = Evaluator::new();
+    ev2.evaluate_all(&stale, &ctx);
+    let old = stale.clone();
+    stale.set_value("n5", "b", Value::Number(2.0)).unwrap();
+    ev2.evaluate_all(&stale, &ctx);
+    assert_eq!(
+        ev2.evaluate_all(&old, &ctx).ran,
+        0,
+        "the bug succeed avoids"
+    );
+    // A node removed after the snapshot comes back; nodes added later get fresh uids.
+    let snap = restored.clone();
+    restored.remove_node("side").unwrap();
+    ev.evaluate_all(&restored, &ctx);
+    let mut back = snap;
+    back.succeed(&restored);
+    let s = ev.evaluate_all(&back, &ctx);
+    assert_eq!(s.ran, 2, "side and join run again, the chain does not");
+    back.add_node("fresh", "t.num").unwrap();
+    let uids: std::collections::HashSet<u64> = back.nodes().map(|(_, n)| n.uid()).collect();
+    assert_eq!(uids.len(), back.node_count());
+}

@@ -37,6 +37,15 @@ pub fn harness_with(
     config: PathBuf,
 ) -> Harness<'static, EditorApp> {
     let _ = name;
+    // A folder without torus-monge.ron, so the built-in default graph is used.
+    build(config, file, std::env::temp_dir())
+}
+
+fn build(
+    config: PathBuf,
+    file: Option<PathBuf>,
+    examples_dir: PathBuf,
+) -> Harness<'static, EditorApp> {
     let rs = create_render_state(
         default_wgpu_setup(),
         egui_wgpu::RendererOptions::PREDICTABLE,
@@ -46,8 +55,7 @@ pub fn harness_with(
         gpu: Some(gpu),
         config_dir: config,
         file,
-        // A folder without torus-monge.ron, so the built-in default graph is used.
-        examples_dir: std::env::temp_dir(),
+        examples_dir,
         wake: Arc::new(|| {}),
     });
     app.show_timings = false;
@@ -59,6 +67,16 @@ pub fn harness_with(
         .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app);
     settle(&mut h);
     h
+}
+
+/// The editor on an examples folder of the test's own (start-up graph: its torus-monge.ron, when
+/// present), with an optional file.
+pub fn harness_on(
+    config: PathBuf,
+    file: Option<PathBuf>,
+    examples_dir: PathBuf,
+) -> Harness<'static, EditorApp> {
+    build(config, file, examples_dir)
 }
 
 /// Runs frames until the worker has answered and the UI is idle.

@@ -50,6 +50,19 @@ fn copy_node(
     Ok(())
 }
 
+/// Port names that say nothing about what a port carries (`value`, `value_2` told a designer
+/// nothing): a cluster port is named after the other end of its wire instead.
+const GENERIC_NAMES: &[&str] = &["value", "result", "out", "output", "input"];
+
+/// The first of `candidates` that is a valid, meaningful port name (else the first).
+fn telling_name<'a>(candidates: &[&'a str]) -> &'a str {
+    candidates
+        .iter()
+        .copied()
+        .find(|c| !GENERIC_NAMES.contains(c) && crate::graph::valid_id(c))
+        .unwrap_or(candidates[0])
+}
+
 fn unique(name: &str, taken: &mut HashSet<String>) -> String {
     let mut candidate = name.to_string();
     let mut k = 2;
@@ -62,7 +75,9 @@ fn unique(name: &str, taken: &mut HashSet<String>) -> String {
 }
 
 /// Replaces the `selection` by one inline cluster node `cluster_id`; wires crossing the selection
-/// become the cluster's inputs (one per outside source) and outputs (one per inside source).
+/// become the cluster's inputs (one per outside source) and outputs (one per inside source),
+/// named after what they carry: the inner input fed (an output: the inner output), or — when
+/// that name says nothing (`value`, `result`, `out`) — the other end of the wire, made unique.
 /// Returns the cluster.
 pub fn make_cluster(
     graph: &mut Graph,
@@ -120,7 +135,9 @@ pub fn make_cluster(
                 let name = match inputs.iter().find(|(k, _)| *k == key) {
                     Some((_, name)) => name.clone(),
                     None => {
-                        let name = unique(&w.input, &mut names_in);
+                        // Named after the input it feeds, else what feeds it.
+                        let base = telling_name(&[&w.input, &w.output, &w.from]);
+                        let name = unique(base, &mut names_in);
                         let node_id = unique(&format!("in_{name}"), &mut ids);
                         let at = [x_min - 220.0, y_mean + 80.0 * inputs.len() as f32];
                         add_interface(&mut sub, graph, w, INPUT_TYPE, &node_id, &name, at)?;
@@ -134,7 +151,10 @@ pub fn make_cluster(
             (true, false) => {
                 let key = (w.from.clone(), w.output.clone());
                 if !outputs.iter().any(|(k, _)| *k == key) {
-                    let name = unique(&w.output, &mut names_out);
+                    // Named after the output it carries, else the input it feeds outside,
+                    // else the node it comes from.
+                    let base = telling_name(&[&w.output, &w.input, &w.from]);
+                    let name = unique(base, &mut names_out);
                     let node_id = unique(&format!("out_{name}"), &mut ids);
                     let at = [x_max + 220.0, y_mean + 80.0 * outputs.len() as f32];
                     add_interface(&mut sub, graph, w, OUTPUT_TYPE, &node_id, &name, at)?;

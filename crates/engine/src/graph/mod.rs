@@ -147,6 +147,55 @@ impl Graph {
         }
     }
 
+    /// Makes this graph — an earlier state being restored (undo, redo) — the successor of
+    /// `current`, the graph it replaces: its revision moves past both graphs', and every node that
+    /// differs from the node with the same uid in `current` (definition, literal values, enabled
+    /// flag, wires in) or that `current` lacks is stamped as edited now, while equal nodes keep
+    /// `current`'s stamps. An evaluator that last evaluated `current` then re-runs only the nodes
+    /// that differ and what depends on them, as after ordinary edits. Uids handed out later stay
+    /// unique across both graphs (an evaluator's memos are keyed by them).
+    pub fn succeed(&mut self, current: &Graph) {
+        let now = self.revision.max(current.revision) + 1;
+        let by_uid: HashMap<u64, NodeIndex> = current
+            .inner
+            .node_indices()
+            .map(|i| (current.inner[i].uid, i))
+            .collect();
+        let wires_in = |g: &Graph, i: NodeIndex| {
+            let mut w: Vec<(u64, usize, usize, u64)> = g
+                .inner
+                .edges_directed(i, Direction::Incoming)
+                .map(|e| {
+                    let wire = e.weight();
+                    (
+                        g.inner[e.source()].uid,
+                        wire.from_output,
+                        wire.to_input,
+                        wire.order,
+                    )
+                })
+                .collect();
+            w.sort_unstable();
+            w
+        };
+        let indices: Vec<NodeIndex> = self.inner.node_indices().collect();
+        for i in indices {
+            let n = &self.inner[i];
+            let kept = by_uid.get(&n.uid).and_then(|&j| {
+                let m = &current.inner[j];
+                let same = Arc::ptr_eq(&n.def, &m.def)
+                    && n.values == m.values
+                    && n.enabled == m.enabled
+                    && wires_in(self, i) == wires_in(current, j);
+                same.then_some(m.edited_at)
+            });
+            self.inner[i].edited_at = kept.unwrap_or(now);
+        }
+        self.revision = now;
+        self.next_uid = self.next_uid.max(current.next_uid);
+        self.next_order = self.next_order.max(current.next_order);
+    }
+
     /// Adds a node of a registered type.
     pub fn add_node(&mut self, id: &str, type_id: &str) -> Result<NodeIndex, GraphError> {
         let def = self

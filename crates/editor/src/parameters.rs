@@ -1,0 +1,139 @@
+//! The parameter panel (Grasshopper's Remote Control Panel): every slider, toggle, value list and
+//! graph mapper of the graph in one docked list, editable there — the same edits as on the canvas
+//! (undo, autosave). Grouped by where they sit: the graph being edited first, then one group per
+//! cluster node holding parameters (listed, with a button that opens the cluster to edit them).
+
+use cnets_engine::Graph;
+use cnets_engine::cluster::Cluster;
+
+use crate::canvas::CanvasAction;
+
+/// Node types the panel lists, with the input it edits.
+pub const PARAMETERS: &[(&str, &str)] = &[
+    ("param.number", "value"),
+    ("param.integer", "value"),
+    ("param.boolean", "value"),
+    ("param.choice", "index"),
+    ("mapper.graph", "handles"),
+];
+
+/// The input the panel edits on a node of type `type_id`, when it lists that type.
+pub fn edited_input(type_id: &str) -> Option<&'static str> {
+    PARAMETERS
+        .iter()
+        .find(|(t, _)| *t == type_id)
+        .map(|(_, input)| *input)
+}
+
+/// The parameter nodes of `graph` in file order: (id, type id).
+pub fn parameters(graph: &Graph) -> Vec<(String, String)> {
+    graph
+        .nodes()
+        .filter(|(_, n)| edited_input(&n.def.id).is_some())
+        .map(|(_, n)| (n.id.clone(), n.def.id.to_string()))
+        .collect()
+}
+
+/// Cluster nodes of `graph` with parameters inside: (cluster node id, their ids).
+pub fn cluster_groups(graph: &Graph) -> Vec<(String, Vec<String>)> {
+    graph
+        .nodes()
+        .filter_map(|(_, n)| {
+            let c = Cluster::of(&n.def)?;
+            let inner: Vec<String> = parameters(&c.template)
+                .into_iter()
+                .map(|(id, _)| id)
+                .collect();
+            (!inner.is_empty()).then(|| (n.id.clone(), inner))
+        })
+        .collect()
+}
+
+/// Shows the panel's contents; returns the edits (and cluster openings) asked for.
+pub fn show(ui: &mut egui::Ui, graph: &Graph) -> Vec<CanvasAction> {
+    let mut actions = Vec::new();
+    let params = parameters(graph);
+    let groups = cluster_groups(graph);
+    egui::ScrollArea::vertical()
+        .id_salt("cnets-parameters-scroll")
+        .show(ui, |ui| {
+            if params.is_empty() && groups.is_empty() {
+                ui.weak("no sliders, toggles, value lists or graph mappers in this graph");
+            }
+            if !params.is_empty() {
+                egui::CollapsingHeader::new("this graph")
+                    .id_salt("cnets-parameters-main")
+                    .default_open(true)
+                    .show(ui, |ui| {
+                        for (id, type_id) in &params {
+                            let Some(node) = graph.node(id) else { continue };
+                            ui.push_id(("cnets-parameter", id), |ui| {
+                                ui.strong(id).on_hover_text(format!(
+                                    "{type_id} — {}",
+                                    crate::palette::display_name(&node.def)
+                                ));
+                                if crate::mapper::is_mapper(node) {
+                                    let r = crate::mapper::show(ui, graph, node);
+                                    if let Some(values) = r.changes {
+                                        actions.push(CanvasAction::SetValues {
+                                            node: id.clone(),
+                                            values,
+                                        });
+                                    }
+                                } else if let Some(input) = edited_input(type_id)
+                                    && let Some(k) = node.def.input_index(input)
+                                {
+                                    ui.spacing_mut().slider_width = 160.0;
+                                    if let Some(value) = crate::widgets::input_editor(ui, node, k) {
+                                        actions.push(CanvasAction::SetValue {
+                                            node: id.clone(),
+                                            input: input.to_string(),
+                                            value,
+                                        });
+                                    }
+                                }
+                            });
+                            ui.add_space(4.0);
+                        }
+                    });
+            }
+            for (cluster, inner) in &groups {
+                egui::CollapsingHeader::new(format!("cluster {cluster}"))
+                    .id_salt(("cnets-parameters-cluster", cluster))
+                    .default_open(false)
+                    .show(ui, |ui| {
+                        for id in inner {
+                            ui.label(id);
+                        }
+                        if ui
+                            .button("Open the cluster to edit them")
+                            .on_hover_text("double-click its title on the canvas does the same")
+                            .clicked()
+                        {
+                            actions.push(CanvasAction::OpenCluster(cluster.clone()));
+                        }
+                    });
+            }
+        });
+    actions
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Arc;
+
+    #[test]
+    fn the_panel_lists_parameters_in_file_order_and_clusters_holding_some() {
+        let registry = Arc::new(cnets_nodes::registry());
+        let d = cnets_engine::file::load_str(crate::app::DEFAULT_GRAPH, "d", &registry).unwrap();
+        let mut g = d.graph;
+        let ids: Vec<String> = parameters(&g).into_iter().map(|(id, _)| id).collect();
+        assert_eq!(ids, vec!["apex".to_string(), "ratio".to_string()]);
+        cnets_engine::cluster::make_cluster(&mut g, &["ratio"], "c").unwrap();
+        let groups = cluster_groups(&g);
+        assert_eq!(groups, vec![("c".to_string(), vec!["ratio".to_string()])]);
+        assert_eq!(edited_input("param.choice"), Some("index"));
+        assert_eq!(edited_input("curve.arc"), None);
+    }
+}

@@ -1,0 +1,123 @@
+//! Every shipped graph (`graphs/*.ron`) opens readable: no two node rectangles overlap once the
+//! nodes are drawn with their results. `tidy_shipped_graphs` (ignored; run it with `--ignored`)
+//! rewrote their stored positions with View › Arrange graph.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use cnets_editor::menus::MenuAction;
+use common::{graphs_dir, harness_with, settle, temp_config};
+
+fn shipped() -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(graphs_dir())
+        .unwrap()
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    v.sort();
+    assert!(v.len() >= 10, "the gallery: {v:?}");
+    v
+}
+
+/// Pairs of nodes whose rectangles (as drawn, canvas coordinates) overlap.
+fn overlaps(app: &cnets_editor::EditorApp) -> Vec<(String, String)> {
+    let ids: Vec<String> = app.doc.graph.nodes().map(|(_, n)| n.id.clone()).collect();
+    let mut out = Vec::new();
+    for (i, a) in ids.iter().enumerate() {
+        for b in &ids[i + 1..] {
+            let (ra, rb) = (
+                app.canvas.node_rect(a).expect("drawn"),
+                app.canvas.node_rect(b).expect("drawn"),
+            );
+            if ra.intersects(rb) {
+                out.push((a.clone(), b.clone()));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn no_two_node_rectangles_overlap_in_any_shipped_graph() {
+    let mut bad = Vec::new();
+    for path in shipped() {
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let mut h = harness_with(
+            &name,
+            Some(path.clone()),
+            temp_config(&format!("tidy-{name}")),
+        );
+        settle(&mut h);
+        assert!(h.state().load_failure.is_none(), "{name} loads");
+        let o = overlaps(h.state());
+        if !o.is_empty() {
+            bad.push(format!("{name}: {o:?}"));
+        }
+    }
+    assert!(bad.is_empty(), "overlapping nodes:\n{}", bad.join("\n"));
+}
+
+/// Rewrites the `position: (x, y),` line of each top-level node of a graph file's text.
+fn rewrite_positions(text: &str, positions: &[(String, [f32; 2])]) -> String {
+    let mut out = Vec::new();
+    let mut current: Option<String> = None;
+    for line in text.lines() {
+        if let Some(rest) = line.strip_prefix("        \"")
+            && let Some((id, tail)) = rest.split_once('"')
+            && tail == ": ("
+        {
+            current = Some(id.to_string());
+        }
+        if line.starts_with("            position: (")
+            && let Some(id) = &current
+            && let Some((_, [x, y])) = positions.iter().find(|(n, _)| n == id)
+        {
+            out.push(format!(
+                "            position: ({:.1}, {:.1}),",
+                x.round(),
+                y.round()
+            ));
+            current = None;
+            continue;
+        }
+        out.push(line.to_string());
+    }
+    let mut s = out.join("\n");
+    if text.ends_with('\n') {
+        s.push('\n');
+    }
+    s
+}
+
+#[test]
+#[ignore = "rewrites graphs/*.ron: run by hand with --ignored"]
+fn tidy_shipped_graphs() {
+    for path in shipped() {
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let mut h = harness_with(
+            &name,
+            Some(path.clone()),
+            temp_config(&format!("tidy-w-{name}")),
+        );
+        settle(&mut h);
+        h.state_mut().run(MenuAction::Arrange);
+        settle(&mut h);
+        let positions: Vec<(String, [f32; 2])> = h
+            .state()
+            .doc
+            .graph
+            .nodes()
+            .map(|(_, n)| (n.id.clone(), n.position))
+            .collect();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let new = rewrite_positions(&text, &positions);
+        write(&path, &new);
+        eprintln!("{name}: {} nodes arranged", positions.len());
+    }
+}
+
+fn write(path: &Path, text: &str) {
+    std::fs::write(path, text).unwrap();
+}
