@@ -441,7 +441,10 @@ fn catamaran_fit_to_reference_improves_the_fit() {
     // The reference is a hull modelled elsewhere, read from graphs/reference/catamaran-hull.obj
     // (relative to the graph's folder), not a cone-net of the graph.
     let doc = load("catamaran-hull");
-    assert_eq!(doc.graph.node("reference_hull").unwrap().def.id, "io.read_mesh");
+    assert_eq!(
+        doc.graph.node("reference_hull").unwrap().def.id,
+        "io.read_mesh"
+    );
     let setup = doc.meta.optimization.clone().unwrap();
     let ctx = cnets_engine::NodeContext::new(None, Some(cnets_tests::root().join("graphs")));
     let out = cnets_engine::optimize::optimize(

@@ -224,6 +224,7 @@ pub struct EditorApp {
     /// The user library (and the examples folder), listed in the palette.
     pub library: Library,
     /// Cluster files of the graph being edited, checked about once a second.
+    import_watch: crate::import_watch::ImportWatch,
     watch: ClusterWatch,
     last_watch: Instant,
     /// The optimization panel.
@@ -314,6 +315,7 @@ impl EditorApp {
             examples: menus::examples_in(&options.examples_dir),
             examples_dir: options.examples_dir,
             library: Library::new(library_dirs),
+            import_watch: crate::import_watch::ImportWatch::default(),
             watch: ClusterWatch::default(),
             last_watch: Instant::now(),
             optimization: OptimizationPanel::new(options.wake),
@@ -416,6 +418,7 @@ impl EditorApp {
         self.pending_change = Some(Instant::now());
         self.optimization.reset();
         self.watch.clear();
+        self.import_watch.clear();
         self.watch.changed(&self.doc.graph);
     }
 
@@ -608,6 +611,18 @@ impl EditorApp {
         }
         self.message = notes.join("; ");
         true
+    }
+
+    /// Checks the files the graph's importing nodes read; when one changed, submits the graph
+    /// again so the worker re-runs the nodes that read it (and only what depends on them).
+    /// Returns whether a file changed.
+    pub fn check_imported_files(&mut self) -> bool {
+        let base = self.doc.base_dir();
+        let changed = self.import_watch.changed(&self.doc.graph, base.as_deref());
+        if changed {
+            self.submitted = None;
+        }
+        changed
     }
 
     /// Asks to replace or close the document: carried out at once when everything is saved,
@@ -1055,6 +1070,7 @@ impl EditorApp {
         self.shortcuts(&ctx);
         if self.last_watch.elapsed() >= WATCH_INTERVAL {
             self.check_cluster_files();
+            self.check_imported_files();
         }
         let version_before = self.doc.version();
 
@@ -1275,8 +1291,11 @@ impl EditorApp {
         if self.worker.busy() {
             ctx.request_repaint_after(Duration::from_millis(30));
         }
-        if !crate::library::file_clusters(&self.doc.graph).is_empty() {
-            // Keep checking cluster files while idle.
+        let base = self.doc.base_dir();
+        if !crate::library::file_clusters(&self.doc.graph).is_empty()
+            || !crate::import_watch::imported_files(&self.doc.graph, base.as_deref()).is_empty()
+        {
+            // Keep checking cluster and imported files while idle.
             ctx.request_repaint_after(WATCH_INTERVAL);
         }
     }

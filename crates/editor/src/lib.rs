@@ -27,6 +27,7 @@ pub mod document;
 pub mod export;
 pub mod file_dialog;
 pub mod history;
+pub mod import_watch;
 pub mod instance;
 pub mod layout;
 pub mod library;
