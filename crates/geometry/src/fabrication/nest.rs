@@ -513,6 +513,31 @@ mod tests {
                 assert!(p.x >= -1e-9 && p.x <= 2.1 + 1e-9 && p.y >= -1e-9 && p.y <= 2.0 + 1e-9);
             }
         }
+        assert_eq!(
+            n,
+            nest(&outlines, 2.1, 2.0, 0.01, 4).unwrap(),
+            "deterministic"
+        );
+        // Spacing: no two placed rectangles closer than it (their boxes, axis-aligned here).
+        let boxes: Vec<(DVec2, DVec2)> = n
+            .outlines
+            .iter()
+            .map(|o| {
+                let pts: Vec<DVec2> = o.points.iter().map(|p| p.truncate()).collect();
+                let lo = pts.iter().fold(DVec2::INFINITY, |a, p| a.min(*p));
+                let hi = pts.iter().fold(DVec2::NEG_INFINITY, |a, p| a.max(*p));
+                (lo, hi)
+            })
+            .collect();
+        for (a, (alo, ahi)) in boxes.iter().enumerate() {
+            for (blo, bhi) in &boxes[a + 1..] {
+                let gap = (blo.x - ahi.x)
+                    .max(alo.x - bhi.x)
+                    .max(blo.y - ahi.y)
+                    .max(alo.y - bhi.y);
+                assert!(gap >= 0.01 - 1e-6, "gap {gap}");
+            }
+        }
         assert!(
             nest(&outlines, 0.5, 0.5, 0.0, 4).is_err(),
             "too small a sheet"
