@@ -5,8 +5,9 @@ use std::fmt;
 use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
+use crate::budget::{MemoryBudget, bytes_of};
 use crate::kinds::PortKind;
 use crate::value::{Access, Value, ValueType};
 
@@ -296,6 +297,11 @@ pub fn doc_text(lines: &[&str]) -> String {
     out
 }
 
+/// How many clusters deep a graph may nest (a chain of cluster files deeper than this is refused
+/// when loading, and a deeper evaluation fails): deep enough for any design, shallow enough for the
+/// stack of every thread that evaluates.
+pub const MAX_CLUSTER_DEPTH: usize = 256;
+
 /// What a running node may see and report besides its inputs.
 pub struct NodeContext {
     /// Directory export nodes write into (`--out`); `None` forbids writing.
@@ -304,6 +310,13 @@ pub struct NodeContext {
     pub base_dir: Option<PathBuf>,
     /// Set when the evaluation should stop as soon as possible.
     pub cancel: Arc<AtomicBool>,
+    /// The memory the evaluation may use (default: half the machine's memory); nodes check what
+    /// they are about to allocate with [`NodeContext::reserve`].
+    pub budget: MemoryBudget,
+    /// How many clusters deep this context runs (0: the top graph); see [`MAX_CLUSTER_DEPTH`].
+    pub depth: usize,
+    in_use: AtomicU64,
+    held: AtomicU64,
     warnings: Mutex<Vec<String>>,
     files: Mutex<Vec<PathBuf>>,
 }
@@ -321,9 +334,74 @@ impl NodeContext {
             out_dir,
             base_dir,
             cancel: Arc::new(AtomicBool::new(false)),
+            budget: MemoryBudget::default(),
+            depth: 0,
+            in_use: AtomicU64::new(0),
+            held: AtomicU64::new(0),
             warnings: Mutex::new(Vec::new()),
             files: Mutex::new(Vec::new()),
         }
+    }
+
+    /// Sets the memory budget (builder style).
+    pub fn with_budget(mut self, budget: MemoryBudget) -> Self {
+        self.budget = budget;
+        self
+    }
+
+    /// A context for the subgraph of a cluster run from this one: the same output directory,
+    /// cancel flag, budget (with this evaluation's live values counted as in use) and read
+    /// permissions, one level deeper; relative reads resolve against `base_dir`. Fails past
+    /// [`MAX_CLUSTER_DEPTH`] levels.
+    pub fn child(&self, base_dir: Option<PathBuf>) -> Result<NodeContext, NodeError> {
+        if self.depth >= MAX_CLUSTER_DEPTH {
+            return Err(NodeError::new(format!(
+                "clusters nested more than {MAX_CLUSTER_DEPTH} deep"
+            )));
+        }
+        let mut inner = NodeContext::new(self.out_dir.clone(), base_dir);
+        inner.cancel = Arc::clone(&self.cancel);
+        inner.budget = self.budget;
+        inner.depth = self.depth + 1;
+        inner.set_in_use(self.in_use());
+        Ok(inner)
+    }
+
+    /// Bytes held by values of the evaluation outside the running node (the evaluator keeps this
+    /// up to date before every node it runs).
+    pub fn in_use(&self) -> u64 {
+        self.in_use.load(Ordering::Relaxed)
+    }
+
+    /// Sets the bytes held by live values outside the running node (for evaluators and front ends
+    /// that run nodes themselves).
+    pub fn set_in_use(&self, bytes: u64) {
+        self.in_use.store(bytes, Ordering::Relaxed);
+    }
+
+    /// Checks, before allocating, that `bytes` more fit in the memory budget beside the values
+    /// already live; `what` names the allocation in the error ("a table of 10000000 × 10000000
+    /// numbers needs 3200 TB, the limit is 12 GB").
+    pub fn reserve(&self, bytes: u64, what: &str) -> Result<(), NodeError> {
+        self.budget
+            .check(bytes, self.in_use(), what)
+            .map_err(|e| NodeError::new(e.to_string()))
+    }
+
+    /// Records that the running node keeps `bytes` alive besides its outputs (a cluster: its
+    /// subgraph's results), so the evaluator counts them in the live memory.
+    pub fn hold(&self, bytes: u64) {
+        self.held.store(bytes, Ordering::Relaxed);
+    }
+
+    /// Takes the bytes recorded by [`NodeContext::hold`] (for evaluators).
+    pub fn take_held(&self) -> u64 {
+        self.held.swap(0, Ordering::Relaxed)
+    }
+
+    /// [`NodeContext::reserve`] for `count` values (list items: 32 bytes each).
+    pub fn reserve_values(&self, count: u128, what: &str) -> Result<(), NodeError> {
+        self.reserve(bytes_of(count, std::mem::size_of::<Value>()), what)
     }
 
     /// Records a warning shown on the node (it still produces outputs).

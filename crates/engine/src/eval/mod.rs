@@ -19,9 +19,10 @@ use std::time::{Duration, Instant};
 
 use petgraph::stable_graph::NodeIndex;
 
+use crate::budget::bytes_of;
 use crate::graph::{Graph, NodeInstance, Revision};
 use crate::node::{NodeContext, NodeDef};
-use crate::value::{Value, content_hash, first_non_finite, is_all_finite};
+use crate::value::{Value, content_hash, first_non_finite, footprint, is_all_finite};
 
 /// The memo of one node instance.
 #[derive(Debug, Clone)]
@@ -33,6 +34,8 @@ struct Memo {
     hashes: Vec<u64>,
     time: Duration,
     runs: u64,
+    /// Bytes the result holds that no other result holds (its share of the live memory).
+    owned: u64,
 }
 
 /// What one call to [`Evaluator::evaluate`] did.
@@ -59,6 +62,8 @@ pub struct Evaluator {
     stamp: u32,
     total_runs: u64,
     swept_at: Revision,
+    /// Bytes held by all memoized results (the sum of their `owned`).
+    live: u64,
 }
 
 impl Evaluator {
@@ -90,6 +95,8 @@ impl Evaluator {
             ..EvalSummary::default()
         };
         let order = std::mem::take(&mut self.order);
+        // Bytes held outside this evaluator (an enclosing graph's values, for a cluster).
+        let outside = ctx.in_use();
         for (done, &node) in order.iter().enumerate() {
             let Some(instance) = graph.node_at(node) else {
                 continue;
@@ -105,14 +112,27 @@ impl Evaluator {
                 break;
             }
             progress(done, order.len());
+            let own = self.memos[node.index()].as_ref().map_or(0, |m| m.owned);
+            let held = outside.saturating_add(self.live.saturating_sub(own));
+            ctx.take_held();
+            ctx.set_in_use(held);
             let start = Instant::now();
             let (result, executed) = self.run_node(graph, node, instance, ctx);
+            let (result, owned) = within_budget(result, instance, ctx, held);
+            let owned = owned.saturating_add(ctx.take_held());
             let time = start.elapsed();
             summary.ran += usize::from(executed);
-            if self.store(node, instance.uid(), revision, result, time, executed) && executed {
+            let stored = Stored {
+                result,
+                time,
+                executed,
+                owned,
+            };
+            if self.store(node, instance.uid(), revision, stored) && executed {
                 summary.cut_off += 1;
             }
         }
+        ctx.set_in_use(outside);
         self.order = order;
         summary
     }
@@ -128,7 +148,8 @@ impl Evaluator {
             self.swept_at = revision;
             for (k, memo) in self.memos.iter_mut().enumerate() {
                 let alive = graph.node_at(NodeIndex::new(k)).map(NodeInstance::uid);
-                if memo.as_ref().is_some_and(|m| Some(m.uid) != alive) {
+                if let Some(m) = memo.as_ref().filter(|m| Some(m.uid) != alive) {
+                    self.live = self.live.saturating_sub(m.owned);
                     *memo = None;
                 }
             }
@@ -186,15 +207,13 @@ impl Evaluator {
     }
 
     /// Stores a new result; returns true when it equals the previous one (backdated).
-    fn store(
-        &mut self,
-        node: NodeIndex,
-        uid: u64,
-        revision: Revision,
-        result: NodeResult,
-        time: Duration,
-        executed: bool,
-    ) -> bool {
+    fn store(&mut self, node: NodeIndex, uid: u64, revision: Revision, stored: Stored) -> bool {
+        let Stored {
+            result,
+            time,
+            executed,
+            owned,
+        } = stored;
         let ran = u64::from(executed);
         self.total_runs += ran;
         let hashes = match &result {
@@ -205,6 +224,10 @@ impl Evaluator {
         let unchanged = slot.as_ref().is_some_and(|old| {
             old.uid == uid && old.hashes == hashes && old.result.same_as(&result)
         });
+        self.live = self
+            .live
+            .saturating_sub(slot.as_ref().map_or(0, |m| m.owned))
+            .saturating_add(owned);
         let (changed_at, runs) = match slot.as_ref() {
             Some(old) if old.uid == uid && unchanged => (old.changed_at, old.runs + ran),
             Some(old) if old.uid == uid => (revision, old.runs + ran),
@@ -218,8 +241,15 @@ impl Evaluator {
             hashes,
             time,
             runs,
+            owned,
         });
         unchanged
+    }
+
+    /// Bytes held by the memoized results (each shared payload counted once, by the result that
+    /// made it).
+    pub fn live_bytes(&self) -> u64 {
+        self.live
     }
 
     /// Gathers the inputs of a node and runs it (catching panics). The flag tells whether the node's
@@ -360,6 +390,43 @@ impl Evaluator {
             .as_ref()
             .filter(|m| m.uid == uid)
     }
+}
+
+/// A node's new result and what it cost.
+struct Stored {
+    result: NodeResult,
+    time: Duration,
+    executed: bool,
+    owned: u64,
+}
+
+/// The memory budget after a node ran: its outputs must fit beside the `held` bytes of the other
+/// results, and a full read of them (JSON, a flatten, an export) must fit too. Over budget, the node
+/// fails (its outputs are dropped) and its dependents are blocked. Returns the result and the bytes
+/// it holds.
+fn within_budget(
+    result: NodeResult,
+    instance: &NodeInstance,
+    ctx: &NodeContext,
+    held: u64,
+) -> (NodeResult, u64) {
+    let NodeResult::Ok(outputs) = &result else {
+        return (result, 0);
+    };
+    let size = footprint(&outputs.values);
+    let what = format!("the outputs of '{}'", instance.id);
+    if let Err(e) = ctx.budget.check(size.owned_bytes, held, &what) {
+        return (NodeResult::Failed(e.to_string()), 0);
+    }
+    let read = bytes_of(size.read_values, std::mem::size_of::<Value>());
+    let what = format!(
+        "reading the outputs of '{}' ({} values: lists shared many times over)",
+        instance.id, size.read_values
+    );
+    if let Err(e) = ctx.budget.check(read, 0, &what) {
+        return (NodeResult::Failed(e.to_string()), 0);
+    }
+    (result, size.owned_bytes)
 }
 
 /// Runs one node type on raw input values (one per input port, `Null` for empty), as a graph run
