@@ -12,6 +12,7 @@ pub mod cluster;
 pub mod convert;
 pub mod eval;
 pub mod file;
+pub mod files;
 pub mod graph;
 pub mod kinds;
 pub mod node;

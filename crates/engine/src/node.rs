@@ -2,7 +2,7 @@
 
 use std::borrow::Cow;
 use std::fmt;
-use std::path::{Component, Path, PathBuf};
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -313,6 +313,10 @@ pub struct NodeContext {
     /// The memory the evaluation may use (default: half the machine's memory); nodes check what
     /// they are about to allocate with [`NodeContext::reserve`].
     pub budget: MemoryBudget,
+    /// Folders besides `base_dir` whose files nodes may read (`--allow-read DIR`).
+    pub allow_read: Vec<PathBuf>,
+    /// The largest file a node may read, in bytes (default 1 GB).
+    pub max_read_bytes: u64,
     /// How many clusters deep this context runs (0: the top graph); see [`MAX_CLUSTER_DEPTH`].
     pub depth: usize,
     in_use: AtomicU64,
@@ -335,6 +339,8 @@ impl NodeContext {
             base_dir,
             cancel: Arc::new(AtomicBool::new(false)),
             budget: MemoryBudget::default(),
+            allow_read: Vec::new(),
+            max_read_bytes: crate::files::DEFAULT_MAX_READ_BYTES,
             depth: 0,
             in_use: AtomicU64::new(0),
             held: AtomicU64::new(0),
@@ -362,6 +368,9 @@ impl NodeContext {
         let mut inner = NodeContext::new(self.out_dir.clone(), base_dir);
         inner.cancel = Arc::clone(&self.cancel);
         inner.budget = self.budget;
+        inner.allow_read = self.allow_read.clone();
+        inner.allow_read.extend(self.base_dir.clone());
+        inner.max_read_bytes = self.max_read_bytes;
         inner.depth = self.depth + 1;
         inner.set_in_use(self.in_use());
         Ok(inner)
@@ -429,35 +438,87 @@ impl NodeContext {
         std::mem::take(&mut *lock(&self.files))
     }
 
-    /// Resolves a file name for writing inside the output directory. Absolute paths, `..` and an
-    /// unset output directory are errors: exports never write outside `--out`.
+    /// Resolves an export name inside the output directory (no folder is created, no file
+    /// written; see [`NodeContext::write_output`]). Names are checked by name
+    /// ([`files::check_export_name`](crate::files::check_export_name): no control characters, no
+    /// root, no `.`, `..` or empty components); an unset output directory is an error.
     pub fn output_path(&self, name: &str) -> Result<PathBuf, NodeError> {
         let dir = self
             .out_dir
             .as_ref()
             .ok_or_else(|| NodeError::new("no output directory is set for exports"))?;
-        let rel = Path::new(name);
-        if name.trim().is_empty() {
-            return Err(NodeError::new("the output file name is empty"));
-        }
-        let safe = rel
-            .components()
-            .all(|c| matches!(c, Component::Normal(_) | Component::CurDir));
-        if !safe {
-            return Err(NodeError::new(format!(
-                "output name '{name}' must be a relative path inside the output directory (no '..', no root)"
-            )));
-        }
-        Ok(dir.join(rel))
+        let parts =
+            crate::files::check_export_name(name).map_err(|e| NodeError::new(e.to_string()))?;
+        Ok(parts.iter().fold(dir.clone(), |p, c| p.join(c)))
     }
 
-    /// Resolves a path for reading: relative paths resolve against the graph's folder.
+    /// Writes an export named `name` (relative, checked as by [`NodeContext::output_path`]) inside
+    /// the output directory, atomically and without following symbolic links out of it
+    /// ([`files::write_inside`](crate::files::write_inside)); records and returns the path.
+    pub fn write_output(&self, name: &str, bytes: &[u8]) -> Result<PathBuf, NodeError> {
+        let dir = self
+            .out_dir
+            .as_ref()
+            .ok_or_else(|| NodeError::new("no output directory is set for exports"))?;
+        let parts =
+            crate::files::check_export_name(name).map_err(|e| NodeError::new(e.to_string()))?;
+        let path = crate::files::write_inside(dir, &parts, bytes)
+            .map_err(|e| NodeError::new(format!("cannot write '{name}': {e}")))?;
+        self.record_file(path.clone());
+        Ok(path)
+    }
+
+    /// Resolves a path for reading: relative paths resolve against the graph's folder. Reading
+    /// goes through [`NodeContext::read_file`], which checks the permission.
     pub fn input_path(&self, name: &str) -> PathBuf {
         let p = Path::new(name);
         match &self.base_dir {
             Some(base) if p.is_relative() => base.join(p),
             _ => p.to_path_buf(),
         }
+    }
+
+    /// Where this context's nodes may read: the graph's folder and the `allow_read` folders, up
+    /// to `max_read_bytes` per file.
+    pub fn read_access(&self) -> crate::files::ReadAccess {
+        let mut access = crate::files::ReadAccess::new(
+            self.base_dir
+                .iter()
+                .chain(&self.allow_read)
+                .cloned()
+                .collect(),
+        );
+        access.max_bytes = self.max_read_bytes;
+        access
+    }
+
+    /// Reads the file `name` (relative to the graph's folder, or absolute) for a node: allowed
+    /// only under the graph's folder and the `allow_read` folders, only a regular file (no device,
+    /// FIFO or socket), at most `max_read_bytes` and within the memory budget. Every node that
+    /// reads a file calls this (or [`NodeContext::read_text`]). Returns the resolved path and the
+    /// bytes.
+    pub fn read_file(&self, name: &str) -> Result<(PathBuf, Vec<u8>), NodeError> {
+        let path = self.input_path(name);
+        let access = self.read_access();
+        let real = access
+            .check(&path)
+            .map_err(|e| NodeError::new(format!("cannot read '{name}': {e}")))?;
+        if let Ok(meta) = std::fs::metadata(&real) {
+            self.reserve(meta.len(), &format!("reading '{name}'"))?;
+        }
+        let bytes = access
+            .read(&path)
+            .map_err(|e| NodeError::new(format!("cannot read '{name}': {e}")))?;
+        Ok((path, bytes))
+    }
+
+    /// [`NodeContext::read_file`] as UTF-8 text.
+    pub fn read_text(&self, name: &str) -> Result<(PathBuf, String), NodeError> {
+        let (path, bytes) = self.read_file(name)?;
+        let text = String::from_utf8(bytes).map_err(|_| {
+            NodeError::new(format!("cannot read '{name}': the file is not UTF-8 text"))
+        })?;
+        Ok((path, text))
     }
 }
 

@@ -5,6 +5,7 @@ mod commands;
 mod failure;
 mod inputs;
 mod library;
+mod output;
 mod progress;
 mod runtime_dir;
 
@@ -62,6 +63,7 @@ fn main() -> ExitCode {
         Command::Optimize(args) => commands::optimize::run(args),
         Command::Render(args) => commands::render::run(args),
     };
+    let result = result.and_then(|code| output::flush().map(|()| code));
     match result {
         Ok(code) => code,
         Err(Failure { code, messages }) => {
