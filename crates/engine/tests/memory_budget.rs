@@ -75,7 +75,7 @@ fn results_that_read_as_more_values_than_the_budget_holds_fail() {
     ev.evaluate_all(&g, &ctx(1_000_000_000));
     let message = error(&ev, &g, "l");
     assert!(
-        message.starts_with("reading the outputs of 'l' (2199023255552 values"),
+        message.starts_with("reading the outputs (3298534883327 values"),
         "{message}"
     );
     assert!(message.contains("the limit is 1 GB"), "{message}");

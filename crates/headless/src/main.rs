@@ -8,6 +8,7 @@ mod library;
 mod output;
 mod progress;
 mod runtime_dir;
+mod signals;
 
 use std::process::ExitCode;
 
@@ -55,6 +56,7 @@ fn main() -> ExitCode {
     if renders && let Some(code) = runtime_dir::rerun_with_runtime_dir() {
         return code;
     }
+    signals::install();
     let result = match cli.command {
         Command::Nodes(args) => commands::nodes::run(args),
         Command::Eval(args) => commands::eval::run(args),

@@ -401,9 +401,8 @@ struct Stored {
 }
 
 /// The memory budget after a node ran: its outputs must fit beside the `held` bytes of the other
-/// results, and a full read of them (JSON, a flatten, an export) must fit too. Over budget, the node
-/// fails (its outputs are dropped) and its dependents are blocked. Returns the result and the bytes
-/// it holds.
+/// results (a full read of them was checked by [`evaluate_node`]). Over budget, the node fails (its
+/// outputs are dropped) and its dependents are blocked. Returns the result and the bytes it holds.
 fn within_budget(
     result: NodeResult,
     instance: &NodeInstance,
@@ -413,20 +412,12 @@ fn within_budget(
     let NodeResult::Ok(outputs) = &result else {
         return (result, 0);
     };
-    let size = footprint(&outputs.values);
+    let owned = outputs.footprint.owned_bytes;
     let what = format!("the outputs of '{}'", instance.id);
-    if let Err(e) = ctx.budget.check(size.owned_bytes, held, &what) {
+    if let Err(e) = ctx.budget.check(owned, held, &what) {
         return (NodeResult::Failed(e.to_string()), 0);
     }
-    let read = bytes_of(size.read_values, std::mem::size_of::<Value>());
-    let what = format!(
-        "reading the outputs of '{}' ({} values: lists shared many times over)",
-        instance.id, size.read_values
-    );
-    if let Err(e) = ctx.budget.check(read, 0, &what) {
-        return (NodeResult::Failed(e.to_string()), 0);
-    }
-    (result, size.owned_bytes)
+    (result, owned)
 }
 
 /// Runs one node type on raw input values (one per input port, `Null` for empty), as a graph run
@@ -441,14 +432,28 @@ pub fn evaluate_node(
     let warnings = ctx.take_warnings();
     let files = ctx.take_files();
     match outcome {
-        Ok(Ok(values)) => match non_finite_output(def, &values) {
-            Some(message) => Err(message),
-            None => Ok(NodeOutputs {
-                values,
-                warnings,
-                files,
-            }),
-        },
+        Ok(Ok(values)) => {
+            // Measured before anything reads every value (the finiteness scan, hashing, JSON):
+            // a list shared many times over may read as more values than memory holds.
+            let footprint = footprint(&values);
+            let read = bytes_of(footprint.read_values, std::mem::size_of::<Value>());
+            let what = format!(
+                "reading the outputs ({} values: lists shared many times over)",
+                footprint.read_values
+            );
+            ctx.budget
+                .check(read, 0, &what)
+                .map_err(|e| e.to_string())?;
+            match non_finite_output(def, &values) {
+                Some(message) => Err(message),
+                None => Ok(NodeOutputs {
+                    values,
+                    warnings,
+                    files,
+                    footprint,
+                }),
+            }
+        }
         Ok(Err(e)) => Err(e.message),
         Err(panic) => Err(panic),
     }

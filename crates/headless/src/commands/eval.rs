@@ -81,6 +81,7 @@ pub fn run(args: Args) -> CommandResult {
         ctx.budget = MemoryBudget::new(limit);
     }
     ctx.allow_read = args.allow_read.clone();
+    ctx.cancel = crate::signals::cancel_flag();
     let start = Instant::now();
     let result = evaluate_node(def, &ctx, &inputs);
     let elapsed = start.elapsed();

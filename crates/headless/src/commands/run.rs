@@ -91,6 +91,7 @@ pub fn run(args: Args) -> CommandResult {
         ctx.budget = MemoryBudget::new(limit);
     }
     ctx.allow_read = args.allow_read.clone();
+    ctx.cancel = crate::signals::cancel_flag();
     let mut evaluator = Evaluator::new();
     let all: Vec<_> = graph.nodes().map(|(k, _)| k).collect();
     let progress = Progress::new("evaluating");
@@ -100,6 +101,13 @@ pub fn run(args: Args) -> CommandResult {
     });
     let elapsed = start.elapsed();
     progress.finish();
+    if summary.cancelled {
+        cnets_engine::files::temp::remove_own();
+        return Err(Failure {
+            code: crate::signals::CANCELLED,
+            messages: vec!["cancelled".to_string()],
+        });
+    }
 
     let mut failed = Vec::new();
     let mut nodes = Map::new();
