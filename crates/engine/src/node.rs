@@ -317,6 +317,9 @@ pub struct NodeContext {
     pub allow_read: Vec<PathBuf>,
     /// The largest file a node may read, in bytes (default 1 GB).
     pub max_read_bytes: u64,
+    /// The outputs the caller asked for (`cnets eval --outputs a,b`); `None`: all. A node may skip
+    /// the work of outputs not asked for ([`NodeContext::wants`]) and leave them empty.
+    pub requested: Option<Vec<String>>,
     /// How many clusters deep this context runs (0: the top graph); see [`MAX_CLUSTER_DEPTH`].
     pub depth: usize,
     in_use: AtomicU64,
@@ -341,6 +344,7 @@ impl NodeContext {
             budget: MemoryBudget::default(),
             allow_read: Vec::new(),
             max_read_bytes: crate::files::DEFAULT_MAX_READ_BYTES,
+            requested: None,
             depth: 0,
             in_use: AtomicU64::new(0),
             held: AtomicU64::new(0),
@@ -395,6 +399,14 @@ impl NodeContext {
         self.budget
             .check(bytes, self.in_use(), what)
             .map_err(|e| NodeError::new(e.to_string()))
+    }
+
+    /// True when the output named `output` was asked for (always, unless the caller set
+    /// `requested`).
+    pub fn wants(&self, output: &str) -> bool {
+        self.requested
+            .as_ref()
+            .is_none_or(|r| r.iter().any(|o| o == output))
     }
 
     /// Records that the running node keeps `bytes` alive besides its outputs (a cluster: its

@@ -262,6 +262,12 @@ node! {
             apex: apex_input(apex, normalized, scale),
             normals: normals_input(normals)?,
         };
+        // Only the mesh asked for: the sweep alone, no apices, quality pass or output tables.
+        let others = ["apex", "apices", "planes", "configurations", "corrections", "quality"];
+        if !others.iter().any(|o| ctx.wants(o)) {
+            let mesh = conenet::ctube_mesh(&inputs)?;
+            return Ok((mesh, Vec::new(), Vec::new(), Value::list(Vec::new()), Value::list(Vec::new()), Vec::new(), Record::new()));
+        }
         Ok(outputs(conenet::construct_ctube(&inputs)?))
     }
 }

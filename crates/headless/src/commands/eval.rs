@@ -25,6 +25,10 @@ pub struct Args {
     /// Print `time: <ms> ms` on stderr (evaluation only).
     #[arg(long)]
     timing: bool,
+    /// Compute and print only these outputs (comma-separated names); a node may skip the work of
+    /// the others.
+    #[arg(long, value_delimiter = ',', value_name = "NAMES")]
+    outputs: Option<Vec<String>>,
     /// Output directory for export nodes.
     #[arg(long, default_value = "out")]
     out: PathBuf,
@@ -82,6 +86,16 @@ pub fn run(args: Args) -> CommandResult {
     }
     ctx.allow_read = args.allow_read.clone();
     ctx.cancel = crate::signals::cancel_flag();
+    if let Some(names) = &args.outputs {
+        if let Some(bad) = names.iter().find(|n| def.output_index(n).is_none()) {
+            return Err(Failure::usage(format!(
+                "unknown output '{bad}' for {}; valid outputs: {}",
+                def.id,
+                def.output_names()
+            )));
+        }
+        ctx.requested = Some(names.clone());
+    }
     let start = Instant::now();
     let result = evaluate_node(def, &ctx, &inputs);
     let elapsed = start.elapsed();
@@ -96,6 +110,7 @@ pub fn run(args: Args) -> CommandResult {
         .outputs
         .iter()
         .zip(&outputs.values)
+        .filter(|(p, _)| ctx.wants(&p.name))
         .map(|(p, v)| (p.name.to_string(), to_json(v)))
         .collect();
     crate::outln!("{}", Json::Object(object));
