@@ -28,7 +28,10 @@ fn stderr(o: &Output) -> String {
 
 fn export_graph(d: &Path, name: &str) -> PathBuf {
     let g = d.join(format!("export-{}.ron", name.len()));
-    let name = name.replace('\\', "\\\\").replace('\n', "\\n").replace('"', "\\\"");
+    let name = name
+        .replace('\\', "\\\\")
+        .replace('\n', "\\n")
+        .replace('"', "\\\"");
     std::fs::write(
         &g,
         format!(
@@ -110,7 +113,11 @@ fn reads_outside_the_graph_folder_devices_and_fifos_are_refused() {
     let start = Instant::now();
     let o = cnets(&["run", g.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("outside the folders reads are allowed in"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("outside the folders reads are allowed in"),
+        "{}",
+        stderr(&o)
+    );
     assert!(!stderr(&o).contains("root:"), "{}", stderr(&o));
 
     // Allowed, the CSV error quotes a short excerpt, not the line.
@@ -124,7 +131,13 @@ fn reads_outside_the_graph_folder_devices_and_fifos_are_refused() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("not a regular file"), "{}", stderr(&o));
 
-    assert!(Command::new("mkfifo").arg(d.join("fifo")).status().unwrap().success());
+    assert!(
+        Command::new("mkfifo")
+            .arg(d.join("fifo"))
+            .status()
+            .unwrap()
+            .success()
+    );
     let g = read_graph(&d, "fifo");
     let o = cnets(&["run", g.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
@@ -155,8 +168,17 @@ fn a_cluster_file_outside_the_allowed_folders_is_refused() {
     .unwrap();
     let o = cnets(&["check", g.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(stderr(&o).contains("outside the folders reads are allowed in"), "{}", stderr(&o));
-    let o = cnets(&["check", g.to_str().unwrap(), "--allow-read", lib.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains("outside the folders reads are allowed in"),
+        "{}",
+        stderr(&o)
+    );
+    let o = cnets(&[
+        "check",
+        g.to_str().unwrap(),
+        "--allow-read",
+        lib.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
 }
 
@@ -173,7 +195,10 @@ fn a_closed_stdout_ends_quietly_and_a_full_disk_is_one_line() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(o.stderr.is_empty(), "{}", stderr(&o));
 
-    let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_cnets"))
         .args(["nodes"])
         .stdout(full)
@@ -223,7 +248,10 @@ fn sigint_cancels_a_run_within_a_second_and_leaves_no_partial_file() {
         return;
     }
     assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
-    assert!(waited < Duration::from_millis(1500), "stopped after {waited:?}");
+    assert!(
+        waited < Duration::from_millis(1500),
+        "stopped after {waited:?}"
+    );
     let leftovers: Vec<_> = std::fs::read_dir(&out).map_or(Vec::new(), |r| {
         r.flatten()
             .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))

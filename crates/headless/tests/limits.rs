@@ -171,9 +171,12 @@ fn a_flatten_ladder_stops_at_the_budget() {
         ),
     )
     .unwrap();
-    let err = run_fails_within_budget(&g, "a19");
+    // a17 fits beside the 33 MB of the levels below; b17 does not beside those and a17.
+    let err = run_fails_within_budget(&g, "b17");
     assert!(
-        err.contains("a flat list of 2097152 items needs 67 MB"),
+        err.contains(
+            "a flat list of 524288 items needs 17 MB, the limit is 64 MB (50 MB already held"
+        ),
         "{err}"
     );
 }

@@ -65,7 +65,10 @@ fn the_same_square_reads_the_same_from_every_format() {
     let copy = dir.join("square.data");
     std::fs::copy(dir.join("square.obj"), &copy).unwrap();
     let e = read(&NodeContext::default(), copy.to_str().unwrap(), "obj").unwrap_err();
-    assert!(e.contains("outside the folders reads are allowed in"), "{e}");
+    assert!(
+        e.contains("outside the folders reads are allowed in"),
+        "{e}"
+    );
     let mut allowed = NodeContext::default();
     allowed.allow_read.push(dir.clone());
     let curves = read(&allowed, copy.to_str().unwrap(), "obj").unwrap();

@@ -31,11 +31,14 @@ pub enum FileError {
     /// The export name is refused by name.
     #[error("export name {0}: {1}")]
     BadName(String, &'static str),
-    /// A component inside the output directory is a symbolic link (or not a folder).
+    /// A folder inside the output directory is a symbolic link.
     #[error(
-        "'{0}' inside the output directory is a symbolic link or not a folder: exports do not follow links out of it"
+        "'{0}' inside the output directory is a symbolic link: exports do not follow links out of it"
     )]
     Link(String),
+    /// A folder of the export name is taken by a file.
+    #[error("cannot create the output folder '{0}': a file of that name is in the way")]
+    NotAFolder(String),
     /// The file is outside every folder reads are allowed in.
     #[error(
         "{path} is outside the folders reads are allowed in ({allowed}); allow its folder with --allow-read"

@@ -20,7 +20,11 @@ pub fn check_export_name(name: &str) -> Result<Vec<&str>, FileError> {
     for part in &parts {
         match *part {
             "" => return bad("has an empty folder or file name"),
-            "." | ".." => return bad("may not contain '.' or '..'"),
+            "." | ".." => {
+                return bad(
+                    "may not contain '.' or '..': it names a file inside the output directory",
+                );
+            }
             p if p.trim().is_empty() => return bad("has a blank folder or file name"),
             _ => {}
         }

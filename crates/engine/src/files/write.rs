@@ -45,8 +45,9 @@ mod imp {
             }
             dir = match openat(&dir, *folder, dir_flags | OFlags::NOFOLLOW, Mode::empty()) {
                 Ok(d) => d,
-                Err(Errno::LOOP | Errno::NOTDIR) => {
-                    return Err(FileError::Link(rel.display().to_string()));
+                Err(Errno::LOOP) => return Err(FileError::Link(rel.display().to_string())),
+                Err(Errno::NOTDIR) => {
+                    return Err(FileError::NotAFolder(rel.display().to_string()));
                 }
                 Err(e) => return Err(io(&path, e)),
             };
@@ -93,8 +94,11 @@ mod imp {
             path.push(folder);
             rel.push(folder);
             match std::fs::symlink_metadata(&path) {
-                Ok(m) if m.file_type().is_symlink() || !m.is_dir() => {
+                Ok(m) if m.file_type().is_symlink() => {
                     return Err(FileError::Link(rel.display().to_string()));
+                }
+                Ok(m) if !m.is_dir() => {
+                    return Err(FileError::NotAFolder(rel.display().to_string()));
                 }
                 Ok(_) => {}
                 Err(_) => std::fs::create_dir(&path).map_err(|e| FileError::Io(path.clone(), e))?,
