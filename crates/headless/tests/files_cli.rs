@@ -243,11 +243,9 @@ fn sigint_cancels_a_run_within_a_second_and_leaves_no_partial_file() {
     );
     let o = child.wait_with_output().unwrap();
     let waited = sent.elapsed();
-    if o.status.code() == Some(0) {
-        // The run finished before the signal arrived: nothing to cancel on this machine.
-        return;
-    }
+    // The run takes seconds (3 million mapped items, then a 60 MB JSON export): it is cancelled.
     assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    assert!(stderr(&o).contains("cancelled"), "{}", stderr(&o));
     assert!(
         waited < Duration::from_millis(1500),
         "stopped after {waited:?}"
