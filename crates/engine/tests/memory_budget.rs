@@ -99,3 +99,31 @@ fn a_node_reserving_more_than_the_budget_fails_before_allocating() {
     assert!(c.reserve_values(18_000, "fits").is_ok());
     assert!(c.reserve_values(u128::MAX, "huge").is_err());
 }
+
+#[test]
+fn lists_merged_from_several_wires_count_against_the_budget() {
+    // Two wires of 100 000 numbers into one list input: the merged list is new memory, held by
+    // the node that passes it through.
+    let mut g = common::graph();
+    for id in ["a", "b"] {
+        g.add_node(id, "t.series").unwrap();
+        g.set_value(id, "n", Value::Integer(100_000)).unwrap();
+    }
+    g.add_node("s", "t.sum").unwrap();
+    g.connect("a", "out", "s", "xs").unwrap();
+    g.connect("b", "out", "s", "xs").unwrap();
+    let one = 100_000 * std::mem::size_of::<Value>() as u64;
+    let mut ev = Evaluator::new();
+    ev.evaluate_all(&g, &ctx(3 * one));
+    let message = match ev.result(&g, "s") {
+        Some(NodeResult::Failed(m)) => m.clone(),
+        other => panic!("expected a failure, got {other:?}"),
+    };
+    assert!(
+        message.starts_with("input 'xs': merging 2 wires into a list of 200000 items needs 6.4 MB"),
+        "{message}"
+    );
+    let mut ev = Evaluator::new();
+    ev.evaluate_all(&g, &ctx(5 * one));
+    assert!(ev.result(&g, "s").unwrap().outputs().is_some());
+}

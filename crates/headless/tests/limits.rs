@@ -171,11 +171,12 @@ fn a_flatten_ladder_stops_at_the_budget() {
         ),
     )
     .unwrap();
-    // a17 fits beside the 33 MB of the levels below; b17 does not beside those and a17.
+    // a17 fits beside the 33 MB of the levels below; b17 does not beside those and a17: the
+    // merge of its two wires is refused before it is built.
     let err = run_fails_within_budget(&g, "b17");
     assert!(
         err.contains(
-            "a flat list of 524288 items needs 17 MB, the limit is 64 MB (50 MB already held"
+            "merging 2 wires into a list of 524288 items needs 17 MB, the limit is 64 MB (50 MB already held"
         ),
         "{err}"
     );
@@ -183,42 +184,55 @@ fn a_flatten_ladder_stops_at_the_budget() {
 
 #[test]
 fn clusters_used_twice_nested_deep_stop_at_the_budget() {
-    let d = folder("twice");
-    std::fs::write(
-        d.join("level0.ron"),
-        r#"(version: 1, nodes: {
+    // Level k runs level k − 1 twice and merges both results into its output: 2ᵏ copies. Once
+    // with the copies merged as they are (the list doubles in memory at every level), once
+    // flattened by a node.
+    for flatten in [false, true] {
+        let d = folder(&format!("twice-{flatten}"));
+        std::fs::write(
+            d.join("level0.ron"),
+            r#"(version: 1, nodes: {
     "x": (type: "graph.input", inputs: {"name": "x", "type": "tree<number>"}),
     "y": (type: "graph.output", inputs: {"name": "y", "type": "tree<number>"}),
 }, edges: ["x.value -> y.value"])"#,
-    )
-    .unwrap();
-    for k in 1..=25 {
-        std::fs::write(
-            d.join(format!("level{k}.ron")),
-            format!(
-                r#"(version: 1, nodes: {{
+        )
+        .unwrap();
+        let (node, edges) = if flatten {
+            (
+                r#""f": (type: "list.flatten"),"#,
+                r#""c1.y -> f.tree", "c2.y -> f.tree", "f.list -> y.value""#,
+            )
+        } else {
+            ("", r#""c1.y -> y.value", "c2.y -> y.value""#)
+        };
+        for k in 1..=25 {
+            std::fs::write(
+                d.join(format!("level{k}.ron")),
+                format!(
+                    r#"(version: 1, nodes: {{
     "x": (type: "graph.input", inputs: {{"name": "x", "type": "tree<number>"}}),
     "c1": (type: "cluster", source: "level{p}.ron"),
     "c2": (type: "cluster", source: "level{p}.ron"),
-    "f": (type: "list.flatten"),
+    {node}
     "y": (type: "graph.output", inputs: {{"name": "y", "type": "tree<number>"}}),
-}}, edges: ["x.value -> c1.x", "x.value -> c2.x", "c1.y -> f.tree", "c2.y -> f.tree", "f.list -> y.value"])"#,
-                p = k - 1
-            ),
-        )
-        .unwrap();
-    }
-    let g = d.join("top.ron");
-    std::fs::write(
-        &g,
-        r#"(version: 1, nodes: {
+}}, edges: ["x.value -> c1.x", "x.value -> c2.x", {edges}])"#,
+                    p = k - 1
+                ),
+            )
+            .unwrap();
+        }
+        let g = d.join("top.ron");
+        std::fs::write(
+            &g,
+            r#"(version: 1, nodes: {
     "s": (type: "param.series", inputs: {"count": 16}),
     "c": (type: "cluster", source: "level25.ron"),
 }, edges: ["s.values -> c.x"])"#,
-    )
-    .unwrap();
-    let err = run_fails_within_budget(&g, "c");
-    assert!(err.contains("inside cluster"), "{err}");
+        )
+        .unwrap();
+        let err = run_fails_within_budget(&g, "c");
+        assert!(err.contains("inside cluster"), "{err}");
+    }
 }
 
 /// A chain of `len` cluster files, `c0.ron` using `c1.ron` using … a last one that doubles.

@@ -118,8 +118,7 @@ impl Evaluator {
             ctx.set_in_use(held);
             let start = Instant::now();
             let (result, executed) = self.run_node(graph, node, instance, ctx);
-            let (result, owned) = within_budget(result, instance, ctx, held);
-            let owned = owned.saturating_add(ctx.take_held());
+            let (result, owned) = within_budget(result, instance, ctx, held, ctx.take_held());
             let time = start.elapsed();
             summary.ran += usize::from(executed);
             let stored = Stored {
@@ -261,7 +260,7 @@ impl Evaluator {
         instance: &NodeInstance,
         ctx: &NodeContext,
     ) -> (NodeResult, bool) {
-        match self.gather_inputs(graph, node, instance) {
+        match self.gather_inputs(graph, node, instance, ctx) {
             Ok(inputs) => (self.call(instance, &inputs, ctx), true),
             Err(result) => (result, false),
         }
@@ -281,6 +280,7 @@ impl Evaluator {
         graph: &Graph,
         node: NodeIndex,
         instance: &NodeInstance,
+        ctx: &NodeContext,
     ) -> Result<Vec<Value>, NodeResult> {
         if !instance.enabled {
             return Err(NodeResult::Disabled);
@@ -330,7 +330,24 @@ impl Evaluator {
                     }
                 },
                 1 => values.pop().unwrap_or_default(),
-                _ => merge(values),
+                _ => {
+                    // The merged list is new memory: checked before it is built.
+                    let items: usize = values
+                        .iter()
+                        .map(|v| match v {
+                            Value::List(items) => items.len(),
+                            _ => 1,
+                        })
+                        .sum();
+                    let what = format!(
+                        "input '{}': merging {} wires into a list of {items} items",
+                        port.name,
+                        values.len()
+                    );
+                    ctx.reserve_values(items as u128, &what)
+                        .map_err(|e| NodeResult::Failed(e.message))?;
+                    merge(values)
+                }
             };
             inputs.push(value);
         }
@@ -401,18 +418,22 @@ struct Stored {
 }
 
 /// The memory budget after a node ran: its outputs must fit beside the `held` bytes of the other
-/// results (a full read of them was checked by [`evaluate_node`]). Over budget, the node fails (its
+/// results, with the `kept` bytes the node keeps alive elsewhere (a cluster's inner results; a full
+/// read of the outputs was checked by [`evaluate_node`]). Over budget, the node fails (its
 /// outputs are dropped) and its dependents are blocked. Returns the result and the bytes it holds.
 fn within_budget(
     result: NodeResult,
     instance: &NodeInstance,
     ctx: &NodeContext,
     held: u64,
+    kept: u64,
 ) -> (NodeResult, u64) {
     let NodeResult::Ok(outputs) = &result else {
         return (result, 0);
     };
-    let owned = outputs.footprint.owned_bytes;
+    // Measured again now that the inputs are gone: a list the evaluator merged and the node passed
+    // through is held by this result alone.
+    let owned = footprint(&outputs.values).owned_bytes.saturating_add(kept);
     let what = format!("the outputs of '{}'", instance.id);
     if let Err(e) = ctx.budget.check(owned, held, &what) {
         return (NodeResult::Failed(e.to_string()), 0);

@@ -22,7 +22,9 @@ pub fn write_inside(out_dir: &Path, parts: &[&str], bytes: &[u8]) -> Result<Path
 #[cfg(unix)]
 mod imp {
     use super::*;
-    use rustix::fs::{AtFlags, CWD, Mode, OFlags, mkdirat, openat, renameat, unlinkat};
+    use rustix::fs::{
+        AtFlags, CWD, FileType, Mode, OFlags, mkdirat, openat, renameat, statat, unlinkat,
+    };
     use rustix::io::Errno;
 
     pub(super) fn write(
@@ -45,9 +47,16 @@ mod imp {
             }
             dir = match openat(&dir, *folder, dir_flags | OFlags::NOFOLLOW, Mode::empty()) {
                 Ok(d) => d,
-                Err(Errno::LOOP) => return Err(FileError::Link(rel.display().to_string())),
-                Err(Errno::NOTDIR) => {
-                    return Err(FileError::NotAFolder(rel.display().to_string()));
+                Err(Errno::LOOP | Errno::NOTDIR) => {
+                    // Linux says ENOTDIR for a link opened with O_DIRECTORY | O_NOFOLLOW: look.
+                    let link = statat(&dir, *folder, AtFlags::SYMLINK_NOFOLLOW)
+                        .is_ok_and(|st| FileType::from_raw_mode(st.st_mode) == FileType::Symlink);
+                    let rel = rel.display().to_string();
+                    return Err(if link {
+                        FileError::Link(rel)
+                    } else {
+                        FileError::NotAFolder(rel)
+                    });
                 }
                 Err(e) => return Err(io(&path, e)),
             };
