@@ -7,10 +7,12 @@
 //! - [`eval`]: incremental, pull-based evaluation with early cutoff.
 
 pub mod atomic;
+pub mod budget;
 pub mod cluster;
 pub mod convert;
 pub mod eval;
 pub mod file;
+pub mod files;
 pub mod graph;
 pub mod kinds;
 pub mod node;
@@ -19,10 +21,11 @@ pub mod optimize;
 pub mod registry;
 pub mod value;
 
+pub use budget::MemoryBudget;
 pub use eval::{EvalSummary, Evaluator, NodeOutputs, NodeResult};
 pub use graph::{Graph, GraphError, NodeInstance, Revision, WireRef};
 pub use kinds::{IntoPort, PortKind};
-pub use node::{NodeContext, NodeDef, NodeError, NodeFlag, PortDef};
+pub use node::{MAX_CLUSTER_DEPTH, NodeContext, NodeDef, NodeError, NodeFlag, PortDef};
 pub use registry::Registry;
 pub use value::{Access, Items, Record, Value, ValueType};
 

@@ -2,11 +2,12 @@
 
 use std::borrow::Cow;
 use std::fmt;
-use std::path::{Component, Path, PathBuf};
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
+use crate::budget::{MemoryBudget, bytes_of};
 use crate::eval::FileStamp;
 use crate::kinds::PortKind;
 use crate::value::{Access, Value, ValueType};
@@ -297,6 +298,11 @@ pub fn doc_text(lines: &[&str]) -> String {
     out
 }
 
+/// How many clusters deep a graph may nest (a chain of cluster files deeper than this is refused
+/// when loading, and a deeper evaluation fails): deep enough for any design, shallow enough for the
+/// stack of every thread that evaluates.
+pub const MAX_CLUSTER_DEPTH: usize = 256;
+
 /// What a running node may see and report besides its inputs.
 pub struct NodeContext {
     /// Directory export nodes write into (`--out`); `None` forbids writing.
@@ -305,6 +311,20 @@ pub struct NodeContext {
     pub base_dir: Option<PathBuf>,
     /// Set when the evaluation should stop as soon as possible.
     pub cancel: Arc<AtomicBool>,
+    /// The memory the evaluation may use (default: half the machine's memory); nodes check what
+    /// they are about to allocate with [`NodeContext::reserve`].
+    pub budget: MemoryBudget,
+    /// Folders besides `base_dir` whose files nodes may read (`--allow-read DIR`).
+    pub allow_read: Vec<PathBuf>,
+    /// The largest file a node may read, in bytes (default 1 GB).
+    pub max_read_bytes: u64,
+    /// The outputs the caller asked for (`cnets eval --outputs a,b`); `None`: all. A node may skip
+    /// the work of outputs not asked for ([`NodeContext::wants`]) and leave them empty.
+    pub requested: Option<Vec<String>>,
+    /// How many clusters deep this context runs (0: the top graph); see [`MAX_CLUSTER_DEPTH`].
+    pub depth: usize,
+    in_use: AtomicU64,
+    held: AtomicU64,
     warnings: Mutex<Vec<String>>,
     files: Mutex<Vec<PathBuf>>,
     reads: Mutex<Vec<FileStamp>>,
@@ -323,10 +343,89 @@ impl NodeContext {
             out_dir,
             base_dir,
             cancel: Arc::new(AtomicBool::new(false)),
+            budget: MemoryBudget::default(),
+            allow_read: Vec::new(),
+            max_read_bytes: crate::files::DEFAULT_MAX_READ_BYTES,
+            requested: None,
+            depth: 0,
+            in_use: AtomicU64::new(0),
+            held: AtomicU64::new(0),
             warnings: Mutex::new(Vec::new()),
             files: Mutex::new(Vec::new()),
             reads: Mutex::new(Vec::new()),
         }
+    }
+
+    /// Sets the memory budget (builder style).
+    pub fn with_budget(mut self, budget: MemoryBudget) -> Self {
+        self.budget = budget;
+        self
+    }
+
+    /// A context for the subgraph of a cluster run from this one: the same output directory,
+    /// cancel flag, budget (with this evaluation's live values counted as in use) and read
+    /// permissions, one level deeper; relative reads resolve against `base_dir`. Fails past
+    /// [`MAX_CLUSTER_DEPTH`] levels.
+    pub fn child(&self, base_dir: Option<PathBuf>) -> Result<NodeContext, NodeError> {
+        if self.depth >= MAX_CLUSTER_DEPTH {
+            return Err(NodeError::new(format!(
+                "clusters nested more than {MAX_CLUSTER_DEPTH} deep"
+            )));
+        }
+        let mut inner = NodeContext::new(self.out_dir.clone(), base_dir);
+        inner.cancel = Arc::clone(&self.cancel);
+        inner.budget = self.budget;
+        inner.allow_read = self.allow_read.clone();
+        inner.allow_read.extend(self.base_dir.clone());
+        inner.max_read_bytes = self.max_read_bytes;
+        inner.depth = self.depth + 1;
+        inner.set_in_use(self.in_use());
+        Ok(inner)
+    }
+
+    /// Bytes held by values of the evaluation outside the running node (the evaluator keeps this
+    /// up to date before every node it runs).
+    pub fn in_use(&self) -> u64 {
+        self.in_use.load(Ordering::Relaxed)
+    }
+
+    /// Sets the bytes held by live values outside the running node (for evaluators and front ends
+    /// that run nodes themselves).
+    pub fn set_in_use(&self, bytes: u64) {
+        self.in_use.store(bytes, Ordering::Relaxed);
+    }
+
+    /// Checks, before allocating, that `bytes` more fit in the memory budget beside the values
+    /// already live; `what` names the allocation in the error ("a table of 10000000 × 10000000
+    /// numbers needs 3200 TB, the limit is 12 GB").
+    pub fn reserve(&self, bytes: u64, what: &str) -> Result<(), NodeError> {
+        self.budget
+            .check(bytes, self.in_use(), what)
+            .map_err(|e| NodeError::new(e.to_string()))
+    }
+
+    /// True when the output named `output` was asked for (always, unless the caller set
+    /// `requested`).
+    pub fn wants(&self, output: &str) -> bool {
+        self.requested
+            .as_ref()
+            .is_none_or(|r| r.iter().any(|o| o == output))
+    }
+
+    /// Records that the running node keeps `bytes` alive besides its outputs (a cluster: its
+    /// subgraph's results), so the evaluator counts them in the live memory.
+    pub fn hold(&self, bytes: u64) {
+        self.held.store(bytes, Ordering::Relaxed);
+    }
+
+    /// Takes the bytes recorded by [`NodeContext::hold`] (for evaluators).
+    pub fn take_held(&self) -> u64 {
+        self.held.swap(0, Ordering::Relaxed)
+    }
+
+    /// [`NodeContext::reserve`] for `count` values (list items: 32 bytes each).
+    pub fn reserve_values(&self, count: u128, what: &str) -> Result<(), NodeError> {
+        self.reserve(bytes_of(count, std::mem::size_of::<Value>()), what)
     }
 
     /// Records a warning shown on the node (it still produces outputs).
@@ -354,48 +453,18 @@ impl NodeContext {
         std::mem::take(&mut *lock(&self.files))
     }
 
-    /// Resolves a file name for writing inside the output directory. Absolute paths, `..` and an
-    /// unset output directory are errors: exports never write outside `--out`.
+    /// Resolves an export name inside the output directory (no folder is created, no file
+    /// written; see [`NodeContext::write_output`]). Names are checked by name
+    /// ([`files::check_export_name`](crate::files::check_export_name): no control characters, no
+    /// root, no `.`, `..` or empty components); an unset output directory is an error.
     pub fn output_path(&self, name: &str) -> Result<PathBuf, NodeError> {
         let dir = self
             .out_dir
             .as_ref()
             .ok_or_else(|| NodeError::new("no output directory is set for exports"))?;
-        let rel = Path::new(name);
-        if name.trim().is_empty() {
-            return Err(NodeError::new("the output file name is empty"));
-        }
-        let safe = rel
-            .components()
-            .all(|c| matches!(c, Component::Normal(_) | Component::CurDir));
-        if !safe {
-            return Err(NodeError::new(format!(
-                "output name '{name}' must be a relative path inside the output directory (no '..', no root)"
-            )));
-        }
-        Ok(dir.join(rel))
-    }
-
-    /// Reads a file (a relative name resolves against the graph's folder) and records what was read,
-    /// so that the evaluator re-runs the node when the file changes (`eval::reads`). Every node
-    /// that reads files reads them through here. Errors name the file.
-    pub fn read_file(&self, name: &str) -> Result<Vec<u8>, NodeError> {
-        let path = self.input_path(name);
-        let result = std::fs::read(&path);
-        lock(&self.reads).push(FileStamp::of(&path, result.as_deref().ok()));
-        result.map_err(|e| NodeError::new(format!("cannot read '{}': {e}", path.display())))
-    }
-
-    /// [`NodeContext::read_file`] for a text file (UTF-8).
-    pub fn read_text(&self, name: &str) -> Result<String, NodeError> {
-        let bytes = self.read_file(name)?;
-        String::from_utf8(bytes).map_err(|e| {
-            NodeError::new(format!(
-                "'{}' is not UTF-8 text (invalid byte at offset {})",
-                self.input_path(name).display(),
-                e.utf8_error().valid_up_to()
-            ))
-        })
+        let parts =
+            crate::files::check_export_name(name).map_err(|e| NodeError::new(e.to_string()))?;
+        Ok(parts.iter().fold(dir.clone(), |p, c| p.join(c)))
     }
 
     /// Records reads made elsewhere on the node's behalf (a cluster's inner nodes).
@@ -408,13 +477,81 @@ impl NodeContext {
         std::mem::take(&mut *lock(&self.reads))
     }
 
-    /// Resolves a path for reading: relative paths resolve against the graph's folder.
+    /// Writes an export named `name` (relative, checked as by [`NodeContext::output_path`]) inside
+    /// the output directory, atomically and without following symbolic links out of it
+    /// ([`files::write_inside`](crate::files::write_inside)); records and returns the path.
+    pub fn write_output(&self, name: &str, bytes: &[u8]) -> Result<PathBuf, NodeError> {
+        let dir = self
+            .out_dir
+            .as_ref()
+            .ok_or_else(|| NodeError::new("no output directory is set for exports"))?;
+        let parts =
+            crate::files::check_export_name(name).map_err(|e| NodeError::new(e.to_string()))?;
+        let path = crate::files::write_inside(dir, &parts, bytes)
+            .map_err(|e| NodeError::new(format!("cannot write '{name}': {e}")))?;
+        self.record_file(path.clone());
+        Ok(path)
+    }
+
+    /// Resolves a path for reading: relative paths resolve against the graph's folder. Reading
+    /// goes through [`NodeContext::read_file`], which checks the permission.
     pub fn input_path(&self, name: &str) -> PathBuf {
         let p = Path::new(name);
         match &self.base_dir {
             Some(base) if p.is_relative() => base.join(p),
             _ => p.to_path_buf(),
         }
+    }
+
+    /// Where this context's nodes may read: the graph's folder and the `allow_read` folders, up
+    /// to `max_read_bytes` per file.
+    pub fn read_access(&self) -> crate::files::ReadAccess {
+        let mut access = crate::files::ReadAccess::new(
+            self.base_dir
+                .iter()
+                .chain(&self.allow_read)
+                .cloned()
+                .collect(),
+        );
+        access.max_bytes = self.max_read_bytes;
+        access
+    }
+
+    /// Reads the file `name` (relative to the graph's folder, or absolute) for a node: allowed
+    /// only under the graph's folder and the `allow_read` folders, only a regular file (no device,
+    /// FIFO or socket), at most `max_read_bytes` and within the memory budget. Every node that
+    /// reads a file calls this (or [`NodeContext::read_text`]). Returns the resolved path and the
+    /// bytes.
+    ///
+    /// Every read is recorded (length, modification time, content hash; also a read that failed),
+    /// so the evaluator re-runs the node when the file changes (`eval::reads`).
+    pub fn read_file(&self, name: &str) -> Result<(PathBuf, Vec<u8>), NodeError> {
+        let path = self.input_path(name);
+        let result = self.read_checked(name, &path);
+        lock(&self.reads).push(FileStamp::of(&path, result.as_deref().ok()));
+        result.map(|bytes| (path, bytes))
+    }
+
+    fn read_checked(&self, name: &str, path: &Path) -> Result<Vec<u8>, NodeError> {
+        let access = self.read_access();
+        let real = access
+            .check(path)
+            .map_err(|e| NodeError::new(format!("cannot read '{name}': {e}")))?;
+        if let Ok(meta) = std::fs::metadata(&real) {
+            self.reserve(meta.len(), &format!("reading '{name}'"))?;
+        }
+        access
+            .read(path)
+            .map_err(|e| NodeError::new(format!("cannot read '{name}': {e}")))
+    }
+
+    /// [`NodeContext::read_file`] as UTF-8 text.
+    pub fn read_text(&self, name: &str) -> Result<(PathBuf, String), NodeError> {
+        let (path, bytes) = self.read_file(name)?;
+        let text = String::from_utf8(bytes).map_err(|_| {
+            NodeError::new(format!("cannot read '{name}': the file is not UTF-8 text"))
+        })?;
+        Ok((path, text))
     }
 }
 

@@ -30,12 +30,39 @@ impl Failure {
     }
 }
 
+/// Diagnostics printed for a graph that cannot load (a chain of 256 broken cluster files reports
+/// one per file: the first ones say where, the rest is counted).
+const MAX_DIAGNOSTICS: usize = 20;
+
 impl From<LoadError> for Failure {
     fn from(e: LoadError) -> Self {
-        Self {
-            code: 2,
-            messages: e.diagnostics.iter().map(ToString::to_string).collect(),
+        let mut messages: Vec<String> = e
+            .diagnostics
+            .iter()
+            .take(MAX_DIAGNOSTICS)
+            .map(ToString::to_string)
+            .collect();
+        if e.diagnostics.len() > MAX_DIAGNOSTICS {
+            messages.push(format!(
+                "… and {} more problems",
+                e.diagnostics.len() - MAX_DIAGNOSTICS
+            ));
         }
+        Self { code: 2, messages }
+    }
+}
+
+impl From<std::io::Error> for Failure {
+    /// Writing the output failed: a closed pipe (`| head`) ends quietly with success, anything
+    /// else (a full disk) is one line and exit 2.
+    fn from(e: std::io::Error) -> Self {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            return Self {
+                code: 0,
+                messages: Vec::new(),
+            };
+        }
+        Self::usage(format!("cannot write the output: {e}"))
     }
 }
 

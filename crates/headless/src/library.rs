@@ -15,8 +15,20 @@ pub const PREFIX: &str = "cluster:";
 /// Loads a graph file (cluster sources next to it, then in the library folders) and applies the
 /// `--set node.input=value` overrides.
 pub fn load_graph(path: &Path, library: &[PathBuf], sets: &[String]) -> Result<Document, Failure> {
+    load_graph_allowing(path, library, sets, &[])
+}
+
+/// [`load_graph`] with further folders cluster files may be read from (`--allow-read`).
+pub fn load_graph_allowing(
+    path: &Path,
+    library: &[PathBuf],
+    sets: &[String],
+    allow_read: &[PathBuf],
+) -> Result<Document, Failure> {
     let registry = Arc::new(cnets_nodes::registry());
-    let mut doc = load_file_with(path, &registry, &options(path, library))?;
+    let mut options = options(path, library);
+    options.allow_read = allow_read.to_vec();
+    let mut doc = load_file_with(path, &registry, &options)?;
     for set in sets {
         crate::inputs::apply_set(&mut doc.graph, set)?;
     }
@@ -35,9 +47,12 @@ pub fn cluster_def(
     path: &str,
     registry: &Arc<Registry>,
     library: &[PathBuf],
+    allow_read: &[PathBuf],
 ) -> Result<NodeDef, Failure> {
     let file = Path::new(path);
-    let doc = load_file_with(file, registry, &options(file, library))?;
+    let mut options = options(file, library);
+    options.allow_read = allow_read.to_vec();
+    let doc = load_file_with(file, registry, &options)?;
     let source = ClusterSource::File {
         written: path.to_string(),
         resolved: file.to_path_buf(),
@@ -76,7 +91,7 @@ pub fn folder_defs(dir: &Path, registry: &Arc<Registry>) -> Result<Vec<NodeDef>,
     let mut defs = Vec::new();
     for file in files {
         let path = file.display().to_string();
-        match cluster_def(&path, registry, &[dir.to_path_buf()]) {
+        match cluster_def(&path, registry, &[dir.to_path_buf()], &[]) {
             Ok(def) => defs.push(def),
             Err(f) => {
                 for m in f.messages {

@@ -5,8 +5,10 @@ mod commands;
 mod failure;
 mod inputs;
 mod library;
+mod output;
 mod progress;
 mod runtime_dir;
+mod signals;
 
 use std::process::ExitCode;
 
@@ -54,6 +56,7 @@ fn main() -> ExitCode {
     if renders && let Some(code) = runtime_dir::rerun_with_runtime_dir() {
         return code;
     }
+    signals::install();
     let result = match cli.command {
         Command::Nodes(args) => commands::nodes::run(args),
         Command::Eval(args) => commands::eval::run(args),
@@ -62,6 +65,7 @@ fn main() -> ExitCode {
         Command::Optimize(args) => commands::optimize::run(args),
         Command::Render(args) => commands::render::run(args),
     };
+    let result = result.and_then(|code| output::flush().map(|()| code));
     match result {
         Ok(code) => code,
         Err(Failure { code, messages }) => {

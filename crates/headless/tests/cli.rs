@@ -286,3 +286,64 @@ fn check_loads_without_evaluating() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains(":2:32: edge 'l.length -> a.radius': connecting l.length -> a.radius would create a cycle"), "{}", stderr(&o));
 }
+
+#[test]
+fn eval_outputs_computes_and_prints_only_the_outputs_asked_for() {
+    let inputs = r#"{
+        "directrix": {"points": [[0,0,0],[1,0,0.2],[2,0,0.1],[3,0,0]], "closed": false},
+        "generatrix": {"points": [[0,0,0],[0,1,0.1],[0,2,0]], "closed": false}
+    }"#;
+    let all = cnets(&["eval", "ctube.construct", "--inputs", "-"], Some(inputs));
+    assert!(
+        all.status.success(),
+        "{}",
+        String::from_utf8_lossy(&all.stderr)
+    );
+    let all = stdout_json(&all);
+    let o = cnets(
+        &[
+            "eval",
+            "ctube.construct",
+            "--inputs",
+            "-",
+            "--outputs",
+            "mesh",
+        ],
+        Some(inputs),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mesh_only = stdout_json(&o);
+    let keys: Vec<&String> = mesh_only.as_object().unwrap().keys().collect();
+    assert_eq!(keys, vec!["mesh"]);
+    assert_eq!(
+        mesh_only["mesh"], all["mesh"],
+        "the mesh alone equals the full run's"
+    );
+    let o = cnets(
+        &[
+            "eval",
+            "ctube.construct",
+            "--inputs",
+            "-",
+            "--outputs",
+            "mesh,quality",
+        ],
+        Some(inputs),
+    );
+    let two = stdout_json(&o);
+    assert_eq!(two.as_object().unwrap().len(), 2);
+    assert_eq!(two["quality"], all["quality"]);
+    let o = cnets(
+        &[
+            "eval",
+            "ctube.construct",
+            "--inputs",
+            "-",
+            "--outputs",
+            "nope",
+        ],
+        Some(inputs),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown output 'nope'"));
+}

@@ -207,6 +207,25 @@ fn outputs(net: ConeNet) -> Outputs {
     )
 }
 
+/// Bytes a construction needs per mesh vertex: the vertex (24), its plane normal (24), its
+/// configuration label (1) and the kernel's working rows (15).
+const CONSTRUCTION_BYTES_PER_VERTEX: usize = 64;
+
+/// Checks, before anything is allocated, that a construction sweeping `generatrix` along
+/// `directrix` fits in the memory budget (two 100 000-point polylines make 10¹⁰ vertices: 640 GB).
+fn reserve_construction(
+    ctx: &NodeContext,
+    directrix: &Polyline,
+    generatrix: &Polyline,
+) -> Result<(), NodeError> {
+    let rows = generatrix.len() as u128;
+    let cols = directrix.len() as u128 + u128::from(directrix.closed);
+    ctx.reserve(
+        cnets_engine::budget::bytes_of(rows.saturating_mul(cols), CONSTRUCTION_BYTES_PER_VERTEX),
+        &format!("a cone-net of {rows} × {cols} vertices"),
+    )
+}
+
 fn unwrap_arc<T: Clone>(a: Arc<T>) -> T {
     Arc::try_unwrap(a).unwrap_or_else(|a| (*a).clone())
 }
@@ -216,7 +235,7 @@ node! {
     /// vertex G_ij is where the line towards the cone apex meets the construction plane through X_j.
     /// Planes are given by their normals, or default to the bisecting (Monge) planes.
     #[node(id = "ctube.construct", category = "Cone-nets")]
-    pub fn ctube_construct(
+    pub fn ctube_construct[ctx](
         /// Directrix X (open, or closed: swept once around).
         directrix: k::Polyline,
         /// Generatrix G_{:,0} (closed: the mesh wraps).
@@ -248,6 +267,7 @@ node! {
         /// Quality: max_planarity, mean_planarity, cone residuals, configuration counts, first_bad.
         quality: k::Record,
     ) {
+        reserve_construction(ctx, &directrix, &generatrix)?;
         let inputs = CtubeInputs {
             directrix: unwrap_arc(directrix),
             generatrix: unwrap_arc(generatrix),
@@ -255,6 +275,12 @@ node! {
             normals: normals_input(normals)?,
             end_planes: parse_end_planes(&end_planes)?,
         };
+        // Only the mesh asked for: the sweep alone, no apices, quality pass or output tables.
+        let others = ["apex", "apices", "planes", "configurations", "corrections", "quality"];
+        if !others.iter().any(|o| ctx.wants(o)) {
+            let mesh = conenet::ctube_mesh(&inputs)?;
+            return Ok((mesh, Vec::new(), Vec::new(), Value::list(Vec::new()), Value::list(Vec::new()), Vec::new(), Record::new()));
+        }
         Ok(outputs(conenet::construct_ctube(&inputs)?))
     }
 }
@@ -265,7 +291,7 @@ node! {
     /// a Monge surface when a ≡ 1). With `assistance` ≥ 0 folded-over configurations are repaired
     /// (0: planes only, 1: apex only, between: hybrid) and every correction is reported.
     #[node(id = "cnets.construct", category = "Cone-nets")]
-    pub fn construct(
+    pub fn construct[ctx](
         /// Directrix X (open, or closed: swept once around).
         directrix: k::Polyline,
         /// Generatrix G_{:,0} (closed: the mesh wraps).
@@ -301,6 +327,7 @@ node! {
         /// Quality: max_planarity, mean_planarity, cone residuals, configuration counts, first_bad.
         quality: k::Record,
     ) {
+        reserve_construction(ctx, &directrix, &generatrix)?;
         let mut inputs = ConstructInputs::new(unwrap_arc(directrix), unwrap_arc(generatrix));
         inputs.apex = apex_input(apex, normalized, scale);
         inputs.ratios = grid_values(&ratios, "ratios")?;
@@ -316,7 +343,7 @@ node! {
     /// generatrix-aligned polyline is planar. `ruling_ratios` pick the ruling of the first support
     /// strip; `plane_ratios` turn the plane about it (½ and ½: the bisecting plane).
     #[node(id = "cnets.construct_coplanar", category = "Cone-nets")]
-    pub fn construct_coplanar(
+    pub fn construct_coplanar[ctx](
         /// Directrix X (open, or closed: swept once around).
         directrix: k::Polyline,
         /// Generatrix G_{:,0} (closed: the mesh wraps).
@@ -358,6 +385,7 @@ node! {
             [single] => ColumnValues::Uniform(*single),
             _ => ColumnValues::List(v),
         };
+        reserve_construction(ctx, &directrix, &generatrix)?;
         let mut inputs = CoplanarInputs::new(unwrap_arc(directrix), unwrap_arc(generatrix));
         inputs.apex = apex_input(apex, normalized, scale);
         inputs.ruling_ratios = column(ruling_ratios);

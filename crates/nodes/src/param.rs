@@ -193,7 +193,7 @@ node! {
     /// An arithmetic series: `count` numbers start, start + step, start + 2·step, … (count 0 gives
     /// an empty list).
     #[node(id = "param.series", category = "Params", flags(Parameter))]
-    pub fn series(
+    pub fn series[ctx](
         /// First number.
         start: k::Number = 0.0,
         /// Difference between consecutive numbers (may be negative or 0).
@@ -208,6 +208,7 @@ node! {
             return Err("start and step must be finite numbers".into());
         }
         let n = check_list_count(count)?;
+        ctx.reserve_values(n as u128, &format!("a series of {n} numbers"))?;
         let values: Vec<f64> = (0..n).map(|k| start + step * k as f64).collect();
         if values.iter().any(|v| !v.is_finite()) {
             return Err("the series overflows".into());
@@ -221,7 +222,7 @@ node! {
     /// its two ends; `end` may be smaller than `start`). Count 1 gives `[start]`, count 0 an empty
     /// list.
     #[node(id = "param.range", category = "Params", flags(Parameter))]
-    pub fn range(
+    pub fn range[ctx](
         /// Start of the domain (the first number).
         start: k::Number = 0.0,
         /// End of the domain (the last number).
@@ -236,6 +237,7 @@ node! {
             return Err("start and end must be finite numbers".into());
         }
         let n = check_list_count(count)?;
+        ctx.reserve_values(n as u128, &format!("a range of {n} numbers"))?;
         let values: Vec<f64> = (0..n)
             .map(|k| {
                 if k + 1 == n && n > 1 {

@@ -61,10 +61,17 @@ fn the_same_square_reads_the_same_from_every_format() {
         assert_eq!(c.points[2], DVec3::new(2.0, 2.0, 0.0), "{name}");
         assert!((c.length() - 8.0).abs() < 1e-12, "{name}");
     }
-    // An absolute path works without a base directory; the format can be forced.
+    // An absolute path is read only under an allowed folder; the format can be forced.
     let copy = dir.join("square.data");
     std::fs::copy(dir.join("square.obj"), &copy).unwrap();
-    let curves = read(&NodeContext::default(), copy.to_str().unwrap(), "obj").unwrap();
+    let e = read(&NodeContext::default(), copy.to_str().unwrap(), "obj").unwrap_err();
+    assert!(
+        e.contains("outside the folders reads are allowed in"),
+        "{e}"
+    );
+    let mut allowed = NodeContext::default();
+    allowed.allow_read.push(dir.clone());
+    let curves = read(&allowed, copy.to_str().unwrap(), "obj").unwrap();
     assert_eq!(curves[0].points.len(), 4);
     std::fs::remove_dir_all(&dir).ok();
 }

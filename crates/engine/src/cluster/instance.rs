@@ -195,11 +195,13 @@ impl Cluster {
                 .map_err(|e| NodeError::new(format!("cluster input '{}': {e}", port.port.name)))?;
         }
         let request: Vec<_> = self.interface.outputs.iter().map(|p| p.node).collect();
-        let mut inner = NodeContext::new(ctx.out_dir.clone(), self.base_dir.clone());
-        inner.cancel = Arc::clone(&ctx.cancel);
+        let inner = ctx
+            .child(self.base_dir.clone())
+            .map_err(|e| NodeError::new(format!("cluster '{}': {e}", self.label())))?;
         let summary = state
             .evaluator
             .evaluate(&state.graph, &request, &inner, &mut |_, _| {});
+        ctx.hold(state.evaluator.live_bytes());
         if summary.cancelled {
             return Err(NodeError::new("cancelled"));
         }

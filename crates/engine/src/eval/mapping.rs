@@ -53,6 +53,10 @@ pub fn run_mapped(
         .collect();
     let count = lists.iter().flatten().map(|l| l.len()).max().unwrap_or(0);
     let empty = lists.iter().flatten().any(|l| l.is_empty());
+    if !empty {
+        let slots = (count as u128).saturating_mul(def.outputs.len() as u128);
+        ctx.reserve_values(slots, &format!("running '{}' on {count} items", def.id))?;
+    }
     let mut columns: Vec<Vec<Value>> =
         vec![Vec::with_capacity(if empty { 0 } else { count }); def.outputs.len()];
     if !empty {

@@ -21,9 +21,10 @@ use std::time::{Duration, Instant};
 
 use petgraph::stable_graph::NodeIndex;
 
+use crate::budget::bytes_of;
 use crate::graph::{Graph, NodeInstance, Revision};
 use crate::node::{NodeContext, NodeDef};
-use crate::value::{Value, content_hash, first_non_finite, is_all_finite};
+use crate::value::{Value, content_hash, first_non_finite, footprint, is_all_finite};
 
 /// The evaluator's clock: the graph's revision, then a count of the times files read by nodes
 /// changed while the graph stood still (ordered lexicographically).
@@ -43,15 +44,8 @@ struct Memo {
     reads: Vec<FileStamp>,
     /// One of those files changed since: the node must re-run.
     stale: bool,
-}
-
-/// What one run of a node left: its result, how long it took, whether its function was called, and
-/// the files it read.
-struct Run {
-    result: NodeResult,
-    time: Duration,
-    executed: bool,
-    reads: Vec<FileStamp>,
+    /// Bytes the result holds that no other result holds (its share of the live memory).
+    owned: u64,
 }
 
 /// What one call to [`Evaluator::evaluate`] did.
@@ -79,6 +73,8 @@ pub struct Evaluator {
     total_runs: u64,
     swept_at: Revision,
     file_epoch: u64,
+    /// Bytes held by all memoized results (the sum of their `owned`).
+    live: u64,
 }
 
 impl Evaluator {
@@ -114,6 +110,8 @@ impl Evaluator {
             ..EvalSummary::default()
         };
         let order = std::mem::take(&mut self.order);
+        // Bytes held outside this evaluator (an enclosing graph's values, for a cluster).
+        let outside = ctx.in_use();
         for (done, &node) in order.iter().enumerate() {
             let Some(instance) = graph.node_at(node) else {
                 continue;
@@ -129,19 +127,27 @@ impl Evaluator {
                 break;
             }
             progress(done, order.len());
+            let own = self.memos[node.index()].as_ref().map_or(0, |m| m.owned);
+            let held = outside.saturating_add(self.live.saturating_sub(own));
+            ctx.take_held();
+            ctx.set_in_use(held);
             let start = Instant::now();
             let (result, executed) = self.run_node(graph, node, instance, ctx);
-            let run = Run {
+            let (result, owned) = within_budget(result, instance, ctx, held, ctx.take_held());
+            let time = start.elapsed();
+            summary.ran += usize::from(executed);
+            let stored = Stored {
                 result,
-                time: start.elapsed(),
+                time,
                 executed,
+                owned,
                 reads: ctx.take_reads(),
             };
-            summary.ran += usize::from(executed);
-            if self.store(node, instance.uid(), revision, run) && executed {
+            if self.store(node, instance.uid(), revision, stored) && executed {
                 summary.cut_off += 1;
             }
         }
+        ctx.set_in_use(outside);
         self.order = order;
         summary
     }
@@ -157,7 +163,8 @@ impl Evaluator {
             self.swept_at = revision;
             for (k, memo) in self.memos.iter_mut().enumerate() {
                 let alive = graph.node_at(NodeIndex::new(k)).map(NodeInstance::uid);
-                if memo.as_ref().is_some_and(|m| Some(m.uid) != alive) {
+                if let Some(m) = memo.as_ref().filter(|m| Some(m.uid) != alive) {
+                    self.live = self.live.saturating_sub(m.owned);
                     *memo = None;
                 }
             }
@@ -227,13 +234,14 @@ impl Evaluator {
     }
 
     /// Stores a new result; returns true when it equals the previous one (backdated).
-    fn store(&mut self, node: NodeIndex, uid: u64, revision: Tick, run: Run) -> bool {
-        let Run {
+    fn store(&mut self, node: NodeIndex, uid: u64, revision: Tick, stored: Stored) -> bool {
+        let Stored {
             result,
             time,
             executed,
+            owned,
             reads,
-        } = run;
+        } = stored;
         let ran = u64::from(executed);
         self.total_runs += ran;
         let hashes = match &result {
@@ -244,6 +252,10 @@ impl Evaluator {
         let unchanged = slot.as_ref().is_some_and(|old| {
             old.uid == uid && old.hashes == hashes && old.result.same_as(&result)
         });
+        self.live = self
+            .live
+            .saturating_sub(slot.as_ref().map_or(0, |m| m.owned))
+            .saturating_add(owned);
         let (changed_at, runs) = match slot.as_ref() {
             Some(old) if old.uid == uid && unchanged => (old.changed_at, old.runs + ran),
             Some(old) if old.uid == uid => (revision, old.runs + ran),
@@ -259,8 +271,15 @@ impl Evaluator {
             runs,
             reads,
             stale: false,
+            owned,
         });
         unchanged
+    }
+
+    /// Bytes held by the memoized results (each shared payload counted once, by the result that
+    /// made it).
+    pub fn live_bytes(&self) -> u64 {
+        self.live
     }
 
     /// Gathers the inputs of a node and runs it (catching panics). The flag tells whether the node's
@@ -272,7 +291,7 @@ impl Evaluator {
         instance: &NodeInstance,
         ctx: &NodeContext,
     ) -> (NodeResult, bool) {
-        match self.gather_inputs(graph, node, instance) {
+        match self.gather_inputs(graph, node, instance, ctx) {
             Ok(inputs) => (self.call(instance, &inputs, ctx), true),
             Err(result) => (result, false),
         }
@@ -292,6 +311,7 @@ impl Evaluator {
         graph: &Graph,
         node: NodeIndex,
         instance: &NodeInstance,
+        ctx: &NodeContext,
     ) -> Result<Vec<Value>, NodeResult> {
         if !instance.enabled {
             return Err(NodeResult::Disabled);
@@ -341,7 +361,24 @@ impl Evaluator {
                     }
                 },
                 1 => values.pop().unwrap_or_default(),
-                _ => merge(values),
+                _ => {
+                    // The merged list is new memory: checked before it is built.
+                    let items: usize = values
+                        .iter()
+                        .map(|v| match v {
+                            Value::List(items) => items.len(),
+                            _ => 1,
+                        })
+                        .sum();
+                    let what = format!(
+                        "input '{}': merging {} wires into a list of {items} items",
+                        port.name,
+                        values.len()
+                    );
+                    ctx.reserve_values(items as u128, &what)
+                        .map_err(|e| NodeResult::Failed(e.message))?;
+                    merge(values)
+                }
             };
             inputs.push(value);
         }
@@ -417,6 +454,39 @@ impl Evaluator {
     }
 }
 
+/// A node's new result, what it cost, and the files it read.
+struct Stored {
+    result: NodeResult,
+    time: Duration,
+    executed: bool,
+    owned: u64,
+    reads: Vec<FileStamp>,
+}
+
+/// The memory budget after a node ran: its outputs must fit beside the `held` bytes of the other
+/// results, with the `kept` bytes the node keeps alive elsewhere (a cluster's inner results; a full
+/// read of the outputs was checked by [`evaluate_node`]). Over budget, the node fails (its
+/// outputs are dropped) and its dependents are blocked. Returns the result and the bytes it holds.
+fn within_budget(
+    result: NodeResult,
+    instance: &NodeInstance,
+    ctx: &NodeContext,
+    held: u64,
+    kept: u64,
+) -> (NodeResult, u64) {
+    let NodeResult::Ok(outputs) = &result else {
+        return (result, 0);
+    };
+    // Measured again now that the inputs are gone: a list the evaluator merged and the node passed
+    // through is held by this result alone.
+    let owned = footprint(&outputs.values).owned_bytes.saturating_add(kept);
+    let what = format!("the outputs of '{}'", instance.id);
+    if let Err(e) = ctx.budget.check(owned, held, &what) {
+        return (NodeResult::Failed(e.to_string()), 0);
+    }
+    (result, owned)
+}
+
 /// Runs one node type on raw input values (one per input port, `Null` for empty), as a graph run
 /// does and outside any graph: maps over lists, catches panics, collects warnings and written
 /// files, and fails the node when an output holds a non-finite number.
@@ -429,14 +499,28 @@ pub fn evaluate_node(
     let warnings = ctx.take_warnings();
     let files = ctx.take_files();
     match outcome {
-        Ok(Ok(values)) => match non_finite_output(def, &values) {
-            Some(message) => Err(message),
-            None => Ok(NodeOutputs {
-                values,
-                warnings,
-                files,
-            }),
-        },
+        Ok(Ok(values)) => {
+            // Measured before anything reads every value (the finiteness scan, hashing, JSON):
+            // a list shared many times over may read as more values than memory holds.
+            let footprint = footprint(&values);
+            let read = bytes_of(footprint.read_values, std::mem::size_of::<Value>());
+            let what = format!(
+                "reading the outputs ({} values: lists shared many times over)",
+                footprint.read_values
+            );
+            ctx.budget
+                .check(read, 0, &what)
+                .map_err(|e| e.to_string())?;
+            match non_finite_output(def, &values) {
+                Some(message) => Err(message),
+                None => Ok(NodeOutputs {
+                    values,
+                    warnings,
+                    files,
+                    footprint,
+                }),
+            }
+        }
         Ok(Err(e)) => Err(e.message),
         Err(panic) => Err(panic),
     }

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use crate::value::Value;
+use crate::value::{Footprint, Value};
 
 /// Outputs of a successful run.
 #[derive(Debug, Clone, Default)]
@@ -14,6 +14,8 @@ pub struct NodeOutputs {
     pub warnings: Vec<String>,
     /// Files the node wrote.
     pub files: Vec<PathBuf>,
+    /// The memory the values hold and the values a full read visits (for the memory budget).
+    pub footprint: Footprint,
 }
 
 /// The state of a node after evaluation.

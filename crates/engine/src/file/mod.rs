@@ -34,6 +34,7 @@ use self::literal::{LiteralError, push_indent, quote};
 use self::ron::{Kind, Node, Pos};
 use crate::atomic::write_atomic;
 use crate::cluster::{CLUSTER_TYPE, Cluster, ClusterSource};
+use crate::files::ReadAccess;
 use crate::graph::{Graph, GraphError, WireRef};
 use crate::registry::Registry;
 
@@ -111,6 +112,11 @@ pub struct LoadOptions {
     pub base_dir: Option<PathBuf>,
     /// Library folders searched next for cluster sources.
     pub library: Vec<PathBuf>,
+    /// Further folders cluster files may be read from (`--allow-read DIR`). Cluster files are read
+    /// only under the top graph's folder, the library folders and these.
+    pub allow_read: Vec<PathBuf>,
+    /// The top graph's folder (set when the first file is loaded).
+    top_dir: Option<PathBuf>,
     /// Canonical paths of the files being loaded, outermost first.
     stack: Vec<PathBuf>,
 }
@@ -125,6 +131,8 @@ impl LoadOptions {
         Self {
             base_dir: path.parent().map(Path::to_path_buf),
             library,
+            allow_read: Vec::new(),
+            top_dir: None,
             stack: Vec::new(),
         }
     }
@@ -133,6 +141,23 @@ impl LoadOptions {
     pub fn with_library(mut self, dir: impl Into<PathBuf>) -> Self {
         self.library.push(dir.into());
         self
+    }
+
+    /// Where cluster files may be read: the top graph's folder (else the base folder), the library
+    /// folders and the `allow_read` folders.
+    fn read_access(&self) -> ReadAccess {
+        let top = self
+            .top_dir
+            .clone()
+            .or_else(|| self.base_dir.clone())
+            .unwrap_or_else(|| PathBuf::from("."));
+        ReadAccess::new(
+            std::iter::once(&top)
+                .chain(&self.library)
+                .chain(&self.allow_read)
+                .cloned()
+                .collect(),
+        )
     }
 
     /// Finds a cluster source: relative to the base folder, then in each library folder (with or
@@ -195,13 +220,30 @@ pub fn load_file_with(
     options: &LoadOptions,
 ) -> Result<Document, LoadError> {
     let mut options = options.clone();
+    if options.top_dir.is_none() {
+        options.top_dir = Some(match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        });
+    }
     if let Ok(canonical) = path.canonicalize()
         && options.stack.last() != Some(&canonical)
     {
         options.stack.push(canonical);
     }
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| LoadError {
+    // The file itself is allowed (the caller named it); a device, a FIFO or a huge file is not.
+    let own_folder = ReadAccess::new(vec![path.parent().map_or_else(
+        || PathBuf::from("."),
+        |p| {
+            if p.as_os_str().is_empty() {
+                PathBuf::from(".")
+            } else {
+                p.to_path_buf()
+            }
+        },
+    )]);
+    let text = own_folder.read_text(path).map_err(|e| LoadError {
         diagnostics: vec![Diagnostic {
             file: file.clone(),
             pos: None,
@@ -574,6 +616,13 @@ fn load_cluster(
                     return None;
                 }
             };
+            if let Err(e) = loader.options.read_access().check(&resolved) {
+                loader.error(
+                    s.pos,
+                    format!("node '{id}': cluster source '{written}': {e}"),
+                );
+                return None;
+            }
             let canonical = resolved.canonicalize().unwrap_or_else(|_| resolved.clone());
             if loader.options.stack.contains(&canonical) {
                 let mut chain: Vec<String> =
@@ -582,6 +631,22 @@ fn load_cluster(
                 loader.error(
                     s.pos,
                     format!("node '{id}': recursive cluster: {}", chain.join(" -> ")),
+                );
+                return None;
+            }
+            if loader.options.stack.len() >= crate::node::MAX_CLUSTER_DEPTH {
+                let start = loader
+                    .options
+                    .stack
+                    .first()
+                    .map_or_else(|| loader.file.to_string(), |p| p.display().to_string());
+                loader.error(
+                    s.pos,
+                    format!(
+                        "node '{id}': {TOO_DEEP} {} deep: the chain starting at '{start}' reaches '{}' here",
+                        crate::node::MAX_CLUSTER_DEPTH,
+                        short_name(&canonical)
+                    ),
                 );
                 return None;
             }
@@ -641,6 +706,11 @@ fn load_cluster_file(
                 .ok()
         }
         Err(e) => {
+            // Too deep a chain is reported once, where it goes too deep, not once per file.
+            if let Some(deep) = e.diagnostics.iter().find(|d| d.message.contains(TOO_DEEP)) {
+                loader.diagnostics.push(deep.clone());
+                return None;
+            }
             loader.error(
                 pos,
                 format!("node '{id}': cluster source '{written}' has errors"),
@@ -650,6 +720,9 @@ fn load_cluster_file(
         }
     }
 }
+
+/// The words of the error for a chain of cluster files nested too deep.
+const TOO_DEEP: &str = "clusters nested more than";
 
 fn short_name(p: &Path) -> String {
     p.file_name().map_or_else(

@@ -85,6 +85,23 @@ impl Packed {
         }
     }
 
+    /// The shared table's address, how many handles share it and its size in bytes.
+    pub(crate) fn table_sharing(&self) -> (usize, usize, u64) {
+        fn of<T>(t: &Arc<Vec<T>>) -> (usize, usize, u64) {
+            let bytes = (t.capacity() * std::mem::size_of::<T>()) as u64;
+            (
+                Arc::as_ptr(t) as *const u8 as usize,
+                Arc::strong_count(t),
+                bytes,
+            )
+        }
+        match self {
+            Packed::Vectors { table, .. } => of(table),
+            Packed::Numbers { table, .. } => of(table),
+            Packed::Labels { table, .. } => of(table),
+        }
+    }
+
     fn label(labels: &[Value], code: u8) -> Value {
         labels.get(code as usize).cloned().unwrap_or_default()
     }
@@ -171,6 +188,30 @@ impl Items {
     /// True when both are the same shared list.
     pub fn ptr_eq(a: &Items, b: &Items) -> bool {
         Arc::ptr_eq(&a.0, &b.0)
+    }
+
+    /// The address of the shared list and how many handles share it (for the memory budget).
+    pub(crate) fn sharing(&self) -> (usize, usize) {
+        (
+            Arc::as_ptr(&self.0) as *const u8 as usize,
+            Arc::strong_count(&self.0),
+        )
+    }
+
+    /// The values a packed list has built so far (none for a plain list or before first use).
+    pub(crate) fn built_values(&self) -> Option<&[Value]> {
+        match &*self.0 {
+            Repr::Packed { values, .. } => values.get().map(Vec::as_slice),
+            Repr::Values(_) => None,
+        }
+    }
+
+    /// The plain list's values, without building a packed list's.
+    pub(crate) fn plain_values(&self) -> Option<&[Value]> {
+        match &*self.0 {
+            Repr::Values(items) => Some(items),
+            Repr::Packed { .. } => None,
+        }
     }
 
     /// The items as a vector of values, moved out when this is their only owner.

@@ -2,6 +2,7 @@
 
 mod equality;
 mod finite;
+mod footprint;
 pub mod json;
 mod list;
 mod record;
@@ -10,6 +11,7 @@ pub(crate) mod walk;
 
 pub use equality::content_hash;
 pub use finite::{first_non_finite, is_all_finite};
+pub use footprint::{Footprint, footprint};
 pub use list::{Items, Packed};
 pub use record::Record;
 pub use types::{Access, ValueType};

@@ -11,6 +11,10 @@ use crate::library;
 pub struct Args {
     /// The graph file.
     graph: PathBuf,
+    /// A folder nodes and cluster files may also read from (besides the graph file's folder);
+    /// repeat for several.
+    #[arg(long = "allow-read", value_name = "DIR")]
+    allow_read: Vec<PathBuf>,
     /// Extra folders searched for cluster graph files (besides the graph's own folder and
     /// `CNETS_LIBRARY`).
     #[arg(long)]
@@ -19,11 +23,11 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let doc = library::load_graph(&args.graph, &args.library, &[])?;
+    let doc = library::load_graph_allowing(&args.graph, &args.library, &[], &args.allow_read)?;
     for w in &doc.warnings {
         eprintln!("warning: {w}");
     }
-    println!(
+    crate::outln!(
         "ok: {}: {} nodes, {} edges{}",
         args.graph.display(),
         doc.graph.node_count(),

@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use cnets_engine::eval::evaluate_node;
 use cnets_engine::value::json::to_json;
-use cnets_engine::{NodeContext, NodeFlag};
+use cnets_engine::{MemoryBudget, NodeContext, NodeFlag};
 use serde_json::{Map, Value as Json};
 
 use crate::failure::{CommandResult, Failure};
@@ -25,9 +25,21 @@ pub struct Args {
     /// Print `time: <ms> ms` on stderr (evaluation only).
     #[arg(long)]
     timing: bool,
+    /// Compute and print only these outputs (comma-separated names); a node may skip the work of
+    /// the others.
+    #[arg(long, value_delimiter = ',', value_name = "NAMES")]
+    outputs: Option<Vec<String>>,
     /// Output directory for export nodes.
     #[arg(long, default_value = "out")]
     out: PathBuf,
+    /// The most memory the evaluation's values may take, e.g. `12G`, `512MB` (default: half the
+    /// machine's memory); a node that would need more fails with what it needs.
+    #[arg(long, value_name = "SIZE", value_parser = cnets_engine::budget::parse_size)]
+    max_memory: Option<u64>,
+    /// A folder nodes and cluster files may also read from (besides the graph file's folder);
+    /// repeat for several.
+    #[arg(long = "allow-read", value_name = "DIR")]
+    allow_read: Vec<PathBuf>,
     /// Extra folders searched for cluster graph files.
     #[arg(long)]
     library: Vec<PathBuf>,
@@ -38,7 +50,7 @@ pub fn run(args: Args) -> CommandResult {
     let registry = Arc::new(cnets_nodes::registry());
     let cluster;
     let def = if let Some(path) = args.node_type.strip_prefix(library::PREFIX) {
-        cluster = library::cluster_def(path, &registry, &args.library)?;
+        cluster = library::cluster_def(path, &registry, &args.library, &args.allow_read)?;
         &cluster
     } else if let Some(def) = registry.get(&args.node_type) {
         def.as_ref()
@@ -68,7 +80,22 @@ pub fn run(args: Args) -> CommandResult {
         })?;
     }
     let base = std::env::current_dir().ok();
-    let ctx = NodeContext::new(out_dir, base);
+    let mut ctx = NodeContext::new(out_dir, base);
+    if let Some(limit) = args.max_memory {
+        ctx.budget = MemoryBudget::new(limit);
+    }
+    ctx.allow_read = args.allow_read.clone();
+    ctx.cancel = crate::signals::cancel_flag();
+    if let Some(names) = &args.outputs {
+        if let Some(bad) = names.iter().find(|n| def.output_index(n).is_none()) {
+            return Err(Failure::usage(format!(
+                "unknown output '{bad}' for {}; valid outputs: {}",
+                def.id,
+                def.output_names()
+            )));
+        }
+        ctx.requested = Some(names.clone());
+    }
     let start = Instant::now();
     let result = evaluate_node(def, &ctx, &inputs);
     let elapsed = start.elapsed();
@@ -83,8 +110,9 @@ pub fn run(args: Args) -> CommandResult {
         .outputs
         .iter()
         .zip(&outputs.values)
+        .filter(|(p, _)| ctx.wants(&p.name))
         .map(|(p, v)| (p.name.to_string(), to_json(v)))
         .collect();
-    println!("{}", Json::Object(object));
+    crate::outln!("{}", Json::Object(object));
     Ok(ExitCode::SUCCESS)
 }

@@ -68,17 +68,17 @@ pub fn run(args: Args) -> CommandResult {
     };
     if args.json {
         let all: Vec<Json> = defs.iter().map(|d| node_json(d)).collect();
-        println!("{}", serde_json::to_string_pretty(&all).unwrap_or_default());
+        crate::outln!("{}", serde_json::to_string_pretty(&all).unwrap_or_default());
     } else if args.markdown {
-        print!("{}", cnets_nodes::reference::markdown(&registry));
+        crate::out!("{}", cnets_nodes::reference::markdown(&registry));
     } else {
         let mut category = String::new();
         for def in &defs {
             if def.category != category {
                 category = def.category.to_string();
-                println!("\n{category}");
+                crate::outln!("\n{category}");
             }
-            println!("  {:<28} {}", def.id, def.summary());
+            crate::outln!("  {:<28} {}", def.id, def.summary());
             for p in &def.inputs {
                 let default = p
                     .default
@@ -86,10 +86,10 @@ pub fn run(args: Args) -> CommandResult {
                     .map(|d| format!(" = {}", to_json(d)))
                     .unwrap_or_default();
                 let optional = if p.optional { " (optional)" } else { "" };
-                println!("      in  {}: {}{default}{optional}", p.name, p.type_name());
+                crate::outln!("      in  {}: {}{default}{optional}", p.name, p.type_name());
             }
             for p in &def.outputs {
-                println!("      out {}: {}", p.name, p.type_name());
+                crate::outln!("      out {}: {}", p.name, p.type_name());
             }
         }
     }

@@ -105,7 +105,7 @@ pub fn run(args: Args) -> CommandResult {
         .map(|(v, x)| (v.input.to_string(), json!(x)))
         .collect();
     if args.json {
-        println!(
+        crate::outln!(
             "{}",
             json!({
                 "start": outcome.start,
@@ -121,7 +121,7 @@ pub fn run(args: Args) -> CommandResult {
             })
         );
     } else {
-        println!(
+        crate::outln!(
             "objective {:.6e} -> {:.6e} in {} iterations ({} evaluations, {} gradients, {} node runs); {stop}",
             outcome.start,
             outcome.objective,
@@ -131,10 +131,10 @@ pub fn run(args: Args) -> CommandResult {
             outcome.node_runs
         );
         for (name, x) in &variables {
-            println!("  {name} = {x}");
+            crate::outln!("  {name} = {x}");
         }
         if let Some(out) = &args.out {
-            println!("wrote {}", out.display());
+            crate::outln!("wrote {}", out.display());
         }
     }
     Ok(ExitCode::SUCCESS)

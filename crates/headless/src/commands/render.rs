@@ -163,6 +163,6 @@ pub fn run(args: Args) -> CommandResult {
             );
         }
     }
-    println!("{}", render_png(&graph, &evaluator, &look, &args.png)?);
+    crate::outln!("{}", render_png(&graph, &evaluator, &look, &args.png)?);
     Ok(ExitCode::SUCCESS)
 }

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use cnets_engine::value::json::to_json;
-use cnets_engine::{Evaluator, NodeContext, NodeFlag, NodeResult};
+use cnets_engine::{Evaluator, MemoryBudget, NodeContext, NodeFlag, NodeResult};
 use serde_json::{Map, Value as Json, json};
 
 use crate::commands::render::{Look, render_png};
@@ -18,6 +18,14 @@ use crate::progress::Progress;
 pub struct Args {
     /// The graph file.
     graph: PathBuf,
+    /// The most memory the evaluation's values may take, e.g. `12G`, `512MB` (default: half the
+    /// machine's memory); a node that would need more fails with what it needs.
+    #[arg(long, value_name = "SIZE", value_parser = cnets_engine::budget::parse_size)]
+    max_memory: Option<u64>,
+    /// A folder nodes and cluster files may also read from (besides the graph file's folder);
+    /// repeat for several.
+    #[arg(long = "allow-read", value_name = "DIR")]
+    allow_read: Vec<PathBuf>,
     /// Extra folders searched for cluster graph files (besides the graph's own folder and
     /// `CNETS_LIBRARY`).
     #[arg(long)]
@@ -63,7 +71,8 @@ impl Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let doc = library::load_graph(&args.graph, &args.library, &args.sets)?;
+    let doc =
+        library::load_graph_allowing(&args.graph, &args.library, &args.sets, &args.allow_read)?;
     let graph = doc.graph;
     let exports = graph
         .nodes()
@@ -77,7 +86,12 @@ pub fn run(args: Args) -> CommandResult {
         })?;
     }
     let base = args.graph.parent().map(Path::to_path_buf);
-    let ctx = NodeContext::new(exports.then(|| args.out.clone()), base);
+    let mut ctx = NodeContext::new(exports.then(|| args.out.clone()), base);
+    if let Some(limit) = args.max_memory {
+        ctx.budget = MemoryBudget::new(limit);
+    }
+    ctx.allow_read = args.allow_read.clone();
+    ctx.cancel = crate::signals::cancel_flag();
     let mut evaluator = Evaluator::new();
     let all: Vec<_> = graph.nodes().map(|(k, _)| k).collect();
     let progress = Progress::new("evaluating");
@@ -87,6 +101,13 @@ pub fn run(args: Args) -> CommandResult {
     });
     let elapsed = start.elapsed();
     progress.finish();
+    if summary.cancelled {
+        cnets_engine::files::temp::remove_own();
+        return Err(Failure {
+            code: crate::signals::CANCELLED,
+            messages: vec!["cancelled".to_string()],
+        });
+    }
 
     let mut failed = Vec::new();
     let mut nodes = Map::new();
@@ -133,9 +154,9 @@ pub fn run(args: Args) -> CommandResult {
         }
     }
     if args.json {
-        println!("{}", json!({ "nodes": nodes }));
+        crate::outln!("{}", json!({ "nodes": nodes }));
     } else {
-        println!(
+        crate::outln!(
             "{}: {} nodes evaluated in {:.1} ms, {} failed",
             args.graph.display(),
             summary.ran,
@@ -153,7 +174,7 @@ pub fn run(args: Args) -> CommandResult {
             }
         }
         for f in &files {
-            println!("wrote {}", f.display());
+            crate::outln!("wrote {}", f.display());
         }
     }
     if let Some(png) = &args.png {
@@ -162,7 +183,7 @@ pub fn run(args: Args) -> CommandResult {
         if args.json {
             eprintln!("{line}");
         } else {
-            println!("{line}");
+            crate::outln!("{line}");
         }
     }
     if failed.is_empty() {

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use cnets_engine::atomic::write_atomic;
+use cnets_engine::files::check_export_name;
 use cnets_engine::{NodeContext, NodeError};
 
 /// `name` with `extension` appended when it has none (`model` → `model.glb`).
@@ -15,25 +15,17 @@ pub fn with_extension(name: &str, extension: &str) -> String {
 }
 
 /// Writes `bytes` to `name` inside the output directory: the whole file is built in memory first and
-/// written atomically (temporary file, sync, rename), so a failure never leaves a partial file. The
-/// written path is recorded on the context and returned as text.
+/// written atomically (temporary file, sync, rename) without following links out of the directory
+/// (`NodeContext::write_output`), so a failure never leaves a partial file. The name is checked
+/// before the extension is added (`.`, `..` or an empty name are refused, not turned into `.obj`).
+/// The written path is recorded on the context and returned as text.
 pub fn write_export(
     ctx: &NodeContext,
     name: &str,
     extension: &str,
     bytes: &[u8],
 ) -> Result<String, NodeError> {
-    let path = ctx.output_path(&with_extension(name, extension))?;
-    if let Some(parent) = path.parent() {
-        std::fs::create_dir_all(parent).map_err(|e| {
-            NodeError::new(format!(
-                "cannot create the output folder {}: {e}",
-                parent.display()
-            ))
-        })?;
-    }
-    write_atomic(&path, bytes)
-        .map_err(|e| NodeError::new(format!("cannot write {}: {e}", path.display())))?;
-    ctx.record_file(path.clone());
+    check_export_name(name.trim()).map_err(|e| NodeError::new(e.to_string()))?;
+    let path = ctx.write_output(&with_extension(name, extension), bytes)?;
     Ok(path.display().to_string())
 }

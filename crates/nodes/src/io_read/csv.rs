@@ -47,7 +47,8 @@ pub fn parse(text: &str) -> Result<Vec<Polyline>, String> {
             }
             Err(_) => {
                 return Err(format!(
-                    "line {line_no}: expected 2 or 3 numbers, got '{line}'"
+                    "line {line_no}: expected 2 or 3 numbers, got '{}'",
+                    cnets_engine::files::excerpt(line, 40)
                 ));
             }
         };

@@ -137,10 +137,10 @@ node! {
             .ok()
             .filter(|s| (1..=10_000).contains(s))
             .ok_or_else(|| NodeError::new(format!("segments must be 1 to 10000, got {segments}")))?;
-        let file = ctx.input_path(&path);
-        let bytes = ctx.read_file(&path)?;
-        let (curves, warnings) = parse(&bytes, format, segments)
-            .map_err(|e| NodeError::new(format!("{}: {e}", file.display())))?;
+        let (file, bytes) = ctx.read_file(&path)?;
+        let (curves, warnings) = parse(&bytes, format, segments).map_err(|e| {
+            NodeError::new(format!("{}: {}", file.display(), cnets_engine::files::excerpt(&e, 200)))
+        })?;
         if curves.is_empty() {
             return Err(format!("{}: no polylines found", file.display()).into());
         }

@@ -87,7 +87,7 @@ node! {
     /// list gives a table of `count` equal rows (flatten it to concatenate the copies instead).
     /// Count 0 gives an empty list.
     #[node(id = "list.repeat", category = "Lists")]
-    pub fn repeat(
+    pub fn repeat[ctx](
         /// What to repeat (an item, a list or a table).
         value: k::Tree<k::Any>,
         /// Number of copies (≥ 0).
@@ -102,6 +102,7 @@ node! {
         if count > 10_000_000 {
             return Err(format!("count {count} is too large (at most 10000000)").into());
         }
+        ctx.reserve_values(count as u128, &format!("a list of {count} copies"))?;
         Ok((vec![value; count as usize],))
     }
 }
@@ -134,6 +135,26 @@ node! {
     }
 }
 
+/// The number of items a flatten of `v` gives, counting each shared list once (a list of the same
+/// list twice, 40 times over, is counted in 40 steps, not 2⁴⁰); saturates instead of overflowing.
+fn leaf_count(v: &Value, memo: &mut std::collections::HashMap<*const Value, u128>) -> u128 {
+    match v {
+        Value::List(items) if items.as_packed().is_some() => items.len() as u128,
+        Value::List(items) => {
+            let key = items.as_ptr();
+            if let Some(&n) = memo.get(&key) {
+                return n;
+            }
+            let n = items
+                .iter()
+                .fold(0u128, |n, i| n.saturating_add(leaf_count(i, memo)));
+            memo.insert(key, n);
+            n
+        }
+        _ => 1,
+    }
+}
+
 fn flatten_into(v: &Value, out: &mut Vec<Value>) {
     match v {
         Value::List(items) => items.iter().for_each(|i| flatten_into(i, out)),
@@ -144,14 +165,16 @@ fn flatten_into(v: &Value, out: &mut Vec<Value>) {
 node! {
     /// All items of any nesting (a table, a list of tables…) in one flat list, in reading order.
     #[node(id = "list.flatten", category = "Lists")]
-    pub fn flatten(
+    pub fn flatten[ctx](
         /// The nested list.
         tree: k::Tree<k::Any>,
     ) -> (
         /// The flat list.
         list: k::List<k::Any>,
     ) {
-        let mut out = Vec::new();
+        let n = leaf_count(&tree, &mut Default::default());
+        ctx.reserve_values(n, &format!("a flat list of {n} items"))?;
+        let mut out = Vec::with_capacity(n as usize);
         flatten_into(&tree, &mut out);
         Ok((out,))
     }
@@ -176,13 +199,15 @@ node! {
     /// ratio table per generatrix point ↔ per directrix column). A flat list counts as one row, so
     /// it becomes a column of one-item lists. Rows of different lengths are an error.
     #[node(id = "list.transpose", category = "Lists")]
-    pub fn transpose(
+    pub fn transpose[ctx](
         /// The table (a list of equally long lists).
         table: k::Tree<k::Any>,
     ) -> (
         /// The transposed table.
         table: k::Tree<k::Any>,
     ) {
+        let n = leaf_count(&table, &mut Default::default());
+        ctx.reserve_values(n.saturating_mul(2), &format!("transposing a table of {n} items"))?;
         let rows: Vec<Vec<Value>> = match &table {
             Value::List(items) if items.iter().all(|r| matches!(r, Value::List(_))) && !items.is_empty() => {
                 items.iter().map(|r| r.as_list().unwrap_or(&[]).to_vec()).collect()
@@ -215,7 +240,7 @@ node! {
     /// centre: deviations from `centre` add, so a constant-centre row list gives exactly the column
     /// values in every row), `product` (row · column) or `mean` ((row + column) / 2).
     #[node(id = "list.table", category = "Lists")]
-    pub fn table(
+    pub fn table[ctx](
         /// One number per row (N).
         rows: k::List<k::Number>,
         /// One number per column (M).
@@ -243,6 +268,11 @@ node! {
                 return Err(format!("{what} value {k} is not finite").into());
             }
         }
+        let (n, m) = (rows.len(), columns.len());
+        ctx.reserve_values(
+            (n as u128).saturating_mul(m as u128 + 1),
+            &format!("a table of {n} × {m} numbers"),
+        )?;
         let mut out = Vec::with_capacity(rows.len());
         for &r in &rows {
             let row: Vec<Value> = columns

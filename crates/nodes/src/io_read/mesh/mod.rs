@@ -85,9 +85,6 @@ impl MeshFormat {
     }
 }
 
-/// Largest mesh file read (bytes).
-pub const MAX_MESH_FILE: u64 = 1 << 30;
-
 node! {
     /// Reads a mesh drawn elsewhere (a reference hull, a site model): OBJ (`v` and `f` records;
     /// `o`/`g` start objects), STL (ascii and binary), PLY (ascii and binary) or glTF 2.0 (`.gltf`
@@ -95,7 +92,8 @@ node! {
     /// stays a quad). `mesh` is everything in the file joined, `meshes` one mesh per object or glTF
     /// primitive, in file order. `weld` merges vertices closer than it (STL stores every triangle's
     /// corners apart: give a weld to get a connected mesh). A relative path is resolved against the
-    /// graph file's folder; a file rewritten later is read again. A malformed file is an error
+    /// graph file's folder (reads are allowed there and in `--allow-read` folders); a file rewritten
+    /// later is read again. A malformed file is an error
     /// naming the line (text formats) or byte offset (binary ones).
     #[node(id = "io.read_mesh", category = "Import", flags(Import))]
     pub fn read_mesh[ctx](
@@ -120,20 +118,11 @@ node! {
         {
             return Err(format!("weld must be a finite number ≥ 0, got {w}").into());
         }
-        let file = ctx.input_path(&path);
-        if let Ok(meta) = std::fs::metadata(&file)
-            && meta.len() > MAX_MESH_FILE
-        {
-            return Err(format!(
-                "'{}' is {} bytes, more than the {} bytes a mesh file may have",
-                file.display(),
-                meta.len(),
-                MAX_MESH_FILE
-            )
-            .into());
-        }
-        let bytes = ctx.read_file(&path)?;
-        let named = |e: String| NodeError::new(format!("{}: {e}", file.display()));
+        // Permission, file kind, size limit and memory budget are checked by the context.
+        let (file, bytes) = ctx.read_file(&path)?;
+        let named = |e: String| {
+            NodeError::new(format!("{}: {}", file.display(), cnets_engine::files::excerpt(&e, 200)))
+        };
         let file_mesh = match format {
             MeshFormat::Obj => {
                 let text = std::str::from_utf8(&bytes).map_err(|e| {
@@ -147,7 +136,9 @@ node! {
                 let folder = Path::new(&path).parent().unwrap_or(Path::new(""));
                 let external = |uri: &str| {
                     let relative = folder.join(uri);
-                    ctx.read_file(&relative.to_string_lossy()).map_err(|e| e.message)
+                    ctx.read_file(&relative.to_string_lossy())
+                        .map(|(_, bytes)| bytes)
+                        .map_err(|e| e.message)
                 };
                 let (objects, warnings) = gltf::parse(&bytes, &external).map_err(named)?;
                 for w in warnings {

@@ -1,0 +1,188 @@
+//! The memory budget of an evaluation.
+//!
+//! A graph is a file people share; a few numbers in it (a 10⁷-point series wired into both inputs
+//! of `list.table`, two 100 000-point polylines into a construction) can ask for hundreds of
+//! gigabytes. Allocation failure aborts a Rust process, so nothing may get that far: every node that
+//! can blow up computes the size its outputs will need *before* allocating and checks it against the
+//! budget carried by its [`NodeContext`](crate::NodeContext) ([`NodeContext::reserve`]
+//! (crate::NodeContext::reserve)), and the evaluator checks the total size of the values it keeps
+//! after every node run (`eval::Evaluator`). Both fail with [`BudgetError`]:
+//! `needs 240 GB, the limit is 12 GB`.
+//!
+//! The default limit is half the machine's memory ([`MemoryBudget::machine_default`]); front ends
+//! set another with `cnets run/eval --max-memory SIZE` ([`parse_size`]).
+
+use std::sync::OnceLock;
+
+/// The memory an evaluation may use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MemoryBudget {
+    /// The most bytes the values of one evaluation may take (live values plus a new allocation).
+    pub limit: u64,
+}
+
+impl Default for MemoryBudget {
+    fn default() -> Self {
+        Self::machine_default()
+    }
+}
+
+impl MemoryBudget {
+    /// A budget of `limit` bytes.
+    pub fn new(limit: u64) -> Self {
+        Self { limit }
+    }
+
+    /// Half the machine's physical memory (from `/proc/meminfo`; 4 GB when it cannot be read).
+    pub fn machine_default() -> Self {
+        static DEFAULT: OnceLock<u64> = OnceLock::new();
+        Self::new(*DEFAULT.get_or_init(|| machine_memory().map_or(4_000_000_000, |m| m / 2)))
+    }
+
+    /// Checks that `needed` more bytes fit beside `in_use` bytes already live.
+    pub fn check(&self, needed: u64, in_use: u64, what: &str) -> Result<(), BudgetError> {
+        if needed.saturating_add(in_use) <= self.limit {
+            return Ok(());
+        }
+        Err(BudgetError::TooLarge {
+            what: what.to_string(),
+            needed,
+            in_use,
+            limit: self.limit,
+        })
+    }
+}
+
+/// A request over the memory budget.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum BudgetError {
+    /// `needed` bytes do not fit beside `in_use` bytes under `limit`.
+    #[error("{what} needs {}, the limit is {}{}", format_bytes(*.needed), format_bytes(*.limit), in_use_note(*.in_use))]
+    TooLarge {
+        /// What would be allocated (e.g. "a table of 10000000 × 10000000 numbers").
+        what: String,
+        /// Bytes it needs.
+        needed: u64,
+        /// Bytes already taken by live values.
+        in_use: u64,
+        /// The budget.
+        limit: u64,
+    },
+}
+
+fn in_use_note(in_use: u64) -> String {
+    if in_use == 0 {
+        String::new()
+    } else {
+        format!(" ({} already held by other values)", format_bytes(in_use))
+    }
+}
+
+/// The machine's physical memory in bytes (Linux: `MemTotal` of `/proc/meminfo`).
+fn machine_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kb.checked_mul(1024)
+}
+
+/// Bytes in decimal units for messages: `240 GB`, `12 GB`, `1.5 MB`, `512 bytes`.
+pub fn format_bytes(bytes: u64) -> String {
+    const UNITS: [(&str, f64); 5] = [
+        ("PB", 1e15),
+        ("TB", 1e12),
+        ("GB", 1e9),
+        ("MB", 1e6),
+        ("kB", 1e3),
+    ];
+    let b = bytes as f64;
+    for (unit, size) in UNITS {
+        if b >= size {
+            let x = b / size;
+            return if x >= 10.0 || (x - x.round()).abs() < 0.05 {
+                format!("{:.0} {unit}", x.round())
+            } else {
+                format!("{x:.1} {unit}")
+            };
+        }
+    }
+    format!("{bytes} bytes")
+}
+
+/// Parses a size: a number of bytes, optionally with a unit — `k`/`kB`, `M`/`MB`, `G`/`GB`, `T`/`TB`
+/// (decimal) or `KiB`, `MiB`, `GiB`, `TiB` (binary); case-insensitive, e.g. `12G`, `512MB`, `1.5GiB`.
+pub fn parse_size(text: &str) -> Result<u64, String> {
+    let t = text.trim();
+    let split = t
+        .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .unwrap_or(t.len());
+    let (number, unit) = t.split_at(split);
+    let x: f64 = number
+        .parse()
+        .map_err(|_| format!("'{text}' is not a size (e.g. 12G, 512MB, 1000000)"))?;
+    let scale: f64 = match unit.trim().to_ascii_lowercase().as_str() {
+        "" | "b" => 1.0,
+        "k" | "kb" => 1e3,
+        "m" | "mb" => 1e6,
+        "g" | "gb" => 1e9,
+        "t" | "tb" => 1e12,
+        "kib" => 1024.0,
+        "mib" => 1024.0 * 1024.0,
+        "gib" => 1024.0 * 1024.0 * 1024.0,
+        "tib" => 1024.0 * 1024.0 * 1024.0 * 1024.0,
+        other => {
+            return Err(format!(
+                "unknown size unit '{other}' in '{text}' (use k, M, G, T or KiB, MiB, GiB, TiB)"
+            ));
+        }
+    };
+    let bytes = x * scale;
+    if !bytes.is_finite() || bytes < 1.0 || bytes > u64::MAX as f64 {
+        return Err(format!("'{text}' is not a usable size (at least 1 byte)"));
+    }
+    Ok(bytes as u64)
+}
+
+/// Bytes of `count` items of `item_bytes` each, saturating (a count of 10¹⁴ never wraps around).
+pub fn bytes_of(count: u128, item_bytes: usize) -> u64 {
+    u64::try_from(count.saturating_mul(item_bytes as u128)).unwrap_or(u64::MAX)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse_in_decimal_and_binary_units() {
+        assert_eq!(parse_size("12G").unwrap(), 12_000_000_000);
+        assert_eq!(parse_size("512MB").unwrap(), 512_000_000);
+        assert_eq!(parse_size("1.5GiB").unwrap(), 1_610_612_736);
+        assert_eq!(parse_size("1000").unwrap(), 1000);
+        assert_eq!(parse_size(" 64 kb ").unwrap(), 64_000);
+        assert!(parse_size("12X").is_err());
+        assert!(parse_size("").is_err());
+        assert!(parse_size("0").is_err());
+        assert!(parse_size("-5G").is_err());
+    }
+
+    #[test]
+    fn bytes_read_as_the_issue_writes_them() {
+        assert_eq!(format_bytes(240_000_000_000), "240 GB");
+        assert_eq!(format_bytes(12_000_000_000), "12 GB");
+        assert_eq!(format_bytes(1_500_000), "1.5 MB");
+        assert_eq!(format_bytes(512), "512 bytes");
+    }
+
+    #[test]
+    fn the_check_counts_what_is_already_live() {
+        let b = MemoryBudget::new(1000);
+        assert!(b.check(1000, 0, "x").is_ok());
+        let e = b.check(600, 500, "a list of 600 bytes").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "a list of 600 bytes needs 600 bytes, the limit is 1 kB (500 bytes already held by other values)"
+        );
+        assert!(b.check(u64::MAX, u64::MAX, "x").is_err());
+        assert!(MemoryBudget::machine_default().limit >= 1_000_000);
+    }
+}

@@ -1,0 +1,101 @@
+//! Files only where they belong: what nodes and the graph loader may read and write.
+//!
+//! - [`names`]: export names are checked by name first (no control characters, no `.`, `..` or
+//!   empty components, no root).
+//! - [`write`]: exports are written inside the output directory without following any symbolic
+//!   link out of it: each folder is opened relative to the previous one with `O_NOFOLLOW`
+//!   (`openat`, through `rustix`), the file is written under a temporary name, synced and renamed
+//!   in the same folder.
+//! - [`temp`]: temporary files of dead processes are removed when an export writes into their
+//!   folder; a process's own are removed on SIGINT/SIGTERM ([`temp::remove_own`]).
+//! - [`read`]: reads are allowed only under the graph file's folder and folders allowed
+//!   explicitly (`--allow-read DIR`); devices, FIFOs and sockets are refused, and files over a size
+//!   limit (1 GB by default). Nodes read through [`NodeContext::read_file`](crate::NodeContext::read_file)
+//!   and the loader reads cluster files through the same check.
+//! - [`excerpt`]: error messages quote at most a short, escaped excerpt of what they read.
+
+pub mod names;
+pub mod read;
+pub mod temp;
+pub mod write;
+
+pub use names::check_export_name;
+pub use read::{DEFAULT_MAX_READ_BYTES, ReadAccess};
+pub use write::write_inside;
+
+use std::path::PathBuf;
+
+/// A file that may not be read or written, or could not be.
+#[derive(Debug, thiserror::Error)]
+pub enum FileError {
+    /// The export name is refused by name.
+    #[error("export name {0}: {1}")]
+    BadName(String, &'static str),
+    /// A folder inside the output directory is a symbolic link.
+    #[error(
+        "'{0}' inside the output directory is a symbolic link: exports do not follow links out of it"
+    )]
+    Link(String),
+    /// A folder of the export name is taken by a file.
+    #[error("cannot create the output folder '{0}': a file of that name is in the way")]
+    NotAFolder(String),
+    /// The file is outside every folder reads are allowed in.
+    #[error(
+        "{path} is outside the folders reads are allowed in ({allowed}); allow its folder with --allow-read"
+    )]
+    NotAllowed {
+        /// The refused file.
+        path: PathBuf,
+        /// The allowed folders, for the message.
+        allowed: String,
+    },
+    /// A device, FIFO, socket or folder where a file was expected.
+    #[error("{0} is not a regular file (devices, FIFOs and sockets are not read)")]
+    NotAFile(PathBuf),
+    /// The file is larger than the read limit.
+    #[error("{path} is {size} bytes, more than the read limit of {limit} bytes")]
+    TooLarge {
+        /// The refused file.
+        path: PathBuf,
+        /// Its size.
+        size: u64,
+        /// The limit.
+        limit: u64,
+    },
+    /// An operating-system error on a path.
+    #[error("{0}: {1}")]
+    Io(PathBuf, std::io::Error),
+}
+
+/// At most `max` characters of `text` for an error message, control characters escaped and an
+/// ellipsis when cut: a CSV error on `/etc/passwd` quotes a few characters, not the line.
+pub fn excerpt(text: &str, max: usize) -> String {
+    let mut out = String::new();
+    for (k, c) in text.chars().enumerate() {
+        if k == max {
+            out.push('…');
+            break;
+        }
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn excerpts_are_short_and_escaped() {
+        assert_eq!(
+            excerpt("root:x:0:0:root:/root:/bin/bash", 10),
+            "root:x:0:0…"
+        );
+        assert_eq!(excerpt("a\nb\0", 10), "a\\nb\\u{0}");
+        assert_eq!(excerpt("short", 10), "short");
+    }
+}

@@ -1,0 +1,43 @@
+//! Writing to stdout without panicking: `println!` panics when stdout is a closed pipe
+//! (`cnets nodes | head`) or a full disk (`> /dev/full`). [`outln!`] and [`out!`] return the write
+//! error to the command instead (`?` turns it into a [`Failure`]): a broken pipe ends the program
+//! quietly, as other command-line tools do; any other error is one line and exit 2.
+
+use std::io::{self, Write};
+
+use crate::failure::Failure;
+
+/// Writes formatted text to stdout.
+pub fn text(args: std::fmt::Arguments<'_>) -> Result<(), Failure> {
+    io::stdout().lock().write_fmt(args).map_err(Failure::from)
+}
+
+/// Writes formatted text and a newline to stdout.
+pub fn line(args: std::fmt::Arguments<'_>) -> Result<(), Failure> {
+    let mut out = io::stdout().lock();
+    out.write_fmt(args)
+        .and_then(|()| out.write_all(b"\n"))
+        .map_err(Failure::from)
+}
+
+/// Flushes stdout (the end of every command), so a late write error is reported too.
+pub fn flush() -> Result<(), Failure> {
+    io::stdout().lock().flush().map_err(Failure::from)
+}
+
+/// `println!` that returns write errors to the calling command (which must return a
+/// `Result<_, Failure>`).
+#[macro_export]
+macro_rules! outln {
+    ($($t:tt)*) => {
+        $crate::output::line(format_args!($($t)*))?
+    };
+}
+
+/// `print!` that returns write errors to the calling command.
+#[macro_export]
+macro_rules! out {
+    ($($t:tt)*) => {
+        $crate::output::text(format_args!($($t)*))?
+    };
+}

@@ -1,0 +1,301 @@
+//! Bounded resources through the command line: graphs and inputs that used to abort the process
+//! (allocation failure, stack overflow) end with a clear error and exit 1 (a node) or 2 (a graph
+//! that cannot load), quickly. Each reproducer is the issue's, sized to fail fast under a small
+//! `--max-memory`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+fn cnets(args: &[&str]) -> (Output, Duration) {
+    let start = Instant::now();
+    let out = Command::new(env!("CARGO_BIN_EXE_cnets"))
+        .args(args)
+        .output()
+        .unwrap();
+    (out, start.elapsed())
+}
+
+fn folder(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("cnets-limits-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Runs `graph` under a 64 MB budget and checks it fails on a node, quickly, naming the size.
+fn run_fails_within_budget(graph: &Path, node: &str) -> String {
+    let (o, time) = cnets(&["run", graph.to_str().unwrap(), "--max-memory", "64MB"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains(&format!("node '{node}'")), "{err}");
+    assert!(
+        err.contains("needs") && err.contains("the limit is 64 MB"),
+        "{err}"
+    );
+    assert!(time < Duration::from_secs(30), "took {time:?}");
+    err
+}
+
+#[test]
+fn a_construction_on_huge_polylines_fails_before_allocating() {
+    let d = folder("construct");
+    let line = |axis: usize| {
+        let pts: Vec<String> = (0..100_000)
+            .map(|k| {
+                let mut p = [0.0; 3];
+                p[axis] = k as f64 * 0.01;
+                format!("[{},{},{}]", p[0], p[1], p[2])
+            })
+            .collect();
+        format!("{{\"points\": [{}], \"closed\": false}}", pts.join(","))
+    };
+    let inputs = d.join("inputs.json");
+    std::fs::write(
+        &inputs,
+        format!(
+            "{{\"directrix\": {}, \"generatrix\": {}}}",
+            line(0),
+            line(1)
+        ),
+    )
+    .unwrap();
+    let (o, time) = cnets(&[
+        "eval",
+        "ctube.construct",
+        "--inputs",
+        inputs.to_str().unwrap(),
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("a cone-net of 100000 × 100000 vertices needs 640 GB, the limit is"),
+        "{err}"
+    );
+    assert!(time < Duration::from_secs(30), "took {time:?}");
+    let (o, _) = cnets(&[
+        "eval",
+        "ctube.construct",
+        "--inputs",
+        inputs.to_str().unwrap(),
+        "--max-memory",
+        "nonsense",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn a_series_into_both_inputs_of_a_table_fails() {
+    let d = folder("table");
+    let g = d.join("table.ron");
+    std::fs::write(
+        &g,
+        r#"(
+    version: 1,
+    nodes: {
+        "s": (type: "param.series", inputs: {"count": 100000}),
+        "t": (type: "list.table"),
+    },
+    edges: ["s.values -> t.rows", "s.values -> t.columns"],
+)"#,
+    )
+    .unwrap();
+    let err = run_fails_within_budget(&g, "t");
+    assert!(
+        err.contains("a table of 100000 × 100000 numbers needs 320 GB"),
+        "{err}"
+    );
+}
+
+#[test]
+fn repeating_a_list_and_a_long_series_fail() {
+    let d = folder("repeat");
+    let g = d.join("repeat.ron");
+    std::fs::write(
+        &g,
+        r#"(
+    version: 1,
+    nodes: {
+        "s": (type: "param.series", inputs: {"count": 1000}),
+        "r": (type: "list.repeat", inputs: {"count": 10000000}),
+        "f": (type: "list.flatten"),
+        "big": (type: "param.series", inputs: {"count": 10000000}),
+    },
+    edges: ["s.values -> r.value", "r.list -> f.tree"],
+)"#,
+    )
+    .unwrap();
+    let (o, time) = cnets(&["run", g.to_str().unwrap(), "--max-memory", "64MB"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(
+            "node 'r' (list.repeat): a list of 10000000 copies needs 320 MB, the limit is 64 MB"
+        ),
+        "{err}"
+    );
+    assert!(
+        err.contains("node 'big' (param.series): a series of 10000000 numbers needs 320 MB"),
+        "{err}"
+    );
+    assert!(time < Duration::from_secs(30), "took {time:?}");
+}
+
+#[test]
+fn a_flatten_ladder_stops_at_the_budget() {
+    let d = folder("ladder");
+    let mut nodes = vec![
+        r#""a0": (type: "param.series", inputs: {"count": 4}),"#.to_string(),
+        r#""b0": (type: "param.series", inputs: {"count": 4}),"#.to_string(),
+    ];
+    let mut edges = Vec::new();
+    for k in 1..=28 {
+        let out = if k == 1 { "values" } else { "list" };
+        for n in ["a", "b"] {
+            nodes.push(format!(r#""{n}{k}": (type: "list.flatten"),"#));
+            edges.push(format!(r#""a{}.{out} -> {n}{k}.tree""#, k - 1));
+            edges.push(format!(r#""b{}.{out} -> {n}{k}.tree""#, k - 1));
+        }
+    }
+    let g = d.join("ladder.ron");
+    std::fs::write(
+        &g,
+        format!(
+            "(version: 1, nodes: {{ {} }}, edges: [{}])",
+            nodes.join("\n"),
+            edges.join(", ")
+        ),
+    )
+    .unwrap();
+    // a17 fits beside the 33 MB of the levels below; b17 does not beside those and a17: the
+    // merge of its two wires is refused before it is built.
+    let err = run_fails_within_budget(&g, "b17");
+    assert!(
+        err.contains(
+            "merging 2 wires into a list of 524288 items needs 17 MB, the limit is 64 MB (50 MB already held"
+        ),
+        "{err}"
+    );
+}
+
+#[test]
+fn clusters_used_twice_nested_deep_stop_at_the_budget() {
+    // Level k runs level k − 1 twice and merges both results into its output: 2ᵏ copies. Once
+    // with the copies merged as they are (the list doubles in memory at every level), once
+    // flattened by a node.
+    for flatten in [false, true] {
+        let d = folder(&format!("twice-{flatten}"));
+        std::fs::write(
+            d.join("level0.ron"),
+            r#"(version: 1, nodes: {
+    "x": (type: "graph.input", inputs: {"name": "x", "type": "tree<number>"}),
+    "y": (type: "graph.output", inputs: {"name": "y", "type": "tree<number>"}),
+}, edges: ["x.value -> y.value"])"#,
+        )
+        .unwrap();
+        let (node, edges) = if flatten {
+            (
+                r#""f": (type: "list.flatten"),"#,
+                r#""c1.y -> f.tree", "c2.y -> f.tree", "f.list -> y.value""#,
+            )
+        } else {
+            ("", r#""c1.y -> y.value", "c2.y -> y.value""#)
+        };
+        for k in 1..=25 {
+            std::fs::write(
+                d.join(format!("level{k}.ron")),
+                format!(
+                    r#"(version: 1, nodes: {{
+    "x": (type: "graph.input", inputs: {{"name": "x", "type": "tree<number>"}}),
+    "c1": (type: "cluster", source: "level{p}.ron"),
+    "c2": (type: "cluster", source: "level{p}.ron"),
+    {node}
+    "y": (type: "graph.output", inputs: {{"name": "y", "type": "tree<number>"}}),
+}}, edges: ["x.value -> c1.x", "x.value -> c2.x", {edges}])"#,
+                    p = k - 1
+                ),
+            )
+            .unwrap();
+        }
+        let g = d.join("top.ron");
+        std::fs::write(
+            &g,
+            r#"(version: 1, nodes: {
+    "s": (type: "param.series", inputs: {"count": 16}),
+    "c": (type: "cluster", source: "level25.ron"),
+}, edges: ["s.values -> c.x"])"#,
+        )
+        .unwrap();
+        let err = run_fails_within_budget(&g, "c");
+        assert!(err.contains("inside cluster"), "{err}");
+    }
+}
+
+/// A chain of `len` cluster files, `c0.ron` using `c1.ron` using … a last one that doubles.
+fn chain(d: &Path, len: usize) -> PathBuf {
+    for k in 0..len {
+        let body = if k + 1 == len {
+            r#""m": (type: "math.multiply", inputs: {"b": 2.0}),"#.to_string()
+        } else {
+            format!(r#""m": (type: "cluster", source: "c{}.ron"),"#, k + 1)
+        };
+        let edges = if k + 1 == len {
+            r#""x.value -> m.a", "m.result -> y.value""#
+        } else {
+            r#""x.value -> m.x", "m.y -> y.value""#
+        };
+        std::fs::write(
+            d.join(format!("c{k}.ron")),
+            format!(
+                r#"(version: 1, nodes: {{
+    "x": (type: "graph.input", inputs: {{"name": "x", "type": "number"}}),
+    {body}
+    "y": (type: "graph.output", inputs: {{"name": "y", "type": "number"}}),
+}}, edges: [{edges}])"#
+            ),
+        )
+        .unwrap();
+    }
+    let top = d.join("top.ron");
+    std::fs::write(
+        &top,
+        r#"(version: 1, nodes: {
+    "n": (type: "param.number", inputs: {"value": 0.75}),
+    "c": (type: "cluster", source: "c0.ron"),
+}, edges: ["n.value -> c.x"])"#,
+    )
+    .unwrap();
+    top
+}
+
+#[test]
+fn a_chain_of_cluster_files_deeper_than_the_limit_is_refused_by_check_and_run() {
+    let d = folder("chain");
+    let top = chain(&d, 1850);
+    for command in ["check", "run"] {
+        let (o, time) = cnets(&[command, top.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{command}: {err}");
+        assert!(
+            err.contains("clusters nested more than 256 deep: the chain starting at")
+                && err.contains("top.ron"),
+            "{command}: {err}"
+        );
+        assert_eq!(err.lines().count(), 1, "one line, not one per file: {err}");
+        assert!(time < Duration::from_secs(30), "took {time:?}");
+    }
+}
+
+#[test]
+fn a_chain_of_cluster_files_within_the_limit_loads_and_runs() {
+    let d = folder("chain-ok");
+    let top = chain(&d, 200);
+    let (o, _) = cnets(&["run", top.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(json["nodes"]["c"]["outputs"]["y"].as_f64(), Some(1.5));
+}
