@@ -74,23 +74,9 @@ pub fn nodes() -> Vec<NodeDef> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cnets_engine::eval::evaluate_node;
 
     fn run(named: &[(&str, Value)]) -> Result<Vec<Value>, String> {
-        let def = graph();
-        let inputs: Vec<Value> = def
-            .inputs
-            .iter()
-            .map(|p| {
-                named
-                    .iter()
-                    .find(|(n, _)| *n == p.name)
-                    .map(|(_, v)| v.clone())
-                    .or_else(|| p.default.clone())
-                    .unwrap_or(Value::Null)
-            })
-            .collect();
-        evaluate_node(&def, &NodeContext::default(), &inputs).map(|o| o.values)
+        crate::testing::run_named(&graph(), named)
     }
 
     fn numbers(v: &Value) -> Vec<f64> {

@@ -15,6 +15,22 @@ use std::path::Path;
 
 use cnets_engine::prelude::*;
 
+/// A format input, lower-cased, and the key to match: the name itself, or for `auto` (or empty)
+/// the file's extension.
+pub(crate) fn format_key(name: &str, path: &str) -> (String, String) {
+    let name = name.trim().to_ascii_lowercase();
+    let key = if name.is_empty() || name == "auto" {
+        Path::new(path)
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase()
+    } else {
+        name.clone()
+    };
+    (name, key)
+}
+
 /// The formats `io.read_polylines` reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
@@ -34,16 +50,7 @@ impl Format {
     /// Parses a format name (`csv`, `json`, `obj`, `svg`, `dxf`) or, for `auto`, guesses it from the file
     /// extension (`.csv`/`.txt`/`.xyz` are CSV).
     pub fn resolve(name: &str, path: &str) -> Result<Self, String> {
-        let name = name.trim().to_ascii_lowercase();
-        let key = if name.is_empty() || name == "auto" {
-            Path::new(path)
-                .extension()
-                .and_then(|e| e.to_str())
-                .unwrap_or("")
-                .to_ascii_lowercase()
-        } else {
-            name.clone()
-        };
+        let (name, key) = format_key(name, path);
         match key.as_str() {
             "csv" | "txt" | "xyz" => Ok(Self::Csv),
             "json" => Ok(Self::Json),

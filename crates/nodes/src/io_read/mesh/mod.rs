@@ -59,17 +59,8 @@ pub enum MeshFormat {
 impl MeshFormat {
     /// Parses a format name or, for `auto`, guesses it from the file extension.
     pub fn resolve(name: &str, path: &str) -> Result<Self, String> {
-        let name = name.trim().to_ascii_lowercase();
+        let (name, key) = super::format_key(name, path);
         let auto = name.is_empty() || name == "auto";
-        let key = if auto {
-            Path::new(path)
-                .extension()
-                .and_then(|e| e.to_str())
-                .unwrap_or("")
-                .to_ascii_lowercase()
-        } else {
-            name.clone()
-        };
         match key.as_str() {
             "obj" => Ok(Self::Obj),
             "stl" => Ok(Self::Stl),
