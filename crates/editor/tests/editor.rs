@@ -532,10 +532,22 @@ fn viewport_orbits_pans_zooms_fits_and_switches_colours_and_layers() {
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::SetPreview(o));
     settle(&mut h);
-    assert!(matches!(
-        h.state().viewport.stats.legend,
-        LegendInfo::Planarity(_)
-    ));
+    match &h.state().viewport.stats.legend {
+        LegendInfo::Planarity(l) => {
+            assert!(
+                l.labels[0].starts_with("planar"),
+                "in words: {:?}",
+                l.labels
+            );
+            // The default cone-net is planar to rounding: one colour, not a stretched patchwork.
+            assert!(
+                l.min == 1e-9 && l.max == 1e-3,
+                "anchored to tolerances: {l:?}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    h.snapshot("editor_planarity_legend");
     o.set(Layer::Surfaces, false);
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::SetPreview(o));
