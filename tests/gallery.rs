@@ -64,15 +64,25 @@ fn torus_monge_is_a_surface_of_revolution_and_its_variants_stay_clean() {
     }
     let monge = meshes(e.output("monge", "mesh"))[0];
     let size = monge.size();
-    // Every column but the last lies in a bisecting plane, which contains the axis; the last one lies
-    // in the plane normal to the last directrix edge (construction notes §2), so it is checked apart.
+    let directrix = polylines(e.output("directrix", "curve")).remove(0);
+    assert_eq!(directrix.points.len(), monge.cols);
+    // Every column lies in a bisecting plane, which contains the axis; the last one too, since the
+    // graph mirrors the end plane (`end_planes: "mirror"`, the meridian plane at the arc's end).
     for i in 0..monge.rows {
         let (rho0, z0) = radial(monge.at(i, 0));
-        for j in 1..monge.cols - 1 {
+        for j in 1..monge.cols {
             let (rho, z) = radial(monge.at(i, j));
             assert!(
                 (rho - rho0).abs() <= 1e-12 * size && (z - z0).abs() <= 1e-12 * size,
                 "({i}, {j}) leaves its circle"
+            );
+            // …and its meridian plane, through the z axis and X_j.
+            let x = directrix.points[j];
+            let normal = DVec3::new(-x.y, x.x, 0.0).normalize();
+            let off = monge.at(i, j).dot(normal).abs();
+            assert!(
+                off <= 1e-12 * size,
+                "({i}, {j}) off its meridian by {off:e}"
             );
         }
     }
@@ -339,14 +349,42 @@ fn parallel_transform_keeps_faces_planar_and_edges_parallel() {
 fn facade_profiles_share_their_vertex_along_the_whole_sweep() {
     let e = Evaluated::new(load("facade"));
     assert_clean(&e, "facade");
-    let nets = meshes(e.output("facade", "mesh"));
+    let coarse = meshes(e.output("facade", "mesh"));
+    let nets = meshes(e.output("panels", "mesh"));
     let (wall, canopy) = (nets[0], nets[1]);
     assert_eq!(
         wall.row(2).points,
         canopy.row(0).points,
         "the shared vertex traces one line"
     );
-    assert!(wall.rows > 5, "the generatrix is subdivided");
+    assert_eq!(
+        wall.rows,
+        (coarse[0].rows - 1) * 2 + 1,
+        "the rows are subdivided"
+    );
+    // Every panel vertex lies on a coarse face: coarse rows kept, new rows in the coarse planes.
+    for (fine, coarse) in nets.iter().zip(&coarse) {
+        let size = coarse.size();
+        for i in 0..fine.rows {
+            for j in 0..fine.cols {
+                let v = fine.at(i, j);
+                let (s, k) = (i / 2, i % 2);
+                if k == 0 {
+                    assert_eq!(v, coarse.at(s, j));
+                    continue;
+                }
+                for jf in [j.checked_sub(1), Some(j)].into_iter().flatten() {
+                    if jf + 1 < fine.cols {
+                        let q = coarse.quad(s, jf);
+                        let n = (q[2] - q[0]).cross(q[3] - q[1]).normalize();
+                        let d = (v - q[0]).dot(n).abs() / size;
+                        assert!(d <= 1e-12, "({i}, {j}) off its coarse face by {d:e}");
+                    }
+                }
+            }
+        }
+        assert!(max_planarity(fine) <= 1e-12);
+    }
     let axes: usize = match e.output("axes", "axes") {
         Value::List(items) => items
             .iter()
@@ -441,6 +479,127 @@ fn pedestrian_bridge_has_planar_frames_and_exports_cutting_sheets() {
     }
     assert!(e.number("strips", "max_length_error") <= 1e-9);
     for name in ["bridge-strips.svg", "bridge-strips.dxf"] {
+        let len = std::fs::metadata(out.join(name))
+            .map(|m| m.len())
+            .unwrap_or(0);
+        assert!(len > 1000, "{name} written ({len} bytes)");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// The polylines of an output (a list, possibly nested).
+fn polylines(v: &Value) -> Vec<cnets_geometry::Polyline> {
+    match v {
+        Value::Polyline(p) => vec![(**p).clone()],
+        Value::List(items) => items.iter().flat_map(polylines).collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// Nests outlines on sheets 1.05 × the longest outline by `height` and compares with stacking their
+/// boxes: (nested sheets, nested utilization, stacked sheets, stacked utilization).
+fn nest_against_stacking(
+    outlines: &[cnets_geometry::Polyline],
+    height: f64,
+) -> (usize, f64, usize, f64) {
+    use cnets_geometry::fabrication::{nest, stack_sheets};
+    let longest = outlines
+        .iter()
+        .map(|o| {
+            let (lo, hi) = cnets_geometry::quad_grid::bounds_of(&o.points).unwrap();
+            (hi.x - lo.x).max(hi.y - lo.y)
+        })
+        .fold(0.0, f64::max);
+    let width = 1.05 * longest;
+    let nested = nest(outlines, width, height, 0.005, 4).unwrap();
+    // Every placed outline is the input moved rigidly, and inside its sheet.
+    for (placed, input) in nested.outlines.iter().zip(outlines) {
+        let n = input.points.len();
+        for i in 0..n {
+            let a = input.points[i].distance(input.points[(i + 1) % n]);
+            let b = placed.points[i].distance(placed.points[(i + 1) % n]);
+            assert!((a - b).abs() <= 1e-9 * a.max(1.0));
+        }
+    }
+    for (placed, &s) in nested.outlines.iter().zip(&nested.sheets) {
+        let x0 = s as f64 * (width + nested.gap);
+        for p in &placed.points {
+            assert!(
+                p.x >= x0 - 1e-9
+                    && p.x <= x0 + width + 1e-9
+                    && p.y >= -1e-9
+                    && p.y <= height + 1e-9
+            );
+        }
+    }
+    let (stacked, stacked_utilization) = stack_sheets(outlines, width, height, 0.005).unwrap();
+    (
+        nested.sheet_count,
+        nested.utilization,
+        stacked,
+        stacked_utilization,
+    )
+}
+
+#[test]
+fn bridge_strips_nest_on_fewer_sheets_than_stacked_boxes() {
+    let e = Evaluated::new(load("pedestrian-bridge"));
+    let outlines = polylines(e.output("strips", "outlines"));
+    assert!(outlines.len() > 3);
+    let (nested, nested_u, stacked, stacked_u) = nest_against_stacking(&outlines, 8.0);
+    eprintln!(
+        "bridge: {} strips; stacked boxes {stacked} sheets ({:.1} %), nested {nested} sheets ({:.1} %)",
+        outlines.len(),
+        100.0 * stacked_u,
+        100.0 * nested_u
+    );
+    assert!(
+        nested < stacked,
+        "nested {nested} sheets, stacked {stacked}"
+    );
+}
+
+#[test]
+fn facade_beams_are_planar_nested_and_written() {
+    let out = std::env::temp_dir().join(format!("cnets-facade-{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let e = Evaluated::with_output(load("facade"), &out);
+    assert_clean(&e, "facade");
+    let beams = meshes(e.output("beams", "strips"));
+    assert_eq!(
+        beams.len(),
+        2 * 25,
+        "one beam per generatrix polyline of both nets"
+    );
+    for b in &beams {
+        assert!(max_planarity(b) <= 1e-12);
+    }
+    let outlines = polylines(e.output("beam_list", "list"));
+    assert_eq!(outlines.len(), beams.len());
+    let longest = outlines
+        .iter()
+        .map(|o| {
+            let (lo, hi) = cnets_geometry::quad_grid::bounds_of(&o.points).unwrap();
+            (hi.x - lo.x).max(hi.y - lo.y)
+        })
+        .fold(0.0, f64::max);
+    let (nested, nested_u, stacked, stacked_u) = nest_against_stacking(&outlines, 8.0);
+    eprintln!(
+        "facade beams: {} outlines, longest {longest:.3}; stacked boxes {stacked} sheets ({:.1} %), nested {nested} sheets ({:.1} %); graph: {} sheets, {:.1} %",
+        outlines.len(),
+        100.0 * stacked_u,
+        100.0 * nested_u,
+        e.output("nest", "sheets")
+            .as_list()
+            .unwrap()
+            .iter()
+            .filter_map(Value::as_f64)
+            .fold(0.0, f64::max)
+            + 1.0,
+        100.0 * e.number("nest", "utilization"),
+    );
+    assert!(nested <= stacked);
+    for name in ["facade-beams.svg", "facade-beams.dxf"] {
         let len = std::fs::metadata(out.join(name))
             .map(|m| m.len())
             .unwrap_or(0);

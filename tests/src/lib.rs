@@ -43,7 +43,12 @@ impl Evaluated {
 
     /// Evaluates every node with exports written into `out_dir`.
     pub fn with_output(doc: Document, out_dir: &std::path::Path) -> Self {
-        Self::with_context(doc, &NodeContext::new(Some(out_dir.to_path_buf()), None))
+        // Imports resolve against the graphs' folder, as `cnets run graphs/….ron` resolves them.
+        let base = root().join("graphs");
+        Self::with_context(
+            doc,
+            &NodeContext::new(Some(out_dir.to_path_buf()), Some(base)),
+        )
     }
 
     fn with_context(doc: Document, ctx: &NodeContext) -> Self {

@@ -37,14 +37,13 @@ pub fn weld(mesh: &PolygonMesh, tolerance: f64) -> Result<PolygonMesh, GeometryE
             for dy in -1..=1 {
                 for dz in -1..=1 {
                     let key = [c[0] + dx, c[1] + dy, c[2] + dz];
-                    if let Some(list) = cells.get(&key) {
-                        if let Some(&k) = list
+                    if let Some(list) = cells.get(&key)
+                        && let Some(&k) = list
                             .iter()
                             .find(|&&k| kept[k as usize].distance_squared(p) <= tol2)
-                        {
-                            found = Some(k);
-                            break 'search;
-                        }
+                    {
+                        found = Some(k);
+                        break 'search;
                     }
                 }
             }

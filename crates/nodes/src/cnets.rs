@@ -10,7 +10,7 @@ use cnets_engine::prelude::*;
 use cnets_engine::value::Packed;
 use cnets_geometry::conenet::{
     self, ApexInput, ColumnValues, ConeNet, Configuration, ConstructInputs, CoplanarInputs,
-    CtubeInputs, GridValues, NormalsInput,
+    CtubeInputs, EndPlanes, GridValues, NormalsInput,
 };
 use rayon::prelude::*;
 
@@ -25,6 +25,15 @@ fn apex_input(values: Vec<f64>, normalized: bool, scale: Option<f64>) -> ApexInp
         normalized,
         scale,
     }
+}
+
+/// Reads the `end_planes` choice.
+fn parse_end_planes(text: &str) -> Result<EndPlanes, NodeError> {
+    EndPlanes::parse(text).ok_or_else(|| {
+        NodeError::new(format!(
+            "end_planes must be \"perpendicular\" or \"mirror\", got {text:?}"
+        ))
+    })
 }
 
 /// Reads a number, a list of numbers, or a list of lists of numbers.
@@ -220,6 +229,9 @@ node! {
         normalized: k::Boolean = false,
         /// Normalization scale L (default: directrix length / 5).
         scale: Option<k::Number>,
+        /// The plane at an open directrix's last vertex: "perpendicular" to the last edge, or "mirror"
+        /// (the plane at X_{M−2} reflected in the last edge's bisector plane: the meridian on an arc).
+        end_planes: k::Text = "perpendicular",
     ) -> (
         /// The cone-net, N rows × M columns.
         mesh: k::QuadMesh,
@@ -241,6 +253,7 @@ node! {
             generatrix: unwrap_arc(generatrix),
             apex: apex_input(apex, normalized, scale),
             normals: normals_input(normals)?,
+            end_planes: parse_end_planes(&end_planes)?,
         };
         Ok(outputs(conenet::construct_ctube(&inputs)?))
     }
@@ -269,6 +282,9 @@ node! {
         scale: Option<k::Number>,
         /// Safety margin ε of every correction, in (0, 1).
         epsilon: k::Number = 0.01,
+        /// The plane at an open directrix's last vertex: "perpendicular" to the last edge, or "mirror"
+        /// (the plane at X_{M−2} reflected in the last edge's bisector plane: the meridian on an arc).
+        end_planes: k::Text = "perpendicular",
     ) -> (
         /// The cone-net, N rows × M columns.
         mesh: k::QuadMesh,
@@ -290,6 +306,7 @@ node! {
         inputs.ratios = grid_values(&ratios, "ratios")?;
         inputs.assistance.alpha = assistance;
         inputs.assistance.epsilon = epsilon;
+        inputs.end_planes = parse_end_planes(&end_planes)?;
         Ok(outputs(conenet::construct(&inputs)?))
     }
 }
@@ -318,6 +335,9 @@ node! {
         scale: Option<k::Number>,
         /// Safety margin ε of every correction, in (0, 1).
         epsilon: k::Number = 0.01,
+        /// The plane at an open directrix's last vertex: "perpendicular" to the last edge, or "mirror"
+        /// (the plane at X_{M−2} reflected in the last edge's bisector plane: the meridian on an arc).
+        end_planes: k::Text = "perpendicular",
     ) -> (
         /// The cone-net, N rows × M columns; every column is planar.
         mesh: k::QuadMesh,
@@ -344,6 +364,7 @@ node! {
         inputs.plane_ratios = column(plane_ratios);
         inputs.assistance.alpha = assistance;
         inputs.assistance.epsilon = epsilon;
+        inputs.end_planes = parse_end_planes(&end_planes)?;
         Ok(outputs(conenet::construct_coplanar(&inputs)?))
     }
 }
@@ -374,6 +395,29 @@ node! {
     }
 }
 
+node! {
+    /// Subdivides every row strip of a cone-net into `count` strips (paper Fig. 1: the generatrix
+    /// subdivided so that flat panels pave the cone-net). The first column's new vertices divide the
+    /// generatrix edges evenly; each further one is the central projection through the coarse face's
+    /// apex onto the next coarse edge (parallel when the face's directrix-aligned edges are), so every
+    /// new quad lies in its coarse face's plane and the result is a cone-net with the same apices.
+    /// The coarse rows are kept exactly; wrapping rows keep wrapping.
+    #[node(id = "cnets.subdivide_rows", category = "Cone-nets")]
+    pub fn subdivide_rows(
+        /// A cone-net (rows along the generatrix).
+        mesh: k::QuadMesh,
+        /// Strips each row strip is cut into (1 … 1024).
+        count: k::Integer = 2,
+    ) -> (
+        /// The subdivided cone-net: (N−1)·count + 1 rows (N·count when the rows wrap).
+        mesh: k::QuadMesh,
+    ) {
+        let count = usize::try_from(count)
+            .map_err(|_| NodeError::new(format!("count must be at least 1, got {count}")))?;
+        Ok((conenet::subdivide_rows(&mesh, count)?,))
+    }
+}
+
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
     vec![
@@ -381,6 +425,7 @@ pub fn nodes() -> Vec<NodeDef> {
         construct(),
         construct_coplanar(),
         encode(),
+        subdivide_rows(),
     ]
 }
 

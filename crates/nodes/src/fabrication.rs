@@ -190,6 +190,106 @@ node! {
     }
 }
 
+node! {
+    /// CNet Support Strips (paper Sec. 4.4.2, Fig. 3). With `directrix`: the support strips, one per
+    /// directrix-aligned polyline G_{i,:}, the planar quads X_j X_{j+1} G_{i,j+1} G_{i,j} (a 2 × M
+    /// grid: the directrix, then the mesh row). With `layer` (a second layer from
+    /// `cnets.conical_support` or `pq.parallel_support`): the beams on the torsion-free node axes
+    /// between the mesh and the layer, one strip per polyline of `direction`, quads G G' G' G. Every
+    /// quad is planar (to rounding error); `pq.unroll_strips` unrolls them for cutting.
+    #[node(id = "cnets.support_strips", category = "CNets")]
+    pub fn support_strips(
+        /// The constructed cone-net.
+        mesh: k::QuadMesh,
+        /// The directrix the mesh was built from (gives the support strips of Fig. 3).
+        directrix: Option<k::Polyline>,
+        /// A second layer of the same size (gives the beams between the layers).
+        layer: Option<k::QuadMesh>,
+        /// The beams' polylines: `"directrix"` or `"generatrix"` (support strips: `"directrix"`).
+        direction: k::Text = "directrix",
+    ) -> (
+        /// One strip per polyline (2 × M or 2 × N quad grids).
+        strips: k::List<k::QuadMesh>,
+    ) {
+        let direction = parse_direction(&direction)?;
+        let strips = match (directrix, layer) {
+            (Some(_), Some(_)) => {
+                return Err(NodeError::new(
+                    "give either directrix (support strips) or layer (beams), not both",
+                ));
+            }
+            (None, None) => {
+                return Err(NodeError::new(
+                    "give the directrix (support strips) or a second layer (beams)",
+                ));
+            }
+            (Some(directrix), None) => {
+                if direction != StripDirection::Directrix {
+                    return Err(NodeError::new(
+                        "the support strips of the directrix run along the directrix: direction must be \"directrix\"",
+                    ));
+                }
+                fab::directrix_support_strips(&directrix, &mesh).map_err(fab_err)?
+            }
+            (None, Some(layer)) => fab::beam_strips(&mesh, &layer, direction).map_err(fab_err)?,
+        };
+        Ok((strips,))
+    }
+}
+
+node! {
+    /// Fabrication Nest: places flat outlines (e.g. `pq.unroll_strips`) on as few rectangular sheets
+    /// as it can, with `spacing` between outlines and from the sheet edges and `rotations` allowed
+    /// orientations (360°/rotations apart). Collision detection by the irregular-nesting engine
+    /// jagua-rs; a bottom-left fill that slides every outline into its neighbours' concavities. The
+    /// outlines are moved rigidly; sheet s lies at x = s · (sheet_width + gap). Feed `sheets` to the
+    /// SVG / DXF exports for one group of layers per sheet.
+    #[node(id = "fab.nest", category = "Fabrication")]
+    pub fn nest(
+        /// Closed flat outlines (their x and y are used).
+        outlines: k::List<k::Polyline>,
+        /// Sheet width, model units.
+        sheet_width: k::Number,
+        /// Sheet height, model units.
+        sheet_height: k::Number,
+        /// Least distance between outlines and from the sheet edges.
+        spacing: k::Number = 0.005,
+        /// Allowed orientations (1: as given; 4: quarter turns).
+        rotations: k::Integer = 4,
+        /// One label per outline; empty: `P0`, `P1`, …
+        labels: Option<k::List<k::Text>>,
+    ) -> (
+        /// The placed outlines, in input order.
+        outlines: k::List<k::Polyline>,
+        /// The sheet of each outline (0, 1, …).
+        sheets: k::List<k::Integer>,
+        /// Outline area / area of the sheets used.
+        utilization: k::Number,
+        /// The labels, in input order.
+        labels: k::List<k::Text>,
+        /// A point inside each placed outline.
+        label_points: k::List<k::Point>,
+    ) {
+        if let Some(l) = &labels
+            && l.len() != outlines.len()
+        {
+            return Err(NodeError::new(format!(
+                "labels has {} entries, expected {} (one per outline)",
+                l.len(),
+                outlines.len()
+            )));
+        }
+        let rotations = usize::try_from(rotations)
+            .map_err(|_| NodeError::new(format!("rotations must be at least 1, got {rotations}")))?;
+        let flat: Vec<Polyline> = outlines.iter().map(|o| (**o).clone()).collect();
+        let n = fab::nest(&flat, sheet_width, sheet_height, spacing, rotations).map_err(fab_err)?;
+        let labels = labels
+            .unwrap_or_else(|| (0..outlines.len()).map(|k| format!("P{k}")).collect());
+        let sheets: Vec<i64> = n.sheets.iter().map(|&s| s as i64).collect();
+        Ok((n.outlines, sheets, n.utilization, labels, n.label_points))
+    }
+}
+
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
     vec![
@@ -200,5 +300,7 @@ pub fn nodes() -> Vec<NodeDef> {
         parallel_transform(),
         extract_strips(),
         unroll_strips(),
+        support_strips(),
+        nest(),
     ]
 }

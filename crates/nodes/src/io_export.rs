@@ -144,7 +144,8 @@ fn warn_z(ctx: &NodeContext, sheet: &outlines::Sheet) {
 
 node! {
     /// Writes an SVG cutting sheet: every outline (e.g. `pq.unroll_strips`) as a path (closed ones
-    /// closed), in millimetres, with its label; red 0.1 mm cut lines, blue labels, 5 mm margin.
+    /// closed), 1:1 in millimetres, with its label; red cut lines and blue labels sized to the
+    /// drawing, a 5 mm margin; nested outlines grouped per sheet (an Inkscape layer each).
     #[node(id = "io.export_svg", category = "Export", flags(Export))]
     pub fn export_svg[ctx](
         /// File name inside the output directory (`.svg` is added when missing).
@@ -157,11 +158,14 @@ node! {
         label_points: Option<k::List<k::Point>>,
         /// Millimetres per model unit (1000: the model is in metres).
         scale: k::Number = 1000.0,
+        /// The sheet of each outline (`fab.nest`): one group / layer set per sheet.
+        sheets: Option<k::List<k::Integer>>,
     ) -> (
         /// The written file.
         path: k::Text,
     ) {
-        let sheet = outlines::prepare(&outlines, labels.as_deref(), label_points.as_deref(), scale)?;
+        let sheet = outlines::prepare(&outlines, labels.as_deref(), label_points.as_deref(), scale)?
+            .with_sheets(sheets.as_deref())?;
         warn_z(ctx, &sheet);
         let text = svg::encode_svg(&sheet);
         Ok((write_export(ctx, &name, "svg", text.as_bytes())?,))
@@ -169,8 +173,10 @@ node! {
 }
 
 node! {
-    /// Writes a DXF drawing (R2000, millimetres) of the outlines for cutting: one LWPOLYLINE per
-    /// outline on its own layer `STRIP_<label>`, with its label as TEXT on the same layer.
+    /// Writes a DXF drawing (R2000, millimetres, metric, extents set, the same bytes for the same
+    /// input) of the outlines for cutting: one LWPOLYLINE per outline on its own layer
+    /// `STRIP_<label>` (`SHEET<s>_STRIP_<label>` when nested on sheets), with its label as TEXT on
+    /// the same layer.
     #[node(id = "io.export_dxf", category = "Export", flags(Export))]
     pub fn export_dxf[ctx](
         /// File name inside the output directory (`.dxf` is added when missing).
@@ -183,11 +189,14 @@ node! {
         label_points: Option<k::List<k::Point>>,
         /// Millimetres per model unit (1000: the model is in metres).
         scale: k::Number = 1000.0,
+        /// The sheet of each outline (`fab.nest`): one group / layer set per sheet.
+        sheets: Option<k::List<k::Integer>>,
     ) -> (
         /// The written file.
         path: k::Text,
     ) {
-        let sheet = outlines::prepare(&outlines, labels.as_deref(), label_points.as_deref(), scale)?;
+        let sheet = outlines::prepare(&outlines, labels.as_deref(), label_points.as_deref(), scale)?
+            .with_sheets(sheets.as_deref())?;
         warn_z(ctx, &sheet);
         let bytes = cad::encode_dxf(&sheet)?;
         Ok((write_export(ctx, &name, "dxf", &bytes)?,))

@@ -314,3 +314,70 @@ fn value_table<T>(rows: Vec<Vec<T>>, item: impl Fn(T) -> Value + Copy) -> Value 
             .collect(),
     )
 }
+
+#[test]
+fn end_planes_choose_the_last_plane_and_reject_other_text() {
+    // A quarter torus: with "mirror" the last ring lies in its meridian plane (x = 0 for an arc from
+    // the x axis to the y axis), with the default it does not.
+    for id in [
+        "ctube.construct",
+        "cnets.construct",
+        "cnets.construct_coplanar",
+    ] {
+        let mut named = torus_inputs(7, 9);
+        let off = |named: &[(&str, Value)]| {
+            let out = run(id, named).unwrap();
+            let Value::QuadMesh(mesh) = output(id, &out, "mesh") else {
+                panic!("{id}: mesh")
+            };
+            (0..mesh.rows)
+                .map(|i| mesh.at(i, mesh.cols - 1).x.abs())
+                .fold(0.0, f64::max)
+        };
+        let perpendicular = off(&named);
+        named.push(("end_planes", Value::text("mirror")));
+        let mirror = off(&named);
+        assert!(mirror <= 1e-12 * 13.0, "{id}: {mirror:e}");
+        assert!(perpendicular > 1e-3, "{id}: {perpendicular:e}");
+        named.pop();
+        named.push(("end_planes", Value::text("bisector")));
+        let err = run(id, &named).unwrap_err();
+        assert!(err.contains("end_planes"), "{id}: {err}");
+    }
+}
+
+#[test]
+fn subdivide_rows_keeps_rows_and_counts() {
+    let out = run("cnets.construct", &torus_inputs(5, 6)).unwrap();
+    let Value::QuadMesh(coarse) = output("cnets.construct", &out, "mesh").clone() else {
+        panic!("mesh")
+    };
+    let fine = run(
+        "cnets.subdivide_rows",
+        &[
+            ("mesh", Value::QuadMesh(coarse.clone())),
+            ("count", Value::Integer(3)),
+        ],
+    )
+    .unwrap();
+    let Value::QuadMesh(fine) = &fine[0] else {
+        panic!("mesh")
+    };
+    assert_eq!(fine.rows, (coarse.rows - 1) * 3 + 1);
+    for i in 0..coarse.rows {
+        for j in 0..coarse.cols {
+            assert_eq!(fine.at(3 * i, j), coarse.at(i, j));
+        }
+    }
+    for bad in [0, -2, 5000] {
+        let err = run(
+            "cnets.subdivide_rows",
+            &[
+                ("mesh", Value::QuadMesh(coarse.clone())),
+                ("count", Value::Integer(bad)),
+            ],
+        )
+        .unwrap_err();
+        assert!(err.contains("count"), "{bad}: {err}");
+    }
+}

@@ -115,3 +115,95 @@ fn paths_and_labels_read_back_in_millimetres() {
     assert_eq!(texts, ["D0 <&>", "D1", "D2"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Writes `outlines` (squares of side `side` metres) to SVG, optionally with sheets; returns the text.
+fn squares_svg(side: f64, count: usize, sheets: Option<Vec<i64>>) -> String {
+    let outlines: Vec<Value> = (0..count)
+        .map(|k| {
+            let x = k as f64 * side * 2.0;
+            Value::from(Polyline::closed(vec![
+                DVec3::new(x, 0.0, 0.0),
+                DVec3::new(x + side, 0.0, 0.0),
+                DVec3::new(x + side, side, 0.0),
+                DVec3::new(x, side, 0.0),
+            ]))
+        })
+        .collect();
+    let labels = Value::list((0..count).map(|k| Value::text(format!("S{k}"))).collect());
+    let dir = scratch("svg-scaled");
+    let mut named = vec![("outlines", Value::list(outlines)), ("labels", labels)];
+    if let Some(s) = sheets {
+        named.push((
+            "sheets",
+            Value::list(s.into_iter().map(Value::Integer).collect()),
+        ));
+    }
+    let out = run(&ctx_in(&dir), "io.export_svg", &named).unwrap();
+    let Value::Text(path) = get(&out, "path") else {
+        panic!("path")
+    };
+    let text = std::fs::read_to_string(path.as_ref()).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    text
+}
+
+#[test]
+fn strokes_and_labels_scale_with_the_drawing_and_sheets_are_layers() {
+    let attr = |text: &str, tag: &str, name: &str| -> f64 {
+        let doc = roxmltree::Document::parse(text).unwrap();
+        doc.descendants()
+            .find(|n| n.has_tag_name(tag))
+            .and_then(|n| n.attribute(name))
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    // 1 cm squares: a small drawing keeps the 0.1 mm hairline; 10 m squares: far larger strokes and
+    // labels, still 1:1 in mm (the viewBox width equals the width in mm).
+    let small = squares_svg(0.01, 3, None);
+    let large = squares_svg(10.0, 3, None);
+    assert_eq!(attr(&small, "path", "stroke-width"), 0.1);
+    let (s_stroke, l_stroke) = (
+        attr(&small, "path", "stroke-width"),
+        attr(&large, "path", "stroke-width"),
+    );
+    assert!(l_stroke > 10.0 * s_stroke, "{s_stroke} → {l_stroke}");
+    let (s_font, l_font) = (
+        attr(&small, "text", "font-size"),
+        attr(&large, "text", "font-size"),
+    );
+    assert!(l_font > 10.0 * s_font, "{s_font} → {l_font}");
+    let doc = roxmltree::Document::parse(&large).unwrap();
+    let svg = doc.root_element();
+    let width = svg.attribute("width").unwrap();
+    let view: Vec<&str> = svg
+        .attribute("viewBox")
+        .unwrap()
+        .split_whitespace()
+        .collect();
+    assert_eq!(format!("{}mm", view[2]), width);
+    // Sheets: one Inkscape layer per sheet, each holding its outlines.
+    let nested = squares_svg(1.0, 4, Some(vec![1, 0, 1, 0]));
+    let doc = roxmltree::Document::parse(&nested).unwrap();
+    let layers: Vec<_> = doc
+        .descendants()
+        .filter(|n| {
+            n.attribute(("http://www.inkscape.org/namespaces/inkscape", "groupmode"))
+                == Some("layer")
+        })
+        .collect();
+    assert_eq!(layers.len(), 2);
+    for (s, layer) in layers.iter().enumerate() {
+        assert_eq!(layer.attribute("id"), Some(format!("sheet-{s}").as_str()));
+        let strips: Vec<_> = layer
+            .children()
+            .filter(|n| n.has_tag_name("g"))
+            .filter_map(|n| n.attribute("id"))
+            .collect();
+        let expected: Vec<String> = (0..4)
+            .filter(|k| (k + 1) % 2 == s)
+            .map(|k| format!("strip-{k}"))
+            .collect();
+        assert_eq!(strips, expected);
+    }
+}

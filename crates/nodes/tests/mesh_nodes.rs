@@ -18,6 +18,30 @@ fn ports_are_documented_contracts() {
     let table: &[(&str, &[&str], &[&str])] = &[
         ("mesh.to_polygons", &["mesh"], &["mesh"]),
         (
+            "cnets.support_strips",
+            &["mesh", "directrix", "layer", "direction"],
+            &["strips"],
+        ),
+        (
+            "fab.nest",
+            &[
+                "outlines",
+                "sheet_width",
+                "sheet_height",
+                "spacing",
+                "rotations",
+                "labels",
+            ],
+            &[
+                "outlines",
+                "sheets",
+                "utilization",
+                "labels",
+                "label_points",
+            ],
+        ),
+        ("cnets.subdivide_rows", &["mesh", "count"], &["mesh"]),
+        (
             "mesh.cut_by_plane",
             &["mesh", "plane", "flip"],
             &["mesh", "section"],
@@ -53,12 +77,26 @@ fn ports_are_documented_contracts() {
         ),
         (
             "io.export_svg",
-            &["name", "outlines", "labels", "label_points", "scale"],
+            &[
+                "name",
+                "outlines",
+                "labels",
+                "label_points",
+                "scale",
+                "sheets",
+            ],
             &["path"],
         ),
         (
             "io.export_dxf",
-            &["name", "outlines", "labels", "label_points", "scale"],
+            &[
+                "name",
+                "outlines",
+                "labels",
+                "label_points",
+                "scale",
+                "sheets",
+            ],
             &["path"],
         ),
         ("io.export_json", &["name", "value"], &["path"]),

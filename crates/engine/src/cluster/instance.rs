@@ -13,6 +13,20 @@ use crate::value::Value;
 /// Node type id of clusters.
 pub const CLUSTER_TYPE: &str = "cluster";
 
+/// The `cluster` node type as listed by `cnets nodes` and in the reference. It is not registered:
+/// every cluster node gets its own definition from its subgraph (its ports are the subgraph's
+/// `graph.input`s and `graph.output`s); this one only documents the type.
+pub fn cluster_type_description() -> NodeDef {
+    NodeDef::new(
+        CLUSTER_TYPE,
+        "Clusters",
+        "A graph used as a node: `source: \"file.ron\"` (next to the graph, then in the library \
+         folders) or `graph: ( … )` inline. Its inputs and outputs are the subgraph's `graph.input` \
+         and `graph.output` nodes, in node order, typed by their `type`; it evaluates incrementally \
+         inside. See docs/clusters.md.",
+    )
+}
+
 /// Where a cluster's subgraph comes from.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum ClusterSource {

@@ -12,5 +12,5 @@ pub mod instance;
 pub mod interface;
 
 pub use edit::{explode, make_cluster};
-pub use instance::{CLUSTER_TYPE, Cluster, ClusterSource};
+pub use instance::{CLUSTER_TYPE, Cluster, ClusterSource, cluster_type_description};
 pub use interface::{INPUT_TYPE, Interface, InterfacePort, OUTPUT_TYPE, nodes, parse_port_type};

@@ -45,6 +45,15 @@ struct Memo {
     stale: bool,
 }
 
+/// What one run of a node left: its result, how long it took, whether its function was called, and
+/// the files it read.
+struct Run {
+    result: NodeResult,
+    time: Duration,
+    executed: bool,
+    reads: Vec<FileStamp>,
+}
+
 /// What one call to [`Evaluator::evaluate`] did.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct EvalSummary {
@@ -122,19 +131,14 @@ impl Evaluator {
             progress(done, order.len());
             let start = Instant::now();
             let (result, executed) = self.run_node(graph, node, instance, ctx);
-            let time = start.elapsed();
-            let reads = ctx.take_reads();
-            summary.ran += usize::from(executed);
-            if self.store(
-                node,
-                instance.uid(),
-                revision,
+            let run = Run {
                 result,
-                time,
+                time: start.elapsed(),
                 executed,
-                reads,
-            ) && executed
-            {
+                reads: ctx.take_reads(),
+            };
+            summary.ran += usize::from(executed);
+            if self.store(node, instance.uid(), revision, run) && executed {
                 summary.cut_off += 1;
             }
         }
@@ -223,16 +227,13 @@ impl Evaluator {
     }
 
     /// Stores a new result; returns true when it equals the previous one (backdated).
-    fn store(
-        &mut self,
-        node: NodeIndex,
-        uid: u64,
-        revision: Tick,
-        result: NodeResult,
-        time: Duration,
-        executed: bool,
-        reads: Vec<FileStamp>,
-    ) -> bool {
+    fn store(&mut self, node: NodeIndex, uid: u64, revision: Tick, run: Run) -> bool {
+        let Run {
+            result,
+            time,
+            executed,
+            reads,
+        } = run;
         let ran = u64::from(executed);
         self.total_runs += ran;
         let hashes = match &result {

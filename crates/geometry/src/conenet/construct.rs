@@ -12,7 +12,12 @@ use crate::GeometryError;
 /// CNets Construct (`cnets.construct`): ratios r_{i,j} pick the rulings of the support strips, the
 /// planes follow (notes §3); the assisted correction runs when `assistance.alpha ≥ 0`.
 pub fn construct(inputs: &ConstructInputs) -> Result<ConeNet, GeometryError> {
-    let prep = prepare(&inputs.directrix, &inputs.generatrix, &inputs.apex)?;
+    let prep = prepare(
+        &inputs.directrix,
+        &inputs.generatrix,
+        &inputs.apex,
+        inputs.end_planes,
+    )?;
     let (n, m) = (prep.generatrix.len(), prep.dx.columns());
     let grid = inputs
         .ratios
@@ -34,7 +39,12 @@ pub fn construct(inputs: &ConstructInputs) -> Result<ConeNet, GeometryError> {
 /// R_{0,j} of support strip 0 (ratio ρ_j), turned by the rotation ratio τ_j (notes §4). Every
 /// generatrix-aligned polyline G_{:,j} (j ≥ 1) lies in the plane Π_j.
 pub fn construct_coplanar(inputs: &CoplanarInputs) -> Result<ConeNet, GeometryError> {
-    let prep = prepare(&inputs.directrix, &inputs.generatrix, &inputs.apex)?;
+    let prep = prepare(
+        &inputs.directrix,
+        &inputs.generatrix,
+        &inputs.apex,
+        inputs.end_planes,
+    )?;
     let m = prep.dx.columns();
     let rho = inputs.ruling_ratios.resolve("ruling_ratios", m - 1)?;
     check_unit_interval("ruling_ratios", &rho)?;

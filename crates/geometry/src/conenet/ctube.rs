@@ -7,7 +7,7 @@ use glam::DVec3;
 use super::apex::apex_points;
 use super::configuration::Configurations;
 use super::directrix::SweptDirectrix;
-use super::inputs::{ApexInput, CtubeInputs, NormalsInput};
+use super::inputs::{ApexInput, CtubeInputs, EndPlanes, NormalsInput};
 use super::normalize::resolve_apex;
 use super::quality::quality;
 use super::result::{ConeNet, PlaneNormals};
@@ -40,13 +40,15 @@ pub(crate) struct Prepared {
     pub scale: f64,
 }
 
-/// Validates directrix, generatrix and apex (in this order) and resolves the apex values.
+/// Validates directrix, generatrix and apex (in this order) and resolves the apex values; `end`
+/// chooses the bisecting plane at an open directrix's last vertex.
 pub(crate) fn prepare(
     directrix: &Polyline,
     generatrix: &Polyline,
     apex: &ApexInput,
+    end: EndPlanes,
 ) -> Result<Prepared, GeometryError> {
-    let dx = SweptDirectrix::new(directrix)?;
+    let dx = SweptDirectrix::with_end_planes(directrix, end)?;
     generatrix.validate("generatrix", 2)?;
     let apex = resolve_apex(apex, &dx)?;
     let scale = extent(dx.points.iter().chain(&generatrix.points).copied());
@@ -166,7 +168,12 @@ pub fn construct_ctube(inputs: &CtubeInputs) -> Result<ConeNet, GeometryError> {
 }
 
 fn run_ctube(inputs: &CtubeInputs) -> Result<Raw, GeometryError> {
-    let prep = prepare(&inputs.directrix, &inputs.generatrix, &inputs.apex)?;
+    let prep = prepare(
+        &inputs.directrix,
+        &inputs.generatrix,
+        &inputs.apex,
+        inputs.end_planes,
+    )?;
     let n = prep.generatrix.len();
     let (planes, per_vertex) = resolve_normals(&inputs.normals, &prep.dx, n)?;
     let mut sweep = Sweep::new(&prep, planes, per_vertex, Rule::Given, None);

@@ -4,6 +4,7 @@
 
 use glam::DVec3;
 
+use super::inputs::EndPlanes;
 use super::tolerance;
 use crate::{GeometryError, Polyline};
 
@@ -18,8 +19,9 @@ pub struct SweptDirectrix {
     pub edges: Vec<DVec3>,
     /// `lengths[j] = l_j` for j = 1 … M−1 (`lengths[0]` = 0).
     pub lengths: Vec<f64>,
-    /// `outgoing[j]`: the unit edge leaving X_j: ê_{j+1} for j < M−1; at the last vertex ê_{M−1}
-    /// (open directrix: straight continuation) or ê_1 (closed directrix).
+    /// `outgoing[j]`: the unit edge leaving X_j: ê_{j+1} for j < M−1; at the last vertex ê_1 (closed
+    /// directrix), or for an open one ê_{M−1} (straight continuation, [`EndPlanes::Perpendicular`])
+    /// or ê_{M−1} reflected in the mirrored plane ([`EndPlanes::Mirror`]).
     pub outgoing: Vec<DVec3>,
     /// `bisectors[j] = unit(ê_j + outgoing[j])`, the Monge plane normal at X_j; zero where the
     /// directrix reverses (see [`SweptDirectrix::bisector`]).
@@ -27,8 +29,17 @@ pub struct SweptDirectrix {
 }
 
 impl SweptDirectrix {
-    /// Validates the directrix (≥ 2 points, finite, no zero-length edge) and prepares it.
+    /// Validates the directrix (≥ 2 points, finite, no zero-length edge) and prepares it with
+    /// perpendicular end planes.
     pub fn new(directrix: &Polyline) -> Result<Self, GeometryError> {
+        Self::with_end_planes(directrix, EndPlanes::Perpendicular)
+    }
+
+    /// Like [`SweptDirectrix::new`], with the given choice of the plane at an open directrix's last
+    /// vertex. [`EndPlanes::Mirror`] reflects the bisecting plane at X_{M−2} in the perpendicular
+    /// bisector plane of the last edge (normal `2 (b·ê) ê − b`, oriented along ê) and takes the
+    /// outgoing edge that makes it the bisector (`2 (ê·b') b' − ê`).
+    pub fn with_end_planes(directrix: &Polyline, end: EndPlanes) -> Result<Self, GeometryError> {
         directrix.validate("directrix", 2)?;
         let points = directrix.swept_points();
         let m = points.len();
@@ -68,6 +79,20 @@ impl SweptDirectrix {
             let len = s.length();
             if len > tolerance::REVERSAL {
                 bisectors[j] = s / len;
+            }
+        }
+        if end == EndPlanes::Mirror && !directrix.closed && m >= 3 {
+            let (b, e) = (bisectors[m - 2], edges[m - 1]);
+            // A reversal at X_{M−2} (b = 0) stays an error there; the end plane is then unused.
+            if b != DVec3::ZERO {
+                let mirrored = (2.0 * b.dot(e) * e - b).normalize_or_zero();
+                let out = 2.0 * e.dot(mirrored) * mirrored - e;
+                outgoing[m - 1] = out.normalize_or_zero();
+                bisectors[m - 1] = if (e + outgoing[m - 1]).length() > tolerance::REVERSAL {
+                    mirrored
+                } else {
+                    DVec3::ZERO
+                };
             }
         }
         Ok(Self {
@@ -136,6 +161,14 @@ mod tests {
         ]))
         .unwrap();
         assert_eq!(d.bisector(2).unwrap(), DVec3::Y);
+        // Mirror: the bisector (1, 1)/√2 at X_1 reflected in the plane y = ½ (the perpendicular
+        // bisector of the last edge) and oriented along ê_2 = (0, 1) is (−1, 1)/√2; the outgoing
+        // edge that makes it the bisector is (−1, 0).
+        let open = Polyline::open(vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0)]);
+        let m = SweptDirectrix::with_end_planes(&open, EndPlanes::Mirror).unwrap();
+        let expected = DVec3::new(-1.0, 1.0, 0.0).normalize();
+        assert!((m.bisector(2).unwrap() - expected).length() < 1e-15);
+        assert!((m.outgoing[2] - DVec3::new(-1.0, 0.0, 0.0)).length() < 1e-15);
         let reversing = Polyline::open(vec![DVec3::ZERO, DVec3::X, DVec3::ZERO]);
         let d = SweptDirectrix::new(&reversing).unwrap();
         assert_eq!(

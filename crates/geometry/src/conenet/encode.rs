@@ -16,7 +16,7 @@
 use glam::DVec3;
 
 use super::ctube::ctube_mesh;
-use super::inputs::{ApexInput, ColumnValues, CtubeInputs, NormalsInput};
+use super::inputs::{ApexInput, ColumnValues, CtubeInputs, EndPlanes, NormalsInput};
 use super::quality::{fit_strips, normalization};
 use super::tolerance;
 use crate::{GeometryError, Polyline, QuadGrid};
@@ -46,6 +46,7 @@ impl Encoding {
                 scale: None,
             },
             normals: NormalsInput::PerVertex(self.normals.clone()),
+            end_planes: EndPlanes::Perpendicular,
         }
     }
 }

@@ -228,6 +228,36 @@ impl From<Vec<Vec<DVec3>>> for NormalsInput {
     }
 }
 
+/// How the construction plane at an end vertex of an open directrix is chosen, where no outgoing
+/// edge exists (a closed directrix has no ends).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EndPlanes {
+    /// The plane at X_{M−1} is perpendicular to the last edge (the C-tubes code's choice).
+    #[default]
+    Perpendicular,
+    /// The plane at X_{M−1} is the plane at X_{M−2} reflected in the perpendicular bisector plane of
+    /// the last edge: on a circular arc that is the meridian plane. With M = 2 there is no plane at
+    /// X_0 to reflect and the perpendicular plane is used (it is its own mirror image).
+    Mirror,
+}
+
+impl EndPlanes {
+    /// The choices as the nodes spell them.
+    pub const NAMES: [&'static str; 2] = ["perpendicular", "mirror"];
+
+    /// Parses `"perpendicular"` or `"mirror"` (ASCII case-insensitive, surrounding spaces ignored).
+    pub fn parse(text: &str) -> Option<Self> {
+        let t = text.trim();
+        if t.eq_ignore_ascii_case("perpendicular") {
+            Some(Self::Perpendicular)
+        } else if t.eq_ignore_ascii_case("mirror") {
+            Some(Self::Mirror)
+        } else {
+            None
+        }
+    }
+}
+
 /// The apex-locating function as given by the user: values, whether they are normalized (§5), and
 /// the normalization scale L.
 #[derive(Debug, Clone, PartialEq)]
@@ -261,6 +291,8 @@ pub struct CtubeInputs {
     pub apex: ApexInput,
     /// Construction-plane normals (default: Monge planes).
     pub normals: NormalsInput,
+    /// The default plane at the directrix's last vertex (used by Monge normals only).
+    pub end_planes: EndPlanes,
 }
 
 impl CtubeInputs {
@@ -271,6 +303,7 @@ impl CtubeInputs {
             generatrix,
             apex: ApexInput::default(),
             normals: NormalsInput::Monge,
+            end_planes: EndPlanes::Perpendicular,
         }
     }
 
@@ -346,6 +379,8 @@ pub struct ConstructInputs {
     pub ratios: GridValues,
     /// Assisted correction (default off).
     pub assistance: Assistance,
+    /// The bisecting plane and outgoing edge at the directrix's last vertex.
+    pub end_planes: EndPlanes,
 }
 
 impl ConstructInputs {
@@ -357,6 +392,7 @@ impl ConstructInputs {
             apex: ApexInput::default(),
             ratios: GridValues::Uniform(0.5),
             assistance: Assistance::default(),
+            end_planes: EndPlanes::Perpendicular,
         }
     }
 
@@ -383,6 +419,8 @@ pub struct CoplanarInputs {
     pub plane_ratios: ColumnValues,
     /// Assisted correction (default off).
     pub assistance: Assistance,
+    /// The bisecting plane and outgoing edge at the directrix's last vertex.
+    pub end_planes: EndPlanes,
 }
 
 impl CoplanarInputs {
@@ -395,6 +433,7 @@ impl CoplanarInputs {
             ruling_ratios: ColumnValues::Uniform(0.5),
             plane_ratios: ColumnValues::Uniform(0.5),
             assistance: Assistance::default(),
+            end_planes: EndPlanes::Perpendicular,
         }
     }
 
@@ -450,6 +489,20 @@ macro_rules! assistance_builders {
     )*};
 }
 
+/// The end-plane builder, shared by the three input records.
+macro_rules! end_plane_builders {
+    ($($t:ty),*) => {$(
+        impl $t {
+            /// Sets the end-plane choice (builder style).
+            pub fn end_planes(mut self, end_planes: EndPlanes) -> Self {
+                self.end_planes = end_planes;
+                self
+            }
+        }
+    )*};
+}
+
+end_plane_builders!(CtubeInputs, ConstructInputs, CoplanarInputs);
 apex_builders!(CtubeInputs, ConstructInputs, CoplanarInputs);
 assistance_builders!(ConstructInputs, CoplanarInputs);
 

@@ -29,6 +29,7 @@ mod ordered;
 pub mod quality;
 pub mod ratios;
 pub mod result;
+pub mod subdivide;
 mod sweep;
 mod trig;
 
@@ -40,11 +41,12 @@ pub use ctube::{construct_ctube, ctube_mesh};
 pub use directrix::SweptDirectrix;
 pub use encode::{Encoding, encode};
 pub use inputs::{
-    ApexInput, Assistance, ColumnValues, ConstructInputs, CoplanarInputs, CtubeInputs, GridValues,
-    NormalsInput,
+    ApexInput, Assistance, ColumnValues, ConstructInputs, CoplanarInputs, CtubeInputs, EndPlanes,
+    GridValues, NormalsInput,
 };
 pub use quality::{ConeCheck, Planarity, Quality, cone_check, planarity, quad_planarity};
 pub use result::{ConeNet, PlaneNormals};
+pub use subdivide::subdivide_rows;
 
 /// Tolerances of the kernel (all relative, see `docs/geometry.md`).
 pub mod tolerance {

@@ -42,9 +42,7 @@ impl Nurbs {
                 n + self.degree + 1
             ));
         }
-        if self.knots.windows(2).any(|w| !(w[0] <= w[1]))
-            || self.knots.iter().any(|k| !k.is_finite())
-        {
+        if self.knots.iter().any(|k| !k.is_finite()) || self.knots.windows(2).any(|w| w[0] > w[1]) {
             return bad("the spline's knots are not finite and non-decreasing".into());
         }
         if !self.weights.is_empty()

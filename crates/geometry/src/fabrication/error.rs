@@ -168,6 +168,9 @@ pub enum FabricationError {
         /// Actual length.
         got: usize,
     },
+    /// The nesting engine (jagua-rs) rejected an input, or an outline does not fit on a sheet.
+    #[error("nesting: {0}")]
+    Nesting(String),
     /// An unknown option name.
     #[error("{what} '{value}' is unknown: expected {expected}")]
     UnknownOption {

@@ -1,5 +1,5 @@
 //! Supplementary and fabrication tools (paper Sec. 4.4.2, construction notes §7): apex from widths,
-//! torsion-free node axes, conical and parallel support layers, the parallel (Combescure) transform,
+//! torsion-free node axes, conical and parallel support layers, support strips and beams, the parallel (Combescure) transform,
 //! strips and unrolling, and polygon-mesh tools (cut by a plane, mirror, join, weld, per-face
 //! attributes, triangulation). Every formula is documented in its module and in
 //! `docs/fabrication.md`; errors are typed ([`FabricationError`]) and name the offending indices.
@@ -17,10 +17,12 @@ pub mod join;
 pub mod layout;
 pub mod lines;
 pub mod mirror;
+pub mod nest;
 pub mod parallel_support;
 pub mod parallel_transform;
 pub mod polygon;
 pub mod strips;
+pub mod support_strips;
 pub mod unroll;
 
 pub use apex_graph::{graph_to_apex, graph_to_normalized_apex};
@@ -33,8 +35,10 @@ pub use face_attributes::{
 };
 pub use join::{join, weld};
 pub use mirror::mirror;
+pub use nest::{Nested, nest, stack_sheets};
 pub use parallel_support::parallel_support;
 pub use parallel_transform::{ParallelTransform, parallel_transform};
 pub use polygon::triangulate;
 pub use strips::{Strip, StripDirection, extract_strips, strips};
+pub use support_strips::{beam_strips, directrix_support_strips};
 pub use unroll::{UnrollOptions, Unrolled, UnrolledStrip, unroll_strips};

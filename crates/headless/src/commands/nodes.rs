@@ -62,14 +62,18 @@ pub fn run(args: Args) -> CommandResult {
         }
         None => (*shared).clone(),
     };
+    let defs = match &args.library {
+        Some(_) => registry.iter().cloned().collect(),
+        None => cnets_nodes::reference::listed(&registry),
+    };
     if args.json {
-        let all: Vec<Json> = registry.iter().map(|d| node_json(d)).collect();
+        let all: Vec<Json> = defs.iter().map(|d| node_json(d)).collect();
         println!("{}", serde_json::to_string_pretty(&all).unwrap_or_default());
     } else if args.markdown {
         print!("{}", cnets_nodes::reference::markdown(&registry));
     } else {
         let mut category = String::new();
-        for def in registry.iter() {
+        for def in &defs {
             if def.category != category {
                 category = def.category.to_string();
                 println!("\n{category}");

@@ -18,6 +18,8 @@ pub struct Sheet {
     pub bounds: (DVec2, DVec2),
     /// Whether some outline was not in the XY plane (its z was dropped).
     pub dropped_z: bool,
+    /// The sheet of each outline (`fab.nest`), or `None` when they are not nested.
+    pub sheets: Option<Vec<usize>>,
 }
 
 /// Checks and scales the outlines. `scale` is millimetres per model unit (> 0). Labels and label
@@ -103,11 +105,50 @@ pub fn prepare(
         anchors,
         bounds: (lo, hi),
         dropped_z,
+        sheets: None,
     })
 }
 
 impl Sheet {
-    /// A label height in mm: a quarter of the smallest outline's bounding-box side, in [1, 10].
+    /// Assigns every outline to a sheet (one entry per outline, each ≥ 0).
+    pub fn with_sheets(mut self, sheets: Option<&[i64]>) -> Result<Self, String> {
+        let Some(sheets) = sheets else {
+            return Ok(self);
+        };
+        if sheets.len() != self.paths.len() {
+            return Err(format!(
+                "sheets has {} entries, expected {} (one per outline)",
+                sheets.len(),
+                self.paths.len()
+            ));
+        }
+        let sheets = sheets
+            .iter()
+            .enumerate()
+            .map(|(k, &s)| {
+                usize::try_from(s)
+                    .ok()
+                    .filter(|&s| s < 1 << 20)
+                    .ok_or_else(|| format!("sheets[{k}] is {s}, expected a sheet index ≥ 0"))
+            })
+            .collect::<Result<_, _>>()?;
+        self.sheets = Some(sheets);
+        Ok(self)
+    }
+
+    /// The diagonal of the drawing's bounds, in mm.
+    pub fn diagonal(&self) -> f64 {
+        (self.bounds.1 - self.bounds.0).length()
+    }
+
+    /// A stroke width in mm that reads at the drawing's size: 1/1500 of its diagonal, at least a
+    /// 0.1 mm hairline (a cutter follows the path's centre line whatever the width).
+    pub fn stroke_width(&self) -> f64 {
+        (self.diagonal() / 1500.0).max(0.1)
+    }
+
+    /// A label height in mm: a quarter of the smallest outline's bounding-box side, at least 1 mm
+    /// and at most 10 mm or 1/100 of the drawing's diagonal, whichever is larger.
     pub fn text_height(&self) -> f64 {
         let smallest = self
             .paths
@@ -120,6 +161,6 @@ impl Sheet {
                 (b - a).min_element()
             })
             .fold(f64::INFINITY, f64::min);
-        (0.25 * smallest).clamp(1.0, 10.0)
+        (0.25 * smallest).clamp(1.0, (0.01 * self.diagonal()).max(10.0))
     }
 }

@@ -1,7 +1,11 @@
 //! SVG cutting sheets: one closed path per outline and its label, in millimetres (the document's
 //! `width`/`height` are in mm and one user unit is 1 mm). A 5 mm margin surrounds the drawing; the
-//! model's y axis points up, so y is flipped (`Y = top − y`). Cut lines are red hairlines (0.1 mm),
-//! labels blue text (for engraving), one `<g id="strip-k">` per outline. Numbers have 4 decimals.
+//! model's y axis points up, so y is flipped (`Y = top − y`); the `viewBox` is the drawing's bounds
+//! plus the margin. Cut lines are red, 1/1500 of the drawing's diagonal wide (at least a 0.1 mm
+//! hairline), labels blue text (for engraving) sized to the strips (`Sheet::text_height`), one
+//! `<g id="strip-k">` per outline; nested outlines are grouped per sheet in `<g id="sheet-s">`,
+//! an Inkscape layer each (Inkscape shows them as separate layers, "pages" to cut). Numbers have 4
+//! decimals.
 
 use std::fmt::Write;
 
@@ -46,17 +50,35 @@ pub fn encode_svg(sheet: &Sheet) -> String {
     let _ = writeln!(out, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{w}mm" height="{hh}mm" viewBox="0 0 {w} {hh}">"#,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" version="1.1" width="{w}mm" height="{hh}mm" viewBox="0 0 {w} {hh}">"#,
         w = num(size.x),
         hh = num(size.y)
     );
     let _ = writeln!(out, "  <title>cnets unrolled strips (units: mm)</title>");
-    for (k, ((pts, closed), (label, anchor))) in sheet
-        .paths
-        .iter()
-        .zip(sheet.labels.iter().zip(&sheet.anchors))
-        .enumerate()
-    {
+    let stroke = num(sheet.stroke_width());
+    // Outlines in sheet order (stable: in input order within a sheet).
+    let mut order: Vec<usize> = (0..sheet.paths.len()).collect();
+    if let Some(sheets) = &sheet.sheets {
+        order.sort_by_key(|&k| sheets[k]);
+    }
+    let mut open_sheet = None;
+    for k in order {
+        let ((pts, closed), (label, anchor)) =
+            (&sheet.paths[k], (&sheet.labels[k], &sheet.anchors[k]));
+        if let Some(sheets) = &sheet.sheets
+            && open_sheet != Some(sheets[k])
+        {
+            if open_sheet.is_some() {
+                let _ = writeln!(out, "  </g>");
+            }
+            let s = sheets[k];
+            let _ = writeln!(
+                out,
+                r#"  <g id="sheet-{s}" inkscape:groupmode="layer" inkscape:label="sheet {}">"#,
+                s + 1
+            );
+            open_sheet = Some(s);
+        }
         let _ = writeln!(out, r#"  <g id="strip-{k}">"#);
         let mut d = String::new();
         for (i, p) in pts.iter().enumerate() {
@@ -74,7 +96,7 @@ pub fn encode_svg(sheet: &Sheet) -> String {
         }
         let _ = writeln!(
             out,
-            r##"    <path d="{d}" fill="none" stroke="#e4002b" stroke-width="0.1"/>"##
+            r##"    <path d="{d}" fill="none" stroke="#e4002b" stroke-width="{stroke}"/>"##
         );
         if !label.is_empty() {
             let a = map(*anchor);
@@ -87,6 +109,9 @@ pub fn encode_svg(sheet: &Sheet) -> String {
                 escape(label)
             );
         }
+        let _ = writeln!(out, "  </g>");
+    }
+    if open_sheet.is_some() {
         let _ = writeln!(out, "  </g>");
     }
     out.push_str("</svg>\n");

@@ -165,13 +165,14 @@ mod tests {
         assert_eq!(Format::resolve("auto", "a/b.SVG").unwrap(), Format::Svg);
         assert_eq!(Format::resolve("", "b.txt").unwrap(), Format::Csv);
         assert_eq!(Format::resolve("OBJ", "b.txt").unwrap(), Format::Obj);
+        assert_eq!(Format::resolve("auto", "b.DXF").unwrap(), Format::Dxf);
         assert!(
-            Format::resolve("auto", "b.dxf")
+            Format::resolve("auto", "b.dwg")
                 .unwrap_err()
                 .contains("extension")
         );
         assert!(
-            Format::resolve("dxf", "b.obj")
+            Format::resolve("dwg", "b.obj")
                 .unwrap_err()
                 .contains("unknown format")
         );

@@ -1,4 +1,4 @@
-//! Combining lists: `list.cross_reference`.
+//! Combining and splitting lists: `list.cross_reference`, `list.partition`.
 
 use cnets_engine::prelude::*;
 
@@ -40,6 +40,29 @@ node! {
     }
 }
 
+node! {
+    /// Cuts a list into consecutive chunks of `size` items (the last one may be shorter), a table:
+    /// Grasshopper's Partition List. A flat list of rows × columns values becomes `rows` lists of
+    /// `columns` (e.g. ratios computed over a cross reference, for `cnets.construct`).
+    #[node(id = "list.partition", category = "Lists")]
+    pub fn partition(
+        /// The list.
+        list: k::List<k::Any>,
+        /// Items per chunk (≥ 1).
+        size: k::Integer = 2,
+    ) -> (
+        /// The chunks, in order.
+        chunks: k::Tree<k::Any>,
+    ) {
+        let size = usize::try_from(size)
+            .ok()
+            .filter(|&s| s >= 1)
+            .ok_or_else(|| NodeError::new(format!("size must be 1 or more, got {size}")))?;
+        let chunks = list.chunks(size).map(|c| Value::list(c.to_vec())).collect();
+        Ok((Value::list(chunks),))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -56,5 +79,24 @@ mod tests {
         assert_eq!(out[1], nums(&[10.0, 20.0, 30.0, 10.0, 20.0, 30.0]));
         let out = run_named(&cross_reference(), &[("a", nums(&[])), ("b", nums(&[1.0]))]);
         assert_eq!(out.unwrap()[0], nums(&[]));
+    }
+
+    #[test]
+    fn partition_cuts_rows_and_keeps_a_short_last_one() {
+        let out = run_named(
+            &partition(),
+            &[
+                ("list", nums(&[1.0, 2.0, 3.0, 4.0, 5.0])),
+                ("size", Value::Integer(2)),
+            ],
+        )
+        .unwrap();
+        let expected = Value::list(vec![nums(&[1.0, 2.0]), nums(&[3.0, 4.0]), nums(&[5.0])]);
+        assert_eq!(out[0], expected);
+        let e = run_named(
+            &partition(),
+            &[("list", nums(&[1.0])), ("size", Value::Integer(0))],
+        );
+        assert!(e.unwrap_err().contains("size"));
     }
 }

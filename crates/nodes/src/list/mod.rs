@@ -1,5 +1,5 @@
 //! List tools: item, length, reverse, repeat, slice, flatten, graft, transpose, tables; sorting and
-//! shifting ([`order`]), culling, dispatching and weaving ([`pattern`]), cross references
+//! shifting ([`order`]), culling, dispatching and weaving ([`pattern`]), cross references and partitions
 //! ([`combine`]).
 //!
 //! Nodes with a `list` input take a whole list per run; a list of lists (a table) runs them once per
@@ -276,6 +276,7 @@ pub fn nodes() -> Vec<NodeDef> {
         pattern::dispatch(),
         pattern::weave(),
         combine::cross_reference(),
+        combine::partition(),
     ]
 }
 
