@@ -303,7 +303,7 @@ impl Viewport {
         let swatch =
             |painter: &egui::Painter, y: f32, color: cnets_render::Color, label: String| {
                 let [r, g, b, _] = color.0;
-                let x = rect.right() - 150.0;
+                let x = rect.right() - 170.0;
                 painter.rect_filled(
                     Rect::from_min_size(egui::pos2(x, y), egui::vec2(14.0, 12.0)),
                     2.0,
@@ -322,7 +322,7 @@ impl Viewport {
             LegendInfo::None => {}
             LegendInfo::Classes(classes) => {
                 painter.text(
-                    egui::pos2(rect.right() - 150.0, top),
+                    egui::pos2(rect.right() - 170.0, top),
                     egui::Align2::LEFT_TOP,
                     "configuration",
                     font.clone(),
@@ -333,27 +333,41 @@ impl Viewport {
                         &painter,
                         top + 18.0 + 16.0 * k as f32,
                         crate::preview::class_color(*class),
-                        format!("{}  {count}", class.name()),
+                        format!("{}  {}  {count}", paper_class(*class), class.name()),
                     );
                 }
             }
             LegendInfo::Planarity(legend) => {
                 painter.text(
-                    egui::pos2(rect.right() - 150.0, top),
+                    egui::pos2(rect.right() - 170.0, top),
                     egui::Align2::LEFT_TOP,
                     &legend.title,
                     font.clone(),
                     ink,
                 );
-                for (k, (value, color)) in legend.stops.iter().rev().enumerate() {
-                    swatch(
-                        &painter,
-                        top + 18.0 + 16.0 * k as f32,
-                        *color,
-                        format_number(*value),
-                    );
+                for (k, (value, color)) in legend.stops.iter().enumerate().rev() {
+                    let row = legend.stops.len() - 1 - k;
+                    let label = legend
+                        .labels
+                        .get(k)
+                        .cloned()
+                        .unwrap_or_else(|| format_number(*value));
+                    swatch(&painter, top + 18.0 + 16.0 * row as f32, *color, label);
                 }
             }
         }
+    }
+}
+
+/// The configuration class of a face in the paper's notation: the (±±) configurations of its two
+/// construction planes (CNets, Fig. 4).
+pub fn paper_class(class: cnets_geometry::fabrication::FaceClass) -> &'static str {
+    use cnets_geometry::fabrication::FaceClass;
+    match class {
+        FaceClass::Convex => "(++)(++)",
+        FaceClass::NonConvex => "(++)(−−)",
+        FaceClass::MinusMinus => "(−−)(−−)",
+        FaceClass::NegativeApex => "(+−)/(−+)",
+        FaceClass::Unclassified => "—",
     }
 }

@@ -328,7 +328,8 @@ fn a_library_graph_appears_in_the_palette_and_inserts_a_working_cluster() {
     let mut h = harness_with("library", None, config);
     h.state_mut().palette.open_at([900.0, 700.0]);
     h.run_steps(2);
-    h.get_by_role(egui::accesskit::Role::TextInput)
+    // The palette's search field has the focus (node editors have text fields too).
+    h.get_by(|n| n.role() == egui::accesskit::Role::TextInput && n.is_focused())
         .type_text("twice");
     h.run_steps(3);
     h.get_by_label("twice (cluster)").click();

@@ -71,7 +71,8 @@ fn snapshot_palette_open() {
     h.state_mut().palette.open_at([0.0, 0.0]);
     h.run_steps(2);
     // A query whose answer does not change when other nodes are added to the library.
-    h.get_by_role(Role::TextInput).type_text("cnets.construct");
+    h.get_by(|n| n.role() == Role::TextInput && n.is_focused())
+        .type_text("cnets.construct");
     h.run_steps(3);
     // In the palette by its name then its id; on the canvas as the construct node's type label.
     assert!(
@@ -288,7 +289,8 @@ fn double_click_opens_the_palette_and_picking_adds_a_node() {
         window.min.distance(empty) < 2.0 || window.contains(empty),
         "opened at the click {empty:?}: {window:?}"
     );
-    h.get_by_role(Role::TextInput).type_text("length");
+    h.get_by(|n| n.role() == Role::TextInput && n.is_focused())
+        .type_text("length");
     h.run_steps(2);
     // The designer's name first, the id after.
     h.get_by_label("Length  curve.length").click();
@@ -532,10 +534,22 @@ fn viewport_orbits_pans_zooms_fits_and_switches_colours_and_layers() {
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::SetPreview(o));
     settle(&mut h);
-    assert!(matches!(
-        h.state().viewport.stats.legend,
-        LegendInfo::Planarity(_)
-    ));
+    match &h.state().viewport.stats.legend {
+        LegendInfo::Planarity(l) => {
+            assert!(
+                l.labels[0].starts_with("planar"),
+                "in words: {:?}",
+                l.labels
+            );
+            // The default cone-net is planar to rounding: one colour, not a stretched patchwork.
+            assert!(
+                l.min == 1e-9 && l.max == 1e-3,
+                "anchored to tolerances: {l:?}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    h.snapshot("editor_planarity_legend");
     o.set(Layer::Surfaces, false);
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::SetPreview(o));

@@ -14,7 +14,7 @@ use cnets_engine::{Evaluator, Graph, Value};
 use cnets_geometry::conenet::quad_planarity;
 use cnets_geometry::fabrication::FaceClass;
 use cnets_geometry::{DVec3, QuadGrid};
-use cnets_render::palette::{self, SequentialMap};
+use cnets_render::palette::{self, ToleranceMap};
 use cnets_render::{Color, FaceColors, LineStyle, MeshStyle, PointStyle, Scene};
 
 /// How surfaces are coloured.
@@ -24,7 +24,8 @@ pub enum ColorMode {
     /// the construction node's `configurations` output; plain when the node has none.
     #[default]
     Configuration,
-    /// By per-face planarity (viridis, range fitted to the values).
+    /// By per-face planarity (viridis on a log scale anchored to tolerances: planar below 1e-9
+    /// relative, not planar from 1e-3; `ToleranceMap`).
     Planarity,
     /// One colour.
     Plain,
@@ -232,8 +233,8 @@ pub fn build_scene(
         });
     b.stats.max_planarity = max;
     if opts.color_mode == ColorMode::Planarity {
-        let all: Vec<f64> = planarities.iter().flatten().copied().collect();
-        b.planarity_range = Some(SequentialMap::fit(&all));
+        // Anchored to tolerances, not fitted to the data (rounding noise is not a patchwork).
+        b.planarity_range = Some(ToleranceMap::DEFAULT);
     }
     for ((mesh, configurations, layer), planarity) in meshes.iter().zip(&planarities) {
         b.add_quad_grid(mesh, configurations.as_ref(), planarity, *layer);
@@ -247,9 +248,9 @@ pub fn build_scene(
                 .filter(|&(c, n)| n > 0 || c == FaceClass::Convex)
                 .collect(),
         ),
-        ColorMode::Planarity => b.planarity_range.map_or(LegendInfo::None, |m| {
-            LegendInfo::Planarity(m.legend("planarity", 5))
-        }),
+        ColorMode::Planarity => b
+            .planarity_range
+            .map_or(LegendInfo::None, |m| LegendInfo::Planarity(m.legend())),
         _ => LegendInfo::None,
     };
     b.stats.build_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -276,7 +277,7 @@ struct Builder {
     opts: PreviewOptions,
     class_counts: [usize; 5],
     any_classes: bool,
-    planarity_range: Option<SequentialMap>,
+    planarity_range: Option<ToleranceMap>,
 }
 
 /// Support layers are drawn translucent so the surface they support stays visible.
@@ -413,9 +414,7 @@ impl Builder {
                 Some(classes.into_iter().map(class_color).collect())
             }),
             (ColorMode::Planarity, _) => {
-                let map = self
-                    .planarity_range
-                    .unwrap_or_else(|| SequentialMap::fit(planarity));
+                let map = self.planarity_range.unwrap_or(ToleranceMap::DEFAULT);
                 Some(planarity.iter().map(|&v| map.color(v)).collect())
             }
             (ColorMode::Plain, _) => None,

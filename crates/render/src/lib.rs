@@ -119,7 +119,7 @@ pub use camera::{Camera, ParseViewError, View};
 pub use cnets_geometry::{Line, PolygonMesh, Polyline, QuadGrid};
 pub use error::RenderError;
 pub use offscreen::{Image, Offscreen, read_texture};
-pub use palette::{Color, Legend, SequentialMap};
+pub use palette::{Color, Legend, SequentialMap, ToleranceMap};
 pub use renderer::{COLOR_FORMAT, DEPTH_FORMAT, RendererOptions, SceneRenderer};
 pub use scene::{
     Bounds, FaceColors, FaceVertex, LineStyle, MeshInfo, MeshStyle, PointInstance, PointShape,

@@ -162,6 +162,68 @@ impl SequentialMap {
                     (self.min + (self.max - self.min) * f64::from(t), viridis(t))
                 })
                 .collect(),
+            labels: Vec::new(),
+        }
+    }
+}
+
+/// A planarity colour scale anchored to tolerances rather than stretched to the data: values up to
+/// `planar` (relative planarity: rounding noise) take the first colour, values from `limit` up the
+/// last, and in between the colour follows the logarithm of the value. A mesh planar to rounding
+/// error is one calm colour, not a patchwork of 1e-16 and 1e-15.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ToleranceMap {
+    /// Below this, a face counts as planar.
+    pub planar: f64,
+    /// From this up, a face counts as not planar (the top of the scale).
+    pub limit: f64,
+}
+
+impl ToleranceMap {
+    /// Planar below 1e-9 relative (the paper's constructions are exact to rounding), not planar
+    /// from 1e-3 (a millimetre on a metre panel).
+    pub const DEFAULT: Self = Self {
+        planar: 1e-9,
+        limit: 1e-3,
+    };
+
+    /// Position of `value` on the scale, `0..=1` (NaN stays NaN).
+    pub fn normalize(&self, value: f64) -> f32 {
+        if value.is_nan() {
+            return f32::NAN;
+        }
+        if value <= self.planar || self.limit <= self.planar {
+            return 0.0;
+        }
+        ((value / self.planar).log10() / (self.limit / self.planar).log10()).clamp(0.0, 1.0) as f32
+    }
+
+    /// The colour of one value (NaN gives [`INVALID`]).
+    pub fn color(&self, value: f64) -> Color {
+        viridis(self.normalize(value))
+    }
+
+    /// The legend in words: planar, the decades between, not planar.
+    pub fn legend(&self) -> Legend {
+        let decades = (self.limit / self.planar).log10().round().max(1.0) as i32;
+        let step = (decades / 3).max(1);
+        let mut stops = vec![(self.planar, viridis(0.0))];
+        let mut labels = vec![format!("planar (< {:.0e})", self.planar)];
+        let mut k = step;
+        while k < decades {
+            let v = self.planar * 10f64.powi(k);
+            stops.push((v, self.color(v)));
+            labels.push(format!("{v:.0e}"));
+            k += step;
+        }
+        stops.push((self.limit, viridis(1.0)));
+        labels.push(format!("not planar (≥ {:.0e})", self.limit));
+        Legend {
+            title: "planarity (relative)".into(),
+            min: self.planar,
+            max: self.limit,
+            stops,
+            labels,
         }
     }
 }
@@ -177,11 +239,30 @@ pub struct Legend {
     pub max: f64,
     /// `(value, colour)` pairs from min to max.
     pub stops: Vec<(f64, Color)>,
+    /// A label per stop, in words (empty: write the values).
+    pub labels: Vec<String>,
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_tolerance_map_is_anchored_not_stretched() {
+        let m = ToleranceMap::DEFAULT;
+        // Rounding noise is planar, whatever its spread.
+        assert_eq!(m.color(1e-16), m.color(3e-15));
+        assert_eq!(m.color(0.0), viridis(0.0));
+        assert_eq!(m.color(1e-2), viridis(1.0));
+        assert!(
+            (m.normalize(1e-6) - 0.5).abs() < 1e-6,
+            "log scale: 1e-6 is half way"
+        );
+        let l = m.legend();
+        assert_eq!(l.stops.len(), l.labels.len());
+        assert!(l.labels[0].starts_with("planar"), "{:?}", l.labels);
+        assert!(l.labels.last().unwrap().starts_with("not planar"));
+    }
 
     #[test]
     fn viridis_ends_and_monotone_lightness() {
