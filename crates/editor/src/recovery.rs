@@ -3,9 +3,10 @@
 //! without saving, and the editor offers to restore it.
 //!
 //! When: every committed edit (a drag or handle release, a text field left, a wire, an added or
-//! deleted node) is written in the frame it is committed; during a gesture (a slider being
-//! dragged) at most once per [`AUTOSAVE_WITHIN`], and the app asks for a frame when a write is
-//! due, so the file is never more than a second behind what the window shows.
+//! deleted node) is written in the frame it is committed (edits committed in quick succession at
+//! most every [`AUTOSAVE_GAP`]); during a gesture (a slider being dragged) at most once per
+//! [`AUTOSAVE_WITHIN`]; the app asks for a frame when a write is due, so the file is never more
+//! than a second behind what the window shows.
 //!
 //! Files in the settings folder: `recovery.ron` (the graph's canonical text, written atomically)
 //! and `recovery.path` (first line: the document's own path, if it had one; second line: the
@@ -18,6 +19,9 @@ use cnets_engine::atomic::write_atomic;
 
 /// During a gesture, the recovery file is rewritten at least this often.
 pub const AUTOSAVE_WITHIN: Duration = Duration::from_secs(1);
+
+/// Committed edits in quick succession (keys held on a value) are written at most this often.
+pub const AUTOSAVE_GAP: Duration = Duration::from_millis(250);
 
 /// A recovery file found at start.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -116,11 +120,15 @@ impl Recovery {
         if !dirty || self.saved_version == Some(version) {
             return Autosave::Idle;
         }
-        if !committed
-            && let Some(t) = self.last_write
-            && t.elapsed() < AUTOSAVE_WITHIN
+        let wait = if committed {
+            AUTOSAVE_GAP
+        } else {
+            AUTOSAVE_WITHIN
+        };
+        if let Some(t) = self.last_write
+            && t.elapsed() < wait
         {
-            return Autosave::Due(AUTOSAVE_WITHIN - t.elapsed());
+            return Autosave::Due(wait - t.elapsed());
         }
         match self.write(&text(), paths.0, paths.1, version) {
             Ok(()) => Autosave::Wrote,
@@ -168,6 +176,7 @@ mod tests {
             other => panic!("mid-gesture, right after a write: due later, got {other:?}"),
         }
         assert_eq!(r.find().unwrap().text, "one");
+        std::thread::sleep(AUTOSAVE_GAP);
         assert_eq!(
             r.tick(true, 3, true, (Some(a), None), || "three".into()),
             Autosave::Wrote,
@@ -178,6 +187,7 @@ mod tests {
         assert_eq!(found.path, Some(PathBuf::from("/tmp/a.ron")));
         assert_eq!(found.origin, None);
         let example = Path::new("/x/graphs/bridge.ron");
+        std::thread::sleep(AUTOSAVE_GAP);
         r.tick(true, 4, true, (None, Some(example)), || "four".into());
         let found = r.find().unwrap();
         assert_eq!((found.path, found.origin), (None, Some(example.into())));
