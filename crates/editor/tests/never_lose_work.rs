@@ -192,7 +192,9 @@ fn save_in_the_question_saves_first_untitled_through_save_as() {
     h.run_steps(2);
     let target = config.join("mine.ron");
     h.state_mut().dialog_mut().expect("Save As is shown").path = target.display().to_string();
-    h.run_steps(1);
+    // Let the dialog lay itself out for the new folder before clicking (its size follows the
+    // listing; a click in the same frame can miss the moved button).
+    h.run_steps(4);
     h.get_by_label("Save").click();
     h.run_steps(3);
     assert_eq!(
@@ -231,7 +233,7 @@ fn save_in_the_question_saves_first_untitled_through_save_as() {
     h.state_mut().run(MenuAction::OpenPath(other.clone()));
     h.run_steps(2);
     h.get_by_label("Save").click();
-    h.run_steps(2);
+    h.run_steps(4);
     assert!(h.state_mut().dialog_mut().is_some());
     h.get_by_label("Cancel").click();
     h.run_steps(2);
