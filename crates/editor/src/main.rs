@@ -143,13 +143,7 @@ impl Drive {
         if self.frames < 30 {
             return;
         }
-        let Some(id) = app
-            .doc
-            .graph
-            .nodes()
-            .find(|(_, n)| n.def.id == "param.number")
-            .map(|(_, n)| n.id.clone())
-        else {
+        let Some(id) = first_slider(app) else {
             return;
         };
         if let Some(r) = app.canvas.editor_screen_rect(&id, "value") {
@@ -285,13 +279,7 @@ impl Bench {
             // Baseline: frames without changes (nothing re-evaluated, the 3D view not re-rendered).
             return;
         }
-        let Some(id) = app
-            .doc
-            .graph
-            .nodes()
-            .find(|(_, n)| n.def.id == "param.number")
-            .map(|(_, n)| n.id.clone())
-        else {
+        let Some(id) = first_slider(app) else {
             return;
         };
         let node = app.doc.graph.node(&id).expect("the node");
@@ -527,4 +515,13 @@ fn main() -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// The id of the graph's first number slider (what the drag measurements move).
+fn first_slider(app: &EditorApp) -> Option<String> {
+    app.doc
+        .graph
+        .nodes()
+        .find(|(_, n)| n.def.id == "param.number")
+        .map(|(_, n)| n.id.clone())
 }
