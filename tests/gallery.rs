@@ -52,6 +52,18 @@ fn assert_clean(e: &Evaluated, node: &str) {
     }
 }
 
+/// The correction lines of one construction (a list of texts).
+fn texts(v: &Value) -> Vec<String> {
+    v.as_list()
+        .unwrap()
+        .iter()
+        .map(|t| match t {
+            Value::Text(t) => t.to_string(),
+            other => panic!("{other:?}"),
+        })
+        .collect()
+}
+
 fn radial(p: DVec3) -> (f64, f64) {
     (p.x.hypot(p.y), p.z)
 }
@@ -142,6 +154,16 @@ fn normalized_variants_agree_under_refinement_while_plain_ones_drift() {
     let e = Evaluated::new(load("normalization"));
     assert_clean(&e, "normalized");
     assert_clean(&e, "plain");
+    // The text: only at 40 edges do rows 0 and 1 fold over at the first column, repaired by turning
+    // their first planes.
+    for node in ["normalized", "plain"] {
+        let c = e.output(node, "corrections").as_list().unwrap();
+        assert!(texts(&c[0]).is_empty() && texts(&c[1]).is_empty(), "{node}");
+        let t = texts(&c[2]);
+        assert_eq!(t.len(), 2, "{node}: {t:?}");
+        assert!(t[0].starts_with("plane fix at column 1, row 0"), "{t:?}");
+        assert!(t[1].starts_with("plane fix at column 1, row 1"), "{t:?}");
+    }
     let step = DVec3::new(0.0, 16.0, 0.0);
     let n = meshes(e.output("normalized", "mesh"));
     let p = meshes(e.output("plain", "mesh"));
@@ -215,6 +237,35 @@ fn correction_repairs_fold_overs_for_every_assistance() {
             ),
         }
     }
+    // The text: the blend at 0.5 moves the apex values half of the apex-only way.
+    let apex: Vec<Vec<f64>> = e
+        .output("nets", "apex")
+        .as_list()
+        .unwrap()
+        .iter()
+        .map(|l| {
+            l.as_list()
+                .unwrap()
+                .iter()
+                .map(|a| a.as_f64().unwrap())
+                .collect()
+        })
+        .collect();
+    let change = |k: usize| -> f64 {
+        apex[k]
+            .iter()
+            .zip(&apex[0])
+            .map(|(a, b)| (a - b).abs())
+            .sum()
+    };
+    assert_eq!(change(1), 0.0, "planes only");
+    assert!(change(3) > 0.0);
+    assert!(
+        (change(2) - 0.5 * change(3)).abs() <= 1e-12 * change(3),
+        "blend: {} vs {}",
+        change(2),
+        change(3)
+    );
 }
 
 fn width(m: &QuadGrid, j: usize) -> f64 {
@@ -289,6 +340,14 @@ fn max_planarity(m: &QuadGrid) -> f64 {
 fn support_layers_follow_the_node_axes() {
     let e = Evaluated::new(load("support-layers"));
     assert_clean(&e, "net");
+    // The text: one plane fix, Π_{0,1} from ratio 0.5 to 0.488.
+    let t = texts(e.output("net", "corrections"));
+    assert_eq!(t.len(), 1, "{t:?}");
+    let new: f64 = t[0]
+        .strip_prefix("plane fix at column 1, row 0: ratio 0.5 → ")
+        .and_then(|r| r.parse().ok())
+        .unwrap_or_else(|| panic!("{t:?}"));
+    assert!((new - 0.488).abs() < 5e-4, "{t:?}");
     let net = meshes(e.output("net", "mesh"))[0];
     let conical = meshes(e.output("conical", "mesh"))[0];
     let parallel = meshes(e.output("parallel", "mesh"))[0];

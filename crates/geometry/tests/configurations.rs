@@ -1,6 +1,8 @@
 //! Configuration classification (paper Sec. 4.2.1): the four sign cases from
 //! `s1 = (G_{i,j+1} − X_j)·P_{i,j}` and `s2 = (X_{j+1} − G_{i,j})·P_{i,j+1}`, recomputed here
-//! independently from the mesh and planes the construction reports.
+//! independently from the mesh and planes the construction reports, for every support-strip quad
+//! j = 0 … M−2 (at j = 0 the plane through X_0 and G_{i,0} perpendicular to the support plane stands in
+//! for the missing Π_{i,0}: the test against the generatrix).
 
 mod common;
 
@@ -15,9 +17,16 @@ fn recompute(net: &ConeNet) -> Vec<Vec<Configuration>> {
     let (m, x) = (&net.mesh, &net.directrix);
     (0..m.rows)
         .map(|i| {
-            (1..m.cols - 1)
+            (0..m.cols - 1)
                 .map(|j| {
-                    let s1 = (m.at(i, j + 1) - x[j]).dot(net.normals.get(i, j));
+                    let p_prev = if j == 0 {
+                        let e = (x[1] - x[0]).normalize();
+                        let w = (m.at(i, 0) - x[0]).normalize();
+                        e - w * e.dot(w)
+                    } else {
+                        net.normals.get(i, j)
+                    };
+                    let s1 = (m.at(i, j + 1) - x[j]).dot(p_prev);
                     let s2 = (x[j + 1] - m.at(i, j)).dot(net.normals.get(i, j + 1));
                     Configuration::from_signs(s1, s2)
                 })
@@ -42,9 +51,9 @@ proptest! {
             prop_assert_eq!(net.configurations.row(i), &row[..]);
         }
         let counts = net.configurations.counts();
-        prop_assert_eq!(counts.total(), net.mesh.rows * (net.mesh.cols - 2));
+        prop_assert_eq!(counts.total(), net.mesh.rows * (net.mesh.cols - 1));
         prop_assert_eq!(net.quality.configurations, counts);
-        let first = (1..net.mesh.cols - 1).find_map(|j| (0..net.mesh.rows).find(|&i| expected[i][j - 1] != Configuration::PlusPlus).map(|i| (i, j)));
+        let first = (0..net.mesh.cols - 1).find_map(|j| (0..net.mesh.rows).find(|&i| expected[i][j] != Configuration::PlusPlus).map(|i| (i, j)));
         prop_assert_eq!(net.quality.first_bad, first);
     }
 }
@@ -58,8 +67,9 @@ fn negative_apex_gives_mixed_signs() {
     let net = construct_ctube(&CtubeInputs::new(directrix, generatrix).apex(vec![1.0, -1.0, 1.0]))
         .unwrap();
     let labels = net.configurations.to_strings();
+    // Column 0: s1 = (G_{i,1} − X_0)·x̂ = 1 > 0 (the plane of the generatrix, x = 0); s2 = 1 > 0.
     // Column 1: s1 = (G_{i,2} − X_1)·x̂ = 1 > 0 (Monge planes x = j); s2 = (X_2 − G_{i,1})·x̂ = 1 > 0.
-    assert_eq!(labels, vec![vec!["++", "++"], vec!["++", "++"]]);
+    assert_eq!(labels, vec![vec!["++", "++", "++"], vec!["++", "++", "++"]]);
     // G_{i,2} is G_{i,1} reflected through the apex: y changes sign.
     assert!(net.mesh.at(0, 2).y < 0.0 && net.mesh.at(0, 1).y > 0.0);
     // Tilting Π_1 to the normal (1, −2, 0): with a_1 = 1, G_{0,1} = (3, 1, 0) lies beyond Π_2 (x = 2),

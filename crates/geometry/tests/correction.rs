@@ -1,6 +1,7 @@
 //! Assisted correction (paper Sec. 4.2.2, Appendix A, notes §6): inputs with (−−) configurations
 //! become all (++) for α = 0, 0.5, 1 with every change reported; the impossible case names its
-//! column; ε and α are validated; an unfixable first column is reported, never moved.
+//! column; ε and α are validated; the first column is classified and fixed by planes or by scaling
+//! the generatrix about X_0 (footnote 2).
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -249,16 +250,26 @@ fn impossible_apex_fix_names_its_column() {
     assert!(all_good(&construct(&inputs.assistance(0.0)).unwrap()));
 }
 
-/// G_{1,0} lies beyond the first plane x = 1: planes fix it (per row); apex-only assistance reports it
-/// and leaves the generatrix as given.
-#[test]
-fn first_column_is_fixed_by_planes_or_reported() {
+/// The straight directrix along x with G_{1,0} beyond the first plane x = 1 (Monge planes).
+fn first_column_fold() -> (ConstructInputs, Polyline) {
     let g = Polyline::open(vec![
         DVec3::new(0.0, 1.0, 0.0),
         DVec3::new(1.4, 1.0, 1.0),
         DVec3::new(0.0, 1.0, 2.0),
     ]);
-    let inputs = ConstructInputs::new(straight(4), g.clone());
+    (ConstructInputs::new(straight(4), g.clone()), g)
+}
+
+/// G_{1,0} lies beyond the first plane x = 1: the first configurations c_{·,0} show the fold (Eq. 2
+/// at j = 0, s1 against the generatrix); planes only turns Π_{1,1} and keeps the generatrix; apex only
+/// scales the generatrix about X_0 (footnote 2) and keeps the planes.
+#[test]
+fn first_column_is_classified_and_fixed_by_planes_or_the_generatrix() {
+    let (inputs, g) = first_column_fold();
+    let raw = construct(&inputs).unwrap();
+    assert_eq!(raw.configurations.get(1, 0), Configuration::MinusMinus);
+    assert_eq!(raw.configurations.get(0, 0), Configuration::PlusPlus);
+    assert_eq!(raw.quality.first_bad, Some((1, 0)));
     let fixed = construct(&inputs.clone().assistance(0.0)).unwrap();
     let c = fixed.corrections[0];
     assert_eq!(
@@ -266,16 +277,61 @@ fn first_column_is_fixed_by_planes_or_reported() {
         (CorrectionKind::Ratio, 1, Some(1))
     );
     assert!((DVec3::X - g.points[1]).dot(fixed.normals.get(1, 1)) > 0.0);
-    let reported = construct(&inputs.assistance(1.0)).unwrap();
-    let c = reported.corrections[0];
-    assert_eq!(
-        (c.kind, c.column, c.row),
-        (CorrectionKind::Unfixed, 1, Some(1))
-    );
-    assert!(c.old < 0.0 && c.old == c.new);
-    assert!(c.to_string().contains("row 1"));
+    assert!(all_good(&fixed), "{:?}", fixed.configurations.to_strings());
     for (i, p) in g.points.iter().enumerate() {
-        assert_eq!(reported.mesh.at(i, 0), *p, "user input is never moved");
+        assert_eq!(fixed.mesh.at(i, 0), *p, "planes only keeps the generatrix");
+    }
+    let scaled = construct(&inputs.assistance(1.0)).unwrap();
+    assert_eq!(scaled.corrections.len(), 1, "{:?}", scaled.corrections);
+    let c = scaled.corrections[0];
+    assert_eq!(
+        (c.kind, c.column, c.row, c.old),
+        (CorrectionKind::Generatrix, 0, None, 1.0)
+    );
+    // t = (1 − ε) · (X_1 − X_0)·P / (G_{1,0} − X_0)·P with P = x̂: 0.99 / 1.4.
+    assert!((c.new - 0.99 / 1.4).abs() < 1e-15, "{c}");
+    assert!(
+        c.to_string().starts_with("generatrix fix at column 0"),
+        "{c}"
+    );
+    for (i, p) in g.points.iter().enumerate() {
+        let moved = scaled.mesh.at(i, 0);
+        assert!(
+            (moved - *p * c.new).length() < 1e-15,
+            "G_{i},0 moves towards X_0"
+        );
+    }
+    assert!(
+        all_good(&scaled),
+        "{:?}",
+        scaled.configurations.to_strings()
+    );
+    assert!(planar(&scaled));
+}
+
+/// Hybrid assistance at the first column: the generatrix moves the fraction α of the apex-only way,
+/// the planes repair the rest, and neither change exceeds its pure form.
+#[test]
+fn hybrid_assistance_blends_the_first_column() {
+    let (inputs, _) = first_column_fold();
+    let t1 = construct(&inputs.clone().assistance(1.0))
+        .unwrap()
+        .corrections[0]
+        .new;
+    for alpha in [0.25, 0.5, 0.75] {
+        let net = construct(&inputs.clone().assistance(alpha)).unwrap();
+        let c = net.corrections[0];
+        assert_eq!((c.kind, c.column), (CorrectionKind::Generatrix, 0));
+        assert!(
+            (c.new - (1.0 + alpha * (t1 - 1.0))).abs() < 1e-15,
+            "α = {alpha}: {c}"
+        );
+        assert!(
+            all_good(&net),
+            "α = {alpha}: {:?}",
+            net.configurations.to_strings()
+        );
+        assert!(planar(&net));
     }
 }
 
@@ -302,20 +358,4 @@ fn assistance_off_changes_nothing_and_parameters_are_validated() {
             })
         ));
     }
-}
-
-/// Hybrid assistance at the first column: the apex cannot act on user input, so the plane fix is
-/// applied in full (as for α = 0).
-#[test]
-fn hybrid_assistance_fixes_the_first_column_fully() {
-    let g = Polyline::open(vec![
-        DVec3::new(0.0, 1.0, 0.0),
-        DVec3::new(1.4, 1.0, 1.0),
-        DVec3::new(0.0, 1.0, 2.0),
-    ]);
-    let inputs = ConstructInputs::new(straight(4), g);
-    let full = construct(&inputs.clone().assistance(0.0)).unwrap();
-    let hybrid = construct(&inputs.assistance(0.5)).unwrap();
-    assert_eq!(full.corrections[0], hybrid.corrections[0]);
-    assert_eq!(full.mesh, hybrid.mesh);
 }

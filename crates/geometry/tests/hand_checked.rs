@@ -46,10 +46,12 @@ fn straight_directrix_with_half_apex() {
     assert_eq!(net.apex, vec![0.5, 0.5]);
     assert_eq!(net.normals.get(0, 1), DVec3::X);
     assert_eq!(net.normals.get(1, 2), DVec3::X);
-    // One interior vertex column: c_{i,1}: s1 = (G_{i,2} − X_1)·x̂ = 1 > 0, s2 = (X_2 − G_{i,1})·x̂ = 1 > 0.
+    // c_{i,0}: s1 = (G_{i,1} − X_0)·x̂ = 1 > 0 (x = 0 is the plane through X_0 and G_{i,0}
+    // perpendicular to the support plane), s2 = (X_1 − G_{i,0})·x̂ = 1 > 0.
+    // c_{i,1}: s1 = (G_{i,2} − X_1)·x̂ = 1 > 0, s2 = (X_2 − G_{i,1})·x̂ = 1 > 0.
     assert_eq!(
         net.configurations.to_strings(),
-        vec![vec!["++"], vec!["++"]]
+        vec![vec!["++", "++"], vec!["++", "++"]]
     );
     assert!(net.quality.max_planarity < 1e-15);
     assert!(net.corrections.is_empty());

@@ -126,7 +126,7 @@ fn closed_directrix_takes_one_value_per_stored_point() {
     .unwrap();
     assert_eq!(net.mesh.cols, 5);
     assert_eq!(net.apex.len(), 4);
-    assert_eq!(net.configurations.cols(), 3);
+    assert_eq!(net.configurations.cols(), 4);
     assert!(matches!(
         construct(&ConstructInputs::new(ring.clone(), g.clone()).apex(vec![1.0; 3])),
         Err(GeometryError::WrongLength {

@@ -1,7 +1,7 @@
 //! Cone-net construction: C-tube, CNets Construct, Construct Coplanar, encoding.
 //!
 //! Every construction node outputs `mesh`, `apex` (the a_j actually used), `apices` (C_j, `null` at
-//! infinity), `planes` (N lists of M−1 normals), `configurations` (N lists of M−2 labels),
+//! infinity), `planes` (N lists of M−1 normals), `configurations` (N lists of M−1 labels),
 //! `corrections` (text) and `quality` (a record).
 
 use std::sync::Arc;
@@ -260,7 +260,7 @@ node! {
         apices: k::List<Option<k::Point>>,
         /// Plane normals P_ij: N lists of M−1 vectors.
         planes: k::Tree<k::Vector>,
-        /// Configurations c_ij: N lists of M−2 labels "++", "--", "+-", "-+".
+        /// Configurations c_ij (j = 0 … M−2, one per support-strip quad): N lists of M−1 labels "++", "--", "+-", "-+".
         configurations: k::Tree<k::Text>,
         /// Corrections made (none for this construction).
         corrections: k::List<k::Text>,
@@ -289,7 +289,10 @@ node! {
     /// CNets Construct (paper Sec. 4.4.1): like the C-tube construction, but each plane is chosen by a
     /// ratio r_ij ∈ [0, 1] that picks the ruling of support strip i at X_j (½ = the bisecting plane,
     /// a Monge surface when a ≡ 1). With `assistance` ≥ 0 folded-over configurations are repaired
-    /// (0: planes only, 1: apex only, between: hybrid) and every correction is reported.
+    /// (0: planes only, 1: apex only — at the first column the generatrix is scaled towards X_0 —,
+    /// between: the apex values move the fraction α of the way to the apex-only ones and the planes
+    /// repair the rest, never changing the apex more than α = 1 nor turning the planes more than
+    /// α = 0) and every correction is reported.
     #[node(id = "cnets.construct", category = "Cone-nets")]
     pub fn construct[ctx](
         /// Directrix X (open, or closed: swept once around).
@@ -300,7 +303,7 @@ node! {
         apex: k::List<k::Number> = 1.0,
         /// Ratios r_ij: one number, a list of M−1 (shared by rows), or N lists of M−1.
         ratios: k::Table<k::Number> = 0.5,
-        /// Assisted correction α: negative = off, 0 = planes only, 1 = apex only, between = hybrid.
+        /// Assisted correction α: negative = off, 0 = planes only, 1 = apex only, between = monotone blend.
         assistance: k::Number = -1.0,
         /// Whether `apex` is the normalized apex function ā (paper Sec. 4.3).
         normalized: k::Boolean = false,
@@ -320,7 +323,7 @@ node! {
         apices: k::List<Option<k::Point>>,
         /// Plane normals P_ij: N lists of M−1 vectors.
         planes: k::Tree<k::Vector>,
-        /// Configurations c_ij: N lists of M−2 labels "++", "--", "+-", "-+".
+        /// Configurations c_ij (j = 0 … M−2, one per support-strip quad): N lists of M−1 labels "++", "--", "+-", "-+".
         configurations: k::Tree<k::Text>,
         /// Every correction made: column, row, old → new.
         corrections: k::List<k::Text>,
@@ -354,7 +357,7 @@ node! {
         ruling_ratios: k::List<k::Number> = 0.5,
         /// Plane-rotation ratios τ_j: one number or one per directrix edge (M−1).
         plane_ratios: k::List<k::Number> = 0.5,
-        /// Assisted correction α: negative = off, 0 = planes only, 1 = apex only, between = hybrid.
+        /// Assisted correction α: negative = off, 0 = planes only, 1 = apex only, between = monotone blend.
         assistance: k::Number = -1.0,
         /// Whether `apex` is the normalized apex function ā (paper Sec. 4.3).
         normalized: k::Boolean = false,
@@ -374,7 +377,7 @@ node! {
         apices: k::List<Option<k::Point>>,
         /// Plane normals P_ij: N lists of M−1 vectors (equal along each column).
         planes: k::Tree<k::Vector>,
-        /// Configurations c_ij: N lists of M−2 labels "++", "--", "+-", "-+".
+        /// Configurations c_ij (j = 0 … M−2, one per support-strip quad): N lists of M−1 labels "++", "--", "+-", "-+".
         configurations: k::Tree<k::Text>,
         /// Every correction made: column, old → new.
         corrections: k::List<k::Text>,

@@ -110,7 +110,7 @@ fn construction_outputs_have_the_contract_shapes() {
         assert_eq!(configurations.len(), n);
         for row in configurations {
             let row = row.as_list().unwrap();
-            assert_eq!(row.len(), m - 2);
+            assert_eq!(row.len(), m - 1);
             assert!(
                 row.iter().all(|c| c == &Value::text("++")),
                 "{id}: a torus segment is all (++)"

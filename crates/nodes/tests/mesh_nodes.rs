@@ -246,10 +246,11 @@ fn face_attribute_nodes() {
         .collect();
     assert_eq!(classes.len(), 12);
     for i in 0..3 {
-        assert_eq!(classes[i * 4], 4, "column 0 is unclassified");
-        for j in 1..4 {
-            let both_good = labels[i][j - 1] == "++" && labels[i + 1][j - 1] == "++";
+        // Every face column is classified, column 0 included (c_{i,0}, issue 17).
+        for j in 0..4 {
+            let both_good = labels[i][j] == "++" && labels[i + 1][j] == "++";
             assert_eq!(classes[i * 4 + j] == 0, both_good);
+            assert_ne!(classes[i * 4 + j], 4);
         }
     }
     let err = run(

@@ -441,7 +441,7 @@ pub fn class_color(class: FaceClass) -> Color {
 }
 
 /// The class of every face of `grid` (row-major over quads) from a construction node's
-/// `configurations` output (N lists of M−2 labels), as [`cnets_geometry::fabrication::face_classes`]
+/// `configurations` output (N lists of M−1 labels), as [`cnets_geometry::fabrication::face_classes`]
 /// defines it. `None` when the value is not such a table or does not fit the grid.
 pub fn face_classes(grid: &QuadGrid, configurations: &Value) -> Option<Vec<FaceClass>> {
     let labels: Vec<Vec<String>> = configurations
@@ -490,7 +490,8 @@ mod tests {
         let g = grid(3, 4); // interior vertex columns 1 and 2
         let classes = face_classes(&g, &table(3, &["++", "--"])).unwrap();
         assert_eq!(classes.len(), 2 * 3);
-        // Quad column 0 has no plane before it; column 1 pairs (++, ++); column 2 pairs (--, --).
+        // An older table without column 0 (M − 2 labels): quad column 0 is unclassified; column 1
+        // pairs (++, ++); column 2 pairs (--, --).
         assert_eq!(
             classes[..3],
             [
@@ -502,6 +503,16 @@ mod tests {
         assert!(
             face_classes(&g, &table(2, &["++", "--"])).is_none(),
             "row count must match"
+        );
+        // The constructions' full tables (M − 1 labels) class column 0 as well.
+        let full = face_classes(&g, &table(3, &["--", "++", "--"])).unwrap();
+        assert_eq!(
+            full[..3],
+            [
+                FaceClass::MinusMinus,
+                FaceClass::Convex,
+                FaceClass::MinusMinus
+            ]
         );
         assert_eq!(class_color(FaceClass::NonConvex), {
             let c = FaceClass::NonConvex.colour();

@@ -1,8 +1,35 @@
 //! Configuration classification (paper Sec. 4.2.1, notes §6):
-//! `s1 = (G_{i,j+1} − X_j)·P_{i,j}`, `s2 = (X_{j+1} − G_{i,j})·P_{i,j+1}`, for j = 1 … M−2.
+//! `s1 = (G_{i,j+1} − X_j)·P_{i,j}`, `s2 = (X_{j+1} − G_{i,j})·P_{i,j+1}`, for every support-strip quad
+//! j = 0 … M−2. The first quad has no construction plane Π_{i,0}: its s1 is the analogous test against
+//! the generatrix, `P_{i,0}` being the normal of the plane through X_0 and G_{i,0} perpendicular to the
+//! support plane, `ê_1 − (ê_1·ŵ)ŵ` with `ŵ = unit(G_{i,0} − X_0)` ([`generatrix_normal`]); its s2 is
+//! Eq. (2) at j = 0.
 
 use std::fmt;
 use std::ops::Range;
+
+use glam::DVec3;
+
+/// The stand-in for the missing plane Π_{i,0} in the first configuration c_{i,0}: the unit normal of
+/// the plane through `x0` = X_0 and `g` = G_{i,0} perpendicular to the support plane of strip i,
+/// oriented towards `e` = ê_1 (`ê_1 − (ê_1·ŵ)ŵ`, ŵ = unit(g − x0)). Every plane through the line
+/// X_0 G_{i,0} gives the same sign to the points of the (planar) support strip, so the test is the
+/// paper's s1 against the generatrix ruling. ê_1 when g lies on the directrix line.
+#[inline]
+pub fn generatrix_normal(x0: DVec3, e: DVec3, g: DVec3) -> DVec3 {
+    let d = g - x0;
+    let dd = d.length_squared();
+    if !(dd > 0.0 && dd.is_finite()) {
+        return e;
+    }
+    let n = e - d * (e.dot(d) / dd);
+    let nn = n.length_squared();
+    if nn > 1e-24 && nn.is_finite() {
+        n / nn.sqrt()
+    } else {
+        e
+    }
+}
 
 /// The configuration c_{i,j} of support-strip quad (i, j) from the signs of s1 and s2.
 /// A sign is `+` when the value is strictly positive, `−` otherwise (zero counts as `−`).
@@ -87,11 +114,11 @@ impl ConfigurationCounts {
     }
 }
 
-/// The configurations c_{i,j} for i = 0 … N−1 and j = 1 … M−2.
+/// The configurations c_{i,j} for i = 0 … N−1 and j = 0 … M−2 (one per support-strip quad).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Configurations {
     rows: usize,
-    /// M − 2.
+    /// M − 1.
     cols: usize,
     /// Row stride in `data` (≥ cols; the sweep pads each row by one slot).
     stride: usize,
@@ -120,23 +147,23 @@ impl Configurations {
         self.rows
     }
 
-    /// Number of classified columns, M − 2.
+    /// Number of classified columns, M − 1.
     pub fn cols(&self) -> usize {
         self.cols
     }
 
-    /// c_{i,j} for j = 1 … M−2.
+    /// c_{i,j} for j = 0 … M−2.
     #[inline]
     pub fn get(&self, i: usize, j: usize) -> Configuration {
         assert!(
-            j >= 1 && j <= self.cols,
-            "configuration column {j} out of 1..={}",
+            j < self.cols,
+            "configuration column {j} out of 0..{}",
             self.cols
         );
-        self.data[i * self.stride + j - 1]
+        self.data[i * self.stride + j]
     }
 
-    /// Row i as a slice (entry k is c_{i,k+1}).
+    /// Row i as a slice (entry j is c_{i,j}).
     pub fn row(&self, i: usize) -> &[Configuration] {
         &self.data[self.row_range(i)]
     }
@@ -152,7 +179,7 @@ impl Configurations {
         self.data.iter().map(|&c| c as u8).collect()
     }
 
-    /// N lists of M−2 labels (`"++"`, …), as the nodes output them.
+    /// N lists of M−1 labels (`"++"`, …; entry j is c_{i,j}), as the nodes output them.
     pub fn to_strings(&self) -> Vec<Vec<&'static str>> {
         (0..self.rows)
             .map(|i| self.row(i).iter().map(|c| c.as_str()).collect())
@@ -186,8 +213,8 @@ impl Configurations {
         // Row by row (the storage order), keeping the smallest (j, i).
         (0..self.rows)
             .filter_map(|i| {
-                let k = self.row(i).iter().position(|c| !c.is_good())?;
-                Some((k + 1, i))
+                let j = self.row(i).iter().position(|c| !c.is_good())?;
+                Some((j, i))
             })
             .min()
             .map(|(j, i)| (i, j))
@@ -209,8 +236,8 @@ mod tests {
             PlusPlus, MinusMinus, PlusPlus, PlusPlus, PlusPlus, MinusPlus,
         ];
         let c = Configurations::from_padded(2, 2, 3, data);
-        assert_eq!(c.get(0, 2), MinusMinus);
-        assert_eq!(c.get(1, 2), PlusPlus);
+        assert_eq!(c.get(0, 1), MinusMinus);
+        assert_eq!(c.get(1, 1), PlusPlus);
         assert_eq!(
             c.counts(),
             ConfigurationCounts {
@@ -220,7 +247,7 @@ mod tests {
                 minus_plus: 0
             }
         );
-        assert_eq!(c.first_bad(), Some((0, 2)));
+        assert_eq!(c.first_bad(), Some((0, 1)));
         assert_eq!(c.to_strings(), vec![vec!["++", "--"], vec!["++", "++"]]);
     }
 }

@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+use super::blend::assisted;
 use super::ctube::{Raw, prepare};
 use super::inputs::{ConstructInputs, CoplanarInputs, check_unit_interval};
 use super::result::ConeNet;
@@ -24,15 +25,18 @@ pub fn construct(inputs: &ConstructInputs) -> Result<ConeNet, GeometryError> {
         .resolve("ratios", n, m - 1, (0.0, 1.0, "a value in [0, 1]"))?;
     inputs.assistance.validate()?;
     prep.dx.check_bisectors()?;
-    let mut sweep = Sweep::new(
-        &prep,
-        zeroed_points(n * (m - 1)),
-        true,
-        Rule::Ratios(&grid),
-        Some(inputs.assistance),
-    );
-    sweep.run()?;
-    Raw::from_sweep(sweep, prep.wrap_rows).finish()
+    assisted(&prep, inputs.assistance, |prep, assistance| {
+        let mut sweep = Sweep::new(
+            prep,
+            zeroed_points(n * (m - 1)),
+            true,
+            Rule::Ratios(&grid),
+            assistance,
+        );
+        sweep.run()?;
+        Ok(Raw::from_sweep(sweep, prep.wrap_rows))
+    })?
+    .finish()
 }
 
 /// CNets Construct Coplanar (`cnets.construct_coplanar`): one plane per column through the ruling
@@ -52,16 +56,19 @@ pub fn construct_coplanar(inputs: &CoplanarInputs) -> Result<ConeNet, GeometryEr
     check_unit_interval("plane_ratios", &tau)?;
     inputs.assistance.validate()?;
     prep.dx.check_bisectors()?;
-    let mut sweep = Sweep::new(
-        &prep,
-        vec![DVec3::ZERO; m - 1],
-        false,
-        Rule::Coplanar {
-            rho: &rho,
-            tau: &tau,
-        },
-        Some(inputs.assistance),
-    );
-    sweep.run()?;
-    Raw::from_sweep(sweep, prep.wrap_rows).finish()
+    assisted(&prep, inputs.assistance, |prep, assistance| {
+        let mut sweep = Sweep::new(
+            prep,
+            vec![DVec3::ZERO; m - 1],
+            false,
+            Rule::Coplanar {
+                rho: &rho,
+                tau: &tau,
+            },
+            assistance,
+        );
+        sweep.run()?;
+        Ok(Raw::from_sweep(sweep, prep.wrap_rows))
+    })?
+    .finish()
 }

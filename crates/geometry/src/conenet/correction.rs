@@ -13,10 +13,9 @@ pub enum CorrectionKind {
     Ratio,
     /// The shared plane Π_j of the coplanar construction, reported as its rotation ratio τ_j.
     PlaneRotation,
-    /// Not a change: generatrix point `row` lies on the wrong side of the first plane Π_{row,1} and
-    /// no admissible fix exists (user input is never moved). `old` = `new` = the signed distance
-    /// `(X_1 − G_{row,0}) · P_{row,1}` (≤ 0).
-    Unfixed,
+    /// The first-column fix of footnote 2: the generatrix scaled about X_0 (every G_{i,0} moves
+    /// towards X_0), reported as its scale factor (`column` 0, 1 = as given).
+    Generatrix,
 }
 
 /// One correction made by the assisted construction: `kind` at `column` (and `row` for a per-row
@@ -65,12 +64,10 @@ impl fmt::Display for Correction {
                 "plane fix at column {} (all rows): rotation ratio {} → {}",
                 self.column, self.old, self.new
             ),
-            (CorrectionKind::Unfixed, row) => write!(
+            (CorrectionKind::Generatrix, _) => write!(
                 f,
-                "not fixed at column 0, row {}: the generatrix point lies on the wrong side of construction plane {} (signed distance {}); user input is never moved and no plane fix applies",
-                row.map_or_else(|| "?".to_string(), |i| i.to_string()),
-                self.column,
-                self.old
+                "generatrix fix at column {}: scaled about the first directrix point by {} → {}",
+                self.column, self.old, self.new
             ),
         }
     }

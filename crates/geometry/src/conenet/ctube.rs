@@ -31,6 +31,7 @@ pub fn step(g: DVec3, x0: DVec3, x1: DVec3, a: f64, p: DVec3) -> Option<DVec3> {
 }
 
 /// Validated inputs common to every construction.
+#[derive(Clone)]
 pub(crate) struct Prepared {
     pub dx: SweptDirectrix,
     pub generatrix: Vec<DVec3>,
@@ -191,6 +192,10 @@ pub(crate) struct Raw {
     pub corrections: Vec<super::correction::Correction>,
     /// 1 / design size (see [`Prepared::scale`]).
     pub inv_scale: f64,
+    /// The first-column fix's scale factor of the generatrix about X_0 (1: as given).
+    pub generatrix_scale: f64,
+    /// The total plane turn of the plane fixes (radians summed over the vertices).
+    pub turn: f64,
 }
 
 impl Raw {
@@ -212,9 +217,11 @@ impl Raw {
             directrix: sweep.dx.points.clone(),
             apex: sweep.apex,
             normals,
-            configurations: Configurations::from_padded(n, m - 2, m - 1, sweep.configs),
+            configurations: Configurations::from_padded(n, m - 1, m - 1, sweep.configs),
             corrections: sweep.corrections,
             inv_scale: sweep.inv_scale,
+            generatrix_scale: sweep.generatrix_scale,
+            turn: sweep.turn,
         }
     }
 

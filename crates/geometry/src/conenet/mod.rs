@@ -14,6 +14,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod apex;
+mod blend;
 pub mod configuration;
 pub mod construct;
 pub mod coplanar;

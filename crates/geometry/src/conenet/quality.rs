@@ -657,7 +657,7 @@ mod tests {
                 .with_wrap(wrap, false);
             let configurations = Configurations::from_padded(
                 rows,
-                cols.saturating_sub(2),
+                cols - 1,
                 cols - 1,
                 vec![Default::default(); rows * (cols - 1)],
             );

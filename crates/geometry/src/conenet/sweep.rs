@@ -17,7 +17,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::configuration::Configuration;
+use super::configuration::{Configuration, generatrix_normal};
 use super::coplanar::PlanePencil;
 use super::correction::{Correction, CorrectionKind, apex_fix_value};
 use super::ctube::{Prepared, step};
@@ -54,7 +54,7 @@ pub(crate) struct Sweep<'a> {
     /// Plane normals: N × (M−1) when `per_vertex`, else M−1 shared.
     pub planes: Vec<DVec3>,
     pub per_vertex: bool,
-    /// N × (M−1) configurations (entry `i*(M−1) + j − 1` is c_{i,j}; the last slot of a row is unused).
+    /// N × (M−1) configurations (entry `i*(M−1) + j` is c_{i,j}, j = 0 … M−2).
     pub configs: Vec<Configuration>,
     /// a_j at index j − 1.
     pub apex: Vec<f64>,
@@ -65,6 +65,11 @@ pub(crate) struct Sweep<'a> {
     pub psi: Vec<f64>,
     /// 1 / design size (keeps the magnitudes of the ratio hot path and the quality pass near 1).
     pub inv_scale: f64,
+    /// The factor the first-column fix has scaled the generatrix by about X_0 (1: untouched).
+    pub generatrix_scale: f64,
+    /// Σ over the vertices of the angle between the corrected plane P_{i,j} and the plane its ratio
+    /// (or τ) gives at the same place: the total plane turn of the plane fixes.
+    pub turn: f64,
 }
 
 /// `len` zero points, written in parallel straight into the new buffer (rayon's in-place collect):
@@ -97,6 +102,8 @@ impl RowEnd {
 /// Read-only data shared by every row of a block.
 struct Ctx<'s> {
     x: &'s [DVec3],
+    /// ê_1 (for the stand-in of Π_{i,0} in c_{i,0}).
+    e1: DVec3,
     apex: &'s [f64],
     check: bool,
 }
@@ -181,10 +188,11 @@ struct RatioRow<'p> {
     ratios: &'p [f64],
     planes: &'p mut [DVec3],
     inv_scale: f64,
-    /// α (negative: off).
+    /// α: 0 (planes only) or 1 (apex-like fixes only); negative: off.
     alpha: f64,
     epsilon: f64,
-    fixes: Vec<(usize, Correction)>,
+    /// Inline plane fixes: (step, record, turn |Δθ| of the plane).
+    fixes: Vec<(usize, Correction, f64)>,
 }
 
 impl PlaneSource for RatioRow<'_> {
@@ -201,31 +209,19 @@ impl PlaneSource for RatioRow<'_> {
     fn store(&mut self, j: usize, p: DVec3) {
         self.planes[j - 1] = p;
     }
-    fn fix_inline(&mut self, j: usize, g: DVec3, p: DVec3) -> Result<Option<DVec3>, GeometryError> {
+    fn fix_inline(&mut self, j: usize, g: DVec3, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
         let jn = j + 1;
-        if j == 0 && self.alpha >= 1.0 {
-            // Apex fixes only, and the apex cannot move user input: report and keep the plane.
-            let s = (self.dx.points[jn] - g).dot(p) / p.length();
-            self.fixes.push((0, unfixed(self.i, s)));
-            return Ok(Some(p));
-        }
-        if j > 0 && self.alpha >= 1.0 {
+        if self.alpha >= 1.0 {
+            // Apex-like fixes only: they couple the rows (a stop).
             return Ok(None);
         }
-        // Plane fix: θ moves the fraction (1 − α) of the way to (1 − ε) φ (the full way at the first
-        // column, where the apex cannot help). It is row-local; only when the row is still bad does
-        // the coupled apex fix (a stop) follow, and the coupled step then redoes this column.
+        // Plane fix: θ goes to (1 − ε) φ. It is row-local; only when the row is still bad (rounding)
+        // does the coupled fix (a stop) follow, and the coupled step then redoes this column.
         let dx = self.dx;
         let frame = SupportFrame::new(dx.points[j], dx.edges[jn], g, self.i, jn)?;
         let theta_b = frame.bisector_angle(dx.bisectors[jn]);
         let r_old = self.ratios[jn - 1];
-        let theta_old = ratio_to_angle(r_old, theta_b);
-        let target = (1.0 - self.epsilon) * frame.angle_of(g, dx.points[jn]);
-        let theta = if j == 0 {
-            target
-        } else {
-            theta_old + (1.0 - self.alpha) * (target - theta_old)
-        };
+        let theta = (1.0 - self.epsilon) * frame.angle_of(g, dx.points[jn]);
         let p = frame.normal(theta);
         if !(p.dot(frame.e) > tolerance::EDGE_PLANE) {
             return Err(GeometryError::PlaneContainsEdge {
@@ -245,6 +241,7 @@ impl PlaneSource for RatioRow<'_> {
                 old: r_old,
                 new: angle_to_ratio(theta, theta_b),
             },
+            (theta - ratio_to_angle(r_old, theta_b)).abs(),
         ));
         Ok(Some(p))
     }
@@ -306,17 +303,6 @@ impl PlaneSource for CoplanarRow0<'_> {
     }
 }
 
-/// The record of a first-column vertex left on the wrong side of its plane.
-fn unfixed(row: usize, signed_distance: f64) -> Correction {
-    Correction {
-        kind: CorrectionKind::Unfixed,
-        column: 1,
-        row: Some(row),
-        old: signed_distance,
-        new: signed_distance,
-    }
-}
-
 /// One row being swept: its output slices, its plane source and its running state.
 struct Slot<'r, S> {
     i: usize,
@@ -363,9 +349,14 @@ fn run_batch<S: PlaneSource>(
     for l in 0..LANES {
         let s = &slots[l.min(last)];
         g.set_lane(l, s.row[js]);
-        if js >= 1 {
-            p_prev.set_lane(l, s.src.stored(js));
-        }
+        p_prev.set_lane(
+            l,
+            if js >= 1 {
+                s.src.stored(js)
+            } else {
+                generatrix_normal(ctx.x[0], ctx.e1, s.row[0])
+            },
+        );
     }
     // Bit l: row `slots[l]` is still running.
     let all = (1u32 << slots.len()) - 1;
@@ -431,9 +422,7 @@ fn run_batch<S: PlaneSource>(
 fn commit<S: PlaneSource>(s: &mut Slot<'_, S>, j: usize, l: usize, p: &V3, step: &StepLanes) {
     s.src.store(j + 1, p.lane(l));
     s.row[j + 1] = step.g1.lane(l);
-    if j >= 1 {
-        s.cfg[j - 1] = Configuration::from_signs(step.s1.0[l], step.s2.0[l]);
-    }
+    s.cfg[j] = Configuration::from_signs(step.s1.0[l], step.s2.0[l]);
 }
 
 /// One construction step of a batch of rows (see [`step_lanes`]).
@@ -514,12 +503,22 @@ fn advance<S: PlaneSource>(
         ));
     }
     s.row[jn] = g1;
-    if j >= 1 {
-        s.cfg[j - 1] = Configuration::from_signs((g1 - x[j]).dot(s.p_prev), s2);
-    }
+    s.cfg[j] = Configuration::from_signs((g1 - x[j]).dot(s.p_prev), s2);
     s.p_prev = p;
     s.g = g1;
     Ok(())
+}
+
+/// Orders correction records by column, then kind (generatrix, apex, planes), then row.
+pub(crate) fn sort_corrections(records: &mut [Correction]) {
+    records.sort_by_key(|c| {
+        let rank = match c.kind {
+            CorrectionKind::Generatrix => 0,
+            CorrectionKind::Apex => 1,
+            CorrectionKind::Ratio | CorrectionKind::PlaneRotation => 2,
+        };
+        (c.column, rank, c.row)
+    });
 }
 
 /// Sweeps all slots in parallel batches.
@@ -595,6 +594,8 @@ impl<'a> Sweep<'a> {
             corrections: Vec::new(),
             psi: vec![0.0; m],
             inv_scale: 1.0 / prep.scale,
+            generatrix_scale: 1.0,
+            turn: 0.0,
         }
     }
 
@@ -605,6 +606,16 @@ impl<'a> Sweep<'a> {
             self.planes[i * (self.m - 1) + j - 1]
         } else {
             self.planes[j - 1]
+        }
+    }
+
+    /// Normal of Π_{i,j}, or for j = 0 its stand-in in c_{i,0} (the plane through X_0 and G_{i,0}
+    /// perpendicular to the support plane, [`generatrix_normal`]).
+    fn plane_before(&self, i: usize, j: usize) -> DVec3 {
+        if j == 0 {
+            generatrix_normal(self.dx.points[0], self.dx.edges[1], self.vert(i, 0))
+        } else {
+            self.plane_at(i, j)
         }
     }
 
@@ -638,14 +649,7 @@ impl<'a> Sweep<'a> {
                 }
             }
         }
-        self.corrections.sort_by_key(|c| {
-            let rank = match c.kind {
-                CorrectionKind::Unfixed => 0,
-                CorrectionKind::Apex => 1,
-                CorrectionKind::Ratio | CorrectionKind::PlaneRotation => 2,
-            };
-            (c.column, rank, c.row)
-        });
+        sort_corrections(&mut self.corrections);
         Ok(())
     }
 
@@ -675,6 +679,7 @@ impl<'a> Sweep<'a> {
         } = self;
         let ctx = Ctx {
             x: &dx.points,
+            e1: dx.edges[1],
             apex,
             check,
         };
@@ -682,7 +687,7 @@ impl<'a> Sweep<'a> {
             .chunks_mut(m)
             .zip(configs.chunks_mut(m - 1))
             .enumerate();
-        let (ends, fixes): (Vec<RowEnd>, Vec<(usize, Correction)>) = match rule {
+        let (ends, fixes): (Vec<RowEnd>, Vec<(usize, Correction, f64)>) = match rule {
             Rule::Given if per_vertex => {
                 let mut slots: Vec<_> = rows
                     .zip(planes.chunks(m - 1))
@@ -768,14 +773,21 @@ impl<'a> Sweep<'a> {
         match event {
             Some((_, Some(err))) => Err(err),
             Some((j0, None)) => {
-                self.corrections
-                    .extend(fixes.into_iter().filter(|(j, _)| *j < j0).map(|(_, c)| c));
+                self.keep_fixes(fixes.into_iter().filter(|(j, _, _)| *j < j0));
                 Ok(Some(j0))
             }
             None => {
-                self.corrections.extend(fixes.into_iter().map(|(_, c)| c));
+                self.keep_fixes(fixes);
                 Ok(None)
             }
+        }
+    }
+
+    /// Records the inline plane fixes that stay (and their turn).
+    fn keep_fixes(&mut self, fixes: impl IntoIterator<Item = (usize, Correction, f64)>) {
+        for (_, c, turn) in fixes {
+            self.corrections.push(c);
+            self.turn += turn;
         }
     }
 
@@ -833,8 +845,7 @@ impl<'a> Sweep<'a> {
                     let frame = frames[i];
                     let theta_b = frame.bisector_angle(b);
                     let phi = frame.angle_of(self.vert(i, j0), dx.points[jn]);
-                    let target = (1.0 - a.epsilon) * phi;
-                    let new = thetas[i] + (1.0 - a.alpha) * (target - thetas[i]);
+                    let new = (1.0 - a.epsilon) * phi;
                     self.corrections.push(Correction {
                         kind: CorrectionKind::Ratio,
                         column: jn,
@@ -842,15 +853,12 @@ impl<'a> Sweep<'a> {
                         old: angle_to_ratio(thetas[i], theta_b),
                         new: angle_to_ratio(new, theta_b),
                     });
+                    self.turn += (new - thetas[i]).abs();
                     thetas[i] = new;
                 }
                 continue;
             }
-            if j0 == 0 {
-                self.report_unfixed(&bad);
-                return Ok(());
-            }
-            self.apex_fix(j0, &bad, a.epsilon)?;
+            self.apex_like_fix(j0, &bad, a.epsilon)?;
         }
         Err(GeometryError::CorrectionFailed { column: j0 })
     }
@@ -882,12 +890,7 @@ impl<'a> Sweep<'a> {
                 let x1 = dx.points[jn];
                 let qs = (0..self.n).map(|i| x1 - self.vert(i, j0));
                 if let Some((lo, hi)) = pencil.feasible(qs, a.epsilon) {
-                    let fix = psi.clamp(lo, hi);
-                    let new = if j0 == 0 {
-                        fix
-                    } else {
-                        psi + (1.0 - a.alpha) * (fix - psi)
-                    };
+                    let new = psi.clamp(lo, hi);
                     self.corrections.push(Correction {
                         kind: CorrectionKind::PlaneRotation,
                         column: jn,
@@ -895,26 +898,64 @@ impl<'a> Sweep<'a> {
                         old: psi / pencil.psi_out,
                         new: new / pencil.psi_out,
                     });
+                    // The shared plane turns at every row.
+                    self.turn += self.n as f64 * (new - psi).abs();
                     psi = new;
                     continue;
                 }
             }
-            if j0 == 0 {
-                self.report_unfixed(&bad);
-                return Ok(());
-            }
-            self.apex_fix(j0, &bad, a.epsilon)?;
+            self.apex_like_fix(j0, &bad, a.epsilon)?;
         }
         Err(GeometryError::CorrectionFailed { column: j0 })
     }
 
-    /// Reports first-column rows that no fix can repair (user input is never moved).
-    fn report_unfixed(&mut self, bad: &[usize]) {
-        let x1 = self.dx.points[1];
-        for &i in bad {
-            let s = (x1 - self.vert(i, 0)).dot(self.plane_at(i, 1));
-            self.corrections.push(unfixed(i, s));
+    /// The apex fix at column j0 ≥ 1, or at the first column (j0 = 0) its counterpart of footnote 2.
+    fn apex_like_fix(
+        &mut self,
+        j0: usize,
+        bad: &[usize],
+        epsilon: f64,
+    ) -> Result<(), GeometryError> {
+        if j0 == 0 {
+            self.generatrix_fix(bad, epsilon)
+        } else {
+            self.apex_fix(j0, bad, epsilon)
         }
+    }
+
+    /// The first-column fix of footnote 2 (the apex-like fix at j = 0): the generatrix is scaled about
+    /// X_0 by `t = (1 − ε) min t_i` over the bad rows, `t_i = ((X_1 − X_0)·P_{i,1}) / ((G_{i,0} −
+    /// X_0)·P_{i,1})` ∈ (0, 1] being the factor that puts G_{i,0} on Π_{i,1}. Each G_{i,0} moves
+    /// towards X_0 along the line X_0 G_{i,0}, so the support frames, hence the planes Π_{·,1} of the
+    /// ratio and coplanar rules, do not change, and Eq. 2 then holds with margin ε·(X_1 − X_0)·P_{i,1}
+    /// for every bad row (and keeps holding for the good ones). One record, the generatrix's total
+    /// scale factor old → new.
+    fn generatrix_fix(&mut self, bad: &[usize], epsilon: f64) -> Result<(), GeometryError> {
+        let (x0, x1) = (self.dx.points[0], self.dx.points[1]);
+        let mut t_min = f64::INFINITY;
+        for &i in bad {
+            let p = self.plane_at(i, 1);
+            let t = (x1 - x0).dot(p) / (self.vert(i, 0) - x0).dot(p);
+            t_min = if t.is_nan() { f64::NAN } else { t_min.min(t) };
+        }
+        let t = (1.0 - epsilon) * t_min;
+        if !(t > 0.0 && t < 1.0) {
+            return Err(GeometryError::CorrectionFailed { column: 0 });
+        }
+        for i in 0..self.n {
+            let g = &mut self.verts[i * self.m];
+            *g = x0 + (*g - x0) * t;
+        }
+        let old = self.generatrix_scale;
+        self.generatrix_scale *= t;
+        self.corrections.push(Correction {
+            kind: CorrectionKind::Generatrix,
+            column: 0,
+            row: None,
+            old,
+            new: self.generatrix_scale,
+        });
+        Ok(())
     }
 
     /// The apex fix at column j0 ≥ 1 (Appendix A): a' = min over the bad rows; a_{j0} = (1 − ε) a';
@@ -974,11 +1015,10 @@ impl<'a> Sweep<'a> {
                 });
             }
             self.verts[i * self.m + j0] = g;
-            if j0 >= 2 {
-                let s1 = (g - xs[0]).dot(self.plane_at(i, j0 - 1));
-                let s2 = (xs[1] - self.vert(i, j0 - 1)).dot(p);
-                self.configs[i * (self.m - 1) + j0 - 2] = Configuration::from_signs(s1, s2);
-            }
+            let p_prev = self.plane_before(i, j0 - 1);
+            let s1 = (g - xs[0]).dot(p_prev);
+            let s2 = (xs[1] - self.vert(i, j0 - 1)).dot(p);
+            self.configs[i * (self.m - 1) + j0 - 1] = Configuration::from_signs(s1, s2);
         }
         Ok(())
     }

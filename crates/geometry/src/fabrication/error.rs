@@ -153,7 +153,7 @@ pub enum FabricationError {
     BadLabel {
         /// Row i.
         row: usize,
-        /// Column j (1 … M−2).
+        /// Column j (0 … M−2).
         column: usize,
         /// The offending label.
         label: String,

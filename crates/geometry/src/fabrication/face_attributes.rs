@@ -64,7 +64,7 @@ pub enum FaceClass {
     MinusMinus,
     /// (+−) or (−+) involved: the apex lies on the directrix edge (a_{j+1} < 0).
     NegativeApex,
-    /// Column 0 (no construction plane Π_{i,0}) or no configuration given.
+    /// No configuration given (column 0 of the older M−2-label tables).
     Unclassified,
 }
 
@@ -95,7 +95,7 @@ impl FaceClass {
     }
 
     /// Its colour (sRGB, 0–1): calm blue for the desired case, red, orange and purple for the others,
-    /// and a pale neutral (the plain surface colour) for the unclassified first column.
+    /// and a pale neutral (the plain surface colour) for faces without configurations.
     pub fn colour(self) -> DVec3 {
         match self {
             Self::Convex => DVec3::new(0.56, 0.71, 0.85),
@@ -123,14 +123,21 @@ fn parse_label(label: &str) -> Option<(bool, bool)> {
 }
 
 /// The class of every face of `mesh` (row-major over quad rows × quad columns) from the construction's
-/// configurations: N rows of M−2 labels, row i entry k being c_{i,k+1}. Faces of column 0 are
-/// [`FaceClass::Unclassified`].
+/// configurations: N rows of M−1 labels, row i entry j being c_{i,j} (j = 0 … M−2, one per face
+/// column). Tables of M−2 labels (c_{i,1} … c_{i,M−2}, without the first column) are read too; their
+/// faces of column 0 are [`FaceClass::Unclassified`].
 pub fn face_classes(
     mesh: &QuadGrid,
     labels: &[Vec<String>],
 ) -> Result<Vec<FaceClass>, FabricationError> {
     mesh.validate()?;
-    let cols = mesh.cols.saturating_sub(2);
+    let full = mesh.cols.saturating_sub(1);
+    let cols = match labels.first() {
+        Some(row) if row.len() + 1 == full => full - 1,
+        _ => full,
+    };
+    // Face column j reads label j − shift.
+    let shift = full - cols;
     if labels.len() != mesh.rows {
         return Err(FabricationError::WrongLength {
             what: "configurations",
@@ -143,14 +150,14 @@ pub fn face_classes(
         if row.len() != cols {
             return Err(FabricationError::WrongLength {
                 what: "configurations row",
-                expected: format!("{cols} labels in row {i} (M − 2)"),
+                expected: format!("{cols} labels in row {i} (M − 1, as row 0)"),
                 got: row.len(),
             });
         }
         for (k, l) in row.iter().enumerate() {
             parsed.push(parse_label(l).ok_or_else(|| FabricationError::BadLabel {
                 row: i,
-                column: k + 1,
+                column: k + shift,
                 label: l.clone(),
             })?);
         }
@@ -159,11 +166,12 @@ pub fn face_classes(
     for i in 0..mesh.quad_rows() {
         let i1 = (i + 1) % mesh.rows;
         for j in 0..mesh.quad_cols() {
-            if j == 0 || j > cols {
+            if j < shift {
                 out.push(FaceClass::Unclassified);
                 continue;
             }
-            let (a, b) = (parsed[i * cols + j - 1], parsed[i1 * cols + j - 1]);
+            let k = j - shift;
+            let (a, b) = (parsed[i * cols + k], parsed[i1 * cols + k]);
             out.push(match (a, b) {
                 ((true, false), _)
                 | ((false, true), _)
@@ -227,6 +235,27 @@ mod tests {
                 column: 2,
                 ..
             })
+        ));
+        // The full table (M − 1 labels) classifies column 0 too.
+        let full = vec![
+            l(&["--", "++", "--"]),
+            l(&["++", "++", "--"]),
+            l(&["++", "--", "+-"]),
+        ];
+        assert_eq!(
+            face_classes(&mesh, &full).unwrap(),
+            vec![
+                NonConvex,
+                Convex,
+                MinusMinus,
+                Convex,
+                NonConvex,
+                NegativeApex
+            ]
+        );
+        assert!(matches!(
+            face_classes(&mesh, &[l(&["++"; 3]), l(&["++"; 2]), l(&["++"; 3])]),
+            Err(FabricationError::WrongLength { .. })
         ));
     }
 

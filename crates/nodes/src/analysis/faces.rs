@@ -38,11 +38,11 @@ node! {
     }
 }
 
-/// Reads the configurations: N lists of M−2 labels.
+/// Reads the configurations: N lists of M−1 labels.
 fn label_rows(v: &Value) -> Result<Vec<Vec<String>>, NodeError> {
     let rows = v
         .as_list()
-        .ok_or_else(|| NodeError::new("configurations must be N lists of M−2 labels"))?;
+        .ok_or_else(|| NodeError::new("configurations must be N lists of M−1 labels"))?;
     rows.iter()
         .enumerate()
         .map(|(i, row)| match row {
@@ -67,14 +67,14 @@ fn label_rows(v: &Value) -> Result<Vec<Vec<String>>, NodeError> {
 
 node! {
     /// The configuration class of every face of a cone-net (paper Sec. 4.2.1, Fig. 5b) from the
-    /// construction's `configurations` (N lists of M−2 labels c_{i,j}): face (i, j) combines c_{i,j}
+    /// construction's `configurations` (N lists of M−1 labels c_{i,j}): face (i, j) combines c_{i,j}
     /// and c_{i+1,j}. Classes: 0 convex ((++),(++), green), 1 non-convex (mixed, red), 2 minus-minus
-    /// ((−−),(−−), orange), 3 negative apex ((+−) or (−+), purple), 4 unclassified (column 0, grey).
+    /// ((−−),(−−), orange), 3 negative apex ((+−) or (−+), purple), 4 unclassified (no configuration: column 0 of an older M−2-label table, grey).
     #[node(id = "analysis.face_classes", category = "Analysis")]
     pub fn face_classes(
         /// The constructed cone-net.
         mesh: k::QuadMesh,
-        /// The construction's configurations: N lists of M−2 labels (`++`, `--`, `+-`, `-+`).
+        /// The construction's configurations: N lists of M−1 labels (`++`, `--`, `+-`, `-+`).
         configurations: k::Tree<k::Text>,
     ) -> (
         /// Class index per face (0 … 4, row-major over the quads).
