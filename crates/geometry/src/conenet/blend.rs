@@ -18,8 +18,9 @@
 //! fix, no form does, and the construction is the single sweep Q.
 
 use super::correction::{Correction, CorrectionKind};
-use super::ctube::{Prepared, Raw};
+use super::ctube::Raw;
 use super::inputs::Assistance;
+use super::prepare::Prepared;
 use crate::GeometryError;
 
 /// The number of steps of λ from α to 1 when α itself would exceed a bound.

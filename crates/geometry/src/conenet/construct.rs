@@ -4,8 +4,9 @@
 use glam::DVec3;
 
 use super::blend::assisted;
-use super::ctube::{Raw, prepare};
+use super::ctube::Raw;
 use super::inputs::{ConstructInputs, CoplanarInputs, check_unit_interval};
+use super::prepare::prepare;
 use super::result::ConeNet;
 use super::sweep::{Rule, Sweep, zeroed_points};
 use crate::GeometryError;

@@ -88,7 +88,7 @@ pub fn apex_fix_value(g: DVec3, x: [DVec3; 3], p0: DVec3, p1: DVec3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::conenet::ctube::step;
+    use crate::conenet::prepare::step;
 
     #[test]
     fn apex_fix_value_puts_the_vertex_on_the_next_plane() {

@@ -27,6 +27,7 @@ pub mod inputs;
 mod lanes;
 pub mod normalize;
 mod ordered;
+mod prepare;
 pub mod quality;
 pub mod ratios;
 pub mod result;

@@ -20,10 +20,10 @@ use rayon::prelude::*;
 use super::configuration::{Configuration, generatrix_normal};
 use super::coplanar::PlanePencil;
 use super::correction::{Correction, CorrectionKind, apex_fix_value};
-use super::ctube::{Prepared, step};
 use super::directrix::SweptDirectrix;
 use super::inputs::{Assistance, Grid};
 use super::lanes::{F, LANES, M, V3};
+use super::prepare::{Prepared, step};
 use super::ratios::{RatioColumn, SupportFrame, angle_to_ratio, ratio_planes, ratio_to_angle};
 use super::tolerance;
 use crate::GeometryError;
@@ -438,7 +438,7 @@ struct StepLanes {
 }
 
 /// Step j of every lane: G_{·,j+1} from G_{·,j} = `g` and the planes `p` of column j + 1; `p_prev`
-/// are the planes of column j (for s1). The same arithmetic as [`super::ctube::step`].
+/// are the planes of column j (for s1). The same arithmetic as [`super::prepare::step`].
 #[inline(always)]
 fn step_lanes(ctx: &Ctx<'_>, j: usize, g: &V3, p: &V3, p_prev: &V3, check: bool) -> StepLanes {
     let (x0, x1, a) = (V3::splat(ctx.x[j]), V3::splat(ctx.x[j + 1]), ctx.apex[j]);
