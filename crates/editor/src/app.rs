@@ -23,7 +23,7 @@ use crate::recovery::{Autosave, Recovered, Recovery};
 use crate::settings::Settings;
 use crate::unsaved::{self, Answer, Replace};
 use crate::viewport::Viewport;
-use crate::worker::{NodeStatus, Worker};
+use crate::worker::{Carry, NodeStatus, Worker};
 
 pub use crate::viewport::GpuTarget;
 
@@ -166,6 +166,9 @@ pub struct Latency {
     pub eval_ms: f64,
     /// The last scene build time, in milliseconds.
     pub scene_ms: f64,
+    /// Nodes that ran in the last evaluation (the evaluation counter: an edit re-runs its
+    /// downstream cone, a reopened file nothing).
+    pub ran: usize,
 }
 
 /// The editor.
@@ -212,6 +215,9 @@ pub struct EditorApp {
     pub show_timings: bool,
     worker: Worker,
     submitted: Option<(u64, u64, crate::preview::PreviewOptions)>,
+    /// The last graph sent to the worker, its generation and folder: a graph of a new
+    /// generation takes over from it (the evaluator is kept).
+    last_evaluated: Option<(u64, Graph, Option<PathBuf>)>,
     pending_change: Option<Instant>,
     awaiting_picture: Option<(u64, Instant)>,
     recovery: Recovery,
@@ -305,6 +311,7 @@ impl EditorApp {
             show_timings: true,
             worker: Worker::spawn(options.wake.clone()),
             submitted: None,
+            last_evaluated: None,
             pending_change: Some(Instant::now()),
             awaiting_picture: None,
             recovery,
@@ -1009,6 +1016,7 @@ impl EditorApp {
             self.statuses_view = r.view;
             self.latency.eval_ms = r.eval_ms;
             self.latency.scene_ms = r.stats.build_ms;
+            self.latency.ran = r.ran;
             self.viewport.set_scene(r.scene, r.stats);
             self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
         }
@@ -1027,10 +1035,27 @@ impl EditorApp {
         }
         let changed_at = self.pending_change.take().unwrap_or_else(Instant::now);
         let base = self.doc.base_dir();
+        let generation = self.doc.generation();
+        if let Some((from, previous, previous_base)) = self
+            .last_evaluated
+            .take()
+            .filter(|(g, ..)| *g != generation)
+        {
+            // Another document (or this one replaced wholesale): it continues the graph the
+            // worker evaluated last, which keeps its evaluator and the results of shared nodes.
+            let continued = self.doc.take_over(&previous);
+            self.worker.set_carry(Some(Carry {
+                from_generation: from,
+                continued: Arc::new(continued),
+                same_folder: previous_base == base,
+            }));
+        }
+        let graph = self.doc.eval_graph();
+        self.last_evaluated = Some((generation, graph.clone(), base.clone()));
         self.worker.submit_view(
-            self.doc.eval_graph(),
+            graph,
             self.doc.view_path(),
-            self.doc.generation(),
+            generation,
             self.viewport.options,
             base,
             changed_at,
@@ -1057,6 +1082,7 @@ impl EditorApp {
             self.statuses_view = r.view;
             self.latency.eval_ms = r.eval_ms;
             self.latency.scene_ms = r.stats.build_ms;
+            self.latency.ran = r.ran;
             self.viewport.set_scene(r.scene, r.stats);
             self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
         }

@@ -135,8 +135,10 @@ pub struct GraphDocument {
     pub live_error: Option<String>,
     /// Changes since the last save.
     dirty: bool,
-    /// Bumped when the graph was replaced wholesale (open, new, undo, redo): the evaluator must
-    /// start afresh, since revisions of a restored graph are not comparable with its memos.
+    /// Bumped when the graph was replaced wholesale (open, new, leaving a cluster, an undo across
+    /// cluster levels): revisions of the new graph are not comparable with the evaluator's
+    /// memos, so the new graph first takes over from the last evaluated one
+    /// ([`GraphDocument::take_over`]).
     generation: u64,
     /// Bumped on every change (semantic or not); cheap "did anything change" check.
     version: u64,
@@ -306,6 +308,18 @@ impl GraphDocument {
         }
     }
 
+    /// Makes the graph the worker evaluates ([`GraphDocument::eval_graph`]) the successor of
+    /// `previous`, the graph it evaluated last — of another document, or of this one before its
+    /// graph was replaced wholesale ([`GraphDocument::generation`] changed): the nodes it shares
+    /// with `previous` keep their stamps ([`Graph::take_over`]), so the worker carries its
+    /// evaluator over and re-runs only what differs.
+    pub fn take_over(&mut self, previous: &Graph) -> Vec<cnets_engine::Continued> {
+        match &mut self.live {
+            Some(live) if !self.stack.is_empty() => live.take_over(previous),
+            _ => self.graph.take_over(previous),
+        }
+    }
+
     /// Opens the cluster node `id` of the graph being edited: from now on edits apply to its
     /// subgraph. Not an undo step (undo restores where each step was made).
     pub fn enter(&mut self, id: &str) -> Result<(), String> {
@@ -444,7 +458,7 @@ impl GraphDocument {
     }
 
     /// Makes this document's generation follow `previous` (the document it replaces), so the
-    /// worker starts a fresh evaluator for it.
+    /// worker carries its evaluator over to it ([`GraphDocument::take_over`]).
     pub fn start_after(&mut self, previous: u64) {
         self.generation = previous + 1;
     }

@@ -1,0 +1,114 @@
+//! Opening keeps the evaluator; graphs open readable; values are readable in place (issue 14).
+
+mod common;
+
+use std::collections::{HashSet, VecDeque};
+use std::path::Path;
+
+use cnets_editor::app::EditorApp;
+use cnets_editor::unsaved::Replace;
+use common::{graphs_dir, harness, settle, temp_config};
+use egui_kittest::Harness;
+
+fn face_positions(app: &EditorApp) -> Vec<[f32; 3]> {
+    app.viewport
+        .scene()
+        .face_vertices()
+        .iter()
+        .map(|v| v.position)
+        .collect()
+}
+
+fn open(h: &mut Harness<'static, EditorApp>, path: &Path) {
+    h.state_mut().request(Replace::Open(path.to_path_buf()));
+    settle(h);
+    assert_eq!(
+        h.state().doc.path.as_deref(),
+        Some(path),
+        "{}: {:?}",
+        h.state().message,
+        h.state().load_failure.as_ref().map(|f| &f.diagnostics)
+    );
+}
+
+/// The nodes downstream of `id` (itself included) in the open document.
+fn downstream(app: &EditorApp, id: &str) -> usize {
+    let wires = app.doc.graph.wires();
+    let mut seen = HashSet::from([id.to_string()]);
+    let mut queue = VecDeque::from([id.to_string()]);
+    while let Some(n) = queue.pop_front() {
+        for w in wires.iter().filter(|w| w.from == n) {
+            if seen.insert(w.to.clone()) {
+                queue.push_back(w.to.clone());
+            }
+        }
+    }
+    seen.len()
+}
+
+#[test]
+fn open_keeps_the_evaluator_and_reruns_only_what_differs() {
+    let dir = temp_config("open-keeps-evaluator-files");
+    let text = std::fs::read_to_string(graphs_dir().join("editor-default.ron")).unwrap();
+    let a = dir.join("a.ron");
+    std::fs::write(&a, &text).unwrap();
+    // A file sharing every node but one slider value.
+    let b = dir.join("b.ron");
+    let changed = text.replacen("\"value\": 0.5", "\"value\": 0.62", 1);
+    assert_ne!(changed, text, "the ratio slider's value is in the file");
+    std::fs::write(&b, changed).unwrap();
+
+    let mut h = harness("open-keeps-evaluator");
+    h.state_mut().request(Replace::New);
+    settle(&mut h);
+    open(&mut h, &a);
+    let all = h.state().doc.graph.node_count();
+    assert_eq!(
+        h.state().latency.ran,
+        all,
+        "from an empty graph every node runs"
+    );
+    let mesh_a = face_positions(h.state());
+    assert!(!mesh_a.is_empty());
+
+    // Reopening the same file recomputes nothing and shows the same design.
+    open(&mut h, &a);
+    assert_eq!(h.state().latency.ran, 0, "nothing recomputed on reopening");
+    assert_eq!(face_positions(h.state()), mesh_a);
+
+    // A file that differs in one slider re-runs only that slider's downstream cone.
+    open(&mut h, &b);
+    let cone = downstream(h.state(), "ratio");
+    assert!(cone < all, "the test needs nodes outside the cone");
+    assert_eq!(
+        h.state().latency.ran,
+        cone,
+        "only the changed slider's cone"
+    );
+    let mesh_b = face_positions(h.state());
+    assert_ne!(mesh_b, mesh_a, "the new ratio reached the viewport");
+
+    // The same as a fresh evaluation of that file.
+    h.state_mut().request(Replace::New);
+    settle(&mut h);
+    open(&mut h, &b);
+    assert_eq!(h.state().latency.ran, all);
+    assert_eq!(face_positions(h.state()), mesh_b);
+
+    // Edits after an open stay incremental, and undo keeps the evaluator.
+    open(&mut h, &a);
+    assert_eq!(h.state().latency.ran, cone);
+    h.state_mut()
+        .doc
+        .edit(None, |g, _| {
+            g.set_value("ratio", "value", cnets_engine::Value::Number(0.3))
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+    settle(&mut h);
+    assert_eq!(h.state().latency.ran, cone);
+    assert!(h.state_mut().doc.undo());
+    settle(&mut h);
+    assert_eq!(h.state().latency.ran, cone);
+    assert_eq!(face_positions(h.state()), mesh_a);
+}
