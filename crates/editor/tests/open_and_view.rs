@@ -112,3 +112,78 @@ fn open_keeps_the_evaluator_and_reruns_only_what_differs() {
     assert_eq!(h.state().latency.ran, cone);
     assert_eq!(face_positions(h.state()), mesh_a);
 }
+
+/// The texts painted in the last frame that start with `prefix`, with their height on screen
+/// (points; the harness draws one pixel a point).
+fn painted_texts(h: &Harness<'static, EditorApp>, prefix: &str) -> Vec<(String, f32)> {
+    h.output()
+        .shapes
+        .iter()
+        .filter_map(|c| match &c.shape {
+            egui::Shape::Text(t) if t.galley.text().starts_with(prefix) => Some((
+                t.galley.text().to_string(),
+                t.galley.rows.first().map_or(0.0, |r| r.height()),
+            )),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn mapper_handles_show_their_values_while_hovered_and_dragged() {
+    use cnets_editor::mapper::{handle_label, handles};
+    let mut h = harness("mapper-labels");
+    let id = h
+        .state_mut()
+        .add_node("mapper.graph", [760.0, 0.0])
+        .unwrap();
+    h.run_steps(2);
+    let centre = h.state().canvas.node_rect(&id).expect("drawn").center();
+    // At the smallest zoom, where the canvas' own text is smallest.
+    h.state_mut()
+        .canvas
+        .zoom_to(cnets_editor::canvas::MIN_ZOOM, Some(centre));
+    h.run_steps(4);
+    assert!(
+        painted_texts(&h, "u ").is_empty(),
+        "no label before hovering"
+    );
+    let b = handles(h.state().doc.graph.node(&id).unwrap())[1];
+    let at = h
+        .state()
+        .canvas
+        .mapper_screen_pos(&id, b.x as f32, b.y as f32)
+        .unwrap();
+    h.hover_at(at);
+    h.run_steps(2);
+    let shown = painted_texts(&h, "u ");
+    assert_eq!(shown.len(), 1, "{shown:?}");
+    assert_eq!(shown[0].0, handle_label(b));
+    assert!(shown[0].1 >= 10.0, "readable at zoom 0.5: {shown:?}");
+    eprintln!("label at zoom {}: {shown:?}", h.state().canvas.zoom());
+    h.snapshot("editor_mapper_handle_label");
+    // While dragged, the label follows the (snapped) value being written.
+    let to = h
+        .state()
+        .canvas
+        .mapper_screen_pos(&id, b.x as f32, 0.3)
+        .unwrap();
+    h.drag_at(at);
+    h.run_steps(2);
+    for t in [0.5, 1.0] {
+        h.hover_at(at + (to - at) * t);
+        h.run_steps(2);
+    }
+    let now = handles(h.state().doc.graph.node(&id).unwrap())[1];
+    assert!((now.y - 0.3).abs() < 0.05, "dragged: {now:?}");
+    let shown = painted_texts(&h, "u ");
+    assert_eq!(shown.len(), 1, "{shown:?}");
+    assert_eq!(shown[0].0, handle_label(now), "the value being written");
+    h.drop_at(to);
+    h.hover_at(centre + egui::vec2(0.0, 400.0));
+    h.run_steps(3);
+    assert!(
+        painted_texts(&h, "u ").is_empty(),
+        "gone once the pointer left"
+    );
+}
