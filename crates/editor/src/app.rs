@@ -171,6 +171,9 @@ pub struct Latency {
     pub ran: usize,
 }
 
+/// The status bar's hint when a document's nodes overlap (shown while they do).
+pub const OVERLAP_HINT: &str = "nodes overlap: View › Arrange graph (Ctrl+L) lays them out";
+
 /// The editor.
 pub struct EditorApp {
     /// Node types.
@@ -210,6 +213,9 @@ pub struct EditorApp {
     last_title: String,
     /// Check once the new document's nodes are measured whether they overlap (hint: Arrange).
     check_overlaps: bool,
+    /// The status bar shows [`OVERLAP_HINT`]: the document opened with overlapping nodes and they
+    /// still overlap.
+    pub overlap_hint: bool,
     /// Show timings and the busy spinner in the status bar (snapshot tests turn them off: they
     /// vary from run to run).
     pub show_timings: bool,
@@ -308,6 +314,7 @@ impl EditorApp {
             inbox: None,
             last_title: String::new(),
             check_overlaps: true,
+            overlap_hint: false,
             show_timings: true,
             worker: Worker::spawn(options.wake.clone()),
             submitted: None,
@@ -419,6 +426,7 @@ impl EditorApp {
         self.canvas = Canvas::new();
         self.canvas_view.clear();
         self.check_overlaps = true;
+        self.overlap_hint = false;
         self.refit_on_results = true;
         self.statuses.clear();
         self.viewport.reset();
@@ -1132,6 +1140,10 @@ impl EditorApp {
                 }
                 ui.separator();
                 ui.label(&self.message);
+                if self.overlap_hint {
+                    ui.separator();
+                    ui.label(OVERLAP_HINT);
+                }
             });
         });
         if self.optimization.open {
@@ -1235,9 +1247,10 @@ impl EditorApp {
         }
         if self.check_overlaps && self.canvas.measured(self.doc.graph.node_count()) {
             self.check_overlaps = false;
-            if self.canvas.has_overlaps() && self.message.is_empty() {
-                self.message = "nodes overlap: View › Arrange graph (Ctrl+L) lays them out".into();
-            }
+            self.overlap_hint = self.canvas.has_overlaps();
+        } else if self.overlap_hint && !self.canvas.has_overlaps() {
+            // The hint goes once the nodes no longer overlap (arranged, or moved apart).
+            self.overlap_hint = false;
         }
         self.show_dialog(&ctx);
         self.show_restore(&ctx);

@@ -9,6 +9,7 @@ use cnets_editor::app::EditorApp;
 use cnets_editor::unsaved::Replace;
 use common::{graphs_dir, harness, settle, temp_config};
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
 
 fn face_positions(app: &EditorApp) -> Vec<[f32; 3]> {
     app.viewport
@@ -160,7 +161,6 @@ fn mapper_handles_show_their_values_while_hovered_and_dragged() {
     assert_eq!(shown.len(), 1, "{shown:?}");
     assert_eq!(shown[0].0, handle_label(b));
     assert!(shown[0].1 >= 10.0, "readable at zoom 0.5: {shown:?}");
-    eprintln!("label at zoom {}: {shown:?}", h.state().canvas.zoom());
     h.snapshot("editor_mapper_handle_label");
     // While dragged, the label follows the (snapped) value being written.
     let to = h
@@ -186,4 +186,46 @@ fn mapper_handles_show_their_values_while_hovered_and_dragged() {
         painted_texts(&h, "u ").is_empty(),
         "gone once the pointer left"
     );
+}
+
+#[test]
+fn the_overlap_hint_goes_once_nodes_no_longer_overlap() {
+    let dir = temp_config("overlap-hint-files");
+    let file = dir.join("heap.ron");
+    std::fs::write(
+        &file,
+        r#"(
+    version: 1,
+    nodes: {
+        "a": (type: "param.number", position: (0.0, 0.0)),
+        "b": (type: "param.number", position: (20.0, 10.0)),
+        "c": (type: "math.add", position: (10.0, 30.0)),
+    },
+    edges: ["a.value -> c.a", "b.value -> c.b"],
+)"#,
+    )
+    .unwrap();
+    let mut h = harness("overlap-hint");
+    open(&mut h, &file);
+    assert!(h.state().canvas.has_overlaps());
+    assert!(h.state().overlap_hint, "{}", h.state().message);
+    let hint = cnets_editor::app::OVERLAP_HINT;
+    assert!(
+        h.query_by_label(hint).is_some(),
+        "the status bar shows the hint"
+    );
+    // Still overlapping: the hint stays.
+    h.run_steps(3);
+    assert!(h.state().overlap_hint);
+    // View › Arrange graph (Ctrl+L): laid out, the hint goes.
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::L);
+    h.run_steps(6);
+    assert!(!h.state().canvas.has_overlaps());
+    assert!(!h.state().overlap_hint);
+    assert!(h.query_by_label(hint).is_none(), "the hint is gone");
+    // A document whose nodes do not overlap gets no hint.
+    assert!(h.state_mut().open(&graphs_dir().join("editor-default.ron")));
+    settle(&mut h);
+    assert!(!h.state().canvas.has_overlaps());
+    assert!(!h.state().overlap_hint);
 }
