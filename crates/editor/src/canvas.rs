@@ -826,6 +826,43 @@ impl Viewer<'_> {
             nb.def.inputs.get(to.id.input)?.name.to_string(),
         ))
     }
+
+    /// "Rename port" in the context menu of a `graph.input` / `graph.output` node: a field with
+    /// the port's name and a Rename button, which sets the node's `name` (one undo step; the
+    /// cluster node keeps its wires on the renamed port, see [`crate::cluster_ports`]).
+    fn rename_port_menu(&mut self, ui: &mut Ui, id: &str) {
+        let current = match self.graph.node(id).and_then(|n| n.value_of("name")) {
+            Some(Value::Text(t)) => t.to_string(),
+            _ => String::new(),
+        };
+        let key = egui::Id::new(("rename-port", id));
+        let mut name: String = ui.data_mut(|d| d.get_temp(key)).unwrap_or(current.clone());
+        ui.label("Rename port");
+        let field = ui.add(
+            egui::TextEdit::singleline(&mut name)
+                .desired_width(140.0)
+                .id(key.with("field")),
+        );
+        let valid = crate::cluster_ports::valid_port_name(&name);
+        if !valid {
+            ui.weak("letters, digits and _ only");
+        }
+        let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        let clicked = ui
+            .add_enabled(valid && name != current, egui::Button::new("Rename"))
+            .clicked();
+        if valid && name != current && (clicked || enter) {
+            self.actions.push(CanvasAction::SetValue {
+                node: id.to_string(),
+                input: "name".into(),
+                value: Value::text(name.clone()),
+            });
+            ui.data_mut(|d| d.remove::<String>(key));
+            ui.close();
+        } else {
+            ui.data_mut(|d| d.insert_temp(key, name));
+        }
+    }
 }
 
 const ERROR_COLOR: Color32 = Color32::from_rgb(0xd6, 0x2f, 0x2f);
@@ -1246,6 +1283,13 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 self.actions.push(CanvasAction::ExplodeCluster(id.clone()));
                 ui.close();
             }
+        }
+        if let Some(n) = self.graph.node(&id)
+            && (n.def.id == cnets_engine::cluster::INPUT_TYPE
+                || n.def.id == cnets_engine::cluster::OUTPUT_TYPE)
+        {
+            ui.separator();
+            self.rename_port_menu(ui, &id);
         }
         if let Some(n) = self.graph.node(&id)
             && n.def.has_flag(NodeFlag::Export)

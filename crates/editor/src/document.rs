@@ -17,6 +17,7 @@ use cnets_engine::cluster::{Cluster, ClusterSource};
 use cnets_engine::file::{self, GraphMeta, LoadOptions};
 use cnets_engine::{Graph, Registry, WireRef};
 
+use crate::cluster_ports::Renames;
 use crate::history::{EditKey, History, Snapshot};
 
 /// A graph around a cluster opened in place: the graph as it was when the cluster was opened.
@@ -102,6 +103,9 @@ pub fn rebuild(level: &Level, graph: &Graph, meta: &GraphMeta) -> Result<(Graph,
     let dropped = parent
         .replace_def(&level.node, Arc::new(cluster.node_def()))
         .map_err(|e| e.to_string())?;
+    // Renamed ports keep their wires and values.
+    let dropped =
+        Renames::between(template, graph).carry(&mut parent, &level.node, &level.graph, dropped);
     Ok((
         parent,
         Rebuilt {
@@ -412,14 +416,29 @@ impl GraphDocument {
             }
         };
         let Some(def) = def else { return };
+        let renames = Renames::between(&root.cluster.template, &graph);
         let live = self.live.get_or_insert_with(|| root.graph.clone());
         if live.replace_def(&root.node, def).is_err() {
             *live = root.graph.clone();
         }
         let present = live.wires();
         for w in root.graph.wires() {
-            if (w.from == root.node || w.to == root.node) && !present.contains(&w) {
+            if w.from != root.node && w.to != root.node {
+                continue;
+            }
+            // A renamed port keeps its wires (and, below, its value).
+            let w = renames.rename(&root.node, &w).unwrap_or(w);
+            if !present.contains(&w) {
                 let _ = live.connect(&w.from, &w.output, &w.to, &w.input);
+            }
+        }
+        if let Some(old) = root.graph.node(&root.node) {
+            for (from, to) in &renames.inputs {
+                if let Some(v) = old.value_of(from)
+                    && live.node(&root.node).and_then(|n| n.value_of(to)) != Some(v)
+                {
+                    let _ = live.set_value(&root.node, to, v.clone());
+                }
             }
         }
         self.live_error = None;

@@ -310,8 +310,9 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
             build_scene(graph, evaluator, &request.options),
         )
     } else {
-        // Inside opened clusters: the innermost instance's subgraph, with the values the cluster
-        // received; every inner node is evaluated (not only those feeding the outputs).
+        // Inside opened clusters: the statuses of the innermost instance's subgraph, with the
+        // values the cluster received (every inner node is evaluated, not only those feeding the
+        // outputs); the 3D view keeps showing the whole design.
         let inner = descend(graph, &request.view, &mut |cluster, g, ev| {
             let wanted: Vec<_> = g
                 .nodes()
@@ -322,19 +323,12 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
             let mut inner = NodeContext::new(None, cluster.base_dir.clone());
             inner.cancel = request.cancel.clone();
             ev.evaluate(g, &wanted, &inner, &mut |_, _| {});
-            (statuses(g, ev), build_scene(g, ev, &request.options))
+            statuses(g, ev)
         });
-        match inner {
-            Some(r) => r,
-            None => (
-                HashMap::new(),
-                build_scene(
-                    &Graph::new(graph.registry().clone()),
-                    evaluator,
-                    &request.options,
-                ),
-            ),
-        }
+        (
+            inner.unwrap_or_default(),
+            build_scene(graph, evaluator, &request.options),
+        )
     };
     if request.cancel.load(Ordering::Relaxed) {
         return None;

@@ -229,3 +229,139 @@ fn the_overlap_hint_goes_once_nodes_no_longer_overlap() {
     assert!(!h.state().canvas.has_overlaps());
     assert!(!h.state().overlap_hint);
 }
+
+/// The wires of the graph being edited, as text.
+fn wire_texts(app: &EditorApp) -> Vec<String> {
+    app.doc
+        .graph
+        .wires()
+        .iter()
+        .map(ToString::to_string)
+        .collect()
+}
+
+#[test]
+fn inside_a_cluster_the_3d_view_shows_the_whole_design_and_ports_rename_keeping_their_wires() {
+    use cnets_engine::cluster::OUTPUT_TYPE;
+    let mut h = harness("cluster-ports");
+    let mesh = face_positions(h.state());
+    assert!(!mesh.is_empty());
+    let ids = ["directrix".to_string(), "generatrix".to_string()];
+    assert!(h.state_mut().make_cluster(&ids), "{}", h.state().message);
+    settle(&mut h);
+    let outer: Vec<String> = wire_texts(h.state());
+    let wire = outer
+        .iter()
+        .find(|w| w.starts_with("cluster.") && w.ends_with("-> construct.directrix"))
+        .unwrap_or_else(|| panic!("the cluster feeds the directrix: {outer:?}"))
+        .clone();
+    let port = wire["cluster.".len()..wire.find(" ->").unwrap()].to_string();
+    h.state_mut().open_cluster("cluster");
+    settle(&mut h);
+    assert_eq!(h.state().doc.depth(), 1);
+    // The inside holds only the two curves; the 3D view still shows the whole design.
+    assert!(
+        face_positions(h.state()) == mesh,
+        "the whole design, inside too"
+    );
+
+    // Rename port, from the graph.output node's context menu.
+    let out = h
+        .state()
+        .doc
+        .graph
+        .nodes()
+        .map(|(_, n)| n)
+        .find(|n| {
+            n.def.id == OUTPUT_TYPE && n.value_of("name") == Some(&cnets_engine::Value::text(&port))
+        })
+        .map(|n| n.id.clone())
+        .expect("the graph.output node of that port");
+    let title = h.state().canvas.node_rect(&out).expect("drawn");
+    let at = h
+        .state()
+        .canvas
+        .to_screen(title.left_top() + egui::vec2(title.width() * 0.5, 8.0));
+    h.hover_at(at);
+    h.run_steps(1);
+    h.event(egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Secondary,
+        pressed: true,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.event(egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Secondary,
+        pressed: false,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run_steps(3);
+    assert!(h.query_by_label("Rename port").is_some(), "the menu entry");
+    h.ctx.data_mut(|d| {
+        d.insert_temp(
+            egui::Id::new(("rename-port", out.as_str())),
+            "rail".to_string(),
+        )
+    });
+    h.run_steps(1);
+    h.get_by_label("Rename").click();
+    h.run_steps(3);
+    settle(&mut h);
+    assert_eq!(
+        h.state()
+            .doc
+            .graph
+            .node(&out)
+            .and_then(|n| n.value_of("name")),
+        Some(&cnets_engine::Value::text("rail"))
+    );
+    // The live copy keeps the wire on the renamed port: the design is unchanged.
+    assert!(
+        face_positions(h.state()) == mesh,
+        "still wired while inside"
+    );
+
+    // Back out: the cluster node's port is renamed and keeps its wire.
+    h.state_mut().leave_to(0);
+    settle(&mut h);
+    let app = h.state();
+    let outputs: Vec<&str> = app
+        .doc
+        .graph
+        .node("cluster")
+        .unwrap()
+        .def
+        .outputs
+        .iter()
+        .map(|p| p.name.as_ref())
+        .collect();
+    assert!(
+        outputs.contains(&"rail") && !outputs.contains(&port.as_str()),
+        "{outputs:?}"
+    );
+    let now = wire_texts(app);
+    assert!(
+        now.contains(&"cluster.rail -> construct.directrix".to_string()),
+        "{now:?}"
+    );
+    assert_eq!(now.len(), outer.len(), "no wire dropped: {}", app.message);
+    assert!(!app.message.contains("dropped"), "{}", app.message);
+    assert!(
+        app.doc.to_ron().contains("\"name\": \"rail\""),
+        "stored in the cluster"
+    );
+    assert!(face_positions(app) == mesh);
+    // Undo takes the rename back (inside the cluster, where it was made).
+    assert!(h.state_mut().doc.undo());
+    settle(&mut h);
+    assert!(h.state_mut().doc.undo());
+    settle(&mut h);
+    h.state_mut().leave_to(0);
+    settle(&mut h);
+    assert_eq!(
+        wire_texts(h.state()),
+        outer,
+        "the old port name and its wire"
+    );
+}
