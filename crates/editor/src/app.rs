@@ -23,7 +23,7 @@ use crate::recovery::{Autosave, Recovered, Recovery};
 use crate::settings::Settings;
 use crate::unsaved::{self, Answer, Replace};
 use crate::viewport::Viewport;
-use crate::worker::{NodeStatus, Worker};
+use crate::worker::{Carry, NodeStatus, Worker};
 
 pub use crate::viewport::GpuTarget;
 
@@ -166,7 +166,13 @@ pub struct Latency {
     pub eval_ms: f64,
     /// The last scene build time, in milliseconds.
     pub scene_ms: f64,
+    /// Nodes that ran in the last evaluation (the evaluation counter: an edit re-runs its
+    /// downstream cone, a reopened file nothing).
+    pub ran: usize,
 }
+
+/// The status bar's hint when a document's nodes overlap (shown while they do).
+pub const OVERLAP_HINT: &str = "nodes overlap: View › Arrange graph (Ctrl+L) lays them out";
 
 /// The editor.
 pub struct EditorApp {
@@ -207,11 +213,17 @@ pub struct EditorApp {
     last_title: String,
     /// Check once the new document's nodes are measured whether they overlap (hint: Arrange).
     check_overlaps: bool,
+    /// The status bar shows [`OVERLAP_HINT`]: the document opened with overlapping nodes and they
+    /// still overlap.
+    pub overlap_hint: bool,
     /// Show timings and the busy spinner in the status bar (snapshot tests turn them off: they
     /// vary from run to run).
     pub show_timings: bool,
     worker: Worker,
     submitted: Option<(u64, u64, crate::preview::PreviewOptions)>,
+    /// The last graph sent to the worker, its generation and folder: a graph of a new
+    /// generation takes over from it (the evaluator is kept).
+    last_evaluated: Option<(u64, Graph, Option<PathBuf>)>,
     pending_change: Option<Instant>,
     awaiting_picture: Option<(u64, Instant)>,
     recovery: Recovery,
@@ -302,9 +314,11 @@ impl EditorApp {
             inbox: None,
             last_title: String::new(),
             check_overlaps: true,
+            overlap_hint: false,
             show_timings: true,
             worker: Worker::spawn(options.wake.clone()),
             submitted: None,
+            last_evaluated: None,
             pending_change: Some(Instant::now()),
             awaiting_picture: None,
             recovery,
@@ -412,6 +426,7 @@ impl EditorApp {
         self.canvas = Canvas::new();
         self.canvas_view.clear();
         self.check_overlaps = true;
+        self.overlap_hint = false;
         self.refit_on_results = true;
         self.statuses.clear();
         self.viewport.reset();
@@ -1009,6 +1024,7 @@ impl EditorApp {
             self.statuses_view = r.view;
             self.latency.eval_ms = r.eval_ms;
             self.latency.scene_ms = r.stats.build_ms;
+            self.latency.ran = r.ran;
             self.viewport.set_scene(r.scene, r.stats);
             self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
         }
@@ -1027,10 +1043,27 @@ impl EditorApp {
         }
         let changed_at = self.pending_change.take().unwrap_or_else(Instant::now);
         let base = self.doc.base_dir();
+        let generation = self.doc.generation();
+        if let Some((from, previous, previous_base)) = self
+            .last_evaluated
+            .take()
+            .filter(|(g, ..)| *g != generation)
+        {
+            // Another document (or this one replaced wholesale): it continues the graph the
+            // worker evaluated last, which keeps its evaluator and the results of shared nodes.
+            let continued = self.doc.take_over(&previous);
+            self.worker.set_carry(Some(Carry {
+                from_generation: from,
+                continued: Arc::new(continued),
+                same_folder: previous_base == base,
+            }));
+        }
+        let graph = self.doc.eval_graph();
+        self.last_evaluated = Some((generation, graph.clone(), base.clone()));
         self.worker.submit_view(
-            self.doc.eval_graph(),
+            graph,
             self.doc.view_path(),
-            self.doc.generation(),
+            generation,
             self.viewport.options,
             base,
             changed_at,
@@ -1057,6 +1090,7 @@ impl EditorApp {
             self.statuses_view = r.view;
             self.latency.eval_ms = r.eval_ms;
             self.latency.scene_ms = r.stats.build_ms;
+            self.latency.ran = r.ran;
             self.viewport.set_scene(r.scene, r.stats);
             self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
         }
@@ -1106,6 +1140,10 @@ impl EditorApp {
                 }
                 ui.separator();
                 ui.label(&self.message);
+                if self.overlap_hint {
+                    ui.separator();
+                    ui.label(OVERLAP_HINT);
+                }
             });
         });
         if self.optimization.open {
@@ -1209,9 +1247,10 @@ impl EditorApp {
         }
         if self.check_overlaps && self.canvas.measured(self.doc.graph.node_count()) {
             self.check_overlaps = false;
-            if self.canvas.has_overlaps() && self.message.is_empty() {
-                self.message = "nodes overlap: View › Arrange graph (Ctrl+L) lays them out".into();
-            }
+            self.overlap_hint = self.canvas.has_overlaps();
+        } else if self.overlap_hint && !self.canvas.has_overlaps() {
+            // The hint goes once the nodes no longer overlap (arranged, or moved apart).
+            self.overlap_hint = false;
         }
         self.show_dialog(&ctx);
         self.show_restore(&ctx);

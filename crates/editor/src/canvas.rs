@@ -158,6 +158,9 @@ pub struct Canvas {
     fit_pending: bool,
     /// Frames to wait before framing (the nodes grow when their first results arrive).
     fit_delay: u8,
+    /// The pending framing shows the whole graph (down to [`MIN_ZOOM`]: Home, View › Frame
+    /// graph, after Arrange) rather than opening it at a readable zoom ([`readable_zoom`]).
+    fit_whole: bool,
     /// Screen rectangle of the canvas in the last frame.
     ui_rect: Rect,
     /// Plot rectangles of graph-mapper widgets (canvas coordinates).
@@ -184,8 +187,28 @@ impl Default for Canvas {
 /// glyph quad is at least one pixel tall (`tests/glyphs.rs` checks it for the fonts in use).
 pub const MIN_ZOOM: f32 = 0.5;
 
-/// The zoom a graph opens at when it does not fit: node text (14 px) at 10 px.
-pub const READABLE_ZOOM: f32 = 10.0 / 14.0;
+/// The smallest height, in screen pixels, of node text when a graph opens.
+pub const MIN_TEXT_PX: f32 = 10.0;
+
+/// The zoom a graph opens at when it does not fit: the smallest text the nodes use (egui's
+/// body, button and monospace styles — 13 points by default) at [`MIN_TEXT_PX`] on screen
+/// (a little above, so that rounding never brings it below).
+pub fn readable_zoom(style: &egui::Style) -> f32 {
+    let smallest = [
+        egui::TextStyle::Body,
+        egui::TextStyle::Button,
+        egui::TextStyle::Monospace,
+    ]
+    .iter()
+    .filter_map(|t| style.text_styles.get(t).map(|f| f.size))
+    .fold(f32::INFINITY, f32::min);
+    let smallest = if smallest.is_finite() && smallest > 0.0 {
+        smallest
+    } else {
+        13.0
+    };
+    (MIN_TEXT_PX * 1.001 / smallest).clamp(MIN_ZOOM, 2.0)
+}
 
 /// The snarl style of the canvas.
 fn style() -> SnarlStyle {
@@ -224,6 +247,7 @@ impl Canvas {
             selected: Vec::new(),
             widget: SnarlWidget::new().id(id).style(style()),
             fit_pending: true,
+            fit_whole: false,
             fit_delay: 0,
             ui_rect: Rect::NOTHING,
             plots: HashMap::new(),
@@ -233,15 +257,19 @@ impl Canvas {
         }
     }
 
-    /// Frames the whole graph on the next frames (on a new document, or View › Frame graph).
+    /// Frames the whole graph on the next frames, zooming out as far as [`MIN_ZOOM`] if needed
+    /// (Home, View › Frame graph).
     pub fn fit(&mut self) {
         self.fit_pending = true;
+        self.fit_whole = true;
     }
 
-    /// Frames the whole graph after six more frames (once nodes have their new sizes, e.g. when
-    /// the first results of a newly shown graph arrive).
+    /// Frames the graph as it opens, after six more frames (once nodes have their new sizes,
+    /// e.g. when the first results of a newly shown graph arrive): the whole graph when it fits
+    /// at a readable zoom, else its top-left corner at that zoom ([`Canvas::framing`]).
     pub fn fit_later(&mut self) {
         self.fit_pending = true;
+        self.fit_whole = false;
         self.fit_delay = 6;
     }
 
@@ -297,16 +325,17 @@ impl Canvas {
     }
 
     /// The transform that frames canvas rectangle `bb` in screen rectangle `ui`: the whole graph
-    /// when it fits at a readable zoom ([`READABLE_ZOOM`] ..= 1), else its top-left corner (the
-    /// sources) at the readable zoom; pan from there.
-    pub fn framing(bb: Rect, ui: Rect) -> Option<TSTransform> {
+    /// when it fits at a readable zoom (`readable` ..= 1, see [`readable_zoom`]), else its
+    /// top-left corner (the sources) at the readable zoom; pan from there.
+    pub fn framing(bb: Rect, ui: Rect, readable: f32) -> Option<TSTransform> {
         if !(bb.is_positive() && ui.is_positive()) {
             return None;
         }
+        let readable = readable.min(1.0);
         let bb = bb.expand(30.0);
         let fits = (ui.width() / bb.width()).min(ui.height() / bb.height());
-        let scale = fits.clamp(READABLE_ZOOM, 1.0);
-        let translation = if fits >= READABLE_ZOOM {
+        let scale = fits.clamp(readable, 1.0);
+        let translation = if fits >= readable {
             ui.center().to_vec2() - bb.center().to_vec2() * scale
         } else {
             // Centred along an axis that fits, the top-left corner otherwise.
@@ -484,7 +513,12 @@ impl Canvas {
             && self.rects.len() == graph.node_count()
         {
             let bb = self.rects.values().fold(Rect::NOTHING, |a, r| a.union(*r));
-            fit = Self::framing(bb, self.ui_rect);
+            let readable = if self.fit_whole {
+                MIN_ZOOM
+            } else {
+                readable_zoom(ui.style())
+            };
+            fit = Self::framing(bb, self.ui_rect, readable);
             self.fit_pending = false;
         } else if self.fit_pending && graph.node_count() == 0 {
             self.fit_pending = false;
@@ -791,6 +825,43 @@ impl Viewer<'_> {
             b.id.clone(),
             nb.def.inputs.get(to.id.input)?.name.to_string(),
         ))
+    }
+
+    /// "Rename port" in the context menu of a `graph.input` / `graph.output` node: a field with
+    /// the port's name and a Rename button, which sets the node's `name` (one undo step; the
+    /// cluster node keeps its wires on the renamed port, see [`crate::cluster_ports`]).
+    fn rename_port_menu(&mut self, ui: &mut Ui, id: &str) {
+        let current = match self.graph.node(id).and_then(|n| n.value_of("name")) {
+            Some(Value::Text(t)) => t.to_string(),
+            _ => String::new(),
+        };
+        let key = egui::Id::new(("rename-port", id));
+        let mut name: String = ui.data_mut(|d| d.get_temp(key)).unwrap_or(current.clone());
+        ui.label("Rename port");
+        let field = ui.add(
+            egui::TextEdit::singleline(&mut name)
+                .desired_width(140.0)
+                .id(key.with("field")),
+        );
+        let valid = crate::cluster_ports::valid_port_name(&name);
+        if !valid {
+            ui.weak("letters, digits and _ only");
+        }
+        let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        let clicked = ui
+            .add_enabled(valid && name != current, egui::Button::new("Rename"))
+            .clicked();
+        if valid && name != current && (clicked || enter) {
+            self.actions.push(CanvasAction::SetValue {
+                node: id.to_string(),
+                input: "name".into(),
+                value: Value::text(name.clone()),
+            });
+            ui.data_mut(|d| d.remove::<String>(key));
+            ui.close();
+        } else {
+            ui.data_mut(|d| d.insert_temp(key, name));
+        }
     }
 }
 
@@ -1212,6 +1283,13 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 self.actions.push(CanvasAction::ExplodeCluster(id.clone()));
                 ui.close();
             }
+        }
+        if let Some(n) = self.graph.node(&id)
+            && (n.def.id == cnets_engine::cluster::INPUT_TYPE
+                || n.def.id == cnets_engine::cluster::OUTPUT_TYPE)
+        {
+            ui.separator();
+            self.rename_port_menu(ui, &id);
         }
         if let Some(n) = self.graph.node(&id)
             && n.def.has_flag(NodeFlag::Export)

@@ -17,6 +17,7 @@ use cnets_engine::cluster::{Cluster, ClusterSource};
 use cnets_engine::file::{self, GraphMeta, LoadOptions};
 use cnets_engine::{Graph, Registry, WireRef};
 
+use crate::cluster_ports::Renames;
 use crate::history::{EditKey, History, Snapshot};
 
 /// A graph around a cluster opened in place: the graph as it was when the cluster was opened.
@@ -102,6 +103,9 @@ pub fn rebuild(level: &Level, graph: &Graph, meta: &GraphMeta) -> Result<(Graph,
     let dropped = parent
         .replace_def(&level.node, Arc::new(cluster.node_def()))
         .map_err(|e| e.to_string())?;
+    // Renamed ports keep their wires and values.
+    let dropped =
+        Renames::between(template, graph).carry(&mut parent, &level.node, &level.graph, dropped);
     Ok((
         parent,
         Rebuilt {
@@ -135,8 +139,10 @@ pub struct GraphDocument {
     pub live_error: Option<String>,
     /// Changes since the last save.
     dirty: bool,
-    /// Bumped when the graph was replaced wholesale (open, new, undo, redo): the evaluator must
-    /// start afresh, since revisions of a restored graph are not comparable with its memos.
+    /// Bumped when the graph was replaced wholesale (open, new, leaving a cluster, an undo across
+    /// cluster levels): revisions of the new graph are not comparable with the evaluator's
+    /// memos, so the new graph first takes over from the last evaluated one
+    /// ([`GraphDocument::take_over`]).
     generation: u64,
     /// Bumped on every change (semantic or not); cheap "did anything change" check.
     version: u64,
@@ -306,6 +312,18 @@ impl GraphDocument {
         }
     }
 
+    /// Makes the graph the worker evaluates ([`GraphDocument::eval_graph`]) the successor of
+    /// `previous`, the graph it evaluated last — of another document, or of this one before its
+    /// graph was replaced wholesale ([`GraphDocument::generation`] changed): the nodes it shares
+    /// with `previous` keep their stamps ([`Graph::take_over`]), so the worker carries its
+    /// evaluator over and re-runs only what differs.
+    pub fn take_over(&mut self, previous: &Graph) -> Vec<cnets_engine::Continued> {
+        match &mut self.live {
+            Some(live) if !self.stack.is_empty() => live.take_over(previous),
+            _ => self.graph.take_over(previous),
+        }
+    }
+
     /// Opens the cluster node `id` of the graph being edited: from now on edits apply to its
     /// subgraph. Not an undo step (undo restores where each step was made).
     pub fn enter(&mut self, id: &str) -> Result<(), String> {
@@ -398,14 +416,29 @@ impl GraphDocument {
             }
         };
         let Some(def) = def else { return };
+        let renames = Renames::between(&root.cluster.template, &graph);
         let live = self.live.get_or_insert_with(|| root.graph.clone());
         if live.replace_def(&root.node, def).is_err() {
             *live = root.graph.clone();
         }
         let present = live.wires();
         for w in root.graph.wires() {
-            if (w.from == root.node || w.to == root.node) && !present.contains(&w) {
+            if w.from != root.node && w.to != root.node {
+                continue;
+            }
+            // A renamed port keeps its wires (and, below, its value).
+            let w = renames.rename(&root.node, &w).unwrap_or(w);
+            if !present.contains(&w) {
                 let _ = live.connect(&w.from, &w.output, &w.to, &w.input);
+            }
+        }
+        if let Some(old) = root.graph.node(&root.node) {
+            for (from, to) in &renames.inputs {
+                if let Some(v) = old.value_of(from)
+                    && live.node(&root.node).and_then(|n| n.value_of(to)) != Some(v)
+                {
+                    let _ = live.set_value(&root.node, to, v.clone());
+                }
             }
         }
         self.live_error = None;
@@ -444,7 +477,7 @@ impl GraphDocument {
     }
 
     /// Makes this document's generation follow `previous` (the document it replaces), so the
-    /// worker starts a fresh evaluator for it.
+    /// worker carries its evaluator over to it ([`GraphDocument::take_over`]).
     pub fn start_after(&mut self, previous: u64) {
         self.generation = previous + 1;
     }

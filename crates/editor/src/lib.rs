@@ -18,11 +18,13 @@
 //! - [`recovery`]: autosave and restore after a crash; [`settings`]: recent files, library folder;
 //!   [`unsaved`]: the Save / Don't save / Cancel guard on everything that replaces the document;
 //!   [`load_failure`]: a file that failed to load, with its diagnostics; [`parameters`]: the
-//!   docked parameter panel.
+//!   docked parameter panel; [`cluster_ports`]: ports renamed inside an opened cluster keep
+//!   their wires.
 //! - [`app`]: the editor state and one frame of UI, shared by the window (`main.rs`) and tests.
 
 pub mod app;
 pub mod canvas;
+pub mod cluster_ports;
 pub mod document;
 pub mod export;
 pub mod file_dialog;

@@ -89,6 +89,69 @@ pub struct MapperResponse {
     pub optimize: Option<crate::canvas::CanvasAction>,
 }
 
+/// Font size, in screen points, of the value label of a hovered or dragged handle (the same at
+/// every canvas zoom).
+pub const LABEL_SCREEN_SIZE: f32 = 12.0;
+
+/// The value label of a handle: `u 0.402  v 0.735`.
+pub fn handle_label(p: DVec2) -> String {
+    format!(
+        "u {}  v {}",
+        crate::worker::format_number(p.x),
+        crate::worker::format_number(p.y)
+    )
+}
+
+/// Paints `text` next to the handle at `anchor` of the plot `plot` (both in the ui's
+/// coordinates), on a layer above the canvas in screen coordinates: the label is
+/// [`LABEL_SCREEN_SIZE`] high on screen at any canvas zoom and is not clipped by the node.
+fn show_label(ui: &Ui, plot: Rect, anchor: Pos2, text: &str) {
+    let to_global = ui
+        .ctx()
+        .layer_transform_to_global(ui.layer_id())
+        .unwrap_or_default();
+    let (anchor, plot) = (to_global * anchor, to_global * plot);
+    let painter = ui.ctx().layer_painter(egui::LayerId::new(
+        egui::Order::Tooltip,
+        egui::Id::new("mapper-handle-label"),
+    ));
+    let ink = Color32::from_gray(20);
+    let galley = painter.layout_no_wrap(
+        text.to_string(),
+        egui::FontId::proportional(LABEL_SCREEN_SIZE),
+        ink,
+    );
+    let size = galley.size() + vec2(8.0, 4.0);
+    // Above and right of the handle; left of it near the plot's right edge, below it near the top.
+    let mut min = anchor + vec2(9.0, -9.0 - size.y);
+    if min.x + size.x > plot.right() {
+        min.x = anchor.x - 9.0 - size.x;
+    }
+    if min.y < plot.top() {
+        min.y = anchor.y + 9.0;
+    }
+    let screen = ui.ctx().content_rect();
+    min.x = min
+        .x
+        .clamp(screen.left(), (screen.right() - size.x).max(screen.left()));
+    min.y = min
+        .y
+        .clamp(screen.top(), (screen.bottom() - size.y).max(screen.top()));
+    let frame = Rect::from_min_size(min, size);
+    painter.rect_filled(
+        frame,
+        3.0,
+        Color32::from_rgba_unmultiplied(255, 255, 255, 240),
+    );
+    painter.rect_stroke(
+        frame,
+        3.0,
+        Stroke::new(1.0, Color32::from_gray(120)),
+        egui::StrokeKind::Inside,
+    );
+    painter.galley(min + vec2(4.0, 2.0), galley, ink);
+}
+
 /// A handle coordinate rounded to a thousandth (see `show`).
 pub fn snap(x: f64) -> f64 {
     (x * 1000.0).round() / 1000.0
@@ -161,6 +224,7 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse 
     ));
     let mut moved = handles.clone();
     let mut any = false;
+    let mut active: Option<DVec2> = None;
     for (k, h) in handles.iter().enumerate() {
         let center = to_screen(*h);
         let r = ui.interact(
@@ -174,6 +238,17 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse 
             moved[k] = to_unit(p);
             any = true;
         }
+        let shown = moved[k];
+        r.widget_info(|| {
+            egui::WidgetInfo::labeled(
+                egui::WidgetType::Other,
+                true,
+                format!("handle {}: {}", k + 1, handle_label(shown)),
+            )
+        });
+        if r.hovered() || r.dragged() {
+            active = Some(shown);
+        }
         let red = Color32::from_rgb(0xd0, 0x31, 0x2d);
         let fill = if r.hovered() || r.dragged() {
             red
@@ -181,6 +256,9 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse 
             Color32::WHITE
         };
         painter.circle(center, 5.0, fill, Stroke::new(1.5, red));
+    }
+    if let Some(p) = active {
+        show_label(ui, rect, to_screen(p), &handle_label(p));
     }
     if any {
         changes.push((
@@ -240,6 +318,12 @@ mod tests {
             )
             .is_none()
         );
+    }
+
+    #[test]
+    fn handle_labels_are_short() {
+        assert_eq!(handle_label(DVec2::new(0.402, 0.5)), "u 0.402  v 0.5");
+        assert_eq!(handle_label(DVec2::new(1.0, 0.0)), "u 1  v 0");
     }
 
     #[test]

@@ -16,7 +16,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use cnets_engine::cluster::Cluster;
-use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag, NodeResult, Value};
+use cnets_engine::{Continued, Evaluator, Graph, NodeContext, NodeFlag, NodeResult, Value};
 use cnets_render::Scene;
 
 use crate::preview::{PreviewOptions, PreviewStats, build_scene};
@@ -63,12 +63,29 @@ impl NodeStatus {
     }
 }
 
+/// How the graph of a new generation continues the one the worker evaluated before (another
+/// document opened in place of the last, [`Graph::take_over`]): the evaluator is kept and the
+/// continued nodes keep their results.
+#[derive(Clone, Debug)]
+pub struct Carry {
+    /// The generation the graph continues.
+    pub from_generation: u64,
+    /// The nodes that continue nodes of that generation's graph.
+    pub continued: Arc<Vec<Continued>>,
+    /// Whether relative paths resolve in the same folder as before (else the results of nodes
+    /// that read files are dropped).
+    pub same_folder: bool,
+}
+
 /// One evaluation request.
 pub struct EvalRequest {
     /// Sequence number (increasing).
     pub seq: u64,
-    /// Document generation: a new generation starts a fresh evaluator.
+    /// Document generation: a new generation starts a fresh evaluator, unless `carry` says how
+    /// it continues the previous one.
     pub generation: u64,
+    /// For a graph of a new generation: the nodes it shares with the previous generation's.
+    pub carry: Option<Carry>,
     /// The graph to evaluate.
     pub graph: Graph,
     /// Preview display options.
@@ -113,6 +130,7 @@ pub struct Worker {
     seq: u64,
     last_received: u64,
     running_cancel: Option<Arc<AtomicBool>>,
+    carry: Option<Carry>,
     thread: Option<JoinHandle<()>>,
 }
 
@@ -132,6 +150,7 @@ impl Worker {
             seq: 0,
             last_received: 0,
             running_cancel: None,
+            carry: None,
             thread,
         }
     }
@@ -146,6 +165,12 @@ impl Worker {
         changed_at: Instant,
     ) -> u64 {
         self.submit_view(graph, Vec::new(), generation, options, base_dir, changed_at)
+    }
+
+    /// Attaches `carry` to the following submissions: when the worker meets their (new)
+    /// generation it carries its evaluator over instead of starting afresh.
+    pub fn set_carry(&mut self, carry: Option<Carry>) {
+        self.carry = carry;
     }
 
     /// Like [`Worker::submit`], showing the subgraph of the cluster at `view` (node ids from the
@@ -169,6 +194,7 @@ impl Worker {
             let _ = tx.send(EvalRequest {
                 seq: self.seq,
                 generation,
+                carry: self.carry.clone(),
                 graph,
                 options,
                 base_dir,
@@ -243,7 +269,13 @@ fn run(
             request = newer;
         }
         if generation != Some(request.generation) {
-            evaluator = Evaluator::new();
+            match &request.carry {
+                // Another document continuing the one evaluated last: keep what it shares.
+                Some(c) if generation == Some(c.from_generation) => {
+                    evaluator.carry_over(&request.graph, &c.continued, c.same_folder);
+                }
+                _ => evaluator = Evaluator::new(),
+            }
             generation = Some(request.generation);
         }
         let Some(response) = evaluate(&mut evaluator, &request) else {
@@ -278,8 +310,9 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
             build_scene(graph, evaluator, &request.options),
         )
     } else {
-        // Inside opened clusters: the innermost instance's subgraph, with the values the cluster
-        // received; every inner node is evaluated (not only those feeding the outputs).
+        // Inside opened clusters: the statuses of the innermost instance's subgraph, with the
+        // values the cluster received (every inner node is evaluated, not only those feeding the
+        // outputs); the 3D view keeps showing the whole design.
         let inner = descend(graph, &request.view, &mut |cluster, g, ev| {
             let wanted: Vec<_> = g
                 .nodes()
@@ -290,19 +323,12 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
             let mut inner = NodeContext::new(None, cluster.base_dir.clone());
             inner.cancel = request.cancel.clone();
             ev.evaluate(g, &wanted, &inner, &mut |_, _| {});
-            (statuses(g, ev), build_scene(g, ev, &request.options))
+            statuses(g, ev)
         });
-        match inner {
-            Some(r) => r,
-            None => (
-                HashMap::new(),
-                build_scene(
-                    &Graph::new(graph.registry().clone()),
-                    evaluator,
-                    &request.options,
-                ),
-            ),
-        }
+        (
+            inner.unwrap_or_default(),
+            build_scene(graph, evaluator, &request.options),
+        )
     };
     if request.cancel.load(Ordering::Relaxed) {
         return None;
@@ -466,6 +492,7 @@ mod tests {
         let request = EvalRequest {
             seq: 1,
             generation: 0,
+            carry: None,
             graph: g,
             options: PreviewOptions::default(),
             base_dir: None,
@@ -483,6 +510,7 @@ mod tests {
         let request = EvalRequest {
             seq: 1,
             generation: 0,
+            carry: None,
             graph: g,
             options: PreviewOptions::default(),
             base_dir: None,

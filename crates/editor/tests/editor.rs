@@ -186,6 +186,9 @@ fn dragging_a_slider_changes_the_mesh_and_undo_restores_the_graph_exactly() {
 #[test]
 fn incompatible_and_cyclic_wires_are_refused_compatible_ones_connect() {
     let mut h = harness("wires");
+    // The graph opens on its sources at a readable zoom; Home frames all of it.
+    h.key_press(Key::Home);
+    h.run_steps(3);
     let before = h.state().doc.to_ron();
     let wires = h.state().doc.graph.wire_count();
     // A quad mesh into a number input.

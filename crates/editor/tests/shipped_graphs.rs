@@ -6,6 +6,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
+use cnets_editor::canvas::MIN_TEXT_PX;
 use cnets_editor::menus::MenuAction;
 use common::{graphs_dir, harness_with, settle, temp_config};
 
@@ -124,4 +125,89 @@ fn tidy_shipped_graphs() {
 
 fn write(path: &Path, text: &str) {
     std::fs::write(path, text).unwrap();
+}
+
+/// The font sizes, in screen pixels, of the texts painted on the canvas in the last frame (the
+/// harness draws one pixel a point): each text's font size times the canvas zoom.
+fn canvas_text_sizes(
+    h: &egui_kittest::Harness<'static, cnets_editor::EditorApp>,
+) -> Vec<(String, f32)> {
+    let app = h.state();
+    let area = app.canvas.screen_rect();
+    let zoom = app.canvas.zoom();
+    h.output()
+        .shapes
+        .iter()
+        .filter_map(|c| match &c.shape {
+            egui::Shape::Text(t) if area.contains(t.pos) && !t.galley.text().trim().is_empty() => {
+                let size = t
+                    .galley
+                    .job
+                    .sections
+                    .iter()
+                    .map(|s| s.format.font_id.size)
+                    .fold(f32::INFINITY, f32::min);
+                Some((t.galley.text().to_string(), size * zoom))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn every_shipped_graph_opens_framed_with_node_text_at_least_10_px() {
+    let mut bad = Vec::new();
+    for path in shipped() {
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let mut h = harness_with(
+            &name,
+            Some(path.clone()),
+            temp_config(&format!("zoom-{name}")),
+        );
+        settle(&mut h);
+        let sizes = canvas_text_sizes(&h);
+        assert!(!sizes.is_empty(), "{name}: text is drawn on the canvas");
+        let smallest = sizes.iter().map(|s| s.1).fold(f32::INFINITY, f32::min);
+        let app = h.state();
+        // Framed: the whole graph when it fits at that zoom, else its top-left corner (the
+        // first node in reading order is in view).
+        let view = app.canvas.screen_rect();
+        let rects: Vec<egui::Rect> = app
+            .doc
+            .graph
+            .nodes()
+            .filter_map(|(_, n)| app.canvas.node_rect(&n.id))
+            .map(|r| app.canvas.to_screen(r.min).to_vec2())
+            .zip(
+                app.doc
+                    .graph
+                    .nodes()
+                    .filter_map(|(_, n)| app.canvas.node_rect(&n.id)),
+            )
+            .map(|(min, r)| egui::Rect::from_min_size(min.to_pos2(), r.size() * app.canvas.zoom()))
+            .collect();
+        let all = rects.iter().fold(egui::Rect::NOTHING, |a, r| a.union(*r));
+        let first = rects
+            .iter()
+            .min_by(|a, b| (a.min.x + a.min.y).total_cmp(&(b.min.x + b.min.y)))
+            .copied()
+            .unwrap();
+        let fits = view.contains_rect(all);
+        eprintln!(
+            "{name}: zoom {:.3}, smallest node text {smallest:.2} px, whole graph in view: {fits}",
+            app.canvas.zoom()
+        );
+        if smallest < MIN_TEXT_PX - 1e-3 {
+            bad.push(format!(
+                "{name}: node text {smallest:.2} px at zoom {}",
+                app.canvas.zoom()
+            ));
+        }
+        if !view.contains_rect(first) {
+            bad.push(format!(
+                "{name}: the top-left node {first:?} is not in view {view:?}"
+            ));
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
 }

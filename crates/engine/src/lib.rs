@@ -23,7 +23,7 @@ pub mod value;
 
 pub use budget::MemoryBudget;
 pub use eval::{EvalSummary, Evaluator, NodeOutputs, NodeResult};
-pub use graph::{Graph, GraphError, NodeInstance, Revision, WireRef};
+pub use graph::{Continued, Graph, GraphError, NodeInstance, Revision, WireRef};
 pub use kinds::{IntoPort, PortKind};
 pub use node::{MAX_CLUSTER_DEPTH, NodeContext, NodeDef, NodeError, NodeFlag, PortDef};
 pub use registry::Registry;

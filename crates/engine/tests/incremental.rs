@@ -185,3 +185,79 @@ fn a_restored_snapshot_reruns_only_what_differs_and_its_downstream_cone() {
     let uids: std::collections::HashSet<u64> = back.nodes().map(|(_, n)| n.uid()).collect();
     assert_eq!(uids.len(), back.node_count());
 }
+
+#[test]
+fn another_graph_taking_over_reruns_only_the_nodes_that_differ() {
+    // The open document: head -> n0 -> … -> n5, and side -> join <- n2.
+    let registry = common::registry();
+    let build = |order: &[&str], n3_b: f64, with_side: bool| {
+        let mut g = cnets_engine::Graph::new(registry.clone());
+        for id in order {
+            let kind = if *id == "head" || *id == "side" {
+                "t.num"
+            } else {
+                "t.add"
+            };
+            if *id == "side" && !with_side {
+                continue;
+            }
+            g.add_node(id, kind).unwrap();
+        }
+        for k in 0..6 {
+            let b = if k == 3 { n3_b } else { 1.0 };
+            g.set_value(&format!("n{k}"), "b", Value::Number(b))
+                .unwrap();
+        }
+        g.connect("head", "out", "n0", "a").unwrap();
+        for k in 1..6 {
+            g.connect(&format!("n{}", k - 1), "sum", &format!("n{k}"), "a")
+                .unwrap();
+        }
+        if with_side {
+            g.connect("n2", "sum", "join", "a").unwrap();
+            g.connect("side", "out", "join", "b").unwrap();
+        }
+        g
+    };
+    let forward = ["head", "n0", "n1", "n2", "n3", "n4", "n5", "side", "join"];
+    let current = build(&forward, 1.0, true);
+    let mut ev = Evaluator::new();
+    let ctx = NodeContext::default();
+    assert_eq!(ev.evaluate_all(&current, &ctx).ran, 9);
+    // The same graph loaded again (nodes created in another order: other indices and uids).
+    let backward: Vec<&str> = forward.iter().rev().copied().collect();
+    let mut again = build(&backward, 1.0, true);
+    let carried = again.take_over(&current);
+    assert_eq!(carried.len(), 9, "every node continues");
+    assert!(again.revision() > current.revision());
+    ev.carry_over(&again, &carried, true);
+    assert_eq!(ev.evaluate_all(&again, &ctx).ran, 0, "nothing recomputed");
+    assert_eq!(ev.output(&again, "n5", "sum"), Some(&Value::Number(6.0)));
+    assert_eq!(ev.runs(&again, "n5"), 1, "the run count came along");
+    // A graph sharing nodes: n3 differs, side is gone (join loses a wire in).
+    let mut other = build(&forward, 2.0, false);
+    other.connect("n2", "sum", "join", "a").unwrap();
+    let carried = other.take_over(&again);
+    ev.carry_over(&other, &carried, true);
+    let s = ev.evaluate_all(&other, &ctx);
+    assert_eq!(s.ran, 4, "n3, n4, n5 and join re-run: {s:?}");
+    // Continued nodes keep counting; n3 and join are new nodes (their memos start afresh).
+    for (id, runs) in [
+        ("head", 1),
+        ("n2", 1),
+        ("n3", 1),
+        ("n4", 2),
+        ("n5", 2),
+        ("join", 1),
+    ] {
+        assert_eq!(ev.runs(&other, id), runs, "{id}");
+    }
+    assert_eq!(ev.output(&other, "n5", "sum"), Some(&Value::Number(7.0)));
+    assert_eq!(ev.output(&other, "join", "sum"), Some(&Value::Number(3.0)));
+    // Edits after the take-over are incremental as usual.
+    other.set_value("n4", "b", Value::Number(5.0)).unwrap();
+    assert_eq!(ev.evaluate_all(&other, &ctx).ran, 2);
+    assert_eq!(ev.output(&other, "n5", "sum"), Some(&Value::Number(11.0)));
+    // Without `carry_over` a fresh evaluator recomputes everything (what Open used to do).
+    assert_eq!(Evaluator::new().evaluate_all(&other, &ctx).ran, 8);
+}

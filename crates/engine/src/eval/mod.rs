@@ -22,7 +22,7 @@ use std::time::{Duration, Instant};
 use petgraph::stable_graph::NodeIndex;
 
 use crate::budget::bytes_of;
-use crate::graph::{Graph, NodeInstance, Revision};
+use crate::graph::{Continued, Graph, NodeInstance, Revision};
 use crate::node::{NodeContext, NodeDef};
 use crate::value::{Value, content_hash, first_non_finite, footprint, is_all_finite};
 
@@ -274,6 +274,40 @@ impl Evaluator {
             owned,
         });
         unchanged
+    }
+
+    /// Moves the memos over to `next`, a graph replacing the one this evaluator last evaluated
+    /// (another document opened in its place), given the nodes that continue one another
+    /// ([`Graph::take_over`]; `next` may have been edited since): each continued node still in
+    /// `next` keeps its result, run count and stamps; every other memo is dropped. When
+    /// `same_folder` is false (relative paths of `next` resolve in another folder) the memos of
+    /// nodes that read files are dropped too, since the same path may name another file.
+    pub fn carry_over(&mut self, next: &Graph, carried: &[Continued], same_folder: bool) {
+        let mut old = std::mem::take(&mut self.memos);
+        let bound = next.index_bound();
+        self.memos = Vec::new();
+        self.memos.resize_with(bound, || None);
+        self.marks = vec![0; bound];
+        self.stamp = 0;
+        self.live = 0;
+        for c in carried {
+            let Some(slot) = old.get_mut(c.previous.index()) else {
+                continue;
+            };
+            if next.node_at(c.next).map(NodeInstance::uid) != Some(c.uid) {
+                continue;
+            }
+            let Some(mut memo) = slot.take() else {
+                continue;
+            };
+            if !same_folder && !memo.reads.is_empty() {
+                continue;
+            }
+            memo.uid = c.uid;
+            self.live = self.live.saturating_add(memo.owned);
+            self.memos[c.next.index()] = Some(memo);
+        }
+        self.swept_at = 0;
     }
 
     /// Bytes held by the memoized results (each shared payload counted once, by the result that

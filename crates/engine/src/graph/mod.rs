@@ -98,6 +98,18 @@ impl std::fmt::Display for WireRef {
     }
 }
 
+/// A node of a replaced graph and the node of the replacing graph that continues it (see
+/// [`Graph::take_over`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Continued {
+    /// Its index in the replaced graph.
+    pub previous: NodeIndex,
+    /// Its index in the replacing graph.
+    pub next: NodeIndex,
+    /// Its uid in the replacing graph (a later edit may have reused the index for another node).
+    pub uid: u64,
+}
+
 /// A dataflow graph of node instances.
 #[derive(Debug, Clone)]
 pub struct Graph {
@@ -194,6 +206,53 @@ impl Graph {
         self.revision = now;
         self.next_uid = self.next_uid.max(current.next_uid);
         self.next_order = self.next_order.max(current.next_order);
+    }
+
+    /// Makes this graph — another document replacing `previous` (File › Open, New, Open example)
+    /// — the successor of `previous` for an evaluator that last evaluated it. A node *continues*
+    /// a node of `previous` when it has the same id, the same definition (the same registered
+    /// type), the same literal values and enabled flag and the same wires in (same source ids and
+    /// ports, in the same order): it keeps that node's stamp, every other node is stamped as
+    /// edited now, and the revision moves past both graphs'. Returns the continued nodes, for
+    /// [`crate::Evaluator::carry_over`]: an evaluator given them re-runs only the nodes that
+    /// differ and what depends on them.
+    pub fn take_over(&mut self, previous: &Graph) -> Vec<Continued> {
+        let now = self.revision.max(previous.revision) + 1;
+        let wires_in = |g: &Graph, i: NodeIndex| -> Vec<(String, usize, usize)> {
+            g.wires_into(i)
+                .into_iter()
+                .map(|(source, wire)| {
+                    let id = g.inner.node_weight(source).map_or("", |n| n.id.as_str());
+                    (id.to_string(), wire.from_output, wire.to_input)
+                })
+                .collect()
+        };
+        let indices: Vec<NodeIndex> = self.inner.node_indices().collect();
+        let mut carried = Vec::new();
+        for i in indices {
+            let n = &self.inner[i];
+            let kept = previous.ids.get(&n.id).and_then(|&j| {
+                let m = &previous.inner[j];
+                let same = Arc::ptr_eq(&n.def, &m.def)
+                    && n.values == m.values
+                    && n.enabled == m.enabled
+                    && wires_in(self, i) == wires_in(previous, j);
+                same.then_some((j, m.edited_at))
+            });
+            match kept {
+                Some((j, stamp)) => {
+                    self.inner[i].edited_at = stamp;
+                    carried.push(Continued {
+                        previous: j,
+                        next: i,
+                        uid: self.inner[i].uid,
+                    });
+                }
+                None => self.inner[i].edited_at = now,
+            }
+        }
+        self.revision = now;
+        carried
     }
 
     /// Adds a node of a registered type.

@@ -1,0 +1,367 @@
+//! Opening keeps the evaluator; graphs open readable; values are readable in place (issue 14).
+
+mod common;
+
+use std::collections::{HashSet, VecDeque};
+use std::path::Path;
+
+use cnets_editor::app::EditorApp;
+use cnets_editor::unsaved::Replace;
+use common::{graphs_dir, harness, settle, temp_config};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+
+fn face_positions(app: &EditorApp) -> Vec<[f32; 3]> {
+    app.viewport
+        .scene()
+        .face_vertices()
+        .iter()
+        .map(|v| v.position)
+        .collect()
+}
+
+fn open(h: &mut Harness<'static, EditorApp>, path: &Path) {
+    h.state_mut().request(Replace::Open(path.to_path_buf()));
+    settle(h);
+    assert_eq!(
+        h.state().doc.path.as_deref(),
+        Some(path),
+        "{}: {:?}",
+        h.state().message,
+        h.state().load_failure.as_ref().map(|f| &f.diagnostics)
+    );
+}
+
+/// The nodes downstream of `id` (itself included) in the open document.
+fn downstream(app: &EditorApp, id: &str) -> usize {
+    let wires = app.doc.graph.wires();
+    let mut seen = HashSet::from([id.to_string()]);
+    let mut queue = VecDeque::from([id.to_string()]);
+    while let Some(n) = queue.pop_front() {
+        for w in wires.iter().filter(|w| w.from == n) {
+            if seen.insert(w.to.clone()) {
+                queue.push_back(w.to.clone());
+            }
+        }
+    }
+    seen.len()
+}
+
+#[test]
+fn open_keeps_the_evaluator_and_reruns_only_what_differs() {
+    let dir = temp_config("open-keeps-evaluator-files");
+    let text = std::fs::read_to_string(graphs_dir().join("editor-default.ron")).unwrap();
+    let a = dir.join("a.ron");
+    std::fs::write(&a, &text).unwrap();
+    // A file sharing every node but one slider value.
+    let b = dir.join("b.ron");
+    let changed = text.replacen("\"value\": 0.5", "\"value\": 0.62", 1);
+    assert_ne!(changed, text, "the ratio slider's value is in the file");
+    std::fs::write(&b, changed).unwrap();
+
+    let mut h = harness("open-keeps-evaluator");
+    h.state_mut().request(Replace::New);
+    settle(&mut h);
+    open(&mut h, &a);
+    let all = h.state().doc.graph.node_count();
+    assert_eq!(
+        h.state().latency.ran,
+        all,
+        "from an empty graph every node runs"
+    );
+    let mesh_a = face_positions(h.state());
+    assert!(!mesh_a.is_empty());
+
+    // Reopening the same file recomputes nothing and shows the same design.
+    open(&mut h, &a);
+    assert_eq!(h.state().latency.ran, 0, "nothing recomputed on reopening");
+    assert_eq!(face_positions(h.state()), mesh_a);
+
+    // A file that differs in one slider re-runs only that slider's downstream cone.
+    open(&mut h, &b);
+    let cone = downstream(h.state(), "ratio");
+    assert!(cone < all, "the test needs nodes outside the cone");
+    assert_eq!(
+        h.state().latency.ran,
+        cone,
+        "only the changed slider's cone"
+    );
+    let mesh_b = face_positions(h.state());
+    assert_ne!(mesh_b, mesh_a, "the new ratio reached the viewport");
+
+    // The same as a fresh evaluation of that file.
+    h.state_mut().request(Replace::New);
+    settle(&mut h);
+    open(&mut h, &b);
+    assert_eq!(h.state().latency.ran, all);
+    assert_eq!(face_positions(h.state()), mesh_b);
+
+    // Edits after an open stay incremental, and undo keeps the evaluator.
+    open(&mut h, &a);
+    assert_eq!(h.state().latency.ran, cone);
+    h.state_mut()
+        .doc
+        .edit(None, |g, _| {
+            g.set_value("ratio", "value", cnets_engine::Value::Number(0.3))
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+    settle(&mut h);
+    assert_eq!(h.state().latency.ran, cone);
+    assert!(h.state_mut().doc.undo());
+    settle(&mut h);
+    assert_eq!(h.state().latency.ran, cone);
+    assert_eq!(face_positions(h.state()), mesh_a);
+}
+
+/// The texts painted in the last frame that start with `prefix`, with their height on screen
+/// (points; the harness draws one pixel a point).
+fn painted_texts(h: &Harness<'static, EditorApp>, prefix: &str) -> Vec<(String, f32)> {
+    h.output()
+        .shapes
+        .iter()
+        .filter_map(|c| match &c.shape {
+            egui::Shape::Text(t) if t.galley.text().starts_with(prefix) => Some((
+                t.galley.text().to_string(),
+                t.galley.rows.first().map_or(0.0, |r| r.height()),
+            )),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn mapper_handles_show_their_values_while_hovered_and_dragged() {
+    use cnets_editor::mapper::{handle_label, handles};
+    let mut h = harness("mapper-labels");
+    let id = h
+        .state_mut()
+        .add_node("mapper.graph", [760.0, 0.0])
+        .unwrap();
+    h.run_steps(2);
+    let centre = h.state().canvas.node_rect(&id).expect("drawn").center();
+    // At the smallest zoom, where the canvas' own text is smallest.
+    h.state_mut()
+        .canvas
+        .zoom_to(cnets_editor::canvas::MIN_ZOOM, Some(centre));
+    h.run_steps(4);
+    assert!(
+        painted_texts(&h, "u ").is_empty(),
+        "no label before hovering"
+    );
+    let b = handles(h.state().doc.graph.node(&id).unwrap())[1];
+    let at = h
+        .state()
+        .canvas
+        .mapper_screen_pos(&id, b.x as f32, b.y as f32)
+        .unwrap();
+    h.hover_at(at);
+    h.run_steps(2);
+    let shown = painted_texts(&h, "u ");
+    assert_eq!(shown.len(), 1, "{shown:?}");
+    assert_eq!(shown[0].0, handle_label(b));
+    assert!(shown[0].1 >= 10.0, "readable at zoom 0.5: {shown:?}");
+    h.snapshot("editor_mapper_handle_label");
+    // While dragged, the label follows the (snapped) value being written.
+    let to = h
+        .state()
+        .canvas
+        .mapper_screen_pos(&id, b.x as f32, 0.3)
+        .unwrap();
+    h.drag_at(at);
+    h.run_steps(2);
+    for t in [0.5, 1.0] {
+        h.hover_at(at + (to - at) * t);
+        h.run_steps(2);
+    }
+    let now = handles(h.state().doc.graph.node(&id).unwrap())[1];
+    assert!((now.y - 0.3).abs() < 0.05, "dragged: {now:?}");
+    let shown = painted_texts(&h, "u ");
+    assert_eq!(shown.len(), 1, "{shown:?}");
+    assert_eq!(shown[0].0, handle_label(now), "the value being written");
+    h.drop_at(to);
+    h.hover_at(centre + egui::vec2(0.0, 400.0));
+    h.run_steps(3);
+    assert!(
+        painted_texts(&h, "u ").is_empty(),
+        "gone once the pointer left"
+    );
+}
+
+#[test]
+fn the_overlap_hint_goes_once_nodes_no_longer_overlap() {
+    let dir = temp_config("overlap-hint-files");
+    let file = dir.join("heap.ron");
+    std::fs::write(
+        &file,
+        r#"(
+    version: 1,
+    nodes: {
+        "a": (type: "param.number", position: (0.0, 0.0)),
+        "b": (type: "param.number", position: (20.0, 10.0)),
+        "c": (type: "math.add", position: (10.0, 30.0)),
+    },
+    edges: ["a.value -> c.a", "b.value -> c.b"],
+)"#,
+    )
+    .unwrap();
+    let mut h = harness("overlap-hint");
+    open(&mut h, &file);
+    assert!(h.state().canvas.has_overlaps());
+    assert!(h.state().overlap_hint, "{}", h.state().message);
+    let hint = cnets_editor::app::OVERLAP_HINT;
+    assert!(
+        h.query_by_label(hint).is_some(),
+        "the status bar shows the hint"
+    );
+    // Still overlapping: the hint stays.
+    h.run_steps(3);
+    assert!(h.state().overlap_hint);
+    // View › Arrange graph (Ctrl+L): laid out, the hint goes.
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::L);
+    h.run_steps(6);
+    assert!(!h.state().canvas.has_overlaps());
+    assert!(!h.state().overlap_hint);
+    assert!(h.query_by_label(hint).is_none(), "the hint is gone");
+    // A document whose nodes do not overlap gets no hint.
+    assert!(h.state_mut().open(&graphs_dir().join("editor-default.ron")));
+    settle(&mut h);
+    assert!(!h.state().canvas.has_overlaps());
+    assert!(!h.state().overlap_hint);
+}
+
+/// The wires of the graph being edited, as text.
+fn wire_texts(app: &EditorApp) -> Vec<String> {
+    app.doc
+        .graph
+        .wires()
+        .iter()
+        .map(ToString::to_string)
+        .collect()
+}
+
+#[test]
+fn inside_a_cluster_the_3d_view_shows_the_whole_design_and_ports_rename_keeping_their_wires() {
+    use cnets_engine::cluster::OUTPUT_TYPE;
+    let mut h = harness("cluster-ports");
+    let mesh = face_positions(h.state());
+    assert!(!mesh.is_empty());
+    let ids = ["directrix".to_string(), "generatrix".to_string()];
+    assert!(h.state_mut().make_cluster(&ids), "{}", h.state().message);
+    settle(&mut h);
+    let outer: Vec<String> = wire_texts(h.state());
+    let wire = outer
+        .iter()
+        .find(|w| w.starts_with("cluster.") && w.ends_with("-> construct.directrix"))
+        .unwrap_or_else(|| panic!("the cluster feeds the directrix: {outer:?}"))
+        .clone();
+    let port = wire["cluster.".len()..wire.find(" ->").unwrap()].to_string();
+    h.state_mut().open_cluster("cluster");
+    settle(&mut h);
+    assert_eq!(h.state().doc.depth(), 1);
+    // The inside holds only the two curves; the 3D view still shows the whole design.
+    assert!(
+        face_positions(h.state()) == mesh,
+        "the whole design, inside too"
+    );
+
+    // Rename port, from the graph.output node's context menu.
+    let out = h
+        .state()
+        .doc
+        .graph
+        .nodes()
+        .map(|(_, n)| n)
+        .find(|n| {
+            n.def.id == OUTPUT_TYPE && n.value_of("name") == Some(&cnets_engine::Value::text(&port))
+        })
+        .map(|n| n.id.clone())
+        .expect("the graph.output node of that port");
+    let title = h.state().canvas.node_rect(&out).expect("drawn");
+    let at = h
+        .state()
+        .canvas
+        .to_screen(title.left_top() + egui::vec2(title.width() * 0.5, 8.0));
+    h.hover_at(at);
+    h.run_steps(1);
+    h.event(egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Secondary,
+        pressed: true,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.event(egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Secondary,
+        pressed: false,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run_steps(3);
+    assert!(h.query_by_label("Rename port").is_some(), "the menu entry");
+    h.ctx.data_mut(|d| {
+        d.insert_temp(
+            egui::Id::new(("rename-port", out.as_str())),
+            "rail".to_string(),
+        )
+    });
+    h.run_steps(1);
+    h.get_by_label("Rename").click();
+    h.run_steps(3);
+    settle(&mut h);
+    assert_eq!(
+        h.state()
+            .doc
+            .graph
+            .node(&out)
+            .and_then(|n| n.value_of("name")),
+        Some(&cnets_engine::Value::text("rail"))
+    );
+    // The live copy keeps the wire on the renamed port: the design is unchanged.
+    assert!(
+        face_positions(h.state()) == mesh,
+        "still wired while inside"
+    );
+
+    // Back out: the cluster node's port is renamed and keeps its wire.
+    h.state_mut().leave_to(0);
+    settle(&mut h);
+    let app = h.state();
+    let outputs: Vec<&str> = app
+        .doc
+        .graph
+        .node("cluster")
+        .unwrap()
+        .def
+        .outputs
+        .iter()
+        .map(|p| p.name.as_ref())
+        .collect();
+    assert!(
+        outputs.contains(&"rail") && !outputs.contains(&port.as_str()),
+        "{outputs:?}"
+    );
+    let now = wire_texts(app);
+    assert!(
+        now.contains(&"cluster.rail -> construct.directrix".to_string()),
+        "{now:?}"
+    );
+    assert_eq!(now.len(), outer.len(), "no wire dropped: {}", app.message);
+    assert!(!app.message.contains("dropped"), "{}", app.message);
+    assert!(
+        app.doc.to_ron().contains("\"name\": \"rail\""),
+        "stored in the cluster"
+    );
+    assert!(face_positions(app) == mesh);
+    // Undo takes the rename back (inside the cluster, where it was made).
+    assert!(h.state_mut().doc.undo());
+    settle(&mut h);
+    assert!(h.state_mut().doc.undo());
+    settle(&mut h);
+    h.state_mut().leave_to(0);
+    settle(&mut h);
+    assert_eq!(
+        wire_texts(h.state()),
+        outer,
+        "the old port name and its wire"
+    );
+}
