@@ -37,6 +37,9 @@ pub struct Args {
     /// (the baseline for comparisons).
     #[arg(long)]
     finite_differences: bool,
+    /// Stop after this many seconds (wall clock) and keep the best point found so far.
+    #[arg(long)]
+    time_limit: Option<f64>,
     /// Print the result (and every iteration) as JSON.
     #[arg(long)]
     json: bool,
@@ -76,6 +79,19 @@ pub fn run(args: Args) -> CommandResult {
     if args.check_gradient {
         return check(&args, &doc.graph, &setup, &ctx);
     }
+    if let Some(seconds) = args.time_limit {
+        if !(seconds.is_finite() && seconds >= 0.0) {
+            return Err(Failure::usage(format!(
+                "--time-limit must be a number of seconds ≥ 0, got {seconds}"
+            )));
+        }
+        let cancel = std::sync::Arc::clone(&ctx.cancel);
+        std::thread::spawn(move || {
+            std::thread::sleep(std::time::Duration::from_secs_f64(seconds.min(1e9)));
+            cancel.store(true, std::sync::atomic::Ordering::Relaxed);
+        });
+    }
+    let started = std::time::Instant::now();
     let progress = Progress::new("optimizing");
     let mut history = Vec::new();
     let limit = args.max_iter.unwrap_or(setup.max_iter);
@@ -100,9 +116,11 @@ pub fn run(args: Args) -> CommandResult {
         other => Failure::node(format!("{}: {other}", args.graph.display())),
     })?;
     progress.finish();
+    let seconds = started.elapsed().as_secs_f64();
     let stop = match &outcome.stop {
         Stop::Converged(why) => format!("converged ({why})"),
         Stop::MaxIterations => "iteration limit reached".to_string(),
+        Stop::Cancelled if args.time_limit.is_some() => "stopped at the time limit".to_string(),
         Stop::Cancelled => "cancelled".to_string(),
     };
     if let Some(out) = &args.out {
@@ -129,6 +147,7 @@ pub fn run(args: Args) -> CommandResult {
                 "notes": outcome.notes,
                 "node_runs": outcome.node_runs,
                 "fell_back": outcome.fell_back,
+                "seconds": seconds,
                 "stop": stop,
                 "variables": variables,
                 "history": history,
@@ -136,12 +155,13 @@ pub fn run(args: Args) -> CommandResult {
         );
     } else {
         crate::outln!(
-            "objective {:.6e} -> {:.6e} in {} iterations ({} evaluations, {} gradients, {} node runs); {stop}",
+            "objective {:.6e} -> {:.6e} in {} iterations ({} evaluations, {} gradients ({} exact), {} node runs, {seconds:.3} s); {stop}",
             outcome.start,
             outcome.objective,
             outcome.iterations,
             outcome.evaluations,
             outcome.gradients,
+            outcome.exact_gradients,
             outcome.node_runs
         );
         for note in &outcome.notes {

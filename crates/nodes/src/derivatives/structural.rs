@@ -23,6 +23,7 @@ pub const IDS: &[&str] = &[
     "list.dispatch",
     "list.cull",
     "list.cross_reference",
+    "param.list",
     "mesh.row",
     "mesh.column",
 ];
