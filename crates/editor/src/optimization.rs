@@ -91,9 +91,10 @@ pub fn variable_candidates(node: &NodeInstance, k: usize) -> Vec<Candidate> {
     let Some(port) = node.def.inputs.get(k) else {
         return Vec::new();
     };
+    // `Any` ports (a literal list or table, e.g. `param.list`) offer the numbers they hold.
     if !matches!(
         port.ty,
-        ValueType::Number | ValueType::Point | ValueType::Vector
+        ValueType::Number | ValueType::Point | ValueType::Vector | ValueType::Any
     ) {
         return Vec::new();
     }
@@ -153,9 +154,48 @@ fn candidate_action(c: &Candidate) -> CanvasAction {
     }
 }
 
+/// The whole-input variable of several candidates of one input (`node.port`: every number of the
+/// list, table, points or handles), bounded by the widest of their default bounds; `None` for
+/// fewer than two.
+pub fn whole_input(candidates: &[Candidate]) -> Option<Candidate> {
+    let [first, _, ..] = candidates else {
+        return None;
+    };
+    Some(Candidate {
+        path: ValuePath {
+            indices: Vec::new(),
+            ..first.path.clone()
+        },
+        value: first.value,
+        min: candidates
+            .iter()
+            .map(|c| c.min)
+            .fold(f64::INFINITY, f64::min),
+        max: candidates
+            .iter()
+            .map(|c| c.max)
+            .fold(f64::NEG_INFINITY, f64::max),
+        prepare: first.prepare.clone(),
+    })
+}
+
 /// The "Optimize" entries of an input's context menu; returns the action picked.
 pub fn variable_menu(ui: &mut Ui, candidates: &[Candidate]) -> Option<CanvasAction> {
     let mut picked = None;
+    if let Some(all) = whole_input(candidates)
+        && ui
+            .button("Optimize every value")
+            .on_hover_text(format!(
+                "add every number of {} as optimization variables in [{}, {}] (one whole-input variable)",
+                all.path,
+                fmt(all.min),
+                fmt(all.max)
+            ))
+            .clicked()
+    {
+        ui.close();
+        return Some(candidate_action(&all));
+    }
     if let [c] = candidates {
         if ui
             .button("Optimize this value")
@@ -766,6 +806,30 @@ pub fn current_value(graph: &Graph, path: &ValuePath) -> Option<f64> {
     path.get(&effective_value(node, k)?).ok()
 }
 
+/// What the variables table shows as a variable's value: the number, or for a whole-input
+/// variable how many numbers it stands for.
+pub fn value_label(graph: &Graph, path: &ValuePath) -> String {
+    if let Some(x) = current_value(graph, path) {
+        return fmt(x);
+    }
+    let count = graph.node(&path.node).and_then(|node| {
+        let k = node.def.input_index(&path.port)?;
+        let mut value = effective_value(node, k)?;
+        for &i in &path.indices {
+            value = value.as_list()?.get(i)?.clone();
+        }
+        let n = cnets_engine::optimize::leaves::count(&value);
+        // A mapper's handles: the v of each handle is a variable.
+        let handles =
+            crate::mapper::is_mapper(node) && crate::mapper::handles_port(node) == Some(k);
+        Some(if handles { n / 3 } else { n })
+    });
+    match count {
+        Some(n) if n > 1 => format!("{n} numbers"),
+        _ => "?".to_string(),
+    }
+}
+
 /// The setup editor; returns the outcome of an edit.
 fn setup_editor(
     ui: &mut Ui,
@@ -814,7 +878,7 @@ fn setup_editor(
                 {
                     key = Some(EditKey::Optimization(format!("max{k}")));
                 }
-                ui.label(current_value(&doc.graph, &v.input).map_or_else(|| "?".to_string(), fmt));
+                ui.label(value_label(&doc.graph, &v.input));
                 if ui
                     .small_button("×")
                     .on_hover_text("remove this variable")
@@ -1063,6 +1127,15 @@ mod tests {
         assert!(
             c[0].prepare.is_some(),
             "the default handles are written first"
+        );
+        let all = whole_input(&c).expect("a whole-input variable");
+        assert_eq!(all.path.to_string(), "m.handles");
+        assert_eq!((all.min, all.max), (0.0, 1.0));
+        assert!(all.prepare.is_some());
+        let one = variable_candidates(n, n.def.input_index("value").unwrap());
+        assert!(
+            whole_input(&one).is_none(),
+            "one number: no whole-input entry"
         );
         assert_eq!(default_bounds(0.0), (-1.0, 1.0));
         assert_eq!(default_bounds(-2.0), (-3.0, -1.0));

@@ -168,6 +168,10 @@ pub struct NodeDef {
     pub run: RunFn,
     /// Per-type data of dynamic node types (e.g. a cluster's subgraph), for introspection.
     pub extension: Option<Arc<dyn std::any::Any + Send + Sync>>,
+    /// The node's exact vector–Jacobian product for the optimizer's reverse pass; `None`: not
+    /// differentiable, the optimizer uses finite differences for this node
+    /// ([`crate::optimize::vjp`]).
+    pub vjp: Option<crate::optimize::vjp::VjpFn>,
 }
 
 impl fmt::Debug for NodeDef {
@@ -203,6 +207,7 @@ impl NodeDef {
             flags: Vec::new(),
             run: Arc::new(|_, _| Err(NodeError::new("node has no implementation"))),
             extension: None,
+            vjp: None,
         }
     }
 
@@ -230,6 +235,18 @@ impl NodeDef {
         f: impl Fn(&NodeContext, &[Value]) -> Result<Vec<Value>, NodeError> + Send + Sync + 'static,
     ) -> Self {
         self.run = Arc::new(f);
+        self
+    }
+
+    /// Sets the vector–Jacobian product (builder style; see [`crate::optimize::vjp`]).
+    pub fn with_vjp(
+        mut self,
+        f: impl Fn(&crate::optimize::vjp::VjpArgs<'_>) -> crate::optimize::vjp::VjpResult
+        + Send
+        + Sync
+        + 'static,
+    ) -> Self {
+        self.vjp = Some(Arc::new(f));
         self
     }
 

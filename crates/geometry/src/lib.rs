@@ -12,6 +12,7 @@ pub mod line;
 pub mod measure;
 pub mod mesh_query;
 pub mod mesh_weld;
+pub mod objectives;
 pub mod plane;
 pub mod polygon_mesh;
 pub mod polyline;

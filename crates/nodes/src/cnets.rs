@@ -15,7 +15,7 @@ use cnets_geometry::conenet::{
 use rayon::prelude::*;
 
 /// The apex input: one number broadcast to every column, or one value per directrix edge.
-fn apex_input(values: Vec<f64>, normalized: bool, scale: Option<f64>) -> ApexInput {
+pub(crate) fn apex_input(values: Vec<f64>, normalized: bool, scale: Option<f64>) -> ApexInput {
     let values = match values.as_slice() {
         [single] => ColumnValues::Uniform(*single),
         _ => ColumnValues::List(values),
@@ -28,7 +28,7 @@ fn apex_input(values: Vec<f64>, normalized: bool, scale: Option<f64>) -> ApexInp
 }
 
 /// Reads the `end_planes` choice.
-fn parse_end_planes(text: &str) -> Result<EndPlanes, NodeError> {
+pub(crate) fn parse_end_planes(text: &str) -> Result<EndPlanes, NodeError> {
     EndPlanes::parse(text).ok_or_else(|| {
         NodeError::new(format!(
             "end_planes must be \"perpendicular\" or \"mirror\", got {text:?}"
@@ -37,7 +37,7 @@ fn parse_end_planes(text: &str) -> Result<EndPlanes, NodeError> {
 }
 
 /// Reads a number, a list of numbers, or a list of lists of numbers.
-fn grid_values(value: &Value, what: &str) -> Result<GridValues, NodeError> {
+pub(crate) fn grid_values(value: &Value, what: &str) -> Result<GridValues, NodeError> {
     // The location is only formatted for an error: tables have a million entries.
     let number = |v: &Value, at: &(dyn Fn() -> String + Sync)| -> Result<f64, NodeError> {
         v.as_f64().ok_or_else(|| {

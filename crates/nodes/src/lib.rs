@@ -8,6 +8,7 @@
 pub mod analysis;
 pub mod cnets;
 pub mod curve;
+pub mod derivatives;
 pub mod fabrication;
 pub mod grid;
 pub mod io_export;
@@ -31,7 +32,7 @@ use cnets_engine::{NodeDef, Registry};
 
 /// Every node type of the library, in palette order.
 pub fn all() -> Vec<NodeDef> {
-    [
+    let defs = [
         param::nodes(),
         math::nodes(),
         vector::nodes(),
@@ -53,7 +54,8 @@ pub fn all() -> Vec<NodeDef> {
     ]
     .into_iter()
     .flatten()
-    .collect()
+    .collect();
+    derivatives::attach(defs)
 }
 
 /// A registry with every node type of the library.

@@ -1,19 +1,23 @@
-//! Objective measures for optimization: point distances, tube closure, distance to a reference surface.
+//! Objective measures for optimization: point distances, tube closure (positions and tangents),
+//! distance to a reference surface, face-normal alignment, fairness. Every one has an exact
+//! gradient for the optimizer (`crate::derivatives::measure`).
 
 use cnets_engine::prelude::*;
-use cnets_geometry::measure;
+use cnets_geometry::{measure, objectives};
 
-/// The points of a list of points and/or polylines, in order.
-fn points_of(values: &[Value], what: &str) -> Result<Vec<DVec3>, NodeError> {
+/// The points of a list of points, polylines and/or meshes (their vertices in order), in order.
+pub(crate) fn points_of(values: &[Value], what: &str) -> Result<Vec<DVec3>, NodeError> {
     let mut points = Vec::new();
     for (k, v) in values.iter().enumerate() {
         match v {
             Value::Point(p) | Value::Vector(p) => points.push(*p),
             Value::Polyline(p) => points.extend_from_slice(&p.points),
+            Value::QuadMesh(m) => points.extend_from_slice(&m.vertices),
+            Value::Mesh(m) => points.extend_from_slice(&m.vertices),
             Value::List(items) => points.extend(points_of(items, what)?),
             other => {
                 return Err(NodeError::new(format!(
-                    "{what}[{k}] must be a point or a polyline, got {}",
+                    "{what}[{k}] must be a point, a polyline or a mesh, got {}",
                     other.type_name()
                 )));
             }
@@ -24,12 +28,13 @@ fn points_of(values: &[Value], what: &str) -> Result<Vec<DVec3>, NodeError> {
 
 node! {
     /// The sum of squared distances between corresponding points of two point lists (polylines give
-    /// their points): 0 when they coincide. The lists must have the same length.
+    /// their points, meshes their vertices in order): 0 when they coincide. The lists must have the
+    /// same length.
     #[node(id = "measure.point_distance", category = "Measure")]
     pub fn point_distance(
-        /// First points (or polylines).
+        /// First points (or polylines, or meshes).
         a: k::List<k::Any>,
-        /// Second points (or polylines), as many as in `a`.
+        /// Second points (or polylines, or meshes), as many as in `a`.
         b: k::List<k::Any>,
     ) -> (
         /// Σ |a_k − b_k|².
@@ -45,17 +50,33 @@ node! {
 node! {
     /// The closure gap of a tube: the sum of squared distances between its first and last
     /// generatrix-aligned polylines (columns 0 and M−1 of the quad mesh): 0 when the tube closes.
+    /// With `tangents` > 0 it adds that weight times the tangent gap Σ_i |t_i^last − t_i^first|²
+    /// (t^first the unit direction of the first strip's edge G_{i,1} − G_{i,0}, t^last of the last
+    /// strip's G_{i,M−1} − G_{i,M−2}): the tube then also continues smoothly across the seam.
     #[node(id = "measure.closure", category = "Measure")]
     pub fn closure(
         /// A quad mesh (rows along the generatrix, columns along the directrix).
         mesh: k::QuadMesh,
+        /// Weight of the tangent gap in `value` (0: positions only).
+        tangents: k::Number = 0.0,
     ) -> (
-        /// Σ |G_{i,M−1} − G_{i,0}|².
+        /// Σ |G_{i,M−1} − G_{i,0}|² + tangents · Σ |t_i^last − t_i^first|².
         value: k::Number,
         /// The largest gap |G_{i,M−1} − G_{i,0}|.
         max: k::Number,
+        /// The tangent gap Σ |t_i^last − t_i^first|² (needs 3 columns; 0 with fewer).
+        tangent: k::Number,
     ) {
-        Ok(measure::closure_gap(&mesh)?)
+        if !tangents.is_finite() || tangents < 0.0 {
+            return Err(NodeError::new(format!("tangents must be a number ≥ 0, got {tangents}")));
+        }
+        let (gap, max) = measure::closure_gap(&mesh)?;
+        let tangent = match objectives::seam_tangents(&mesh, 0.0) {
+            Ok((t, _)) => t,
+            Err(e) if tangents > 0.0 => return Err(e.into()),
+            Err(_) => 0.0,
+        };
+        Ok((gap + tangents * tangent, max, tangent))
     }
 }
 
@@ -78,7 +99,112 @@ node! {
     }
 }
 
+/// One target direction per face of `mesh`: the given direction, or the normal of the reference
+/// face closest to each face's centroid.
+pub(crate) fn alignment_targets(
+    mesh: &PolygonMesh,
+    target: Option<DVec3>,
+    reference: Option<&PolygonMesh>,
+) -> Result<Vec<DVec3>, NodeError> {
+    match (target, reference) {
+        (Some(t), None) => Ok(vec![t]),
+        (None, Some(r)) => {
+            let query = cnets_geometry::mesh_query::MeshQuery::new(r)
+                .map_err(|e| NodeError::new(format!("the reference mesh: {e}")))?;
+            let hits = query.closest_all(&objectives::face_centroids(mesh))?;
+            Ok(hits
+                .iter()
+                .map(|h| objectives::face_normal(r, h.face))
+                .collect())
+        }
+        _ => Err(NodeError::new(
+            "give either a target direction or a reference mesh (not both)",
+        )),
+    }
+}
+
+node! {
+    /// Face-normal alignment: the mean over the faces of 1 − (n · t)², n a face's unit normal and t
+    /// its target (a direction, or the normal of the reference mesh's face closest to the face's
+    /// centroid): 0 when every face is perpendicular to its target direction (either side).
+    #[node(id = "measure.normal_alignment", category = "Measure")]
+    pub fn normal_alignment(
+        /// The mesh whose face normals are measured (quad or polygon mesh).
+        mesh: k::Mesh,
+        /// The target direction (or give `reference`).
+        target: Option<k::Vector>,
+        /// A reference mesh whose normals are the targets (or give `target`).
+        reference: Option<k::Mesh>,
+    ) -> (
+        /// Mean of 1 − (n · t)² over the faces.
+        value: k::Number,
+        /// The largest term.
+        max: k::Number,
+    ) {
+        let targets = alignment_targets(&mesh, target, reference.as_deref())?;
+        let (value, max, _) = objectives::normal_alignment(&mesh, &targets, 0.0)?;
+        Ok((value, max))
+    }
+}
+
+/// The rows of a table of numbers (a list of numbers is one row).
+pub(crate) fn table_rows(value: &Value) -> Result<Vec<Vec<f64>>, NodeError> {
+    let row = |v: &Value| -> Result<Vec<f64>, NodeError> {
+        match v {
+            Value::List(items) => items
+                .iter()
+                .map(|x| {
+                    x.as_f64().ok_or_else(|| {
+                        NodeError::new(format!("values: expected numbers, got {}", x.type_name()))
+                    })
+                })
+                .collect(),
+            other => other.as_f64().map(|x| vec![x]).ok_or_else(|| {
+                NodeError::new(format!(
+                    "values: expected numbers, got {}",
+                    other.type_name()
+                ))
+            }),
+        }
+    };
+    match value {
+        Value::List(items) if items.iter().any(|v| matches!(v, Value::List(_))) => {
+            items.iter().map(row).collect()
+        }
+        other => Ok(vec![row(other)?]),
+    }
+}
+
+node! {
+    /// Fairness: the sum of squared second differences x_{j−1} − 2x_j + x_{j+1} along the rows and
+    /// columns of a table of numbers (e.g. a ratio table; columns when the rows have equal lengths),
+    /// or |G_{j−1} − 2G_j + G_{j+1}|² along the polylines (rows and columns) of a quad mesh. 0 for
+    /// linear progressions: a smoothness term to add to an objective.
+    #[node(id = "measure.fairness", category = "Measure")]
+    pub fn fairness(
+        /// A table (or list) of numbers (or give `mesh`).
+        values: Option<k::Table<k::Number>>,
+        /// A quad mesh (or give `values`).
+        mesh: Option<k::QuadMesh>,
+    ) -> (
+        /// Σ of squared second differences.
+        value: k::Number,
+    ) {
+        match (values, mesh) {
+            (Some(v), None) => Ok((objectives::table_fairness(&table_rows(&v)?, 0.0).0,)),
+            (None, Some(m)) => Ok((objectives::mesh_fairness(&m, 0.0)?.0,)),
+            _ => Err(NodeError::new("give either values or a mesh (not both)")),
+        }
+    }
+}
+
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
-    vec![point_distance(), closure(), surface_distance()]
+    vec![
+        point_distance(),
+        closure(),
+        surface_distance(),
+        normal_alignment(),
+        fairness(),
+    ]
 }

@@ -419,6 +419,19 @@ impl Evaluator {
         Ok(inputs)
     }
 
+    /// The input values the node at `index` last ran on (wired values from the memoized results,
+    /// merged as for a run, else the literal or default): the optimizer's reverse pass reads them.
+    pub fn inputs_of(
+        &self,
+        graph: &Graph,
+        index: NodeIndex,
+        ctx: &NodeContext,
+    ) -> Result<Vec<Value>, String> {
+        let instance = graph.node_at(index).ok_or("no such node")?;
+        self.gather_inputs(graph, index, instance, ctx)
+            .map_err(|r| r.error().unwrap_or("the node cannot run").to_string())
+    }
+
     /// The last result of a node.
     pub fn result(&self, graph: &Graph, id: &str) -> Option<&NodeResult> {
         let index = graph.index(id).ok()?;

@@ -8,12 +8,16 @@
 //! evaluations and node runs are counted. Runs are deterministic (bit for bit), cancellable through
 //! the context's cancel flag, and report every iteration.
 
+pub mod gradient;
 mod lbfgsb;
+pub mod leaves;
 mod nelder_mead;
 pub mod path;
 mod problem;
 pub mod setup;
+pub mod vjp;
 
+pub use gradient::Gradient;
 pub use path::ValuePath;
 pub use problem::{Problem, SetupMismatch};
 pub use setup::{Method, Penalty, PenaltyKind, Setup, Variable};
@@ -34,6 +38,9 @@ pub struct Options {
     pub incremental: bool,
     /// Stop when the projected gradient's largest component is at most this times the starting one.
     pub gradient_tolerance: f64,
+    /// Exact gradients by the reverse pass (true) or central differences of the whole graph
+    /// (false: the baseline for comparisons).
+    pub exact_gradients: bool,
 }
 
 impl Default for Options {
@@ -43,6 +50,7 @@ impl Default for Options {
             method: None,
             incremental: true,
             gradient_tolerance: 1e-12,
+            exact_gradients: true,
         }
     }
 }
@@ -80,6 +88,8 @@ pub enum Stop {
 pub struct Outcome {
     /// Best variable values found.
     pub x: Vec<f64>,
+    /// The variables of `x` (whole-input variables expanded into one per number).
+    pub variables: Vec<Variable>,
     /// Objective at the start.
     pub start: f64,
     /// Objective at `x`.
@@ -92,6 +102,12 @@ pub struct Outcome {
     pub node_runs: u64,
     /// Gradients computed.
     pub gradients: u64,
+    /// Gradients that were exact (the reverse pass); the others used finite differences of the
+    /// whole graph.
+    pub exact_gradients: u64,
+    /// Nodes whose part of the gradient used finite differences of their own run, with the reason
+    /// (first occurrence of each), and why whole gradients fell back to finite differences.
+    pub notes: Vec<String>,
     /// Whether the run switched to Nelder–Mead.
     pub fell_back: bool,
     /// Why it stopped.
@@ -119,6 +135,9 @@ struct Run<'a> {
     hi: Vec<f64>,
     best: (Vec<f64>, f64),
     gradients: u64,
+    exact: bool,
+    exact_gradients: u64,
+    notes: Vec<String>,
 }
 
 impl Run<'_> {
@@ -131,8 +150,36 @@ impl Run<'_> {
         v
     }
 
-    /// Central differences (one-sided at a bound).
+    fn note(&mut self, note: String) {
+        if !self.notes.contains(&note) {
+            self.notes.push(note);
+        }
+    }
+
+    /// The exact gradient (the reverse pass), else central differences.
     fn gradient(&mut self, x: &[f64], fx: f64) -> Vec<f64> {
+        if self.exact {
+            match self.problem.gradient(x, self.ctx) {
+                Ok(g) => {
+                    self.gradients += 1;
+                    self.exact_gradients += 1;
+                    for (node, reason) in g.finite_differences {
+                        self.note(format!(
+                            "node '{node}': finite differences for its part ({reason})"
+                        ));
+                    }
+                    return g.gradient;
+                }
+                Err(e) => self.note(format!(
+                    "finite differences of the whole graph for a gradient: {e}"
+                )),
+            }
+        }
+        self.difference_gradient(x, fx)
+    }
+
+    /// Central differences (one-sided at a bound).
+    fn difference_gradient(&mut self, x: &[f64], fx: f64) -> Vec<f64> {
         self.gradients += 1;
         let mut g = vec![0.0; x.len()];
         let mut probe = x.to_vec();
@@ -192,6 +239,9 @@ pub fn optimize(
         hi,
         best: (x.clone(), f64::INFINITY),
         gradients: 0,
+        exact: options.exact_gradients,
+        exact_gradients: 0,
+        notes: Vec::new(),
     };
     let start = run.problem.value(&x, ctx).map_err(OptimizeError::Start)?;
     run.start = start;
@@ -219,15 +269,78 @@ pub fn optimize(
     run.problem.apply(&x).map_err(OptimizeError::Start)?;
     Ok(Outcome {
         x,
+        variables: run.problem.setup().variables.clone(),
         start,
         objective,
         iterations,
         evaluations: run.problem.evaluations,
         node_runs: run.problem.node_runs,
         gradients: run.gradients,
+        exact_gradients: run.exact_gradients,
+        notes: run.notes,
         fell_back,
         stop,
         graph: run.problem.into_graph(),
+    })
+}
+
+/// The exact gradient at the start point against central differences of the whole graph.
+#[derive(Debug, Clone)]
+pub struct GradientCheck {
+    /// The start point (projected into the bounds).
+    pub x: Vec<f64>,
+    /// The objective there.
+    pub value: f64,
+    /// The reverse pass's gradient.
+    pub exact: Vec<f64>,
+    /// Central differences (one-sided at a bound).
+    pub finite_differences: Vec<f64>,
+    /// max_i |exact_i − fd_i| / max_i |fd_i| (0 when both vanish).
+    pub largest_relative_difference: f64,
+    /// Nodes differentiated by finite differences of their own run, with the reason.
+    pub node_notes: Vec<(String, String)>,
+}
+
+/// Compares the exact gradient with finite differences at the start point of `setup`.
+pub fn check_gradient(
+    graph: &Graph,
+    setup: &Setup,
+    ctx: &NodeContext,
+) -> Result<GradientCheck, OptimizeError> {
+    let problem = Problem::new(graph.clone(), setup.clone(), true)?;
+    let (lo, hi) = problem.bounds();
+    let mut x = problem.start();
+    project(&mut x, &lo, &hi);
+    let mut run = Run {
+        problem,
+        start: 0.0,
+        ctx,
+        lo,
+        hi,
+        best: (x.clone(), f64::INFINITY),
+        gradients: 0,
+        exact: true,
+        exact_gradients: 0,
+        notes: Vec::new(),
+    };
+    let exact = run
+        .problem
+        .gradient(&x, ctx)
+        .map_err(OptimizeError::Start)?;
+    let fd = run.difference_gradient(&x, exact.value);
+    let scale = max_abs(&fd).max(max_abs(&exact.gradient));
+    let diff = exact
+        .gradient
+        .iter()
+        .zip(&fd)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    Ok(GradientCheck {
+        x,
+        value: exact.value,
+        largest_relative_difference: if scale > 0.0 { diff / scale } else { 0.0 },
+        exact: exact.gradient,
+        finite_differences: fd,
+        node_notes: exact.finite_differences,
     })
 }
 

@@ -3,7 +3,8 @@
 
 use petgraph::stable_graph::NodeIndex;
 
-use super::setup::Setup;
+use super::leaves;
+use super::setup::{Setup, Variable};
 use crate::eval::Evaluator;
 use crate::graph::Graph;
 use crate::node::NodeContext;
@@ -14,26 +15,91 @@ use crate::value::Value;
 #[error("{0}")]
 pub struct SetupMismatch(pub String);
 
+/// The variables that live in one literal input: the input's current value and, per variable,
+/// its index and the leaf it sets.
+#[derive(Debug, Clone)]
+pub(super) struct Group {
+    pub(super) node: String,
+    pub(super) port: String,
+    /// The input's index on the node.
+    pub(super) input: usize,
+    /// The literal value with the values last applied.
+    pub(super) base: Value,
+    /// (variable index, leaf index inside `base`).
+    pub(super) members: Vec<(usize, usize)>,
+}
+
 /// A graph with its setup, ready to be evaluated at points of the variable space.
 pub struct Problem {
-    graph: Graph,
-    setup: Setup,
-    evaluator: Evaluator,
+    pub(super) graph: Graph,
+    /// The setup with whole-input variables expanded into one variable per number.
+    pub(super) setup: Setup,
+    pub(super) evaluator: Evaluator,
     incremental: bool,
-    request: Vec<NodeIndex>,
-    /// Current literal values of the variables' inputs, by variable.
-    bases: Vec<Value>,
+    pub(super) request: Vec<NodeIndex>,
+    /// The literal inputs holding variables.
+    pub(super) groups: Vec<Group>,
     /// Objective evaluations so far.
     pub evaluations: u64,
     /// Node runs so far (over all evaluations).
     pub node_runs: u64,
 }
 
+/// The paths of every number of a literal input, for a whole-input variable (`node.input` naming
+/// a list, a table or a point). Graph-mapper handles contribute their v only (u orders the handles
+/// along the curve, z is unused).
+fn expand(variable: &Variable, base: &Value, node_type: &str) -> Vec<Variable> {
+    fn walk(v: &Value, at: &mut Vec<usize>, handles: bool, out: &mut Vec<Vec<usize>>) {
+        match v {
+            Value::Number(_) | Value::Integer(_) => out.push(at.clone()),
+            Value::Point(_) | Value::Vector(_) => {
+                let components: &[usize] = if handles { &[1] } else { &[0, 1, 2] };
+                for &c in components {
+                    at.push(c);
+                    out.push(at.clone());
+                    at.pop();
+                }
+            }
+            Value::List(items) => {
+                for (k, item) in items.iter().enumerate() {
+                    at.push(k);
+                    walk(item, at, handles, out);
+                    at.pop();
+                }
+            }
+            _ => {}
+        }
+    }
+    let handles = node_type == "mapper.graph" && variable.input.port == "handles";
+    let mut paths = Vec::new();
+    let mut at = variable.input.indices.clone();
+    let mut inner = base;
+    for &i in &variable.input.indices {
+        match inner {
+            Value::List(items) if i < items.len() => inner = &items[i],
+            _ => return vec![variable.clone()],
+        }
+    }
+    walk(inner, &mut at, handles, &mut paths);
+    paths
+        .into_iter()
+        .map(|indices| Variable {
+            input: super::path::ValuePath {
+                indices,
+                ..variable.input.clone()
+            },
+            ..variable.clone()
+        })
+        .collect()
+}
+
 impl Problem {
     /// Prepares `graph` for optimization. With `incremental` false every evaluation starts from a
-    /// fresh evaluator (the full re-evaluation baseline for comparisons).
-    pub fn new(graph: Graph, setup: Setup, incremental: bool) -> Result<Self, SetupMismatch> {
-        let mut bases = Vec::new();
+    /// fresh evaluator (the full re-evaluation baseline for comparisons). A variable naming a
+    /// whole list, table or point (`ratios.values`) stands for every number in it.
+    pub fn new(graph: Graph, mut setup: Setup, incremental: bool) -> Result<Self, SetupMismatch> {
+        let mut groups: Vec<Group> = Vec::new();
+        let mut variables = Vec::new();
         for v in &setup.variables {
             let node = graph.node(&v.input.node).ok_or_else(|| {
                 SetupMismatch(format!("variable {}: no node '{}'", v.input, v.input.node))
@@ -61,11 +127,46 @@ impl Problem {
                 .or(node.def.inputs[k].default.as_ref())
                 .cloned()
                 .unwrap_or(Value::Null);
-            v.input
-                .get(&base)
-                .map_err(|e| SetupMismatch(format!("variable {e}")))?;
-            bases.push(base);
+            let expanded = if v.input.get(&base).is_ok() {
+                vec![v.clone()]
+            } else {
+                let all = expand(v, &base, &node.def.id);
+                if all.is_empty() {
+                    return Err(SetupMismatch(format!(
+                        "variable {}: the input holds no numbers",
+                        v.input
+                    )));
+                }
+                all
+            };
+            let g = match groups
+                .iter()
+                .position(|g| g.node == v.input.node && g.port == v.input.port)
+            {
+                Some(g) => g,
+                None => {
+                    groups.push(Group {
+                        node: v.input.node.clone(),
+                        port: v.input.port.clone(),
+                        input: k,
+                        base: base.clone(),
+                        members: Vec::new(),
+                    });
+                    groups.len() - 1
+                }
+            };
+            for e in expanded {
+                e.input
+                    .get(&base)
+                    .map_err(|e| SetupMismatch(format!("variable {e}")))?;
+                let leaf = leaves::offset(&base, &e.input.indices).ok_or_else(|| {
+                    SetupMismatch(format!("variable {}: not a number of the input", e.input))
+                })?;
+                groups[g].members.push((variables.len(), leaf));
+                variables.push(e);
+            }
         }
+        setup.variables = variables;
         let mut request = Vec::new();
         for p in std::iter::once(&setup.objective).chain(setup.penalties.iter().map(|p| &p.output))
         {
@@ -92,30 +193,32 @@ impl Problem {
             evaluator: Evaluator::new(),
             incremental,
             request,
-            bases,
+            groups,
             evaluations: 0,
             node_runs: 0,
         })
     }
 
-    /// Number of variables.
+    /// Number of variables (whole-input variables counted by their numbers).
     pub fn dimension(&self) -> usize {
         self.setup.variables.len()
     }
 
-    /// The setup.
+    /// The setup, whole-input variables expanded.
     pub fn setup(&self) -> &Setup {
         &self.setup
     }
 
     /// The variables' current values in the graph.
     pub fn start(&self) -> Vec<f64> {
-        self.setup
-            .variables
-            .iter()
-            .zip(&self.bases)
-            .map(|(v, b)| v.input.get(b).unwrap_or(0.0))
-            .collect()
+        let mut x = vec![0.0; self.dimension()];
+        for g in &self.groups {
+            let flat = leaves::flatten(&g.base);
+            for &(v, leaf) in &g.members {
+                x[v] = flat.get(leaf).copied().unwrap_or(0.0);
+            }
+        }
+        x
     }
 
     /// Lower and upper bounds.
@@ -128,31 +231,13 @@ impl Problem {
 
     /// Writes `x` into the graph's inputs (only changed values are edits).
     pub fn apply(&mut self, x: &[f64]) -> Result<(), String> {
-        for (k, v) in self.setup.variables.iter().enumerate() {
-            // Variables may share one input (e.g. several items of a list): update the shared base.
-            let base = self
-                .setup
-                .variables
-                .iter()
-                .zip(&self.bases)
-                .position(|(w, _)| w.input.node == v.input.node && w.input.port == v.input.port)
-                .unwrap_or(k);
-            let updated = v.input.set(&self.bases[base], x[k])?;
-            for (j, w) in self.setup.variables.iter().enumerate() {
-                if w.input.node == v.input.node && w.input.port == v.input.port {
-                    self.bases[j] = updated.clone();
-                }
-            }
-        }
-        let mut done: Vec<(&str, &str)> = Vec::new();
-        for (v, base) in self.setup.variables.iter().zip(&self.bases) {
-            let key = (v.input.node.as_str(), v.input.port.as_str());
-            if done.contains(&key) {
-                continue;
-            }
-            done.push(key);
+        for g in &mut self.groups {
+            let mut updates: Vec<(usize, f64)> =
+                g.members.iter().map(|&(v, leaf)| (leaf, x[v])).collect();
+            updates.sort_by_key(|u| u.0);
+            g.base = leaves::with_leaves(&g.base, &updates);
             self.graph
-                .set_value(&v.input.node, &v.input.port, base.clone())
+                .set_value(&g.node, &g.port, g.base.clone())
                 .map_err(|e| e.to_string())?;
         }
         Ok(())

@@ -13,6 +13,7 @@
 // which `x <= tol` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod adjoint;
 pub mod apex;
 mod blend;
 pub mod configuration;

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use cnets_engine::NodeContext;
 use cnets_engine::file::save_file;
-use cnets_engine::optimize::{Method, Options, Stop, optimize};
+use cnets_engine::optimize::{Method, Options, Stop, check_gradient, optimize};
 use serde_json::json;
 
 use crate::failure::{CommandResult, Failure};
@@ -29,6 +29,17 @@ pub struct Args {
     /// Re-evaluate the whole graph for every objective evaluation (baseline for comparisons).
     #[arg(long)]
     full: bool,
+    /// Compare the exact gradient with finite differences at the start point and print
+    /// `largest relative difference: <number>` (no optimization).
+    #[arg(long)]
+    check_gradient: bool,
+    /// Gradients by finite differences of the whole graph instead of the exact reverse pass
+    /// (the baseline for comparisons).
+    #[arg(long)]
+    finite_differences: bool,
+    /// Stop after this many seconds (wall clock) and keep the best point found so far.
+    #[arg(long)]
+    time_limit: Option<f64>,
     /// Print the result (and every iteration) as JSON.
     #[arg(long)]
     json: bool,
@@ -61,9 +72,26 @@ pub fn run(args: Args) -> CommandResult {
         max_iter: args.max_iter,
         method,
         incremental: !args.full,
+        exact_gradients: !args.finite_differences,
         ..Options::default()
     };
     let ctx = NodeContext::new(None, args.graph.parent().map(Path::to_path_buf));
+    if args.check_gradient {
+        return check(&args, &doc.graph, &setup, &ctx);
+    }
+    if let Some(seconds) = args.time_limit {
+        if !(seconds.is_finite() && seconds >= 0.0) {
+            return Err(Failure::usage(format!(
+                "--time-limit must be a number of seconds ≥ 0, got {seconds}"
+            )));
+        }
+        let cancel = std::sync::Arc::clone(&ctx.cancel);
+        std::thread::spawn(move || {
+            std::thread::sleep(std::time::Duration::from_secs_f64(seconds.min(1e9)));
+            cancel.store(true, std::sync::atomic::Ordering::Relaxed);
+        });
+    }
+    let started = std::time::Instant::now();
     let progress = Progress::new("optimizing");
     let mut history = Vec::new();
     let limit = args.max_iter.unwrap_or(setup.max_iter);
@@ -88,9 +116,11 @@ pub fn run(args: Args) -> CommandResult {
         other => Failure::node(format!("{}: {other}", args.graph.display())),
     })?;
     progress.finish();
+    let seconds = started.elapsed().as_secs_f64();
     let stop = match &outcome.stop {
         Stop::Converged(why) => format!("converged ({why})"),
         Stop::MaxIterations => "iteration limit reached".to_string(),
+        Stop::Cancelled if args.time_limit.is_some() => "stopped at the time limit".to_string(),
         Stop::Cancelled => "cancelled".to_string(),
     };
     if let Some(out) = &args.out {
@@ -98,7 +128,7 @@ pub fn run(args: Args) -> CommandResult {
         save_file(out, &doc.graph, &doc.meta)
             .map_err(|e| Failure::usage(format!("{}: cannot write: {e}", out.display())))?;
     }
-    let variables: serde_json::Map<String, serde_json::Value> = setup
+    let variables: serde_json::Map<String, serde_json::Value> = outcome
         .variables
         .iter()
         .zip(&outcome.x)
@@ -113,8 +143,11 @@ pub fn run(args: Args) -> CommandResult {
                 "iterations": outcome.iterations,
                 "evaluations": outcome.evaluations,
                 "gradients": outcome.gradients,
+                "exact_gradients": outcome.exact_gradients,
+                "notes": outcome.notes,
                 "node_runs": outcome.node_runs,
                 "fell_back": outcome.fell_back,
+                "seconds": seconds,
                 "stop": stop,
                 "variables": variables,
                 "history": history,
@@ -122,20 +155,75 @@ pub fn run(args: Args) -> CommandResult {
         );
     } else {
         crate::outln!(
-            "objective {:.6e} -> {:.6e} in {} iterations ({} evaluations, {} gradients, {} node runs); {stop}",
+            "objective {:.6e} -> {:.6e} in {} iterations ({} evaluations, {} gradients ({} exact), {} node runs, {seconds:.3} s); {stop}",
             outcome.start,
             outcome.objective,
             outcome.iterations,
             outcome.evaluations,
             outcome.gradients,
+            outcome.exact_gradients,
             outcome.node_runs
         );
-        for (name, x) in &variables {
+        for note in &outcome.notes {
+            crate::outln!("note: {note}");
+        }
+        const SHOWN: usize = 60;
+        for (name, x) in variables.iter().take(SHOWN) {
             crate::outln!("  {name} = {x}");
+        }
+        if variables.len() > SHOWN {
+            crate::outln!("  … and {} more variables", variables.len() - SHOWN);
         }
         if let Some(out) = &args.out {
             crate::outln!("wrote {}", out.display());
         }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `--check-gradient`: the exact gradient against finite differences at the start point.
+fn check(
+    args: &Args,
+    graph: &cnets_engine::Graph,
+    setup: &cnets_engine::optimize::Setup,
+    ctx: &NodeContext,
+) -> CommandResult {
+    let checked = check_gradient(graph, setup, ctx).map_err(|e| match e {
+        cnets_engine::optimize::OptimizeError::Setup(m) => {
+            Failure::usage(format!("{}: {m}", args.graph.display()))
+        }
+        other => Failure::node(format!("{}: {other}", args.graph.display())),
+    })?;
+    let notes: Vec<String> = checked
+        .node_notes
+        .iter()
+        .map(|(node, why)| format!("node '{node}': finite differences for its part ({why})"))
+        .collect();
+    if args.json {
+        crate::outln!(
+            "{}",
+            json!({
+                "objective": checked.value,
+                "variables": checked.x.len(),
+                "exact": checked.exact,
+                "finite_differences": checked.finite_differences,
+                "largest_relative_difference": checked.largest_relative_difference,
+                "notes": notes,
+            })
+        );
+    } else {
+        crate::outln!(
+            "objective {:.9e}, {} variables",
+            checked.value,
+            checked.x.len()
+        );
+        for note in &notes {
+            crate::outln!("note: {note}");
+        }
+        crate::outln!(
+            "largest relative difference: {:.3e}",
+            checked.largest_relative_difference
+        );
     }
     Ok(ExitCode::SUCCESS)
 }

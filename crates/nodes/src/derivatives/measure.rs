@@ -1,0 +1,157 @@
+//! Gradients of the measure nodes (objectives).
+
+use cnets_engine::optimize::vjp::{VjpArgs, VjpResult};
+use cnets_engine::prelude::*;
+use cnets_geometry::mesh_query::MeshQuery;
+use cnets_geometry::objectives;
+
+use super::flat;
+use crate::measure::{alignment_targets, points_of, table_rows};
+
+type Product = fn(&VjpArgs<'_>) -> VjpResult;
+
+fn c(args: &VjpArgs<'_>, k: usize) -> f64 {
+    args.cotangents
+        .get(k)
+        .and_then(|c| c.as_ref())
+        .and_then(|c| c.first())
+        .copied()
+        .unwrap_or(0.0)
+}
+
+fn point_distance(args: &VjpArgs<'_>) -> VjpResult {
+    let (Some(a), Some(b)) = (args.inputs[0].as_list(), args.inputs[1].as_list()) else {
+        return Err(NodeError::new("internal: a and b are lists"));
+    };
+    let (pa, pb) = (points_of(a, "a")?, points_of(b, "b")?);
+    let (c0, c1) = (c(args, 0), c(args, 1));
+    let g: Vec<DVec3> = objectives::point_distance_gradient(&pa, &pb, c0)
+        .into_iter()
+        .zip(objectives::max_distance_gradient(&pa, &pb, c1))
+        .map(|(x, y)| x + y)
+        .collect();
+    let ga = flat(&g);
+    let gb: Vec<f64> = ga.iter().map(|x| -x).collect();
+    Ok(vec![
+        args.wanted[0].then_some(ga),
+        args.wanted[1].then_some(gb),
+    ])
+}
+
+fn closure(args: &VjpArgs<'_>) -> VjpResult {
+    let Value::QuadMesh(mesh) = &args.inputs[0] else {
+        return Err(NodeError::new("internal: closure needs a quad mesh"));
+    };
+    let w = args.inputs[1].as_f64().unwrap_or(0.0);
+    let (c0, c1, c2) = (c(args, 0), c(args, 1), c(args, 2));
+    let m = mesh.cols;
+    let first: Vec<DVec3> = (0..mesh.rows).map(|i| mesh.at(i, 0)).collect();
+    let last: Vec<DVec3> = (0..mesh.rows).map(|i| mesh.at(i, m - 1)).collect();
+    let gap: Vec<DVec3> = objectives::point_distance_gradient(&last, &first, c0)
+        .into_iter()
+        .zip(objectives::max_distance_gradient(&last, &first, c1))
+        .map(|(x, y)| x + y)
+        .collect();
+    let weight = c0 * w + c2;
+    let (tangent, mut g) = if weight != 0.0 || args.wanted[1] {
+        objectives::seam_tangents(mesh, weight)?
+    } else {
+        (0.0, vec![DVec3::ZERO; mesh.vertices.len()])
+    };
+    for (i, d) in gap.iter().enumerate() {
+        g[i * m + m - 1] += *d;
+        g[i * m] -= *d;
+    }
+    Ok(vec![
+        args.wanted[0].then(|| flat(&g)),
+        args.wanted[1].then(|| vec![c0 * tangent]),
+    ])
+}
+
+fn surface_distance(args: &VjpArgs<'_>) -> VjpResult {
+    let (Value::Mesh(mesh), Value::Mesh(reference)) = (&args.inputs[0], &args.inputs[1]) else {
+        return Err(NodeError::new("internal: surface distance needs meshes"));
+    };
+    if args.wanted[1] {
+        return Err(NodeError::new(
+            "the distance's derivative in the reference mesh is not implemented",
+        ));
+    }
+    let query = MeshQuery::new(reference)
+        .map_err(|e| NodeError::new(format!("the reference mesh: {e}")))?;
+    let hits = query.closest_all(&mesh.vertices)?;
+    let n = mesh.vertices.len().max(1) as f64;
+    let (c0, c1) = (c(args, 0), c(args, 1));
+    let mut g: Vec<DVec3> = mesh
+        .vertices
+        .iter()
+        .zip(&hits)
+        .map(|(v, h)| (*v - h.point) * (2.0 * c0 / n))
+        .collect();
+    if c1 != 0.0
+        && let Some((k, h)) = hits
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.distance.total_cmp(&b.1.distance))
+        && h.distance > 0.0
+    {
+        g[k] += (mesh.vertices[k] - h.point) * (c1 / h.distance);
+    }
+    Ok(vec![Some(flat(&g)), None])
+}
+
+fn normal_alignment(args: &VjpArgs<'_>) -> VjpResult {
+    let Value::Mesh(mesh) = &args.inputs[0] else {
+        return Err(NodeError::new("internal: alignment needs a mesh"));
+    };
+    if c(args, 1) != 0.0 {
+        return Err(NodeError::new("the largest term has no derivative here"));
+    }
+    if args.wanted[1] || args.wanted[2] {
+        return Err(NodeError::new(
+            "the alignment's derivative in its targets is not implemented",
+        ));
+    }
+    let target = match &args.inputs[1] {
+        Value::Vector(v) | Value::Point(v) => Some(*v),
+        _ => None,
+    };
+    let reference = match &args.inputs[2] {
+        Value::Mesh(m) => Some(m.as_ref()),
+        _ => None,
+    };
+    // With a reference, each face's target is the normal of the reference face closest to its
+    // centroid: piecewise constant, differentiated on the face found.
+    let targets = alignment_targets(mesh, target, reference)?;
+    let (_, _, g) = objectives::normal_alignment(mesh, &targets, c(args, 0))?;
+    Ok(vec![Some(flat(&g)), None, None])
+}
+
+fn fairness(args: &VjpArgs<'_>) -> VjpResult {
+    let c0 = c(args, 0);
+    let values = match &args.inputs[0] {
+        Value::Null => None,
+        v if args.wanted[0] => {
+            let (_, g) = objectives::table_fairness(&table_rows(v)?, c0);
+            Some(g.concat())
+        }
+        _ => None,
+    };
+    let mesh = match &args.inputs[1] {
+        Value::QuadMesh(m) if args.wanted[1] => Some(flat(&objectives::mesh_fairness(m, c0)?.1)),
+        _ => None,
+    };
+    Ok(vec![values, mesh])
+}
+
+/// The product of a measure node, by id.
+pub fn product(id: &str) -> Option<Product> {
+    Some(match id {
+        "measure.point_distance" => point_distance,
+        "measure.closure" => closure,
+        "measure.surface_distance" => surface_distance,
+        "measure.normal_alignment" => normal_alignment,
+        "measure.fairness" => fairness,
+        _ => return None,
+    })
+}

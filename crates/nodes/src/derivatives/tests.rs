@@ -1,0 +1,217 @@
+//! Every product against central differences of the node's own run (the fallback the optimizer
+//! uses for nodes without one).
+
+use cnets_engine::NodeContext;
+use cnets_engine::eval::evaluate_node;
+use cnets_engine::optimize::leaves;
+use cnets_engine::optimize::vjp::{Wanted, node_vjp};
+use cnets_engine::prelude::*;
+use std::sync::Arc;
+
+fn def(id: &str) -> NodeDef {
+    crate::all()
+        .into_iter()
+        .find(|d| d.id == id)
+        .unwrap_or_else(|| panic!("no node {id}"))
+}
+
+/// Inputs by name (defaults elsewhere).
+fn inputs(d: &NodeDef, named: &[(&str, Value)]) -> Vec<Value> {
+    d.inputs
+        .iter()
+        .map(|p| {
+            named
+                .iter()
+                .find(|(n, _)| *n == p.name)
+                .map(|(_, v)| v.clone())
+                .or_else(|| p.default.clone())
+                .unwrap_or(Value::Null)
+        })
+        .collect()
+}
+
+/// Compares the exact product with finite differences for the `wanted` inputs and cotangent
+/// weights `w(k)` on every output number; returns the largest relative difference.
+fn compare(id: &str, named: &[(&str, Value)], wanted: &[&str]) -> f64 {
+    let exact_def = def(id);
+    assert!(exact_def.vjp.is_some(), "{id} has a product");
+    let mut fd_def = exact_def.clone();
+    fd_def.vjp = None;
+    let ctx = NodeContext::default();
+    let ins = inputs(&exact_def, named);
+    let outs = evaluate_node(&exact_def, &ctx, &ins).unwrap().values;
+    let cot: Vec<Option<Vec<f64>>> = outs
+        .iter()
+        .enumerate()
+        .map(|(o, v)| {
+            let n = leaves::count(v);
+            // The alignment's largest term has no product: only its mean is weighted.
+            let outputs = if id == "measure.normal_alignment" { 1 } else { 3 };
+            (n > 0 && !leaves::opaque(v) && o < outputs)
+                .then(|| (0..n).map(|k| ((k + o) as f64 * 0.37 + 0.5).sin()).collect())
+        })
+        .collect();
+    let want: Vec<Wanted> = exact_def
+        .inputs
+        .iter()
+        .map(|p| {
+            if wanted.contains(&p.name.as_ref()) {
+                Wanted::All
+            } else {
+                Wanted::No
+            }
+        })
+        .collect();
+    let exact = node_vjp(&exact_def, &ctx, &ins, &outs, &cot, &want).unwrap();
+    assert!(
+        exact.finite_differences.is_none(),
+        "{id}: {:?}",
+        exact.finite_differences
+    );
+    let fd = node_vjp(&fd_def, &ctx, &ins, &outs, &cot, &want).unwrap();
+    let (mut diff, mut scale) = (0.0f64, 0.0f64);
+    for (a, b) in exact.inputs.iter().zip(&fd.inputs) {
+        if let (Some(a), Some(b)) = (a, b) {
+            assert_eq!(a.len(), b.len());
+            for (x, y) in a.iter().zip(b) {
+                diff = diff.max((x - y).abs());
+                scale = scale.max(y.abs());
+            }
+        }
+    }
+    assert!(scale > 0.0, "{id}: the gradient is not zero");
+    diff / scale
+}
+
+fn pts(ps: &[[f64; 3]]) -> Value {
+    Value::list(ps.iter().map(|p| Value::Point(DVec3::from_array(*p))).collect())
+}
+
+fn grid() -> Value {
+    let mut v = Vec::new();
+    for i in 0..4 {
+        for j in 0..5 {
+            let (x, y) = (j as f64, i as f64 * 0.8);
+            v.push(DVec3::new(x, y, 0.1 * x * x - 0.15 * y * y + 0.05 * x * y));
+        }
+    }
+    Value::QuadMesh(Arc::new(QuadGrid::new(4, 5, v).unwrap()))
+}
+
+#[test]
+fn math_products_match_differences() {
+    let n = Value::Number;
+    for (id, named) in [
+        ("math.add", vec![("a", n(1.5)), ("b", n(-0.5))]),
+        ("math.subtract", vec![("a", n(1.5)), ("b", n(-0.5))]),
+        ("math.multiply", vec![("a", n(1.5)), ("b", n(-0.7))]),
+        ("math.divide", vec![("a", n(1.5)), ("b", n(-0.7))]),
+        ("math.power", vec![("base", n(1.5)), ("exponent", n(2.3))]),
+        ("math.min", vec![("a", n(1.5)), ("b", n(-0.7))]),
+        ("math.max", vec![("a", n(1.5)), ("b", n(-0.7))]),
+        ("math.clamp", vec![("value", n(0.4))]),
+    ] {
+        let wanted: Vec<&str> = named.iter().map(|(k, _)| *k).collect();
+        let rel = compare(id, &named, &wanted);
+        assert!(rel < 1e-8, "{id}: {rel}");
+    }
+    let rel = compare(
+        "math.remap",
+        &[
+            ("value", n(0.3)),
+            ("from_start", n(-1.0)),
+            ("from_end", n(2.0)),
+            ("to_start", n(5.0)),
+            ("to_end", n(7.0)),
+        ],
+        &["value", "from_start", "from_end", "to_start", "to_end"],
+    );
+    assert!(rel < 1e-8, "remap: {rel}");
+    // Mapped over lists: a list of numbers times a number.
+    let rel = compare(
+        "math.multiply",
+        &[("a", crate::testing::nums(&[1.0, 2.0, -3.0])), ("b", n(0.5))],
+        &["a", "b"],
+    );
+    assert!(rel < 1e-8, "mapped multiply: {rel}");
+}
+
+#[test]
+fn structural_products_match_differences() {
+    let list = crate::testing::nums(&[0.1, 0.7, -0.3, 0.9, 0.25]);
+    for (id, named, wanted) in [
+        (
+            "list.reverse",
+            vec![("list", list.clone())],
+            vec!["list"],
+        ),
+        (
+            "list.item",
+            vec![("list", list.clone()), ("index", Value::Integer(3))],
+            vec!["list"],
+        ),
+        ("mesh.column", vec![("mesh", grid()), ("index", Value::Integer(-1))], vec!["mesh"]),
+        ("mesh.row", vec![("mesh", grid()), ("index", Value::Integer(1))], vec!["mesh"]),
+        (
+            "param.list",
+            vec![("values", Value::list(vec![list.clone(), list.clone()]))],
+            vec!["values"],
+        ),
+    ] {
+        let rel = compare(id, &named, &wanted);
+        assert!(rel < 1e-8, "{id}: {rel}");
+    }
+}
+
+#[test]
+fn measure_products_match_differences() {
+    let a = pts(&[[0.0, 0.1, 0.2], [1.0, 0.3, -0.2], [2.0, -0.4, 0.5]]);
+    let b = pts(&[[0.2, 0.0, 0.1], [1.1, 0.0, 0.0], [1.7, 0.1, 0.2]]);
+    let rel = compare("measure.point_distance", &[("a", a), ("b", b)], &["a", "b"]);
+    assert!(rel < 1e-7, "point_distance: {rel}");
+    let shifted = Value::list(vec![pts(&[[0.5, 0.2, 0.1]; 20])]);
+    let rel = compare(
+        "measure.point_distance",
+        &[("a", grid()), ("b", shifted)],
+        &["a"],
+    );
+    assert!(rel < 1e-7, "point_distance on a mesh: {rel}");
+    let rel = compare(
+        "measure.closure",
+        &[("mesh", grid()), ("tangents", Value::Number(0.5))],
+        &["mesh", "tangents"],
+    );
+    assert!(rel < 1e-7, "closure: {rel}");
+    let rel = compare(
+        "measure.normal_alignment",
+        &[("mesh", grid()), ("target", Value::Vector(DVec3::new(0.1, 0.3, 1.0)))],
+        &["mesh"],
+    );
+    assert!(rel < 1e-7, "normal_alignment: {rel}");
+    let rel = compare("measure.fairness", &[("mesh", grid())], &["mesh"]);
+    assert!(rel < 1e-7, "fairness (mesh): {rel}");
+    let table = Value::list(vec![
+        crate::testing::nums(&[0.1, 0.5, 0.3, 0.9]),
+        crate::testing::nums(&[0.2, 0.4, 0.8, 0.1]),
+        crate::testing::nums(&[0.7, 0.6, 0.5, 0.2]),
+    ]);
+    let rel = compare("measure.fairness", &[("values", table)], &["values"]);
+    assert!(rel < 1e-7, "fairness (table): {rel}");
+    let reference = Value::Mesh(Arc::new(PolygonMesh::from(&QuadGrid::new(
+        2,
+        2,
+        vec![
+            DVec3::new(-1.0, -1.0, -0.5),
+            DVec3::new(6.0, -1.0, -0.5),
+            DVec3::new(-1.0, 5.0, -0.3),
+            DVec3::new(6.0, 5.0, -0.3),
+        ],
+    )
+    .unwrap())));
+    let rel = compare(
+        "measure.surface_distance",
+        &[("mesh", grid()), ("reference", reference)],
+        &["mesh"],
+    );
+    assert!(rel < 1e-6, "surface_distance: {rel}");
+}

@@ -1,0 +1,222 @@
+//! Exact gradients through the real node library: the reverse pass against finite differences of
+//! the whole graph, whole-input variables, and a 1 600-ratio fit that finite differences cannot do.
+
+use cnets_engine::optimize::{Options, Setup, check_gradient, optimize};
+use cnets_engine::{NodeContext, Value};
+use cnets_tests::load;
+use proptest::prelude::*;
+
+/// tube-closure with the ratio handles at `v` (40 values, 5 per generatrix polyline).
+fn tube_with_handles(v: &[f64]) -> (cnets_engine::Graph, Setup) {
+    let mut doc = load("tube-closure");
+    let rows: Vec<Value> = v
+        .chunks(5)
+        .map(|row| {
+            Value::list(
+                row.iter()
+                    .enumerate()
+                    .map(|(k, y)| Value::Point(glam::DVec3::new(k as f64 * 0.25, *y, 0.0)))
+                    .collect(),
+            )
+        })
+        .collect();
+    doc.graph
+        .set_value("ratios", "handles", Value::list(rows))
+        .unwrap();
+    (doc.graph, doc.meta.optimization.unwrap())
+}
+
+#[test]
+fn tube_closure_gradient_is_exact_through_the_construction() {
+    let v: Vec<f64> = (0..40)
+        .map(|k| 0.4 + 0.2 * ((k as f64) * 0.77).sin().abs())
+        .collect();
+    let (graph, setup) = tube_with_handles(&v);
+    let check = check_gradient(&graph, &setup, &NodeContext::default()).unwrap();
+    assert_eq!(check.exact.len(), 40);
+    assert!(
+        check.largest_relative_difference < 1e-6,
+        "largest relative difference {:e}",
+        check.largest_relative_difference
+    );
+    // The construction, the column and the distance are differentiated exactly; only the
+    // monotone-spline mapper falls back to finite differences of its own run.
+    let fd: Vec<&str> = check.node_notes.iter().map(|n| n.0.as_str()).collect();
+    assert_eq!(fd, ["ratios"], "{:?}", check.node_notes);
+    assert!(check.exact.iter().any(|g| g.abs() > 1e-3));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(3))]
+    #[test]
+    fn random_tube_designs_have_exact_gradients(
+        v in proptest::collection::vec(0.3f64..0.7, 40),
+    ) {
+        // Off the kink of the ratio → angle map at ½ (the mapper's flat runs are kinks too).
+        let v: Vec<f64> = v.into_iter().map(|x| if (x - 0.5).abs() < 1e-2 { x + 2e-2 } else { x }).collect();
+        let (graph, setup) = tube_with_handles(&v);
+        let check = check_gradient(&graph, &setup, &NodeContext::default()).unwrap();
+        prop_assert!(
+            check.largest_relative_difference < 1e-6,
+            "largest relative difference {:e}",
+            check.largest_relative_difference
+        );
+    }
+}
+
+#[test]
+fn a_whole_table_variable_fits_1600_ratios() {
+    let doc = load("ratio-fit");
+    let setup = doc.meta.optimization.clone().unwrap();
+    assert_eq!(
+        setup.variables.len(),
+        1,
+        "one whole-input variable in the file"
+    );
+    let ctx = NodeContext::default();
+    let options = Options {
+        max_iter: Some(15),
+        ..Options::default()
+    };
+    let out = optimize(&doc.graph, &setup, &options, &ctx, &mut |_| {}).unwrap();
+    assert_eq!(out.x.len(), 1600, "every number of the 40 × 40 table");
+    assert_eq!(out.variables[41].input.to_string(), "ratios.values[1][1]");
+    assert_eq!(out.gradients, out.exact_gradients, "{:?}", out.notes);
+    assert!(out.notes.is_empty(), "{:?}", out.notes);
+    assert!(
+        out.objective < 0.05 * out.start,
+        "{:.3e} -> {:.3e}",
+        out.start,
+        out.objective
+    );
+    assert!(out.x.iter().all(|x| (0.1..=0.9).contains(x)));
+    // Fewer evaluations than one finite-difference gradient (3 201).
+    assert!(out.evaluations < 3201, "{}", out.evaluations);
+}
+
+/// A 100 × 100 cone-net (ratios ≠ ½ everywhere) and L = Σ |G − T|² against a target net: one
+/// exact gradient through the engine (evaluation + reverse pass) — the side-by-side figure.
+fn hundred_by_hundred() -> cnets_engine::file::Document {
+    let text = std::fs::read_to_string(cnets_tests::root().join("graphs/ratio-fit.ron")).unwrap();
+    let table = |v: f64| {
+        let row = format!("[{}]", vec![format!("{v}"); 99].join(", "));
+        format!("[{}]", vec![row; 100].join(", "))
+    };
+    let start = text.find("\"values\": [").unwrap() + "\"values\": ".len();
+    let end =
+        start + text[start..].find("\n                ],").unwrap() + "\n                ]".len();
+    let column = text.find("\"column_field\"").unwrap();
+    let text = format!(
+        "{}{}",
+        &text[..column],
+        text[column..].replacen("\"count\": 40", "\"count\": 99", 1)
+    );
+    let text = format!("{}{}{}", &text[..start], table(0.45), &text[end..])
+        .replace("\"count\": 41", "\"count\": 100")
+        .replace("\"count\": 40", "\"count\": 100")
+        .replace("\"b\": 0.001", "\"b\": 0.0");
+    cnets_engine::file::load_str(&text, "hundred.ron", &cnets_tests::registry()).unwrap()
+}
+
+#[test]
+#[ignore = "timings for docs/optimizer.md: cargo test --release -p cnets-tests --test gradients -- --ignored --nocapture"]
+fn figures() {
+    use std::time::Instant;
+    let ctx = NodeContext::default();
+    // tube-closure: exact against finite differences.
+    let doc = load("tube-closure");
+    let setup = doc.meta.optimization.clone().unwrap();
+    for exact in [true, false] {
+        let t = Instant::now();
+        let o = optimize(
+            &doc.graph,
+            &setup,
+            &Options {
+                exact_gradients: exact,
+                ..Options::default()
+            },
+            &ctx,
+            &mut |_| {},
+        )
+        .unwrap();
+        println!(
+            "tube-closure exact={exact}: {:.3e} -> {:.3e}, {} iterations, {} evaluations, {} gradients, {} node runs, {:.3} s",
+            o.start,
+            o.objective,
+            o.iterations,
+            o.evaluations,
+            o.gradients,
+            o.node_runs,
+            t.elapsed().as_secs_f64()
+        );
+    }
+    // ratio-fit: exact, then finite differences for the same time.
+    let doc = load("ratio-fit");
+    let setup = doc.meta.optimization.clone().unwrap();
+    let t = Instant::now();
+    let o = optimize(&doc.graph, &setup, &Options::default(), &ctx, &mut |_| {}).unwrap();
+    let exact_time = t.elapsed();
+    println!(
+        "ratio-fit exact: {:.3e} -> {:.3e}, {} iterations, {} evaluations, {} gradients, {:.3} s, {:?}",
+        o.start,
+        o.objective,
+        o.iterations,
+        o.evaluations,
+        o.gradients,
+        exact_time.as_secs_f64(),
+        o.stop
+    );
+    let fd_ctx = NodeContext::default();
+    let cancel = std::sync::Arc::clone(&fd_ctx.cancel);
+    std::thread::spawn(move || {
+        std::thread::sleep(exact_time);
+        cancel.store(true, std::sync::atomic::Ordering::Relaxed);
+    });
+    let t = Instant::now();
+    let o = optimize(
+        &doc.graph,
+        &setup,
+        &Options {
+            exact_gradients: false,
+            ..Options::default()
+        },
+        &fd_ctx,
+        &mut |_| {},
+    )
+    .unwrap();
+    println!(
+        "ratio-fit finite differences, stopped after the same time: {:.3e} -> {:.3e}, {} iterations, {} evaluations, {} gradients, {:.3} s, {:?}",
+        o.start,
+        o.objective,
+        o.iterations,
+        o.evaluations,
+        o.gradients,
+        t.elapsed().as_secs_f64(),
+        o.stop
+    );
+    // One gradient of a 100 × 100 vertex-distance objective.
+    let doc = hundred_by_hundred();
+    let setup = doc.meta.optimization.clone().unwrap();
+    let mut problem = cnets_engine::optimize::Problem::new(doc.graph.clone(), setup, true).unwrap();
+    let x = problem.start();
+    assert_eq!(x.len(), 9900);
+    let _ = problem.gradient(&x, &ctx).unwrap();
+    let mut times = Vec::new();
+    for k in 0..7 {
+        // Change every ratio so that the construction re-runs (a fresh point each time).
+        let y: Vec<f64> = x.iter().map(|v| v + 1e-3 * (k + 1) as f64).collect();
+        let t = Instant::now();
+        let g = problem.gradient(&y, &ctx).unwrap();
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+        assert!(
+            g.finite_differences.is_empty(),
+            "{:?}",
+            g.finite_differences
+        );
+    }
+    times.sort_by(f64::total_cmp);
+    println!(
+        "100 × 100 gradient (evaluation + reverse pass, 9 900 ratios): median {:.1} ms, min {:.1} ms, max {:.1} ms",
+        times[3], times[0], times[6]
+    );
+}
