@@ -79,7 +79,7 @@ def _curve(x: Any, name: str) -> Any:
 
 
 def _net(node_type: str, inputs: Dict[str, Any], directrix: Any, generatrix: Any) -> ConeNet:
-    out = _cnets.eval(node_type, inputs)
+    out = _cnets.eval(node_type, inputs, label_tables=True)
     return ConeNet._from_outputs(out, directrix=directrix, generatrix=generatrix)
 
 

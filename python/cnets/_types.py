@@ -49,7 +49,8 @@ class QuadMesh:
     ``wrap_rows`` / ``wrap_cols`` whether quads join the last row (column) to the first."""
 
     def __init__(self, vertices: Any, wrap_rows: bool = False, wrap_cols: bool = False) -> None:
-        v = np.asarray(vertices, dtype=np.float64)
+        v = vertices if isinstance(vertices, np.ndarray) and vertices.dtype == np.float64 else np.asarray(
+            vertices, dtype=np.float64)
         if v.ndim != 3 or v.shape[2] != 3:
             raise _cnets.CnetsError(
                 f"a quad mesh needs an (N, M, 3) array of vertices, got shape {v.shape}"
@@ -109,24 +110,47 @@ class ConeNet(QuadMesh):
         apex: Any = None,
         apices: Any = None,
         planes: Any = None,
-        configurations: Optional[List[List[str]]] = None,
+        configurations: Any = None,
         corrections: Optional[List[str]] = None,
         quality: Optional[Dict[str, Any]] = None,
         directrix: Any = None,
         generatrix: Any = None,
     ) -> None:
         super().__init__(vertices, wrap_rows, wrap_cols)
-        m = self.vertices.shape[1]
-        self.apex = np.asarray([] if apex is None else apex, dtype=np.float64).reshape(-1)
+        n, m = self.vertices.shape[:2]
+        self.apex = _floats(apex).reshape(-1)
         self.apices = _apices(apices, max(m - 1, 0))
-        n = self.vertices.shape[0]
-        planes = np.asarray([] if planes is None else planes, dtype=np.float64)
-        self.planes = planes.reshape(n, max(m - 1, 0), 3) if planes.size else planes.reshape(n, 0, 3)
-        self.configurations = configurations if configurations is not None else []
+        self.planes = _floats(planes).reshape(n, max(m - 1, 0), 3)
+        # (codes, labels) from the engine: the lists are built on first access.
+        self._configurations = configurations if configurations is not None else []
         self.corrections = list(corrections or [])
         self.quality = dict(quality or {})
         self.directrix = directrix
         self.generatrix = generatrix
+
+    @property
+    def configurations(self) -> List[List[str]]:
+        """N lists of M−2 configuration labels ``"++"``, ``"--"``, ``"+-"``, ``"-+"``."""
+        c = self._configurations
+        if isinstance(c, tuple):
+            codes, labels = c
+            c = np.asarray(labels, dtype=object)[codes].tolist() if codes.size else [
+                [] for _ in range(codes.shape[0])]
+            self._configurations = c
+        return c
+
+    @property
+    def configuration_codes(self) -> np.ndarray:
+        """The configurations as an (N, M−2) uint8 array indexing ``("++", "--", "+-", "-+")``."""
+        c = self._configurations
+        if isinstance(c, tuple):
+            codes, labels = c
+            order = {"++": 0, "--": 1, "+-": 2, "-+": 3}
+            remap = np.asarray([order.get(x, 255) for x in labels], dtype=np.uint8)
+            return remap[codes] if codes.size else codes.astype(np.uint8)
+        order = {"++": 0, "--": 1, "+-": 2, "-+": 3}
+        return np.asarray([[order[x] for x in row] for row in c], dtype=np.uint8).reshape(
+            self.vertices.shape[0], -1)
 
     @classmethod
     def _from_outputs(cls, out: Dict[str, Any], directrix: Any = None, generatrix: Any = None) -> "ConeNet":
@@ -138,7 +162,7 @@ class ConeNet(QuadMesh):
             apex=out.get("apex"),
             apices=out.get("apices"),
             planes=out.get("planes"),
-            configurations=_labels(out.get("configurations")),
+            configurations=out.get("configurations"),
             corrections=out.get("corrections") or [],
             quality=out.get("quality") or {},
             directrix=directrix,
@@ -162,7 +186,7 @@ def _apices(apices: Any, count: int) -> np.ndarray:
     return np.asarray(rows, dtype=np.float64).reshape(-1, 3)
 
 
-def _labels(configurations: Any) -> List[List[str]]:
-    if configurations is None:
-        return []
-    return [list(row) for row in configurations]
+def _floats(x: Any) -> np.ndarray:
+    if isinstance(x, np.ndarray) and x.dtype == np.float64:
+        return x
+    return np.asarray([] if x is None else x, dtype=np.float64)

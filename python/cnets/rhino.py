@@ -6,12 +6,15 @@ and conversions between Rhino geometry and cnets values (used by the Hops server
 - ``ConeNet.to_3dm(path, layers=True)``: the net as a quad mesh on layer ``Cone-net``, the directrix
   and generatrix as polylines on ``Directrix`` / ``Generatrix``, the torsion-free node axes on
   ``Axes`` and a conical support layer on ``Support`` (both computed by the node library:
-  ``cnets.torsion_free_axes``, ``cnets.conical_support``).
+  ``cnets.torsion_free_axes``, ``cnets.conical_support``; left out, with a warning, where they are
+  undefined: a generatrix point on the directrix).
 """
 
 from __future__ import annotations
 
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+import warnings
 
 import numpy as np
 
@@ -181,15 +184,23 @@ def cone_net_layers(net: ConeNet, support: Optional[float] = 0.8, axes: bool = T
         layers["Directrix"] = _as_polyline(net.directrix)
     if net.generatrix is not None:
         layers["Generatrix"] = _as_polyline(net.generatrix)
+    # The axes and the support layer are undefined where a generatrix point lies on the directrix
+    # (G_00 = X_0, the usual start): those layers are then left out with a warning.
     if net.directrix is not None and axes:
-        layers["Axes"] = _cnets.eval(
-            "cnets.torsion_free_axes", {"directrix": net.directrix, "mesh": net}
-        )["axes"]
+        try:
+            layers["Axes"] = _cnets.eval(
+                "cnets.torsion_free_axes", {"directrix": net.directrix, "mesh": net}
+            )["axes"]
+        except _cnets.CnetsError as e:
+            warnings.warn(f"to_3dm: no Axes layer: {e}")
     if net.directrix is not None and support is not None:
-        layers["Support"] = _cnets.eval(
-            "cnets.conical_support",
-            {"directrix": net.directrix, "mesh": net, "apex": net.apex, "factor": support},
-        )["mesh"]
+        try:
+            layers["Support"] = _cnets.eval(
+                "cnets.conical_support",
+                {"directrix": net.directrix, "mesh": net, "apex": net.apex, "factor": support},
+            )["mesh"]
+        except _cnets.CnetsError as e:
+            warnings.warn(f"to_3dm: no Support layer: {e}")
     return layers
 
 

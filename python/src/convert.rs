@@ -570,3 +570,48 @@ fn list_to_py<'py>(py: Python<'py>, items: &Items) -> PyResult<Bound<'py, PyAny>
     }
     Ok(out.into_any())
 }
+
+/// A list of packed label rows (the construction nodes' `configurations`) as `(codes, labels)`:
+/// an (N, K) uint8 array of codes and the list of label texts they index, without a Python object
+/// per label. `None` when the value is not such a list.
+pub fn label_table<'py>(py: Python<'py>, value: &Value) -> PyResult<Option<Bound<'py, PyAny>>> {
+    let Value::List(rows) = value else {
+        return Ok(None);
+    };
+    let mut codes = Vec::new();
+    let mut shared: Option<&Arc<[Value]>> = None;
+    let mut width = None;
+    for row in rows.iter() {
+        let Value::List(items) = row else {
+            return Ok(None);
+        };
+        let Some(Packed::Labels {
+            table,
+            range,
+            labels,
+        }) = items.as_packed()
+        else {
+            return Ok(None);
+        };
+        if *width.get_or_insert(range.len()) != range.len() {
+            return Ok(None);
+        }
+        match shared {
+            None => shared = Some(labels),
+            Some(s) if Arc::ptr_eq(s, labels) || s[..] == labels[..] => {}
+            Some(_) => return Ok(None),
+        }
+        codes.extend_from_slice(&table[range.clone()]);
+    }
+    let (Some(labels), Some(width)) = (shared, width) else {
+        return Ok(None);
+    };
+    let codes = PyArray1::from_vec(py, codes).reshape([rows.len(), width])?;
+    let texts = labels
+        .iter()
+        .map(|l| to_py(py, l))
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok(Some(
+        PyTuple::new(py, [codes.into_any(), PyList::new(py, texts)?.into_any()])?.into_any(),
+    ))
+}

@@ -27,7 +27,7 @@ use pyo3::types::PyDict;
 use crate::settings::Settings;
 
 create_exception!(
-    _cnets,
+    cnets,
     CnetsError,
     PyValueError,
     "An error of cnets: a node that failed, a graph file that does not load (file:line:col), an \
@@ -49,8 +49,9 @@ pub(crate) fn error(message: impl Into<String>) -> PyErr {
 }
 
 /// Evaluates one node type on inputs (a dict by input name) and returns its outputs by name.
+/// `label_tables`: lists of label rows (configurations) come back as `(codes, labels)`.
 #[pyfunction]
-#[pyo3(signature = (node_type, inputs, outputs=None, max_memory=None, allow_read=None, library=None, out=None))]
+#[pyo3(signature = (node_type, inputs, outputs=None, max_memory=None, allow_read=None, library=None, out=None, label_tables=false))]
 #[allow(clippy::too_many_arguments)]
 fn eval<'py>(
     py: Python<'py>,
@@ -61,6 +62,7 @@ fn eval<'py>(
     allow_read: Option<Vec<PathBuf>>,
     library: Option<Vec<PathBuf>>,
     out: Option<PathBuf>,
+    label_tables: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let settings = Settings::new(max_memory, allow_read, library, out)?;
     let node = cnets_host::resolve(
@@ -127,7 +129,15 @@ fn eval<'py>(
             .as_ref()
             .is_none_or(|o| o.iter().any(|n| n == &port.name))
         {
-            dict.set_item(port.name.as_ref(), convert::to_py(py, value)?)?;
+            let table = if label_tables {
+                convert::label_table(py, value)?
+            } else {
+                None
+            };
+            match table {
+                Some(t) => dict.set_item(port.name.as_ref(), t)?,
+                None => dict.set_item(port.name.as_ref(), convert::to_py(py, value)?)?,
+            }
         }
     }
     if !outputs_of.files.is_empty() {

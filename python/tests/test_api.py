@@ -88,7 +88,8 @@ def test_ctube_coplanar_and_encode_round_trip():
     back = cnets.ctube(code["directrix"], code["generatrix"], apex=code["apex"], normals=code["normals"])
     size = np.ptp(net.vertices.reshape(-1, 3), axis=0).max()
     np.testing.assert_allclose(back.vertices, net.vertices, atol=1e-9 * size)
-    cop = cnets.construct_coplanar(d, g, apex=0.9, ruling_ratios=0.4, plane_ratios=0.6)
+    lifted = g + [0.0, 0.0, 0.5]  # a generatrix starting off the directrix
+    cop = cnets.construct_coplanar(d, lifted, apex=0.9, ruling_ratios=0.4, plane_ratios=0.6)
     assert cop.vertices.shape == (5, 8, 3)
     # Every column of the coplanar construction lies in one plane.
     for j in range(8):

@@ -16,8 +16,8 @@ import pytest
 import cnets
 from conftest import arc, profile
 
-rhino3dm = pytest.importorskip("rhino3dm")
-pytest.importorskip("ghhops_server")
+import ghhops_server  # noqa: F401  (the tests need it: fail, do not skip, without it)
+import rhino3dm
 
 
 def _free_port():
@@ -182,15 +182,16 @@ def test_engine_errors_reach_grasshopper(server):
 
 
 def test_coplanar_graph_to_apex_support_and_library(server):
+    lifted = profile(4) + [0.0, 0.0, 0.5]  # off the directrix: support planes and axes defined
     d = rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in arc(6).tolist()])
-    g = rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in profile(4).tolist()])
+    g = rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in lifted.tolist()])
     status, response = _post(server + "/cnets_construct_coplanar", {"values": [
         _param("Directrix", [_curve_item(d)]), _param("Generatrix", [_curve_item(g)]),
         _param("Apex", _number_items([0.9])), _param("RulingRatios", _number_items([0.4])),
         _param("PlaneRatios", _number_items([0.6])), _param("Assistance", _number_items([-1])),
     ]})
     assert status == 200, response
-    expected = cnets.construct_coplanar(arc(6), profile(4), apex=0.9, ruling_ratios=0.4, plane_ratios=0.6)
+    expected = cnets.construct_coplanar(arc(6), lifted, apex=0.9, ruling_ratios=0.4, plane_ratios=0.6)
     mesh = _decode(_values(response)["Mesh"][0])
     np.testing.assert_allclose(_mesh_vertices(mesh), expected.vertices.reshape(-1, 3), atol=1e-6)
 
@@ -204,7 +205,7 @@ def test_coplanar_graph_to_apex_support_and_library(server):
     apex = [json.loads(a["data"]) for a in _values(response)["Apex"]]
     np.testing.assert_allclose(apex, np.array(widths[1:]) / np.array(widths[:-1]))
 
-    net = cnets.construct(arc(6), profile(4), apex=0.9)
+    net = cnets.construct(arc(6), lifted, apex=0.9)
     from cnets.rhino import quad_mesh_to_rhino
 
     status, response = _post(server + "/cnets_support", {"values": [

@@ -7,8 +7,8 @@ import pytest
 
 import cnets
 
-pd = pytest.importorskip("pandas")
-distributed = pytest.importorskip("dask.distributed")
+import dask.distributed as distributed
+import pandas as pd
 
 OUTPUTS = ["len.length", "net.quality.max_planarity", "net.quality.vertices"]
 
@@ -62,7 +62,7 @@ def test_list_of_designs_errors_and_exports(design, tmp_path, client):
     out = tmp_path / "designs"
     df = cnets.sweep(path, designs, ["len.length", "net.quality.max_planarity"], client=client, out=out)
     assert len(df) == 3
-    assert df["error"].iloc[0] is None and df["error"].iloc[2] is None
+    assert pd.isna(df["error"].iloc[0]) and pd.isna(df["error"].iloc[2])
     assert "gen" in df["error"].iloc[1] or "net" in df["error"].iloc[1]
     assert np.isnan(df["net.quality.max_planarity"].iloc[1])
     # A design that does not set an input gets the file's value, not the previous design's.
