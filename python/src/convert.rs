@@ -53,7 +53,7 @@ fn to_value_at(obj: &Bound<'_, PyAny>, ty: &ValueType, depth: usize) -> Result<V
         return Ok(Value::text(obj.extract::<String>().map_err(err)?));
     }
     if let Ok(array) = obj.cast::<PyUntypedArray>() {
-        return array_value(array, ty, depth);
+        return array_value(array, ty);
     }
     if let Ok(dict) = obj.cast::<PyDict>() {
         return dict_value(dict, ty, depth);
@@ -149,34 +149,18 @@ fn numeric(obj: &Bound<'_, PyAny>) -> Result<(Vec<usize>, Vec<f64>), String> {
 }
 
 /// A numpy array read by the port's type.
-fn array_value(
-    array: &Bound<'_, PyUntypedArray>,
-    ty: &ValueType,
-    depth: usize,
-) -> Result<Value, String> {
+fn array_value(array: &Bound<'_, PyUntypedArray>, ty: &ValueType) -> Result<Value, String> {
     let (shape, data) = array_f64(array)?;
-    shaped_value(&shape, &data, ty, depth)
+    shaped_value(&shape, &data, ty)
 }
 
-fn shaped_value(
-    shape: &[usize],
-    data: &[f64],
-    ty: &ValueType,
-    depth: usize,
-) -> Result<Value, String> {
+fn shaped_value(shape: &[usize], data: &[f64], ty: &ValueType) -> Result<Value, String> {
     use ValueType as T;
     let sub = |data: &[f64], shape: &[usize]| -> Result<Value, String> {
         let n = shape[0];
         let stride: usize = shape[1..].iter().product();
         (0..n)
-            .map(|k| {
-                shaped_value(
-                    &shape[1..],
-                    &data[k * stride..(k + 1) * stride],
-                    ty,
-                    depth + 1,
-                )
-            })
+            .map(|k| shaped_value(&shape[1..], &data[k * stride..(k + 1) * stride], ty))
             .collect::<Result<Vec<_>, _>>()
             .map(Value::list)
     };
@@ -348,7 +332,7 @@ fn sequence_value(obj: &Bound<'_, PyAny>, ty: &ValueType, depth: usize) -> Resul
         && shape.len() >= 2
         && shape.last() == Some(&3)
     {
-        return shaped_value(&shape, &data, ty, depth);
+        return shaped_value(&shape, &data, ty);
     }
     items
         .iter()

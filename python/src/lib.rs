@@ -182,9 +182,9 @@ fn quad_faces<'py>(
             data.extend(grid.quad_indices(i, j).map(|k| k as i64));
         }
     }
-    Ok(PyArray1::from_vec(py, data)
+    PyArray1::from_vec(py, data)
         .reshape([qr * qc, 4])
-        .map(|a| a.into_any())?)
+        .map(|a| a.into_any())
 }
 
 /// A node type as a dict: `id`, `category`, `doc`, `inputs` and `outputs` (each a dict with
