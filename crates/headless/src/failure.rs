@@ -52,6 +52,15 @@ impl From<LoadError> for Failure {
     }
 }
 
+impl From<cnets_host::HostError> for Failure {
+    fn from(e: cnets_host::HostError) -> Self {
+        match e {
+            cnets_host::HostError::Usage(m) => Self::usage(m),
+            cnets_host::HostError::Load(e) => e.into(),
+        }
+    }
+}
+
 impl From<std::io::Error> for Failure {
     /// Writing the output failed: a closed pipe (`| head`) ends quietly with success, anything
     /// else (a full disk) is one line and exit 2.

@@ -1,16 +1,15 @@
-//! Graph files used as node types: `cluster:<path.ron>` and library folders.
+//! Graph files used as node types: `cluster:<path.ron>` and library folders (the logic lives in
+//! `cnets-host`, shared with the Python package).
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use cnets_engine::cluster::{Cluster, ClusterSource};
-use cnets_engine::file::{Document, LoadOptions, load_file_with};
+use cnets_engine::file::Document;
 use cnets_engine::{NodeDef, Registry};
 
 use crate::failure::Failure;
 
-/// The prefix that names a graph file as a node type in `cnets eval`.
-pub const PREFIX: &str = "cluster:";
+pub use cnets_host::PREFIX;
 
 /// Loads a graph file (cluster sources next to it, then in the library folders) and applies the
 /// `--set node.input=value` overrides.
@@ -25,21 +24,7 @@ pub fn load_graph_allowing(
     sets: &[String],
     allow_read: &[PathBuf],
 ) -> Result<Document, Failure> {
-    let registry = Arc::new(cnets_nodes::registry());
-    let mut options = options(path, library);
-    options.allow_read = allow_read.to_vec();
-    let mut doc = load_file_with(path, &registry, &options)?;
-    for set in sets {
-        crate::inputs::apply_set(&mut doc.graph, set)?;
-    }
-    Ok(doc)
-}
-
-/// Load options for a graph file, with extra library folders.
-pub fn options(path: &Path, library: &[PathBuf]) -> LoadOptions {
-    library
-        .iter()
-        .fold(LoadOptions::for_file(path), |o, dir| o.with_library(dir))
+    Ok(cnets_host::load_graph(path, library, sets, allow_read)?)
 }
 
 /// The node type of a graph file used as a cluster.
@@ -49,56 +34,17 @@ pub fn cluster_def(
     library: &[PathBuf],
     allow_read: &[PathBuf],
 ) -> Result<NodeDef, Failure> {
-    let file = Path::new(path);
-    let mut options = options(file, library);
-    options.allow_read = allow_read.to_vec();
-    let doc = load_file_with(file, registry, &options)?;
-    let source = ClusterSource::File {
-        written: path.to_string(),
-        resolved: file.to_path_buf(),
-    };
-    let cluster = Cluster::new(
-        source,
-        doc.graph,
-        doc.meta,
-        file.parent().map(Path::to_path_buf),
-    )
-    .map_err(|e| Failure::usage(format!("{path}: {e}")))?;
-    if cluster.interface.is_empty() {
-        return Err(Failure::usage(format!(
-            "{path}: the graph has no graph.input or graph.output nodes, so it cannot be used as a node"
-        )));
-    }
-    let mut def = cluster.node_def();
-    def.id = format!("{PREFIX}{path}").into();
-    Ok(def)
+    Ok(cnets_host::cluster_def(
+        path, registry, library, allow_read,
+    )?)
 }
 
 /// Every graph of a folder that declares an interface, as node types (sorted by file name).
 /// Files that do not load are reported on stderr and skipped.
 pub fn folder_defs(dir: &Path, registry: &Arc<Registry>) -> Result<Vec<NodeDef>, Failure> {
-    let entries = std::fs::read_dir(dir).map_err(|e| {
-        Failure::usage(format!(
-            "{}: cannot read the library folder: {e}",
-            dir.display()
-        ))
-    })?;
-    let mut files: Vec<PathBuf> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-        .collect();
-    files.sort();
-    let mut defs = Vec::new();
-    for file in files {
-        let path = file.display().to_string();
-        match cluster_def(&path, registry, &[dir.to_path_buf()], &[]) {
-            Ok(def) => defs.push(def),
-            Err(f) => {
-                for m in f.messages {
-                    eprintln!("warning: skipped {m}");
-                }
-            }
-        }
+    let (defs, skipped) = cnets_host::folder_defs(dir, registry)?;
+    for m in skipped {
+        eprintln!("warning: skipped {m}");
     }
     Ok(defs)
 }

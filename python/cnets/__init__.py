@@ -1,0 +1,244 @@
+"""cnets: design cone-nets — planar-quad meshes whose strips lie on discrete cones (CNets, AAG 2025)
+— from Python. Every function runs the Rust node library through its registry, exactly as the
+``cnets`` command line and the editor do; no geometry is computed in Python.
+
+- ``construct``, ``ctube``, ``construct_coplanar``: build a ``ConeNet`` from a directrix and a
+  generatrix (numpy (n, 3) arrays or ``Polyline``).
+- ``encode``: any cone-net as C-tube construction inputs.
+- ``eval(node_type, **inputs)``: any node type of ``cnets nodes``.
+- ``Graph``: graph files, edited and evaluated incrementally.
+- ``write_3dm`` / ``ConeNet.to_3dm``: Rhino files (``pip install cnets[rhino]``).
+- ``sweep``: a design-space sweep of a graph on Dask (``pip install cnets[sweep]``).
+- ``python -m cnets.hops``: a Grasshopper Hops server.
+
+Errors raise ``CnetsError`` (a ``ValueError``) with the engine's message.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _cnets
+from ._cnets import CnetsError, Graph
+from ._types import ConeNet, PolygonMesh, Polyline, QuadMesh
+
+__all__ = [
+    "CnetsError",
+    "ConeNet",
+    "Graph",
+    "PolygonMesh",
+    "Polyline",
+    "QuadMesh",
+    "construct",
+    "construct_coplanar",
+    "ctube",
+    "encode",
+    "eval",
+    "node_types",
+    "sweep",
+    "write_3dm",
+]
+
+PolylineLike = Union[Polyline, np.ndarray, Sequence[Sequence[float]]]
+Numbers = Union[float, Sequence[float], np.ndarray]
+
+_NODE_DOCS = {d["id"]: d for d in _cnets.node_types()}
+
+
+def _doc(node_type: str, intro: str) -> str:
+    """A docstring from the node's own documentation: its doc and its ports."""
+    d = _NODE_DOCS[node_type]
+    lines = [intro, "", d["doc"], "", "Parameters", "----------"]
+    for p in d["inputs"]:
+        default = "" if p["default"] is None else f" = {p['default']!r}"
+        optional = ", optional" if p["optional"] else ""
+        lines.append(f"{p['name']} : {p['type']}{optional}{default}")
+        lines.append(f"    {p['doc']}")
+    lines += ["", "Node outputs", "------------"]
+    for p in d["outputs"]:
+        lines.append(f"{p['name']} : {p['type']}")
+        lines.append(f"    {p['doc']}")
+    return "\n".join(lines)
+
+
+def _inputs(**kwargs: Any) -> Dict[str, Any]:
+    return {k: v for k, v in kwargs.items() if v is not None}
+
+
+def _curve(x: Any, name: str) -> Any:
+    if isinstance(x, Polyline):
+        return x
+    if hasattr(x, "points") and hasattr(x, "closed"):
+        return x
+    arr = np.asarray(x, dtype=np.float64) if not isinstance(x, np.ndarray) else x
+    if arr.ndim != 2 or arr.shape[-1] != 3:
+        raise CnetsError(f"{name}: expected an (n, 3) array of points or a cnets.Polyline, got shape {arr.shape}")
+    return arr
+
+
+def _net(node_type: str, inputs: Dict[str, Any], directrix: Any, generatrix: Any) -> ConeNet:
+    out = _cnets.eval(node_type, inputs, label_tables=True)
+    return ConeNet._from_outputs(out, directrix=directrix, generatrix=generatrix)
+
+
+def construct(
+    directrix: PolylineLike,
+    generatrix: PolylineLike,
+    apex: Numbers = 1.0,
+    ratios: Any = 0.5,
+    assistance: float = -1.0,
+    normalized: bool = False,
+    scale: Optional[float] = None,
+    epsilon: float = 0.01,
+    end_planes: str = "perpendicular",
+) -> ConeNet:
+    d = _curve(directrix, "directrix")
+    g = _curve(generatrix, "generatrix")
+    inputs = _inputs(
+        directrix=d,
+        generatrix=g,
+        apex=apex,
+        ratios=ratios,
+        assistance=assistance,
+        normalized=normalized,
+        scale=scale,
+        epsilon=epsilon,
+        end_planes=end_planes,
+    )
+    return _net("cnets.construct", inputs, d, g)
+
+
+construct.__doc__ = _doc("cnets.construct", "CNets Construct: returns a ConeNet.")
+
+
+def ctube(
+    directrix: PolylineLike,
+    generatrix: PolylineLike,
+    apex: Numbers = 1.0,
+    normals: Any = None,
+    normalized: bool = False,
+    scale: Optional[float] = None,
+    end_planes: str = "perpendicular",
+) -> ConeNet:
+    d = _curve(directrix, "directrix")
+    g = _curve(generatrix, "generatrix")
+    if normals is not None and isinstance(normals, np.ndarray) and normals.size == 0:
+        normals = None
+    inputs = _inputs(
+        directrix=d,
+        generatrix=g,
+        apex=apex,
+        normals=normals,
+        normalized=normalized,
+        scale=scale,
+        end_planes=end_planes,
+    )
+    return _net("ctube.construct", inputs, d, g)
+
+
+ctube.__doc__ = _doc("ctube.construct", "The C-tube construction: returns a ConeNet.")
+
+
+def construct_coplanar(
+    directrix: PolylineLike,
+    generatrix: PolylineLike,
+    apex: Numbers = 1.0,
+    ruling_ratios: Numbers = 0.5,
+    plane_ratios: Numbers = 0.5,
+    assistance: float = -1.0,
+    normalized: bool = False,
+    scale: Optional[float] = None,
+    epsilon: float = 0.01,
+    end_planes: str = "perpendicular",
+) -> ConeNet:
+    d = _curve(directrix, "directrix")
+    g = _curve(generatrix, "generatrix")
+    inputs = _inputs(
+        directrix=d,
+        generatrix=g,
+        apex=apex,
+        ruling_ratios=ruling_ratios,
+        plane_ratios=plane_ratios,
+        assistance=assistance,
+        normalized=normalized,
+        scale=scale,
+        epsilon=epsilon,
+        end_planes=end_planes,
+    )
+    return _net("cnets.construct_coplanar", inputs, d, g)
+
+
+construct_coplanar.__doc__ = _doc(
+    "cnets.construct_coplanar", "CNets Construct Coplanar: returns a ConeNet."
+)
+
+
+def encode(vertices: Any) -> Dict[str, Any]:
+    mesh = vertices if hasattr(vertices, "vertices") else QuadMesh(vertices)
+    return _cnets.eval("cnets.encode", {"mesh": mesh})
+
+
+encode.__doc__ = _doc(
+    "cnets.encode",
+    "Encodes a cone-net ((N, M, 3) vertices, a QuadMesh or a ConeNet) as C-tube inputs: a dict "
+    "with directrix, generatrix (Polyline), apex (M−1,) and normals (N, M−1, 3).",
+)
+
+
+def eval(
+    node_type: str,
+    *,
+    _outputs: Optional[Sequence[str]] = None,
+    _max_memory: Union[int, str, None] = None,
+    _allow_read: Optional[Sequence[str]] = None,
+    _library: Optional[Sequence[str]] = None,
+    _out: Optional[str] = None,
+    **inputs: Any,
+) -> Dict[str, Any]:
+    """Evaluates one node type (any id of ``cnets nodes``, or ``"cluster:<graph.ron>"``) on
+    inputs given by name, and returns its outputs by name, as ``cnets eval`` does.
+
+    Values: numbers, ``int``, ``bool``, ``str``; points as 3 numbers; polylines as (n, 3) arrays
+    or ``Polyline``; quad meshes as (N, M, 3) arrays or ``QuadMesh``; lists and tables as lists
+    or numpy arrays; records as dicts. Outputs come back as numpy arrays (numbers, points, and
+    rectangular tables of them), ``Polyline``, ``QuadMesh``, ``PolygonMesh``, dicts, lists.
+    Missing inputs take the node's defaults.
+
+    Keyword options (prefixed with ``_`` so they never clash with an input name):
+    ``_outputs`` computes only these outputs; ``_max_memory`` the memory budget (bytes or
+    ``"2G"``); ``_allow_read`` further folders a node may read from (besides the working folder);
+    ``_library`` folders of cluster graph files; ``_out`` the folder export nodes write into.
+    A failed node raises ``CnetsError`` with the node's message.
+    """
+    return _cnets.eval(
+        node_type,
+        inputs,
+        outputs=list(_outputs) if _outputs is not None else None,
+        max_memory=_max_memory,
+        allow_read=list(_allow_read) if _allow_read is not None else None,
+        library=list(_library) if _library is not None else None,
+        out=_out,
+    )
+
+
+def node_types() -> list:
+    """Every node type: dicts with ``id``, ``category``, ``doc``, ``inputs``, ``outputs``."""
+    return _cnets.node_types()
+
+
+def write_3dm(path: Any, objects: Any, **kwargs: Any) -> None:
+    """Writes cone-nets, meshes and polylines to a Rhino .3dm file (needs ``rhino3dm``:
+    ``pip install cnets[rhino]``). See ``cnets.rhino.write_3dm``."""
+    from .rhino import write_3dm as _write
+
+    _write(path, objects, **kwargs)
+
+
+def sweep(graph: Any, parameters: Any, outputs: Any, client: Any = None, **kwargs: Any) -> Any:
+    """Evaluates a graph file for every parameter set on Dask and returns a pandas DataFrame
+    (needs ``dask[distributed]`` and ``pandas``). See ``cnets.sweeps.sweep``."""
+    from .sweeps import sweep as _sweep
+
+    return _sweep(graph, parameters, outputs, client=client, **kwargs)

@@ -1,0 +1,192 @@
+"""The value classes of cnets: polylines, quad meshes, polygon meshes and cone-nets.
+
+They hold numpy arrays (no Python object per vertex) and are what the engine returns and accepts.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, List, Optional
+
+import numpy as np
+
+from . import _cnets
+
+__all__ = ["Polyline", "QuadMesh", "PolygonMesh", "ConeNet"]
+
+
+class Polyline:
+    """A polyline: ``points`` an (n, 3) float64 array, ``closed`` whether the last point connects
+    back to the first. A plain (n, 3) array-like passed where a polyline is expected is an open
+    polyline."""
+
+    __slots__ = ("points", "closed")
+
+    def __init__(self, points: Any, closed: bool = True) -> None:
+        pts = np.asarray(points, dtype=np.float64)
+        if pts.ndim != 2 or pts.shape[1] != 3:
+            raise _cnets.CnetsError(
+                f"a polyline needs an (n, 3) array of points, got shape {pts.shape}"
+            )
+        self.points = pts
+        self.closed = bool(closed)
+
+    def __len__(self) -> int:
+        return len(self.points)
+
+    def __repr__(self) -> str:
+        return f"Polyline({len(self.points)} points, closed={self.closed})"
+
+    def __eq__(self, other: object) -> bool:
+        return (
+            isinstance(other, Polyline)
+            and self.closed == other.closed
+            and np.array_equal(self.points, other.points)
+        )
+
+
+class QuadMesh:
+    """A regular quad-grid mesh: ``vertices`` an (N, M, 3) float64 array (row i, column j),
+    ``wrap_rows`` / ``wrap_cols`` whether quads join the last row (column) to the first."""
+
+    def __init__(self, vertices: Any, wrap_rows: bool = False, wrap_cols: bool = False) -> None:
+        v = vertices if isinstance(vertices, np.ndarray) and vertices.dtype == np.float64 else np.asarray(
+            vertices, dtype=np.float64)
+        if v.ndim != 3 or v.shape[2] != 3:
+            raise _cnets.CnetsError(
+                f"a quad mesh needs an (N, M, 3) array of vertices, got shape {v.shape}"
+            )
+        self.vertices = v
+        self.wrap_rows = bool(wrap_rows)
+        self.wrap_cols = bool(wrap_cols)
+
+    @property
+    def shape(self) -> tuple:
+        """(N, M): rows (generatrix points) and columns (directrix points)."""
+        return self.vertices.shape[:2]
+
+    def faces(self) -> np.ndarray:
+        """The quads as an (F, 4) int array of indices into ``vertices.reshape(-1, 3)``
+        (vertex ``i * M + j``), row by row, wrapping quads included."""
+        n, m = self.vertices.shape[:2]
+        return _cnets.quad_faces(n, m, self.wrap_rows, self.wrap_cols)
+
+    def __repr__(self) -> str:
+        n, m = self.vertices.shape[:2]
+        return f"{type(self).__name__}({n} × {m} vertices)"
+
+
+class PolygonMesh:
+    """A general polygon mesh: ``vertices`` a (V, 3) array, ``faces`` a list of vertex-index
+    lists."""
+
+    def __init__(self, vertices: Any, faces: List[List[int]]) -> None:
+        self.vertices = np.asarray(vertices, dtype=np.float64)
+        self.faces = [list(map(int, f)) for f in faces]
+
+    def __repr__(self) -> str:
+        return f"PolygonMesh({len(self.vertices)} vertices, {len(self.faces)} faces)"
+
+
+class ConeNet(QuadMesh):
+    """A constructed cone-net (the outputs of ``cnets.construct`` and its siblings).
+
+    - ``vertices``: (N, M, 3) float64; row i is a generatrix point, column j a directrix point.
+    - ``apex``: (M−1,) the apex values a_j used (after normalization and correction).
+    - ``apices``: (M−1, 3) the cone apices C_j, NaN rows where the apex is at infinity.
+    - ``planes``: (N, M−1, 3) the construction-plane normals P_ij.
+    - ``configurations``: N lists of M−2 labels ``"++"``, ``"--"``, ``"+-"``, ``"-+"``.
+    - ``corrections``: the corrections made, one line each.
+    - ``quality``: ``max_planarity``, ``mean_planarity``, ``max_cone_residual``, configuration
+      counts, ``first_bad``…
+    - ``faces()``: (F, 4) vertex indices into ``vertices.reshape(-1, 3)``.
+    - ``to_3dm(path, layers=True)``: a Rhino file (needs ``pip install cnets[rhino]``).
+    """
+
+    def __init__(
+        self,
+        vertices: Any,
+        wrap_rows: bool = False,
+        wrap_cols: bool = False,
+        apex: Any = None,
+        apices: Any = None,
+        planes: Any = None,
+        configurations: Any = None,
+        corrections: Optional[List[str]] = None,
+        quality: Optional[Dict[str, Any]] = None,
+        directrix: Any = None,
+        generatrix: Any = None,
+    ) -> None:
+        super().__init__(vertices, wrap_rows, wrap_cols)
+        n, m = self.vertices.shape[:2]
+        self.apex = _floats(apex).reshape(-1)
+        self.apices = _apices(apices, max(m - 1, 0))
+        self.planes = _floats(planes).reshape(n, max(m - 1, 0), 3)
+        # (codes, labels) from the engine: the lists are built on first access.
+        self._configurations = configurations if configurations is not None else []
+        self.corrections = list(corrections or [])
+        self.quality = dict(quality or {})
+        self.directrix = directrix
+        self.generatrix = generatrix
+
+    @property
+    def configurations(self) -> List[List[str]]:
+        """N lists of M−2 configuration labels ``"++"``, ``"--"``, ``"+-"``, ``"-+"``."""
+        c = self._configurations
+        if isinstance(c, tuple):
+            codes, labels = c
+            c = np.asarray(labels, dtype=object)[codes].tolist() if codes.size else [
+                [] for _ in range(codes.shape[0])]
+            self._configurations = c
+        return c
+
+    @property
+    def configuration_codes(self) -> np.ndarray:
+        """The configurations as an (N, M−2) uint8 array indexing ``("++", "--", "+-", "-+")``."""
+        c = self._configurations
+        if isinstance(c, tuple):
+            codes, labels = c
+            order = {"++": 0, "--": 1, "+-": 2, "-+": 3}
+            remap = np.asarray([order.get(x, 255) for x in labels], dtype=np.uint8)
+            return remap[codes] if codes.size else codes.astype(np.uint8)
+        order = {"++": 0, "--": 1, "+-": 2, "-+": 3}
+        return np.asarray([[order[x] for x in row] for row in c], dtype=np.uint8).reshape(
+            self.vertices.shape[0], -1)
+
+    @classmethod
+    def _from_outputs(cls, out: Dict[str, Any], directrix: Any = None, generatrix: Any = None) -> "ConeNet":
+        mesh = out["mesh"]
+        return cls(
+            mesh.vertices,
+            mesh.wrap_rows,
+            mesh.wrap_cols,
+            apex=out.get("apex"),
+            apices=out.get("apices"),
+            planes=out.get("planes"),
+            configurations=out.get("configurations"),
+            corrections=out.get("corrections") or [],
+            quality=out.get("quality") or {},
+            directrix=directrix,
+            generatrix=generatrix,
+        )
+
+    def to_3dm(self, path: Any, layers: bool = True, **kwargs: Any) -> None:
+        """Writes the net to a Rhino file: the quad mesh, the directrix and generatrix as
+        polylines, on named layers when ``layers`` (see ``cnets.write_3dm``)."""
+        from .rhino import write_cone_net
+
+        write_cone_net(path, self, layers=layers, **kwargs)
+
+
+def _apices(apices: Any, count: int) -> np.ndarray:
+    if apices is None or (isinstance(apices, list) and not apices):
+        return np.full((count, 3), np.nan)
+    if isinstance(apices, np.ndarray):
+        return apices.astype(np.float64).reshape(-1, 3)
+    rows = [[np.nan] * 3 if a is None else list(np.asarray(a, dtype=np.float64)) for a in apices]
+    return np.asarray(rows, dtype=np.float64).reshape(-1, 3)
+
+
+def _floats(x: Any) -> np.ndarray:
+    if isinstance(x, np.ndarray) and x.dtype == np.float64:
+        return x
+    return np.asarray([] if x is None else x, dtype=np.float64)

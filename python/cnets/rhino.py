@@ -1,0 +1,270 @@
+"""Rhino files (.3dm) through McNeel's official ``rhino3dm`` package (``pip install cnets[rhino]``),
+and conversions between Rhino geometry and cnets values (used by the Hops server).
+
+- ``write_3dm(path, objects, layers=True)``: cone-nets, quad meshes, polygon meshes, polylines and
+  line sets, each on its own named layer.
+- ``ConeNet.to_3dm(path, layers=True)``: the net as a quad mesh on layer ``Cone-net``, the directrix
+  and generatrix as polylines on ``Directrix`` / ``Generatrix``, the torsion-free node axes on
+  ``Axes`` and a conical support layer on ``Support`` (both computed by the node library:
+  ``cnets.torsion_free_axes``, ``cnets.conical_support``; left out, with a warning, where they are
+  undefined: a generatrix point on the directrix).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+import warnings
+
+import numpy as np
+
+from . import _cnets
+from ._types import ConeNet, PolygonMesh, Polyline, QuadMesh
+
+__all__ = [
+    "LAYER_COLOURS",
+    "curve_points",
+    "mesh_from_rhino",
+    "quad_mesh_to_rhino",
+    "polyline_to_rhino",
+    "write_3dm",
+    "write_cone_net",
+]
+
+#: Layer colours (RGBA) by layer name; other layers are grey.
+LAYER_COLOURS: Dict[str, Tuple[int, int, int, int]] = {
+    "Cone-net": (40, 110, 200, 255),
+    "Directrix": (220, 60, 40, 255),
+    "Generatrix": (40, 160, 70, 255),
+    "Axes": (120, 120, 120, 255),
+    "Support": (200, 140, 30, 255),
+}
+
+
+def _rhino3dm():
+    try:
+        import rhino3dm
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError(
+            "cnets' Rhino files need the rhino3dm package: pip install cnets[rhino]"
+        ) from e
+    return rhino3dm
+
+
+def quad_mesh_to_rhino(mesh: QuadMesh) -> Any:
+    """A ``rhino3dm.Mesh`` of quads from a quad mesh (double-precision vertices, row-major
+    vertex ``i * M + j``)."""
+    r = _rhino3dm()
+    out = r.Mesh()
+    out.Vertices.UseDoublePrecisionVertices = True
+    for x, y, z in mesh.vertices.reshape(-1, 3).tolist():
+        out.Vertices.Add(x, y, z)
+    for a, b, c, d in mesh.faces().tolist():
+        out.Faces.AddFace(a, b, c, d)
+    return out
+
+
+def polygon_mesh_to_rhino(mesh: PolygonMesh) -> Any:
+    """A ``rhino3dm.Mesh`` from a polygon mesh (triangles and quads; larger faces are fanned)."""
+    r = _rhino3dm()
+    out = r.Mesh()
+    out.Vertices.UseDoublePrecisionVertices = True
+    for x, y, z in np.asarray(mesh.vertices).tolist():
+        out.Vertices.Add(x, y, z)
+    for f in mesh.faces:
+        if len(f) == 3:
+            out.Faces.AddFace(f[0], f[1], f[2])
+        elif len(f) == 4:
+            out.Faces.AddFace(f[0], f[1], f[2], f[3])
+        else:
+            for k in range(1, len(f) - 1):
+                out.Faces.AddFace(f[0], f[k], f[k + 1])
+    return out
+
+
+def _points(points: np.ndarray, closed: bool) -> List[Any]:
+    r = _rhino3dm()
+    pts = [r.Point3d(x, y, z) for x, y, z in np.asarray(points, dtype=np.float64).tolist()]
+    if closed and pts:
+        pts.append(pts[0])
+    return pts
+
+
+def polyline_to_rhino(polyline: Union[Polyline, np.ndarray]) -> Any:
+    """A ``rhino3dm.PolylineCurve`` from a polyline (closed: the first point repeated)."""
+    r = _rhino3dm()
+    if isinstance(polyline, Polyline):
+        return r.PolylineCurve(_points(polyline.points, polyline.closed))
+    return r.PolylineCurve(_points(np.asarray(polyline), False))
+
+
+def curve_points(curve: Any, samples: int = 33) -> Polyline:
+    """The points of any Rhino curve as a ``Polyline``: a polyline curve gives its vertices; any
+    other curve (NURBS, arc, line…) is sampled at ``samples`` parameters evenly spaced over its
+    domain. A closed curve gives a closed polyline (the seam point once)."""
+    closed = bool(curve.IsClosed)
+    ok = curve.TryGetPolyline() if hasattr(curve, "TryGetPolyline") else None
+    pts: List[Tuple[float, float, float]] = []
+    if isinstance(ok, tuple):
+        ok = ok[1] if ok[0] else None
+    if ok is not None and not isinstance(ok, bool):
+        pts = [(p.X, p.Y, p.Z) for p in (ok[k] for k in range(ok.Count))]
+    elif hasattr(curve, "PointCount") and type(curve).__name__ == "PolylineCurve":
+        pts = [(p.X, p.Y, p.Z) for p in (curve.Point(k) for k in range(curve.PointCount))]
+    else:
+        domain = curve.Domain
+        n = max(2, int(samples))
+        ts = np.linspace(domain.T0, domain.T1, n)
+        for t in ts:
+            p = curve.PointAt(float(t))
+            pts.append((p.X, p.Y, p.Z))
+    arr = np.asarray(pts, dtype=np.float64).reshape(-1, 3)
+    if closed and len(arr) > 1 and np.allclose(arr[0], arr[-1], atol=1e-12 * (1 + np.abs(arr).max())):
+        arr = arr[:-1]
+    return Polyline(arr, closed=closed)
+
+
+def mesh_from_rhino(mesh: Any) -> PolygonMesh:
+    """A polygon mesh from a ``rhino3dm.Mesh``."""
+    vertices = [(p.X, p.Y, p.Z) for p in (mesh.Vertices[k] for k in range(len(mesh.Vertices)))]
+    faces = []
+    for k in range(mesh.Faces.Count):
+        f = mesh.Faces[k]
+        faces.append(list(f[:3]) if f[2] == f[3] else list(f))
+    return PolygonMesh(np.asarray(vertices, dtype=np.float64).reshape(-1, 3), faces)
+
+
+def _layer(model: Any, name: str, cache: Dict[str, int]) -> int:
+    if name not in cache:
+        colour = LAYER_COLOURS.get(name, (128, 128, 128, 255))
+        cache[name] = model.Layers.AddLayer(name, colour)
+    return cache[name]
+
+
+def _attributes(layer: Optional[int], name: Optional[str]) -> Any:
+    r = _rhino3dm()
+    attr = r.ObjectAttributes()
+    if layer is not None:
+        attr.LayerIndex = layer
+    if name:
+        attr.Name = name
+    return attr
+
+
+def _add(model: Any, item: Any, layer: Optional[int], name: Optional[str]) -> None:
+    attr = _attributes(layer, name)
+    if isinstance(item, QuadMesh):
+        model.Objects.AddMesh(quad_mesh_to_rhino(item), attr)
+    elif isinstance(item, PolygonMesh):
+        model.Objects.AddMesh(polygon_mesh_to_rhino(item), attr)
+    elif isinstance(item, Polyline):
+        model.Objects.AddCurve(polyline_to_rhino(item), attr)
+    else:
+        arr = np.asarray(item, dtype=np.float64)
+        if arr.ndim == 3 and arr.shape[1:] == (2, 3):
+            r = _rhino3dm()
+            for (a, b) in arr.tolist():
+                model.Objects.AddLine(r.Point3d(*a), r.Point3d(*b), attr)
+        elif arr.ndim == 2 and arr.shape[1] == 3:
+            model.Objects.AddCurve(polyline_to_rhino(arr), attr)
+        elif arr.ndim == 3 and arr.shape[2] == 3:
+            model.Objects.AddMesh(quad_mesh_to_rhino(QuadMesh(arr)), attr)
+        else:
+            raise _cnets.CnetsError(
+                f"write_3dm: cannot write a {type(item).__name__} of shape {arr.shape}"
+            )
+
+
+def cone_net_layers(net: ConeNet, support: Optional[float] = 0.8, axes: bool = True) -> Dict[str, Any]:
+    """What ``ConeNet.to_3dm`` writes, by layer name: ``Cone-net`` (the mesh), ``Directrix`` and
+    ``Generatrix`` (polylines, when the net knows them), ``Axes`` (the torsion-free node axes,
+    (K, 2, 3)) and ``Support`` (a conical support layer scaled by ``support`` about X_0)."""
+    layers: Dict[str, Any] = {"Cone-net": QuadMesh(net.vertices, net.wrap_rows, net.wrap_cols)}
+    if net.directrix is not None:
+        layers["Directrix"] = _as_polyline(net.directrix)
+    if net.generatrix is not None:
+        layers["Generatrix"] = _as_polyline(net.generatrix)
+    # The axes and the support layer are undefined where a generatrix point lies on the directrix
+    # (G_00 = X_0, the usual start): those layers are then left out with a warning.
+    if net.directrix is not None and axes:
+        try:
+            layers["Axes"] = _cnets.eval(
+                "cnets.torsion_free_axes", {"directrix": net.directrix, "mesh": net}
+            )["axes"]
+        except _cnets.CnetsError as e:
+            warnings.warn(f"to_3dm: no Axes layer: {e}")
+    if net.directrix is not None and support is not None:
+        try:
+            layers["Support"] = _cnets.eval(
+                "cnets.conical_support",
+                {"directrix": net.directrix, "mesh": net, "apex": net.apex, "factor": support},
+            )["mesh"]
+        except _cnets.CnetsError as e:
+            warnings.warn(f"to_3dm: no Support layer: {e}")
+    return layers
+
+
+def _as_polyline(x: Any) -> Polyline:
+    if isinstance(x, Polyline):
+        return x
+    if hasattr(x, "points") and hasattr(x, "closed"):
+        return Polyline(x.points, x.closed)
+    return Polyline(np.asarray(x, dtype=np.float64), closed=False)
+
+
+def write_cone_net(path: Any, net: ConeNet, layers: bool = True, support: Optional[float] = 0.8,
+                   axes: bool = True, version: int = 8) -> None:
+    """Writes a cone-net to a .3dm file (``ConeNet.to_3dm``)."""
+    write_3dm(path, cone_net_layers(net, support=support, axes=axes), layers=layers, version=version)
+
+
+def write_3dm(path: Any, objects: Any, layers: bool = True, version: int = 8) -> None:
+    """Writes geometry to a Rhino .3dm file (Rhino ``version``, default 8).
+
+    ``objects``: a dict of layer name → item (or list of items), or a sequence of items. An item
+    is a ``ConeNet`` (written as ``ConeNet.to_3dm`` does: its mesh, curves, axes and support on
+    their layers), a ``QuadMesh`` / (N, M, 3) array (a quad mesh), a ``PolygonMesh``, a
+    ``Polyline`` / (n, 3) array (a polyline curve) or a (K, 2, 3) array (lines). With ``layers``
+    each name (or item kind, for a sequence) gets its own layer; without, everything goes on the
+    default layer. The file is written whole, then renamed into place.
+    """
+    r = _rhino3dm()
+    import os
+
+    model = r.File3dm()
+    cache: Dict[str, int] = {}
+    if isinstance(objects, dict):
+        entries: Iterable[Tuple[Optional[str], Any]] = objects.items()
+    elif isinstance(objects, (ConeNet, QuadMesh, PolygonMesh, Polyline, np.ndarray)):
+        entries = [(None, objects)]
+    else:
+        entries = [(None, o) for o in objects]
+    for name, value in entries:
+        items = value if isinstance(value, list) else [value]
+        for item in items:
+            if isinstance(item, ConeNet):
+                for sub, geometry in cone_net_layers(item).items():
+                    layer = _layer(model, sub if name is None else f"{name}/{sub}", cache) if layers else None
+                    _add(model, geometry, layer, sub)
+                continue
+            layer_name = name or _kind(item)
+            layer = _layer(model, layer_name, cache) if layers else None
+            _add(model, item, layer, name)
+    path = os.fspath(path)
+    tmp = f"{path}.{os.getpid()}.tmp"
+    if not model.Write(tmp, version):
+        raise _cnets.CnetsError(f"{path}: rhino3dm could not write the file")
+    os.replace(tmp, path)
+
+
+def _kind(item: Any) -> str:
+    if isinstance(item, QuadMesh):
+        return "Quad meshes"
+    if isinstance(item, PolygonMesh):
+        return "Meshes"
+    if isinstance(item, Polyline):
+        return "Polylines"
+    arr = np.asarray(item)
+    if arr.ndim == 3 and arr.shape[1:] == (2, 3):
+        return "Lines"
+    return "Polylines" if arr.ndim == 2 else "Quad meshes"

@@ -1,0 +1,200 @@
+"""Design-space sweeps of a graph file on Dask (``pip install cnets[sweep]``).
+
+``cnets.sweep(graph, parameters, outputs, client=None)`` evaluates the graph for every parameter
+set and returns a pandas DataFrame, one row per design: the parameters, the requested outputs and
+``error`` (``None`` when every node ran). With no ``client`` it starts a ``dask.distributed``
+``LocalCluster`` on this machine (and closes it afterwards); with a client it runs wherever the
+client points (a SLURM cluster through ``dask-jobqueue``, Kubernetes…; see docs/python.md).
+
+Each worker process loads the graph once (a per-worker cache keyed by the file's absolute path and
+modification time) and re-evaluates incrementally: a design sets only its parameters and the
+engine re-runs only what depends on the ones that changed.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import threading
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _cnets
+
+__all__ = ["sweep", "designs", "evaluate_design"]
+
+Parameters = Union[Dict[str, Sequence[Any]], Sequence[Dict[str, Any]]]
+
+# Per worker process: (path, mtime, settings) → (graph, lock, initial values of set inputs).
+_CACHE: Dict[Tuple[Any, ...], Tuple[Any, threading.Lock, Dict[str, Any]]] = {}
+_CACHE_LOCK = threading.Lock()
+
+
+def designs(parameters: Parameters) -> List[Dict[str, Any]]:
+    """The parameter sets of a sweep: a dict of ``"node.input"`` → values is the full grid
+    (itertools.product, the first parameter varying slowest); a list of dicts is taken as is."""
+    if isinstance(parameters, dict):
+        keys = list(parameters)
+        values = [list(parameters[k]) for k in keys]
+        return [dict(zip(keys, combo)) for combo in itertools.product(*values)]
+    out = [dict(p) for p in parameters]
+    for k, p in enumerate(out):
+        for name in p:
+            if not isinstance(name, str) or "." not in name:
+                raise _cnets.CnetsError(f"design {k}: parameter {name!r} is not \"node.input\"")
+    return out
+
+
+def _cached_graph(path: str, settings: Tuple[Any, ...]) -> Tuple[Any, threading.Lock, Dict[str, Any]]:
+    mtime = os.stat(path).st_mtime_ns
+    key = (path, mtime, settings)
+    with _CACHE_LOCK:
+        entry = _CACHE.get(key)
+        if entry is None:
+            for old in [k for k in _CACHE if k[0] == path]:
+                del _CACHE[old]
+            allow_read, max_memory, library = settings
+            graph = _cnets.Graph.load(
+                path,
+                allow_read=list(allow_read) or None,
+                max_memory=max_memory,
+                library=list(library) or None,
+            )
+            entry = (graph, threading.Lock(), {})
+            _CACHE[key] = entry
+        return entry
+
+
+def _output(results: Dict[str, Dict[str, Any]], graph: Any, name: str) -> Any:
+    """``node.output`` or ``node.output.field…`` (fields of a record output)."""
+    parts = name.split(".")
+    if len(parts) < 2:
+        raise _cnets.CnetsError(f"output {name!r} is not \"node.output\"")
+    node, output, fields = parts[0], parts[1], parts[2:]
+    if node not in results:
+        return np.nan
+    if output not in results[node]:
+        raise _cnets.CnetsError(f"output {name!r}: node '{node}' has no output '{output}'")
+    value = results[node][output]
+    for f in fields:
+        if not isinstance(value, dict) or f not in value:
+            raise _cnets.CnetsError(f"output {name!r}: no field '{f}'")
+        value = value[f]
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        return value.item()
+    return value
+
+
+def evaluate_design(
+    graph: str,
+    design: Dict[str, Any],
+    outputs: Sequence[str],
+    index: int = 0,
+    out: Optional[str] = None,
+    allow_read: Sequence[str] = (),
+    max_memory: Any = None,
+    library: Sequence[str] = (),
+) -> Dict[str, Any]:
+    """Evaluates one design on this process's cached graph and returns its row: the parameters,
+    the outputs, ``error`` and (with ``out``) the design's export folder ``out/design-<index>``.
+    This is what each Dask task runs."""
+    path = os.path.abspath(graph)
+    g, lock, initial = _cached_graph(path, (tuple(allow_read), max_memory, tuple(library)))
+    row: Dict[str, Any] = dict(design)
+    with lock:
+        try:
+            # Inputs a previous design set but this one does not go back to the file's value.
+            for target in list(initial):
+                if target not in design:
+                    g.unset(target) if initial[target] is None else g.set(target, initial[target])
+            for target, value in design.items():
+                if target not in initial:
+                    initial[target] = g.get(target)
+                g.set(target, value)
+            nodes = sorted({o.split(".")[0] for o in outputs})
+            if out is not None:
+                folder = os.path.join(out, f"design-{index:04d}")
+                g.out = folder
+                row["out"] = folder
+                results = g.run(check=False)
+            else:
+                results = g.run(nodes=nodes, check=False)
+            errors = [m for _, m in g.errors]
+            for name in outputs:
+                row[name] = _output(results, g, name)
+            row["error"] = "\n".join(errors) if errors else None
+        except _cnets.CnetsError as e:
+            for name in outputs:
+                row.setdefault(name, np.nan)
+            row["error"] = str(e)
+    return row
+
+
+def sweep(
+    graph: Any,
+    parameters: Parameters,
+    outputs: Sequence[str],
+    client: Any = None,
+    out: Optional[Any] = None,
+    allow_read: Sequence[Any] = (),
+    max_memory: Any = None,
+    library: Sequence[Any] = (),
+    n_workers: Optional[int] = None,
+) -> Any:
+    """Evaluates a graph file for every parameter set on Dask; returns a pandas DataFrame with
+    one row per design (in the order of ``designs(parameters)``): the parameter columns, one
+    column per requested output (``"node.output"``, or ``"node.output.field"`` for a field of a
+    record such as ``"net.quality.max_planarity"``), ``error`` (``None``, or the failed nodes'
+    messages) and, with ``out``, the design's export folder (``out/design-0000`` …).
+
+    ``client``: a ``dask.distributed.Client``; ``None`` starts a ``LocalCluster`` (``n_workers``
+    processes, one thread each) for this call. ``allow_read``, ``max_memory``, ``library`` are
+    those of ``Graph.load``. The graph file and ``out`` must be reachable by the workers under
+    the same path (a shared file system on a cluster).
+    """
+    import pandas as pd
+    from dask.distributed import Client, LocalCluster
+
+    path = os.path.abspath(os.fspath(graph))
+    # Fail here, not on every worker, when the file does not load.
+    probe = _cnets.Graph.load(path, allow_read=[os.fspath(p) for p in allow_read] or None,
+                              max_memory=max_memory, library=[os.fspath(p) for p in library] or None)
+    for name in outputs:
+        node = name.split(".")[0]
+        if node not in probe.nodes:
+            raise _cnets.CnetsError(f"output {name!r}: no node '{node}' in {path}")
+    sets = designs(parameters)
+    for target in {t for d in sets for t in d}:
+        probe.get(target)  # raises on a wrong node or input
+    del probe
+    kwargs = dict(
+        outputs=list(outputs),
+        out=os.path.abspath(os.fspath(out)) if out is not None else None,
+        allow_read=tuple(os.path.abspath(os.fspath(p)) for p in allow_read),
+        max_memory=max_memory,
+        library=tuple(os.path.abspath(os.fspath(p)) for p in library),
+    )
+    own = client is None
+    cluster = None
+    if own:
+        cluster = LocalCluster(n_workers=n_workers or min(4, os.cpu_count() or 1),
+                               threads_per_worker=1, processes=True, dashboard_address=None)
+        client = Client(cluster)
+    try:
+        futures = [
+            client.submit(evaluate_design, path, d, index=k, pure=False, **kwargs)
+            for k, d in enumerate(sets)
+        ]
+        rows = client.gather(futures)
+    finally:
+        if own:
+            client.close()
+            cluster.close()
+    columns: List[str] = []
+    for d in sets:
+        columns.extend(c for c in d if c not in columns)
+    columns += [o for o in outputs if o not in columns] + ["error"]
+    if out is not None:
+        columns.append("out")
+    return pd.DataFrame(rows, columns=columns)

@@ -1,0 +1,262 @@
+//! `cnets._cnets`: the extension module of the `cnets` Python package. It evaluates node types
+//! through the node registry (as `cnets eval` does) and graph files through the engine's evaluator
+//! (as `cnets run` does); the shared front-end logic is in `cnets-host`. The pure-Python package
+//! (`python/cnets/`) builds the public API on it.
+//!
+//! Errors are `cnets.CnetsError` (a `ValueError`) with the engine's message; the evaluation runs
+//! with the GIL released; panics in nodes are caught by the engine, and pyo3 turns any other panic
+//! into a Python exception.
+
+mod convert;
+mod graph;
+mod settings;
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
+
+use cnets_engine::eval::evaluate_node;
+use cnets_engine::{NodeFlag, Registry, Value};
+use numpy::PyArray1;
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::settings::Settings;
+
+create_exception!(
+    cnets,
+    CnetsError,
+    PyValueError,
+    "An error of cnets: a node that failed, a graph file that does not load (file:line:col), an \
+     unknown node type, input or value."
+);
+
+/// The node library's registry, built once per process.
+fn registry() -> &'static Arc<Registry> {
+    static REGISTRY: std::sync::OnceLock<Arc<Registry>> = std::sync::OnceLock::new();
+    REGISTRY.get_or_init(|| Arc::new(cnets_nodes::registry()))
+}
+
+/// Nanoseconds the last node evaluation of [`eval`] took (the node alone: no conversion).
+static LAST_EVAL_NANOS: AtomicU64 = AtomicU64::new(0);
+
+/// A `CnetsError` with this message.
+pub(crate) fn error(message: impl Into<String>) -> PyErr {
+    CnetsError::new_err(message.into())
+}
+
+/// Evaluates one node type on inputs (a dict by input name) and returns its outputs by name.
+/// `label_tables`: lists of label rows (configurations) come back as `(codes, labels)`.
+#[pyfunction]
+#[pyo3(signature = (node_type, inputs, outputs=None, max_memory=None, allow_read=None, library=None, out=None, label_tables=false))]
+#[allow(clippy::too_many_arguments)]
+fn eval<'py>(
+    py: Python<'py>,
+    node_type: &str,
+    inputs: &Bound<'py, PyDict>,
+    outputs: Option<Vec<String>>,
+    max_memory: Option<&Bound<'py, PyAny>>,
+    allow_read: Option<Vec<PathBuf>>,
+    library: Option<Vec<PathBuf>>,
+    out: Option<PathBuf>,
+    label_tables: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let settings = Settings::new(max_memory, allow_read, library, out)?;
+    let node = cnets_host::resolve(
+        node_type,
+        registry(),
+        &settings.library,
+        &settings.allow_read,
+    )
+    .map_err(|e| error(e.to_string()))?;
+    let def = node.def().clone();
+    let mut given: Vec<Option<Value>> = vec![None; def.inputs.len()];
+    for (name, value) in inputs.iter() {
+        let name: String = name
+            .extract()
+            .map_err(|_| error("input names must be strings"))?;
+        let Some(k) = def.input_index(&name) else {
+            return Err(error(
+                cnets_host::inputs::unknown_input(&def, &name).to_string(),
+            ));
+        };
+        let port = &def.inputs[k];
+        let v = convert::to_value(&value, &port.ty).map_err(|e| {
+            error(format!(
+                "{}: input '{name}' ({}): {e}",
+                def.id,
+                port.type_name()
+            ))
+        })?;
+        given[k] = Some(v);
+    }
+    let values = cnets_host::complete_inputs(&def, given).map_err(|e| error(e.to_string()))?;
+    if let Some(names) = &outputs
+        && let Some(bad) = names.iter().find(|n| def.output_index(n).is_none())
+    {
+        return Err(error(format!(
+            "unknown output '{bad}' for {}; valid outputs: {}",
+            def.id,
+            def.output_names()
+        )));
+    }
+    let exports = def.has_flag(NodeFlag::Export);
+    let base = std::env::current_dir().ok();
+    let ctx_def = def.clone();
+    let requested = outputs.clone();
+    let result = py.detach(move || {
+        let mut ctx = settings.context(exports, base)?;
+        ctx.requested = requested;
+        let start = Instant::now();
+        let result = evaluate_node(&ctx_def, &ctx, &values);
+        LAST_EVAL_NANOS.store(start.elapsed().as_nanos() as u64, Ordering::Relaxed);
+        Ok::<_, String>(result)
+    });
+    let result = result.map_err(error)?;
+    let outputs_of = result.map_err(|m| error(format!("{}: {m}", def.id)))?;
+    if !outputs_of.warnings.is_empty() {
+        let warnings = py.import("warnings")?;
+        for w in &outputs_of.warnings {
+            warnings.call_method1("warn", (format!("{}: {w}", def.id),))?;
+        }
+    }
+    let dict = PyDict::new(py);
+    for (port, value) in def.outputs.iter().zip(&outputs_of.values) {
+        if outputs
+            .as_ref()
+            .is_none_or(|o| o.iter().any(|n| n == &port.name))
+        {
+            let table = if label_tables {
+                convert::label_table(py, value)?
+            } else {
+                None
+            };
+            match table {
+                Some(t) => dict.set_item(port.name.as_ref(), t)?,
+                None => dict.set_item(port.name.as_ref(), convert::to_py(py, value)?)?,
+            }
+        }
+    }
+    if !outputs_of.files.is_empty() {
+        let files: Vec<String> = outputs_of
+            .files
+            .iter()
+            .map(|f| f.display().to_string())
+            .collect();
+        dict.set_item("__files__", files)?;
+    }
+    Ok(dict)
+}
+
+/// Seconds the node itself took in the last `eval` call (inputs already converted, outputs not
+/// yet), for comparing the Python overhead with the node's own time.
+#[pyfunction]
+fn last_eval_seconds() -> f64 {
+    LAST_EVAL_NANOS.load(Ordering::Relaxed) as f64 * 1e-9
+}
+
+/// The quad indices (F, 4) of a rows × cols grid, row-major vertex indices `i * cols + j`, with
+/// the wrapping quads when the rows or columns wrap (the engine's `QuadGrid::quad_indices`).
+#[pyfunction]
+fn quad_faces<'py>(
+    py: Python<'py>,
+    rows: usize,
+    cols: usize,
+    wrap_rows: bool,
+    wrap_cols: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let grid = cnets_geometry::QuadGrid {
+        rows,
+        cols,
+        wrap_rows,
+        wrap_cols,
+        vertices: Vec::new(),
+    };
+    let (qr, qc) = (grid.quad_rows(), grid.quad_cols());
+    let mut data = Vec::with_capacity(qr * qc * 4);
+    for i in 0..qr {
+        for j in 0..qc {
+            data.extend(grid.quad_indices(i, j).map(|k| k as i64));
+        }
+    }
+    PyArray1::from_vec(py, data)
+        .reshape([qr * qc, 4])
+        .map(|a| a.into_any())
+}
+
+/// A node type as a dict: `id`, `category`, `doc`, `inputs` and `outputs` (each a dict with
+/// `name`, `type`, `doc`, and for inputs `default` and `optional`).
+fn def_dict<'py>(py: Python<'py>, def: &cnets_engine::NodeDef) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("id", def.id.as_ref())?;
+    d.set_item("category", def.category.as_ref())?;
+    d.set_item("doc", def.doc.as_ref())?;
+    let ports =
+        |ports: &[cnets_engine::PortDef], inputs: bool| -> PyResult<Vec<Bound<'py, PyDict>>> {
+            ports
+                .iter()
+                .map(|p| {
+                    let pd = PyDict::new(py);
+                    pd.set_item("name", p.name.as_ref())?;
+                    pd.set_item("type", p.type_name())?;
+                    pd.set_item("doc", p.doc.as_ref())?;
+                    if inputs {
+                        let default = match &p.default {
+                            Some(v) => convert::to_py(py, v)?,
+                            None => py.None().into_bound(py),
+                        };
+                        pd.set_item("default", default)?;
+                        pd.set_item("optional", p.optional)?;
+                    }
+                    Ok(pd)
+                })
+                .collect()
+        };
+    d.set_item("inputs", ports(&def.inputs, true)?)?;
+    d.set_item("outputs", ports(&def.outputs, false)?)?;
+    Ok(d)
+}
+
+/// Every node type of the library (see [`def_dict`]).
+#[pyfunction]
+fn node_types<'py>(py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    registry().iter().map(|def| def_dict(py, def)).collect()
+}
+
+/// One node type by id, or a graph file's interface (`cluster:<path>`), as a dict (see
+/// [`def_dict`]).
+#[pyfunction]
+#[pyo3(signature = (node_type, library=None, allow_read=None))]
+fn node_interface<'py>(
+    py: Python<'py>,
+    node_type: &str,
+    library: Option<Vec<PathBuf>>,
+    allow_read: Option<Vec<PathBuf>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let node = cnets_host::resolve(
+        node_type,
+        registry(),
+        &library.unwrap_or_default(),
+        &allow_read.unwrap_or_default(),
+    )
+    .map_err(|e| error(e.to_string()))?;
+    def_dict(py, node.def())
+}
+
+use numpy::PyArrayMethods;
+
+/// The module.
+#[pymodule]
+fn _cnets(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("CnetsError", m.py().get_type::<CnetsError>())?;
+    m.add_function(wrap_pyfunction!(eval, m)?)?;
+    m.add_function(wrap_pyfunction!(last_eval_seconds, m)?)?;
+    m.add_function(wrap_pyfunction!(quad_faces, m)?)?;
+    m.add_function(wrap_pyfunction!(node_types, m)?)?;
+    m.add_function(wrap_pyfunction!(node_interface, m)?)?;
+    m.add_class::<graph::PyGraph>()?;
+    Ok(())
+}

@@ -1,0 +1,87 @@
+"""Sweeps on Dask: a LocalCluster with 2 workers, a 4 × 3 grid, every row equal to a direct run."""
+
+import os
+
+import numpy as np
+import pytest
+
+import cnets
+
+import dask.distributed as distributed
+import pandas as pd
+
+OUTPUTS = ["len.length", "net.quality.max_planarity", "net.quality.vertices"]
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                       dashboard_address=None)
+    c = distributed.Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+def _direct(path, design):
+    g = cnets.Graph.load(path)
+    for k, v in design.items():
+        g.set(k, v)
+    r = g.run()
+    q = r["net"]["quality"]
+    return {"len.length": r["len"]["length"], "net.quality.max_planarity": q["max_planarity"],
+            "net.quality.vertices": q["vertices"]}
+
+
+def test_grid_sweep_rows_equal_direct_runs(design, client):
+    parameters = {"radius.value": [3.0, 5.0, 7.0, 9.0], "apex.value": [0.8, 1.0, 1.2]}
+    df = cnets.sweep(design, parameters, OUTPUTS, client=client)
+    assert isinstance(df, pd.DataFrame)
+    assert len(df) == 12
+    assert list(df.columns) == ["radius.value", "apex.value", *OUTPUTS, "error"]
+    assert df["error"].isna().all(), df["error"].tolist()
+    for k, row in df.iterrows():
+        design_k = {"radius.value": row["radius.value"], "apex.value": row["apex.value"]}
+        assert design_k == {"radius.value": parameters["radius.value"][k // 3],
+                            "apex.value": parameters["apex.value"][k % 3]}
+        expected = _direct(design, design_k)
+        for name in OUTPUTS:
+            assert row[name] == expected[name], (k, name, row[name], expected[name])
+    # Both workers took part, each with its own cached graph.
+    assert len(set(df["len.length"])) == 4
+
+
+def test_list_of_designs_errors_and_exports(design, tmp_path, client):
+    text = design.read_text().replace(
+        '"len": (type: "curve.length"),',
+        '"len": (type: "curve.length"),\n        "obj": (type: "io.export_obj", inputs: {"name": "net"}),',
+    ).replace('"dir.curve -> len.curve",', '"dir.curve -> len.curve",\n        "net.mesh -> obj.meshes",')
+    path = tmp_path / "exporting.ron"
+    path.write_text(text)
+    designs = [{"apex.value": 0.9}, {"gen.count": 1}, {"radius.value": 4.0}]
+    out = tmp_path / "designs"
+    df = cnets.sweep(path, designs, ["len.length", "net.quality.max_planarity"], client=client, out=out)
+    assert len(df) == 3
+    assert pd.isna(df["error"].iloc[0]) and pd.isna(df["error"].iloc[2])
+    assert "gen" in df["error"].iloc[1] or "net" in df["error"].iloc[1]
+    assert np.isnan(df["net.quality.max_planarity"].iloc[1])
+    # A design that does not set an input gets the file's value, not the previous design's.
+    assert df["len.length"].iloc[0] == pytest.approx(5.0 * np.radians(120), rel=1e-2)
+    assert df["len.length"].iloc[2] == pytest.approx(4.0 * np.radians(120), rel=1e-2)
+    for k in (0, 2):
+        folder = df["out"].iloc[k]
+        assert folder == str(out / f"design-{k:04d}")
+        assert os.path.isfile(os.path.join(folder, "net.obj"))
+    assert not os.path.exists(os.path.join(df["out"].iloc[1], "net.obj"))
+
+
+def test_bad_requests_fail_before_the_cluster_works(design, client):
+    with pytest.raises(cnets.CnetsError, match="no node 'nope'"):
+        cnets.sweep(design, {"radius.value": [1.0]}, ["nope.x"], client=client)
+    with pytest.raises(cnets.CnetsError):
+        cnets.sweep(design, {"radius.nope": [1.0]}, ["len.length"], client=client)
+
+
+def test_without_a_client_a_local_cluster_is_started(design):
+    df = cnets.sweep(design, {"radius.value": [2.0, 3.0]}, ["len.length"], n_workers=1)
+    assert df["len.length"].tolist() == pytest.approx([2.0 * np.radians(120), 3.0 * np.radians(120)], rel=1e-2)
