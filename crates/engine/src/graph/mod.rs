@@ -334,6 +334,14 @@ impl Graph {
         wires
     }
 
+    /// The wires into `node` as (source node, source output index), in no particular order and
+    /// without allocating (see [`Graph::wires_into`] for the merge order).
+    pub fn inputs_of(&self, node: NodeIndex) -> impl Iterator<Item = (NodeIndex, usize)> + '_ {
+        self.inner
+            .edges_directed(node, Direction::Incoming)
+            .map(|e| (e.source(), e.weight().from_output))
+    }
+
     /// Source nodes feeding `node` (with repeats when several wires come from one node).
     pub fn sources(&self, node: NodeIndex) -> impl Iterator<Item = NodeIndex> + '_ {
         self.inner.neighbors_directed(node, Direction::Incoming)
