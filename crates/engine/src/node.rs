@@ -8,6 +8,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use crate::budget::{MemoryBudget, bytes_of};
+pub use crate::error::NodeError;
 use crate::eval::{FileStamp, OutputMask};
 use crate::kinds::PortKind;
 use crate::value::{Access, Value, ValueType};
@@ -15,54 +16,6 @@ use crate::value::{Access, Value, ValueType};
 /// The function that evaluates a node on fully prepared inputs (defaults filled in, converted to the
 /// port types, one item per item port) and returns one value per output port.
 pub type RunFn = Arc<dyn Fn(&NodeContext, &[Value]) -> Result<Vec<Value>, NodeError> + Send + Sync>;
-
-/// A node failure with a message for the designer.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct NodeError {
-    /// What went wrong and where.
-    pub message: String,
-}
-
-impl NodeError {
-    /// An error with the given message.
-    pub fn new(message: impl Into<String>) -> Self {
-        Self {
-            message: message.into(),
-        }
-    }
-}
-
-impl fmt::Display for NodeError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl std::error::Error for NodeError {}
-
-impl From<String> for NodeError {
-    fn from(message: String) -> Self {
-        Self { message }
-    }
-}
-
-impl From<&str> for NodeError {
-    fn from(message: &str) -> Self {
-        Self::new(message)
-    }
-}
-
-impl From<cnets_geometry::GeometryError> for NodeError {
-    fn from(e: cnets_geometry::GeometryError) -> Self {
-        Self::new(e.to_string())
-    }
-}
-
-impl From<std::io::Error> for NodeError {
-    fn from(e: std::io::Error) -> Self {
-        Self::new(e.to_string())
-    }
-}
 
 /// One input or output port of a node type.
 #[derive(Debug, Clone)]
@@ -410,9 +363,7 @@ impl NodeContext {
     /// already live; `what` names the allocation in the error ("a table of 10000000 × 10000000
     /// numbers needs 3200 TB, the limit is 12 GB").
     pub fn reserve(&self, bytes: u64, what: &str) -> Result<(), NodeError> {
-        self.budget
-            .check(bytes, self.in_use(), what)
-            .map_err(|e| NodeError::new(e.to_string()))
+        Ok(self.budget.check(bytes, self.in_use(), what)?)
     }
 
     /// True when the output named `output` was asked for: by the evaluator (it is wired to a node

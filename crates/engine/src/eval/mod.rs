@@ -608,7 +608,7 @@ impl Evaluator {
                         values.len()
                     );
                     ctx.reserve_values(items as u128, &what)
-                        .map_err(|e| NodeResult::Failed(e.message))?;
+                        .map_err(|e| NodeResult::Failed(e.to_string()))?;
                     merge(values)
                 }
             };
@@ -775,7 +775,7 @@ pub fn evaluate_node_outputs(
                 }),
             }
         }
-        Ok(Err(e)) => Err(e.message),
+        Ok(Err(e)) => Err(e.to_string()),
         Err(panic) => Err(panic),
     }
 }

@@ -406,10 +406,10 @@ impl Graph {
         let index = self.index(id)?;
         let k = self.input_port(index, input)?;
         let port = &self.inner[index].def.inputs[k];
-        let value = coerce_tree(&value, &port.ty).map_err(|message| GraphError::BadValue {
+        let value = coerce_tree(&value, &port.ty).map_err(|e| GraphError::BadValue {
             node: id.to_string(),
             port: input.to_string(),
-            message,
+            message: e.to_string(),
         })?;
         if self.inner[index].values[k]
             .as_ref()
