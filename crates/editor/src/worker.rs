@@ -16,6 +16,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use cnets_engine::cluster::Cluster;
+use cnets_engine::eval::OutputMask;
 use cnets_engine::{Continued, Evaluator, Graph, NodeContext, NodeFlag, NodeResult, Value};
 use cnets_render::Scene;
 
@@ -293,13 +294,25 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
     let graph = &request.graph;
     let mut ctx = NodeContext::new(None, request.base_dir.clone());
     ctx.cancel = request.cancel.clone();
+    // Every node runs (its status shows); previewed nodes and panels are asked for all their
+    // outputs, the others only for what is wired from them (lazy outputs).
     let wanted: Vec<_> = graph
         .nodes()
         .filter(|(_, n)| !n.def.has_flag(NodeFlag::Export))
-        .map(|(k, _)| k)
+        .map(|(k, n)| {
+            let shown = (n.preview && n.enabled) || n.def.id == PANEL_TYPE;
+            (
+                k,
+                if shown {
+                    OutputMask::ALL
+                } else {
+                    OutputMask::NONE
+                },
+            )
+        })
         .collect();
     let start = Instant::now();
-    let summary = evaluator.evaluate(graph, &wanted, &ctx, &mut |_, _| {});
+    let summary = evaluator.evaluate_outputs(graph, &wanted, &ctx, &mut |_, _| {});
     let eval_ms = start.elapsed().as_secs_f64() * 1e3;
     if summary.cancelled || request.cancel.load(Ordering::Relaxed) {
         return None;
@@ -360,7 +373,15 @@ pub fn statuses(graph: &Graph, evaluator: &Evaluator) -> HashMap<String, NodeSta
                 match evaluator.result_at(graph, k) {
                     Some(NodeResult::Ok(out)) => NodeStatus::Ok {
                         warnings: out.warnings.clone(),
-                        outputs: out.values.iter().map(describe).collect(),
+                        outputs: out
+                            .values
+                            .iter()
+                            .enumerate()
+                            .map(|(k, v)| match out.computed(k) {
+                                Some(_) => describe(v),
+                                None => "not computed (not wired or previewed)".into(),
+                            })
+                            .collect(),
                         time_ms: evaluator
                             .time(graph, &n.id)
                             .map_or(0.0, |t| t.as_secs_f64() * 1e3),

@@ -6,9 +6,46 @@ use cnets_geometry::{PolygonMesh, Polyline};
 
 use crate::value::{Access, Items, Packed, Value, ValueType, walk};
 
+/// Why a value does not convert to a port's type.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ConvertError {
+    /// A number that is not a whole number (or too large) for an integer port.
+    #[error("expected integer, got the number {0}")]
+    NotInteger(f64),
+    /// A value of another type with no implicit conversion.
+    #[error("expected {expected}, got {got}")]
+    Mismatch {
+        /// The port's item type.
+        expected: String,
+        /// The value's type.
+        got: String,
+    },
+    /// An item of a list did not convert.
+    #[error("item {index}: {source}")]
+    Item {
+        /// The item's position in its list.
+        index: usize,
+        /// Why it did not convert.
+        source: Box<ConvertError>,
+    },
+    /// A value shape the conversion does not handle (not reachable: only lists are not items).
+    #[error("internal: value shape")]
+    Shape,
+}
+
+impl ConvertError {
+    /// Wraps the error of the item at `index`.
+    fn at(index: usize) -> impl FnOnce(ConvertError) -> ConvertError {
+        move |e| ConvertError::Item {
+            index,
+            source: Box::new(e),
+        }
+    }
+}
+
 /// Converts one item to the item type `ty`, using only the implicit conversions of
 /// [`ValueType::converts_to`]. `Null` passes through (the node decides whether it may be empty).
-pub fn coerce_item(v: &Value, ty: &ValueType) -> Result<Value, String> {
+pub fn coerce_item(v: &Value, ty: &ValueType) -> Result<Value, ConvertError> {
     use ValueType as T;
     if is_exact_item(v, ty) {
         return Ok(v.clone());
@@ -19,7 +56,7 @@ pub fn coerce_item(v: &Value, ty: &ValueType) -> Result<Value, String> {
             if x.is_finite() && x.fract() == 0.0 && x.abs() < 9.0e15 {
                 Value::Integer(*x as i64)
             } else {
-                return Err(format!("expected integer, got the number {x}"));
+                return Err(ConvertError::NotInteger(*x));
             }
         }
         (T::Point, Value::Vector(p)) => Value::Point(*p),
@@ -29,7 +66,12 @@ pub fn coerce_item(v: &Value, ty: &ValueType) -> Result<Value, String> {
         )),
         (T::Mesh, Value::QuadMesh(g)) => Value::Mesh(Arc::new(PolygonMesh::from(g.as_ref()))),
         (T::List(inner), _) => return coerce_item(v, inner),
-        _ => return Err(format!("expected {ty}, got {}", v.type_name())),
+        _ => {
+            return Err(ConvertError::Mismatch {
+                expected: ty.to_string(),
+                got: v.type_name(),
+            });
+        }
     })
 }
 
@@ -127,7 +169,7 @@ fn all_items(items: &Items, each: impl Fn(&Value) -> bool + Sync) -> bool {
 /// Converts a value that needs no more mapping into exactly what the port receives: an item, a list
 /// of items (a single value becomes a one-element list), or a tree with converted leaves. A value
 /// that needs no conversion is shared, not copied.
-pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Value, String> {
+pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Value, ConvertError> {
     match access {
         Access::Item => coerce_item(v, ty),
         Access::List => match v {
@@ -137,7 +179,7 @@ pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Valu
             Value::List(items) => items
                 .iter()
                 .enumerate()
-                .map(|(k, item)| coerce_item(item, ty).map_err(|e| format!("item {k}: {e}")))
+                .map(|(k, item)| coerce_item(item, ty).map_err(ConvertError::at(k)))
                 .collect::<Result<Vec<_>, _>>()
                 .map(Value::list),
             _ => unreachable_shape(),
@@ -147,7 +189,7 @@ pub fn coerce_for_port(v: &Value, ty: &ValueType, access: Access) -> Result<Valu
 }
 
 /// Converts every item of a (possibly nested) value to the item type `ty`, keeping the nesting.
-pub fn coerce_tree(v: &Value, ty: &ValueType) -> Result<Value, String> {
+pub fn coerce_tree(v: &Value, ty: &ValueType) -> Result<Value, ConvertError> {
     if is_item(v, ty) {
         return coerce_item(v, ty);
     }
@@ -158,7 +200,7 @@ pub fn coerce_tree(v: &Value, ty: &ValueType) -> Result<Value, String> {
         Value::List(items) => items
             .iter()
             .enumerate()
-            .map(|(k, item)| coerce_tree(item, ty).map_err(|e| format!("item {k}: {e}")))
+            .map(|(k, item)| coerce_tree(item, ty).map_err(ConvertError::at(k)))
             .collect::<Result<Vec<_>, _>>()
             .map(Value::list),
         _ => unreachable_shape(),
@@ -167,8 +209,8 @@ pub fn coerce_tree(v: &Value, ty: &ValueType) -> Result<Value, String> {
 
 /// Only lists are not items, so the callers' non-list arms cannot be reached; answer with an error
 /// instead of panicking all the same.
-fn unreachable_shape() -> Result<Value, String> {
-    Err("internal: value shape".into())
+fn unreachable_shape() -> Result<Value, ConvertError> {
+    Err(ConvertError::Shape)
 }
 
 #[cfg(test)]
@@ -203,6 +245,7 @@ mod tests {
         assert!(
             coerce_item(&Value::text("a"), &ValueType::Number)
                 .unwrap_err()
+                .to_string()
                 .contains("expected number")
         );
         let single =

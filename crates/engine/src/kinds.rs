@@ -9,7 +9,7 @@ use std::sync::Arc;
 use cnets_geometry::{Line, Plane as GeoPlane, PolygonMesh, Polyline as GeoPolyline, QuadGrid};
 use glam::DVec3;
 
-use crate::node::NodeError;
+use crate::error::NodeError;
 use crate::value::{Access, Record as RecordValue, Value, ValueType};
 
 /// A port kind: its item type, access, optionality, and how the node body receives its value.
@@ -305,15 +305,15 @@ mod tests {
     fn extract_checks_types_and_names_the_input() {
         assert_eq!(Number::extract(&Value::Number(2.0), "x").unwrap(), 2.0);
         let e = Number::extract(&Value::Null, "radius").unwrap_err();
-        assert_eq!(e.message, "input 'radius' has no value");
+        assert_eq!(e.to_string(), "input 'radius' has no value");
         let e = Number::extract(&Value::text("a"), "radius").unwrap_err();
-        assert!(e.message.contains("radius"), "{e}");
+        assert!(e.to_string().contains("radius"), "{e}");
         assert_eq!(<Option<Point>>::extract(&Value::Null, "p").unwrap(), None);
         let list = Value::list(vec![Value::Number(1.0), Value::text("x")]);
         assert!(
             List::<Number>::extract(&list, "xs")
                 .unwrap_err()
-                .message
+                .to_string()
                 .contains("xs[1]")
         );
     }

@@ -10,6 +10,7 @@ pub mod atomic;
 pub mod budget;
 pub mod cluster;
 pub mod convert;
+pub mod error;
 pub mod eval;
 pub mod file;
 pub mod files;
@@ -22,10 +23,11 @@ pub mod registry;
 pub mod value;
 
 pub use budget::MemoryBudget;
+pub use error::NodeError;
 pub use eval::{EvalSummary, Evaluator, NodeOutputs, NodeResult};
 pub use graph::{Continued, Graph, GraphError, NodeInstance, Revision, WireRef};
 pub use kinds::{IntoPort, PortKind};
-pub use node::{MAX_CLUSTER_DEPTH, NodeContext, NodeDef, NodeError, NodeFlag, PortDef};
+pub use node::{MAX_CLUSTER_DEPTH, NodeContext, NodeDef, NodeFlag, PortDef};
 pub use registry::Registry;
 pub use value::{Access, Items, Record, Value, ValueType};
 

@@ -8,61 +8,14 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use crate::budget::{MemoryBudget, bytes_of};
-use crate::eval::FileStamp;
+pub use crate::error::NodeError;
+use crate::eval::{FileStamp, OutputMask};
 use crate::kinds::PortKind;
 use crate::value::{Access, Value, ValueType};
 
 /// The function that evaluates a node on fully prepared inputs (defaults filled in, converted to the
 /// port types, one item per item port) and returns one value per output port.
 pub type RunFn = Arc<dyn Fn(&NodeContext, &[Value]) -> Result<Vec<Value>, NodeError> + Send + Sync>;
-
-/// A node failure with a message for the designer.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct NodeError {
-    /// What went wrong and where.
-    pub message: String,
-}
-
-impl NodeError {
-    /// An error with the given message.
-    pub fn new(message: impl Into<String>) -> Self {
-        Self {
-            message: message.into(),
-        }
-    }
-}
-
-impl fmt::Display for NodeError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl std::error::Error for NodeError {}
-
-impl From<String> for NodeError {
-    fn from(message: String) -> Self {
-        Self { message }
-    }
-}
-
-impl From<&str> for NodeError {
-    fn from(message: &str) -> Self {
-        Self::new(message)
-    }
-}
-
-impl From<cnets_geometry::GeometryError> for NodeError {
-    fn from(e: cnets_geometry::GeometryError) -> Self {
-        Self::new(e.to_string())
-    }
-}
-
-impl From<std::io::Error> for NodeError {
-    fn from(e: std::io::Error) -> Self {
-        Self::new(e.to_string())
-    }
-}
 
 /// One input or output port of a node type.
 #[derive(Debug, Clone)]
@@ -336,7 +289,9 @@ pub struct NodeContext {
     /// The largest file a node may read, in bytes (default 1 GB).
     pub max_read_bytes: u64,
     /// The outputs the caller asked for (`cnets eval --outputs a,b`); `None`: all. A node may skip
-    /// the work of outputs not asked for ([`NodeContext::wants`]) and leave them empty.
+    /// the work of outputs not asked for ([`NodeContext::wants`]) and leave them empty. In a graph
+    /// the evaluator asks each node for the outputs that are wired, previewed or requested
+    /// ([`NodeContext::ask_outputs`]); this field stays `None` there.
     pub requested: Option<Vec<String>>,
     /// How many clusters deep this context runs (0: the top graph); see [`MAX_CLUSTER_DEPTH`].
     pub depth: usize,
@@ -345,6 +300,14 @@ pub struct NodeContext {
     warnings: Mutex<Vec<String>>,
     files: Mutex<Vec<PathBuf>>,
     reads: Mutex<Vec<FileStamp>>,
+    asked: Mutex<Option<AskedOutputs>>,
+}
+
+/// The outputs the running node was asked for, by name, and those it said it skipped.
+struct AskedOutputs {
+    names: Vec<Cow<'static, str>>,
+    asked: OutputMask,
+    skipped: OutputMask,
 }
 
 impl Default for NodeContext {
@@ -370,6 +333,7 @@ impl NodeContext {
             warnings: Mutex::new(Vec::new()),
             files: Mutex::new(Vec::new()),
             reads: Mutex::new(Vec::new()),
+            asked: Mutex::new(None),
         }
     }
 
@@ -416,17 +380,53 @@ impl NodeContext {
     /// already live; `what` names the allocation in the error ("a table of 10000000 × 10000000
     /// numbers needs 3200 TB, the limit is 12 GB").
     pub fn reserve(&self, bytes: u64, what: &str) -> Result<(), NodeError> {
-        self.budget
-            .check(bytes, self.in_use(), what)
-            .map_err(|e| NodeError::new(e.to_string()))
+        Ok(self.budget.check(bytes, self.in_use(), what)?)
     }
 
-    /// True when the output named `output` was asked for (always, unless the caller set
-    /// `requested`).
+    /// True when the output named `output` was asked for: by the evaluator (it is wired to a node
+    /// that runs, previewed, exported or requested: [`NodeContext::ask_outputs`]) and by the
+    /// caller (`requested`). A node that gets `false` may skip that output's work and return an
+    /// empty placeholder; the evaluator records the output as not computed and runs the node again
+    /// when it is asked for later. A node that never calls this computes every output.
     pub fn wants(&self, output: &str) -> bool {
-        self.requested
+        if !self
+            .requested
             .as_ref()
             .is_none_or(|r| r.iter().any(|o| o == output))
+        {
+            return false;
+        }
+        let mut asked = lock(&self.asked);
+        let Some(a) = asked.as_mut() else {
+            return true;
+        };
+        match a.names.iter().position(|n| n == output) {
+            Some(k) if !a.asked.contains(k) => {
+                a.skipped.insert(k);
+                false
+            }
+            _ => true,
+        }
+    }
+
+    /// Asks the node about to run for the outputs in `mask` only (`outputs` are its output ports);
+    /// evaluators call this before a node runs and [`NodeContext::skipped_outputs`] after. A mask
+    /// covering every output asks for all (no bookkeeping).
+    pub fn ask_outputs(&self, outputs: &[PortDef], mask: OutputMask) {
+        let all = OutputMask::first(outputs.len());
+        *lock(&self.asked) = (!mask.covers(all)).then(|| AskedOutputs {
+            names: outputs.iter().map(|p| p.name.clone()).collect(),
+            asked: mask,
+            skipped: OutputMask::NONE,
+        });
+    }
+
+    /// Ends the request of [`NodeContext::ask_outputs`]: the outputs the node skipped (those it
+    /// asked about with [`NodeContext::wants`] and was told no).
+    pub fn skipped_outputs(&self) -> OutputMask {
+        lock(&self.asked)
+            .take()
+            .map_or(OutputMask::NONE, |a| a.skipped)
     }
 
     /// Records that the running node keeps `bytes` alive besides its outputs (a cluster: its

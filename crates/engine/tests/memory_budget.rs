@@ -93,7 +93,7 @@ fn a_node_reserving_more_than_the_budget_fails_before_allocating() {
         .reserve_values(20_000, "a list of 20000 items")
         .unwrap_err();
     assert_eq!(
-        e.message,
+        e.to_string(),
         "a list of 20000 items needs 640 kB, the limit is 1 MB (400 kB already held by other values)"
     );
     assert!(c.reserve_values(18_000, "fits").is_ok());

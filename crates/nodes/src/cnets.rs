@@ -10,7 +10,7 @@ use cnets_engine::prelude::*;
 use cnets_engine::value::Packed;
 use cnets_geometry::conenet::{
     self, ApexInput, ColumnValues, ConeNet, Configuration, ConstructInputs, CoplanarInputs,
-    CtubeInputs, EndPlanes, GridValues, NormalsInput,
+    CtubeInputs, EndPlanes, GridValues, NormalsInput, Reports,
 };
 use rayon::prelude::*;
 
@@ -170,35 +170,66 @@ type Outputs = (
     Record,
 );
 
-fn outputs(net: ConeNet) -> Outputs {
-    let quality = quality_record(&net);
-    let corrections = net.correction_lines();
+/// The reports a construction node computes: those whose outputs were asked for (lazy outputs).
+fn reports(ctx: &NodeContext) -> Reports {
+    Reports {
+        apices: ctx.wants("apices"),
+        quality: ctx.wants("quality"),
+    }
+}
+
+/// The node's outputs from a construction; outputs not asked for ([`NodeContext::wants`]) are
+/// left empty.
+fn outputs(ctx: &NodeContext, net: ConeNet) -> Outputs {
+    let quality = if ctx.wants("quality") {
+        quality_record(&net)
+    } else {
+        Record::new()
+    };
+    let corrections = if ctx.wants("corrections") {
+        net.correction_lines()
+    } else {
+        Vec::new()
+    };
     // A 1000 × 1000 net has a million normals and labels: each output row is a packed row of one
     // shared table (the construction's own normals, moved; one byte per label), not a million
     // values.
-    let normal_rows: Vec<_> = (0..net.normals.rows())
-        .map(|i| net.normals.row_range(i))
-        .collect();
-    let normals = Arc::new(net.normals.into_data());
-    let planes = Value::list(
-        normal_rows
-            .into_iter()
-            .map(|range| Value::List(Items::vectors(normals.clone(), range)))
-            .collect(),
-    );
-    let codes = Arc::new(net.configurations.codes());
-    let labels: Arc<[Value]> = labels().into();
-    let configurations = Value::list(
-        (0..net.configurations.rows())
-            .map(|i| {
-                let range = net.configurations.row_range(i);
-                Value::List(Items::labels(codes.clone(), range, labels.clone()))
-            })
-            .collect(),
-    );
+    let configurations = if ctx.wants("configurations") {
+        let codes = Arc::new(net.configurations.codes());
+        let labels: Arc<[Value]> = labels().into();
+        Value::list(
+            (0..net.configurations.rows())
+                .map(|i| {
+                    let range = net.configurations.row_range(i);
+                    Value::List(Items::labels(codes.clone(), range, labels.clone()))
+                })
+                .collect(),
+        )
+    } else {
+        Value::list(Vec::new())
+    };
+    let planes = if ctx.wants("planes") {
+        let normal_rows: Vec<_> = (0..net.normals.rows())
+            .map(|i| net.normals.row_range(i))
+            .collect();
+        let normals = Arc::new(net.normals.into_data());
+        Value::list(
+            normal_rows
+                .into_iter()
+                .map(|range| Value::List(Items::vectors(normals.clone(), range)))
+                .collect(),
+        )
+    } else {
+        Value::list(Vec::new())
+    };
+    let apex = if ctx.wants("apex") {
+        net.apex
+    } else {
+        Vec::new()
+    };
     (
         net.mesh,
-        net.apex,
+        apex,
         net.apices,
         planes,
         configurations,
@@ -281,7 +312,7 @@ node! {
             let mesh = conenet::ctube_mesh(&inputs)?;
             return Ok((mesh, Vec::new(), Vec::new(), Value::list(Vec::new()), Value::list(Vec::new()), Vec::new(), Record::new()));
         }
-        Ok(outputs(conenet::construct_ctube(&inputs)?))
+        Ok(outputs(ctx, conenet::construct_ctube_with(&inputs, reports(ctx))?))
     }
 }
 
@@ -337,7 +368,7 @@ node! {
         inputs.assistance.alpha = assistance;
         inputs.assistance.epsilon = epsilon;
         inputs.end_planes = parse_end_planes(&end_planes)?;
-        Ok(outputs(conenet::construct(&inputs)?))
+        Ok(outputs(ctx, conenet::construct_with(&inputs, reports(ctx))?))
     }
 }
 
@@ -396,7 +427,7 @@ node! {
         inputs.assistance.alpha = assistance;
         inputs.assistance.epsilon = epsilon;
         inputs.end_planes = parse_end_planes(&end_planes)?;
-        Ok(outputs(conenet::construct_coplanar(&inputs)?))
+        Ok(outputs(ctx, conenet::construct_coplanar_with(&inputs, reports(ctx))?))
     }
 }
 

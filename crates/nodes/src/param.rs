@@ -399,7 +399,7 @@ mod tests {
         assert!(
             run(&def, &[0.5, 2.0, 1.0, 0.0])
                 .unwrap_err()
-                .message
+                .to_string()
                 .contains("greater than max")
         );
         assert!(run(&def, &[f64::NAN, 0.0, 1.0, 0.0]).is_err());

@@ -194,7 +194,21 @@ impl Cluster {
             result
                 .map_err(|e| NodeError::new(format!("cluster input '{}': {e}", port.port.name)))?;
         }
-        let request: Vec<_> = self.interface.outputs.iter().map(|p| p.node).collect();
+        // Only the outputs asked of the cluster node are evaluated inside (lazy outputs).
+        let wanted: Vec<bool> = self
+            .interface
+            .outputs
+            .iter()
+            .map(|p| ctx.wants(&p.port.name))
+            .collect();
+        let request: Vec<_> = self
+            .interface
+            .outputs
+            .iter()
+            .zip(&wanted)
+            .filter(|(_, w)| **w)
+            .map(|(p, _)| p.node)
+            .collect();
         let inner = ctx
             .child(self.base_dir.clone())
             .map_err(|e| NodeError::new(format!("cluster '{}': {e}", self.label())))?;
@@ -222,8 +236,12 @@ impl Cluster {
                 }
             }
         }
-        let mut values = Vec::with_capacity(request.len());
-        for port in &self.interface.outputs {
+        let mut values = Vec::with_capacity(wanted.len());
+        for (port, wanted) in self.interface.outputs.iter().zip(wanted) {
+            if !wanted {
+                values.push(Value::Null);
+                continue;
+            }
             match state.evaluator.result_at(&state.graph, port.node) {
                 Some(NodeResult::Ok(outputs)) => {
                     values.push(outputs.values.first().cloned().unwrap_or_default())

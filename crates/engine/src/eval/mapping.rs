@@ -71,7 +71,7 @@ pub fn run_mapped(
                 }
             }
             let outputs = run_mapped(def, ctx, &item_inputs)
-                .map_err(|e| NodeError::new(format!("item {k}: {}", e.message)))?;
+                .map_err(|e| NodeError::new(format!("item {k}: {e}")))?;
             for (column, value) in columns.iter_mut().zip(outputs) {
                 column.push(value);
             }

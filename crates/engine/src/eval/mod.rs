@@ -6,12 +6,20 @@
 //! when it was edited or one of its sources changed after it was verified. When a re-run produces
 //! outputs equal to the previous ones (same content hash, confirmed bitwise), its `changed_at` is
 //! kept — it is *backdated* — so its dependents do not re-run (early cutoff).
+//!
+//! Outputs are lazy: each node is asked only for the outputs the request needs (those wired to a
+//! node that runs, and those the caller requests: [`demand`]). A node may skip the others; its memo
+//! records which outputs it computed and when each one last changed. A node whose inputs did not
+//! change but which is now asked for an output it skipped runs again to *fill in* that output: the
+//! outputs it had keep their values and revisions, so their consumers stay verified.
 
+pub mod demand;
 mod mapping;
 mod panic_guard;
 pub mod reads;
 mod result;
 
+pub use demand::OutputMask;
 pub use mapping::run_mapped;
 pub use reads::FileStamp;
 pub use result::{NodeOutputs, NodeResult};
@@ -35,7 +43,11 @@ type Tick = (Revision, u64);
 struct Memo {
     uid: u64,
     verified_at: Tick,
+    /// The latest of the computed outputs' `changed` (the node's revision of change).
     changed_at: Tick,
+    /// Per output: when its value last changed (an output not computed counts as changed at the
+    /// run that did not compute it).
+    changed: Vec<Tick>,
     result: NodeResult,
     hashes: Vec<u64>,
     time: Duration,
@@ -48,6 +60,35 @@ struct Memo {
     owned: u64,
 }
 
+impl Memo {
+    /// When output `k` last changed.
+    fn changed_of(&self, k: usize) -> Tick {
+        self.changed
+            .get(k)
+            .or(self.changed.last())
+            .copied()
+            .unwrap_or(self.changed_at)
+    }
+
+    /// The outputs this memo holds values for (an error covers every output).
+    fn have(&self) -> OutputMask {
+        match &self.result {
+            NodeResult::Ok(outputs) => OutputMask::ALL.minus(outputs.missing),
+            _ => OutputMask::ALL,
+        }
+    }
+}
+
+/// What a planned node needs.
+enum Action {
+    /// Its memo is valid and holds every requested output.
+    UpToDate,
+    /// Its inputs did not change, but it lacks these requested outputs.
+    Fill(OutputMask),
+    /// Its inputs changed (or it never ran): run it for these outputs.
+    Run(OutputMask),
+}
+
 /// What one call to [`Evaluator::evaluate`] did.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct EvalSummary {
@@ -57,6 +98,9 @@ pub struct EvalSummary {
     pub ran: usize,
     /// Re-runs whose outputs were unchanged (early cutoff stopped propagation there).
     pub cut_off: usize,
+    /// Runs that only filled in outputs asked for after the node had skipped them (counted in
+    /// `ran` too).
+    pub filled: usize,
     /// The evaluation stopped early because cancellation was requested.
     pub cancelled: bool,
 }
@@ -70,6 +114,12 @@ pub struct Evaluator {
     order: Vec<NodeIndex>,
     marks: Vec<u32>,
     stamp: u32,
+    /// The outputs requested of each node in the current plan (valid where `demand_stamp` is the
+    /// current stamp).
+    demand: Vec<OutputMask>,
+    demand_stamp: Vec<u32>,
+    /// The node was planned as up to date (not expanded): more demand may expand it.
+    satisfied: Vec<bool>,
     total_runs: u64,
     swept_at: Revision,
     file_epoch: u64,
@@ -89,12 +139,38 @@ impl Evaluator {
         self.evaluate(graph, &all, ctx, &mut |_, _| {})
     }
 
-    /// Evaluates the requested nodes and whatever they depend on. `progress(done, total)` is called
-    /// before each node that has to run.
+    /// Evaluates the requested nodes (every output of each) and whatever they depend on.
+    /// `progress(done, total)` is called before each node that has to run.
     pub fn evaluate(
         &mut self,
         graph: &Graph,
         request: &[NodeIndex],
+        ctx: &NodeContext,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> EvalSummary {
+        self.evaluate_request(graph, request, None, ctx, progress)
+    }
+
+    /// Evaluates the requested outputs (`request`: a node and the outputs asked of it; an empty
+    /// mask still runs the node, e.g. to report its errors) and whatever they depend on. Upstream
+    /// nodes are asked only for their outputs wired into nodes that run. `progress(done, total)`
+    /// is called before each node that has to run.
+    pub fn evaluate_outputs(
+        &mut self,
+        graph: &Graph,
+        request: &[(NodeIndex, OutputMask)],
+        ctx: &NodeContext,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> EvalSummary {
+        let (nodes, masks): (Vec<NodeIndex>, Vec<OutputMask>) = request.iter().copied().unzip();
+        self.evaluate_request(graph, &nodes, Some(&masks), ctx, progress)
+    }
+
+    fn evaluate_request(
+        &mut self,
+        graph: &Graph,
+        request: &[NodeIndex],
+        masks: Option<&[OutputMask]>,
         ctx: &NodeContext,
         progress: &mut dyn FnMut(usize, usize),
     ) -> EvalSummary {
@@ -104,7 +180,7 @@ impl Evaluator {
             self.file_epoch += 1;
         }
         let revision: Tick = (revision, self.file_epoch);
-        self.plan(graph, request, revision);
+        self.plan(graph, request, masks, revision);
         let mut summary = EvalSummary {
             visited: self.order.len(),
             ..EvalSummary::default()
@@ -116,12 +192,17 @@ impl Evaluator {
             let Some(instance) = graph.node_at(node) else {
                 continue;
             };
-            if !self.needs_run(graph, node, instance) {
-                if let Some(memo) = self.memos[node.index()].as_mut() {
-                    memo.verified_at = revision;
+            let demand = self.demand_at(node.index());
+            let (mask, fill) = match self.action(graph, node, instance, demand) {
+                Action::UpToDate => {
+                    if let Some(memo) = self.memos[node.index()].as_mut() {
+                        memo.verified_at = revision;
+                    }
+                    continue;
                 }
-                continue;
-            }
+                Action::Fill(missing) => (missing, true),
+                Action::Run(demand) => (demand, false),
+            };
             if ctx.cancelled() {
                 summary.cancelled = true;
                 break;
@@ -132,14 +213,21 @@ impl Evaluator {
             ctx.take_held();
             ctx.set_in_use(held);
             let start = Instant::now();
-            let (result, executed) = self.run_node(graph, node, instance, ctx);
+            let (result, executed) = self.run_node(graph, node, instance, ctx, mask);
+            let (result, fill) = if fill {
+                self.fill_in(node, result)
+            } else {
+                (result, false)
+            };
             let (result, owned) = within_budget(result, instance, ctx, held, ctx.take_held());
             let time = start.elapsed();
             summary.ran += usize::from(executed);
+            summary.filled += usize::from(fill);
             let stored = Stored {
                 result,
                 time,
                 executed,
+                fill,
                 owned,
                 reads: ctx.take_reads(),
             };
@@ -158,6 +246,9 @@ impl Evaluator {
         if self.memos.len() < bound {
             self.memos.resize_with(bound, || None);
             self.marks.resize(bound, 0);
+            self.demand.resize(bound, OutputMask::NONE);
+            self.demand_stamp.resize(bound, 0);
+            self.satisfied.resize(bound, false);
         }
         if self.swept_at != revision {
             self.swept_at = revision;
@@ -183,54 +274,153 @@ impl Evaluator {
         any
     }
 
-    /// Fills `self.order` with the out-of-date part of the request, sources before targets.
-    fn plan(&mut self, graph: &Graph, request: &[NodeIndex], revision: Tick) {
+    /// Fills `self.order` with the out-of-date part of the request, sources before targets, and
+    /// `self.demand` with the outputs asked of each planned node: the request's, and those wired
+    /// into a node that is expanded (may run). A node already verified at `revision` and holding
+    /// its demand is not expanded — unless a later consumer asks it for an output it lacks.
+    fn plan(
+        &mut self,
+        graph: &Graph,
+        request: &[NodeIndex],
+        masks: Option<&[OutputMask]>,
+        revision: Tick,
+    ) {
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 {
             self.marks.iter_mut().for_each(|m| *m = 0);
+            self.demand_stamp.iter_mut().for_each(|m| *m = 0);
             self.stamp = 1;
         }
         self.order.clear();
         self.stack.clear();
-        self.stack.extend(request.iter().rev().map(|&n| (n, false)));
+        for (k, &node) in request.iter().enumerate().rev() {
+            self.add_demand(node, masks.map_or(OutputMask::ALL, |m| m[k]));
+            self.stack.push((node, false));
+        }
         while let Some((node, expanded)) = self.stack.pop() {
             if expanded {
                 self.order.push(node);
                 continue;
             }
             let k = node.index();
-            if k >= self.marks.len() || self.marks[k] == self.stamp || graph.node_at(node).is_none()
-            {
+            if k >= self.marks.len() || graph.node_at(node).is_none() {
                 continue;
             }
-            self.marks[k] = self.stamp;
-            if self.memos[k]
-                .as_ref()
-                .is_some_and(|m| m.verified_at == revision)
-            {
-                continue;
+            if self.marks[k] == self.stamp {
+                // Planned already: expanded (its demand is read when it runs), or up to date and
+                // still holding everything asked of it.
+                if !self.satisfied[k] || self.covered(k) {
+                    continue;
+                }
+            } else {
+                self.marks[k] = self.stamp;
+                if self.memos[k]
+                    .as_ref()
+                    .is_some_and(|m| m.verified_at == revision)
+                    && self.covered(k)
+                {
+                    self.satisfied[k] = true;
+                    continue;
+                }
             }
+            self.satisfied[k] = false;
             self.stack.push((node, true));
-            for source in graph.sources(node) {
-                if self.marks[source.index()] != self.stamp {
+            for (source, output) in graph.inputs_of(node) {
+                self.add_demand(source, OutputMask::one(output));
+                let s = source.index();
+                if s < self.marks.len() && (self.marks[s] != self.stamp || self.satisfied[s]) {
                     self.stack.push((source, false));
                 }
             }
         }
     }
 
-    fn needs_run(&self, graph: &Graph, node: NodeIndex, instance: &NodeInstance) -> bool {
+    /// Adds outputs to what the current plan asks of `node`.
+    fn add_demand(&mut self, node: NodeIndex, mask: OutputMask) {
+        let k = node.index();
+        if k >= self.demand.len() {
+            return;
+        }
+        if self.demand_stamp[k] != self.stamp {
+            self.demand_stamp[k] = self.stamp;
+            self.demand[k] = OutputMask::NONE;
+        }
+        self.demand[k] = self.demand[k].union(mask);
+    }
+
+    /// The outputs the current plan asks of the node at index `k`.
+    fn demand_at(&self, k: usize) -> OutputMask {
+        if self.demand_stamp.get(k) == Some(&self.stamp) {
+            self.demand[k]
+        } else {
+            OutputMask::NONE
+        }
+    }
+
+    /// True when the node's memo holds every output the current plan asks of it.
+    fn covered(&self, k: usize) -> bool {
+        self.memos[k]
+            .as_ref()
+            .is_some_and(|m| m.have().covers(self.demand_at(k)))
+    }
+
+    /// Whether a planned node must run, fill in outputs, or is up to date.
+    fn action(
+        &self,
+        graph: &Graph,
+        node: NodeIndex,
+        instance: &NodeInstance,
+        demand: OutputMask,
+    ) -> Action {
         let Some(memo) = &self.memos[node.index()] else {
-            return true;
+            return Action::Run(demand);
         };
         if memo.uid != instance.uid() || memo.stale || instance.edited_at() > memo.verified_at.0 {
-            return true;
+            return Action::Run(demand);
         }
-        graph.sources(node).any(|s| {
+        let sources_changed = graph.inputs_of(node).any(|(s, output)| {
             self.memos[s.index()]
                 .as_ref()
-                .is_none_or(|m| m.changed_at > memo.verified_at)
-        })
+                .is_none_or(|m| m.changed_of(output) > memo.verified_at)
+        });
+        if sources_changed {
+            return Action::Run(demand);
+        }
+        let have = memo.have();
+        if have.covers(demand) {
+            Action::UpToDate
+        } else {
+            Action::Fill(demand.minus(have))
+        }
+    }
+
+    /// Merges a fill-in run's result into the memo's: the outputs the memo had keep their values
+    /// (their consumers stay verified), the newly computed ones are added. Returns the merged
+    /// result and whether it was a fill-in (not when either run failed: then the new result stands
+    /// as a full run's).
+    fn fill_in(&self, node: NodeIndex, result: NodeResult) -> (NodeResult, bool) {
+        let old = match self.memos[node.index()].as_ref().map(|m| &m.result) {
+            Some(NodeResult::Ok(old)) => old,
+            _ => return (result, false),
+        };
+        let NodeResult::Ok(new) = &result else {
+            return (result, false);
+        };
+        let values: Vec<Value> = old
+            .values
+            .iter()
+            .zip(&new.values)
+            .enumerate()
+            .map(|(k, (o, n))| if old.missing.contains(k) { n } else { o }.clone())
+            .collect();
+        let merged = NodeOutputs {
+            footprint: footprint(&values),
+            values,
+            warnings: new.warnings.clone(),
+            files: new.files.clone(),
+            missing: old.missing.intersection(new.missing),
+        };
+        (NodeResult::Ok(Arc::new(merged)), true)
     }
 
     /// Stores a new result; returns true when it equals the previous one (backdated).
@@ -239,32 +429,62 @@ impl Evaluator {
             result,
             time,
             executed,
+            fill,
             owned,
             reads,
         } = stored;
         let ran = u64::from(executed);
         self.total_runs += ran;
-        let hashes = match &result {
+        let hashes: Vec<u64> = match &result {
             NodeResult::Ok(outputs) => outputs.values.iter().map(content_hash).collect(),
             _ => Vec::new(),
         };
         let slot = &mut self.memos[node.index()];
-        let unchanged = slot.as_ref().is_some_and(|old| {
-            old.uid == uid && old.hashes == hashes && old.result.same_as(&result)
-        });
+        let old = slot.as_ref().filter(|old| old.uid == uid);
+        let (changed, changed_at, unchanged) = match (old, &result) {
+            // A fill-in: the kept outputs keep their revisions, and the new ones count as changed
+            // at the run that skipped them (when the inputs they come from last changed).
+            (Some(old), NodeResult::Ok(_)) if fill => (old.changed.clone(), old.changed_at, false),
+            (Some(old), NodeResult::Ok(new)) => match &old.result {
+                NodeResult::Ok(prev) => {
+                    let mut changed = Vec::with_capacity(new.values.len());
+                    let mut latest = None;
+                    let mut all_same = prev.missing == new.missing;
+                    for (k, value) in new.values.iter().enumerate() {
+                        let same = !new.missing.contains(k)
+                            && !prev.missing.contains(k)
+                            && old.hashes.get(k) == hashes.get(k)
+                            && prev.values.get(k).is_some_and(|p| p.same_as(value));
+                        let tick = if same { old.changed_of(k) } else { revision };
+                        if !new.missing.contains(k) {
+                            all_same &= same;
+                            latest = latest.max(Some(tick));
+                        }
+                        changed.push(tick);
+                    }
+                    let latest = latest.unwrap_or(if all_same { old.changed_at } else { revision });
+                    (changed, latest, all_same)
+                }
+                _ => (vec![revision; new.values.len()], revision, false),
+            },
+            (Some(old), _) if old.result.same_as(&result) => {
+                (old.changed.clone(), old.changed_at, true)
+            }
+            _ => {
+                let count = result.outputs().map_or(1, |o| o.values.len());
+                (vec![revision; count], revision, false)
+            }
+        };
+        let runs = old.map_or(0, |m| m.runs) + ran;
         self.live = self
             .live
             .saturating_sub(slot.as_ref().map_or(0, |m| m.owned))
             .saturating_add(owned);
-        let (changed_at, runs) = match slot.as_ref() {
-            Some(old) if old.uid == uid && unchanged => (old.changed_at, old.runs + ran),
-            Some(old) if old.uid == uid => (revision, old.runs + ran),
-            _ => (revision, ran),
-        };
         *slot = Some(Memo {
             uid,
             verified_at: revision,
             changed_at,
+            changed,
             result,
             hashes,
             time,
@@ -324,15 +544,22 @@ impl Evaluator {
         node: NodeIndex,
         instance: &NodeInstance,
         ctx: &NodeContext,
+        outputs: OutputMask,
     ) -> (NodeResult, bool) {
         match self.gather_inputs(graph, node, instance, ctx) {
-            Ok(inputs) => (self.call(instance, &inputs, ctx), true),
+            Ok(inputs) => (self.call(instance, &inputs, ctx, outputs), true),
             Err(result) => (result, false),
         }
     }
 
-    fn call(&self, instance: &NodeInstance, inputs: &[Value], ctx: &NodeContext) -> NodeResult {
-        match evaluate_node(&instance.def, ctx, inputs) {
+    fn call(
+        &self,
+        instance: &NodeInstance,
+        inputs: &[Value],
+        ctx: &NodeContext,
+        outputs: OutputMask,
+    ) -> NodeResult {
+        match evaluate_node_outputs(&instance.def, ctx, inputs, outputs) {
             Ok(outputs) => NodeResult::Ok(Arc::new(outputs)),
             Err(message) => NodeResult::Failed(message),
         }
@@ -357,8 +584,13 @@ impl Evaluator {
             let port = &def.inputs[wire.to_input].name;
             let source_id = graph.node_at(source).map_or("?", |n| n.id.as_str());
             match self.memos[source.index()].as_ref().map(|m| &m.result) {
-                Some(NodeResult::Ok(outputs)) => match outputs.values.get(wire.from_output) {
+                Some(NodeResult::Ok(outputs)) => match outputs.computed(wire.from_output) {
                     Some(v) => wired[wire.to_input].push(v.clone()),
+                    None if wire.from_output < outputs.values.len() => {
+                        return Err(NodeResult::Blocked(format!(
+                            "input '{port}': '{source_id}' did not compute this output"
+                        )));
+                    }
                     None => {
                         return Err(NodeResult::Blocked(format!(
                             "input '{port}': '{source_id}' has no such output"
@@ -410,7 +642,7 @@ impl Evaluator {
                         values.len()
                     );
                     ctx.reserve_values(items as u128, &what)
-                        .map_err(|e| NodeResult::Failed(e.message))?;
+                        .map_err(|e| NodeResult::Failed(e.to_string()))?;
                     merge(values)
                 }
             };
@@ -445,11 +677,12 @@ impl Evaluator {
         (memo.uid == uid).then_some(&memo.result)
     }
 
-    /// The value of a named output after the last evaluation.
+    /// The value of a named output after the last evaluation (`None` also when the node was not
+    /// asked for it and skipped it).
     pub fn output(&self, graph: &Graph, id: &str, output: &str) -> Option<&Value> {
         let node = graph.node(id)?;
         let k = node.def.output_index(output)?;
-        self.result(graph, id)?.outputs()?.values.get(k)
+        self.result(graph, id)?.outputs()?.computed(k)
     }
 
     /// How many times the node has run since it was added (or since this evaluator was created).
@@ -506,6 +739,8 @@ struct Stored {
     result: NodeResult,
     time: Duration,
     executed: bool,
+    /// A fill-in run (see [`Evaluator::fill_in`]).
+    fill: bool,
     owned: u64,
     reads: Vec<FileStamp>,
 }
@@ -536,13 +771,31 @@ fn within_budget(
 
 /// Runs one node type on raw input values (one per input port, `Null` for empty), as a graph run
 /// does and outside any graph: maps over lists, catches panics, collects warnings and written
-/// files, and fails the node when an output holds a non-finite number.
+/// files, and fails the node when an output holds a non-finite number. Every output is asked for,
+/// or those named in `ctx.requested`.
 pub fn evaluate_node(
     def: &NodeDef,
     ctx: &NodeContext,
     inputs: &[Value],
 ) -> Result<NodeOutputs, String> {
+    let outputs = match &ctx.requested {
+        Some(names) => OutputMask::of_names(def.outputs.iter().map(|p| p.name.as_ref()), names),
+        None => OutputMask::ALL,
+    };
+    evaluate_node_outputs(def, ctx, inputs, outputs)
+}
+
+/// [`evaluate_node`] asking the node for the outputs in `outputs` only: the node may skip the
+/// others (see [`NodeContext::wants`]); those it skipped are marked in [`NodeOutputs::missing`].
+pub fn evaluate_node_outputs(
+    def: &NodeDef,
+    ctx: &NodeContext,
+    inputs: &[Value],
+    outputs: OutputMask,
+) -> Result<NodeOutputs, String> {
+    ctx.ask_outputs(&def.outputs, outputs);
     let outcome = panic_guard::catch(|| run_mapped(def, ctx, inputs));
+    let missing = ctx.skipped_outputs();
     let warnings = ctx.take_warnings();
     let files = ctx.take_files();
     match outcome {
@@ -565,10 +818,11 @@ pub fn evaluate_node(
                     warnings,
                     files,
                     footprint,
+                    missing,
                 }),
             }
         }
-        Ok(Err(e)) => Err(e.message),
+        Ok(Err(e)) => Err(e.to_string()),
         Err(panic) => Err(panic),
     }
 }

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use super::OutputMask;
 use crate::value::{Footprint, Value};
 
 /// Outputs of a successful run.
@@ -16,6 +17,16 @@ pub struct NodeOutputs {
     pub files: Vec<PathBuf>,
     /// The memory the values hold and the values a full read visits (for the memory budget).
     pub footprint: Footprint,
+    /// Outputs the node was not asked for and did not compute: their values are placeholders
+    /// (see [`NodeContext::wants`](crate::NodeContext::wants)).
+    pub missing: OutputMask,
+}
+
+impl NodeOutputs {
+    /// The value of output `k` when it was computed (not a placeholder).
+    pub fn computed(&self, k: usize) -> Option<&Value> {
+        self.values.get(k).filter(|_| !self.missing.contains(k))
+    }
 }
 
 /// The state of a node after evaluation.

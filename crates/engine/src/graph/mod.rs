@@ -393,6 +393,14 @@ impl Graph {
         wires
     }
 
+    /// The wires into `node` as (source node, source output index), in no particular order and
+    /// without allocating (see [`Graph::wires_into`] for the merge order).
+    pub fn inputs_of(&self, node: NodeIndex) -> impl Iterator<Item = (NodeIndex, usize)> + '_ {
+        self.inner
+            .edges_directed(node, Direction::Incoming)
+            .map(|e| (e.source(), e.weight().from_output))
+    }
+
     /// Source nodes feeding `node` (with repeats when several wires come from one node).
     pub fn sources(&self, node: NodeIndex) -> impl Iterator<Item = NodeIndex> + '_ {
         self.inner.neighbors_directed(node, Direction::Incoming)
@@ -457,10 +465,10 @@ impl Graph {
         let index = self.index(id)?;
         let k = self.input_port(index, input)?;
         let port = &self.inner[index].def.inputs[k];
-        let value = coerce_tree(&value, &port.ty).map_err(|message| GraphError::BadValue {
+        let value = coerce_tree(&value, &port.ty).map_err(|e| GraphError::BadValue {
             node: id.to_string(),
             port: input.to_string(),
-            message,
+            message: e.to_string(),
         })?;
         if self.inner[index].values[k]
             .as_ref()

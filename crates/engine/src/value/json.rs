@@ -14,6 +14,53 @@ use serde_json::{Map, Value as Json, json};
 
 use super::{Items, Record, Value, ValueType};
 
+/// Why a JSON document does not decode into a value of a port's type.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum JsonError {
+    /// A JSON value of another kind than the type needs.
+    #[error("expected {expected}, got {found}")]
+    Expected {
+        /// The type asked for.
+        expected: String,
+        /// What the JSON holds ("a string", "an object", …).
+        found: &'static str,
+    },
+    /// A number with a fraction (or too large) where an integer is needed.
+    #[error("expected integer, got the non-integral number {0}")]
+    NotIntegral(String),
+    /// A geometry object with a missing or malformed field.
+    #[error("{0}")]
+    Malformed(String),
+    /// The geometry the object describes is invalid.
+    #[error(transparent)]
+    Geometry(#[from] cnets_geometry::GeometryError),
+    /// Inside array item `index`: `[2]: …`, nested `[0][2]: …`.
+    #[error("[{index}]{}{source}", separator(.source))]
+    At {
+        /// The item's position.
+        index: usize,
+        /// What went wrong inside it.
+        source: Box<JsonError>,
+    },
+    /// Inside an object field of a record.
+    #[error("{field}: {source}")]
+    Field {
+        /// The field name.
+        field: String,
+        /// What went wrong inside it.
+        source: Box<JsonError>,
+    },
+}
+
+/// `[0][2]: …` for nested positions, `[2]: …` before a message.
+fn separator(inner: &JsonError) -> &'static str {
+    if matches!(inner, JsonError::At { .. }) {
+        ""
+    } else {
+        ": "
+    }
+}
+
 /// Encodes a value as JSON. Non-finite numbers become `null`.
 pub fn to_json(value: &Value) -> Json {
     match value {
@@ -79,7 +126,7 @@ fn points(ps: &[DVec3]) -> Json {
 
 /// Decodes JSON into a value whose items have type `ty` (or nested lists of such items).
 /// `null` decodes to [`Value::Null`]. The error says what was expected and what was found.
-pub fn from_json(json: &Json, ty: &ValueType) -> Result<Value, String> {
+pub fn from_json(json: &Json, ty: &ValueType) -> Result<Value, JsonError> {
     if json.is_null() {
         return Ok(Value::Null);
     }
@@ -99,27 +146,26 @@ pub fn from_json(json: &Json, ty: &ValueType) -> Result<Value, String> {
             }
         }
         Json::Array(items) => decode_items(items, ty),
-        other => Err(format!("expected {}, got {}", ty.base(), kind(other))),
+        other => Err(JsonError::Expected {
+            expected: ty.base().to_string(),
+            found: kind(other),
+        }),
     }
 }
 
 /// Decodes the items of a JSON array one by one, naming the position of a failing item.
-fn decode_items(items: &[Json], ty: &ValueType) -> Result<Value, String> {
+fn decode_items(items: &[Json], ty: &ValueType) -> Result<Value, JsonError> {
     items
         .iter()
         .enumerate()
-        .map(|(k, j)| from_json(j, ty).map_err(|e| at_index(k, &e)))
+        .map(|(k, j)| {
+            from_json(j, ty).map_err(|e| JsonError::At {
+                index: k,
+                source: Box::new(e),
+            })
+        })
         .collect::<Result<Vec<_>, _>>()
         .map(Value::list)
-}
-
-/// Prefixes an error inside array item `k` with its position: `[2]: …`, nested `[0][2]: …`.
-fn at_index(k: usize, error: &str) -> String {
-    if error.starts_with('[') {
-        format!("[{k}]{error}")
-    } else {
-        format!("[{k}]: {error}")
-    }
 }
 
 fn kind(j: &Json) -> &'static str {
@@ -134,9 +180,12 @@ fn kind(j: &Json) -> &'static str {
 }
 
 /// Decodes `json` as one item of `ty`; `Ok(None)` when it has the shape of a list instead.
-fn decode_item(json: &Json, ty: &ValueType) -> Result<Option<Value>, String> {
+fn decode_item(json: &Json, ty: &ValueType) -> Result<Option<Value>, JsonError> {
     use ValueType as T;
-    let found = || format!("expected {ty}, got {}", kind(json));
+    let found = || JsonError::Expected {
+        expected: ty.to_string(),
+        found: kind(json),
+    };
     Ok(Some(match ty {
         T::Number => match json {
             Json::Number(n) => Value::Number(n.as_f64().ok_or_else(found)?),
@@ -144,10 +193,9 @@ fn decode_item(json: &Json, ty: &ValueType) -> Result<Option<Value>, String> {
             _ => return Err(found()),
         },
         T::Integer => match json {
-            Json::Number(n) => Value::Integer(
-                as_integer(n)
-                    .ok_or_else(|| format!("expected integer, got the non-integral number {n}"))?,
-            ),
+            Json::Number(n) => {
+                Value::Integer(as_integer(n).ok_or_else(|| JsonError::NotIntegral(n.to_string()))?)
+            }
             Json::Array(_) => return Ok(None),
             _ => return Err(found()),
         },
@@ -259,74 +307,85 @@ fn as_segment(j: &Json) -> Option<Line> {
     }
 }
 
-fn field<'a>(o: &'a Map<String, Json>, name: &str, what: &str) -> Result<&'a Json, String> {
-    o.get(name)
-        .ok_or_else(|| format!("{what} object needs a \"{name}\" field"))
+fn malformed(message: String) -> JsonError {
+    JsonError::Malformed(message)
 }
 
-fn point_list(j: &Json, what: &str) -> Result<Vec<DVec3>, String> {
+fn field<'a>(o: &'a Map<String, Json>, name: &str, what: &str) -> Result<&'a Json, JsonError> {
+    o.get(name)
+        .ok_or_else(|| malformed(format!("{what} object needs a \"{name}\" field")))
+}
+
+fn point_list(j: &Json, what: &str) -> Result<Vec<DVec3>, JsonError> {
     let items = j
         .as_array()
-        .ok_or_else(|| format!("{what} must be an array of [x, y, z]"))?;
+        .ok_or_else(|| malformed(format!("{what} must be an array of [x, y, z]")))?;
     items
         .iter()
         .enumerate()
-        .map(|(k, p)| as_vec3(p).ok_or_else(|| format!("{what}[{k}] is not an [x, y, z] point")))
+        .map(|(k, p)| {
+            as_vec3(p).ok_or_else(|| malformed(format!("{what}[{k}] is not an [x, y, z] point")))
+        })
         .collect()
 }
 
-fn decode_point(o: &Map<String, Json>, name: &str) -> Result<DVec3, String> {
-    as_vec3(field(o, name, "plane")?).ok_or_else(|| format!("plane \"{name}\" is not [x, y, z]"))
+fn decode_point(o: &Map<String, Json>, name: &str) -> Result<DVec3, JsonError> {
+    as_vec3(field(o, name, "plane")?)
+        .ok_or_else(|| malformed(format!("plane \"{name}\" is not [x, y, z]")))
 }
 
-fn decode_plane(o: &Map<String, Json>) -> Result<Plane, String> {
+fn decode_plane(o: &Map<String, Json>) -> Result<Plane, JsonError> {
     let origin = decode_point(o, "origin")?;
     let normal = decode_point(o, "normal")?;
     let plane = match o.get("x_axis").and_then(as_vec3) {
         Some(x) => Plane::from_axes(origin, x, normal.cross(x)),
         None => Plane::from_normal(origin, normal),
     };
-    plane.map_err(|e| e.to_string())
+    Ok(plane?)
 }
 
-fn decode_polyline(o: &Map<String, Json>) -> Result<Polyline, String> {
+fn decode_polyline(o: &Map<String, Json>) -> Result<Polyline, JsonError> {
     let points = point_list(field(o, "points", "polyline")?, "points")?;
     let closed = match o.get("closed") {
         None => false,
         Some(Json::Bool(b)) => *b,
-        Some(_) => return Err("polyline \"closed\" must be a boolean".into()),
+        Some(_) => return Err(malformed("polyline \"closed\" must be a boolean".into())),
     };
     Ok(Polyline { points, closed })
 }
 
-fn usize_field(o: &Map<String, Json>, name: &str) -> Result<usize, String> {
+fn usize_field(o: &Map<String, Json>, name: &str) -> Result<usize, JsonError> {
     field(o, name, "quad mesh")?
         .as_u64()
         .and_then(|n| usize::try_from(n).ok())
-        .ok_or_else(|| format!("quad mesh \"{name}\" must be a non-negative integer"))
+        .ok_or_else(|| {
+            malformed(format!(
+                "quad mesh \"{name}\" must be a non-negative integer"
+            ))
+        })
 }
 
-fn bool_field(o: &Map<String, Json>, name: &str) -> Result<bool, String> {
+fn bool_field(o: &Map<String, Json>, name: &str) -> Result<bool, JsonError> {
     match o.get(name) {
         None => Ok(false),
         Some(Json::Bool(b)) => Ok(*b),
-        Some(_) => Err(format!("quad mesh \"{name}\" must be a boolean")),
+        Some(_) => Err(malformed(format!("quad mesh \"{name}\" must be a boolean"))),
     }
 }
 
-fn decode_quad_mesh(o: &Map<String, Json>) -> Result<QuadGrid, String> {
+fn decode_quad_mesh(o: &Map<String, Json>) -> Result<QuadGrid, JsonError> {
     let rows = usize_field(o, "rows")?;
     let cols = usize_field(o, "cols")?;
     let vertices = point_list(field(o, "vertices", "quad mesh")?, "vertices")?;
-    let grid = QuadGrid::new(rows, cols, vertices).map_err(|e| e.to_string())?;
+    let grid = QuadGrid::new(rows, cols, vertices)?;
     Ok(grid.with_wrap(bool_field(o, "wrap_rows")?, bool_field(o, "wrap_cols")?))
 }
 
-fn decode_mesh(o: &Map<String, Json>) -> Result<PolygonMesh, String> {
+fn decode_mesh(o: &Map<String, Json>) -> Result<PolygonMesh, JsonError> {
     let vertices = point_list(field(o, "vertices", "mesh")?, "vertices")?;
     let faces = field(o, "faces", "mesh")?
         .as_array()
-        .ok_or("mesh \"faces\" must be an array")?;
+        .ok_or_else(|| malformed("mesh \"faces\" must be an array".into()))?;
     let faces = faces
         .iter()
         .enumerate()
@@ -337,18 +396,25 @@ fn decode_mesh(o: &Map<String, Json>) -> Result<PolygonMesh, String> {
                         .map(|i| i.as_u64().and_then(|i| u32::try_from(i).ok()))
                         .collect()
                 })
-                .ok_or_else(|| format!("mesh faces[{k}] must be an array of vertex indices"))
+                .ok_or_else(|| {
+                    malformed(format!(
+                        "mesh faces[{k}] must be an array of vertex indices"
+                    ))
+                })
         })
-        .collect::<Result<Vec<Vec<u32>>, String>>()?;
-    PolygonMesh::from_faces(vertices, &faces).map_err(|e| e.to_string())
+        .collect::<Result<Vec<Vec<u32>>, JsonError>>()?;
+    Ok(PolygonMesh::from_faces(vertices, &faces)?)
 }
 
-fn decode_record(o: &Map<String, Json>) -> Result<Record, String> {
+fn decode_record(o: &Map<String, Json>) -> Result<Record, JsonError> {
     let mut r = Record::new();
     for (k, v) in o {
         r.set(
             k.clone(),
-            from_json(v, &ValueType::Any).map_err(|e| format!("{k}: {e}"))?,
+            from_json(v, &ValueType::Any).map_err(|e| JsonError::Field {
+                field: k.clone(),
+                source: Box::new(e),
+            })?,
         );
     }
     Ok(r)
@@ -392,10 +458,13 @@ mod tests {
         assert!(
             from_json(&json!("x"), &ValueType::Number)
                 .unwrap_err()
+                .to_string()
                 .contains("expected number")
         );
         assert_eq!(
-            from_json(&json!([[0.5, "x"], [0.5, 0.5]]), &ValueType::Number).unwrap_err(),
+            from_json(&json!([[0.5, "x"], [0.5, 0.5]]), &ValueType::Number)
+                .unwrap_err()
+                .to_string(),
             "[0][1]: expected number, got a string"
         );
         assert!(from_json(&json!(1.5), &ValueType::Integer).is_err());

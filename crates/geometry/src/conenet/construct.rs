@@ -7,13 +7,21 @@ use super::blend::assisted;
 use super::ctube::Raw;
 use super::inputs::{ConstructInputs, CoplanarInputs, check_unit_interval};
 use super::prepare::prepare;
-use super::result::ConeNet;
+use super::result::{ConeNet, Reports};
 use super::sweep::{Rule, Sweep, zeroed_points};
 use crate::GeometryError;
 
 /// CNets Construct (`cnets.construct`): ratios r_{i,j} pick the rulings of the support strips, the
 /// planes follow (notes §3); the assisted correction runs when `assistance.alpha ≥ 0`.
 pub fn construct(inputs: &ConstructInputs) -> Result<ConeNet, GeometryError> {
+    construct_with(inputs, Reports::ALL)
+}
+
+/// [`construct`] computing only the chosen reports (the others are left empty).
+pub fn construct_with(
+    inputs: &ConstructInputs,
+    reports: Reports,
+) -> Result<ConeNet, GeometryError> {
     let prep = prepare(
         &inputs.directrix,
         &inputs.generatrix,
@@ -37,13 +45,21 @@ pub fn construct(inputs: &ConstructInputs) -> Result<ConeNet, GeometryError> {
         sweep.run()?;
         Ok(Raw::from_sweep(sweep, prep.wrap_rows))
     })?
-    .finish()
+    .finish_with(reports)
 }
 
 /// CNets Construct Coplanar (`cnets.construct_coplanar`): one plane per column through the ruling
 /// R_{0,j} of support strip 0 (ratio ρ_j), turned by the rotation ratio τ_j (notes §4). Every
 /// generatrix-aligned polyline G_{:,j} (j ≥ 1) lies in the plane Π_j.
 pub fn construct_coplanar(inputs: &CoplanarInputs) -> Result<ConeNet, GeometryError> {
+    construct_coplanar_with(inputs, Reports::ALL)
+}
+
+/// [`construct_coplanar`] computing only the chosen reports (the others are left empty).
+pub fn construct_coplanar_with(
+    inputs: &CoplanarInputs,
+    reports: Reports,
+) -> Result<ConeNet, GeometryError> {
     let prep = prepare(
         &inputs.directrix,
         &inputs.generatrix,
@@ -71,5 +87,5 @@ pub fn construct_coplanar(inputs: &CoplanarInputs) -> Result<ConeNet, GeometryEr
         sweep.run()?;
         Ok(Raw::from_sweep(sweep, prep.wrap_rows))
     })?
-    .finish()
+    .finish_with(reports)
 }

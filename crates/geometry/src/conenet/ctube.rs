@@ -11,7 +11,7 @@ use super::inputs::{CtubeInputs, NormalsInput};
 use super::prepare::prepare;
 pub use super::prepare::step;
 use super::quality::quality;
-use super::result::{ConeNet, PlaneNormals};
+use super::result::{ConeNet, PlaneNormals, Reports};
 use super::sweep::{Rule, Sweep};
 use super::tolerance;
 use crate::{GeometryError, QuadGrid};
@@ -105,7 +105,15 @@ pub fn ctube_mesh(inputs: &CtubeInputs) -> Result<QuadGrid, GeometryError> {
 /// The base C-tube construction (`ctube.construct`): explicit normals (or Monge planes), no
 /// correction. Configurations and quality are reported.
 pub fn construct_ctube(inputs: &CtubeInputs) -> Result<ConeNet, GeometryError> {
-    run_ctube(inputs)?.finish()
+    construct_ctube_with(inputs, Reports::ALL)
+}
+
+/// [`construct_ctube`] computing only the chosen reports (the others are left empty).
+pub fn construct_ctube_with(
+    inputs: &CtubeInputs,
+    reports: Reports,
+) -> Result<ConeNet, GeometryError> {
+    run_ctube(inputs)?.finish_with(reports)
 }
 
 fn run_ctube(inputs: &CtubeInputs) -> Result<Raw, GeometryError> {
@@ -165,8 +173,8 @@ impl Raw {
         }
     }
 
-    /// Computes apices and quality and checks every output is finite.
-    pub(crate) fn finish(self) -> Result<ConeNet, GeometryError> {
+    /// Computes the chosen reports (apices, quality) and checks every output is finite.
+    pub(crate) fn finish_with(self, reports: Reports) -> Result<ConeNet, GeometryError> {
         if let Some(k) = self.apex.iter().position(|a| !a.is_finite()) {
             return Err(GeometryError::NonFiniteOutput {
                 what: "apex value",
@@ -174,14 +182,22 @@ impl Raw {
                 column: k + 1,
             });
         }
-        let apices = apex_points(&self.directrix, &self.apex);
-        let quality = quality(
-            &self.mesh,
-            &self.directrix,
-            &self.apex,
-            &self.configurations,
-            self.inv_scale,
-        )?;
+        let apices = if reports.apices {
+            apex_points(&self.directrix, &self.apex)
+        } else {
+            Vec::new()
+        };
+        let quality = if reports.quality {
+            quality(
+                &self.mesh,
+                &self.directrix,
+                &self.apex,
+                &self.configurations,
+                self.inv_scale,
+            )?
+        } else {
+            Default::default()
+        };
         Ok(ConeNet {
             mesh: self.mesh,
             directrix: self.directrix,

@@ -38,9 +38,9 @@ mod trig;
 
 pub use apex::apex_points;
 pub use configuration::{Configuration, ConfigurationCounts, Configurations};
-pub use construct::{construct, construct_coplanar};
+pub use construct::{construct, construct_coplanar, construct_coplanar_with, construct_with};
 pub use correction::{Correction, CorrectionKind};
-pub use ctube::{construct_ctube, ctube_mesh};
+pub use ctube::{construct_ctube, construct_ctube_with, ctube_mesh};
 pub use directrix::SweptDirectrix;
 pub use encode::{Encoding, encode};
 pub use inputs::{
@@ -48,7 +48,7 @@ pub use inputs::{
     GridValues, NormalsInput,
 };
 pub use quality::{ConeCheck, Planarity, Quality, cone_check, planarity, quad_planarity};
-pub use result::{ConeNet, PlaneNormals};
+pub use result::{ConeNet, PlaneNormals, Reports};
 pub use subdivide::subdivide_rows;
 
 /// Tolerances of the kernel (all relative, see `docs/geometry.md`).

@@ -99,6 +99,25 @@ impl PlaneNormals {
     }
 }
 
+/// Which reports a construction computes besides the mesh, the apex values, the plane normals
+/// and the configurations (lazy outputs: a node whose `apices` or `quality` nobody reads skips
+/// them). A report not computed is left empty (no apices, [`Quality::default`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Reports {
+    /// The cone apices C_j.
+    pub apices: bool,
+    /// The quality measures (planarity, cone residuals, configuration counts).
+    pub quality: bool,
+}
+
+impl Reports {
+    /// Every report.
+    pub const ALL: Reports = Reports {
+        apices: true,
+        quality: true,
+    };
+}
+
 /// A constructed cone-net and everything the construction nodes report about it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConeNet {

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+use cnets_engine::eval::OutputMask;
 use cnets_engine::value::json::to_json;
 use cnets_engine::{Evaluator, MemoryBudget, NodeContext, NodeFlag, NodeResult};
 use serde_json::{Map, Value as Json, json};
@@ -93,10 +94,24 @@ pub fn run(args: Args) -> CommandResult {
     ctx.allow_read = args.allow_read.clone();
     ctx.cancel = crate::signals::cancel_flag();
     let mut evaluator = Evaluator::new();
-    let all: Vec<_> = graph.nodes().map(|(k, _)| k).collect();
+    // Every node runs (its errors are reported). Outputs are lazy: `--json` prints them all, so
+    // it asks for all; otherwise a node is asked for its outputs wired into others, an export for
+    // all, and with `--png` a previewed node for all.
+    let all: Vec<_> = graph
+        .nodes()
+        .map(|(k, n)| {
+            let shown = args.png.is_some() && n.preview;
+            let mask = if args.json || shown || n.def.has_flag(NodeFlag::Export) {
+                OutputMask::ALL
+            } else {
+                OutputMask::NONE
+            };
+            (k, mask)
+        })
+        .collect();
     let progress = Progress::new("evaluating");
     let start = Instant::now();
-    let summary = evaluator.evaluate(&graph, &all, &ctx, &mut |done, total| {
+    let summary = evaluator.evaluate_outputs(&graph, &all, &ctx, &mut |done, total| {
         progress.update(done, total)
     });
     let elapsed = start.elapsed();

@@ -22,7 +22,7 @@ fn collect(v: &Value, out: &mut Vec<Polyline>) -> Result<(), String> {
 pub fn parse(text: &str) -> Result<Vec<Polyline>, String> {
     let json: serde_json::Value =
         serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
-    let value = from_json(&json, &ValueType::Polyline)?;
+    let value = from_json(&json, &ValueType::Polyline).map_err(|e| e.to_string())?;
     let mut out = Vec::new();
     collect(&value, &mut out)?;
     for (k, p) in out.iter().enumerate() {

@@ -129,7 +129,7 @@ node! {
                     let relative = folder.join(uri);
                     ctx.read_file(&relative.to_string_lossy())
                         .map(|(_, bytes)| bytes)
-                        .map_err(|e| e.message)
+                        .map_err(|e| e.to_string())
                 };
                 let (objects, warnings) = gltf::parse(&bytes, &external).map_err(named)?;
                 for w in warnings {

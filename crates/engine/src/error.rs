@@ -1,0 +1,75 @@
+//! The error a node reports ([`NodeError`]), in its own module so that the node definitions
+//! (`node`) and the port kinds (`kinds`) both depend on it and not on each other.
+
+use crate::budget::BudgetError;
+use crate::convert::ConvertError;
+use crate::value::json::JsonError;
+
+/// A node failure with a message for the designer. Every variant displays as that message; node
+/// code usually writes `NodeError::new(format!(..))`, `"…".into()` or `?` on a geometry, I/O,
+/// conversion or JSON error.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NodeError {
+    /// What went wrong and where, in the node's words.
+    #[error("{0}")]
+    Message(String),
+    /// The geometry kernel refused the inputs.
+    #[error(transparent)]
+    Geometry(#[from] cnets_geometry::GeometryError),
+    /// A file could not be read or written (the I/O error's text).
+    #[error("{0}")]
+    Io(String),
+    /// A value could not be converted to a port's type.
+    #[error(transparent)]
+    Convert(#[from] ConvertError),
+    /// A JSON document did not decode into a value.
+    #[error(transparent)]
+    Json(#[from] JsonError),
+    /// An allocation would not fit in the memory budget.
+    #[error(transparent)]
+    Budget(#[from] BudgetError),
+}
+
+impl NodeError {
+    /// An error with the given message.
+    pub fn new(message: impl Into<String>) -> Self {
+        Self::Message(message.into())
+    }
+}
+
+impl From<String> for NodeError {
+    fn from(message: String) -> Self {
+        Self::Message(message)
+    }
+}
+
+impl From<&str> for NodeError {
+    fn from(message: &str) -> Self {
+        Self::new(message)
+    }
+}
+
+impl From<std::io::Error> for NodeError {
+    fn from(e: std::io::Error) -> Self {
+        Self::Io(e.to_string())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_kind_displays_as_its_message() {
+        assert_eq!(NodeError::new("bad").to_string(), "bad");
+        assert_eq!(NodeError::from("bad"), NodeError::Message("bad".into()));
+        assert_eq!(NodeError::from(String::from("x")).to_string(), "x");
+        let io = std::io::Error::new(std::io::ErrorKind::NotFound, "gone");
+        assert_eq!(NodeError::from(io).to_string(), "gone");
+        let g = cnets_geometry::GeometryError::ZeroNormal {
+            row: None,
+            column: 2,
+        };
+        assert_eq!(NodeError::from(g.clone()).to_string(), g.to_string());
+    }
+}
