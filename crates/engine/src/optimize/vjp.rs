@@ -97,7 +97,7 @@ pub fn node_vjp(
                         runs: 0,
                     });
                 }
-                Err(e) => e.message,
+                Err(e) => e.to_string(),
             }
         }
         None => "no exact derivative".to_string(),
@@ -130,7 +130,7 @@ fn mapped(
         let prepared = inputs
             .iter()
             .zip(&def.inputs)
-            .map(|(v, port)| coerce_for_port(v, &port.ty, port.access).map_err(NodeError::new))
+            .map(|(v, port)| coerce_for_port(v, &port.ty, port.access).map_err(NodeError::from))
             .collect::<Result<Vec<_>, _>>()?;
         for (k, (raw, p)) in inputs.iter().zip(&prepared).enumerate() {
             if wanted[k] && leaves::count(raw) != leaves::count(p) {

@@ -17,7 +17,7 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::ctube::prepare;
+use super::prepare::prepare;
 use super::inputs::{ConstructInputs, GridValues};
 use super::tolerance;
 use crate::{GeometryError, QuadGrid};
