@@ -1,6 +1,7 @@
 //! Curve operations on polylines: primitives (line, arc, circle, polygon, helix), interpolating
-//! splines, arc-length resampling, subdivision, transforms, reversing and joining, and the graph
-//! mapper functions y = f(x) used to shape lists of numbers.
+//! splines, arc-length resampling, subdivision, transforms, reversing and joining, the graph
+//! mapper functions y = f(x) used to shape lists of numbers, and the flattening of Bézier curves and
+//! elliptical arcs (the curved segments of SVG paths).
 //!
 //! Conventions shared by every function here:
 //! - angles are in **degrees**, measured in a plane from its x axis towards its y axis;
@@ -9,6 +10,7 @@
 //! - every function validates its input and returns a typed [`GeometryError`] instead of panicking:
 //!   non-finite coordinates, too few points, zero-length curves, counts out of range.
 
+pub mod flatten;
 pub mod join;
 pub mod mapper;
 pub mod nurbs;

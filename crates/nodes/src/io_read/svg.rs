@@ -4,169 +4,106 @@
 //! points each. Each subpath is one polyline; Z closes it. Coordinates are user units with the y
 //! axis flipped (x, y) ↦ (x, −y, 0), so a drawing looks the same way up as in the SVG viewer.
 //! `transform` attributes are not applied (a warning says so); other elements are ignored.
-
-use std::f64::consts::TAU;
+//!
+//! The XML is parsed by `roxmltree` (a maintained, dependency-free, non-recursive parser with entity
+//! loop and billion-laughs protection: hostile files end in a clear error with their line); the
+//! Bézier and arc maths is `cnets_geometry::curves::flatten`. Only the path-data syntax is read here.
 
 use cnets_engine::prelude::*;
+use cnets_geometry::curves::flatten::{elliptical_arc, flatten_cubic, flatten_quadratic};
 use glam::DVec2;
 
 use super::tidy;
 
-/// One start tag: name (without namespace prefix), attributes, line number.
-struct Tag<'a> {
-    name: &'a str,
-    attrs: Vec<(&'a str, String)>,
-    line: usize,
-}
+/// The most undeclared namespace prefixes the reader declares on the fly (see [`declare`]).
+const MAX_PREFIXES: usize = 16;
 
-impl Tag<'_> {
-    fn attr(&self, name: &str) -> Option<&str> {
-        self.attrs
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|(_, v)| v.as_str())
-    }
-}
+/// The most XML nodes (elements, text, comments) a document may have: far above any drawing, it stops
+/// a hostile file before it eats the memory.
+const MAX_NODES: u32 = 5_000_000;
 
-fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset].bytes().filter(|&b| b == b'\n').count() + 1
-}
-
-/// Decodes the five predefined XML entities and numeric character references.
-fn unescape(s: &str) -> String {
-    if !s.contains('&') {
-        return s.to_string();
-    }
-    let mut out = String::with_capacity(s.len());
-    let mut rest = s;
-    while let Some(p) = rest.find('&') {
-        out.push_str(&rest[..p]);
-        rest = &rest[p..];
-        let Some(end) = rest.find(';') else {
-            out.push_str(rest);
-            return out;
-        };
-        let entity = &rest[1..end];
-        let decoded = match entity {
-            "lt" => Some('<'),
-            "gt" => Some('>'),
-            "amp" => Some('&'),
-            "quot" => Some('"'),
-            "apos" => Some('\''),
-            e if e.starts_with("#x") => u32::from_str_radix(&e[2..], 16)
-                .ok()
-                .and_then(char::from_u32),
-            e if e.starts_with('#') => e[1..].parse().ok().and_then(char::from_u32),
-            _ => None,
-        };
-        match decoded {
-            Some(c) => {
-                out.push(c);
-                rest = &rest[end + 1..];
-            }
-            None => {
-                out.push('&');
-                rest = &rest[1..];
-            }
-        }
-    }
-    out.push_str(rest);
-    out
-}
-
-/// Scans the start tags of an XML document (comments, CDATA, processing instructions, doctype and
-/// end tags are skipped).
-fn tags(text: &str) -> Result<Vec<Tag<'_>>, String> {
-    let mut out = Vec::new();
-    let mut i = 0;
-    let skip_to = |from: usize, end: &str, what: &str| -> Result<usize, String> {
-        text[from..]
-            .find(end)
-            .map(|p| from + p + end.len())
-            .ok_or_else(|| format!("line {}: unterminated {what}", line_of(text, from)))
+/// Parses the XML with `roxmltree` (DTDs allowed, as older exporters write them; entity loops and
+/// billion laughs are refused by the parser; external entities are not fetched).
+fn document(text: &str) -> Result<roxmltree::Document<'_>, roxmltree::Error> {
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        nodes_limit: MAX_NODES,
+        ..roxmltree::ParsingOptions::default()
     };
-    while let Some(p) = text[i..].find('<') {
-        let s = i + p;
-        let rest = &text[s..];
-        if rest.starts_with("<!--") {
-            i = skip_to(s, "-->", "comment")?;
-            continue;
-        }
-        if rest.starts_with("<![CDATA[") {
-            i = skip_to(s, "]]>", "CDATA section")?;
-            continue;
-        }
+    roxmltree::Document::parse_with_options(text, options)
+}
+
+/// `text` with `xmlns:{prefix}` declared on its root element. Hand-written SVG often uses a prefix
+/// (`svg:`, `xlink:`) it never declares; the element names are read without prefix anyway. The
+/// declaration goes right after the root element's name, on its line, so line numbers stay. `None`
+/// when no root start tag is found.
+fn declare(text: &str, prefix: &str) -> Option<String> {
+    let mut i = 0;
+    loop {
+        let rest = &text[i..];
+        let skip = rest.len()
+            - rest
+                .trim_start_matches(|c: char| c.is_whitespace() || c == '\u{feff}')
+                .len();
+        i += skip;
+        let rest = &text[i..];
         if rest.starts_with("<?") {
-            i = skip_to(s, "?>", "processing instruction")?;
-            continue;
-        }
-        if rest.starts_with("<!") || rest.starts_with("</") {
-            i = skip_to(s, ">", "tag")?;
-            continue;
-        }
-        let line = line_of(text, s);
-        let bytes = text.as_bytes();
-        let mut j = s + 1;
-        while j < bytes.len()
-            && !bytes[j].is_ascii_whitespace()
-            && bytes[j] != b'>'
-            && bytes[j] != b'/'
-        {
-            j += 1;
-        }
-        let full_name = &text[s + 1..j];
-        let name = full_name.rsplit(':').next().unwrap_or(full_name);
-        let mut attrs = Vec::new();
-        loop {
-            while j < bytes.len() && bytes[j].is_ascii_whitespace() {
-                j += 1;
-            }
-            if j >= bytes.len() {
-                return Err(format!("line {line}: unterminated <{full_name}> tag"));
-            }
-            if bytes[j] == b'>' {
-                j += 1;
-                break;
-            }
-            if bytes[j] == b'/' {
-                j += 1;
-                continue;
-            }
-            let a = j;
-            while j < bytes.len()
-                && !bytes[j].is_ascii_whitespace()
-                && !matches!(bytes[j], b'=' | b'>' | b'/')
-            {
-                j += 1;
-            }
-            let attr_name = &text[a..j];
-            while j < bytes.len() && bytes[j].is_ascii_whitespace() {
-                j += 1;
-            }
-            if j < bytes.len() && bytes[j] == b'=' {
-                j += 1;
-                while j < bytes.len() && bytes[j].is_ascii_whitespace() {
-                    j += 1;
+            i += rest.find("?>")? + 2;
+        } else if rest.starts_with("<!--") {
+            i += rest.find("-->")? + 3;
+        } else if rest.starts_with("<!") {
+            // A doctype, possibly with an internal subset in brackets.
+            let close = match (rest.find('['), rest.find('>')) {
+                (Some(open), Some(gt)) if open < gt => {
+                    let end = rest[open..].find(']')? + open;
+                    end + rest[end..].find('>')?
                 }
-                let Some(&quote) = bytes.get(j).filter(|q| matches!(q, b'"' | b'\'')) else {
-                    return Err(format!(
-                        "line {line}: attribute '{attr_name}' of <{full_name}> needs a quoted value"
-                    ));
-                };
-                let v0 = j + 1;
-                let len = text[v0..].find(quote as char).ok_or_else(|| {
-                    format!("line {line}: unterminated value of attribute '{attr_name}'")
-                })?;
-                attrs.push((attr_name, unescape(&text[v0..v0 + len])));
-                j = v0 + len + 1;
-            } else {
-                attrs.push((attr_name, String::new()));
-            }
+                (_, gt) => gt?,
+            };
+            i += close + 1;
+        } else if let Some(tag) = rest.strip_prefix('<') {
+            let name = tag
+                .find(|c: char| c.is_whitespace() || c == '>' || c == '/')
+                .map_or(rest.len(), |n| n + 1);
+            let at = i + name;
+            return Some(format!(
+                "{} xmlns:{prefix}=\"urn:cnets:undeclared:{prefix}\"{}",
+                &text[..at],
+                &text[at..]
+            ));
+        } else {
+            return None;
         }
-        out.push(Tag { name, attrs, line });
-        i = j;
     }
-    Ok(out)
+}
+
+/// The reader's message for an XML error: its line (and column), what is wrong.
+fn xml_error(text: &str, e: &roxmltree::Error) -> String {
+    match e {
+        roxmltree::Error::UnexpectedEndOfStream => {
+            let line = text.bytes().filter(|&b| b == b'\n').count() + 1;
+            format!("line {line}: the document ends early (an unterminated tag, value or element)")
+        }
+        roxmltree::Error::NodesLimitReached => {
+            format!("the document has more than {MAX_NODES} XML nodes")
+        }
+        roxmltree::Error::InvalidString(end @ ("-->" | "]]>" | "?>"), p) => {
+            let what = match *end {
+                "-->" => "comment",
+                "]]>" => "CDATA section",
+                _ => "processing instruction",
+            };
+            format!("line {}: unterminated {what}", p.row)
+        }
+        e => {
+            let p = e.pos();
+            // roxmltree's message ends with the position, which leads here.
+            let message = e.to_string();
+            let suffix = format!(" at {}:{}", p.row, p.col);
+            let message = message.strip_suffix(&suffix).unwrap_or(&message);
+            format!("line {}, column {}: malformed XML: {message}", p.row, p.col)
+        }
+    }
 }
 
 /// A cursor over path data or a points list: numbers, flags and command letters.
@@ -279,75 +216,6 @@ impl Lexer<'_> {
     }
 }
 
-fn cubic(p0: DVec2, p1: DVec2, p2: DVec2, p3: DVec2, t: f64) -> DVec2 {
-    let s = 1.0 - t;
-    p0 * (s * s * s) + p1 * (3.0 * s * s * t) + p2 * (3.0 * s * t * t) + p3 * (t * t * t)
-}
-
-fn quadratic(p0: DVec2, p1: DVec2, p2: DVec2, t: f64) -> DVec2 {
-    let s = 1.0 - t;
-    p0 * (s * s) + p1 * (2.0 * s * t) + p2 * (t * t)
-}
-
-/// Points of an SVG elliptical arc from `p1` to `p2` (excluding `p1`), by the endpoint-to-centre
-/// conversion of the SVG specification (appendix F.6.5/F.6.6, out-of-range radii scaled up).
-fn arc(
-    p1: DVec2,
-    radii: DVec2,
-    rotation: f64,
-    large: bool,
-    sweep: bool,
-    p2: DVec2,
-    segments: usize,
-) -> Vec<DVec2> {
-    if p1 == p2 {
-        return Vec::new();
-    }
-    let (mut rx, mut ry) = (radii.x.abs(), radii.y.abs());
-    if rx == 0.0 || ry == 0.0 {
-        return vec![p2];
-    }
-    let (s, c) = rotation.to_radians().sin_cos();
-    let d = (p1 - p2) * 0.5;
-    let x1 = c * d.x + s * d.y;
-    let y1 = -s * d.x + c * d.y;
-    let lambda = (x1 * x1) / (rx * rx) + (y1 * y1) / (ry * ry);
-    if lambda > 1.0 {
-        rx *= lambda.sqrt();
-        ry *= lambda.sqrt();
-    }
-    let num = rx * rx * ry * ry - rx * rx * y1 * y1 - ry * ry * x1 * x1;
-    let den = rx * rx * y1 * y1 + ry * ry * x1 * x1;
-    let mut coef = (num / den).max(0.0).sqrt();
-    if large == sweep {
-        coef = -coef;
-    }
-    let cxp = coef * rx * y1 / ry;
-    let cyp = -coef * ry * x1 / rx;
-    let mid = (p1 + p2) * 0.5;
-    let centre = DVec2::new(c * cxp - s * cyp + mid.x, s * cxp + c * cyp + mid.y);
-    let angle = |u: DVec2, v: DVec2| (u.x * v.y - u.y * v.x).atan2(u.dot(v));
-    let u = DVec2::new((x1 - cxp) / rx, (y1 - cyp) / ry);
-    let v = DVec2::new((-x1 - cxp) / rx, (-y1 - cyp) / ry);
-    let theta1 = angle(DVec2::X, u);
-    let mut dtheta = angle(u, v);
-    if !sweep && dtheta > 0.0 {
-        dtheta -= TAU;
-    } else if sweep && dtheta < 0.0 {
-        dtheta += TAU;
-    }
-    (1..=segments)
-        .map(|k| {
-            if k == segments {
-                return p2;
-            }
-            let t = theta1 + dtheta * k as f64 / segments as f64;
-            let (st, ct) = t.sin_cos();
-            centre + DVec2::new(rx * ct * c - ry * st * s, rx * ct * s + ry * st * c)
-        })
-        .collect()
-}
-
 /// Flattens path data into subpaths (points, closed).
 fn path(d: &str, segments: usize) -> Result<Vec<(Vec<DVec2>, bool)>, String> {
     let mut lx = Lexer {
@@ -422,13 +290,7 @@ fn path(d: &str, segments: usize) -> Result<Vec<(Vec<DVec2>, bool)>, String> {
                 };
                 let c2 = base + lx.pair()?;
                 let end = base + lx.pair()?;
-                current.extend((1..=segments).map(|k| {
-                    if k == segments {
-                        end
-                    } else {
-                        cubic(cur, c1, c2, end, k as f64 / segments as f64)
-                    }
-                }));
+                current.extend(flatten_cubic(cur, c1, c2, end, segments));
                 next_cubic = Some(c2);
                 cur = end;
             }
@@ -439,13 +301,7 @@ fn path(d: &str, segments: usize) -> Result<Vec<(Vec<DVec2>, bool)>, String> {
                     last_quad.map_or(cur, |c| 2.0 * cur - c)
                 };
                 let end = base + lx.pair()?;
-                current.extend((1..=segments).map(|k| {
-                    if k == segments {
-                        end
-                    } else {
-                        quadratic(cur, c1, end, k as f64 / segments as f64)
-                    }
-                }));
+                current.extend(flatten_quadratic(cur, c1, end, segments));
                 next_quad = Some(c1);
                 cur = end;
             }
@@ -455,7 +311,9 @@ fn path(d: &str, segments: usize) -> Result<Vec<(Vec<DVec2>, bool)>, String> {
                 let large = lx.flag()?;
                 let sweep = lx.flag()?;
                 let end = base + lx.pair()?;
-                current.extend(arc(cur, radii, rotation, large, sweep, end, segments));
+                current.extend(elliptical_arc(
+                    cur, radii, rotation, large, sweep, end, segments,
+                ));
                 cur = end;
             }
             other => return Err(format!("unknown path command '{}'", char::from(other))),
@@ -488,8 +346,8 @@ fn points_attr(s: &str) -> Result<Vec<DVec2>, String> {
     Ok(numbers.chunks(2).map(|c| DVec2::new(c[0], c[1])).collect())
 }
 
-fn attr_number(tag: &Tag, name: &str) -> Result<f64, String> {
-    match tag.attr(name) {
+fn attr_number(node: &roxmltree::Node, name: &str) -> Result<f64, String> {
+    match node.attribute(name) {
         None => Ok(0.0),
         Some(v) => {
             let mut lx = Lexer {
@@ -507,33 +365,65 @@ fn to_world(points: &[DVec2]) -> Vec<DVec3> {
     points.iter().map(|p| DVec3::new(p.x, -p.y, 0.0)).collect()
 }
 
-/// Parses SVG text into polylines (and warnings).
+/// Parses SVG text into polylines (and warnings). The XML is parsed by `roxmltree`; undeclared
+/// namespace prefixes are tolerated (at most [`MAX_PREFIXES`]).
 pub fn parse(text: &str, segments: usize) -> Result<(Vec<Polyline>, Vec<String>), String> {
+    let mut patched: Option<String> = None;
+    for _ in 0..=MAX_PREFIXES {
+        let src = patched.as_deref().unwrap_or(text);
+        let next = match document(src) {
+            Ok(doc) => return shapes(&doc, segments),
+            Err(roxmltree::Error::UnknownNamespace(prefix, pos)) => declare(src, &prefix)
+                .ok_or_else(|| {
+                    format!(
+                        "line {}, column {}: undeclared namespace prefix '{prefix}'",
+                        pos.row, pos.col
+                    )
+                })?,
+            Err(e) => return Err(xml_error(src, &e)),
+        };
+        patched = Some(next);
+    }
+    Err(format!(
+        "more than {MAX_PREFIXES} undeclared namespace prefixes"
+    ))
+}
+
+/// The polylines of a parsed document, in document order (and warnings).
+fn shapes(
+    doc: &roxmltree::Document,
+    segments: usize,
+) -> Result<(Vec<Polyline>, Vec<String>), String> {
     let mut out = Vec::new();
     let mut transforms = 0;
     let mut skipped = 0;
-    for tag in tags(text)? {
-        if tag.attr("transform").is_some() {
+    for node in doc.descendants().filter(|n| n.is_element()) {
+        if node.attribute("transform").is_some() {
             transforms += 1;
         }
-        let at = |e: String| format!("line {}: <{}>: {e}", tag.line, tag.name);
-        let shapes: Vec<(Vec<DVec2>, bool)> = match tag.name {
+        let name = node.tag_name().name();
+        // The line only for an error: finding it scans the text from the start.
+        let at = |e: String| {
+            let line = doc.text_pos_at(node.range().start).row;
+            format!("line {line}: <{name}>: {e}")
+        };
+        let shapes: Vec<(Vec<DVec2>, bool)> = match name {
             "polyline" | "polygon" => {
-                let pts = points_attr(tag.attr("points").unwrap_or("")).map_err(at)?;
-                vec![(pts, tag.name == "polygon")]
+                let pts = points_attr(node.attribute("points").unwrap_or("")).map_err(at)?;
+                vec![(pts, name == "polygon")]
             }
             "line" => {
                 let a = DVec2::new(
-                    attr_number(&tag, "x1").map_err(at)?,
-                    attr_number(&tag, "y1").map_err(at)?,
+                    attr_number(&node, "x1").map_err(at)?,
+                    attr_number(&node, "y1").map_err(at)?,
                 );
                 let b = DVec2::new(
-                    attr_number(&tag, "x2").map_err(at)?,
-                    attr_number(&tag, "y2").map_err(at)?,
+                    attr_number(&node, "x2").map_err(at)?,
+                    attr_number(&node, "y2").map_err(at)?,
                 );
                 vec![(vec![a, b], false)]
             }
-            "path" => path(tag.attr("d").unwrap_or(""), segments).map_err(at)?,
+            "path" => path(node.attribute("d").unwrap_or(""), segments).map_err(at)?,
             _ => continue,
         };
         for (pts, closed) in shapes {
@@ -666,6 +556,84 @@ mod tests {
         .unwrap();
         assert_eq!(ps.len(), 1);
         assert!(w.iter().any(|m| m.contains("transform")));
-        assert_eq!(unescape("a&lt;b&#65;&#x42;&bogus;"), "a<bAB&bogus;");
+        // Entities in attribute values are decoded (by the XML parser).
+        let (ps, _) = parse(r#"<polyline points="0&#44;0 1&#x2C;2 3,4&#32;"/>"#, 4).unwrap();
+        assert_eq!(ps[0].points[1], DVec3::new(1.0, -2.0, 0.0));
+    }
+
+    #[test]
+    fn hostile_documents_end_in_clear_errors() {
+        // Billion laughs: refused by the parser's entity limits, quickly.
+        let mut lol =
+            String::from("<?xml version=\"1.0\"?><!DOCTYPE svg [<!ENTITY a \"0 0 1 1 \">");
+        let mut prev = "a".to_string();
+        for k in 0..9 {
+            let name = format!("e{k}");
+            lol.push_str(&format!(
+                "<!ENTITY {name} \"{}\">",
+                format!("&{prev};").repeat(10)
+            ));
+            prev = name;
+        }
+        lol.push_str(&format!("]><svg><polyline points=\"&{prev};\"/></svg>"));
+        let t = std::time::Instant::now();
+        let e = parse(&lol, 4).unwrap_err();
+        assert!(e.contains("malformed XML") && e.contains("line 1"), "{e}");
+        assert!(t.elapsed().as_secs_f64() < 1.0);
+        // An external entity is not fetched.
+        let ext = r#"<!DOCTYPE svg [<!ENTITY x SYSTEM "file:///etc/passwd">]><svg><polyline points="&x;"/></svg>"#;
+        assert!(parse(ext, 4).is_err());
+        // A DOCTYPE as older exporters write it is fine.
+        let dtd = r#"<?xml version="1.0"?>
+<!DOCTYPE svg PUBLIC "-//W3C//DTD SVG 1.1//EN" "http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd">
+<svg xmlns="http://www.w3.org/2000/svg"><line x1="0" y1="0" x2="1" y2="1"/></svg>"#;
+        assert_eq!(parse(dtd, 4).unwrap().0.len(), 1);
+        // Deep nesting neither overflows the stack nor is refused.
+        let depth = 100_000;
+        let deep = format!(
+            "{}<path d=\"M0 0 L1 1\"/>{}",
+            "<g>".repeat(depth),
+            "</g>".repeat(depth)
+        );
+        assert_eq!(parse(&deep, 4).unwrap().0.len(), 1);
+        // Undeclared prefixes: a few are declared on the fly (line numbers kept), too many are an error.
+        let (ps, _) = parse("<svg>\n<a:path d=\"M0 0 L1 1\" b:x=\"1\"/></svg>", 4).unwrap();
+        assert_eq!(ps.len(), 1);
+        let e = parse("<svg>\n<a:path d=\"M0 0 L1\"/></svg>", 4).unwrap_err();
+        assert!(e.starts_with("line 2: <path>"), "{e}");
+        let many: String = (0..20).map(|k| format!("<p{k}:g/>")).collect();
+        let e = parse(&format!("<svg>{many}</svg>"), 4).unwrap_err();
+        assert!(e.contains("undeclared namespace prefixes"), "{e}");
+        // Not XML at all, mismatched tags, duplicate attributes: the line and what is wrong.
+        for (text, says) in [
+            ("plain text", "unknown token"),
+            ("<svg><g></svg>", "expected 'g' tag"),
+            ("<svg a='1' a='2'/>", "already defined"),
+            ("", "root node"),
+            ("<svg><![CDATA[ open", "unterminated CDATA"),
+        ] {
+            let e = parse(text, 4).unwrap_err();
+            assert!(e.starts_with("line 1") && e.contains(says), "{text:?}: {e}");
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(512))]
+
+        /// Any text, and any byte-level mutation of a valid drawing, parses or fails with a message;
+        /// nothing panics.
+        #[test]
+        fn arbitrary_and_mutated_documents_never_panic(
+            noise in "\\PC{0,200}",
+            cut in 0usize..400,
+            insert in "[<>&;\"'=/!?:a-z0-9 \\[\\]-]{0,12}",
+        ) {
+            let _ = parse(&noise, 4);
+            let valid = r#"<?xml version="1.0"?><!DOCTYPE svg><svg xmlns="http://www.w3.org/2000/svg"><!-- c --><g transform="x"><path d="M0 0 C1 2 3 4 5 6 S7 8 9 0 Q1 1 2 2 T3 3 A1 2 30 1 0 4 4 Z"/><polygon points="0,0 1,0 1,1"/><line x1="0" x2="1"/></g></svg>"#;
+            let at = cut.min(valid.len());
+            let at = (0..=at).rev().find(|&k| valid.is_char_boundary(k)).unwrap_or(0);
+            let mutated = format!("{}{insert}{}", &valid[..at], &valid[at..]);
+            let _ = parse(&mutated, 4);
+        }
     }
 }
