@@ -268,12 +268,12 @@ def test_help_reads_like_the_nodes_doc():
 
 
 def test_the_gil_is_released_during_evaluation():
-    d, g = arc(500), profile(500)
+    d, g = arc(300), profile(300)
     done = threading.Event()
     ticks = 0
 
     def work():
-        for _ in range(3):
+        for _ in range(4):
             cnets.construct(d, g, apex=0.95)
         done.set()
 
