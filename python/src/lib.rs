@@ -34,6 +34,13 @@ create_exception!(
      unknown node type, input or value."
 );
 
+/// The module's allocator, as the `cnets` binary's: mimalloc keeps freed memory for reuse, where
+/// glibc's malloc hands the large buffers of a construction and of the arrays handed to numpy back
+/// to the kernel and faults them in again on the next call (at 100 × 100 that was a third of the
+/// call's time). Arrays handed to numpy own their Rust buffer, so they are freed by it too.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// The node library's registry, built once per process.
 fn registry() -> &'static Arc<Registry> {
     static REGISTRY: std::sync::OnceLock<Arc<Registry>> = std::sync::OnceLock::new();
