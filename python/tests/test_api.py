@@ -292,7 +292,10 @@ def test_the_gil_is_released_during_evaluation():
 def test_speed_within_1_5x_of_the_nodes_own_time():
     d, g = arc(100), profile(100)
     totals, nodes = [], []
-    for _ in range(40):
+    start = time.perf_counter()
+    for k in range(60):
+        if k >= 5 and time.perf_counter() - start > 2.0:  # an unoptimized (dev-profile) build
+            break
         t0 = time.perf_counter()
         cnets.construct(d, g, apex=0.95, ratios=0.5)
         totals.append(time.perf_counter() - t0)
