@@ -183,7 +183,12 @@ fn quad_faces<'py>(
         vertices: Vec::new(),
     };
     let (qr, qc) = (grid.quad_rows(), grid.quad_cols());
-    let mut data = Vec::with_capacity(qr * qc * 4);
+    let count = qr
+        .checked_mul(qc)
+        .and_then(|n| n.checked_mul(4))
+        .filter(|&n| n.saturating_mul(8) as u64 <= cnets_engine::MemoryBudget::default().limit)
+        .ok_or_else(|| error(format!("a grid of {rows} × {cols} vertices is too large")))?;
+    let mut data = Vec::with_capacity(count);
     for i in 0..qr {
         for j in 0..qc {
             data.extend(grid.quad_indices(i, j).map(|k| k as i64));

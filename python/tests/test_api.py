@@ -165,6 +165,16 @@ def test_errors_are_cnets_errors_with_the_engines_message(tmp_path):
             "cnets.construct", directrix=arc(1000), generatrix=profile(1000), _max_memory="1MB")
 
 
+def test_hostile_grid_sizes():
+    assert cnets._cnets.quad_faces(0, 0, False, False).shape == (0, 4)
+    assert cnets._cnets.quad_faces(1, 5, True, False).shape == (0, 4)
+    assert cnets._cnets.quad_faces(2, 5, False, False).shape == (4, 4)
+    with pytest.raises(cnets.CnetsError, match="too large"):
+        cnets._cnets.quad_faces(2**40, 2**40, False, False)
+    with pytest.raises(cnets.CnetsError):
+        cnets.QuadMesh(np.zeros((2, 3)))
+
+
 def test_hostile_inputs_never_crash():
     rng = np.random.default_rng(7)
     values = [np.nan, np.inf, -np.inf, 1e300, -1e300, 0.0, "x", None, [], [[]], {}, (1, 2),
