@@ -14,9 +14,13 @@ if [ ! -x "$venv/bin/python" ]; then
 fi
 pip=("$venv/bin/python" -m pip --disable-pip-version-check -q)
 "${pip[@]}" install -r scripts/requirements-python.txt
-# The tests build with the `pytest` profile (release with thin local optimisation, see
-# Cargo.toml); a user's plain `pip install ./python` builds with maturin's default (release).
+# The tests build with cargo's dev profile (CNETS_PYTHON_PROFILE=release for the release build):
+# it reuses what `cargo test --workspace` compiled into target/debug, where a cold release build
+# took 19 min on the shared 2-core machine (docs/python.md). A user's plain `pip install ./python`
+# builds in release.
+profile="${CNETS_PYTHON_PROFILE:-dev}"
 "${pip[@]}" install --force-reinstall --no-deps \
-  --config-settings=build-args="--profile pytest" "./python[rhino]"
-cd python
-"$venv/bin/python" -m pytest -q tests
+  --config-settings=build-args="--profile $profile" "./python[rhino]"
+# pytest (not `python -m pytest`): the source folder python/cnets must not shadow the installed
+# package.
+"$venv/bin/pytest" -q python/tests

@@ -105,5 +105,9 @@ def sweep(
     parameters: Union[Dict[str, Sequence[Any]], Sequence[Dict[str, Any]]],
     outputs: Sequence[str],
     client: Any = None,
-    **kwargs: Any,
+    out: Optional[_Path] = None,
+    allow_read: Sequence[_Path] = (),
+    max_memory: Union[int, str, None] = None,
+    library: Sequence[_Path] = (),
+    n_workers: Optional[int] = None,
 ) -> Any: ...

@@ -179,7 +179,7 @@ def sweep(
     cluster = None
     if own:
         cluster = LocalCluster(n_workers=n_workers or min(4, os.cpu_count() or 1),
-                               threads_per_worker=1, processes=True, dashboard_address=None)
+                               threads_per_worker=1, processes=True, dashboard_address=":0")
         client = Client(cluster)
     try:
         futures = [

@@ -395,7 +395,8 @@ pub fn to_py<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, PyAny>>
                     .face_starts
                     .get(k + 1)
                     .map_or(m.indices.len(), |&e| e as usize);
-                faces.append(PyList::new(py, &m.indices[start..end])?)?;
+                let face = m.indices.get(start..end).unwrap_or_default();
+                faces.append(PyList::new(py, face)?)?;
             }
             types(py, "PolygonMesh")?.call1((points_array(py, &m.vertices)?, faces))?
         }

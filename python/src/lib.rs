@@ -34,6 +34,13 @@ create_exception!(
      unknown node type, input or value."
 );
 
+/// The module's allocator, as the `cnets` binary's: mimalloc keeps freed memory for reuse, where
+/// glibc's malloc hands the large buffers of a construction and of the arrays handed to numpy back
+/// to the kernel and faults them in again on the next call (at 100 × 100 that was a third of the
+/// call's time). Arrays handed to numpy own their Rust buffer, so they are freed by it too.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// The node library's registry, built once per process.
 fn registry() -> &'static Arc<Registry> {
     static REGISTRY: std::sync::OnceLock<Arc<Registry>> = std::sync::OnceLock::new();
@@ -176,7 +183,12 @@ fn quad_faces<'py>(
         vertices: Vec::new(),
     };
     let (qr, qc) = (grid.quad_rows(), grid.quad_cols());
-    let mut data = Vec::with_capacity(qr * qc * 4);
+    let count = qr
+        .checked_mul(qc)
+        .and_then(|n| n.checked_mul(4))
+        .filter(|&n| n.saturating_mul(8) as u64 <= cnets_engine::MemoryBudget::default().limit)
+        .ok_or_else(|| error(format!("a grid of {rows} × {cols} vertices is too large")))?;
+    let mut data = Vec::with_capacity(count);
     for i in 0..qr {
         for j in 0..qc {
             data.extend(grid.quad_indices(i, j).map(|k| k as i64));

@@ -34,9 +34,11 @@ def server(tmp_path_factory):
     (lib / "arc-length.ron").write_text(CLUSTER)
     (lib / "no-interface.ron").write_text('(version: 1, nodes: {"a": (type: "math.add")})')
     port = _free_port()
+    # ghhops-server prints every request's inputs: to a file, so that no pipe fills up.
+    log = open(tmp_path_factory.mktemp("log") / "hops.log", "w+b")
     proc = subprocess.Popen(
         [sys.executable, "-m", "cnets.hops", "--port", str(port), "--library", str(lib)],
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+        stdout=log, stderr=subprocess.STDOUT,
     )
     base = f"http://127.0.0.1:{port}"
     deadline = time.time() + 30
@@ -46,8 +48,9 @@ def server(tmp_path_factory):
             break
         except (urllib.error.URLError, ConnectionError):
             if proc.poll() is not None or time.time() > deadline:
-                out = proc.stdout.read().decode() if proc.poll() is not None else ""
                 proc.kill()
+                log.seek(0)
+                out = log.read().decode(errors="replace")
                 raise RuntimeError(f"the Hops server did not start: {out}")
             time.sleep(0.2)
     yield base
@@ -56,6 +59,7 @@ def server(tmp_path_factory):
         proc.wait(timeout=10)
     except subprocess.TimeoutExpired:
         proc.kill()
+    log.close()
 
 
 def _get(url):

@@ -59,8 +59,10 @@ def test_cone_net_to_3dm_round_trip(tmp_path):
 def test_without_layers_everything_is_on_the_default_layer(tmp_path):
     net = cnets.construct(arc(5), profile(4))
     path = tmp_path / "flat.3dm"
-    with pytest.warns(UserWarning, match="no Axes layer"):  # G_00 = X_0: no axis there
+    with pytest.warns(UserWarning) as record:  # G_00 = X_0: no axis, no support there
         net.to_3dm(path, layers=False)
+    messages = " ".join(str(w.message) for w in record)
+    assert "no Axes layer" in messages and "no Support layer" in messages
     model = rhino3dm.File3dm.Read(str(path))
     names, by_layer = _objects_by_layer(model)
     assert "Cone-net" not in names

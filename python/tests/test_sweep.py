@@ -16,7 +16,7 @@ OUTPUTS = ["len.length", "net.quality.max_planarity", "net.quality.vertices"]
 @pytest.fixture(scope="module")
 def client():
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                       dashboard_address=None)
+                                       dashboard_address=":0")
     c = distributed.Client(cluster)
     yield c
     c.close()
