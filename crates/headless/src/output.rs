@@ -20,6 +20,19 @@ pub fn line(args: std::fmt::Arguments<'_>) -> Result<(), Failure> {
         .map_err(Failure::from)
 }
 
+/// Writes `value` as compact JSON and a newline to stdout, streamed through a buffer (no JSON
+/// tree is built: the output of a large result takes little more memory than the result).
+pub fn json_line<T: serde::Serialize + ?Sized>(value: &T) -> Result<(), Failure> {
+    let mut out = io::BufWriter::with_capacity(1 << 16, io::stdout().lock());
+    serde_json::to_writer(&mut out, value).map_err(|e| match e.io_error_kind() {
+        Some(kind) => Failure::from(io::Error::new(kind, e.to_string())),
+        None => Failure::usage(format!("cannot write the output: {e}")),
+    })?;
+    out.write_all(b"\n")
+        .and_then(|()| out.flush())
+        .map_err(Failure::from)
+}
+
 /// Flushes stdout (the end of every command), so a late write error is reported too.
 pub fn flush() -> Result<(), Failure> {
     io::stdout().lock().flush().map_err(Failure::from)

@@ -112,6 +112,114 @@ pub fn to_json(value: &Value) -> Json {
     }
 }
 
+/// A value as a serde [`Serialize`](serde::Serialize) implementation: serializing it writes the
+/// same JSON as [`to_json`] (the same key order, numbers and `null`s), streamed item by item to a
+/// writer without building a JSON tree first (a tree of a 10⁷-point curve takes gigabytes).
+#[derive(Debug, Clone, Copy)]
+pub struct JsonOut<'a>(pub &'a Value);
+
+/// Writes `value` as compact JSON to `writer`, streamed (see [`JsonOut`]); the bytes equal
+/// `to_json(value).to_string()`.
+pub fn write_json<W: std::io::Write>(writer: W, value: &Value) -> serde_json::Result<()> {
+    serde_json::to_writer(writer, &JsonOut(value))
+}
+
+/// `[x, y, z]`, streamed.
+struct Vec3Out(DVec3);
+
+impl serde::Serialize for Vec3Out {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeTuple;
+        let mut t = s.serialize_tuple(3)?;
+        t.serialize_element(&self.0.x)?;
+        t.serialize_element(&self.0.y)?;
+        t.serialize_element(&self.0.z)?;
+        t.end()
+    }
+}
+
+/// A list of points, streamed.
+struct PointsOut<'a>(&'a [DVec3]);
+
+impl serde::Serialize for PointsOut<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.0.iter().map(|p| Vec3Out(*p)))
+    }
+}
+
+impl serde::Serialize for JsonOut<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        match self.0 {
+            Value::Null => s.serialize_unit(),
+            // serde_json writes a non-finite number as `null`, as `to_json` does.
+            Value::Number(x) => s.serialize_f64(*x),
+            Value::Integer(i) => s.serialize_i64(*i),
+            Value::Boolean(b) => s.serialize_bool(*b),
+            Value::Text(t) => s.serialize_str(t),
+            Value::Point(p) | Value::Vector(p) => Vec3Out(*p).serialize(s),
+            Value::Plane(p) => {
+                let mut m = s.serialize_map(Some(4))?;
+                m.serialize_entry("origin", &Vec3Out(p.origin))?;
+                m.serialize_entry("x_axis", &Vec3Out(p.x_axis))?;
+                m.serialize_entry("y_axis", &Vec3Out(p.y_axis))?;
+                m.serialize_entry("normal", &Vec3Out(p.normal))?;
+                m.end()
+            }
+            Value::Lines(lines) => {
+                s.collect_seq(lines.iter().map(|l| [Vec3Out(l.start), Vec3Out(l.end)]))
+            }
+            Value::Polyline(p) => {
+                let mut m = s.serialize_map(Some(2))?;
+                m.serialize_entry("points", &PointsOut(&p.points))?;
+                m.serialize_entry("closed", &p.closed)?;
+                m.end()
+            }
+            Value::QuadMesh(g) => {
+                let mut m = s.serialize_map(Some(5))?;
+                m.serialize_entry("rows", &g.rows)?;
+                m.serialize_entry("cols", &g.cols)?;
+                m.serialize_entry("wrap_rows", &g.wrap_rows)?;
+                m.serialize_entry("wrap_cols", &g.wrap_cols)?;
+                m.serialize_entry("vertices", &PointsOut(&g.vertices))?;
+                m.end()
+            }
+            Value::Mesh(mesh) => {
+                struct Faces<'a>(&'a PolygonMesh);
+                impl serde::Serialize for Faces<'_> {
+                    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                        s.collect_seq(self.0.faces())
+                    }
+                }
+                let mut m = s.serialize_map(Some(2))?;
+                m.serialize_entry("vertices", &PointsOut(&mesh.vertices))?;
+                m.serialize_entry("faces", &Faces(mesh))?;
+                m.end()
+            }
+            Value::List(items) => match items.as_packed() {
+                Some(packed) => s.collect_seq((0..packed.len()).map(|k| ValueOut(packed.value(k)))),
+                None => s.collect_seq(items.iter().map(JsonOut)),
+            },
+            Value::Record(r) => {
+                let mut m = s.serialize_map(Some(r.fields().len()))?;
+                for (k, v) in r.fields() {
+                    m.serialize_entry(k, &JsonOut(v))?;
+                }
+                m.end()
+            }
+        }
+    }
+}
+
+/// An owned value, serialized as [`JsonOut`] (the items of packed lists are built one at a time).
+struct ValueOut(Value);
+
+impl serde::Serialize for ValueOut {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        JsonOut(&self.0).serialize(s)
+    }
+}
+
 fn num(x: f64) -> Json {
     serde_json::Number::from_f64(x).map_or(Json::Null, Json::Number)
 }
@@ -486,5 +594,54 @@ mod tests {
                 .unwrap(),
         );
         assert_eq!(from_json(&to_json(&m), &ValueType::Mesh).unwrap(), m);
+    }
+
+    #[test]
+    fn streamed_output_equals_the_tree_output() {
+        let grid = QuadGrid::new(
+            2,
+            2,
+            vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, -0.0)],
+        )
+        .unwrap();
+        let mesh = PolygonMesh::from_faces(vec![DVec3::ZERO, DVec3::X, DVec3::Y], &[vec![0, 1, 2]])
+            .unwrap();
+        let values = vec![
+            Value::Null,
+            Value::Number(0.1),
+            Value::Number(3.0),
+            Value::Number(f64::NAN),
+            Value::Number(f64::NEG_INFINITY),
+            Value::Number(1e300),
+            Value::Integer(-7),
+            Value::Boolean(true),
+            Value::text("a \"quoted\"\n text"),
+            Value::Point(DVec3::new(1.5, -2.0, 1e-12)),
+            Value::Vector(DVec3::Z),
+            Value::Plane(Arc::new(Plane::from_normal(DVec3::X, DVec3::Z).unwrap())),
+            Value::Lines(Arc::new(vec![Line::new(DVec3::ZERO, DVec3::X)])),
+            Value::Polyline(Arc::new(Polyline::open(vec![DVec3::ZERO, DVec3::Y]))),
+            Value::QuadMesh(Arc::new(grid.with_wrap(true, false))),
+            Value::Mesh(Arc::new(mesh)),
+            Value::List(Items::numbers(Arc::new(vec![0.5, f64::NAN, 2.0]), 1..3)),
+            Value::list(vec![
+                Value::list(vec![Value::Number(1.0), Value::Null]),
+                Value::list(vec![]),
+            ]),
+            Value::Record(Arc::new(
+                Record::new()
+                    .with("z", 1.0)
+                    .with("a", Value::list(vec![Value::text("x")])),
+            )),
+        ];
+        for v in values {
+            let mut bytes = Vec::new();
+            write_json(&mut bytes, &v).unwrap();
+            assert_eq!(
+                String::from_utf8(bytes).unwrap(),
+                to_json(&v).to_string(),
+                "{v:?}"
+            );
+        }
     }
 }

@@ -4,10 +4,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
+use cnets_engine::Value;
 use cnets_engine::eval::evaluate_node;
-use cnets_engine::value::json::to_json;
+use cnets_engine::value::json::JsonOut;
 use cnets_engine::{MemoryBudget, NodeContext, NodeFlag};
-use serde_json::{Map, Value as Json};
 
 use crate::failure::{CommandResult, Failure};
 use crate::inputs::{node_inputs, read_json};
@@ -106,13 +106,22 @@ pub fn run(args: Args) -> CommandResult {
     for w in &outputs.warnings {
         eprintln!("warning: {}: {w}", def.id);
     }
-    let object: Map<String, Json> = def
+    let printed: Vec<(&str, &Value)> = def
         .outputs
         .iter()
         .zip(&outputs.values)
         .filter(|(p, _)| ctx.wants(&p.name))
-        .map(|(p, v)| (p.name.to_string(), to_json(v)))
+        .map(|(p, v)| (p.name.as_ref(), v))
         .collect();
-    crate::outln!("{}", Json::Object(object));
+    crate::output::json_line(&Outputs(&printed))?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// `{ "<output>": <value>, … }`, streamed.
+struct Outputs<'a>(&'a [(&'a str, &'a Value)]);
+
+impl serde::Serialize for Outputs<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_map(self.0.iter().map(|(name, v)| (*name, JsonOut(v))))
+    }
 }

@@ -4,10 +4,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+use cnets_engine::Value;
 use cnets_engine::eval::OutputMask;
-use cnets_engine::value::json::to_json;
+use cnets_engine::value::json::JsonOut;
 use cnets_engine::{Evaluator, MemoryBudget, NodeContext, NodeFlag, NodeResult};
-use serde_json::{Map, Value as Json, json};
 
 use crate::commands::render::{Look, render_png};
 use crate::failure::{CommandResult, Failure};
@@ -95,13 +95,12 @@ pub fn run(args: Args) -> CommandResult {
     ctx.cancel = crate::signals::cancel_flag();
     let mut evaluator = Evaluator::new();
     // Every node runs (its errors are reported). Outputs are lazy: `--json` prints them all, so
-    // it asks for all; otherwise a node is asked for its outputs wired into others, an export for
-    // all, and with `--png` a previewed node for all.
+    // it asks for all; otherwise a previewed node (as in the editor) and an export are asked for
+    // all, any other node only for its outputs wired into others.
     let all: Vec<_> = graph
         .nodes()
         .map(|(k, n)| {
-            let shown = args.png.is_some() && n.preview;
-            let mask = if args.json || shown || n.def.has_flag(NodeFlag::Export) {
+            let mask = if args.json || n.preview || n.def.has_flag(NodeFlag::Export) {
                 OutputMask::ALL
             } else {
                 OutputMask::NONE
@@ -125,7 +124,7 @@ pub fn run(args: Args) -> CommandResult {
     }
 
     let mut failed = Vec::new();
-    let mut nodes = Map::new();
+    let mut nodes: Vec<NodeOut<'_>> = Vec::new();
     let mut files = Vec::new();
     for (index, node) in graph.nodes() {
         let result = evaluator.result_at(&graph, index);
@@ -142,34 +141,32 @@ pub fn run(args: Args) -> CommandResult {
             files.extend(o.files.iter().cloned());
         }
         if args.json {
-            let values: Map<String, Json> = outputs
+            let values = outputs
                 .map(|o| {
                     node.def
                         .outputs
                         .iter()
                         .zip(&o.values)
-                        .map(|(p, v)| (p.name.to_string(), to_json(v)))
+                        .map(|(p, v)| (p.name.as_ref(), v))
                         .collect()
                 })
                 .unwrap_or_default();
             let time_ms = evaluator
                 .time(&graph, &node.id)
                 .map_or(0.0, |t| t.as_secs_f64() * 1e3);
-            nodes.insert(
-                node.id.clone(),
-                json!({
-                    "type": node.def.id,
-                    "status": status(result),
-                    "outputs": values,
-                    "errors": errors_of(result),
-                    "warnings": outputs.map(|o| o.warnings.clone()).unwrap_or_default(),
-                    "time_ms": time_ms,
-                }),
-            );
+            nodes.push(NodeOut {
+                id: &node.id,
+                ty: &node.def.id,
+                status: status(result),
+                outputs: values,
+                errors: errors_of(result),
+                warnings: outputs.map(|o| o.warnings.as_slice()).unwrap_or_default(),
+                time_ms,
+            });
         }
     }
     if args.json {
-        crate::outln!("{}", json!({ "nodes": nodes }));
+        crate::output::json_line(&RunOut(&nodes))?;
     } else {
         crate::outln!(
             "{}: {} nodes evaluated in {:.1} ms, {} failed",
@@ -208,5 +205,55 @@ pub fn run(args: Args) -> CommandResult {
             code: 1,
             messages: failed,
         })
+    }
+}
+
+/// One node of `run --json`: `{ "type", "status", "outputs", "errors", "warnings", "time_ms" }`.
+struct NodeOut<'a> {
+    id: &'a str,
+    ty: &'a str,
+    status: &'static str,
+    outputs: Vec<(&'a str, &'a Value)>,
+    errors: Vec<String>,
+    warnings: &'a [String],
+    time_ms: f64,
+}
+
+/// `{ "nodes": { "<id>": … } }`, streamed: the values are written as they are read, with no JSON
+/// tree of them (a 10⁷-point curve's tree took gigabytes).
+struct RunOut<'a>(&'a [NodeOut<'a>]);
+
+impl serde::Serialize for RunOut<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        struct Nodes<'a>(&'a [NodeOut<'a>]);
+        impl serde::Serialize for Nodes<'_> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                s.collect_map(self.0.iter().map(|n| (n.id, n)))
+            }
+        }
+        let mut m = s.serialize_map(Some(1))?;
+        m.serialize_entry("nodes", &Nodes(self.0))?;
+        m.end()
+    }
+}
+
+impl serde::Serialize for NodeOut<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        struct Outputs<'a>(&'a [(&'a str, &'a Value)]);
+        impl serde::Serialize for Outputs<'_> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                s.collect_map(self.0.iter().map(|(name, v)| (*name, JsonOut(v))))
+            }
+        }
+        let mut m = s.serialize_map(Some(6))?;
+        m.serialize_entry("type", self.ty)?;
+        m.serialize_entry("status", self.status)?;
+        m.serialize_entry("outputs", &Outputs(&self.outputs))?;
+        m.serialize_entry("errors", &self.errors)?;
+        m.serialize_entry("warnings", self.warnings)?;
+        m.serialize_entry("time_ms", &self.time_ms)?;
+        m.end()
     }
 }
