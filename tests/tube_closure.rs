@@ -73,8 +73,10 @@ fn incremental_gradients_run_fewer_nodes_than_full_re_evaluation() {
     let doc = load("tube-closure");
     let setup = doc.meta.optimization.clone().unwrap();
     let ctx = NodeContext::default();
+    // Finite-difference gradients (81 evaluations each): the baseline the figures compare.
     let options = Options {
         max_iter: Some(1),
+        exact_gradients: false,
         ..Options::default()
     };
     let inc = optimize(&doc.graph, &setup, &options, &ctx, &mut |_| {}).unwrap();

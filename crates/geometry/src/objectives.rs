@@ -2,6 +2,9 @@
 //! seam, face-normal alignment, fairness (second differences) and the gradients of the point and
 //! surface distances of [`crate::measure`].
 
+// Tolerance tests are written `!(x > 0)` on purpose (they also fail for NaN), as in the kernel.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 use glam::DVec3;
 
 use crate::{GeometryError, PolygonMesh, QuadGrid};

@@ -44,6 +44,9 @@ impl VjpArgs<'_> {
 /// the node cannot differentiate this run exactly (the optimizer then uses finite differences).
 pub type VjpResult = Result<Vec<Option<Vec<f64>>>, NodeError>;
 
+/// Per input (or output), the cotangent of each of its leaves (`None`: zero).
+pub type Cotangents = Vec<Option<Vec<f64>>>;
+
 /// A node type's vector–Jacobian product.
 pub type VjpFn = Arc<dyn Fn(&VjpArgs<'_>) -> VjpResult + Send + Sync>;
 
@@ -263,7 +266,7 @@ fn finite_differences(
     inputs: &[Value],
     cotangents: &[Option<Vec<f64>>],
     wanted: &[Wanted],
-) -> Result<(Vec<Option<Vec<f64>>>, u64), NodeError> {
+) -> Result<(Cotangents, u64), NodeError> {
     let mut runs = 0;
     let mut result = Vec::with_capacity(inputs.len());
     let mut probe = inputs.to_vec();

@@ -46,9 +46,16 @@ fn compare(id: &str, named: &[(&str, Value)], wanted: &[&str]) -> f64 {
         .map(|(o, v)| {
             let n = leaves::count(v);
             // The alignment's largest term has no product: only its mean is weighted.
-            let outputs = if id == "measure.normal_alignment" { 1 } else { 3 };
-            (n > 0 && !leaves::opaque(v) && o < outputs)
-                .then(|| (0..n).map(|k| ((k + o) as f64 * 0.37 + 0.5).sin()).collect())
+            let outputs = if id == "measure.normal_alignment" {
+                1
+            } else {
+                3
+            };
+            (n > 0 && !leaves::opaque(v) && o < outputs).then(|| {
+                (0..n)
+                    .map(|k| ((k + o) as f64 * 0.37 + 0.5).sin())
+                    .collect()
+            })
         })
         .collect();
     let want: Vec<Wanted> = exact_def
@@ -84,7 +91,11 @@ fn compare(id: &str, named: &[(&str, Value)], wanted: &[&str]) -> f64 {
 }
 
 fn pts(ps: &[[f64; 3]]) -> Value {
-    Value::list(ps.iter().map(|p| Value::Point(DVec3::from_array(*p))).collect())
+    Value::list(
+        ps.iter()
+            .map(|p| Value::Point(DVec3::from_array(*p)))
+            .collect(),
+    )
 }
 
 fn grid() -> Value {
@@ -130,7 +141,10 @@ fn math_products_match_differences() {
     // Mapped over lists: a list of numbers times a number.
     let rel = compare(
         "math.multiply",
-        &[("a", crate::testing::nums(&[1.0, 2.0, -3.0])), ("b", n(0.5))],
+        &[
+            ("a", crate::testing::nums(&[1.0, 2.0, -3.0])),
+            ("b", n(0.5)),
+        ],
         &["a", "b"],
     );
     assert!(rel < 1e-8, "mapped multiply: {rel}");
@@ -140,18 +154,22 @@ fn math_products_match_differences() {
 fn structural_products_match_differences() {
     let list = crate::testing::nums(&[0.1, 0.7, -0.3, 0.9, 0.25]);
     for (id, named, wanted) in [
-        (
-            "list.reverse",
-            vec![("list", list.clone())],
-            vec!["list"],
-        ),
+        ("list.reverse", vec![("list", list.clone())], vec!["list"]),
         (
             "list.item",
             vec![("list", list.clone()), ("index", Value::Integer(3))],
             vec!["list"],
         ),
-        ("mesh.column", vec![("mesh", grid()), ("index", Value::Integer(-1))], vec!["mesh"]),
-        ("mesh.row", vec![("mesh", grid()), ("index", Value::Integer(1))], vec!["mesh"]),
+        (
+            "mesh.column",
+            vec![("mesh", grid()), ("index", Value::Integer(-1))],
+            vec!["mesh"],
+        ),
+        (
+            "mesh.row",
+            vec![("mesh", grid()), ("index", Value::Integer(1))],
+            vec!["mesh"],
+        ),
         (
             "param.list",
             vec![("values", Value::list(vec![list.clone(), list.clone()]))],
@@ -184,7 +202,10 @@ fn measure_products_match_differences() {
     assert!(rel < 1e-7, "closure: {rel}");
     let rel = compare(
         "measure.normal_alignment",
-        &[("mesh", grid()), ("target", Value::Vector(DVec3::new(0.1, 0.3, 1.0)))],
+        &[
+            ("mesh", grid()),
+            ("target", Value::Vector(DVec3::new(0.1, 0.3, 1.0))),
+        ],
         &["mesh"],
     );
     assert!(rel < 1e-7, "normal_alignment: {rel}");
@@ -197,17 +218,19 @@ fn measure_products_match_differences() {
     ]);
     let rel = compare("measure.fairness", &[("values", table)], &["values"]);
     assert!(rel < 1e-7, "fairness (table): {rel}");
-    let reference = Value::Mesh(Arc::new(PolygonMesh::from(&QuadGrid::new(
-        2,
-        2,
-        vec![
-            DVec3::new(-1.0, -1.0, -0.5),
-            DVec3::new(6.0, -1.0, -0.5),
-            DVec3::new(-1.0, 5.0, -0.3),
-            DVec3::new(6.0, 5.0, -0.3),
-        ],
-    )
-    .unwrap())));
+    let reference = Value::Mesh(Arc::new(PolygonMesh::from(
+        &QuadGrid::new(
+            2,
+            2,
+            vec![
+                DVec3::new(-1.0, -1.0, -0.5),
+                DVec3::new(6.0, -1.0, -0.5),
+                DVec3::new(-1.0, 5.0, -0.3),
+                DVec3::new(6.0, 5.0, -0.3),
+            ],
+        )
+        .unwrap(),
+    )));
     let rel = compare(
         "measure.surface_distance",
         &[("mesh", grid()), ("reference", reference)],
