@@ -18,7 +18,7 @@
 //! - [`recovery`]: autosave and restore after a crash; [`settings`]: recent files, library folder;
 //!   [`unsaved`]: the Save / Don't save / Cancel guard on everything that replaces the document;
 //!   [`load_failure`]: a file that failed to load, with its diagnostics; [`parameters`]: the
-//!   docked parameter panel.
+//!   docked parameter panel; [`page`]: what the web page does for the editor in a browser.
 //! - [`app`]: the editor state and one frame of UI, shared by the window (`main.rs`) and tests.
 
 pub mod app;
@@ -35,6 +35,7 @@ pub mod load_failure;
 pub mod mapper;
 pub mod menus;
 pub mod optimization;
+pub mod page;
 pub mod palette;
 pub mod parameters;
 pub mod recovery;
