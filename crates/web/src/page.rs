@@ -77,6 +77,12 @@ struct WebApp {
     ctx: egui::Context,
     frames: u64,
     first_picture_ms: Option<f64>,
+    /// The page's size and the 3D view's in the last frame, the scene version framed, and
+    /// whether the designer has touched anything yet.
+    last_size: egui::Vec2,
+    last_view: egui::Rect,
+    framed_scene: u64,
+    touched: bool,
 }
 
 fn now_ms() -> f64 {
@@ -120,6 +126,10 @@ impl WebApp {
             ctx,
             frames: 0,
             first_picture_ms: None,
+            last_size: egui::Vec2::ZERO,
+            last_view: egui::Rect::NOTHING,
+            framed_scene: 0,
+            touched: false,
         };
         me.open_from_url();
         me
@@ -314,6 +324,29 @@ impl eframe::App for WebApp {
             read_into(file, self.inbox.clone(), self.ctx.clone());
         }
         self.test_request();
+        // The canvas element gets its CSS size, and the panels theirs, over the first frames:
+        // frame the graph and the geometry again while the page settles (and when the first
+        // scene of a document arrives), until the designer touches something.
+        let size = ui.ctx().content_rect().size();
+        self.touched |= ui.ctx().input(|i| i.pointer.any_down() || !i.keys_down.is_empty());
+        if !self.touched {
+            if size != self.last_size {
+                self.last_size = size;
+                self.app.canvas.fit_later();
+                self.app.viewport.fit();
+            }
+            let view = self.app.viewport.rect;
+            let scene = self.app.viewport.scene_version();
+            if view != self.last_view || (scene != self.framed_scene && self.frames < 60) {
+                self.last_view = view;
+                self.framed_scene = scene;
+                self.app.viewport.fit();
+            }
+        }
+        if !self.touched && self.frames < 60 {
+            // egui paints on events only: give the framing its frames.
+            ui.ctx().request_repaint();
+        }
         self.app.ui(ui);
         let requests = self.app.page.as_mut().map(Page::take).unwrap_or_default();
         for r in requests {
