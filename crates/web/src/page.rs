@@ -328,7 +328,9 @@ impl eframe::App for WebApp {
         // frame the graph and the geometry again while the page settles (and when the first
         // scene of a document arrives), until the designer touches something.
         let size = ui.ctx().content_rect().size();
-        self.touched |= ui.ctx().input(|i| i.pointer.any_down() || !i.keys_down.is_empty());
+        self.touched |= ui
+            .ctx()
+            .input(|i| i.pointer.any_down() || !i.keys_down.is_empty());
         if !self.touched {
             if size != self.last_size {
                 self.last_size = size;
