@@ -539,7 +539,7 @@ impl NodeContext {
             let bytes = crate::files::memory::read(path).ok_or_else(|| {
                 NodeError::new(format!(
                     "cannot read '{name}': in the browser a node reads only files opened on the page \
-                     (File ▸ Open data file…, or drop the file on the page)"
+                     (File ▸ Open…, or drop the file on the page)"
                 ))
             })?;
             self.reserve(bytes.len() as u64, &format!("reading '{name}'"))?;
