@@ -24,3 +24,4 @@ cargo clippy --workspace --all-targets -- -D warnings
 echo "== cargo test"
 cargo test --workspace
 ./scripts/test-python.sh
+./scripts/test-web.sh

@@ -3,7 +3,7 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use web_time::{Duration, Instant};
 
 use cnets_engine::cluster::Cluster;
 use cnets_engine::optimize::Variable;
@@ -253,6 +253,8 @@ pub struct EditorApp {
     /// Frame the canvas again once the first results of a new document are drawn (nodes grow
     /// when their outputs get summaries).
     refit_on_results: bool,
+    /// In a web page: the requests for the page (see [`crate::page`]); `None` on the desktop.
+    pub page: Option<crate::page::Page>,
 }
 
 /// How often cluster files are checked for changes.
@@ -339,6 +341,7 @@ impl EditorApp {
             canvas_serial: 0,
             palette_was_open: false,
             refit_on_results: true,
+            page: None,
         };
         app.watch.changed(&app.doc.graph);
         app.submit_if_changed();
@@ -410,6 +413,13 @@ impl EditorApp {
                 Err(e) => self.message = format!("cannot restore: {e}"),
             }
         }
+    }
+
+    /// Keeps the recovery texts in `recovery` from now on (the web page: the browser's local
+    /// storage) and offers to restore what a previous session left there.
+    pub fn set_recovery(&mut self, recovery: Recovery) {
+        self.offer_restore = recovery.find();
+        self.recovery = recovery;
     }
 
     /// Declines the restore and removes the recovery file.
@@ -700,6 +710,12 @@ impl EditorApp {
     /// Opens an untitled copy of a shipped example (its first save asks where). Returns whether
     /// it opened.
     pub fn open_example(&mut self, path: &Path) -> bool {
+        // In the browser the gallery is bundled: the engine's in-memory files (`crate::page`).
+        if !path.is_file()
+            && let Some(bytes) = cnets_engine::files::memory::read(path)
+        {
+            return self.open_text(&String::from_utf8_lossy(&bytes), path);
+        }
         let options = crate::library::load_options(Some(path), &self.library.dirs);
         match GraphDocument::open_with(path, &self.registry, &options) {
             Ok(d) => {
@@ -764,6 +780,100 @@ impl EditorApp {
         }
     }
 
+    /// In a web page: the actions the page carries out instead of files and dialogs (open by the
+    /// browser's picker, save and export as downloads, copy a share link). Returns whether
+    /// `action` was one of them.
+    fn run_in_page(&mut self, action: &MenuAction) -> bool {
+        let name = self
+            .doc
+            .resolve_file()
+            .and_then(Path::file_stem)
+            .map_or_else(
+                || "cone-net".to_string(),
+                |s| s.to_string_lossy().into_owned(),
+            );
+        let request = match action {
+            MenuAction::Open => crate::page::PageRequest::PickFile,
+            MenuAction::Save | MenuAction::SaveAs => {
+                let ron = self.doc.to_ron();
+                self.recovery.clear();
+                self.message = format!("downloaded {name}.ron");
+                crate::page::PageRequest::Download {
+                    name: format!("{name}.ron"),
+                    bytes: ron.into_bytes(),
+                }
+            }
+            MenuAction::CopyLink => crate::page::PageRequest::CopyLink {
+                ron: self.doc.to_ron(),
+            },
+            MenuAction::Export(format) => {
+                let base = self.doc.base_dir();
+                let folder = Path::new("/downloads");
+                match export::export(&self.doc.graph, base, *format, folder, &name) {
+                    Ok(files) => {
+                        let mut written = cnets_engine::files::memory::take_written();
+                        written.retain(|(p, _)| files.contains(p));
+                        self.message = format!("exported {} file(s)", written.len());
+                        if let Some(page) = &mut self.page {
+                            for (p, bytes) in written {
+                                let name = p.file_name().map_or_else(
+                                    || "export".to_string(),
+                                    |n| n.to_string_lossy().into_owned(),
+                                );
+                                page.requests
+                                    .push(crate::page::PageRequest::Download { name, bytes });
+                            }
+                        }
+                    }
+                    Err(e) => self.message = format!("export failed: {e}"),
+                }
+                return true;
+            }
+            MenuAction::LibraryFolder | MenuAction::Quit => {
+                self.message = "not in the browser: there is no file system here".into();
+                return true;
+            }
+            _ => return false,
+        };
+        if let Some(page) = &mut self.page {
+            page.requests.push(request);
+        }
+        true
+    }
+
+    /// Opens graph text as an untitled document (the web page: a bundled example, a file picked
+    /// or dropped, a share link); `origin` names where it came from (relative imports resolve
+    /// against its folder). When it does not load, the document stays and the diagnostics are
+    /// shown. Returns whether it opened.
+    pub fn open_text(&mut self, text: &str, origin: &Path) -> bool {
+        let options = crate::library::load_options(Some(origin), &self.library.dirs);
+        let name = origin.display().to_string();
+        match GraphDocument::from_text_with(text, &name, None, &self.registry, &options) {
+            Ok(mut d) => {
+                d.origin = Some(origin.to_path_buf());
+                self.replace_doc(d);
+                self.message = format!("opened {name}");
+                true
+            }
+            Err(e) => {
+                self.fail_load(origin, &e);
+                false
+            }
+        }
+    }
+
+    /// Sets the graphs File ▸ Open example lists (the web page: the bundled gallery, opened
+    /// through [`EditorApp::open_text`] by the page when their files are not on disk).
+    pub fn set_examples(&mut self, examples: Vec<PathBuf>) {
+        self.examples = examples;
+    }
+
+    /// Evaluates the graph again at the next frame (the web page: after a file was opened that a
+    /// node imports).
+    pub fn reevaluate(&mut self) {
+        self.submitted = None;
+    }
+
     /// Applies a canvas action; a refusal becomes the status message. Returns whether it applied.
     pub fn apply(&mut self, action: CanvasAction) -> bool {
         let handled = match action {
@@ -825,6 +935,9 @@ impl EditorApp {
 
     /// Carries out a menu action or shortcut.
     pub fn run(&mut self, action: MenuAction) {
+        if self.page.is_some() && self.run_in_page(&action) {
+            return;
+        }
         match action {
             MenuAction::New => self.request(Replace::New),
             MenuAction::Open => {
@@ -946,6 +1059,9 @@ impl EditorApp {
                 self.dialog = Some(FileDialog::new(Purpose::LibraryFolder, &start));
             }
             MenuAction::Quit => self.request_close(),
+            MenuAction::CopyLink => {
+                self.message = "share links are made by the web page (cnets in the browser)".into()
+            }
         }
     }
 
@@ -1120,6 +1236,7 @@ impl EditorApp {
                 optimization: self.optimization.open,
                 parameters: self.parameters_open,
                 library: &self.library.dirs[0],
+                web: self.page.is_some(),
             };
             if let Some(a) = menus::menu_bar(ui, &mc) {
                 self.run(a);
@@ -1267,13 +1384,15 @@ impl EditorApp {
             }
             self.request(Replace::Quit);
         }
-        // A graph file dropped on the window, or sent by `cnets-editor FILE`.
+        // A graph file dropped on the window, or sent by `cnets-editor FILE` (in a web page the
+        // page reads dropped files: they have no path there).
+        let in_page = self.page.is_some();
         let dropped: Vec<PathBuf> = ctx.input(|i| {
             i.raw
                 .dropped_files
                 .iter()
                 .map(|f| f.path().to_path_buf())
-                .filter(|p| !p.as_os_str().is_empty())
+                .filter(|p| !in_page && !p.as_os_str().is_empty())
                 .collect()
         });
         let sent: Vec<PathBuf> = self

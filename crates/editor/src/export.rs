@@ -180,6 +180,8 @@ pub fn export(
         g.set_value(&id, &file_port.name, cnets_engine::Value::text(file))
             .map_err(|e| e.to_string())?;
     }
+    // (In the browser the export node's files are kept in memory: no folder to make.)
+    #[cfg(not(target_arch = "wasm32"))]
     std::fs::create_dir_all(folder)
         .map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
     let ctx = NodeContext::new(Some(folder.to_path_buf()), base_dir);

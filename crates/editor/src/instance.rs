@@ -3,10 +3,13 @@
 //! starting a second editor that would share its recovery file. The window opens it through the
 //! unsaved-changes guard like any other open.
 
+#[cfg(unix)]
 use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::mpsc::{Receiver, channel};
+use std::sync::mpsc::Receiver;
+#[cfg(unix)]
+use std::sync::mpsc::channel;
 
 /// The socket file in the settings folder.
 pub fn socket_path(config_dir: &Path) -> PathBuf {

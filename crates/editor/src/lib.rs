@@ -19,7 +19,7 @@
 //!   [`unsaved`]: the Save / Don't save / Cancel guard on everything that replaces the document;
 //!   [`load_failure`]: a file that failed to load, with its diagnostics; [`parameters`]: the
 //!   docked parameter panel; [`cluster_ports`]: ports renamed inside an opened cluster keep
-//!   their wires.
+//!   their wires; [`page`]: what the web page does for the editor in a browser.
 //! - [`app`]: the editor state and one frame of UI, shared by the window (`main.rs`) and tests.
 
 pub mod app;
@@ -37,6 +37,7 @@ pub mod load_failure;
 pub mod mapper;
 pub mod menus;
 pub mod optimization;
+pub mod page;
 pub mod palette;
 pub mod parameters;
 pub mod recovery;

@@ -59,6 +59,8 @@ pub enum MenuAction {
     ToggleParameters,
     /// Choose the user library folder.
     LibraryFolder,
+    /// Put a share link of the graph in the address bar and the clipboard (web page only).
+    CopyLink,
     /// Close the editor.
     Quit,
 }
@@ -85,6 +87,8 @@ pub struct MenuContext<'a> {
     pub parameters: bool,
     /// The user library folder.
     pub library: &'a Path,
+    /// In a web page: File ▸ Copy link, downloads instead of save dialogs, no Quit.
+    pub web: bool,
 }
 
 fn file_label(p: &Path) -> String {
@@ -153,7 +157,11 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                 }
             });
             ui.separator();
-            pick(ui, "Quit", "Ctrl+Q", MenuAction::Quit, true);
+            if mc.web {
+                pick(ui, "Copy link", "", MenuAction::CopyLink, true);
+            } else {
+                pick(ui, "Quit", "Ctrl+Q", MenuAction::Quit, true);
+            }
         });
         ui.menu_button("Edit", |ui| {
             pick(ui, "Undo", "Ctrl+Z", MenuAction::Undo, mc.can_undo);

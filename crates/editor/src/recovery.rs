@@ -10,10 +10,11 @@
 //!
 //! Files in the settings folder: `recovery.ron` (the graph's canonical text, written atomically)
 //! and `recovery.path` (first line: the document's own path, if it had one; second line: the
-//! example an untitled copy came from, if any).
+//! example an untitled copy came from, if any). In the browser the same two texts are kept in the
+//! page's local storage instead (a [`RecoveryStore`] of the web page, `crates/web`).
 
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use web_time::{Duration, Instant};
 
 use cnets_engine::atomic::write_atomic;
 
@@ -47,13 +48,54 @@ pub enum Autosave {
     Failed,
 }
 
-/// Autosaves into one folder.
+/// Where the recovery texts are kept, by name (`recovery.ron`, `recovery.path`).
+pub trait RecoveryStore {
+    /// The text stored under `name`, if any.
+    fn read(&self, name: &str) -> Option<String>;
+    /// Stores `text` under `name` (replacing it whole, or not at all).
+    fn write(&mut self, name: &str, text: &str) -> std::io::Result<()>;
+    /// Removes what is stored under `name`.
+    fn remove(&mut self, name: &str);
+}
+
+/// The desktop's store: files in a folder, written atomically.
 #[derive(Debug)]
+pub struct FolderStore(pub PathBuf);
+
+impl RecoveryStore for FolderStore {
+    fn read(&self, name: &str) -> Option<String> {
+        std::fs::read_to_string(self.0.join(name)).ok()
+    }
+
+    fn write(&mut self, name: &str, text: &str) -> std::io::Result<()> {
+        std::fs::create_dir_all(&self.0)?;
+        write_atomic(&self.0.join(name), text.as_bytes())
+    }
+
+    fn remove(&mut self, name: &str) {
+        let _ = std::fs::remove_file(self.0.join(name));
+    }
+}
+
+/// Autosaves into one folder (or another [`RecoveryStore`]).
 pub struct Recovery {
     dir: PathBuf,
+    store: Box<dyn RecoveryStore>,
     saved_version: Option<u64>,
     last_write: Option<Instant>,
 }
+
+impl std::fmt::Debug for Recovery {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Recovery")
+            .field("dir", &self.dir)
+            .field("saved_version", &self.saved_version)
+            .finish_non_exhaustive()
+    }
+}
+
+const TEXT: &str = "recovery.ron";
+const PATHS: &str = "recovery.path";
 
 fn opt_line(p: Option<&Path>) -> String {
     p.map(|p| p.display().to_string()).unwrap_or_default()
@@ -62,8 +104,14 @@ fn opt_line(p: Option<&Path>) -> String {
 impl Recovery {
     /// Recovery files in `dir`.
     pub fn new(dir: &Path) -> Self {
+        Self::with_store(dir, Box::new(FolderStore(dir.to_path_buf())))
+    }
+
+    /// Recovery texts kept in `store` (`dir` only names them in [`Recovery::file`]).
+    pub fn with_store(dir: &Path, store: Box<dyn RecoveryStore>) -> Self {
         Self {
             dir: dir.to_path_buf(),
+            store,
             saved_version: None,
             last_write: None,
         }
@@ -71,17 +119,13 @@ impl Recovery {
 
     /// The recovery graph file.
     pub fn file(&self) -> PathBuf {
-        self.dir.join("recovery.ron")
-    }
-
-    fn path_file(&self) -> PathBuf {
-        self.dir.join("recovery.path")
+        self.dir.join(TEXT)
     }
 
     /// The recovery file left by a previous session, if any.
     pub fn find(&self) -> Option<Recovered> {
-        let text = std::fs::read_to_string(self.file()).ok()?;
-        let paths = std::fs::read_to_string(self.path_file()).unwrap_or_default();
+        let text = self.store.read(TEXT)?;
+        let paths = self.store.read(PATHS).unwrap_or_default();
         let mut lines = paths.lines().map(str::trim);
         let mut next = || lines.next().filter(|p| !p.is_empty()).map(PathBuf::from);
         let path = next();
@@ -97,10 +141,9 @@ impl Recovery {
         origin: Option<&Path>,
         version: u64,
     ) -> std::io::Result<()> {
-        std::fs::create_dir_all(&self.dir)?;
         let p = format!("{}\n{}\n", opt_line(path), opt_line(origin));
-        write_atomic(&self.path_file(), p.as_bytes())?;
-        write_atomic(&self.file(), text.as_bytes())?;
+        self.store.write(PATHS, &p)?;
+        self.store.write(TEXT, text)?;
         self.saved_version = Some(version);
         self.last_write = Some(Instant::now());
         Ok(())
@@ -138,8 +181,8 @@ impl Recovery {
 
     /// Removes the recovery files (after a save, a clean exit, or a declined restore).
     pub fn clear(&mut self) {
-        let _ = std::fs::remove_file(self.file());
-        let _ = std::fs::remove_file(self.path_file());
+        self.store.remove(TEXT);
+        self.store.remove(PATHS);
         self.saved_version = None;
     }
 }

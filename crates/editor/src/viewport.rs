@@ -70,6 +70,8 @@ pub struct Viewport {
     last_change: f64,
     /// Resolution factor of the last frame (1 or [`INTERACTIVE_SCALE`]).
     pub render_scale: f32,
+    /// Where the view was drawn in the last frame (screen points).
+    pub rect: egui::Rect,
 }
 
 /// Resolution factor while the picture changes on a software rasterizer.
@@ -91,6 +93,7 @@ impl Default for Viewport {
             drawn_version: 0,
             last_change: f64::NEG_INFINITY,
             render_scale: 1.0,
+            rect: egui::Rect::NOTHING,
         }
     }
 }
@@ -203,6 +206,7 @@ impl Viewport {
     pub fn show(&mut self, ui: &mut Ui, gpu: Option<&GpuTarget>) {
         let rect = ui.available_rect_before_wrap();
         let response = ui.allocate_rect(rect, Sense::click_and_drag());
+        self.rect = rect;
         self.aspect = rect.width().max(1.0) / rect.height().max(1.0);
         if self.fit_pending && !self.scene.is_empty() {
             self.frame_geometry();

@@ -6,6 +6,10 @@
 //! of mapped nodes), and the worker skips every queued snapshot but the newest. After an
 //! evaluation the worker builds the preview [`Scene`] (CPU work stays off the UI thread too) and
 //! sends a [`EvalResponse`] back with the status of every node.
+//!
+//! Without threads (the web build, wasm32) the worker is *inline*: [`Worker::poll`] evaluates the
+//! newest submission on the calling thread (the UI's, once per frame), with the same
+//! latest-change-wins rule.
 
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -13,7 +17,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use web_time::{Duration, Instant};
 
 use cnets_engine::cluster::Cluster;
 use cnets_engine::eval::OutputMask;
@@ -133,12 +137,27 @@ pub struct Worker {
     running_cancel: Option<Arc<AtomicBool>>,
     carry: Option<Carry>,
     thread: Option<JoinHandle<()>>,
+    /// The inline worker's state (no thread): the requests and the evaluator.
+    inline: Option<Inline>,
+}
+
+/// An inline worker's own end of the request channel and its evaluator.
+struct Inline {
+    requests: Receiver<EvalRequest>,
+    responses: Sender<EvalResponse>,
+    evaluator: Evaluator,
+    generation: Option<u64>,
 }
 
 impl Worker {
     /// Starts the worker thread; `wake` is called after each finished evaluation (e.g. to request
     /// a repaint of the UI).
+    ///
+    /// On the web (wasm32, no threads) this is [`Worker::inline`].
     pub fn spawn(wake: Arc<dyn Fn() + Send + Sync>) -> Self {
+        if cfg!(target_arch = "wasm32") {
+            return Self::inline();
+        }
         let (tx, requests) = channel::<EvalRequest>();
         let (responses, rx) = channel::<EvalResponse>();
         let thread = std::thread::Builder::new()
@@ -153,6 +172,47 @@ impl Worker {
             running_cancel: None,
             carry: None,
             thread,
+            inline: None,
+        }
+    }
+
+    /// A worker without a thread: [`Worker::poll`] (and [`Worker::wait`]) evaluate the newest
+    /// submission on the calling thread.
+    pub fn inline() -> Self {
+        let (tx, requests) = channel::<EvalRequest>();
+        let (responses, rx) = channel::<EvalResponse>();
+        Self {
+            tx: Some(tx),
+            rx,
+            seq: 0,
+            last_received: 0,
+            running_cancel: None,
+            carry: None,
+            thread: None,
+            inline: Some(Inline {
+                requests,
+                responses,
+                evaluator: Evaluator::new(),
+                generation: None,
+            }),
+        }
+    }
+
+    /// The inline worker's turn: evaluates the newest queued request, if any.
+    fn run_inline(&mut self) {
+        let Some(inline) = &mut self.inline else {
+            return;
+        };
+        let Ok(first) = inline.requests.try_recv() else {
+            return;
+        };
+        if let Some(response) = step(
+            first,
+            &inline.requests,
+            &mut inline.evaluator,
+            &mut inline.generation,
+        ) {
+            let _ = inline.responses.send(response);
         }
     }
 
@@ -209,6 +269,7 @@ impl Worker {
 
     /// The newest finished response, if any arrived since the last poll (older ones are dropped).
     pub fn poll(&mut self) -> Option<EvalResponse> {
+        self.run_inline();
         let mut latest = None;
         while let Ok(r) = self.rx.try_recv() {
             latest = Some(r);
@@ -226,6 +287,7 @@ impl Worker {
 
     /// Blocks until the newest submission is answered or `timeout` passes; returns it.
     pub fn wait(&mut self, timeout: Duration) -> Option<EvalResponse> {
+        self.run_inline();
         let deadline = Instant::now() + timeout;
         let mut latest = None;
         while self.busy() {
@@ -264,22 +326,8 @@ fn run(
 ) {
     let mut evaluator = Evaluator::new();
     let mut generation = None;
-    while let Ok(mut request) = requests.recv() {
-        // Latest change wins: skip every queued snapshot but the newest.
-        while let Ok(newer) = requests.try_recv() {
-            request = newer;
-        }
-        if generation != Some(request.generation) {
-            match &request.carry {
-                // Another document continuing the one evaluated last: keep what it shares.
-                Some(c) if generation == Some(c.from_generation) => {
-                    evaluator.carry_over(&request.graph, &c.continued, c.same_folder);
-                }
-                _ => evaluator = Evaluator::new(),
-            }
-            generation = Some(request.generation);
-        }
-        let Some(response) = evaluate(&mut evaluator, &request) else {
+    while let Ok(first) = requests.recv() {
+        let Some(response) = step(first, &requests, &mut evaluator, &mut generation) else {
             continue; // cancelled: a newer request is queued
         };
         if responses.send(response).is_err() {
@@ -287,6 +335,32 @@ fn run(
         }
         wake();
     }
+}
+
+/// Evaluates the newest of `first` and the requests queued after it with `evaluator` (a fresh one
+/// for a new document generation); `None` when it was cancelled.
+fn step(
+    first: EvalRequest,
+    requests: &Receiver<EvalRequest>,
+    evaluator: &mut Evaluator,
+    generation: &mut Option<u64>,
+) -> Option<EvalResponse> {
+    let mut request = first;
+    // Latest change wins: skip every queued snapshot but the newest.
+    while let Ok(newer) = requests.try_recv() {
+        request = newer;
+    }
+    if *generation != Some(request.generation) {
+        match &request.carry {
+            // Another document continuing the one evaluated last: keep what it shares.
+            Some(c) if *generation == Some(c.from_generation) => {
+                evaluator.carry_over(&request.graph, &c.continued, c.same_folder);
+            }
+            _ => *evaluator = Evaluator::new(),
+        }
+        *generation = Some(request.generation);
+    }
+    evaluate(evaluator, &request)
 }
 
 /// Evaluates a request with `evaluator` and builds its preview; `None` when it was cancelled.
@@ -504,6 +578,26 @@ mod tests {
             *woken.lock().unwrap() >= 1,
             "the UI is woken after a result"
         );
+    }
+
+    #[test]
+    fn the_inline_worker_answers_the_newest_submission_when_polled() {
+        let mut worker = Worker::inline();
+        let mut g = graph();
+        let opts = PreviewOptions::default();
+        assert!(worker.poll().is_none(), "nothing submitted");
+        for k in 1..=5 {
+            g.set_value("n", "value", Value::Number(k as f64 / 5.0))
+                .unwrap();
+            worker.submit(g.clone(), 0, opts, None, Instant::now());
+        }
+        assert!(worker.busy());
+        let r = worker.poll().expect("evaluated on this thread");
+        assert_eq!(r.seq, 5, "only the newest submission is evaluated");
+        assert!(!worker.busy());
+        assert!(matches!(r.statuses["arc"], NodeStatus::Ok { .. }));
+        assert!(!r.scene.is_empty());
+        assert!(worker.poll().is_none(), "answered once");
     }
 
     #[test]

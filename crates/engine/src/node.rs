@@ -550,6 +550,24 @@ impl NodeContext {
     }
 
     fn read_checked(&self, name: &str, path: &Path) -> Result<Vec<u8>, NodeError> {
+        // The web (wasm32): no file system; the files the designer opened or dropped on the page.
+        #[cfg(target_arch = "wasm32")]
+        {
+            let bytes = crate::files::memory::read(path).ok_or_else(|| {
+                NodeError::new(format!(
+                    "cannot read '{name}': in the browser a node reads only files opened on the page \
+                     (File ▸ Open…, or drop the file on the page)"
+                ))
+            })?;
+            self.reserve(bytes.len() as u64, &format!("reading '{name}'"))?;
+            return Ok(bytes.to_vec());
+        }
+        #[cfg(not(target_arch = "wasm32"))]
+        self.read_checked_on_disk(name, path)
+    }
+
+    #[cfg(not(target_arch = "wasm32"))]
+    fn read_checked_on_disk(&self, name: &str, path: &Path) -> Result<Vec<u8>, NodeError> {
         let access = self.read_access();
         let real = access
             .check(path)

@@ -8,7 +8,11 @@
 //! are apices, segment sets named `…axes…` are torsion-free axes, anything named `…support…` is
 //! a support layer. Lists (from nodes run per item) are flattened.
 
+#[cfg(not(target_arch = "wasm32"))]
 use std::time::Instant;
+// std's clock panics on wasm32-unknown-unknown (the web editor); web-time reads the browser's.
+#[cfg(target_arch = "wasm32")]
+use web_time::Instant;
 
 use cnets_engine::{Evaluator, Graph, Value};
 use cnets_geometry::conenet::quad_planarity;

@@ -25,7 +25,12 @@ pub use reads::FileStamp;
 pub use result::{NodeOutputs, NodeResult};
 
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+#[cfg(not(target_arch = "wasm32"))]
+use std::time::Instant;
+// std's clock panics on wasm32-unknown-unknown (the web editor); web-time reads the browser's.
+#[cfg(target_arch = "wasm32")]
+use web_time::Instant;
 
 use petgraph::stable_graph::NodeIndex;
 

@@ -39,6 +39,26 @@ pub fn content_hash(bytes: &[u8]) -> u64 {
     h.finish()
 }
 
+#[cfg(not(target_arch = "wasm32"))]
+fn read_bytes(path: &Path) -> Option<Vec<u8>> {
+    std::fs::read(path).ok()
+}
+
+// The web (wasm32): the files opened on the page (no modification times: always hashed).
+#[cfg(target_arch = "wasm32")]
+fn read_bytes(path: &Path) -> Option<Vec<u8>> {
+    crate::files::memory::read(path).map(|b| b.to_vec())
+}
+
+#[cfg(target_arch = "wasm32")]
+fn metadata(path: &Path) -> (Option<u64>, Option<SystemTime>) {
+    (
+        crate::files::memory::read(path).map(|b| b.len() as u64),
+        None,
+    )
+}
+
+#[cfg(not(target_arch = "wasm32"))]
 fn metadata(path: &Path) -> (Option<u64>, Option<SystemTime>) {
     match std::fs::metadata(path) {
         Ok(m) => (Some(m.len()), m.modified().ok()),
@@ -72,9 +92,9 @@ impl FileStamp {
         if self.len.is_none() || !self.racy {
             return false;
         }
-        match std::fs::read(&self.path) {
-            Ok(bytes) => content_hash(&bytes) != self.hash,
-            Err(_) => true,
+        match read_bytes(&self.path) {
+            Some(bytes) => content_hash(&bytes) != self.hash,
+            None => true,
         }
     }
 }

@@ -12,8 +12,11 @@
 //!   explicitly (`--allow-read DIR`); devices, FIFOs and sockets are refused, and files over a size
 //!   limit (1 GB by default). Nodes read through [`NodeContext::read_file`](crate::NodeContext::read_file)
 //!   and the loader reads cluster files through the same check.
+//! - [`memory`]: on the web (wasm32) reads come from the files the designer opened or dropped and
+//!   exports are kept in memory for download (no file system there).
 //! - [`excerpt`]: error messages quote at most a short, escaped excerpt of what they read.
 
+pub mod memory;
 pub mod names;
 pub mod read;
 pub mod temp;

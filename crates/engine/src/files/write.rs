@@ -1,9 +1,12 @@
 //! Writing an export inside the output directory without following links out of it.
 
+#[cfg(unix)]
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use super::{FileError, temp};
+use super::FileError;
+#[cfg(not(target_arch = "wasm32"))]
+use super::temp;
 
 /// Writes `bytes` to the file named by `parts` (folders, then the file name, as
 /// [`check_export_name`](super::check_export_name) returns them) inside `out_dir`, atomically:
@@ -87,7 +90,22 @@ mod imp {
     }
 }
 
-#[cfg(not(unix))]
+// The web (wasm32): no file system; the export is kept in memory for the page to download.
+#[cfg(target_arch = "wasm32")]
+mod imp {
+    use super::*;
+
+    pub(super) fn write(
+        out_dir: &Path,
+        folders: &[&str],
+        file: &str,
+        bytes: &[u8],
+    ) -> Result<PathBuf, FileError> {
+        Ok(crate::files::memory::write(out_dir, folders, file, bytes))
+    }
+}
+
+#[cfg(not(any(unix, target_arch = "wasm32")))]
 mod imp {
     use super::*;
 

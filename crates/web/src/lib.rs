@@ -1,0 +1,16 @@
+//! The cnets editor as a web page (docs/web.md): the egui editor of `cnets-editor`, compiled to
+//! `wasm32-unknown-unknown` and started by `index.html` (built by `scripts/web.sh`).
+//!
+//! - [`bundle`]: every file of `graphs/`, compiled in: the gallery graphs and the files they
+//!   import, readable by nodes through the engine's in-memory files.
+//! - [`link`]: share links, the graph in the URL fragment (`#graph=…`), and `?example=<name>`.
+//! - `page` (wasm32 only): the entry point, the WebGL2 set-up, and the browser's side of the
+//!   editor: file picker, drag and drop, downloads, the clipboard, autosave in local storage.
+//!
+//! The native build of this crate is its tests: the links of every gallery graph are checked
+//! here without a browser.
+
+pub mod bundle;
+pub mod link;
+#[cfg(target_arch = "wasm32")]
+mod page;

@@ -1,0 +1,477 @@
+//! The page (wasm32 only): starts the editor on `<canvas id="cnets">` with WebGL2, opens what the
+//! URL names (`#graph=…`, else `?example=<name>`, else the default graph), and carries out the
+//! editor's [`PageRequest`]s with the browser: the file picker, downloads, the clipboard and the
+//! address bar. Files dropped on the page open (`.ron`) or become readable by the nodes that
+//! import them. `window.cnets_test` reports a few figures for the browser test
+//! (`tests/web/browser.test.mjs`).
+
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+use std::sync::Arc;
+
+use cnets_editor::app::{AppOptions, EditorApp};
+use cnets_editor::page::{Page, PageRequest};
+use cnets_editor::recovery::{Recovery, RecoveryStore};
+use cnets_editor::viewport::GpuTarget;
+use eframe::egui_wgpu::{self, wgpu};
+use wasm_bindgen::JsCast as _;
+use wasm_bindgen::prelude::*;
+
+/// Files picked in the browser's file picker, waiting for the next frame: (name, bytes).
+type Inbox = Rc<RefCell<Vec<(String, Vec<u8>)>>>;
+
+/// Starts the editor (called by `index.html` once the module is loaded).
+#[wasm_bindgen(start)]
+pub fn start() {
+    eframe::WebLogger::init(log::LevelFilter::Warn).ok();
+    wasm_bindgen_futures::spawn_local(async {
+        if let Err(e) = run().await {
+            let text = e.as_string().unwrap_or_else(|| format!("{e:?}"));
+            web_sys::console::error_1(&format!("cnets: cannot start: {text}").into());
+            if let Some(el) = document().and_then(|d| d.get_element_by_id("cnets-status")) {
+                el.set_text_content(Some(&format!("cnets could not start: {text}")));
+            }
+        }
+    });
+}
+
+fn document() -> Option<web_sys::Document> {
+    web_sys::window()?.document()
+}
+
+async fn run() -> Result<(), JsValue> {
+    let window = web_sys::window().ok_or("no window")?;
+    let canvas = document()
+        .and_then(|d| d.get_element_by_id("cnets"))
+        .ok_or("no <canvas id=\"cnets\">")?
+        .dyn_into::<web_sys::HtmlCanvasElement>()?;
+    let query = window.location().search().unwrap_or_default();
+    let mut options = eframe::WebOptions::default();
+    // WebGL2 (through wgpu's GL backend) unless `?webgpu=1`: WebGPU is not everywhere yet, and in
+    // headless Chromium it never presents (docs/web.md).
+    let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+    setup.instance_descriptor.backends = if query.contains("webgpu=1") {
+        wgpu::Backends::BROWSER_WEBGPU | wgpu::Backends::GL
+    } else {
+        wgpu::Backends::GL
+    };
+    options.wgpu_options.wgpu_setup = setup.into();
+    eframe::WebRunner::new()
+        .start(
+            canvas,
+            options,
+            Box::new(|cc| Ok(Box::new(WebApp::new(cc)))),
+        )
+        .await?;
+    if let Some(el) = document().and_then(|d| d.get_element_by_id("cnets-status")) {
+        el.remove();
+    }
+    Ok(())
+}
+
+/// The editor in the page.
+struct WebApp {
+    app: EditorApp,
+    inbox: Inbox,
+    ctx: egui::Context,
+    frames: u64,
+    first_picture_ms: Option<f64>,
+    /// The page's size and the 3D view's in the last frame, the scene version framed, and
+    /// whether the designer has touched anything yet.
+    last_size: egui::Vec2,
+    last_view: egui::Rect,
+    framed_scene: u64,
+    touched: bool,
+}
+
+fn now_ms() -> f64 {
+    web_sys::window()
+        .and_then(|w| w.performance())
+        .map_or(0.0, |p| p.now())
+}
+
+impl WebApp {
+    fn new(cc: &eframe::CreationContext<'_>) -> Self {
+        crate::bundle::provide_all();
+        let gpu = cc
+            .wgpu_render_state
+            .as_ref()
+            .map(|rs| GpuTarget::from_render_state(rs, 1, None));
+        let ctx = cc.egui_ctx.clone();
+        let wake_ctx = ctx.clone();
+        let wake: Arc<dyn Fn() + Send + Sync> = Arc::new(move || wake_ctx.request_repaint());
+        let mut app = EditorApp::new(AppOptions {
+            gpu,
+            config_dir: PathBuf::from("/cnets"),
+            file: None,
+            examples_dir: PathBuf::from("graphs"),
+            wake,
+        });
+        app.page = Some(Page::default());
+        // Autosave into the browser's local storage, with the desktop's recovery offer.
+        app.set_recovery(Recovery::with_store(
+            Path::new("localStorage"),
+            Box::new(LocalStore),
+        ));
+        app.set_examples(
+            crate::bundle::example_names()
+                .into_iter()
+                .map(|n| PathBuf::from(format!("graphs/{n}.ron")))
+                .collect(),
+        );
+        let mut me = Self {
+            app,
+            inbox: Rc::default(),
+            ctx,
+            frames: 0,
+            first_picture_ms: None,
+            last_size: egui::Vec2::ZERO,
+            last_view: egui::Rect::NOTHING,
+            framed_scene: 0,
+            touched: false,
+        };
+        me.open_from_url();
+        me
+    }
+
+    /// Opens what the address names: a shared graph (`#graph=…`), else `?example=<name>`, else the
+    /// gallery's torus-monge (as the desktop editor starts).
+    fn open_from_url(&mut self) {
+        let Some(location) = web_sys::window().map(|w| w.location()) else {
+            return;
+        };
+        let hash = location.hash().unwrap_or_default();
+        if let Some(shared) = crate::link::from_fragment(&hash) {
+            match shared {
+                Ok(ron) => {
+                    if self.app.open_text(&ron, Path::new("shared-link.ron")) {
+                        self.app.message = "opened the graph of the link".into();
+                    }
+                }
+                Err(e) => self.app.message = format!("cannot open the link: {e}"),
+            }
+            return;
+        }
+        let query = location.search().unwrap_or_default();
+        let name = crate::link::example_of_query(&query).unwrap_or("torus-monge");
+        match crate::bundle::example(name) {
+            Some(ron) => {
+                self.app
+                    .open_text(ron, &PathBuf::from(format!("graphs/{name}.ron")));
+            }
+            None => {
+                self.app.message =
+                    format!("no example named '{name}': File ▸ Open example lists them")
+            }
+        }
+    }
+
+    /// Files picked or dropped: a graph opens as the document; other files become readable by
+    /// the nodes that import them (by file name) and the graph is evaluated again.
+    fn receive(&mut self, files: Vec<(String, Vec<u8>)>) {
+        for (name, bytes) in files {
+            if name.ends_with(".ron") {
+                let text = String::from_utf8_lossy(&bytes).into_owned();
+                if self.app.open_text(&text, Path::new(&name)) {
+                    self.app.message = format!("opened {name}");
+                }
+            } else {
+                let len = bytes.len();
+                cnets_engine::files::memory::provide(&name, bytes);
+                self.app.reevaluate();
+                self.app.message =
+                    format!("{name} ({len} bytes) is readable by the nodes that import it");
+            }
+        }
+    }
+
+    fn carry_out(&mut self, request: PageRequest) {
+        let done = match request {
+            PageRequest::PickFile => pick_file(self.inbox.clone(), self.ctx.clone()),
+            PageRequest::Download { name, bytes } => download(&name, &bytes),
+            PageRequest::CopyLink { ron } => {
+                let fragment = crate::link::fragment(&ron);
+                let r = copy_link(&fragment);
+                if r.is_ok() {
+                    self.app.message = format!(
+                        "link copied ({} characters): it is in the address bar too",
+                        fragment.len()
+                    );
+                }
+                r
+            }
+        };
+        if let Err(e) = done {
+            let text = e.as_string().unwrap_or_else(|| format!("{e:?}"));
+            self.app.message = format!("the browser refused: {text}");
+        }
+    }
+
+    /// `window.cnets_test`: figures for the browser test (frames, pictures drawn, the first
+    /// picture's time, the last change-to-picture latency, where the 3D view and the first slider
+    /// are, in CSS pixels).
+    fn report(&mut self) {
+        let drawn = self.app.viewport.drawn_version;
+        if drawn > 0 && self.first_picture_ms.is_none() && !self.app.viewport.scene().is_empty() {
+            self.first_picture_ms = Some(now_ms());
+        }
+        let Some(window) = web_sys::window() else {
+            return;
+        };
+        let o = js_sys::Object::new();
+        let set = |k: &str, v: JsValue| {
+            let _ = js_sys::Reflect::set(&o, &k.into(), &v);
+        };
+        let rect = |r: egui::Rect| {
+            let a = js_sys::Array::new();
+            for x in [r.left(), r.top(), r.right(), r.bottom()] {
+                a.push(&JsValue::from_f64(f64::from(x)));
+            }
+            JsValue::from(a)
+        };
+        set("frames", JsValue::from_f64(self.frames as f64));
+        set("pictures", JsValue::from_f64(drawn as f64));
+        set(
+            "first_picture_ms",
+            self.first_picture_ms
+                .map_or(JsValue::NULL, JsValue::from_f64),
+        );
+        set("latency_ms", JsValue::from_f64(self.app.latency.last_ms));
+        set(
+            "latencies",
+            JsValue::from_f64(self.app.latency.samples.len() as f64),
+        );
+        set(
+            "busy",
+            JsValue::from_bool(self.app.viewport.scene_version() != drawn),
+        );
+        set("view", rect(self.app.viewport.rect));
+        set("title", self.app.doc.title().into());
+        set(
+            "restore_offered",
+            JsValue::from_bool(self.app.restore_offered()),
+        );
+        set("message", self.app.message.clone().into());
+        set(
+            "vertices",
+            JsValue::from_f64(self.app.viewport.stats.vertices as f64),
+        );
+        let slider = self
+            .app
+            .doc
+            .graph
+            .nodes()
+            .find(|(_, n)| n.def.id == "param.number")
+            .map(|(_, n)| n.id.clone());
+        if let Some(id) = slider {
+            if let Some(r) = self.app.canvas.editor_screen_rect(&id, "value") {
+                // The rail is the left part of the editor; the value box follows it.
+                let rail = r.width().min(110.0 * self.app.canvas.zoom());
+                let rail = egui::Rect::from_min_size(r.min, egui::vec2(rail, r.height()));
+                set("slider", rect(rail));
+            }
+            let value = self
+                .app
+                .doc
+                .graph
+                .node(&id)
+                .and_then(|n| n.value_of("value"))
+                .and_then(cnets_engine::Value::as_f64);
+            set("slider_node", id.into());
+            set(
+                "slider_value",
+                value.map_or(JsValue::NULL, JsValue::from_f64),
+            );
+        }
+        let _ = js_sys::Reflect::set(&window, &"cnets_test".into(), &o);
+    }
+}
+
+impl WebApp {
+    /// `window.cnets_request = "copy_link"`: the browser test runs File ▸ Copy link (egui menus
+    /// have no DOM to click).
+    fn test_request(&mut self) {
+        let Some(window) = web_sys::window() else {
+            return;
+        };
+        let key = JsValue::from("cnets_request");
+        let Ok(v) = js_sys::Reflect::get(&window, &key) else {
+            return;
+        };
+        if v.as_string().as_deref() == Some("copy_link") {
+            let _ = js_sys::Reflect::delete_property(&window, &key);
+            self.app.run(cnets_editor::menus::MenuAction::CopyLink);
+        }
+    }
+}
+
+impl eframe::App for WebApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let picked = std::mem::take(&mut *self.inbox.borrow_mut());
+        if !picked.is_empty() {
+            self.receive(picked);
+        }
+        // Files dropped on the page are read like picked ones (the browser reads asynchronously).
+        let dropped: Vec<web_sys::File> = ui.ctx().input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .filter_map(|f| f.web_file().cloned())
+                .collect()
+        });
+        for file in dropped {
+            read_into(file, self.inbox.clone(), self.ctx.clone());
+        }
+        self.test_request();
+        // The canvas element gets its CSS size, and the panels theirs, over the first frames:
+        // frame the graph and the geometry again while the page settles (and when the first
+        // scene of a document arrives), until the designer touches something.
+        let size = ui.ctx().content_rect().size();
+        self.touched |= ui
+            .ctx()
+            .input(|i| i.pointer.any_down() || !i.keys_down.is_empty());
+        if !self.touched {
+            if size != self.last_size {
+                self.last_size = size;
+                self.app.canvas.fit_later();
+                self.app.viewport.fit();
+            }
+            let view = self.app.viewport.rect;
+            let scene = self.app.viewport.scene_version();
+            if view != self.last_view || (scene != self.framed_scene && self.frames < 60) {
+                self.last_view = view;
+                self.framed_scene = scene;
+                self.app.viewport.fit();
+            }
+        }
+        if !self.touched && self.frames < 60 {
+            // egui paints on events only: give the framing its frames.
+            ui.ctx().request_repaint();
+        }
+        self.app.ui(ui);
+        let requests = self.app.page.as_mut().map(Page::take).unwrap_or_default();
+        for r in requests {
+            self.carry_out(r);
+        }
+        self.frames += 1;
+        self.report();
+    }
+
+    fn raw_input_hook(&mut self, _ctx: &egui::Context, raw_input: &mut egui::RawInput) {
+        self.app.raw_input(raw_input);
+    }
+}
+
+/// The recovery texts in the page's local storage (`cnets.recovery.ron`, `cnets.recovery.path`):
+/// they outlive a closed tab or a crashed page, per site, as the desktop's recovery files do.
+struct LocalStore;
+
+fn local_storage() -> Option<web_sys::Storage> {
+    web_sys::window()?.local_storage().ok().flatten()
+}
+
+impl RecoveryStore for LocalStore {
+    fn read(&self, name: &str) -> Option<String> {
+        local_storage()?
+            .get_item(&format!("cnets.{name}"))
+            .ok()
+            .flatten()
+    }
+
+    fn write(&mut self, name: &str, text: &str) -> std::io::Result<()> {
+        let refused = |what: &str| std::io::Error::other(format!("local storage: {what}"));
+        local_storage()
+            .ok_or_else(|| refused("not available"))?
+            .set_item(&format!("cnets.{name}"), text)
+            .map_err(|_| refused("full or refused"))
+    }
+
+    fn remove(&mut self, name: &str) {
+        if let Some(s) = local_storage() {
+            let _ = s.remove_item(&format!("cnets.{name}"));
+        }
+    }
+}
+
+/// Shows the browser's file picker; the chosen files arrive in `inbox` (and wake the UI).
+fn pick_file(inbox: Inbox, ctx: egui::Context) -> Result<(), JsValue> {
+    let doc = document().ok_or("no document")?;
+    let input = doc
+        .create_element("input")?
+        .dyn_into::<web_sys::HtmlInputElement>()?;
+    input.set_type("file");
+    input.set_multiple(true);
+    input.set_accept(".ron,.csv,.svg,.obj,.stl,.ply,.glb,.gltf,.txt,.json");
+    let chosen = input.clone();
+    let on_change = Closure::<dyn FnMut()>::new(move || {
+        let Some(files) = chosen.files() else { return };
+        for k in 0..files.length() {
+            if let Some(file) = files.get(k) {
+                read_into(file, inbox.clone(), ctx.clone());
+            }
+        }
+    });
+    input.set_onchange(Some(on_change.as_ref().unchecked_ref()));
+    // The input lives as long as the page holds the closure: one picker at a time.
+    on_change.forget();
+    input.click();
+    Ok(())
+}
+
+/// Reads a browser file into `inbox` (asynchronously) and wakes the UI.
+fn read_into(file: web_sys::File, inbox: Inbox, ctx: egui::Context) {
+    wasm_bindgen_futures::spawn_local(async move {
+        let name = file.name();
+        match wasm_bindgen_futures::JsFuture::from(file.array_buffer()).await {
+            Ok(buffer) => {
+                let bytes = js_sys::Uint8Array::new(&buffer).to_vec();
+                inbox.borrow_mut().push((name, bytes));
+                ctx.request_repaint();
+            }
+            Err(_) => web_sys::console::warn_1(&format!("cnets: cannot read {name}").into()),
+        }
+    });
+}
+
+/// Offers `bytes` as a download named `name`.
+fn download(name: &str, bytes: &[u8]) -> Result<(), JsValue> {
+    let doc = document().ok_or("no document")?;
+    let array = js_sys::Uint8Array::from(bytes);
+    let parts = js_sys::Array::of1(&array);
+    let options = web_sys::BlobPropertyBag::new();
+    options.set_type("application/octet-stream");
+    let blob = web_sys::Blob::new_with_u8_array_sequence_and_options(&parts, &options)?;
+    let url = web_sys::Url::create_object_url_with_blob(&blob)?;
+    let a = doc
+        .create_element("a")?
+        .dyn_into::<web_sys::HtmlAnchorElement>()?;
+    a.set_href(&url);
+    a.set_download(name);
+    a.click();
+    web_sys::Url::revoke_object_url(&url)?;
+    Ok(())
+}
+
+/// Puts the share link into the address bar (without reloading) and, where the browser allows
+/// it, on the clipboard.
+fn copy_link(fragment: &str) -> Result<(), JsValue> {
+    let window = web_sys::window().ok_or("no window")?;
+    let location = window.location();
+    let base = format!(
+        "{}{}{}",
+        location.origin()?,
+        location.pathname()?,
+        location.search()?
+    );
+    let url = format!("{base}{fragment}");
+    window
+        .history()?
+        .replace_state_with_url(&JsValue::NULL, "", Some(&url))?;
+    // The clipboard needs a secure context and the page's focus: a refusal leaves the address bar.
+    let promise = window.navigator().clipboard().write_text(&url);
+    wasm_bindgen_futures::spawn_local(async move {
+        let _ = wasm_bindgen_futures::JsFuture::from(promise).await;
+    });
+    Ok(())
+}

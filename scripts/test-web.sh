@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The browser test of cnets in the browser (docs/web.md): installs Debian's Chromium and the npm
+# test tools when missing, builds the site with scripts/web.sh, serves it with python3's
+# http.server on a free loopback port and runs tests/web/browser.test.mjs (playwright-core driving
+# headless Chromium on software WebGL2). Screenshots and figures go to target/web-test/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+as_root() {
+  if [ "$(id -u)" = 0 ]; then "$@"; elif command -v sudo >/dev/null; then sudo "$@"; else
+    echo "test-web: need root to run: $*" >&2; return 1; fi
+}
+if [ ! -x /usr/bin/chromium ]; then
+  echo "== installing Chromium (apt)"
+  as_root apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq chromium >/dev/null
+fi
+if [ ! -d node_modules/playwright-core ]; then
+  echo "== installing npm test tools (package.json)"
+  npm ci --silent --no-audit --no-fund
+fi
+
+site="${CNETS_WEB_OUT:-target/web}"
+./scripts/web.sh "$site"
+
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+python3 -m http.server --bind 127.0.0.1 --directory "$site" "$port" >/dev/null 2>&1 &
+server=$!
+trap 'kill "$server" 2>/dev/null || true' EXIT
+for _ in $(seq 50); do
+  python3 -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/index.html')" 2>/dev/null && break
+  sleep 0.1
+done
+
+echo "== browser test (headless Chromium, WebGL2 on SwiftShader)"
+node tests/web/browser.test.mjs "http://127.0.0.1:$port" target/web-test

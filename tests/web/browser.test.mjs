@@ -1,0 +1,250 @@
+// The browser test of cnets in the browser (docs/web.md), run by scripts/test-web.sh:
+//   node tests/web/browser.test.mjs BASE_URL OUT_DIR
+// Drives Debian's Chromium headless (software WebGL2: ANGLE + SwiftShader) with playwright-core.
+// egui draws everything on one <canvas>: the test moves the mouse at coordinates and reads what the
+// page reports in `window.cnets_test` (frames, pictures drawn, where the 3D view and the first
+// slider are). Fails on any console error, page error or panic. Screenshots go to OUT_DIR.
+import { chromium } from "playwright-core";
+import assert from "node:assert/strict";
+import fs from "node:fs";
+import os from "node:os";
+import path from "node:path";
+import zlib from "node:zlib";
+
+const base = process.argv[2] ?? "http://127.0.0.1:8000";
+const out = process.argv[3] ?? "target/web-test";
+fs.mkdirSync(out, { recursive: true });
+const figures = {};
+
+const userData = fs.mkdtempSync(path.join(os.tmpdir(), "cnets-chromium-"));
+const context = await chromium.launchPersistentContext(userData, {
+  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
+  headless: true,
+  viewport: { width: 1400, height: 860 },
+  args: [
+    "--headless", "--no-sandbox", "--disable-quic", "--no-first-run",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync",
+    "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+  ],
+});
+const problems = [];
+function watch(page) {
+  page.on("console", (m) => {
+    // (The browser asks for /favicon.ico on the plain page that clears the storage.)
+    const from = m.location()?.url ?? "";
+    if (m.type() === "error" && !from.endsWith("/favicon.ico")) {
+      problems.push(`console error: ${m.text()} (${from})`);
+    }
+  });
+  page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
+  page.on("crash", () => problems.push("the page crashed"));
+  return page;
+}
+function noProblems(when) {
+  assert.deepEqual(problems, [], `${when}: ${problems.join("\n")}`);
+}
+
+const state = (page) => page.evaluate(() => window.cnets_test ?? null);
+
+/** Waits until `ok(state)` holds; returns the state. */
+async function until(page, what, ok, timeout = 180_000) {
+  const start = Date.now();
+  for (;;) {
+    const s = await state(page);
+    if (s && ok(s)) return s;
+    noProblems(`waiting for ${what}`);
+    if (Date.now() - start > timeout) throw new Error(`timed out waiting for ${what}: ${JSON.stringify(s)}`);
+    await page.waitForTimeout(100);
+  }
+}
+
+/** Waits for the view to settle: no evaluation pending and the picture count unchanged for a while. */
+async function settled(page) {
+  let last = -1;
+  let still = 0;
+  for (let k = 0; k < 600 && still < 8; k++) {
+    const s = await state(page);
+    if (s && !s.busy && s.pictures === last) still++;
+    else still = 0;
+    last = s?.pictures ?? -1;
+    await page.waitForTimeout(100);
+  }
+  return state(page);
+}
+
+/** RGBA pixels of a PNG screenshot region, decoded by the page's own canvas (no npm PNG reader). */
+async function pixels(page, png, rect) {
+  return page.evaluate(async ({ b64, rect }) => {
+    const img = new Image();
+    img.src = "data:image/png;base64," + b64;
+    await img.decode();
+    const c = document.createElement("canvas");
+    const [x0, y0, x1, y1] = rect.map(Math.round);
+    c.width = x1 - x0;
+    c.height = y1 - y0;
+    const g = c.getContext("2d");
+    g.drawImage(img, -x0, -y0);
+    return Array.from(g.getImageData(0, 0, c.width, c.height).data);
+  }, { b64: png.toString("base64"), rect });
+}
+
+/** How much of the region differs from its most common colour, and how many colours it has. */
+function coverage(px) {
+  const counts = new Map();
+  for (let i = 0; i < px.length; i += 4) {
+    const key = (px[i] << 16) | (px[i + 1] << 8) | px[i + 2];
+    counts.set(key, (counts.get(key) ?? 0) + 1);
+  }
+  const n = px.length / 4;
+  const background = Math.max(...counts.values());
+  return { covered: 1 - background / n, colours: counts.size };
+}
+
+/** The share of pixels that differ (by more than a little) between two equally sized regions. */
+function difference(a, b) {
+  let differ = 0;
+  for (let i = 0; i < a.length; i += 4) {
+    const d = Math.abs(a[i] - b[i]) + Math.abs(a[i + 1] - b[i + 1]) + Math.abs(a[i + 2] - b[i + 2]);
+    if (d > 24) differ++;
+  }
+  return differ / (a.length / 4);
+}
+
+async function shot(page, name, view) {
+  const png = await page.screenshot({ path: path.join(out, `${name}.png`) });
+  const px = await pixels(page, png, view);
+  return { png, px, ...coverage(px) };
+}
+
+/** Opens `url` in a new page; `keep` keeps what earlier pages autosaved (else it is cleared). */
+async function open(url, keep = false) {
+  const page = watch(await context.newPage());
+  if (!keep) {
+    await page.goto(`${base}/cnets_web.js`);
+    await page.evaluate(() => localStorage.clear());
+  }
+  const t0 = Date.now();
+  await page.goto(url);
+  const s = await until(page, `the first picture of ${url}`, (s) => s.first_picture_ms !== null && s.vertices > 0);
+  const wall = Date.now() - t0;
+  return { page, first: s.first_picture_ms, wall, state: await settled(page) };
+}
+
+// 1. ?example=torus-monge: the first picture, not blank.
+const torus = await open(`${base}/index.html?example=torus-monge`);
+figures.first_picture_ms = Math.round(torus.first);
+const view = torus.state.view;
+assert.ok(view[2] - view[0] > 100 && view[3] - view[1] > 100, `the 3D view is laid out: ${view}`);
+const t1 = await shot(torus.page, "1-torus-monge", view);
+console.log(`torus-monge: first picture after ${figures.first_picture_ms} ms (page load included), ` +
+  `${(t1.covered * 100).toFixed(1)} % of the 3D view drawn, ${t1.colours} colours`);
+assert.ok(t1.covered > 0.02 && t1.colours > 16, "the 3D view is not blank");
+
+// 2. Drag the first slider: its value and the picture change.
+async function drag(page, back = false) {
+  const s = await state(page);
+  assert.ok(s.slider, "a slider is on the canvas");
+  const [x0, y0, x1, y1] = s.slider;
+  const y = (y0 + y1) / 2;
+  let from = x0 + (x1 - x0) * 0.25;
+  let to = x0 + (x1 - x0) * 0.85;
+  if (back) [from, to] = [to, from];
+  const before = s.slider_value;
+  await page.mouse.move(from, y);
+  await page.mouse.down();
+  for (let k = 1; k <= 12; k++) {
+    await page.mouse.move(from + ((to - from) * k) / 12, y);
+    await page.waitForTimeout(30);
+  }
+  await page.mouse.up();
+  const after = await until(page, "the slider's new value", (t) => t.slider_value !== before, 20_000);
+  return { node: s.slider_node, before, after: after.slider_value };
+}
+const moved = await drag(torus.page);
+console.log(`dragged ${moved.node}: ${moved.before} → ${moved.after}`);
+await settled(torus.page);
+const t2 = await shot(torus.page, "2-torus-monge-dragged", view);
+const changed = difference(t1.px, t2.px);
+console.log(`the drag changed ${(changed * 100).toFixed(1)} % of the 3D view`);
+assert.ok(changed > 0.005, "the picture changed after the drag");
+noProblems("torus-monge");
+
+// 3. Autosave: the dragged (unsaved) torus is in the page's local storage, and the next page
+//    offers to restore it, as the desktop editor does after a crash.
+const autosaved = await torus.page.evaluate(() => localStorage.getItem("cnets.recovery.ron") ?? "");
+assert.ok(autosaved.includes("torus"), "the edited graph is autosaved in local storage");
+await torus.page.close();
+const offer = await open(`${base}/index.html?example=facade`, true);
+assert.ok(offer.state.restore_offered, "the next page offers to restore it");
+await offer.page.screenshot({ path: path.join(out, "3a-restore-offer.png") });
+await offer.page.close();
+noProblems("autosave");
+
+// 3. ?example=facade differs.
+const facade = await open(`${base}/index.html?example=facade`);
+const f1 = await shot(facade.page, "3-facade", view);
+const vsTorus = difference(t1.px, f1.px);
+console.log(`facade: ${(f1.covered * 100).toFixed(1)} % drawn, differs from torus-monge in ${(vsTorus * 100).toFixed(1)} %`);
+assert.ok(f1.covered > 0.02, "the facade is drawn");
+assert.ok(vsTorus > 0.02, "the facade differs from the torus");
+noProblems("facade");
+
+// 4. Share link round trip: File ▸ Copy link (the same action through the test hook) puts
+//    #graph=… in the address bar; it decodes here (Node's own inflate) to the facade graph, and
+//    opening it in a new page draws the same picture.
+await facade.page.evaluate(() => { window.cnets_request = "copy_link"; });
+let link = "";
+for (let k = 0; k < 100 && !link.includes("#graph="); k++) {
+  // (egui paints on input: a mouse move over the status bar gives it the frame.)
+  await facade.page.mouse.move(700 + (k % 2), 850);
+  await facade.page.waitForTimeout(100);
+  link = facade.page.url();
+}
+assert.ok(link.includes("#graph="), `a share link in the address bar: ${link}`);
+figures.facade_link_chars = link.length;
+const ron = zlib.inflateRawSync(Buffer.from(link.split("#graph=")[1], "base64url")).toString("utf8");
+assert.ok(ron.includes("facade") || ron.includes("cnets."), "the link holds the graph");
+const shared = await open(link);
+const s1 = await shot(shared.page, "4-facade-from-link", view);
+const vsFacade = difference(f1.px, s1.px);
+console.log(`the link (${link.length} characters) opens a picture that differs from the facade in ${(vsFacade * 100).toFixed(2)} %`);
+assert.ok(vsFacade < 0.01, "the link opens the same graph");
+assert.match(shared.state.message, /link/, "the page says it opened a link");
+noProblems("share link");
+await facade.page.close();
+await shared.page.close();
+
+// 5. Change-to-picture at 100 × 100: torus-monge with 100 columns and 100 rows, opened from a link
+//    this test makes (Node's deflate), then slider drags measured by the editor (edit → the frame
+//    that hands the scene to WebGL).
+const torusRon = fs.readFileSync(new URL("../../graphs/torus-monge.ron", import.meta.url), "utf8");
+/** The graph text with the first `"value": N` after `"node": (` set to `value`. */
+function setValue(text, node, value) {
+  const at = text.indexOf(`"${node}": (`);
+  assert.ok(at >= 0, `node ${node} in torus-monge.ron`);
+  const v = text.indexOf('"value": ', at) + '"value": '.length;
+  const end = text.indexOf(",", v);
+  return text.slice(0, v) + value + text.slice(end);
+}
+const big = setValue(setValue(torusRon, "columns", 100), "rows", 100);
+assert.notEqual(big, torusRon, "the grid size was set");
+const bigLink = `${base}/index.html#graph=${zlib.deflateRawSync(Buffer.from(big), { level: 9 }).toString("base64url")}`;
+const hundred = await open(bigLink);
+figures.first_picture_100_ms = Math.round(hundred.first);
+const latencies = [];
+for (let k = 0; k < 3; k++) {
+  const before = (await state(hundred.page)).latencies;
+  await drag(hundred.page, k % 2 === 0);
+  const s = await until(hundred.page, "a change-to-picture figure", (t) => t.latencies > before, 60_000);
+  await settled(hundred.page);
+  latencies.push(Math.round((await state(hundred.page)).latency_ms ?? s.latency_ms));
+}
+await shot(hundred.page, "5-torus-monge-100x100", view);
+figures.change_to_picture_100_ms = latencies;
+console.log(`100 × 100: ${hundred.state.vertices} vertices, change-to-picture ${latencies.join(", ")} ms`);
+noProblems("100 × 100");
+
+await context.close();
+fs.rmSync(userData, { recursive: true, force: true });
+fs.writeFileSync(path.join(out, "figures.json"), JSON.stringify(figures, null, 2) + "\n");
+console.log(`browser test passed; figures: ${JSON.stringify(figures)}`);
