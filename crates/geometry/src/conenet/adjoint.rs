@@ -17,8 +17,8 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::prepare::prepare;
 use super::inputs::{ConstructInputs, GridValues};
+use super::prepare::prepare;
 use super::tolerance;
 use crate::{GeometryError, QuadGrid};
 
