@@ -343,6 +343,9 @@ impl EditorApp {
             refit_on_results: true,
             page: None,
         };
+        if let Some(limit) = app.settings.planarity_limit() {
+            app.viewport.options.set_planarity_limit(limit);
+        }
         app.watch.changed(&app.doc.graph);
         app.submit_if_changed();
         app
@@ -1306,6 +1309,28 @@ impl EditorApp {
                                 ui.selectable_value(&mut o.color_mode, m, m.label());
                             }
                         });
+                    if o.color_mode == crate::preview::ColorMode::Planarity {
+                        // The top of the scale (planar below 1e-9 stays the anchor).
+                        let (lo, hi) = crate::preview::PLANARITY_LIMIT_RANGE;
+                        let mut limit = o.planarity_limit();
+                        let r = ui
+                            .add(
+                                egui::Slider::new(&mut limit, lo..=hi)
+                                    .logarithmic(true)
+                                    .text("not planar from")
+                                    .custom_formatter(|v, _| format!("{v:.0e}")),
+                            )
+                            .on_hover_text(
+                                "the top of the planarity colour scale: faces from this relative \
+                                 planarity up are not planar (saved with the editor settings)",
+                            );
+                        if r.changed() && o.set_planarity_limit(limit) && !r.dragged() {
+                            self.settings.set_planarity_limit(o.planarity_limit());
+                        }
+                        if r.drag_stopped() {
+                            self.settings.set_planarity_limit(o.planarity_limit());
+                        }
+                    }
                     if ui.button("Fit (F)").clicked() {
                         self.viewport.fit();
                     }

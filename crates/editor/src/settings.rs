@@ -33,6 +33,9 @@ pub struct Settings {
     /// The user library folder chosen in the editor (`None`: the default,
     /// [`crate::library::default_library_dir`]).
     pub library: Option<PathBuf>,
+    /// The top of the planarity colour scale set in the viewport (`viewport.txt`), as `f64`
+    /// bits (see [`Settings::planarity_limit`]).
+    planarity_limit: Option<u64>,
 }
 
 impl Settings {
@@ -50,11 +53,32 @@ impl Settings {
             .map(|t| t.trim().to_string())
             .filter(|t| !t.is_empty())
             .map(PathBuf::from);
+        let planarity_limit = std::fs::read_to_string(dir.join("viewport.txt"))
+            .unwrap_or_default()
+            .lines()
+            .find_map(|l| {
+                let (key, value) = l.split_once('=')?;
+                (key.trim() == "planarity_limit").then(|| value.trim().parse::<f64>().ok())?
+            })
+            .filter(|v| v.is_finite() && *v > 0.0)
+            .map(f64::to_bits);
         Self {
             dir: dir.to_path_buf(),
             recent,
             library,
+            planarity_limit,
         }
+    }
+
+    /// The top of the planarity colour scale the designer set in the viewport, if any.
+    pub fn planarity_limit(&self) -> Option<f64> {
+        self.planarity_limit.map(f64::from_bits)
+    }
+
+    /// Remembers the top of the planarity colour scale and saves the settings.
+    pub fn set_planarity_limit(&mut self, limit: f64) {
+        self.planarity_limit = Some(limit.to_bits());
+        let _ = self.save();
     }
 
     /// The user library folder: the chosen one, else the default.
@@ -88,6 +112,12 @@ impl Settings {
             .map(|p| format!("{}\n", p.display()))
             .collect();
         write_atomic(&self.dir.join("recent.txt"), text.as_bytes())?;
+        if let Some(limit) = self.planarity_limit() {
+            write_atomic(
+                &self.dir.join("viewport.txt"),
+                format!("planarity_limit = {limit:e}\n").as_bytes(),
+            )?;
+        }
         if let Some(lib) = &self.library {
             write_atomic(
                 &self.dir.join("library.txt"),
@@ -124,6 +154,25 @@ mod tests {
                 .count(),
             1
         );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_planarity_limit_persists_and_bad_files_are_ignored() {
+        let dir = std::env::temp_dir().join(format!("cnets-settings-pl-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let mut s = Settings::load(&dir);
+        assert_eq!(s.planarity_limit(), None);
+        s.set_planarity_limit(2.5e-5);
+        assert_eq!(Settings::load(&dir).planarity_limit(), Some(2.5e-5));
+        for junk in [
+            "planarity_limit = nan\n",
+            "planarity_limit = -1\n",
+            "garbage",
+        ] {
+            std::fs::write(dir.join("viewport.txt"), junk).unwrap();
+            assert_eq!(Settings::load(&dir).planarity_limit(), None, "{junk}");
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -186,6 +186,11 @@ impl Viewport {
         &self.scene
     }
 
+    /// The figures and legend of the scene shown.
+    pub fn stats(&self) -> &PreviewStats {
+        &self.stats
+    }
+
     /// Version of the scene (bumped by [`Viewport::set_scene`]).
     pub fn scene_version(&self) -> u64 {
         self.scene_version

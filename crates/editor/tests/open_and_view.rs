@@ -365,3 +365,39 @@ fn inside_a_cluster_the_3d_view_shows_the_whole_design_and_ports_rename_keeping_
         "the old port name and its wire"
     );
 }
+
+#[test]
+fn the_planarity_limit_is_set_in_the_viewport_and_kept_in_the_settings() {
+    use cnets_editor::preview::{ColorMode, LegendInfo};
+    let config = temp_config("planarity-limit");
+    let mut h = common::harness_with("planarity-limit", None, config.clone());
+    assert!(
+        h.query_by_label("not planar from").is_none(),
+        "only in planarity mode"
+    );
+    h.state_mut().viewport.options.color_mode = ColorMode::Planarity;
+    settle(&mut h);
+    let top = |h: &Harness<'static, EditorApp>| match &h.state().viewport.stats().legend {
+        LegendInfo::Planarity(l) => l.labels.last().cloned().unwrap_or_default(),
+        other => panic!("a planarity legend: {other:?}"),
+    };
+    assert!(top(&h).contains("1e-3"), "{}", top(&h));
+    // Step the slider down with the keyboard.
+    let slider = h.get_by(|n| {
+        n.role() == egui::accesskit::Role::Slider
+            && n.label().is_some_and(|l| l.contains("not planar from"))
+    });
+    slider.focus();
+    h.run_steps(1);
+    h.key_press(egui::Key::ArrowLeft);
+    h.run_steps(2);
+    settle(&mut h);
+    let limit = h.state().viewport.options.planarity_limit();
+    assert!(limit < 1e-3, "the slider lowered the limit: {limit}");
+    assert_eq!(h.state().settings.planarity_limit(), Some(limit), "saved");
+    assert!(!top(&h).contains("1e-3"), "the legend follows: {}", top(&h));
+    // A new session in the same settings folder starts with it.
+    drop(h);
+    let h = common::harness_with("planarity-limit-2", None, config);
+    assert_eq!(h.state().viewport.options.planarity_limit(), limit);
+}

@@ -123,3 +123,89 @@ fn bad_arguments_are_usage_errors() {
         );
     }
 }
+
+/// Pixels within 12 of `color` in each channel, inside the rectangle `x0..x1 × y0..y1`.
+fn count_near(
+    (w, _h, pixels): &(u32, u32, Vec<u8>),
+    color: [u8; 3],
+    (x0, y0, x1, y1): (u32, u32, u32, u32),
+) -> usize {
+    (y0..y1)
+        .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let k = ((y * w + x) * 4) as usize;
+            pixels[k..k + 3]
+                .iter()
+                .zip(color)
+                .all(|(a, b)| a.abs_diff(b) <= 12)
+        })
+        .count()
+}
+
+#[test]
+fn pictures_carry_their_legend_and_apices_only_when_asked() {
+    let dir = std::env::temp_dir().join(format!("cnets-render-legend-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let shot = |name: &str, extra: &[&str]| {
+        let out = dir.join(name);
+        let mut args = vec![
+            "graphs/torus-monge.ron",
+            "--png",
+            out.to_str().unwrap(),
+            "--size",
+            "800x450",
+        ];
+        args.extend_from_slice(extra);
+        let o = render(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        if let Some(keep) = std::env::var_os("CNETS_KEEP_RENDERS") {
+            let _ = std::fs::copy(&out, Path::new(&keep).join(name));
+        }
+        read_png(&out)
+    };
+    let top_right = (560, 0, 800, 160);
+    let whole = (0, 0, 800, 450);
+    let [cr, cg, cb, _] =
+        cnets_preview::class_color(cnets_geometry::fabrication::FaceClass::Convex).0;
+    let [ar, ag, ab, _] = cnets_preview::APEX_COLOR.0;
+    // Default: the class legend top right (its convex swatch), no apices anywhere.
+    let plain = shot("classes.png", &[]);
+    assert!(
+        count_near(&plain, [cr, cg, cb], top_right) > 60,
+        "the convex swatch"
+    );
+    assert_eq!(
+        count_near(&plain, [ar, ag, ab], whole),
+        0,
+        "apices hidden by default"
+    );
+    // --apices: the points are drawn, and explained in the legend (their dot, below the classes).
+    let apices = shot("apices.png", &["--apices"]);
+    let in_legend = count_near(&apices, [ar, ag, ab], top_right);
+    let everywhere = count_near(&apices, [ar, ag, ab], whole);
+    assert!(in_legend > 20, "the legend's apex dot: {in_legend}");
+    assert!(everywhere > in_legend + 100, "apices drawn: {everywhere}");
+    // Planarity with a user-set limit: the scale's swatches in the legend.
+    let planarity = shot(
+        "planarity.png",
+        &["--color", "planarity", "--planarity-limit", "1e-4"],
+    );
+    let planar = cnets_render::ToleranceMap::DEFAULT.color(0.0).0;
+    assert!(
+        count_near(&planarity, [planar[0], planar[1], planar[2]], top_right) > 60,
+        "the planar swatch"
+    );
+    let bad = render(&[
+        "graphs/torus-monge.ron",
+        "--png",
+        dir.join("x.png").to_str().unwrap(),
+        "--planarity-limit",
+        "2",
+    ]);
+    assert_eq!(
+        bad.status.code(),
+        Some(2),
+        "a limit above 1 is a usage error"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -128,6 +128,9 @@ pub struct PreviewOptions {
     /// Surface colouring.
     pub color_mode: ColorMode,
     layers: u8,
+    /// The top of the planarity scale (see [`PreviewOptions::planarity_limit`]), as `f64` bits
+    /// so the options stay `Eq`.
+    planarity_limit: u64,
 }
 
 impl Default for PreviewOptions {
@@ -135,11 +138,41 @@ impl Default for PreviewOptions {
         Self {
             color_mode: ColorMode::default(),
             layers: Layer::ALL.iter().fold(0, |acc, l| acc | l.bit()),
+            planarity_limit: ToleranceMap::DEFAULT.limit.to_bits(),
         }
     }
 }
 
+/// The smallest and largest planarity limit a designer can set (the scale's bottom, 1e-9
+/// relative, stays the anchor).
+pub const PLANARITY_LIMIT_RANGE: (f64, f64) = (1e-8, 1.0);
+
 impl PreviewOptions {
+    /// The user-set top of the planarity colour scale: faces from this relative planarity up are
+    /// "not planar" (default 1e-3). The bottom stays anchored at 1e-9 ([`ToleranceMap::DEFAULT`]).
+    pub fn planarity_limit(&self) -> f64 {
+        f64::from_bits(self.planarity_limit)
+    }
+
+    /// Sets the top of the planarity scale; refused (false) unless finite and within
+    /// [`PLANARITY_LIMIT_RANGE`].
+    pub fn set_planarity_limit(&mut self, limit: f64) -> bool {
+        let (lo, hi) = PLANARITY_LIMIT_RANGE;
+        if !(limit.is_finite() && (lo..=hi).contains(&limit)) {
+            return false;
+        }
+        self.planarity_limit = limit.to_bits();
+        true
+    }
+
+    /// The planarity colour scale: planar below 1e-9, not planar from the user-set limit.
+    pub fn planarity_map(&self) -> ToleranceMap {
+        ToleranceMap {
+            planar: ToleranceMap::DEFAULT.planar,
+            limit: self.planarity_limit(),
+        }
+    }
+
     /// Whether a layer is shown.
     pub fn shows(&self, layer: Layer) -> bool {
         self.layers & layer.bit() != 0
@@ -178,8 +211,66 @@ pub struct PreviewStats {
     pub max_planarity: Option<f64>,
     /// Legend of the surface colours.
     pub legend: LegendInfo,
+    /// Apex points drawn (the apices layer shown).
+    pub apices: usize,
     /// Time spent building the scene, in milliseconds.
     pub build_ms: f64,
+}
+
+/// The configuration class of a face in the paper's notation: the (±±) configurations of its two
+/// construction planes (CNets, Fig. 4).
+pub fn paper_class(class: FaceClass) -> &'static str {
+    match class {
+        FaceClass::Convex => "(++)(++)",
+        FaceClass::NonConvex => "(++)(−−)",
+        FaceClass::MinusMinus => "(−−)(−−)",
+        FaceClass::NegativeApex => "(+−)/(−+)",
+        FaceClass::Unclassified => "—",
+    }
+}
+
+/// The colour apices are drawn in.
+pub const APEX_COLOR: Color = palette::POINT;
+
+/// What an apex point is, for legends.
+pub const APEX_LEGEND: &str = "apex of a strip's cone";
+
+/// The surface legend as a title and rows of (swatch colour, words): face classes in the paper's
+/// notation with their words and face counts (`(++)(++)  convex  170`), or the planarity scale
+/// (`planar (< 1e-9)` … `not planar (≥ 1e-3)`, top row the largest). `None` without one.
+pub fn legend_rows(legend: &LegendInfo) -> Option<(String, Vec<(Color, String)>)> {
+    match legend {
+        LegendInfo::None => None,
+        LegendInfo::Classes(classes) => Some((
+            "configuration".to_string(),
+            classes
+                .iter()
+                .map(|&(c, n)| {
+                    (
+                        class_color(c),
+                        format!("{}  {}  {n}", paper_class(c), c.name()),
+                    )
+                })
+                .collect(),
+        )),
+        LegendInfo::Planarity(l) => Some((
+            l.title.clone(),
+            l.stops
+                .iter()
+                .enumerate()
+                .rev()
+                .map(|(k, (v, c))| {
+                    (
+                        *c,
+                        l.labels
+                            .get(k)
+                            .cloned()
+                            .unwrap_or_else(|| format!("{v:.0e}")),
+                    )
+                })
+                .collect(),
+        )),
+    }
 }
 
 /// Builds the preview scene from the evaluator's results for `graph`.
@@ -238,7 +329,7 @@ pub fn build_scene(
     b.stats.max_planarity = max;
     if opts.color_mode == ColorMode::Planarity {
         // Anchored to tolerances, not fitted to the data (rounding noise is not a patchwork).
-        b.planarity_range = Some(ToleranceMap::DEFAULT);
+        b.planarity_range = Some(opts.planarity_map());
     }
     for ((mesh, configurations, layer), planarity) in meshes.iter().zip(&planarities) {
         b.add_quad_grid(mesh, configurations.as_ref(), planarity, *layer);
@@ -388,8 +479,11 @@ impl Builder {
         if !self.opts.shows(layer) {
             return;
         }
+        if layer == Layer::Apices {
+            self.stats.apices += points.len();
+        }
         let style = match layer {
-            Layer::Apices => PointStyle::new(palette::POINT, 7.0),
+            Layer::Apices => PointStyle::new(APEX_COLOR, 7.0),
             _ => PointStyle::new(Color::hex(0x333333), 5.0),
         };
         self.scene.add_points(points, style);
@@ -418,7 +512,7 @@ impl Builder {
                 Some(classes.into_iter().map(class_color).collect())
             }),
             (ColorMode::Planarity, _) => {
-                let map = self.planarity_range.unwrap_or(ToleranceMap::DEFAULT);
+                let map = self.planarity_range.unwrap_or(self.opts.planarity_map());
                 Some(planarity.iter().map(|&v| map.color(v)).collect())
             }
             (ColorMode::Plain, _) => None,
@@ -466,6 +560,30 @@ pub fn face_classes(grid: &QuadGrid, configurations: &Value) -> Option<Vec<FaceC
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_planarity_limit_is_user_set_and_named_in_the_legend() {
+        let mut o = PreviewOptions::default();
+        assert_eq!(o.planarity_limit(), 1e-3);
+        assert!(o.set_planarity_limit(1e-4));
+        assert!(!o.set_planarity_limit(f64::NAN) && !o.set_planarity_limit(2.0));
+        assert!(!o.set_planarity_limit(1e-12), "below the planar anchor");
+        let m = o.planarity_map();
+        assert_eq!((m.planar, m.limit), (1e-9, 1e-4));
+        assert_eq!(m.normalize(1e-4), 1.0);
+        assert!(m.normalize(1e-5) < 1.0 && m.normalize(1e-5) > 0.0);
+        let (title, rows) = legend_rows(&LegendInfo::Planarity(m.legend())).unwrap();
+        assert!(!title.is_empty());
+        assert!(rows[0].1.contains("1e-4"), "top row: {:?}", rows[0]);
+        assert!(rows.last().unwrap().1.starts_with("planar"), "{rows:?}");
+        let (_, classes) = legend_rows(&LegendInfo::Classes(vec![
+            (FaceClass::Convex, 3),
+            (FaceClass::NegativeApex, 1),
+        ]))
+        .unwrap();
+        assert_eq!(classes[0].1, "(++)(++)  convex  3");
+        assert!(classes[1].1.starts_with("(+−)/(−+)"), "{classes:?}");
+    }
+
     use super::*;
 
     fn grid(rows: usize, cols: usize) -> QuadGrid {

@@ -110,6 +110,7 @@ pub mod blit;
 pub mod camera;
 pub mod error;
 pub mod offscreen;
+pub mod overlay;
 pub mod palette;
 pub mod renderer;
 pub mod scene;
@@ -119,6 +120,7 @@ pub use camera::{Camera, ParseViewError, View};
 pub use cnets_geometry::{Line, PolygonMesh, Polyline, QuadGrid};
 pub use error::RenderError;
 pub use offscreen::{Image, Offscreen, read_texture};
+pub use overlay::{LegendBlock, PanelRect, draw_legend};
 pub use palette::{Color, Legend, SequentialMap, ToleranceMap};
 pub use renderer::{COLOR_FORMAT, DEPTH_FORMAT, RendererOptions, SceneRenderer};
 pub use scene::{

@@ -1,11 +1,16 @@
-//! `cnets render <GRAPH.ron> --png <FILE> [--size WxH] [--view iso|top|front|side] [--color …]`.
+//! `cnets render <GRAPH.ron> --png <FILE> [--size WxH] [--view iso|top|front|side] [--color …]
+//! [--apices] [--planarity-limit X]`: the picture carries its legend (the face classes in words
+//! and the paper's notation, or the planarity scale; the apices when shown).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag};
-use cnets_preview::{ColorMode, Layer, PreviewOptions, build_scene};
-use cnets_render::{Camera, Offscreen, View};
+use cnets_preview::{
+    APEX_COLOR, APEX_LEGEND, ColorMode, Layer, PreviewOptions, PreviewStats, build_scene,
+    legend_rows,
+};
+use cnets_render::{Camera, Image, LegendBlock, Offscreen, View, draw_legend};
 
 use crate::failure::{CommandResult, Failure};
 use crate::library;
@@ -30,6 +35,13 @@ pub struct Args {
     /// Hide a layer: surfaces, edges, curves, apices, axes, supports or points (repeatable).
     #[arg(long, value_name = "LAYER")]
     hide: Vec<String>,
+    /// Draw the cones' apices (hidden unless asked; explained in the legend when drawn).
+    #[arg(long)]
+    apices: bool,
+    /// The top of the planarity colour scale (`--color planarity`): faces from this relative
+    /// planarity up are "not planar" (default 1e-3; planar below 1e-9 stays the anchor).
+    #[arg(long, value_name = "X")]
+    planarity_limit: Option<f64>,
     /// Override an input before rendering: `node.input=value` (as for `cnets run`).
     #[arg(long = "set", value_name = "NODE.INPUT=VALUE")]
     sets: Vec<String>,
@@ -87,6 +99,8 @@ impl Look {
             .map_err(|_| Failure::usage(format!("--view '{view}': use iso, top, front or side")))?;
         let mut options = PreviewOptions::default();
         options.color_mode = parse_color(color)?;
+        // Apices are far from the surface and clutter a picture: shown only when asked.
+        options.set(Layer::Apices, false);
         for name in hide {
             let layer = Layer::parse(name).ok_or_else(|| {
                 let names: Vec<_> = Layer::ALL.iter().map(|l| l.name()).collect();
@@ -102,8 +116,48 @@ impl Look {
     }
 }
 
-/// Renders the previewed geometry of an evaluated graph to a PNG (atomically); returns a one-line
-/// summary.
+impl Look {
+    /// Draws the apices too (`--apices`).
+    pub fn show_apices(&mut self) {
+        self.options.set(Layer::Apices, true);
+    }
+
+    /// Sets the top of the planarity scale (`--planarity-limit`).
+    pub fn set_planarity_limit(&mut self, limit: f64) -> Result<(), Failure> {
+        if self.options.set_planarity_limit(limit) {
+            Ok(())
+        } else {
+            let (lo, hi) = cnets_preview::PLANARITY_LIMIT_RANGE;
+            Err(Failure::usage(format!(
+                "--planarity-limit {limit}: use a number from {lo:e} to {hi:e}"
+            )))
+        }
+    }
+}
+
+/// The legend drawn into a picture: the surface colours (face classes in words and the paper's
+/// notation with their counts, or the planarity scale), and the apices when they are drawn.
+pub fn legend_blocks(stats: &PreviewStats) -> Vec<LegendBlock> {
+    let mut blocks = Vec::new();
+    if let Some((title, rows)) = legend_rows(&stats.legend) {
+        blocks.push(LegendBlock {
+            title,
+            rows,
+            dots: false,
+        });
+    }
+    if stats.apices > 0 {
+        blocks.push(LegendBlock {
+            title: "points".into(),
+            rows: vec![(APEX_COLOR, format!("{APEX_LEGEND}  {}", stats.apices))],
+            dots: true,
+        });
+    }
+    blocks
+}
+
+/// Renders the previewed geometry of an evaluated graph to a PNG (atomically), with its legend;
+/// returns a one-line summary.
 pub fn render_png(
     graph: &Graph,
     evaluator: &Evaluator,
@@ -118,9 +172,10 @@ pub fn render_png(
     let mut camera = Camera::new(look.view);
     camera.fit_surfaces(&scene, width as f32 / height as f32);
     let mut gpu = Offscreen::new().map_err(|e| Failure::node(format!("cannot render: {e}")))?;
-    let image = gpu
+    let mut image: Image = gpu
         .render(&scene, &camera, width, height)
         .map_err(|e| Failure::node(format!("cannot render: {e}")))?;
+    draw_legend(&mut image, &legend_blocks(&stats));
     image
         .save_png(png)
         .map_err(|e| Failure::usage(format!("{}: cannot write: {e}", png.display())))?;
@@ -138,7 +193,18 @@ pub fn render_png(
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let look = Look::parse(&args.size, &args.view, &args.color, &args.hide)?;
+    let mut look = Look::parse(&args.size, &args.view, &args.color, &args.hide)?;
+    if args.apices
+        && !args
+            .hide
+            .iter()
+            .any(|h| Layer::parse(h) == Some(Layer::Apices))
+    {
+        look.show_apices();
+    }
+    if let Some(limit) = args.planarity_limit {
+        look.set_planarity_limit(limit)?;
+    }
     let doc = library::load_graph(&args.graph, &args.library, &args.sets)?;
     let graph = doc.graph;
     // Pull only what is previewed (exports are not run by a render).
