@@ -94,7 +94,7 @@ class ConeNet(QuadMesh):
     - ``apex``: (M−1,) the apex values a_j used (after normalization and correction).
     - ``apices``: (M−1, 3) the cone apices C_j, NaN rows where the apex is at infinity.
     - ``planes``: (N, M−1, 3) the construction-plane normals P_ij.
-    - ``configurations``: N lists of M−2 labels ``"++"``, ``"--"``, ``"+-"``, ``"-+"``.
+    - ``configurations``: N lists of M−1 labels ``"++"``, ``"--"``, ``"+-"``, ``"-+"``.
     - ``corrections``: the corrections made, one line each.
     - ``quality``: ``max_planarity``, ``mean_planarity``, ``max_cone_residual``, configuration
       counts, ``first_bad``…
@@ -130,7 +130,7 @@ class ConeNet(QuadMesh):
 
     @property
     def configurations(self) -> List[List[str]]:
-        """N lists of M−2 configuration labels ``"++"``, ``"--"``, ``"+-"``, ``"-+"``."""
+        """N lists of M−1 configuration labels ``"++"``, ``"--"``, ``"+-"``, ``"-+"``."""
         c = self._configurations
         if isinstance(c, tuple):
             codes, labels = c
@@ -141,7 +141,7 @@ class ConeNet(QuadMesh):
 
     @property
     def configuration_codes(self) -> np.ndarray:
-        """The configurations as an (N, M−2) uint8 array indexing ``("++", "--", "+-", "-+")``."""
+        """The configurations as an (N, M−1) uint8 array indexing ``("++", "--", "+-", "-+")``."""
         c = self._configurations
         if isinstance(c, tuple):
             codes, labels = c

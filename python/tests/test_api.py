@@ -22,7 +22,7 @@ def test_construct_shapes_and_planarity():
     assert net.apices.shape == (m - 1, 3)
     assert np.all(np.isfinite(net.apices)), "a ≠ 1: every apex is finite"
     assert net.planes.shape == (n, m - 1, 3)
-    assert len(net.configurations) == n and all(len(r) == m - 2 for r in net.configurations)
+    assert len(net.configurations) == n and all(len(r) == m - 1 for r in net.configurations)
     assert set(c for r in net.configurations for c in r) <= {"++", "--", "+-", "-+"}
     assert net.quality["max_planarity"] >= net.quality["mean_planarity"] >= 0.0
     size = np.ptp(net.vertices.reshape(-1, 3), axis=0).max()
