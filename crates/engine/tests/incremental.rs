@@ -261,3 +261,37 @@ fn another_graph_taking_over_reruns_only_the_nodes_that_differ() {
     // Without `carry_over` a fresh evaluator recomputes everything (what Open used to do).
     assert_eq!(Evaluator::new().evaluate_all(&other, &ctx).ran, 8);
 }
+
+#[test]
+fn a_larger_graph_taking_over_from_a_small_one_evaluates() {
+    // Opening a bigger file after a small one: every side table of the evaluator must follow the
+    // new graph's size (once panicked with an index out of bounds in the planner).
+    let registry = common::registry();
+    let chain = |len: usize| {
+        let mut g = cnets_engine::Graph::new(registry.clone());
+        g.add_node("head", "t.num").unwrap();
+        for k in 0..len {
+            g.add_node(&format!("n{k}"), "t.add").unwrap();
+            g.set_value(&format!("n{k}"), "b", Value::Number(1.0))
+                .unwrap();
+            let from = if k == 0 {
+                "head".to_string()
+            } else {
+                format!("n{}", k - 1)
+            };
+            let port = if k == 0 { "out" } else { "sum" };
+            g.connect(&from, port, &format!("n{k}"), "a").unwrap();
+        }
+        g
+    };
+    let small = chain(1);
+    let mut ev = Evaluator::new();
+    let ctx = NodeContext::default();
+    ev.evaluate_all(&small, &ctx);
+    let mut big = chain(12);
+    let carried = big.take_over(&small);
+    ev.carry_over(&big, &carried, true);
+    let s = ev.evaluate_all(&big, &ctx);
+    assert_eq!(s.ran, 11, "only the new nodes run: {s:?}");
+    assert_eq!(ev.output(&big, "n11", "sum"), Some(&Value::Number(12.0)));
+}

@@ -513,6 +513,10 @@ impl Evaluator {
         self.memos = Vec::new();
         self.memos.resize_with(bound, || None);
         self.marks = vec![0; bound];
+        // Every side table follows the new graph's bound (prepare only grows them with the memos).
+        self.demand = vec![OutputMask::NONE; bound];
+        self.demand_stamp = vec![0; bound];
+        self.satisfied = vec![false; bound];
         self.stamp = 0;
         self.live = 0;
         for c in carried {
