@@ -24,5 +24,4 @@ cargo clippy --workspace --all-targets -- -D warnings
 echo "== cargo test"
 cargo test --workspace
 ./scripts/test-python.sh
-# The browser test (./scripts/test-web.sh) is out of this command until the merged web build draws
-# again: after merging the other issues its page stays blank in headless Chromium (issue 19).
+./scripts/test-web.sh
