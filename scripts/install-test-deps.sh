@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
-# Installs what the tests need, when it is missing: lavapipe and xvfb (apt), gltf-validator (npm, into
-# ./node_modules), ezdxf (pip, user site). Uses sudo when not root; says what to install otherwise.
+# Installs what the tests need, when it is missing: lavapipe, xvfb and Chromium (apt), the wasm32
+# target (rustup), gltf-validator and playwright-core (npm, into ./node_modules), ezdxf (pip, user
+# site) and the Python package tests' virtual environment (target/pyenv, its requirements from
+# scripts/requirements-python.txt). Uses sudo when not root; says what to install otherwise.
+# scripts/test.sh runs it in the background while the first builds compile: it waits on the
+# network, they on the processors.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -21,7 +25,18 @@ if ! command -v xvfb-run >/dev/null 2>&1; then
   DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq xvfb xauth >/dev/null
 fi
 
-if [ -f package.json ] && [ ! -d node_modules ]; then
+if [ ! -x /usr/bin/chromium ]; then
+  echo "== installing Chromium for the browser test (apt)"
+  as_root apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq chromium >/dev/null
+fi
+
+if ! rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown; then
+  echo "== adding the wasm32-unknown-unknown target (the web build)"
+  rustup target add wasm32-unknown-unknown
+fi
+
+if [ -f package.json ] && [ ! -d node_modules/playwright-core ]; then
   echo "== installing npm test tools (package.json)"
   npm ci --silent --no-audit --no-fund
 fi
@@ -32,3 +47,11 @@ if [ -f scripts/requirements-test.txt ]; then
     python3 -m pip install --quiet --user -r scripts/requirements-test.txt || python3 -m pip install --quiet -r scripts/requirements-test.txt
   fi
 fi
+
+# The Python package tests' environment (scripts/test-python.sh builds the package into it).
+venv="${CARGO_TARGET_DIR:-$PWD/target}/pyenv"
+if [ ! -x "$venv/bin/python" ]; then
+  echo "== creating the Python test environment ($venv)"
+  python3 -m venv "$venv"
+fi
+"$venv/bin/python" -m pip --disable-pip-version-check -q install -r scripts/requirements-python.txt

@@ -1,11 +1,24 @@
 #!/usr/bin/env bash
-# Runs every check and test of cnets, installing first what the tests need on a fresh machine:
-# the software Vulkan driver (lavapipe) for GPU tests, the Khronos glTF validator (npm) and the
-# ezdxf DXF reader (pip) for file-format tests. CI runs exactly this script (.ci/run).
+# Runs every check and test of cnets, installing what the tests need on a fresh machine while the
+# first builds compile (scripts/install-test-deps.sh: lavapipe, xvfb, Chromium, the wasm32 target,
+# the glTF validator, playwright-core, ezdxf, the Python test environment). Then fmt, clippy,
+# cargo test, the Python package tests (scripts/test-python.sh) and the browser test
+# (scripts/test-web.sh). CI runs exactly this script (.ci/run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-./scripts/install-test-deps.sh
+mkdir -p target
+# The installs wait on the network, the first builds on the processors: they run side by side.
+./scripts/install-test-deps.sh >target/install-test-deps.log 2>&1 &
+installing=$!
+wait_for_installs() {
+  if ! wait "$installing"; then
+    cat target/install-test-deps.log >&2
+    echo "test.sh: installing the test tools failed (above)" >&2
+    exit 1
+  fi
+  cat target/install-test-deps.log
+}
 
 # The software Vulkan driver prints a harmless warning without a private runtime directory.
 if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
@@ -21,7 +34,16 @@ echo "== cargo fmt --check"
 cargo fmt --all -- --check
 echo "== cargo clippy"
 cargo clippy --workspace --all-targets -- -D warnings
+echo "== cargo test (build)"
+cargo test --workspace --no-run
+wait_for_installs
 echo "== cargo test"
 cargo test --workspace
+# The test executables (~2.5 GB) are not used again: on a small disk the Python and wasm builds
+# need the room (a CI run once stopped with "No space left on device" in the wasm build). The
+# libraries stay, so the Python build reuses them. CNETS_KEEP_TESTS=1 keeps them.
+if [ -z "${CNETS_KEEP_TESTS:-}" ]; then
+  find target/debug/deps -maxdepth 1 -type f -perm -u+x ! -name '*.so' -delete
+fi
 ./scripts/test-python.sh
 ./scripts/test-web.sh

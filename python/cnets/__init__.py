@@ -16,9 +16,11 @@ Errors raise ``CnetsError`` (a ``ValueError``) with the engine's message.
 
 from __future__ import annotations
 
-from typing import Any, Dict, Optional, Sequence, Union
+from os import PathLike
+from typing import Any, Dict, List, Literal, Optional, Sequence, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _cnets
 from ._cnets import CnetsError, Graph
@@ -41,8 +43,11 @@ __all__ = [
     "write_3dm",
 ]
 
-PolylineLike = Union[Polyline, np.ndarray, Sequence[Sequence[float]]]
-Numbers = Union[float, Sequence[float], np.ndarray]
+_Path = Union[str, "PathLike[str]"]
+PolylineLike = Union[Polyline, npt.ArrayLike]
+Numbers = Union[float, Sequence[float], npt.NDArray[np.float64]]
+Table = Union[float, Sequence[float], Sequence[Sequence[float]], npt.NDArray[np.float64]]
+EndPlanes = Literal["perpendicular", "mirror"]
 
 _NODE_DOCS = {d["id"]: d for d in _cnets.node_types()}
 
@@ -87,12 +92,12 @@ def construct(
     directrix: PolylineLike,
     generatrix: PolylineLike,
     apex: Numbers = 1.0,
-    ratios: Any = 0.5,
+    ratios: Table = 0.5,
     assistance: float = -1.0,
     normalized: bool = False,
     scale: Optional[float] = None,
     epsilon: float = 0.01,
-    end_planes: str = "perpendicular",
+    end_planes: EndPlanes = "perpendicular",
 ) -> ConeNet:
     d = _curve(directrix, "directrix")
     g = _curve(generatrix, "generatrix")
@@ -117,10 +122,10 @@ def ctube(
     directrix: PolylineLike,
     generatrix: PolylineLike,
     apex: Numbers = 1.0,
-    normals: Any = None,
+    normals: Optional[npt.ArrayLike] = None,
     normalized: bool = False,
     scale: Optional[float] = None,
-    end_planes: str = "perpendicular",
+    end_planes: EndPlanes = "perpendicular",
 ) -> ConeNet:
     d = _curve(directrix, "directrix")
     g = _curve(generatrix, "generatrix")
@@ -151,7 +156,7 @@ def construct_coplanar(
     normalized: bool = False,
     scale: Optional[float] = None,
     epsilon: float = 0.01,
-    end_planes: str = "perpendicular",
+    end_planes: EndPlanes = "perpendicular",
 ) -> ConeNet:
     d = _curve(directrix, "directrix")
     g = _curve(generatrix, "generatrix")
@@ -175,7 +180,7 @@ construct_coplanar.__doc__ = _doc(
 )
 
 
-def encode(vertices: Any) -> Dict[str, Any]:
+def encode(vertices: Union[npt.ArrayLike, QuadMesh]) -> Dict[str, Any]:
     mesh = vertices if hasattr(vertices, "vertices") else QuadMesh(vertices)
     return _cnets.eval("cnets.encode", {"mesh": mesh})
 
@@ -192,9 +197,9 @@ def eval(
     *,
     _outputs: Optional[Sequence[str]] = None,
     _max_memory: Union[int, str, None] = None,
-    _allow_read: Optional[Sequence[str]] = None,
-    _library: Optional[Sequence[str]] = None,
-    _out: Optional[str] = None,
+    _allow_read: Optional[Sequence[_Path]] = None,
+    _library: Optional[Sequence[_Path]] = None,
+    _out: Optional[_Path] = None,
     **inputs: Any,
 ) -> Dict[str, Any]:
     """Evaluates one node type (any id of ``cnets nodes``, or ``"cluster:<graph.ron>"``) on
@@ -217,18 +222,18 @@ def eval(
         inputs,
         outputs=list(_outputs) if _outputs is not None else None,
         max_memory=_max_memory,
-        allow_read=list(_allow_read) if _allow_read is not None else None,
-        library=list(_library) if _library is not None else None,
-        out=_out,
+        allow_read=[str(p) for p in _allow_read] if _allow_read is not None else None,
+        library=[str(p) for p in _library] if _library is not None else None,
+        out=str(_out) if _out is not None else None,
     )
 
 
-def node_types() -> list:
+def node_types() -> List[Dict[str, Any]]:
     """Every node type: dicts with ``id``, ``category``, ``doc``, ``inputs``, ``outputs``."""
     return _cnets.node_types()
 
 
-def write_3dm(path: Any, objects: Any, **kwargs: Any) -> None:
+def write_3dm(path: _Path, objects: Any, **kwargs: Any) -> None:
     """Writes cone-nets, meshes and polylines to a Rhino .3dm file (needs ``rhino3dm``:
     ``pip install cnets[rhino]``). See ``cnets.rhino.write_3dm``."""
     from .rhino import write_3dm as _write
@@ -236,7 +241,13 @@ def write_3dm(path: Any, objects: Any, **kwargs: Any) -> None:
     _write(path, objects, **kwargs)
 
 
-def sweep(graph: Any, parameters: Any, outputs: Any, client: Any = None, **kwargs: Any) -> Any:
+def sweep(
+    graph: _Path,
+    parameters: Union[Dict[str, Sequence[Any]], Sequence[Dict[str, Any]]],
+    outputs: Sequence[str],
+    client: Any = None,
+    **kwargs: Any,
+) -> Any:
     """Evaluates a graph file for every parameter set on Dask and returns a pandas DataFrame
     (needs ``dask[distributed]`` and ``pandas``). See ``cnets.sweeps.sweep``."""
     from .sweeps import sweep as _sweep

@@ -1,12 +1,51 @@
 """Type stubs of the extension module cnets._cnets (use the cnets package instead)."""
 
-from typing import Any, Dict, List, Optional, Sequence, Union
+from os import PathLike
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
-from . import CnetsError as CnetsError
-from . import Graph as Graph
+_Path = Union[str, "PathLike[str]"]
+
+class CnetsError(ValueError):
+    """An error of cnets, with the engine's message (file:line:col for graph files)."""
+
+class Graph:
+    """A graph file loaded for evaluation; edits re-run only what depends on them."""
+
+    @staticmethod
+    def load(
+        path: _Path,
+        allow_read: Optional[Sequence[_Path]] = None,
+        max_memory: Union[int, str, None] = None,
+        library: Optional[Sequence[_Path]] = None,
+        out: Optional[_Path] = None,
+    ) -> Graph: ...
+    def set(self, target: str, value: Any) -> None: ...
+    def get(self, target: str) -> Any: ...
+    def unset(self, target: str) -> None: ...
+    def run(
+        self, nodes: Optional[Sequence[str]] = None, check: bool = True
+    ) -> Dict[str, Dict[str, Any]]: ...
+    def outputs(self, node_id: str) -> Dict[str, Any]: ...
+    def save(self, path: _Path) -> None: ...
+    def node_type(self, node_id: str) -> str: ...
+    def time_ms(self, node_id: str) -> Optional[float]: ...
+    @property
+    def last_run_nodes(self) -> List[str]: ...
+    @property
+    def nodes(self) -> List[str]: ...
+    @property
+    def errors(self) -> List[Tuple[str, str]]: ...
+    @property
+    def files(self) -> List[str]: ...
+    @property
+    def warnings(self) -> List[str]: ...
+    @property
+    def path(self) -> str: ...
+    out: Optional[str]
+
 
 def eval(
     node_type: str,

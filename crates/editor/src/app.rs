@@ -7,11 +7,13 @@ use web_time::{Duration, Instant};
 
 use cnets_engine::cluster::Cluster;
 use cnets_engine::optimize::Variable;
-use cnets_engine::{Graph, NodeDef, Registry, Value};
+use cnets_engine::{Graph, Registry};
 use egui::{Key, KeyboardShortcut, Modifiers, Ui};
 
-use crate::canvas::{self, Canvas, CanvasAction};
-use crate::document::{GraphDocument, fresh_id};
+use crate::canvas::{Canvas, CanvasAction};
+use crate::clipboard::Clipboard;
+use crate::document::GraphDocument;
+use crate::edit::{self, Edit};
 use crate::export;
 use crate::file_dialog::{FileDialog, Outcome, Purpose};
 use crate::library::{ClusterWatch, Library, LibraryEntry};
@@ -20,6 +22,7 @@ use crate::menus::{self, MenuAction, MenuContext};
 use crate::optimization::OptimizationPanel;
 use crate::palette::{self, PaletteState, Pick};
 use crate::recovery::{Autosave, Recovered, Recovery};
+use crate::request::UiRequest;
 use crate::settings::Settings;
 use crate::unsaved::{self, Answer, Replace};
 use crate::viewport::Viewport;
@@ -29,116 +32,6 @@ pub use crate::viewport::GpuTarget;
 
 /// The graph the editor starts on when no file is given and `graphs/torus-monge.ron` is absent.
 pub const DEFAULT_GRAPH: &str = include_str!("../../../graphs/editor-default.ron");
-
-/// Copied nodes: definitions, values, flags, relative positions and wires.
-#[derive(Clone, Debug, Default)]
-pub struct Clipboard {
-    nodes: Vec<ClipNode>,
-    /// Wires between copied nodes, by index into `nodes`: (from, output, to, input).
-    inner: Vec<(usize, String, usize, String)>,
-    /// Wires from outside into copied nodes: (from id, output, to index, input).
-    incoming: Vec<(String, String, usize, String)>,
-}
-
-#[derive(Clone, Debug)]
-struct ClipNode {
-    id: String,
-    def: Arc<NodeDef>,
-    values: Vec<(String, Value)>,
-    position: [f32; 2],
-    preview: bool,
-    enabled: bool,
-}
-
-impl Clipboard {
-    /// Copies the nodes `ids` of `graph` (unknown ids are skipped).
-    pub fn copy(graph: &Graph, ids: &[String]) -> Self {
-        let nodes: Vec<ClipNode> = ids
-            .iter()
-            .filter_map(|id| graph.node(id))
-            .map(|n| ClipNode {
-                id: n.id.clone(),
-                def: n.def.clone(),
-                values: n
-                    .def
-                    .inputs
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(k, p)| n.value(k).map(|v| (p.name.to_string(), v.clone())))
-                    .collect(),
-                position: n.position,
-                preview: n.preview,
-                enabled: n.enabled,
-            })
-            .collect();
-        let index = |id: &str| nodes.iter().position(|n| n.id == id);
-        let mut inner = Vec::new();
-        let mut incoming = Vec::new();
-        for w in graph.wires() {
-            match (index(&w.from), index(&w.to)) {
-                (Some(a), Some(b)) => inner.push((a, w.output, b, w.input)),
-                (None, Some(b)) => incoming.push((w.from, w.output, b, w.input)),
-                _ => {}
-            }
-        }
-        Self {
-            nodes,
-            inner,
-            incoming,
-        }
-    }
-
-    /// Whether nothing was copied.
-    pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
-    }
-
-    /// Adds the copied nodes to `graph` under fresh ids, shifted by `offset`, with their inner
-    /// wires (and, when `keep_incoming`, the wires from nodes outside the copy that still exist).
-    /// Returns the new ids.
-    pub fn paste(
-        &self,
-        graph: &mut Graph,
-        offset: [f32; 2],
-        keep_incoming: bool,
-    ) -> Result<Vec<String>, String> {
-        let err = |e: cnets_engine::GraphError| e.to_string();
-        let mut new_ids = Vec::new();
-        for n in &self.nodes {
-            let id = fresh_id(graph, &n.id);
-            // A pasted cluster gets its own instance, so the two cache separately.
-            let def = match Cluster::shared(&n.def) {
-                Some(c) => Arc::new(c.duplicate().node_def()),
-                None => n.def.clone(),
-            };
-            graph.add_node_with_def(&id, def).map_err(err)?;
-            for (input, value) in &n.values {
-                graph.set_value(&id, input, value.clone()).map_err(err)?;
-            }
-            graph
-                .set_position(&id, [n.position[0] + offset[0], n.position[1] + offset[1]])
-                .map_err(err)?;
-            graph.set_preview(&id, n.preview).map_err(err)?;
-            graph.set_enabled(&id, n.enabled).map_err(err)?;
-            new_ids.push(id);
-        }
-        for (a, output, b, input) in &self.inner {
-            graph
-                .connect(&new_ids[*a], output, &new_ids[*b], input)
-                .map_err(err)?;
-        }
-        if keep_incoming {
-            for (from, output, b, input) in &self.incoming {
-                if graph.node(from).is_some() {
-                    graph
-                        .connect(from, output, &new_ids[*b], input)
-                        .map_err(err)?;
-                }
-            }
-        }
-        Ok(new_ids)
-    }
-}
 
 /// How the editor starts.
 pub struct AppOptions {
@@ -474,59 +367,11 @@ impl EditorApp {
     /// its `graph.input` nodes are placed left of the nodes and its `graph.output` nodes right of
     /// them, using the node sizes measured on the canvas. Returns whether it was made.
     pub fn make_cluster(&mut self, ids: &[String]) -> bool {
-        let id = fresh_id(&self.doc.graph, "cluster");
-        let bounds = ids
-            .iter()
-            .filter_map(|n| self.canvas.node_rect(n))
-            .reduce(|a, b| a.union(b));
-        let r = self.doc.edit(None, |g, _| {
-            let selection: Vec<&str> = ids.iter().map(String::as_str).collect();
-            let cluster = cnets_engine::cluster::make_cluster(g, &selection, &id)
-                .map_err(|e| e.to_string())?;
-            let Some(b) = bounds else { return Ok(()) };
-            let mut sub = cluster.template.clone();
-            let mut order: Vec<(u64, String, bool)> = sub
-                .nodes()
-                .filter_map(|(_, n)| {
-                    let input = n.def.id == cnets_engine::cluster::INPUT_TYPE;
-                    (input || n.def.id == cnets_engine::cluster::OUTPUT_TYPE)
-                        .then(|| (n.uid(), n.id.clone(), input))
-                })
-                .collect();
-            order.sort();
-            let (mut k_in, mut k_out) = (0.0, 0.0);
-            for (_, n, input) in order {
-                let at = if input {
-                    k_in += 1.0;
-                    [b.left() - 380.0, b.top() + 190.0 * (k_in - 1.0)]
-                } else {
-                    k_out += 1.0;
-                    [b.right() + 100.0, b.top() + 190.0 * (k_out - 1.0)]
-                };
-                sub.set_position(&n, at).map_err(|e| e.to_string())?;
-            }
-            let laid_out = Cluster::new(
-                cnets_engine::cluster::ClusterSource::Inline,
-                sub,
-                cluster.meta.clone(),
-                cluster.base_dir.clone(),
-            )?;
-            g.replace_def(&id, Arc::new(laid_out.node_def()))
-                .map(|_| ())
-                .map_err(|e| e.to_string())
-        });
-        match r {
-            Ok(()) => {
-                self.canvas.selected.clear();
-                self.canvas.focused = Some(id.clone());
-                self.message = format!("made cluster '{id}': double-click its title to open it");
-                true
-            }
-            Err(e) => {
-                self.message = format!("refused: {e}");
-                false
-            }
-        }
+        let around = self.canvas.bounds_of(ids);
+        self.edit(Edit::MakeCluster {
+            nodes: ids.to_vec(),
+            around,
+        })
     }
 
     /// Opens the cluster node `id` in place (the canvas shows its subgraph).
@@ -877,21 +722,51 @@ impl EditorApp {
         self.submitted = None;
     }
 
-    /// Applies a canvas action; a refusal becomes the status message. Returns whether it applied.
+    /// Carries out a canvas action (an edit or a UI request); a refusal becomes the status
+    /// message. Returns whether it applied.
     pub fn apply(&mut self, action: CanvasAction) -> bool {
-        let handled = match action {
-            CanvasAction::OpenPalette(at) => {
+        match action {
+            CanvasAction::Edit(e) => self.edit(e),
+            CanvasAction::Request(r) => self.handle(r),
+        }
+    }
+
+    /// Applies a document edit ([`edit::apply`]); a refusal becomes the status message. Returns
+    /// whether it applied.
+    pub fn edit(&mut self, edit: Edit) -> bool {
+        let made_cluster = matches!(edit, Edit::MakeCluster { .. });
+        match edit::apply(&mut self.doc, edit) {
+            Ok(created) => {
+                if made_cluster && let Some(id) = created.first() {
+                    self.canvas.selected.clear();
+                    self.canvas.focused = Some(id.clone());
+                    self.message =
+                        format!("made cluster '{id}': double-click its title to open it");
+                }
+                true
+            }
+            Err(e) => {
+                self.message = format!("refused: {e}");
+                false
+            }
+        }
+    }
+
+    /// Carries out a UI request; a refusal becomes the status message. Returns whether it was
+    /// carried out.
+    pub fn handle(&mut self, request: UiRequest) -> bool {
+        let handled = match request {
+            UiRequest::OpenPalette(at) => {
                 // At the click: the canvas point on screen.
                 let screen = self.canvas.to_screen(egui::pos2(at[0], at[1]));
                 self.palette.open_at_screen(at, screen);
                 return true;
             }
-            CanvasAction::OpenCluster(id) => {
+            UiRequest::OpenCluster(id) => {
                 self.open_cluster(&id);
                 return true;
             }
-            CanvasAction::MakeCluster(ids) => return self.make_cluster(&ids),
-            CanvasAction::Optimize {
+            UiRequest::Optimize {
                 path,
                 min,
                 max,
@@ -906,22 +781,13 @@ impl EditorApp {
                 self.optimization
                     .add_variable(&mut self.doc, variable, prepare)
             }
-            CanvasAction::Minimize(path) => {
+            UiRequest::Minimize(path) => {
                 self.optimization.open = true;
                 self.optimization.set_objective(&mut self.doc, path)
             }
-            CanvasAction::Penalize(path) => {
+            UiRequest::Penalize(path) => {
                 self.optimization.open = true;
                 self.optimization.add_penalty(&mut self.doc, path)
-            }
-            other => {
-                return match canvas::apply(&mut self.doc, other) {
-                    Ok(()) => true,
-                    Err(e) => {
-                        self.message = format!("refused: {e}");
-                        false
-                    }
-                };
             }
         };
         match handled {
@@ -999,19 +865,19 @@ impl EditorApp {
             MenuAction::Delete => {
                 let targets = self.canvas.targets();
                 if !targets.is_empty() {
-                    self.apply(CanvasAction::Remove(targets));
+                    self.edit(Edit::Remove(targets));
                     self.canvas.focused = None;
                 }
             }
             MenuAction::Duplicate => {
                 let targets = self.canvas.targets();
                 if !targets.is_empty() {
-                    self.apply(CanvasAction::Duplicate(targets));
+                    self.edit(Edit::Duplicate(targets));
                 }
             }
             MenuAction::Copy => {
                 self.clipboard = Clipboard::copy(&self.doc.graph, &self.canvas.targets());
-                self.message = format!("copied {} nodes", self.clipboard.nodes.len());
+                self.message = format!("copied {} nodes", self.clipboard.len());
             }
             MenuAction::Paste => {
                 let clip = self.clipboard.clone();
@@ -1029,7 +895,7 @@ impl EditorApp {
             MenuAction::FitCanvas => self.canvas.fit(),
             MenuAction::Arrange => {
                 let moves = self.canvas.arrangement(&self.doc.graph);
-                if !moves.is_empty() && self.apply(CanvasAction::Move(moves)) {
+                if !moves.is_empty() && self.edit(Edit::Move(moves)) {
                     self.doc.history.end_gesture();
                     self.canvas.fit();
                 }
@@ -1046,7 +912,7 @@ impl EditorApp {
             }
             MenuAction::ExplodeCluster => match self.targeted_cluster() {
                 Some(id) => {
-                    self.apply(CanvasAction::ExplodeCluster(id));
+                    self.edit(Edit::ExplodeCluster(id));
                 }
                 None => self.message = "focus a cluster node to explode it".into(),
             },
@@ -1663,56 +1529,4 @@ fn breadcrumbs(ui: &mut Ui, doc: &GraphDocument) -> Option<usize> {
             });
         });
     picked
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn duplicate_keeps_values_inner_wires_and_incoming_wires() {
-        let registry = Arc::new(cnets_nodes::registry());
-        let d = cnets_engine::file::load_str(DEFAULT_GRAPH, "default", &registry).unwrap();
-        let mut g = d.graph;
-        let clip = Clipboard::copy(&g, &["construct".to_string(), "planarity".to_string()]);
-        let ids = clip.paste(&mut g, [10.0, 10.0], true).unwrap();
-        assert_eq!(
-            ids,
-            vec!["construct_2".to_string(), "planarity_2".to_string()]
-        );
-        let wires = g.wires();
-        assert!(
-            wires
-                .iter()
-                .any(|w| w.from == "construct_2" && w.to == "planarity_2")
-        );
-        assert!(
-            wires
-                .iter()
-                .any(|w| w.from == "directrix" && w.to == "construct_2")
-        );
-        let mut g2 = g.clone();
-        let ids = clip.paste(&mut g2, [10.0, 10.0], false).unwrap();
-        assert!(
-            !g2.wires().iter().any(|w| w.to == ids[0]),
-            "paste does not keep incoming wires"
-        );
-    }
-
-    #[test]
-    fn a_pasted_cluster_gets_its_own_instance() {
-        let registry = Arc::new(cnets_nodes::registry());
-        let d = cnets_engine::file::load_str(DEFAULT_GRAPH, "default", &registry).unwrap();
-        let mut g = d.graph;
-        cnets_engine::cluster::make_cluster(&mut g, &["apex", "ratio"], "c").unwrap();
-        let clip = Clipboard::copy(&g, &["c".to_string()]);
-        let ids = clip.paste(&mut g, [10.0, 10.0], false).unwrap();
-        let a = Cluster::shared(&g.node("c").unwrap().def).unwrap();
-        let b = Cluster::shared(&g.node(&ids[0]).unwrap().def).unwrap();
-        assert!(!Arc::ptr_eq(&a, &b), "separate instances (separate caches)");
-        assert_eq!(
-            cnets_engine::file::to_ron(&a.template, &a.meta),
-            cnets_engine::file::to_ron(&b.template, &b.meta)
-        );
-    }
 }

@@ -18,7 +18,19 @@ use cnets_engine::file::{self, GraphMeta, LoadOptions};
 use cnets_engine::{Graph, Registry, WireRef};
 
 use crate::cluster_ports::Renames;
-use crate::history::{EditKey, History, Snapshot};
+use crate::history::{EditKey, History};
+
+/// A document state, as the undo history keeps it.
+#[derive(Clone, Debug)]
+pub struct Snapshot {
+    /// The graph being edited (the document's, or a cluster's subgraph opened in place).
+    pub graph: Graph,
+    /// Its metadata.
+    pub meta: GraphMeta,
+    /// The clusters opened in place, outermost first (empty at the document's own graph): undo
+    /// and redo also restore where the designer was.
+    pub stack: Vec<Level>,
+}
 
 /// A graph around a cluster opened in place: the graph as it was when the cluster was opened.
 #[derive(Clone, Debug)]
@@ -129,7 +141,7 @@ pub struct GraphDocument {
     /// graph): file paths in the graph resolve next to it, but a save never writes there.
     pub origin: Option<PathBuf>,
     /// Undo / redo.
-    pub history: History,
+    pub history: History<Snapshot>,
     /// Clusters opened in place, outermost first; `graph` is the innermost one's subgraph.
     stack: Vec<Level>,
     /// While inside a cluster: the document's own graph with the opened clusters rebuilt from the

@@ -1,30 +1,13 @@
-//! Undo / redo by whole-graph snapshots.
+//! Undo / redo by whole-state snapshots, generic over the snapshot type `S`.
 //!
-//! A [`Graph`] clone is cheap (values share their payloads behind `Arc`), so each step stores the
-//! complete document as it was before the edit: undo restores it exactly (same canonical file
-//! text), whatever the edit was. Continuous gestures — a slider drag, moving nodes — carry an
+//! The document's snapshot (`crate::document::Snapshot`) is cheap to clone (a graph's values
+//! share their payloads behind `Arc`), so each step stores the complete state as it was before
+//! the edit: undo restores it exactly, whatever the edit was. Continuous gestures — a slider drag, moving nodes — carry an
 //! [`EditKey`]; consecutive edits with the same key are merged into one step until the gesture
 //! ends ([`History::end_gesture`], called when the pointer is released).
 
-use cnets_engine::Graph;
-use cnets_engine::file::GraphMeta;
-
-use crate::document::Level;
-
 /// Most steps kept; older ones are dropped.
 pub const MAX_STEPS: usize = 200;
-
-/// A document state.
-#[derive(Clone, Debug)]
-pub struct Snapshot {
-    /// The graph being edited (the document's, or a cluster's subgraph opened in place).
-    pub graph: Graph,
-    /// Its metadata.
-    pub meta: GraphMeta,
-    /// The clusters opened in place, outermost first (empty at the document's own graph): undo
-    /// and redo also restore where the designer was.
-    pub stack: Vec<Level>,
-}
 
 /// Identifies a continuous gesture whose edits merge into one undo step.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -39,19 +22,28 @@ pub enum EditKey {
     Optimization(String),
 }
 
-/// The undo and redo stacks.
-#[derive(Default)]
-pub struct History {
-    undo: Vec<Snapshot>,
-    redo: Vec<Snapshot>,
+/// The undo and redo stacks of snapshots `S`.
+pub struct History<S> {
+    undo: Vec<S>,
+    redo: Vec<S>,
     /// Key of the gesture in progress, whose first state is already on the undo stack.
     gesture: Option<EditKey>,
 }
 
-impl History {
+impl<S> Default for History<S> {
+    fn default() -> Self {
+        Self {
+            undo: Vec::new(),
+            redo: Vec::new(),
+            gesture: None,
+        }
+    }
+}
+
+impl<S> History<S> {
     /// Records the state before an edit. With the key of the gesture in progress, nothing is
     /// recorded (the step already holds the state before the gesture). Clears the redo stack.
-    pub fn record(&mut self, before: Snapshot, key: Option<EditKey>) {
+    pub fn record(&mut self, before: S, key: Option<EditKey>) {
         self.redo.clear();
         if key.is_some() && key == self.gesture {
             return;
@@ -75,7 +67,7 @@ impl History {
     }
 
     /// Pops the last step, pushing `current` for redo.
-    pub fn undo(&mut self, current: Snapshot) -> Option<Snapshot> {
+    pub fn undo(&mut self, current: S) -> Option<S> {
         let s = self.undo.pop()?;
         self.redo.push(current);
         self.gesture = None;
@@ -83,7 +75,7 @@ impl History {
     }
 
     /// Pops the last undone step, pushing `current` for undo.
-    pub fn redo(&mut self, current: Snapshot) -> Option<Snapshot> {
+    pub fn redo(&mut self, current: S) -> Option<S> {
         let s = self.redo.pop()?;
         self.undo.push(current);
         self.gesture = None;
@@ -114,19 +106,14 @@ impl History {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::sync::Arc;
 
-    fn snap() -> Snapshot {
-        Snapshot {
-            graph: Graph::new(Arc::new(cnets_engine::Registry::new())),
-            meta: GraphMeta::default(),
-            stack: Vec::new(),
-        }
+    fn snap() -> u32 {
+        7
     }
 
     #[test]
     fn a_gesture_is_one_step() {
-        let mut h = History::default();
+        let mut h = History::<u32>::default();
         let key = Some(EditKey::Value("n".into(), "value".into()));
         h.record(snap(), key.clone());
         h.record(snap(), key.clone());
@@ -141,15 +128,31 @@ mod tests {
     }
 
     #[test]
-    fn undo_redo_move_between_stacks() {
-        let mut h = History::default();
-        h.record(snap(), None);
+    fn undo_and_redo_hand_back_the_recorded_states() {
+        let mut h = History::<u32>::default();
+        h.record(1, None);
+        h.record(2, None);
         assert!(h.can_undo() && !h.can_redo());
-        assert!(h.undo(snap()).is_some());
+        assert_eq!(h.undo(3), Some(2));
+        assert_eq!(h.undo(2), Some(1));
+        assert_eq!(h.undo(1), None);
         assert!(!h.can_undo() && h.can_redo());
-        assert!(h.redo(snap()).is_some());
-        assert!(h.undo(snap()).is_some());
-        h.record(snap(), None);
+        assert_eq!(h.redo(1), Some(2));
+        h.record(2, None);
         assert!(!h.can_redo(), "a new edit clears redo");
+    }
+
+    #[test]
+    fn the_oldest_steps_are_dropped_past_the_limit() {
+        let mut h = History::<usize>::default();
+        for k in 0..MAX_STEPS + 5 {
+            h.record(k, None);
+        }
+        assert_eq!(h.undo_len(), MAX_STEPS);
+        let mut last = None;
+        while let Some(s) = h.undo(0) {
+            last = Some(s);
+        }
+        assert_eq!(last, Some(5), "the first five states are gone");
     }
 }

@@ -24,8 +24,10 @@
 
 pub mod app;
 pub mod canvas;
+pub mod clipboard;
 pub mod cluster_ports;
 pub mod document;
+pub mod edit;
 pub mod export;
 pub mod file_dialog;
 pub mod history;
@@ -40,7 +42,9 @@ pub mod optimization;
 pub mod page;
 pub mod palette;
 pub mod parameters;
+pub mod plot;
 pub mod recovery;
+pub mod request;
 pub mod settings;
 pub mod unsaved;
 pub mod viewport;

@@ -286,9 +286,9 @@ impl Bench {
         let (min, max, _) = cnets_editor::widgets::slider_range(node);
         let t = f64::from(self.done - 1) / 60.0;
         let value = min + (max - min) * (0.5 + 0.4 * (t * std::f64::consts::TAU).sin());
-        let _ = cnets_editor::canvas::apply(
+        let _ = cnets_editor::edit::apply(
             &mut app.doc,
-            cnets_editor::canvas::CanvasAction::SetValue {
+            cnets_editor::edit::Edit::SetValue {
                 node: id,
                 input: "value".into(),
                 value: cnets_engine::Value::Number(value),

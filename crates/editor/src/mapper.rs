@@ -86,7 +86,7 @@ pub struct MapperResponse {
     /// The plot's rectangle (unit square: u to the right, v up), in the ui's coordinates.
     pub plot: Rect,
     /// A handle coordinate picked in the plot's context menu ("Optimize a value").
-    pub optimize: Option<crate::canvas::CanvasAction>,
+    pub optimize: Option<crate::request::UiRequest>,
 }
 
 /// Font size, in screen points, of the value label of a hovered or dragged handle (the same at

@@ -7,6 +7,8 @@ use cnets_engine::Graph;
 use cnets_engine::cluster::Cluster;
 
 use crate::canvas::CanvasAction;
+use crate::edit::Edit;
+use crate::request::UiRequest;
 
 /// Node types the panel lists, with the input it edits.
 pub const PARAMETERS: &[(&str, &str)] = &[
@@ -75,21 +77,21 @@ pub fn show(ui: &mut egui::Ui, graph: &Graph) -> Vec<CanvasAction> {
                                 if crate::mapper::is_mapper(node) {
                                     let r = crate::mapper::show(ui, graph, node);
                                     if let Some(values) = r.changes {
-                                        actions.push(CanvasAction::SetValues {
+                                        actions.push(CanvasAction::Edit(Edit::SetValues {
                                             node: id.clone(),
                                             values,
-                                        });
+                                        }));
                                     }
                                 } else if let Some(input) = edited_input(type_id)
                                     && let Some(k) = node.def.input_index(input)
                                 {
                                     ui.spacing_mut().slider_width = 160.0;
                                     if let Some(value) = crate::widgets::input_editor(ui, node, k) {
-                                        actions.push(CanvasAction::SetValue {
+                                        actions.push(CanvasAction::Edit(Edit::SetValue {
                                             node: id.clone(),
                                             input: input.to_string(),
                                             value,
-                                        });
+                                        }));
                                     }
                                 }
                             });
@@ -110,7 +112,9 @@ pub fn show(ui: &mut egui::Ui, graph: &Graph) -> Vec<CanvasAction> {
                             .on_hover_text("double-click its title on the canvas does the same")
                             .clicked()
                         {
-                            actions.push(CanvasAction::OpenCluster(cluster.clone()));
+                            actions.push(CanvasAction::Request(UiRequest::OpenCluster(
+                                cluster.clone(),
+                            )));
                         }
                     });
             }

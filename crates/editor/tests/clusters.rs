@@ -10,6 +10,7 @@ use std::time::Duration;
 
 use cnets_editor::app::EditorApp;
 use cnets_editor::canvas::CanvasAction;
+use cnets_editor::edit::Edit;
 use cnets_editor::worker::NodeStatus;
 use cnets_engine::Value;
 use cnets_engine::cluster::Cluster;
@@ -198,11 +199,11 @@ fn open_a_cluster_edit_inside_and_go_back_changes_the_outer_result_undo_crosses_
 
     // Change a value inside: the live evaluation follows at once.
     let steps = h.state().doc.history.undo_len();
-    assert!(h.state_mut().apply(CanvasAction::SetValue {
+    assert!(h.state_mut().apply(CanvasAction::Edit(Edit::SetValue {
         node: "ratio".into(),
         input: "value".into(),
         value: Value::Number(0.3),
-    }));
+    })));
     h.state_mut().doc.history.end_gesture();
     settle(&mut h);
     assert_ne!(
@@ -275,11 +276,11 @@ fn nested_clusters_open_with_breadcrumbs_of_any_depth() {
         ["main", "cluster_2 (inline)", "cluster (inline)"]
     );
     assert!(matches!(app.statuses["apex"], NodeStatus::Ok { .. }));
-    h.state_mut().apply(CanvasAction::SetValue {
+    h.state_mut().apply(CanvasAction::Edit(Edit::SetValue {
         node: "apex".into(),
         input: "value".into(),
         value: Value::Number(1.2),
-    });
+    }));
     settle(&mut h);
     // The first crumb goes back to the document's graph through both levels.
     h.get_by_label("main").click();
@@ -343,11 +344,11 @@ fn a_library_graph_appears_in_the_palette_and_inserts_a_working_cluster() {
         h.state().doc.to_ron().contains("source: \"twice.ron\""),
         "resolved through the library folder"
     );
-    h.state_mut().apply(CanvasAction::SetValue {
+    h.state_mut().apply(CanvasAction::Edit(Edit::SetValue {
         node: id.clone(),
         input: "x".into(),
         value: Value::Number(3.5),
-    });
+    }));
     settle(&mut h);
     assert_eq!(output_of(h.state(), &id), ["7"]);
     // The saved file loads back with the same library folder.

@@ -4,6 +4,7 @@
 mod common;
 
 use cnets_editor::canvas::CanvasAction;
+use cnets_editor::edit::Edit;
 use cnets_editor::parameters;
 use cnets_engine::{Graph, Value};
 use egui::accesskit::Role;
@@ -52,9 +53,9 @@ fn the_panel_is_docked_and_its_sliders_edit_the_graph() {
     let last = actions
         .into_iter()
         .rev()
-        .find(|a| matches!(a, CanvasAction::SetValue { node, .. } if node == "apex"))
+        .find(|a| matches!(a, CanvasAction::Edit(Edit::SetValue { node, .. }) if node == "apex"))
         .expect("the apex slider was dragged");
-    let CanvasAction::SetValue { value, .. } = &last else {
+    let CanvasAction::Edit(Edit::SetValue { value, .. }) = &last else {
         unreachable!()
     };
     assert!(value.as_f64().unwrap() > 1.0, "{value:?}");

@@ -561,6 +561,44 @@ impl Graph {
         Ok(())
     }
 
+    /// Removes every wire into `to.input`; returns how many there were.
+    pub fn disconnect_input(&mut self, to: &str, input: &str) -> Result<usize, GraphError> {
+        let b = self.index(to)?;
+        let i = self.input_port(b, input)?;
+        let edges: Vec<EdgeIndex> = self
+            .inner
+            .edges_directed(b, Direction::Incoming)
+            .filter(|e| e.weight().to_input == i)
+            .map(|e| e.id())
+            .collect();
+        for &e in &edges {
+            self.inner.remove_edge(e);
+        }
+        if !edges.is_empty() {
+            self.bump(b);
+        }
+        Ok(edges.len())
+    }
+
+    /// Removes every wire out of `from.output`; returns how many there were.
+    pub fn disconnect_output(&mut self, from: &str, output: &str) -> Result<usize, GraphError> {
+        let a = self.index(from)?;
+        let o = self.output_port(a, output)?;
+        let wires: Vec<(EdgeIndex, NodeIndex)> = self
+            .inner
+            .edges_directed(a, Direction::Outgoing)
+            .filter(|e| e.weight().from_output == o)
+            .map(|e| (e.id(), e.target()))
+            .collect();
+        for &(e, _) in &wires {
+            self.inner.remove_edge(e);
+        }
+        for &(_, b) in &wires {
+            self.bump(b);
+        }
+        Ok(wires.len())
+    }
+
     fn find_wire(&self, a: NodeIndex, o: usize, b: NodeIndex, i: usize) -> Option<EdgeIndex> {
         self.inner
             .edges_connecting(a, b)

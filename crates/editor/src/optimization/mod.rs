@@ -1,0 +1,254 @@
+//! The optimization panel (View › Optimization): the graph's stored optimization setup
+//! (`cnets_engine::optimize::Setup`: variables with bounds, objective, penalties, method, iteration
+//! limit), picked from the canvas and edited as document edits (undo, saved in the file's
+//! `optimization` section), and runs of the engine's optimizer on a worker thread with a live
+//! objective plot.
+//!
+//! Picking: right-click an unconnected input's label › *Optimize this value* (a number, an item of a
+//! list, a coordinate of a point; bounds: a `param.number`'s slider range, `[0, 1]` for graph-mapper
+//! handles, ±50 % of the value otherwise), right-click a number output › *Minimize this output* or
+//! *Add as penalty*. A setup needs an objective and at least one variable to be stored in the file;
+//! until both are picked the panel keeps a draft.
+//!
+//! A run works on a copy of the graph (cluster instances duplicated, so caches stay separate) and
+//! never blocks the UI: *Stop* sets the evaluation context's cancel flag; when it ends, *Accept*
+//! writes the optimized values into the document as one undo step, *Revert* discards them.
+
+mod candidates;
+mod panel;
+mod run;
+
+use cnets_engine::Value;
+use cnets_engine::optimize::{Iteration, Method, Penalty, PenaltyKind, Setup, ValuePath, Variable};
+use std::sync::Arc;
+
+use crate::document::GraphDocument;
+
+pub use candidates::{
+    Candidate, MAX_CANDIDATES, default_bounds, variable_candidates, variable_menu, whole_input,
+};
+pub use panel::{current_value, value_label};
+pub use run::{Finished, isolated};
+
+fn fmt(x: f64) -> String {
+    crate::worker::format_number(x)
+}
+
+/// A setup still missing its objective or its variables (not stored in the file yet).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Draft {
+    /// The objective, once picked.
+    pub objective: Option<ValuePath>,
+    /// Variables picked so far.
+    pub variables: Vec<Variable>,
+    /// Penalties picked so far.
+    pub penalties: Vec<Penalty>,
+}
+
+/// The panel's state.
+pub struct OptimizationPanel {
+    /// Whether the panel is shown.
+    pub open: bool,
+    /// The setup being picked while it is incomplete.
+    pub draft: Draft,
+    /// The iterations reported by the current (or last) run.
+    pub iterations: Vec<Iteration>,
+    /// The last finished run, until accepted or reverted; or why it could not run.
+    pub result: Option<Result<Finished, String>>,
+    running: Option<run::Running>,
+    wake: Arc<dyn Fn() + Send + Sync>,
+}
+
+impl OptimizationPanel {
+    /// A closed panel; `wake` is called by the run's thread after each iteration.
+    pub fn new(wake: Arc<dyn Fn() + Send + Sync>) -> Self {
+        Self {
+            open: false,
+            draft: Draft::default(),
+            iterations: Vec::new(),
+            result: None,
+            running: None,
+            wake,
+        }
+    }
+
+    /// Whether a run is in progress.
+    pub fn running(&self) -> bool {
+        self.running.is_some()
+    }
+
+    /// Forgets the draft and any result (another document was opened).
+    pub fn reset(&mut self) {
+        self.running = None;
+        self.draft = Draft::default();
+        self.iterations.clear();
+        self.result = None;
+    }
+
+    /// Adds a variable (or updates its bounds); returns a status message.
+    pub fn add_variable(
+        &mut self,
+        doc: &mut GraphDocument,
+        variable: Variable,
+        prepare: Option<Value>,
+    ) -> Result<String, String> {
+        let path = variable.input.clone();
+        let message = format!(
+            "optimization variable {path} in [{}, {}]",
+            fmt(variable.min),
+            fmt(variable.max)
+        );
+        if doc.meta.optimization.is_some() {
+            doc.edit(None, |g, meta| {
+                if let Some(v) = prepare {
+                    g.set_value(&path.node, &path.port, v)
+                        .map_err(|e| e.to_string())?;
+                }
+                let setup = meta.optimization.as_mut().ok_or("no setup")?;
+                match setup.variables.iter_mut().find(|v| v.input == path) {
+                    Some(v) => *v = variable,
+                    None => setup.variables.push(variable),
+                }
+                Ok(())
+            })?;
+            return Ok(message);
+        }
+        if let Some(v) = prepare {
+            doc.edit(None, |g, _| {
+                g.set_value(&path.node, &path.port, v)
+                    .map(|_| ())
+                    .map_err(|e| e.to_string())
+            })?;
+        }
+        match self.draft.variables.iter_mut().find(|v| v.input == path) {
+            Some(v) => *v = variable,
+            None => self.draft.variables.push(variable),
+        }
+        self.commit_draft(doc).map(|stored| {
+            if stored {
+                message
+            } else {
+                format!("{message}; now pick the objective (right-click a number output)")
+            }
+        })
+    }
+
+    /// Makes `path` the objective; returns a status message.
+    pub fn set_objective(
+        &mut self,
+        doc: &mut GraphDocument,
+        path: ValuePath,
+    ) -> Result<String, String> {
+        let message = format!("optimization objective: minimize {path}");
+        if doc.meta.optimization.is_some() {
+            doc.edit(None, |_, meta| {
+                if let Some(s) = meta.optimization.as_mut() {
+                    s.objective = path;
+                }
+                Ok(())
+            })?;
+            return Ok(message);
+        }
+        self.draft.objective = Some(path);
+        self.commit_draft(doc).map(|stored| {
+            if stored {
+                message
+            } else {
+                format!("{message}; now pick variables (right-click a number input)")
+            }
+        })
+    }
+
+    /// Adds `path` as a penalty (kind `at_most`, target 0, weight 1: edit them in the panel).
+    pub fn add_penalty(
+        &mut self,
+        doc: &mut GraphDocument,
+        path: ValuePath,
+    ) -> Result<String, String> {
+        let penalty = Penalty {
+            output: path.clone(),
+            weight: 1.0,
+            kind: PenaltyKind::AtMost,
+            target: 0.0,
+        };
+        if doc.meta.optimization.is_some() {
+            doc.edit(None, |_, meta| {
+                if let Some(s) = meta.optimization.as_mut() {
+                    s.penalties.push(penalty);
+                }
+                Ok(())
+            })?;
+        } else {
+            self.draft.penalties.push(penalty);
+        }
+        Ok(format!("optimization penalty on {path}"))
+    }
+
+    /// Stores the draft in the document once it is complete (one undo step); returns whether it
+    /// was stored.
+    fn commit_draft(&mut self, doc: &mut GraphDocument) -> Result<bool, String> {
+        let Some(objective) = self.draft.objective.clone() else {
+            return Ok(false);
+        };
+        if self.draft.variables.is_empty() {
+            return Ok(false);
+        }
+        let setup = Setup {
+            objective,
+            variables: self.draft.variables.clone(),
+            penalties: self.draft.penalties.clone(),
+            method: Method::Auto,
+            max_iter: 100,
+        };
+        doc.edit(None, |_, meta| {
+            meta.optimization = Some(setup);
+            Ok(())
+        })?;
+        self.draft = Draft::default();
+        Ok(true)
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use cnets_engine::Graph;
+
+    /// A number `n` in [0.1, 2], a graph mapper `m` and an arc of radius 4.
+    pub(crate) fn graph() -> Graph {
+        let registry = Arc::new(cnets_nodes::registry());
+        let mut g = Graph::new(registry);
+        g.add_node("n", "param.number").unwrap();
+        g.set_value("n", "value", Value::Number(0.3)).unwrap();
+        g.set_value("n", "min", Value::Number(0.1)).unwrap();
+        g.set_value("n", "max", Value::Number(2.0)).unwrap();
+        g.add_node("m", "mapper.graph").unwrap();
+        g.add_node("arc", "curve.arc").unwrap();
+        g.set_value("arc", "radius", Value::Number(4.0)).unwrap();
+        g
+    }
+
+    #[test]
+    fn a_draft_becomes_the_stored_setup_once_complete() {
+        let mut doc = GraphDocument::from_parts(graph(), Default::default(), None);
+        let mut panel = OptimizationPanel::new(Arc::new(|| {}));
+        let var = Variable {
+            input: ValuePath::parse("n.value").unwrap(),
+            min: 0.1,
+            max: 2.0,
+        };
+        let m = panel.add_variable(&mut doc, var, None).unwrap();
+        assert!(m.contains("objective"), "{m}");
+        assert!(doc.meta.optimization.is_none(), "incomplete: a draft");
+        assert!(!doc.history.can_undo());
+        panel
+            .set_objective(&mut doc, ValuePath::parse("n.value").unwrap())
+            .unwrap();
+        let setup = doc.meta.optimization.clone().expect("stored");
+        assert_eq!(setup.variables.len(), 1);
+        assert_eq!(doc.history.undo_len(), 1);
+        assert!(doc.to_ron().contains("optimization: ("));
+        assert!(doc.undo());
+        assert!(doc.meta.optimization.is_none());
+    }
+}

@@ -1,0 +1,209 @@
+//! Optimization runs: the engine's optimizer on a worker thread over a copy of the graph,
+//! reporting each iteration; stopping, and accepting or reverting the result.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, channel};
+use std::thread::JoinHandle;
+use web_time::{Duration, Instant};
+
+use cnets_engine::cluster::Cluster;
+use cnets_engine::optimize::{self, Iteration, Outcome, Setup};
+use cnets_engine::{Graph, NodeContext};
+
+use super::{OptimizationPanel, fmt};
+use crate::document::GraphDocument;
+
+/// A finished run.
+pub struct Finished {
+    /// The setup that ran.
+    pub setup: Setup,
+    /// What the optimizer returned (the graph with the best values applied).
+    pub outcome: Outcome,
+    /// The clusters opened when it started (the run belongs to that graph).
+    pub view: Vec<String>,
+    /// Wall time.
+    pub seconds: f64,
+}
+
+enum Message {
+    Iteration(Iteration),
+    Done(Box<Result<Outcome, String>>),
+}
+
+/// A run in progress (dropping it stops it and joins its thread).
+pub(super) struct Running {
+    cancel: Arc<AtomicBool>,
+    rx: Receiver<Message>,
+    thread: Option<JoinHandle<()>>,
+    setup: Setup,
+    view: Vec<String>,
+    started: Instant,
+}
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+impl OptimizationPanel {
+    /// Starts optimizing the document's stored setup on a copy of the graph being edited.
+    pub fn start(
+        &mut self,
+        doc: &GraphDocument,
+        base_dir: Option<PathBuf>,
+        max_iter: Option<usize>,
+    ) -> Result<(), String> {
+        if self.running.is_some() {
+            return Err("an optimization is already running".into());
+        }
+        let mut setup = doc
+            .meta
+            .optimization
+            .clone()
+            .ok_or("no optimization setup: pick variables and an objective first")?;
+        if let Some(n) = max_iter {
+            setup.max_iter = n;
+        }
+        let graph = isolated(&doc.graph);
+        let (tx, rx) = channel();
+        let cancel = Arc::new(AtomicBool::new(false));
+        let flag = cancel.clone();
+        let wake = self.wake.clone();
+        let run_setup = setup.clone();
+        let thread = std::thread::Builder::new()
+            .name("cnets-optimize".into())
+            .spawn(move || {
+                let mut ctx = NodeContext::new(None, base_dir);
+                ctx.cancel = flag;
+                let options = optimize::Options::default();
+                let result = optimize::optimize(&graph, &run_setup, &options, &ctx, &mut |it| {
+                    let _ = tx.send(Message::Iteration(it.clone()));
+                    wake();
+                });
+                let _ = tx.send(Message::Done(Box::new(result.map_err(|e| e.to_string()))));
+                wake();
+            })
+            .map_err(|e| format!("cannot start the optimizer: {e}"))?;
+        self.iterations.clear();
+        self.result = None;
+        self.running = Some(Running {
+            cancel,
+            rx,
+            thread: Some(thread),
+            setup,
+            view: doc.view_path(),
+            started: Instant::now(),
+        });
+        Ok(())
+    }
+
+    /// Asks the run to stop (it ends after the evaluation in progress, keeping the best point).
+    pub fn stop(&mut self) {
+        if let Some(r) = &self.running {
+            r.cancel.store(true, Ordering::Relaxed);
+        }
+    }
+
+    /// Takes what the run reported; returns whether anything arrived.
+    pub fn poll(&mut self) -> bool {
+        let Some(run) = &mut self.running else {
+            return false;
+        };
+        let mut any = false;
+        let mut done = None;
+        while let Ok(m) = run.rx.try_recv() {
+            any = true;
+            match m {
+                Message::Iteration(it) => self.iterations.push(it),
+                Message::Done(r) => done = Some(*r),
+            }
+        }
+        if let Some(r) = done {
+            let run = self.running.take();
+            if let Some(mut run) = run {
+                if let Some(t) = run.thread.take() {
+                    let _ = t.join();
+                }
+                self.result = Some(r.map(|outcome| Finished {
+                    setup: run.setup.clone(),
+                    outcome,
+                    view: run.view.clone(),
+                    seconds: run.started.elapsed().as_secs_f64(),
+                }));
+            }
+        }
+        any
+    }
+
+    /// Waits (up to `timeout`) for the run to end, taking its reports. For tests.
+    pub fn wait(&mut self, timeout: Duration) -> bool {
+        let deadline = Instant::now() + timeout;
+        while self.running.is_some() && Instant::now() < deadline {
+            self.poll();
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        self.poll();
+        self.running.is_none()
+    }
+
+    /// Writes the optimized values into the document (one undo step) and closes the result.
+    pub fn accept(&mut self, doc: &mut GraphDocument) -> Result<String, String> {
+        let Some(Ok(finished)) = &self.result else {
+            return Err("no finished optimization to accept".into());
+        };
+        if finished.view != doc.view_path() {
+            return Err("the optimization ran on another graph level: go back to it first".into());
+        }
+        let best = &finished.outcome.graph;
+        let mut inputs: Vec<(String, String)> = Vec::new();
+        for v in &finished.setup.variables {
+            let key = (v.input.node.clone(), v.input.port.clone());
+            if !inputs.contains(&key) {
+                inputs.push(key);
+            }
+        }
+        doc.edit(None, |g, _| {
+            for (node, port) in &inputs {
+                let value = best
+                    .node(node)
+                    .and_then(|n| n.value_of(port))
+                    .cloned()
+                    .ok_or_else(|| format!("{node}.{port} has no optimized value"))?;
+                g.set_value(node, port, value).map_err(|e| e.to_string())?;
+            }
+            Ok(())
+        })?;
+        let message = format!(
+            "accepted the optimized values: objective {} -> {}",
+            fmt(finished.outcome.start),
+            fmt(finished.outcome.objective)
+        );
+        self.result = None;
+        Ok(message)
+    }
+
+    /// Discards the finished run's values.
+    pub fn revert(&mut self) {
+        self.result = None;
+    }
+}
+
+/// A copy of `graph` whose cluster nodes have their own instances (a run must not share caches
+/// with the editor's evaluation).
+pub fn isolated(graph: &Graph) -> Graph {
+    let mut g = graph.clone();
+    let clusters: Vec<(String, Arc<Cluster>)> = g
+        .nodes()
+        .filter_map(|(_, n)| Cluster::shared(&n.def).map(|c| (n.id.clone(), c)))
+        .collect();
+    for (id, c) in clusters {
+        let _ = g.replace_def(&id, Arc::new(c.duplicate().node_def()));
+    }
+    g
+}

@@ -1,0 +1,31 @@
+//! UI requests: what a gesture asks of the editor's interface rather than of the document (open
+//! the palette, open a cluster in place, pick an optimization variable or objective). The app
+//! carries them out (`EditorApp::handle`); graph changes are [`crate::edit::Edit`]s instead.
+
+use cnets_engine::Value;
+use cnets_engine::optimize::ValuePath;
+
+/// A request to the editor's interface.
+#[derive(Clone, Debug, PartialEq)]
+pub enum UiRequest {
+    /// Open the node palette at a canvas position.
+    OpenPalette([f32; 2]),
+    /// Open a cluster node to edit its subgraph in place.
+    OpenCluster(String),
+    /// Make a number inside an input's literal value an optimization variable.
+    Optimize {
+        /// The number (`node.input[...]`).
+        path: ValuePath,
+        /// Lower bound.
+        min: f64,
+        /// Upper bound.
+        max: f64,
+        /// A literal to set on the input first (a graph mapper's default handles, which have no
+        /// literal yet).
+        prepare: Option<Value>,
+    },
+    /// Make a number output the optimization objective.
+    Minimize(ValuePath),
+    /// Add a number output as an optimization penalty (kept at most at its current value).
+    Penalize(ValuePath),
+}
