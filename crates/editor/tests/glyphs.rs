@@ -75,7 +75,7 @@ fn every_character_of_the_ui_strings_has_a_glyph() {
         include_str!("../src/menus.rs"),
         include_str!("../src/palette.rs"),
         include_str!("../src/widgets.rs"),
-        include_str!("../src/mapper.rs"),
+        include_str!("../src/mapper/mod.rs"),
         include_str!("../src/optimization/mod.rs"),
         include_str!("../src/optimization/candidates.rs"),
         include_str!("../src/optimization/panel.rs"),

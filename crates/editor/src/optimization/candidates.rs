@@ -74,7 +74,8 @@ pub fn variable_candidates(node: &NodeInstance, k: usize) -> Vec<Candidate> {
     ) {
         return Vec::new();
     }
-    let is_handles = crate::mapper::is_mapper(node) && crate::mapper::handles_port(node) == Some(k);
+    let is_handles =
+        crate::mapper::node::is_mapper(node) && crate::mapper::node::handles_port(node) == Some(k);
     let (value, prepare) = match effective_value(node, k) {
         Some(v) if !(is_handles && matches!(&v, Value::List(items) if items.is_empty())) => {
             (v, None)
@@ -82,7 +83,7 @@ pub fn variable_candidates(node: &NodeInstance, k: usize) -> Vec<Candidate> {
         _ if is_handles => {
             // No handles set: the kind's defaults, written on the input with the variable.
             let handles = Value::list(
-                crate::mapper::handles(node)
+                crate::mapper::node::handles(node)
                     .into_iter()
                     .map(|h| Value::Point(cnets_geometry::DVec3::new(h.x, h.y, 0.0)))
                     .collect(),
@@ -233,9 +234,9 @@ mod tests {
         assert_eq!(c[1].path.to_string(), "arc.centre[1]");
         assert!(variable_candidates(arc, arc.def.input_index("count").unwrap()).is_empty());
         let m = g.node("m").unwrap();
-        let k = crate::mapper::handles_port(m).unwrap();
+        let k = crate::mapper::node::handles_port(m).unwrap();
         let c = variable_candidates(m, k);
-        let handles = crate::mapper::handles(m);
+        let handles = crate::mapper::node::handles(m);
         assert_eq!(c.len(), 2 * handles.len(), "u and v of each default handle");
         assert!(c.iter().all(|c| c.min == 0.0 && c.max == 1.0));
         assert!(

@@ -231,8 +231,8 @@ pub fn value_label(graph: &Graph, path: &ValuePath) -> String {
         }
         let n = cnets_engine::optimize::leaves::count(&value);
         // A mapper's handles: the v of each handle is a variable.
-        let handles =
-            crate::mapper::is_mapper(node) && crate::mapper::handles_port(node) == Some(k);
+        let handles = crate::mapper::node::is_mapper(node)
+            && crate::mapper::node::handles_port(node) == Some(k);
         Some(if handles { n / 3 } else { n })
     });
     match count {
