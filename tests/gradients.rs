@@ -1,7 +1,7 @@
 //! Exact gradients through the real node library: the reverse pass against finite differences of
 //! the whole graph, whole-input variables, and a 1 600-ratio fit that finite differences cannot do.
 
-use cnets_engine::optimize::{Options, Setup, check_gradient, optimize};
+use cnets_engine::optimize::{Options, Setup, ValuePath, Variable, check_gradient, optimize};
 use cnets_engine::{NodeContext, Value};
 use cnets_tests::load;
 use proptest::prelude::*;
@@ -82,7 +82,16 @@ fn a_whole_table_variable_fits_1600_ratios() {
     assert_eq!(out.x.len(), 1600, "every number of the 40 × 40 table");
     assert_eq!(out.variables[41].input.to_string(), "ratios.values[1][1]");
     assert_eq!(out.gradients, out.exact_gradients, "{:?}", out.notes);
-    assert!(out.notes.is_empty(), "{:?}", out.notes);
+    // No finite differences anywhere; the only notes are the steps that move ratios across ½
+    // (the start has them all at ½, on the kink of the ratio → angle map).
+    assert!(
+        out.notes
+            .iter()
+            .all(|n| n.contains("crossed a branch") || n.starts_with("more than")),
+        "{:?}",
+        out.notes
+    );
+    assert!(out.branch_crossings >= 1);
     assert!(
         out.objective < 0.05 * out.start,
         "{:.3e} -> {:.3e}",
@@ -219,4 +228,78 @@ fn figures() {
         "100 × 100 gradient (evaluation + reverse pass, 9 900 ratios): median {:.1} ms, min {:.1} ms, max {:.1} ms",
         times[3], times[0], times[6]
     );
+}
+
+/// Paper Fig. 5's leaning ratios with the assisted correction at ½ (it changes planes), the
+/// fairness of the meshes as the objective and the lean as the variable.
+fn assisted_correction() -> (cnets_engine::Graph, Setup) {
+    let mut graph = load("correction").graph;
+    graph
+        .set_value(
+            "assistance",
+            "values",
+            Value::list(vec![Value::Number(0.5)]),
+        )
+        .unwrap();
+    graph.add_node("fair", "measure.fairness").unwrap();
+    graph.connect("nets", "mesh", "fair", "mesh").unwrap();
+    let setup = Setup {
+        // The construction is mapped over four offsets: the first net's fairness.
+        objective: ValuePath::parse("fair.value[0]").unwrap(),
+        variables: vec![Variable {
+            input: ValuePath::parse("lean.value").unwrap(),
+            min: 0.5,
+            max: 0.99,
+        }],
+        penalties: Vec::new(),
+        method: cnets_engine::optimize::Method::Lbfgsb,
+        max_iter: 5,
+    };
+    (graph, setup)
+}
+
+#[test]
+fn a_run_the_assisted_correction_changed_is_not_differentiated_as_if_it_were_smooth() {
+    // The corrections are computed lazily: only because the construction's derivative asks for
+    // them (`derivative_outputs`) does the reverse pass know that planes were changed.
+    let (graph, setup) = assisted_correction();
+    let check = check_gradient(&graph, &setup, &NodeContext::default()).unwrap();
+    let nets = check
+        .node_notes
+        .iter()
+        .find(|(node, _)| node == "nets")
+        .unwrap_or_else(|| panic!("the construction falls back: {:?}", check.node_notes));
+    assert!(nets.1.contains("assisted correction changed"), "{}", nets.1);
+    assert!(
+        check.largest_relative_difference < 1e-4,
+        "largest relative difference {:e}",
+        check.largest_relative_difference
+    );
+}
+
+#[test]
+fn a_fit_that_leaves_the_ratio_kink_reports_the_branch_crossing() {
+    // ratio-fit starts with every ratio at ½, on the kink of the ratio → angle map; its first
+    // step moves ratios off it.
+    let doc = load("ratio-fit");
+    let setup = doc.meta.optimization.clone().unwrap();
+    let options = Options {
+        max_iter: Some(3),
+        ..Options::default()
+    };
+    let o = optimize(
+        &doc.graph,
+        &setup,
+        &options,
+        &NodeContext::default(),
+        &mut |_| {},
+    )
+    .unwrap();
+    assert!(o.branch_crossings >= 1, "{:?}", o.notes);
+    let crossing = o
+        .notes
+        .iter()
+        .find(|n| n.contains("node 'net' crossed a branch"))
+        .unwrap_or_else(|| panic!("{:?}", o.notes));
+    assert!(crossing.contains("at ½: 1600"), "{crossing}");
 }

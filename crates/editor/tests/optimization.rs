@@ -130,6 +130,49 @@ fn variables_and_the_objective_are_picked_on_the_canvas_as_one_undo_step() {
     assert_eq!(h.state().doc.to_ron(), before);
 }
 
+#[test]
+fn every_value_of_an_input_is_one_whole_input_variable() {
+    // A graph mapper's handles: "Optimize every value" adds the whole list (each handle's v) as
+    // one whole-input variable in [0, 1], writing the default handles first.
+    let mut h = harness("opt-whole");
+    let id = h
+        .state_mut()
+        .add_node("mapper.graph", [420.0, 560.0])
+        .unwrap();
+    h.state_mut().canvas.fit();
+    h.run_steps(4);
+    let at = h
+        .state()
+        .canvas
+        .mapper_screen_pos(&id, 0.5, 0.9)
+        .expect("the mapper plot");
+    right_click(&mut h, at);
+    h.get_by_label_contains("Optimize a value").hover();
+    h.run_steps(3);
+    h.get_by_label("Optimize every value").click();
+    h.run_steps(3);
+    let app = h.state();
+    let variables = &app.optimization.draft.variables;
+    assert_eq!(variables.len(), 1, "{}", app.message);
+    assert_eq!(variables[0].input.to_string(), format!("{id}.handles"));
+    assert_eq!((variables[0].min, variables[0].max), (0.0, 1.0));
+    assert!(
+        app.doc
+            .graph
+            .node(&id)
+            .unwrap()
+            .value_of("handles")
+            .is_some(),
+        "the default handles are written so the variable has a literal to live in"
+    );
+    // The variables table says how many numbers the variable stands for: one per handle.
+    let handles = cnets_editor::mapper::handles(app.doc.graph.node(&id).unwrap()).len();
+    assert_eq!(
+        cnets_editor::optimization::value_label(&app.doc.graph, &variables[0].input),
+        format!("{handles} numbers")
+    );
+}
+
 fn tube(name: &str) -> Harness<'static, EditorApp> {
     let mut h = harness_with(
         name,

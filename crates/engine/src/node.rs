@@ -125,6 +125,13 @@ pub struct NodeDef {
     /// differentiable, the optimizer uses finite differences for this node
     /// ([`crate::optimize::vjp`]).
     pub vjp: Option<crate::optimize::vjp::VjpFn>,
+    /// For a piecewise-smooth node, which smooth piece a run was on, so the optimizer reports a
+    /// step that crosses a kink ([`crate::optimize::branch`]); `None`: smooth, or not told.
+    pub branch: Option<crate::optimize::branch::BranchFn>,
+    /// Outputs the vector–Jacobian product and the branch function read besides those on the
+    /// path to the objective (e.g. the construction's `corrections`): the optimizer asks for them
+    /// in the same run, so a lazily computed output is never read empty.
+    pub derivative_outputs: &'static [&'static str],
 }
 
 impl fmt::Debug for NodeDef {
@@ -161,6 +168,8 @@ impl NodeDef {
             run: Arc::new(|_, _| Err(NodeError::new("node has no implementation"))),
             extension: None,
             vjp: None,
+            branch: None,
+            derivative_outputs: &[],
         }
     }
 
@@ -200,6 +209,26 @@ impl NodeDef {
         + 'static,
     ) -> Self {
         self.vjp = Some(Arc::new(f));
+        self
+    }
+
+    /// Sets the branch function of a piecewise-smooth node (builder style; see
+    /// [`crate::optimize::branch`]).
+    pub fn with_branch(
+        mut self,
+        f: impl Fn(&[Value], &[Value]) -> Option<crate::optimize::branch::Branch>
+        + Send
+        + Sync
+        + 'static,
+    ) -> Self {
+        self.branch = Some(Arc::new(f));
+        self
+    }
+
+    /// Sets the outputs the derivative reads (builder style; see
+    /// [`NodeDef::derivative_outputs`]).
+    pub fn with_derivative_outputs(mut self, outputs: &'static [&'static str]) -> Self {
+        self.derivative_outputs = outputs;
         self
     }
 

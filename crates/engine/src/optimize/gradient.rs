@@ -30,6 +30,9 @@ pub struct Gradient {
     pub finite_differences: Vec<(String, String)>,
     /// Node runs of the reverse pass (finite differences of nodes without a derivative).
     pub node_runs: u64,
+    /// The smooth piece each piecewise-smooth node on the path was on
+    /// ([`super::branch`]).
+    pub branches: Vec<(String, super::branch::Branch)>,
 }
 
 impl Problem {
@@ -110,6 +113,7 @@ impl Problem {
         }
         let mut gradient = vec![0.0; self.dimension()];
         let mut finite_differences = Vec::new();
+        let mut branches = Vec::new();
         let mut node_runs = 0;
         let order = graph.topological_order();
         for &k in order.iter().rev() {
@@ -173,6 +177,9 @@ impl Problem {
             if let Some(reason) = result.finite_differences {
                 finite_differences.push((instance.id.clone(), reason));
             }
+            if let Some(piece) = def.branch.as_ref().and_then(|b| b(&inputs, outputs)) {
+                branches.push((instance.id.clone(), piece));
+            }
             for (input, c) in result.inputs.into_iter().enumerate() {
                 let Some(c) = c else { continue };
                 let from: Vec<_> = wires.iter().filter(|(_, w)| w.to_input == input).collect();
@@ -216,6 +223,7 @@ impl Problem {
             gradient,
             finite_differences,
             node_runs,
+            branches,
         })
     }
 }

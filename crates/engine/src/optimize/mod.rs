@@ -8,6 +8,7 @@
 //! evaluations and node runs are counted. Runs are deterministic (bit for bit), cancellable through
 //! the context's cancel flag, and report every iteration.
 
+pub mod branch;
 pub mod gradient;
 mod lbfgsb;
 pub mod leaves;
@@ -108,6 +109,9 @@ pub struct Outcome {
     /// Nodes whose part of the gradient used finite differences of their own run, with the reason
     /// (first occurrence of each), and why whole gradients fell back to finite differences.
     pub notes: Vec<String>,
+    /// Steps on which a piecewise-smooth node on the path changed its piece (a kink crossed;
+    /// the first ones are described in `notes`).
+    pub branch_crossings: u64,
     /// Whether the run switched to Nelder–Mead.
     pub fell_back: bool,
     /// Why it stopped.
@@ -138,6 +142,7 @@ struct Run<'a> {
     exact: bool,
     exact_gradients: u64,
     notes: Vec<String>,
+    branches: branch::BranchWatch,
 }
 
 impl Run<'_> {
@@ -167,6 +172,9 @@ impl Run<'_> {
                         self.note(format!(
                             "node '{node}': finite differences for its part ({reason})"
                         ));
+                    }
+                    for report in self.branches.observe(self.gradients, g.branches) {
+                        self.note(report);
                     }
                     return g.gradient;
                 }
@@ -242,6 +250,7 @@ pub fn optimize(
         exact: options.exact_gradients,
         exact_gradients: 0,
         notes: Vec::new(),
+        branches: branch::BranchWatch::default(),
     };
     let start = run.problem.value(&x, ctx).map_err(OptimizeError::Start)?;
     run.start = start;
@@ -278,6 +287,7 @@ pub fn optimize(
         gradients: run.gradients,
         exact_gradients: run.exact_gradients,
         notes: run.notes,
+        branch_crossings: run.branches.crossings,
         fell_back,
         stop,
         graph: run.problem.into_graph(),
@@ -322,6 +332,7 @@ pub fn check_gradient(
         exact: true,
         exact_gradients: 0,
         notes: Vec::new(),
+        branches: branch::BranchWatch::default(),
     };
     let exact = run
         .problem

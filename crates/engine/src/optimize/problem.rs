@@ -5,7 +5,7 @@ use petgraph::stable_graph::NodeIndex;
 
 use super::leaves;
 use super::setup::{Setup, Variable};
-use crate::eval::Evaluator;
+use crate::eval::{Evaluator, OutputMask};
 use crate::graph::Graph;
 use crate::node::NodeContext;
 use crate::value::Value;
@@ -37,6 +37,9 @@ pub struct Problem {
     pub(super) evaluator: Evaluator,
     incremental: bool,
     pub(super) request: Vec<NodeIndex>,
+    /// `request` with every output, and the nodes between a variable and the objective whose
+    /// derivative reads outputs off the path, with those outputs ([`crate::NodeDef::derivative_outputs`]).
+    demand: Vec<(NodeIndex, OutputMask)>,
     /// The literal inputs holding variables.
     pub(super) groups: Vec<Group>,
     /// Objective evaluations so far.
@@ -187,12 +190,14 @@ impl Problem {
                     .map_err(|e| SetupMismatch(e.to_string()))?,
             );
         }
+        let demand = derivative_demand(&graph, &request, &groups);
         Ok(Self {
             graph,
             setup,
             evaluator: Evaluator::new(),
             incremental,
             request,
+            demand,
             groups,
             evaluations: 0,
             node_runs: 0,
@@ -249,9 +254,9 @@ impl Problem {
         if !self.incremental {
             self.evaluator = Evaluator::new();
         }
-        let summary = self
-            .evaluator
-            .evaluate(&self.graph, &self.request, ctx, &mut |_, _| {});
+        let summary =
+            self.evaluator
+                .evaluate_outputs(&self.graph, &self.demand, ctx, &mut |_, _| {});
         self.evaluations += 1;
         self.node_runs += summary.ran as u64;
         if summary.cancelled {
@@ -297,4 +302,53 @@ impl Problem {
     pub fn into_graph(self) -> Graph {
         self.graph
     }
+}
+
+/// The outputs one evaluation asks for: every output of the requested nodes, and the outputs the
+/// derivatives of the nodes between a variable and a requested node read off the path.
+fn derivative_demand(
+    graph: &Graph,
+    request: &[NodeIndex],
+    groups: &[Group],
+) -> Vec<(NodeIndex, OutputMask)> {
+    let n = graph.index_bound();
+    let walk = |starts: &mut Vec<NodeIndex>, forward: bool| {
+        let mut seen = vec![false; n];
+        for k in starts.iter() {
+            seen[k.index()] = true;
+        }
+        while let Some(k) = starts.pop() {
+            let next: Vec<NodeIndex> = if forward {
+                graph.targets(k).collect()
+            } else {
+                graph.sources(k).collect()
+            };
+            for t in next {
+                if !seen[t.index()] {
+                    seen[t.index()] = true;
+                    starts.push(t);
+                }
+            }
+        }
+        seen
+    };
+    let down = walk(
+        &mut groups
+            .iter()
+            .filter_map(|g| graph.index(&g.node).ok())
+            .collect(),
+        true,
+    );
+    let up = walk(&mut request.to_vec(), false);
+    let mut demand: Vec<(NodeIndex, OutputMask)> =
+        request.iter().map(|&k| (k, OutputMask::ALL)).collect();
+    for (k, node) in graph.nodes() {
+        let needs = node.def.derivative_outputs;
+        if needs.is_empty() || !down[k.index()] || !up[k.index()] || request.contains(&k) {
+            continue;
+        }
+        let names: Vec<&str> = node.def.outputs.iter().map(|p| p.name.as_ref()).collect();
+        demand.push((k, OutputMask::of_names(names, needs)));
+    }
+    demand
 }

@@ -145,6 +145,7 @@ pub fn run(args: Args) -> CommandResult {
                 "gradients": outcome.gradients,
                 "exact_gradients": outcome.exact_gradients,
                 "notes": outcome.notes,
+                "branch_crossings": outcome.branch_crossings,
                 "node_runs": outcome.node_runs,
                 "fell_back": outcome.fell_back,
                 "seconds": seconds,
@@ -166,6 +167,12 @@ pub fn run(args: Args) -> CommandResult {
         );
         for note in &outcome.notes {
             crate::outln!("note: {note}");
+        }
+        if outcome.branch_crossings > 0 {
+            crate::outln!(
+                "branch crossings: {} (steps on which a node on the path changed its smooth piece)",
+                outcome.branch_crossings
+            );
         }
         const SHOWN: usize = 60;
         for (name, x) in variables.iter().take(SHOWN) {

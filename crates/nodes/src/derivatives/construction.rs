@@ -1,9 +1,10 @@
 //! Adjoints of the construction kernels (`cnets_geometry::conenet::adjoint`).
 
+use cnets_engine::optimize::branch::{Branch, key_of};
 use cnets_engine::optimize::vjp::{VjpArgs, VjpResult};
 use cnets_engine::prelude::*;
-use cnets_geometry::conenet::ConstructInputs;
 use cnets_geometry::conenet::adjoint::construct_adjoint;
+use cnets_geometry::conenet::{ConstructInputs, GridValues};
 
 use super::{flat, points};
 use crate::cnets::{apex_input, grid_values, parse_end_planes};
@@ -72,6 +73,56 @@ fn construct(args: &VjpArgs<'_>) -> VjpResult {
     Ok(result)
 }
 
+/// `cnets.construct`'s smooth piece: which side of ½ each ratio is on (the ratio → angle map has
+/// its kink there) and which values the assisted correction changed (by kind, column and row).
+fn construct_branch(inputs: &[Value], outputs: &[Value]) -> Option<Branch> {
+    let ratios = match grid_values(inputs.get(3)?, "ratios").ok()? {
+        GridValues::Uniform(r) => vec![r],
+        GridValues::PerColumn(v) => v,
+        GridValues::PerVertex(rows) => rows.concat(),
+    };
+    let side = |r: f64| match r.partial_cmp(&0.5) {
+        Some(std::cmp::Ordering::Less) => 0u64,
+        Some(std::cmp::Ordering::Equal) => 1,
+        _ => 2,
+    };
+    let mut counts = [0usize; 3];
+    for &r in &ratios {
+        counts[side(r) as usize] += 1;
+    }
+    // A correction line reads "<what> at column j[, row i]: <old> → <new>": the part before the
+    // colon names the changed value, the numbers after it move continuously.
+    // (A construction mapped over several inputs has a list of such lists.)
+    fn lines<'a>(v: &'a Value, out: &mut Vec<&'a str>) {
+        match v {
+            Value::Text(t) => out.push(t.split(':').next().unwrap_or(t)),
+            Value::List(items) => items.iter().for_each(|i| lines(i, out)),
+            _ => {}
+        }
+    }
+    let mut corrected = Vec::new();
+    if let Some(v) = outputs.get(5) {
+        lines(v, &mut corrected);
+    }
+    let key = key_of(
+        ratios.iter().map(|&r| side(r)).chain([3]).chain(
+            corrected
+                .iter()
+                .flat_map(|c| c.bytes().map(u64::from).chain([4])),
+        ),
+    );
+    Some(Branch {
+        key,
+        summary: format!(
+            "ratios below ½: {}, at ½: {}, above ½: {}; corrections: {}",
+            counts[0],
+            counts[1],
+            counts[2],
+            corrected.len()
+        ),
+    })
+}
+
 /// The product of a construction node, by id.
 pub fn product(id: &str) -> Option<Product> {
     match id {
@@ -79,3 +130,14 @@ pub fn product(id: &str) -> Option<Product> {
         _ => None,
     }
 }
+
+/// The branch function of a construction node and the outputs its derivative reads off the path
+/// (the corrections: a run the assisted correction changed is declined), by id.
+pub fn branch(id: &str) -> Option<(BranchFn, &'static [&'static str])> {
+    match id {
+        "cnets.construct" => Some((construct_branch, &["corrections"])),
+        _ => None,
+    }
+}
+
+type BranchFn = fn(&[Value], &[Value]) -> Option<Branch>;

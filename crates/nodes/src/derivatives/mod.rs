@@ -30,7 +30,11 @@ pub fn attach(defs: Vec<NodeDef>) -> Vec<NodeDef> {
                 return def.with_vjp(d);
             }
             if let Some(d) = construction::product(&id) {
-                return def.with_vjp(d);
+                let def = def.with_vjp(d);
+                return match construction::branch(&id) {
+                    Some((branch, needs)) => def.with_branch(branch).with_derivative_outputs(needs),
+                    None => def,
+                };
             }
             def
         })
