@@ -39,6 +39,26 @@ fn port_label(h: &Harness<'static, EditorApp>, node: &str, name: &str, input: bo
         .unwrap_or_else(|| panic!("label {name} of {node}"))
 }
 
+/// Adds a graph mapper, frames the canvas and opens its plot's "Optimize a value" menu; returns
+/// the mapper's id.
+fn open_mapper_optimize_menu(h: &mut Harness<'static, EditorApp>) -> String {
+    let id = h
+        .state_mut()
+        .add_node("mapper.graph", [420.0, 560.0])
+        .unwrap();
+    h.state_mut().canvas.fit();
+    h.run_steps(4);
+    let at = h
+        .state()
+        .canvas
+        .mapper_screen_pos(&id, 0.5, 0.9)
+        .expect("the mapper plot");
+    right_click(h, at);
+    h.get_by_label_contains("Optimize a value").hover();
+    h.run_steps(3);
+    id
+}
+
 #[test]
 fn variables_and_the_objective_are_picked_on_the_canvas_as_one_undo_step() {
     let mut h = harness("opt-pick");
@@ -84,21 +104,8 @@ fn variables_and_the_objective_are_picked_on_the_canvas_as_one_undo_step() {
 
     // A graph-mapper handle coordinate, from the widget's context menu: bounds [0, 1], and the
     // default handles are written so the variable has a literal to live in.
-    let id = h
-        .state_mut()
-        .add_node("mapper.graph", [420.0, 560.0])
-        .unwrap();
-    h.state_mut().canvas.fit();
-    h.run_steps(4);
+    let id = open_mapper_optimize_menu(&mut h);
     let handles = cnets_editor::mapper::handles(h.state().doc.graph.node(&id).unwrap());
-    let at = h
-        .state()
-        .canvas
-        .mapper_screen_pos(&id, 0.5, 0.9)
-        .expect("the mapper plot");
-    right_click(&mut h, at);
-    h.get_by_label_contains("Optimize a value").hover();
-    h.run_steps(3);
     let entry = format!(
         "[1][1] = {}",
         cnets_editor::worker::format_number(handles[1].y)
@@ -135,20 +142,7 @@ fn every_value_of_an_input_is_one_whole_input_variable() {
     // A graph mapper's handles: "Optimize every value" adds the whole list (each handle's v) as
     // one whole-input variable in [0, 1], writing the default handles first.
     let mut h = harness("opt-whole");
-    let id = h
-        .state_mut()
-        .add_node("mapper.graph", [420.0, 560.0])
-        .unwrap();
-    h.state_mut().canvas.fit();
-    h.run_steps(4);
-    let at = h
-        .state()
-        .canvas
-        .mapper_screen_pos(&id, 0.5, 0.9)
-        .expect("the mapper plot");
-    right_click(&mut h, at);
-    h.get_by_label_contains("Optimize a value").hover();
-    h.run_steps(3);
+    let id = open_mapper_optimize_menu(&mut h);
     h.get_by_label("Optimize every value").click();
     h.run_steps(3);
     let app = h.state();
