@@ -21,7 +21,10 @@ if [ ! -d node_modules/playwright-core ]; then
 fi
 
 site="${CNETS_WEB_OUT:-target/web}"
-./scripts/web.sh "$site"
+# scripts/test.sh builds the site beside the Python tests and says so (CNETS_WEB_BUILT=1).
+if [ -z "${CNETS_WEB_BUILT:-}" ]; then
+  ./scripts/web.sh "$site"
+fi
 
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 python3 -m http.server --bind 127.0.0.1 --directory "$site" "$port" >/dev/null 2>&1 &

@@ -27,7 +27,7 @@ fi
 
 echo "== cargo build (wasm32, profile web)"
 cargo build -p cnets-web --target wasm32-unknown-unknown --profile web
-wasm="target/wasm32-unknown-unknown/web/cnets_web.wasm"
+wasm="${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/web/cnets_web.wasm"
 
 mkdir -p "$OUT"
 echo "== wasm-bindgen → $OUT"

@@ -42,41 +42,7 @@ impl Problem {
     pub fn gradient(&mut self, x: &[f64], ctx: &NodeContext) -> Result<Gradient, String> {
         let value = self.value(x, ctx)?;
         let graph = &self.graph;
-        // Active nodes: downstream of a variable and upstream of a requested node.
-        let n = graph.index_bound();
-        let mut down = vec![false; n];
-        let mut stack: Vec<NodeIndex> = Vec::new();
-        for g in &self.groups {
-            let k = graph.index(&g.node).map_err(|e| e.to_string())?;
-            if !down[k.index()] {
-                down[k.index()] = true;
-                stack.push(k);
-            }
-        }
-        while let Some(k) = stack.pop() {
-            for t in graph.targets(k) {
-                if !down[t.index()] {
-                    down[t.index()] = true;
-                    stack.push(t);
-                }
-            }
-        }
-        let mut up = vec![false; n];
-        for &k in &self.request {
-            if !up[k.index()] {
-                up[k.index()] = true;
-                stack.push(k);
-            }
-        }
-        while let Some(k) = stack.pop() {
-            for s in graph.sources(k) {
-                if !up[s.index()] {
-                    up[s.index()] = true;
-                    stack.push(s);
-                }
-            }
-        }
-        let active = |k: NodeIndex| down[k.index()] && up[k.index()];
+        let active = |k: NodeIndex| self.active.get(k.index()).copied().unwrap_or(false);
         // Seeds: the objective, and each penalty's derivative at its value.
         let mut cot: HashMap<(NodeIndex, usize), Vec<f64>> = HashMap::new();
         let mut seed = |path: &super::path::ValuePath, weight: f64| -> Result<(), String> {

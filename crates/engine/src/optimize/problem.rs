@@ -36,9 +36,12 @@ pub struct Problem {
     pub(super) setup: Setup,
     pub(super) evaluator: Evaluator,
     incremental: bool,
-    pub(super) request: Vec<NodeIndex>,
-    /// `request` with every output, and the nodes between a variable and the objective whose
-    /// derivative reads outputs off the path, with those outputs ([`crate::NodeDef::derivative_outputs`]).
+    /// The active nodes, by index: downstream of a variable and upstream of a requested node
+    /// (the reverse pass visits these).
+    pub(super) active: Vec<bool>,
+    /// The objective's and the penalties' nodes with every output, and the active nodes whose
+    /// derivative reads outputs off the path, with those outputs
+    /// ([`crate::NodeDef::derivative_outputs`]).
     demand: Vec<(NodeIndex, OutputMask)>,
     /// The literal inputs holding variables.
     pub(super) groups: Vec<Group>,
@@ -190,13 +193,14 @@ impl Problem {
                     .map_err(|e| SetupMismatch(e.to_string()))?,
             );
         }
-        let demand = derivative_demand(&graph, &request, &groups);
+        let active = active_nodes(&graph, &request, &groups);
+        let demand = derivative_demand(&graph, &request, &active);
         Ok(Self {
             graph,
             setup,
             evaluator: Evaluator::new(),
             incremental,
-            request,
+            active,
             demand,
             groups,
             evaluations: 0,
@@ -304,20 +308,16 @@ impl Problem {
     }
 }
 
-/// The outputs one evaluation asks for: every output of the requested nodes, and the outputs the
-/// derivatives of the nodes between a variable and a requested node read off the path.
-fn derivative_demand(
-    graph: &Graph,
-    request: &[NodeIndex],
-    groups: &[Group],
-) -> Vec<(NodeIndex, OutputMask)> {
+/// The nodes downstream of a variable (a literal input holding one) and upstream of a requested
+/// node, by index.
+fn active_nodes(graph: &Graph, request: &[NodeIndex], groups: &[Group]) -> Vec<bool> {
     let n = graph.index_bound();
-    let walk = |starts: &mut Vec<NodeIndex>, forward: bool| {
+    let walk = |mut stack: Vec<NodeIndex>, forward: bool| {
         let mut seen = vec![false; n];
-        for k in starts.iter() {
+        for k in &stack {
             seen[k.index()] = true;
         }
-        while let Some(k) = starts.pop() {
+        while let Some(k) = stack.pop() {
             let next: Vec<NodeIndex> = if forward {
                 graph.targets(k).collect()
             } else {
@@ -326,25 +326,33 @@ fn derivative_demand(
             for t in next {
                 if !seen[t.index()] {
                     seen[t.index()] = true;
-                    starts.push(t);
+                    stack.push(t);
                 }
             }
         }
         seen
     };
-    let down = walk(
-        &mut groups
-            .iter()
-            .filter_map(|g| graph.index(&g.node).ok())
-            .collect(),
-        true,
-    );
-    let up = walk(&mut request.to_vec(), false);
+    let starts = groups
+        .iter()
+        .filter_map(|g| graph.index(&g.node).ok())
+        .collect();
+    let down = walk(starts, true);
+    let up = walk(request.to_vec(), false);
+    down.iter().zip(&up).map(|(d, u)| *d && *u).collect()
+}
+
+/// The outputs one evaluation asks for: every output of the requested nodes, and the outputs the
+/// derivatives of the active nodes read off the path.
+fn derivative_demand(
+    graph: &Graph,
+    request: &[NodeIndex],
+    active: &[bool],
+) -> Vec<(NodeIndex, OutputMask)> {
     let mut demand: Vec<(NodeIndex, OutputMask)> =
         request.iter().map(|&k| (k, OutputMask::ALL)).collect();
     for (k, node) in graph.nodes() {
         let needs = node.def.derivative_outputs;
-        if needs.is_empty() || !down[k.index()] || !up[k.index()] || request.contains(&k) {
+        if needs.is_empty() || !active[k.index()] || request.contains(&k) {
             continue;
         }
         let names: Vec<&str> = node.def.outputs.iter().map(|p| p.name.as_ref()).collect();
