@@ -145,7 +145,29 @@ struct Run<'a> {
     branches: branch::BranchWatch,
 }
 
-impl Run<'_> {
+impl<'a> Run<'a> {
+    /// A run of `problem` and its start point (projected into the bounds); `exact`: exact
+    /// gradients (else finite differences of the whole graph).
+    fn at_start(problem: Problem, ctx: &'a NodeContext, exact: bool) -> (Self, Vec<f64>) {
+        let (lo, hi) = problem.bounds();
+        let mut x = problem.start();
+        project(&mut x, &lo, &hi);
+        let run = Run {
+            problem,
+            start: 0.0,
+            ctx,
+            lo,
+            hi,
+            best: (x.clone(), f64::INFINITY),
+            gradients: 0,
+            exact,
+            exact_gradients: 0,
+            notes: Vec::new(),
+            branches: branch::BranchWatch::default(),
+        };
+        (run, x)
+    }
+
     /// The objective, `+∞` where the graph fails; remembers the best point.
     fn f(&mut self, x: &[f64]) -> f64 {
         let v = self.problem.value(x, self.ctx).unwrap_or(f64::INFINITY);
@@ -236,22 +258,7 @@ pub fn optimize(
     report: &mut dyn FnMut(&Iteration),
 ) -> Result<Outcome, OptimizeError> {
     let problem = Problem::new(graph.clone(), setup.clone(), options.incremental)?;
-    let (lo, hi) = problem.bounds();
-    let mut x = problem.start();
-    project(&mut x, &lo, &hi);
-    let mut run = Run {
-        problem,
-        start: 0.0,
-        ctx,
-        lo,
-        hi,
-        best: (x.clone(), f64::INFINITY),
-        gradients: 0,
-        exact: options.exact_gradients,
-        exact_gradients: 0,
-        notes: Vec::new(),
-        branches: branch::BranchWatch::default(),
-    };
+    let (mut run, x) = Run::at_start(problem, ctx, options.exact_gradients);
     let start = run.problem.value(&x, ctx).map_err(OptimizeError::Start)?;
     run.start = start;
     run.best = (x.clone(), start);
@@ -318,22 +325,7 @@ pub fn check_gradient(
     ctx: &NodeContext,
 ) -> Result<GradientCheck, OptimizeError> {
     let problem = Problem::new(graph.clone(), setup.clone(), true)?;
-    let (lo, hi) = problem.bounds();
-    let mut x = problem.start();
-    project(&mut x, &lo, &hi);
-    let mut run = Run {
-        problem,
-        start: 0.0,
-        ctx,
-        lo,
-        hi,
-        best: (x.clone(), f64::INFINITY),
-        gradients: 0,
-        exact: true,
-        exact_gradients: 0,
-        notes: Vec::new(),
-        branches: branch::BranchWatch::default(),
-    };
+    let (mut run, x) = Run::at_start(problem, ctx, true);
     let exact = run
         .problem
         .gradient(&x, ctx)
