@@ -33,7 +33,7 @@ use super::prepare::Prepared;
 use crate::GeometryError;
 use batch::{Ctx, RowEnd, Slot, ends, first_event, run_batch, sweep_slots};
 pub(crate) use correct::sort_corrections;
-use sources::{CoplanarRow0, RatioRow, RowRead, SharedRead};
+use sources::{CoplanarRow0, RatioRow, ReadOnly};
 
 /// How the construction planes are obtained.
 #[derive(Clone, Copy)]
@@ -217,7 +217,7 @@ impl<'a> Sweep<'a> {
             Rule::Given if per_vertex => {
                 let mut slots: Vec<_> = rows
                     .zip(planes.chunks(m - 1))
-                    .map(|((i, (r, c)), p)| Slot::new(i, r, c, RowRead(p)))
+                    .map(|((i, (r, c)), p)| Slot::new(i, r, c, ReadOnly(p)))
                     .collect();
                 sweep_slots(&ctx, &mut slots, js, je, plane_final);
                 (ends(slots), Vec::new())
@@ -225,7 +225,7 @@ impl<'a> Sweep<'a> {
             Rule::Given => {
                 let shared = &planes[..];
                 let mut slots: Vec<_> = rows
-                    .map(|(i, (r, c))| Slot::new(i, r, c, SharedRead(shared)))
+                    .map(|(i, (r, c))| Slot::new(i, r, c, ReadOnly(shared)))
                     .collect();
                 sweep_slots(&ctx, &mut slots, js, je, plane_final);
                 (ends(slots), Vec::new())
@@ -287,7 +287,7 @@ impl<'a> Sweep<'a> {
                 };
                 let shared = &planes[..];
                 let mut slots: Vec<_> = rows
-                    .map(|(i, (r, c))| Slot::new(i, r, c, SharedRead(shared)))
+                    .map(|(i, (r, c))| Slot::new(i, r, c, ReadOnly(shared)))
                     .collect();
                 sweep_slots(&ctx, &mut slots, js, limit.max(js), plane_final);
                 let mut all = vec![end0];

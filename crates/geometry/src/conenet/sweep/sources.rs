@@ -49,29 +49,11 @@ pub(super) trait PlaneSource {
     }
 }
 
-/// Shared planes, read only.
-pub(super) struct SharedRead<'p>(pub(super) &'p [DVec3]);
+/// Planes given beforehand, read only: the planes shared by every row, or one row's planes (given
+/// per-vertex normals).
+pub(super) struct ReadOnly<'p>(pub(super) &'p [DVec3]);
 
-impl PlaneSource for SharedRead<'_> {
-    #[inline]
-    fn plane(&mut self, jn: usize, _: DVec3) -> Result<DVec3, GeometryError> {
-        Ok(self.0[jn - 1])
-    }
-    #[inline]
-    fn stored(&self, j: usize) -> DVec3 {
-        self.0[j - 1]
-    }
-    #[inline]
-    fn store(&mut self, _: usize, _: DVec3) {}
-    fn fix_inline(&mut self, _: usize, _: DVec3, _: DVec3) -> Result<Option<DVec3>, GeometryError> {
-        Ok(None)
-    }
-}
-
-/// The planes of one row, read only (given per-vertex normals).
-pub(super) struct RowRead<'p>(pub(super) &'p [DVec3]);
-
-impl PlaneSource for RowRead<'_> {
+impl PlaneSource for ReadOnly<'_> {
     #[inline]
     fn plane(&mut self, jn: usize, _: DVec3) -> Result<DVec3, GeometryError> {
         Ok(self.0[jn - 1])
