@@ -49,17 +49,18 @@ impl Sweep<'_> {
         let dx = self.dx;
         let jn = j0 + 1;
         let b = dx.bisectors[jn];
-        // Current ruling angle per row (from the ratio; plane fixes overwrite it).
-        let mut thetas = Vec::with_capacity(self.n);
-        for i in 0..self.n {
-            let frame = SupportFrame::new(dx.points[j0], dx.edges[jn], self.vert(i, j0), i, jn)?;
-            thetas.push(ratio_to_angle(grid.get(i, jn), frame.bisector_angle(b)));
-        }
+        // The ratio per row (the input's; a plane fix overwrites it). The ruling angle is taken from
+        // it in the current support frame every round: an apex-like fix moves the vertices of
+        // column j0, hence the frames, and the planes of column j0 + 1 keep their ratios (not their
+        // angles), so that apex only changes no plane against its ratio.
+        let mut ratios: Vec<f64> = (0..self.n).map(|i| grid.get(i, jn)).collect();
         for round in 0..tolerance::MAX_CORRECTION_ROUNDS {
             let mut frames = Vec::with_capacity(self.n);
-            for (i, &theta) in thetas.iter().enumerate() {
+            for (i, &ratio) in ratios.iter().enumerate() {
                 let frame =
                     SupportFrame::new(dx.points[j0], dx.edges[jn], self.vert(i, j0), i, jn)?;
+                let theta_b = frame.bisector_angle(b);
+                let theta = ratio_to_angle(ratio, theta_b);
                 let p = frame.normal(theta);
                 if !(p.dot(frame.e) > tolerance::EDGE_PLANE) {
                     return Err(GeometryError::PlaneContainsEdge {
@@ -68,7 +69,7 @@ impl Sweep<'_> {
                     });
                 }
                 self.planes[i * (self.m - 1) + jn - 1] = p;
-                frames.push(frame);
+                frames.push((frame, theta_b, theta));
             }
             let bad = self.bad_rows(j0);
             if bad.is_empty() {
@@ -76,19 +77,19 @@ impl Sweep<'_> {
             }
             if round == 0 && a.alpha < 1.0 {
                 for &i in &bad {
-                    let frame = frames[i];
-                    let theta_b = frame.bisector_angle(b);
+                    let (frame, theta_b, theta) = frames[i];
                     let phi = frame.angle_of(self.vert(i, j0), dx.points[jn]);
                     let new = (1.0 - a.epsilon) * phi;
+                    let ratio = angle_to_ratio(new, theta_b);
                     self.corrections.push(Correction {
                         kind: CorrectionKind::Ratio,
                         column: jn,
                         row: Some(i),
-                        old: angle_to_ratio(thetas[i], theta_b),
-                        new: angle_to_ratio(new, theta_b),
+                        old: ratios[i],
+                        new: ratio,
                     });
-                    self.turn += (new - thetas[i]).abs();
-                    thetas[i] = new;
+                    self.turn += (new - theta).abs();
+                    ratios[i] = ratio;
                 }
                 continue;
             }
