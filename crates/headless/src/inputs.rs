@@ -1,35 +1,40 @@
 //! Reading JSON inputs for a node type (decoded and completed by `cnets-host`).
+//!
+//! The document is read from the file or stdin as a stream into a compact
+//! [`Document`](cnets_engine::value::json::Document) (packed number rows and point lists): no text
+//! buffer of the whole file and no `serde_json::Value` tree, so the peak memory is about the data.
 
-use std::io::Read;
-
+use cnets_engine::value::json::{Document, read_document};
 use cnets_engine::{NodeDef, Value};
-use serde_json::Value as Json;
 
 use crate::failure::Failure;
 
 /// Reads a JSON document from a file or from stdin (`-`), with `file:line:col` on syntax errors.
-pub fn read_json(source: &str) -> Result<Json, Failure> {
-    let (name, text) = if source == "-" {
-        let mut text = String::new();
-        std::io::stdin()
-            .read_to_string(&mut text)
-            .map_err(|e| Failure::usage(format!("<stdin>: cannot read: {e}")))?;
-        ("<stdin>".to_string(), text)
+pub fn read_json(source: &str) -> Result<Document, Failure> {
+    let (name, read) = if source == "-" {
+        (
+            "<stdin>".to_string(),
+            read_document(std::io::stdin().lock()),
+        )
     } else {
-        let text = std::fs::read_to_string(source)
+        let file = std::fs::File::open(source)
             .map_err(|e| Failure::usage(format!("{source}: cannot read: {e}")))?;
-        (source.to_string(), text)
+        (source.to_string(), read_document(file))
     };
-    serde_json::from_str(&text).map_err(|e| {
-        Failure::usage(format!(
-            "{name}:{}:{}: invalid JSON: {e}",
-            e.line(),
-            e.column()
-        ))
+    read.map_err(|e| {
+        if e.is_io() {
+            Failure::usage(format!("{name}: cannot read: {e}"))
+        } else {
+            Failure::usage(format!(
+                "{name}:{}:{}: invalid JSON: {e}",
+                e.line(),
+                e.column()
+            ))
+        }
     })
 }
 
 /// The input vector for one evaluation of `def` from a JSON object (`cnets_host::node_inputs`).
-pub fn node_inputs(def: &NodeDef, json: &Json) -> Result<Vec<Value>, Failure> {
-    Ok(cnets_host::node_inputs(def, json)?)
+pub fn node_inputs(def: &NodeDef, doc: Document) -> Result<Vec<Value>, Failure> {
+    Ok(cnets_host::node_inputs(def, doc)?)
 }

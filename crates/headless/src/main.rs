@@ -6,6 +6,7 @@ mod failure;
 mod inputs;
 mod library;
 mod output;
+mod peak;
 mod progress;
 mod runtime_dir;
 mod signals;

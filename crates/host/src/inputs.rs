@@ -1,19 +1,18 @@
 //! Inputs of one node evaluation: values decoded by the port's type, defaults for what is missing,
 //! `node.input=value` overrides of a graph.
 
-use cnets_engine::value::json::from_json;
+use cnets_engine::value::json::{Document, from_document};
 use cnets_engine::{Graph, NodeDef, Value, ValueType};
-use serde_json::Value as Json;
 
 use crate::HostError;
 
 /// Decodes one JSON input value for `def` by port name.
-pub fn decode_input(def: &NodeDef, name: &str, json: &Json) -> Result<Value, HostError> {
+pub fn decode_input(def: &NodeDef, name: &str, doc: Document) -> Result<Value, HostError> {
     let Some(k) = def.input_index(name) else {
         return Err(unknown_input(def, name));
     };
     let port = &def.inputs[k];
-    from_json(json, &port.ty)
+    from_document(doc, &port.ty)
         .map_err(|e| HostError::usage(format!("input '{name}' ({}): {e}", port.type_name())))
 }
 
@@ -28,8 +27,8 @@ pub fn unknown_input(def: &NodeDef, name: &str) -> HostError {
 
 /// The input vector for one evaluation of `def` from a JSON object of inputs (see
 /// [`complete_inputs`]).
-pub fn node_inputs(def: &NodeDef, json: &Json) -> Result<Vec<Value>, HostError> {
-    let Json::Object(given) = json else {
+pub fn node_inputs(def: &NodeDef, doc: Document) -> Result<Vec<Value>, HostError> {
+    let Document::Object(given) = doc else {
         return Err(HostError::usage(format!(
             "inputs must be a JSON object {{\"<input>\": <value>, …}}; valid inputs of {}: {}",
             def.id,
@@ -37,9 +36,9 @@ pub fn node_inputs(def: &NodeDef, json: &Json) -> Result<Vec<Value>, HostError> 
         )));
     };
     let mut values: Vec<Option<Value>> = vec![None; def.inputs.len()];
-    for (name, value) in given {
-        let v = decode_input(def, name, value)?;
-        if let Some(k) = def.input_index(name) {
+    for (name, value) in *given {
+        let v = decode_input(def, &name, value)?;
+        if let Some(k) = def.input_index(&name) {
             values[k] = Some(v);
         }
     }
@@ -84,16 +83,16 @@ pub fn apply_set(graph: &mut Graph, set: &str) -> Result<(), HostError> {
         .ok_or_else(|| HostError::usage(format!("--set '{set}': no node '{node_id}'")))?;
     let def = node.def.clone();
     let port_ty = def.input_index(input).map(|k| def.inputs[k].ty.clone());
-    let json = match serde_json::from_str::<Json>(raw) {
-        Ok(j) => j,
-        Err(_) if port_ty == Some(ValueType::Text) => Json::String(raw.to_string()),
+    let doc = match serde_json::from_str::<Document>(raw) {
+        Ok(d) => d,
+        Err(_) if port_ty == Some(ValueType::Text) => Document::Text(raw.to_string()),
         Err(e) => {
             return Err(HostError::usage(format!(
                 "--set '{set}': the value is not valid JSON: {e}"
             )));
         }
     };
-    let value = decode_input(&def, input, &json)
+    let value = decode_input(&def, input, doc)
         .map_err(|e| HostError::usage(format!("--set '{set}': {e}")))?;
     graph
         .set_value(node_id, input, value)
@@ -122,7 +121,7 @@ mod tests {
         assert!(err.contains("missing required input 'directrix'"), "{err}");
         let d = def.input_index("directrix").unwrap();
         let g = def.input_index("generatrix").unwrap();
-        let line = from_json(
+        let line = cnets_engine::value::json::from_json(
             &serde_json::json!([[0, 0, 0], [1, 0, 0]]),
             &ValueType::Polyline,
         )
@@ -142,7 +141,7 @@ mod tests {
     #[test]
     fn json_inputs_name_unknown_ports() {
         let def = construct();
-        let err = node_inputs(&def, &serde_json::json!({"nope": 1}))
+        let err = node_inputs(&def, Document::from(&serde_json::json!({"nope": 1})))
             .unwrap_err()
             .to_string();
         assert!(err.contains("unknown input 'nope'"), "{err}");

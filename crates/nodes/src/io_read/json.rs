@@ -4,7 +4,7 @@
 
 use cnets_engine::ValueType;
 use cnets_engine::prelude::*;
-use cnets_engine::value::json::from_json;
+use cnets_engine::value::json::{Document, from_document};
 
 fn collect(v: &Value, out: &mut Vec<Polyline>) -> Result<(), String> {
     match v {
@@ -20,9 +20,8 @@ fn collect(v: &Value, out: &mut Vec<Polyline>) -> Result<(), String> {
 
 /// Parses JSON text into polylines.
 pub fn parse(text: &str) -> Result<Vec<Polyline>, String> {
-    let json: serde_json::Value =
-        serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
-    let value = from_json(&json, &ValueType::Polyline).map_err(|e| e.to_string())?;
+    let doc: Document = serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
+    let value = from_document(doc, &ValueType::Polyline).map_err(|e| e.to_string())?;
     let mut out = Vec::new();
     collect(&value, &mut out)?;
     for (k, p) in out.iter().enumerate() {
