@@ -34,7 +34,7 @@ pub fn construct_with(
         .resolve("ratios", n, m - 1, (0.0, 1.0, "a value in [0, 1]"))?;
     inputs.assistance.validate()?;
     prep.dx.check_bisectors()?;
-    assisted(&prep, inputs.assistance, |prep, assistance| {
+    assisted(&prep, inputs.assistance, |prep, assistance, turn_limit| {
         let mut sweep = Sweep::new(
             prep,
             zeroed_points(n * (m - 1)),
@@ -42,6 +42,7 @@ pub fn construct_with(
             Rule::Ratios(&grid),
             assistance,
         );
+        sweep.turn_limit = turn_limit;
         sweep.run()?;
         Ok(Raw::from_sweep(sweep, prep.wrap_rows))
     })?
@@ -73,7 +74,7 @@ pub fn construct_coplanar_with(
     check_unit_interval("plane_ratios", &tau)?;
     inputs.assistance.validate()?;
     prep.dx.check_bisectors()?;
-    assisted(&prep, inputs.assistance, |prep, assistance| {
+    assisted(&prep, inputs.assistance, |prep, assistance, turn_limit| {
         let mut sweep = Sweep::new(
             prep,
             vec![DVec3::ZERO; m - 1],
@@ -84,6 +85,7 @@ pub fn construct_coplanar_with(
             },
             assistance,
         );
+        sweep.turn_limit = turn_limit;
         sweep.run()?;
         Ok(Raw::from_sweep(sweep, prep.wrap_rows))
     })?

@@ -77,6 +77,9 @@ pub(crate) struct Sweep<'a> {
     /// Σ over the vertices of the angle between the corrected plane P_{i,j} and the plane its ratio
     /// (or τ) gives at the same place: the total plane turn of the plane fixes.
     pub turn: f64,
+    /// The sweep stops early once `turn` exceeds this (the blend only needs to know that planes
+    /// only turns more than a candidate does); infinite by default.
+    pub turn_limit: f64,
 }
 
 /// `len` zero points, written in parallel straight into the new buffer (rayon's in-place collect):
@@ -122,6 +125,7 @@ impl<'a> Sweep<'a> {
             inv_scale: 1.0 / prep.scale,
             generatrix_scale: 1.0,
             turn: 0.0,
+            turn_limit: f64::INFINITY,
         }
     }
 
@@ -158,6 +162,10 @@ impl<'a> Sweep<'a> {
         let first = if self.assistance.is_some() { 16 } else { steps };
         let (mut js, mut plane_final, mut block) = (0, false, first);
         while js < steps {
+            if self.turn > self.turn_limit {
+                // Cut short: the caller only asked whether the total turn passes the limit.
+                break;
+            }
             let je = (js + block).min(steps);
             match self.block(js, je, plane_final)? {
                 None => {
