@@ -3,8 +3,10 @@
 //! of the same points took about 4× here, and 7 GB for the 224 MB file), from a file and from
 //! stdin alike, and the decoded values are the file's.
 
+mod common;
+
+use common::Folder;
 use std::io::Write;
-use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};
 
 /// A polyline of `n` points along a helix, written as the runner's JSON; returns its text.
@@ -30,11 +32,8 @@ fn helix_inputs(n: usize) -> (String, f64) {
     (text, length)
 }
 
-fn folder(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("cnets-json-input-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn folder(name: &str) -> Folder {
+    Folder::new(&format!("json-input-{name}"))
 }
 
 /// The `peak memory: <MB> MB` line of `--timing`, in bytes.
@@ -108,7 +107,6 @@ fn a_large_json_input_peaks_within_twice_its_size() {
             size / 1e6
         );
     }
-    let _ = std::fs::remove_dir_all(&d);
 }
 
 #[test]

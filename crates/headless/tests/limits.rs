@@ -3,7 +3,11 @@
 //! that cannot load), quickly. Each reproducer is the issue's, sized to fail fast under a small
 //! `--max-memory`.
 
+mod common;
+
 use std::path::{Path, PathBuf};
+
+use common::Folder;
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
@@ -16,11 +20,8 @@ fn cnets(args: &[&str]) -> (Output, Duration) {
     (out, start.elapsed())
 }
 
-fn folder(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("cnets-limits-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn folder(name: &str) -> Folder {
+    Folder::new(&format!("limits-{name}"))
 }
 
 fn stderr(o: &Output) -> String {
