@@ -60,7 +60,10 @@ impl Document {
 
     /// Whether this is an array (of any packing).
     pub fn is_array(&self) -> bool {
-        self.kind() == "an array"
+        matches!(
+            self,
+            Document::Triple(_) | Document::Numbers(_) | Document::Points(_) | Document::Array(_)
+        )
     }
 
     /// The number, when this is one.
