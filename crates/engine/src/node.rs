@@ -330,6 +330,7 @@ pub struct NodeContext {
     files: Mutex<Vec<PathBuf>>,
     reads: Mutex<Vec<FileStamp>>,
     asked: Mutex<Option<AskedOutputs>>,
+    vouched: Mutex<Vec<String>>,
 }
 
 /// The outputs the running node was asked for, by name, and those it said it skipped.
@@ -363,6 +364,7 @@ impl NodeContext {
             files: Mutex::new(Vec::new()),
             reads: Mutex::new(Vec::new()),
             asked: Mutex::new(None),
+            vouched: Mutex::new(Vec::new()),
         }
     }
 
@@ -487,6 +489,19 @@ impl NodeContext {
     /// True when cancellation was requested.
     pub fn cancelled(&self) -> bool {
         self.cancel.load(Ordering::Relaxed)
+    }
+
+    /// Says that every number of `output` is finite because the kernel that made it checked each
+    /// one as it was computed (a construction's step fails on a non-finite vertex): the evaluator
+    /// then skips its own scan of that output, a pass over all of its memory. Debug builds scan
+    /// it anyway and panic if the promise is broken, so every test checks it.
+    pub fn vouch_finite(&self, output: &str) {
+        lock(&self.vouched).push(output.to_owned());
+    }
+
+    /// Takes the outputs vouched for by [`NodeContext::vouch_finite`] (for evaluators).
+    pub fn take_vouched(&self) -> Vec<String> {
+        std::mem::take(&mut *lock(&self.vouched))
     }
 
     /// Takes the warnings recorded so far.

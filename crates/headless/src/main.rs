@@ -58,6 +58,9 @@ fn main() -> ExitCode {
         return code;
     }
     signals::install();
+    // Start the worker threads now: they come up while the inputs are read and parsed, so an
+    // evaluation finds them ready (as in the editor and behind a server, where they are long-lived).
+    rayon::spawn(|| ());
     let result = match cli.command {
         Command::Nodes(args) => commands::nodes::run(args),
         Command::Eval(args) => commands::eval::run(args),

@@ -181,6 +181,8 @@ fn reports(ctx: &NodeContext) -> Reports {
 /// The node's outputs from a construction; outputs not asked for ([`NodeContext::wants`]) are
 /// left empty.
 fn outputs(ctx: &NodeContext, net: ConeNet) -> Outputs {
+    // Every sweep step fails on a non-finite vertex (`GeometryError::NonFiniteOutput`).
+    ctx.vouch_finite("mesh");
     let quality = if ctx.wants("quality") {
         quality_record(&net)
     } else {
@@ -310,6 +312,7 @@ node! {
         let others = ["apex", "apices", "planes", "configurations", "corrections", "quality"];
         if !others.iter().any(|o| ctx.wants(o)) {
             let mesh = conenet::ctube_mesh(&inputs)?;
+            ctx.vouch_finite("mesh");
             return Ok((mesh, Vec::new(), Vec::new(), Value::list(Vec::new()), Value::list(Vec::new()), Vec::new(), Record::new()));
         }
         Ok(outputs(ctx, conenet::construct_ctube_with(&inputs, reports(ctx))?))

@@ -1,5 +1,8 @@
 //! Finding non-finite numbers (NaN, ±∞) inside a value: node outputs must not hold any.
 
+use std::ops::Range;
+use std::sync::Arc;
+
 use glam::DVec3;
 
 use super::walk::{all_finite, all_finite_numbers, all_items};
@@ -30,12 +33,49 @@ pub fn is_all_finite(v: &Value) -> bool {
 
 /// [`is_all_finite`] of the items of an unpacked list.
 fn all_items_finite(items: &[Value]) -> bool {
+    if let Some(finite) = shared_vector_rows_finite(items) {
+        return finite;
+    }
     all_items(items, |item| match item {
         Value::Number(x) => x.is_finite(),
         Value::Point(p) | Value::Vector(p) => p.is_finite(),
         Value::Text(_) | Value::Null | Value::Integer(_) | Value::Boolean(_) => true,
         other => is_all_finite(other),
     })
+}
+
+/// Rows that are all packed vectors of one shared table (a construction's N rows of normals: the
+/// same M − 1 shared planes, or consecutive rows of one table) are tested by the distinct parts of
+/// the table they cover, each number once, instead of row by row; `None` for other lists.
+fn shared_vector_rows_finite(items: &[Value]) -> Option<bool> {
+    fn row(item: &Value) -> Option<(&Arc<Vec<DVec3>>, Range<usize>)> {
+        match item {
+            Value::List(row) => match row.as_packed() {
+                Some(Packed::Vectors { table, range }) => Some((table, range.clone())),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+    let (table, _) = row(items.first()?)?;
+    let mut ranges = Vec::with_capacity(items.len());
+    for item in items {
+        let (t, range) = row(item)?;
+        if !Arc::ptr_eq(t, table) {
+            return None;
+        }
+        ranges.push(range);
+    }
+    ranges.sort_unstable_by_key(|r| (r.start, r.end));
+    // Merged into disjoint ranges: a part several rows share is read once.
+    let mut merged: Vec<Range<usize>> = Vec::new();
+    for r in ranges {
+        match merged.last_mut() {
+            Some(last) if r.start <= last.end => last.end = last.end.max(r.end),
+            _ => merged.push(r),
+        }
+    }
+    Some(merged.into_iter().all(|r| all_finite(&table[r])))
 }
 
 /// Where the first non-finite number inside `v` is, described for an error message (`"item 3"`,
@@ -85,12 +125,49 @@ fn within(outer: String, inner: String) -> String {
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Arc;
-
     use cnets_geometry::Polyline;
 
     use super::*;
     use crate::Record;
+    use crate::value::Items;
+
+    /// `rows` packed rows of one table, row k covering `range(k)`.
+    fn rows_of(
+        table: &Arc<Vec<DVec3>>,
+        rows: usize,
+        range: impl Fn(usize) -> Range<usize>,
+    ) -> Value {
+        Value::list(
+            (0..rows)
+                .map(|k| Value::List(Items::vectors(table.clone(), range(k))))
+                .collect(),
+        )
+    }
+
+    #[test]
+    fn rows_of_one_shared_table_are_tested_by_the_parts_they_cover() {
+        let mut data = vec![DVec3::ONE; 40];
+        // Shared rows (every row the same 10 vectors) and consecutive rows (a per-vertex table).
+        let table = Arc::new(data.clone());
+        assert!(is_all_finite(&rows_of(&table, 1000, |_| 0..10)));
+        assert!(is_all_finite(&rows_of(&table, 4, |k| 10 * k..10 * k + 10)));
+        // A NaN in the shared part is found; one in a part no row covers is not an output's.
+        data[3].y = f64::NAN;
+        data[25].z = f64::INFINITY;
+        let table = Arc::new(data);
+        assert!(!is_all_finite(&rows_of(&table, 1000, |_| 0..10)));
+        assert!(is_all_finite(&rows_of(&table, 1000, |_| 10..20)));
+        assert!(!is_all_finite(
+            &rows_of(&table, 3, |k| 5 * k + 20..5 * k + 25)
+        ));
+        assert!(is_all_finite(
+            &rows_of(&table, 2, |k| [10..20, 30..40][k].clone())
+        ));
+        assert_eq!(
+            first_non_finite(&rows_of(&table, 3, |k| 10 * k..10 * k + 10)).as_deref(),
+            Some("item 0, item 3")
+        );
+    }
 
     #[test]
     fn finds_the_first_non_finite_number_and_says_where() {

@@ -15,8 +15,9 @@
 //! Both walk each shared list once (a memo by address), so the cost is linear in what is held,
 //! however far it fans out.
 
-use std::collections::HashMap;
 use std::collections::hash_map::Entry;
+
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::Value;
 
@@ -57,8 +58,10 @@ const VALUE: u64 = std::mem::size_of::<Value>() as u64;
 
 #[derive(Default)]
 struct Meter {
-    shared: HashMap<usize, Shared>,
-    counted: HashMap<usize, ()>,
+    /// Keyed by address: a fast hash (addresses are not chosen by an attacker, and a construction's
+    /// outputs are thousands of shared rows).
+    shared: FxHashMap<usize, Shared>,
+    counted: FxHashSet<usize>,
 }
 
 impl Meter {
@@ -132,7 +135,7 @@ impl Meter {
     /// True once per payload that is held only from inside the values.
     fn owns(&mut self, ptr: usize) -> Option<u64> {
         let s = *self.shared.get(&ptr)?;
-        if s.seen < s.strong || self.counted.insert(ptr, ()).is_some() {
+        if s.seen < s.strong || !self.counted.insert(ptr) {
             return None;
         }
         Some(s.bytes)

@@ -10,6 +10,8 @@ use std::ops::Range;
 
 use glam::DVec3;
 
+use super::lanes::{F, LANES};
+
 /// The stand-in for the missing plane Π_{i,0} in the first configuration c_{i,0}: the unit normal of
 /// the plane through `x0` = X_0 and `g` = G_{i,0} perpendicular to the support plane of strip i,
 /// oriented towards `e` = ê_1 (`ê_1 − (ê_1·ŵ)ŵ`, ŵ = unit(g − x0)). Every plane through the line
@@ -33,7 +35,7 @@ pub fn generatrix_normal(x0: DVec3, e: DVec3, g: DVec3) -> DVec3 {
 
 /// The configuration c_{i,j} of support-strip quad (i, j) from the signs of s1 and s2.
 /// A sign is `+` when the value is strictly positive, `−` otherwise (zero counts as `−`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, bytemuck::Zeroable)]
 #[repr(u8)]
 pub enum Configuration {
     /// s1 > 0 and s2 > 0: convex, properly oriented (the desired case).
@@ -48,6 +50,23 @@ pub enum Configuration {
 }
 
 impl Configuration {
+    /// [`Configuration::from_signs`] of every lane, without branches.
+    #[inline(always)]
+    pub(crate) fn lane_codes(s1: F, s2: F) -> [Configuration; LANES] {
+        // Indexed by (s1 ≤ 0) + 2 (s2 ≤ 0); NaN counts as ≤ 0, as in `from_signs`.
+        const BY_SIGNS: [Configuration; 4] = [
+            Configuration::PlusPlus,
+            Configuration::MinusPlus,
+            Configuration::PlusMinus,
+            Configuration::MinusMinus,
+        ];
+        let zero = F::splat(0.0);
+        let (minus1, minus2) = (!s1.gt(zero), !s2.gt(zero));
+        std::array::from_fn(|l| {
+            BY_SIGNS[usize::from(minus1.get(l)) | usize::from(minus2.get(l)) << 1]
+        })
+    }
+
     /// The four configurations in discriminant order (`ALL[c as usize] == c`).
     pub const ALL: [Configuration; 4] = [
         Self::PlusPlus,

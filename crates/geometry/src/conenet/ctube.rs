@@ -8,11 +8,11 @@ use super::apex::apex_points;
 use super::configuration::Configurations;
 use super::directrix::SweptDirectrix;
 use super::inputs::{CtubeInputs, NormalsInput};
-use super::prepare::prepare;
 pub use super::prepare::step;
+use super::prepare::{Prepared, prepare};
 use super::quality::quality;
 use super::result::{ConeNet, PlaneNormals, Reports};
-use super::sweep::{Rule, Sweep};
+use super::sweep::{GivenSweep, Rule, Sweep, sweep_given};
 use super::tolerance;
 use crate::{GeometryError, QuadGrid};
 
@@ -97,9 +97,10 @@ fn resolve_normals(
     }
 }
 
-/// Runs the C-tube sweep and returns the mesh only (no apices, no quality): the fast kernel.
+/// Runs the C-tube sweep and returns the mesh only (no configurations, apices, quality): the fast
+/// kernel. The vertices are those of [`construct_ctube`], bit for bit.
 pub fn ctube_mesh(inputs: &CtubeInputs) -> Result<QuadGrid, GeometryError> {
-    Ok(run_ctube(inputs)?.mesh)
+    Ok(run_ctube(inputs, false)?.mesh)
 }
 
 /// The base C-tube construction (`ctube.construct`): explicit normals (or Monge planes), no
@@ -113,10 +114,11 @@ pub fn construct_ctube_with(
     inputs: &CtubeInputs,
     reports: Reports,
 ) -> Result<ConeNet, GeometryError> {
-    run_ctube(inputs)?.finish_with(reports)
+    run_ctube(inputs, true)?.finish_with(reports)
 }
 
-fn run_ctube(inputs: &CtubeInputs) -> Result<Raw, GeometryError> {
+/// The C-tube sweep (with the configurations when `configurations`; else they are left empty).
+fn run_ctube(inputs: &CtubeInputs, configurations: bool) -> Result<Raw, GeometryError> {
     let prep = prepare(
         &inputs.directrix,
         &inputs.generatrix,
@@ -125,6 +127,10 @@ fn run_ctube(inputs: &CtubeInputs) -> Result<Raw, GeometryError> {
     )?;
     let n = prep.generatrix.len();
     let (planes, per_vertex) = resolve_normals(&inputs.normals, &prep.dx, n)?;
+    if let Some(given) = sweep_given(&prep, &planes, per_vertex, configurations) {
+        return Ok(Raw::from_given(&prep, given, planes, per_vertex));
+    }
+    // A step is not well defined: the general sweep reports which one, in its usual order.
     let mut sweep = Sweep::new(&prep, planes, per_vertex, Rule::Given, None);
     sweep.run()?;
     Ok(Raw::from_sweep(sweep, prep.wrap_rows))
@@ -170,6 +176,44 @@ impl Raw {
             inv_scale: sweep.inv_scale,
             generatrix_scale: sweep.generatrix_scale,
             turn: sweep.turn,
+        }
+    }
+
+    /// The output of the sweep of given planes ([`sweep_given`]): no corrections, the apex values
+    /// and generatrix as prepared.
+    fn from_given(
+        prep: &Prepared,
+        given: GivenSweep,
+        planes: Vec<DVec3>,
+        per_vertex: bool,
+    ) -> Self {
+        let (n, m) = (prep.generatrix.len(), prep.dx.columns());
+        let normals = if per_vertex {
+            PlaneNormals::per_vertex(n, m - 1, planes)
+        } else {
+            PlaneNormals::shared(n, planes)
+        };
+        let configurations = if given.configs.is_empty() {
+            Configurations::default()
+        } else {
+            Configurations::from_padded(n, m - 1, m - 1, given.configs)
+        };
+        Self {
+            mesh: QuadGrid {
+                rows: n,
+                cols: m,
+                wrap_rows: prep.wrap_rows,
+                wrap_cols: false,
+                vertices: given.verts,
+            },
+            directrix: prep.dx.points.clone(),
+            apex: prep.apex.clone(),
+            normals,
+            configurations,
+            corrections: Vec::new(),
+            inv_scale: 1.0 / prep.scale,
+            generatrix_scale: 1.0,
+            turn: 0.0,
         }
     }
 

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::super::configuration::{Configuration, generatrix_normal};
 use super::super::lanes::{F, LANES, M, V3};
 use super::super::prepare::step;
-use super::super::tolerance;
+use super::given::vertex_lanes;
 use super::sources::PlaneSource;
 use crate::GeometryError;
 
@@ -184,19 +184,14 @@ struct StepLanes {
 /// are the planes of column j (for s1). The same arithmetic as [`super::super::prepare::step`].
 #[inline(always)]
 fn step_lanes(ctx: &Ctx<'_>, j: usize, g: &V3, p: &V3, p_prev: &V3, check: bool) -> StepLanes {
-    let (x0, x1, a) = (V3::splat(ctx.x[j]), V3::splat(ctx.x[j + 1]), ctx.apex[j]);
-    let s2 = (x1 - *g).dot(*p);
-    let v = (*g - x0) * a + x1 - *g;
-    let vp = v.dot(*p);
-    let bound = v.abs().max_element() * (3.0 * tolerance::PARALLEL) * p.abs().max_element();
-    let g1 = *g + v * (s2 / vp);
-    let mut ok = vp.abs().gt(bound) & g1.is_finite();
+    let x0 = ctx.x[j];
+    let (g1, s2, mut ok) = vertex_lanes(g, x0, ctx.x[j + 1], ctx.apex[j], p);
     if check {
         ok = ok & s2.gt(F::splat(0.0));
     }
     StepLanes {
         g1,
-        s1: (g1 - x0).dot(*p_prev),
+        s1: (g1 - V3::splat(x0)).dot(*p_prev),
         s2,
         ok,
     }

@@ -16,10 +16,11 @@
 //!
 //! One concern a file: this driver (the [`Sweep`] state, its blocks and stops), `sources.rs` (the
 //! plane sources), `batch.rs` (lane batches and per-row state), `correct.rs` (the coupled
-//! corrections).
+//! corrections), `given.rs` (given planes without correction: no plane sources, no stops).
 
 mod batch;
 mod correct;
+mod given;
 mod sources;
 
 use glam::DVec3;
@@ -33,6 +34,7 @@ use super::prepare::Prepared;
 use crate::GeometryError;
 use batch::{Ctx, RowEnd, Slot, ends, first_event, run_batch, sweep_slots};
 pub(crate) use correct::sort_corrections;
+pub(crate) use given::{GivenSweep, sweep_given};
 use sources::{CoplanarRow0, RatioRow, ReadOnly};
 
 /// How the construction planes are obtained.
@@ -82,12 +84,11 @@ pub(crate) struct Sweep<'a> {
     pub turn_limit: f64,
 }
 
-/// `len` zero points, written in parallel straight into the new buffer (rayon's in-place collect):
-/// the first touch of the pages, and the page faults, are spread over the threads.
+/// `len` zero points from the allocator's zeroed memory: fresh pages come zeroed from the system and
+/// are not written a second time, so their first touch (and its page faults) happens where the
+/// sweep writes them, spread over the threads.
 pub(crate) fn zeroed_points(len: usize) -> Vec<DVec3> {
-    let mut v = Vec::with_capacity(len);
-    v.par_extend(rayon::iter::repeat_n(DVec3::ZERO, len));
-    v
+    bytemuck::zeroed_vec(len)
 }
 
 impl<'a> Sweep<'a> {
@@ -102,9 +103,11 @@ impl<'a> Sweep<'a> {
         let (dx, generatrix) = (&prep.dx, &prep.generatrix);
         let (n, m) = (generatrix.len(), dx.columns());
         let mut verts = zeroed_points(n * m);
-        for (i, g) in generatrix.iter().enumerate() {
-            verts[i * m] = *g;
-        }
+        // Column 0 touches every page of the buffer: written in parallel, as the rows are swept.
+        verts
+            .par_chunks_mut(m)
+            .zip(generatrix.par_iter())
+            .for_each(|(row, g)| row[0] = *g);
         Self {
             dx,
             n,
@@ -112,11 +115,7 @@ impl<'a> Sweep<'a> {
             verts,
             planes,
             per_vertex,
-            configs: {
-                let mut c = Vec::with_capacity(n * (m - 1));
-                c.par_extend(rayon::iter::repeat_n(Configuration::PlusPlus, n * (m - 1)));
-                c
-            },
+            configs: bytemuck::zeroed_vec(n * (m - 1)),
             apex: prep.apex.clone(),
             rule,
             assistance: assistance.filter(Assistance::enabled),
