@@ -50,7 +50,7 @@ where
         epsilon: assistance.epsilon,
     };
     let alpha = assistance.alpha;
-    let apex_only = match sweep(prep, Some(pure(1.0)), whole) {
+    let mut apex_only = match sweep(prep, Some(pure(1.0)), whole) {
         Ok(q) => q,
         // Planes only does not need the apex-only plan.
         Err(_) if alpha == 0.0 => return sweep(prep, Some(pure(0.0)), whole),
@@ -66,12 +66,19 @@ where
         apex: apex_change(prep, &apex_only),
         scale: (1.0 - apex_only.generatrix_scale).abs(),
     };
+    // The blend needs apex only's plan, not its mesh: its buffers are freed for the candidates
+    // (warm memory instead of fresh pages) and it is swept again in the rare case it is the answer.
+    let plan = ApexPlan {
+        apex: std::mem::take(&mut apex_only.apex),
+        generatrix_scale: apex_only.generatrix_scale,
+    };
+    drop(apex_only);
     let mut planes_only = PlanesOnlyTurn::Unknown;
     for k in 0..STEPS {
         let lambda = alpha + (1.0 - alpha) * k as f64 / STEPS as f64;
-        let Some(r) = sweep(&towards(prep, &apex_only, lambda), Some(pure(0.0)), whole)
+        let Some(r) = sweep(&towards(prep, &plan, lambda), Some(pure(0.0)), whole)
             .ok()
-            .map(|r| rebase(prep, r, lambda, apex_only.generatrix_scale))
+            .map(|r| rebase(prep, r, lambda, plan.generatrix_scale))
         else {
             continue;
         };
@@ -83,7 +90,13 @@ where
             return Ok(r);
         }
     }
-    Ok(apex_only)
+    sweep(prep, Some(pure(1.0)), whole)
+}
+
+/// What the blend takes from apex only: its apex values and generatrix scale.
+struct ApexPlan {
+    apex: Vec<f64>,
+    generatrix_scale: f64,
 }
 
 /// The bounds of the blend from apex only: its apex and generatrix changes.
@@ -148,7 +161,7 @@ fn apex_change(prep: &Prepared, r: &Raw) -> f64 {
 
 /// The inputs moved the fraction λ of the way to the apex-only result: apex values and generatrix
 /// scale about X_0.
-fn towards(prep: &Prepared, apex_only: &Raw, lambda: f64) -> Prepared {
+fn towards(prep: &Prepared, apex_only: &ApexPlan, lambda: f64) -> Prepared {
     let mut p = prep.clone();
     for (a, q) in p.apex.iter_mut().zip(&apex_only.apex) {
         *a += lambda * (q - *a);
