@@ -78,9 +78,16 @@ pub(crate) fn sweep_given(
                 first: b * LANES,
                 generatrix,
             };
+            // One copy of the loop with the configurations and one without.
             crate::simd::run(
                 #[inline(always)]
-                || batch.sweep(rows, cfg),
+                || {
+                    if cfg.is_empty() {
+                        batch.sweep::<false>(rows, cfg)
+                    } else {
+                        batch.sweep::<true>(rows, cfg)
+                    }
+                },
             )
         });
     fine.then_some(GivenSweep { verts, configs })
@@ -98,10 +105,14 @@ struct Batch<'a> {
 }
 
 impl Batch<'_> {
-    /// Sweeps the batch's rows into `rows` (M vertices each) and, unless `cfg` is empty, their
+    /// Sweeps the batch's rows into `rows` (M vertices each) and, with `CONFIGURATIONS`, their
     /// configurations into `cfg` (M − 1 each); false when a step is not well defined.
     #[inline(always)]
-    fn sweep(&self, rows: &mut [DVec3], cfg: &mut [Configuration]) -> bool {
+    fn sweep<const CONFIGURATIONS: bool>(
+        &self,
+        rows: &mut [DVec3],
+        cfg: &mut [Configuration],
+    ) -> bool {
         let (x, apex, m) = (
             &self.prep.dx.points,
             &self.prep.apex,
@@ -109,7 +120,6 @@ impl Batch<'_> {
         );
         let count = self.generatrix.len();
         let last = count - 1;
-        let configurations = !cfg.is_empty();
         // Lanes beyond the batch repeat its last row (computed, never stored).
         let mut g = V3::ZERO;
         // The stand-in for Π_{·,0} in c_{·,0}.
@@ -117,7 +127,7 @@ impl Batch<'_> {
         for l in 0..LANES {
             let g0 = self.generatrix[l.min(last)];
             g.set_lane(l, g0);
-            if configurations {
+            if CONFIGURATIONS {
                 p0.set_lane(l, generatrix_normal(x[0], self.prep.dx.edges[1], g0));
             }
         }
@@ -132,7 +142,7 @@ impl Batch<'_> {
             for l in 0..count {
                 rows[l * m + j + 1] = g1.lane(l);
             }
-            if configurations {
+            if CONFIGURATIONS {
                 // Read again rather than carried: the loop keeps fewer registers live.
                 let p_prev = if j == 0 { p0 } else { self.planes_at(j) };
                 let s1 = (g1 - V3::splat(x[j])).dot(p_prev);
