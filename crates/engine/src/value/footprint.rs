@@ -65,8 +65,13 @@ struct Meter {
 }
 
 impl Meter {
-    /// Registers one handle to a shared payload; true on its first sighting.
+    /// Registers one handle to a shared payload; true on its first sighting. A payload with one
+    /// handle (the many rows, texts and meshes a node makes for itself) can only be this one: it
+    /// is not recorded.
     fn sight(&mut self, ptr: usize, strong: usize, bytes: u64) -> bool {
+        if strong == 1 {
+            return true;
+        }
         match self.shared.entry(ptr) {
             Entry::Occupied(mut e) => {
                 e.get_mut().seen += 1;
@@ -120,6 +125,7 @@ impl Meter {
                     if let Some(e) = self.shared.get_mut(&ptr) {
                         e.reads = reads;
                     }
+                    return 1 + reads;
                 }
                 1 + self.shared[&ptr].reads
             }
@@ -132,8 +138,11 @@ impl Meter {
         }
     }
 
-    /// True once per payload that is held only from inside the values.
-    fn owns(&mut self, ptr: usize) -> Option<u64> {
+    /// The bytes of a payload (`(address, handles, bytes)`) held only from inside the values, once.
+    fn owns(&mut self, (ptr, strong, bytes): (usize, usize, u64)) -> Option<u64> {
+        if strong == 1 {
+            return Some(bytes);
+        }
         let s = *self.shared.get(&ptr)?;
         if s.seen < s.strong || !self.counted.insert(ptr) {
             return None;
@@ -146,7 +155,8 @@ impl Meter {
     fn owned(&mut self, v: &Value) -> u64 {
         match v {
             Value::List(items) => {
-                let Some(mut bytes) = self.owns(items.sharing().0) else {
+                let (ptr, strong) = items.sharing();
+                let Some(mut bytes) = self.owns((ptr, strong, items.len() as u64 * VALUE)) else {
                     return 0;
                 };
                 if let Some(values) = items.plain_values() {
@@ -154,7 +164,7 @@ impl Meter {
                         bytes = bytes.saturating_add(self.owned(v));
                     }
                 } else if let Some(packed) = items.as_packed() {
-                    bytes = bytes.saturating_add(self.owns(packed.table_sharing().0).unwrap_or(0));
+                    bytes = bytes.saturating_add(self.owns(packed.table_sharing()).unwrap_or(0));
                     if items.built_values().is_some() {
                         bytes = bytes.saturating_add(items.len() as u64 * VALUE);
                     }
@@ -162,8 +172,12 @@ impl Meter {
                 bytes
             }
             Value::Record(r) => {
-                let Some(mut bytes) = self.owns(std::sync::Arc::as_ptr(r) as *const u8 as usize)
-                else {
+                let record = (
+                    std::sync::Arc::as_ptr(r) as *const u8 as usize,
+                    std::sync::Arc::strong_count(r),
+                    r.len() as u64 * (VALUE + 32),
+                );
+                let Some(mut bytes) = self.owns(record) else {
                     return 0;
                 };
                 for (_, v) in r.fields() {
@@ -172,7 +186,7 @@ impl Meter {
                 bytes
             }
             other => payload(other)
-                .and_then(|(ptr, _, _)| self.owns(ptr))
+                .and_then(|p| self.owns(p))
                 .unwrap_or(0),
         }
     }
