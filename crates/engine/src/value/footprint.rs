@@ -185,9 +185,7 @@ impl Meter {
                 }
                 bytes
             }
-            other => payload(other)
-                .and_then(|p| self.owns(p))
-                .unwrap_or(0),
+            other => payload(other).and_then(|p| self.owns(p)).unwrap_or(0),
         }
     }
 }
