@@ -37,6 +37,11 @@ pub(crate) use correct::sort_corrections;
 pub(crate) use given::{GivenSweep, sweep_given};
 use sources::{CoplanarRow0, RatioRow, ReadOnly};
 
+/// The first and the longest block of a sweep with a finite turn limit (see
+/// [`Sweep::turn_limit`]), in columns.
+const LIMITED_FIRST_BLOCK: usize = 4;
+const LIMITED_LONGEST_BLOCK: usize = 64;
+
 /// How the construction planes are obtained.
 #[derive(Clone, Copy)]
 pub(crate) enum Rule<'a> {
@@ -158,7 +163,20 @@ impl<'a> Sweep<'a> {
         let steps = self.m - 1;
         // Without assistance nothing can stop a row: one block. With assistance start short and
         // double, so that an early stop wastes little of the optimistic work.
-        let first = if self.assistance.is_some() { 16 } else { steps };
+        // A sweep that may be cut short at a turn limit starts with short blocks and keeps them
+        // short, so it stops soon after passing the limit (the plane turns of a folding design
+        // pile up in its first columns) instead of at the end of an ever longer block.
+        let limited = self.turn_limit.is_finite();
+        let first = match (limited, self.assistance.is_some()) {
+            (true, _) => LIMITED_FIRST_BLOCK,
+            (false, true) => 16,
+            (false, false) => steps,
+        };
+        let longest = if limited {
+            LIMITED_LONGEST_BLOCK
+        } else {
+            usize::MAX
+        };
         let (mut js, mut plane_final, mut block) = (0, false, first);
         while js < steps {
             if self.turn > self.turn_limit {
@@ -170,13 +188,13 @@ impl<'a> Sweep<'a> {
                 None => {
                     js = je;
                     plane_final = false;
-                    block = block.saturating_mul(2);
+                    block = block.saturating_mul(2).min(longest);
                 }
                 Some(j0) => {
                     // A stop: the coupled correction (an α = 0 plane fix that is numerically
                     // insufficient also ends here and falls back to the apex fix).
                     self.correct(j0)?;
-                    block = (2 * (j0 - js)).max(4);
+                    block = (2 * (j0 - js)).max(4).min(longest);
                     js = j0;
                     plane_final = true;
                 }
