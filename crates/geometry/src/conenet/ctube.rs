@@ -119,19 +119,33 @@ pub fn construct_ctube_with(
 
 /// The C-tube sweep (with the configurations when `configurations`; else they are left empty).
 fn run_ctube(inputs: &CtubeInputs, configurations: bool) -> Result<Raw, GeometryError> {
+    let (prep, planes, per_vertex) = prepare_ctube(inputs)?;
+    if let Some(given) = sweep_given(&prep, &planes, per_vertex, configurations) {
+        return Ok(Raw::from_given(&prep, given, planes, per_vertex));
+    }
+    // A step is not well defined: the general sweep reports which one, in its usual order.
+    general_sweep(&prep, planes, per_vertex)
+}
+
+/// The validated inputs and the plane normals (shared, or per vertex when the flag is set).
+fn prepare_ctube(inputs: &CtubeInputs) -> Result<(Prepared, Vec<DVec3>, bool), GeometryError> {
     let prep = prepare(
         &inputs.directrix,
         &inputs.generatrix,
         &inputs.apex,
         inputs.end_planes,
     )?;
-    let n = prep.generatrix.len();
-    let (planes, per_vertex) = resolve_normals(&inputs.normals, &prep.dx, n)?;
-    if let Some(given) = sweep_given(&prep, &planes, per_vertex, configurations) {
-        return Ok(Raw::from_given(&prep, given, planes, per_vertex));
-    }
-    // A step is not well defined: the general sweep reports which one, in its usual order.
-    let mut sweep = Sweep::new(&prep, planes, per_vertex, Rule::Given, None);
+    let (planes, per_vertex) = resolve_normals(&inputs.normals, &prep.dx, prep.generatrix.len())?;
+    Ok((prep, planes, per_vertex))
+}
+
+/// The general sweep (plane sources, per-row state) through the given planes.
+fn general_sweep(
+    prep: &Prepared,
+    planes: Vec<DVec3>,
+    per_vertex: bool,
+) -> Result<Raw, GeometryError> {
+    let mut sweep = Sweep::new(prep, planes, per_vertex, Rule::Given, None);
     sweep.run()?;
     Ok(Raw::from_sweep(sweep, prep.wrap_rows))
 }
@@ -263,20 +277,10 @@ mod tests {
     use crate::Polyline;
     use crate::conenet::inputs::{ApexInput, ColumnValues, EndPlanes};
 
-    /// The general sweep (plane sources, per-row state) with the given planes: what
-    /// [`sweep_given`] must reproduce bit for bit.
+    /// The general sweep alone: what [`sweep_given`] must reproduce bit for bit.
     fn general(inputs: &CtubeInputs) -> Result<Raw, GeometryError> {
-        let prep = prepare(
-            &inputs.directrix,
-            &inputs.generatrix,
-            &inputs.apex,
-            inputs.end_planes,
-        )?;
-        let (planes, per_vertex) =
-            resolve_normals(&inputs.normals, &prep.dx, prep.generatrix.len())?;
-        let mut sweep = Sweep::new(&prep, planes, per_vertex, Rule::Given, None);
-        sweep.run()?;
-        Ok(Raw::from_sweep(sweep, prep.wrap_rows))
+        let (prep, planes, per_vertex) = prepare_ctube(inputs)?;
+        general_sweep(&prep, planes, per_vertex)
     }
 
     /// A wavy directrix, a generatrix ellipse around its start, apex values near 1 (some far from
