@@ -11,7 +11,8 @@
 - ``sweep``: a design-space sweep of a graph on Dask (``pip install cnets[sweep]``).
 - ``python -m cnets.hops``: a Grasshopper Hops server.
 
-Errors raise ``CnetsError`` (a ``ValueError``) with the engine's message.
+Every bad input raises ``CnetsError`` (a ``ValueError``) naming the argument; a node's warning
+(a value clamped to a slider's range…) is a ``CnetsWarning``.
 """
 
 from __future__ import annotations
@@ -23,11 +24,12 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _cnets
-from ._cnets import CnetsError, Graph
-from ._types import ConeNet, PolygonMesh, Polyline, QuadMesh
+from ._cnets import CnetsError, CnetsWarning, Graph
+from ._types import ConeNet, PolygonMesh, Polyline, QuadMesh, _describe
 
 __all__ = [
     "CnetsError",
+    "CnetsWarning",
     "ConeNet",
     "Graph",
     "PolygonMesh",
@@ -73,14 +75,84 @@ def _inputs(**kwargs: Any) -> Dict[str, Any]:
 
 
 def _curve(x: Any, name: str) -> Any:
-    if isinstance(x, Polyline):
+    """A curve argument: a ``Polyline`` (or anything with ``points`` and ``closed``) or an (n, 3)
+    array-like. A numpy array is passed on as it is (the engine checks its size against the
+    memory budget before copying it)."""
+    if isinstance(x, Polyline) or (hasattr(x, "points") and hasattr(x, "closed")):
         return x
-    if hasattr(x, "points") and hasattr(x, "closed"):
+    if isinstance(x, np.ndarray):
+        if x.dtype.kind not in "fiu" or x.ndim != 2 or x.shape[-1] != 3:
+            raise CnetsError(f"{name}: expected an (n, 3) array of points or a cnets.Polyline, "
+                             f"got {_describe(x)}")
         return x
-    arr = np.asarray(x, dtype=np.float64) if not isinstance(x, np.ndarray) else x
+    if isinstance(x, (str, bytes, dict, bool, int, float)) or x is None:
+        raise CnetsError(f"{name}: expected an (n, 3) array of points or a cnets.Polyline, got "
+                         f"{_describe(x)}")
+    try:
+        arr = np.asarray(x, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise CnetsError(f"{name}: expected an (n, 3) array of points or a cnets.Polyline, got "
+                         f"{_describe(x)} ({e})") from None
     if arr.ndim != 2 or arr.shape[-1] != 3:
-        raise CnetsError(f"{name}: expected an (n, 3) array of points or a cnets.Polyline, got shape {arr.shape}")
+        raise CnetsError(f"{name}: expected an (n, 3) array of points or a cnets.Polyline, got "
+                         f"shape {arr.shape}")
     return arr
+
+
+def _is_number(x: Any) -> bool:
+    return isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
+
+
+def _number(x: Any, name: str, optional: bool = False) -> Optional[float]:
+    """A number argument (an int or float; ``None`` when ``optional``)."""
+    if x is None and optional:
+        return None
+    if isinstance(x, np.ndarray) and x.ndim == 0 and x.dtype.kind in "fiu":
+        x = x.item()
+    if not _is_number(x):
+        expected = "a number or None" if optional else "a number"
+        raise CnetsError(f"{name}: expected {expected}, got {_describe(x)}")
+    return float(x)
+
+
+def _flag(x: Any, name: str) -> bool:
+    if not isinstance(x, (bool, np.bool_)):
+        raise CnetsError(f"{name}: expected True or False, got {_describe(x)}")
+    return bool(x)
+
+
+def _choice(x: Any, name: str, choices: Sequence[str]) -> str:
+    if not isinstance(x, str) or x not in choices:
+        raise CnetsError(f"{name}: expected one of {', '.join(map(repr, choices))}, got "
+                         f"{_describe(x)}")
+    return x
+
+
+def _numbers(x: Any, name: str, ndim: int, what: str) -> Any:
+    """A number, or an array-like of numbers with at most ``ndim`` dimensions (``what`` says
+    which shapes the node takes). A numpy array is passed on as it is (no copy: the engine checks
+    its size against the memory budget first)."""
+    if _is_number(x):
+        return float(x)
+    if isinstance(x, np.ndarray):
+        if x.dtype.kind not in "fiu":
+            raise CnetsError(f"{name}: expected {what}, got {_describe(x)}")
+        if x.ndim > ndim:
+            raise CnetsError(f"{name}: expected {what}, got an array of shape {x.shape}")
+        return x if x.ndim else float(x)
+    if not isinstance(x, (list, tuple)):
+        raise CnetsError(f"{name}: expected {what}, got {_describe(x)}")
+    try:
+        arr = np.asarray(x, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise CnetsError(f"{name}: expected {what}, got {_describe(x)}") from None
+    if arr.ndim > ndim or arr.size == 0:
+        raise CnetsError(f"{name}: expected {what}, got {_describe(x)} (shape {arr.shape})")
+    return arr
+
+
+_END_PLANES = ("perpendicular", "mirror")
+_APEX = "a number or a list of numbers (one per directrix edge)"
 
 
 def _net(node_type: str, inputs: Dict[str, Any], directrix: Any, generatrix: Any) -> ConeNet:
@@ -104,13 +176,13 @@ def construct(
     inputs = _inputs(
         directrix=d,
         generatrix=g,
-        apex=apex,
-        ratios=ratios,
-        assistance=assistance,
-        normalized=normalized,
-        scale=scale,
-        epsilon=epsilon,
-        end_planes=end_planes,
+        apex=_numbers(apex, "apex", 1, _APEX),
+        ratios=_numbers(ratios, "ratios", 2, "a number, a list of M−1 numbers or an (N, M−1) table"),
+        assistance=_number(assistance, "assistance"),
+        normalized=_flag(normalized, "normalized"),
+        scale=_number(scale, "scale", optional=True),
+        epsilon=_number(epsilon, "epsilon"),
+        end_planes=_choice(end_planes, "end_planes", _END_PLANES),
     )
     return _net("cnets.construct", inputs, d, g)
 
@@ -131,14 +203,24 @@ def ctube(
     g = _curve(generatrix, "generatrix")
     if normals is not None and isinstance(normals, np.ndarray) and normals.size == 0:
         normals = None
+    if normals is not None and not isinstance(normals, np.ndarray):
+        try:
+            normals = np.asarray(normals, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise CnetsError(f"normals: expected an (N, M−1, 3) array of plane normals, got "
+                             f"{_describe(normals)}") from None
+    if normals is not None and (normals.dtype.kind not in "fiu" or normals.ndim != 3
+                                or normals.shape[-1] != 3):
+        raise CnetsError(f"normals: expected an (N, M−1, 3) array of plane normals, got "
+                         f"{_describe(normals)}")
     inputs = _inputs(
         directrix=d,
         generatrix=g,
-        apex=apex,
+        apex=_numbers(apex, "apex", 1, _APEX),
         normals=normals,
-        normalized=normalized,
-        scale=scale,
-        end_planes=end_planes,
+        normalized=_flag(normalized, "normalized"),
+        scale=_number(scale, "scale", optional=True),
+        end_planes=_choice(end_planes, "end_planes", _END_PLANES),
     )
     return _net("ctube.construct", inputs, d, g)
 
@@ -160,17 +242,18 @@ def construct_coplanar(
 ) -> ConeNet:
     d = _curve(directrix, "directrix")
     g = _curve(generatrix, "generatrix")
+    per_column = "a number or a list of numbers (one per directrix edge)"
     inputs = _inputs(
         directrix=d,
         generatrix=g,
-        apex=apex,
-        ruling_ratios=ruling_ratios,
-        plane_ratios=plane_ratios,
-        assistance=assistance,
-        normalized=normalized,
-        scale=scale,
-        epsilon=epsilon,
-        end_planes=end_planes,
+        apex=_numbers(apex, "apex", 1, _APEX),
+        ruling_ratios=_numbers(ruling_ratios, "ruling_ratios", 1, per_column),
+        plane_ratios=_numbers(plane_ratios, "plane_ratios", 1, per_column),
+        assistance=_number(assistance, "assistance"),
+        normalized=_flag(normalized, "normalized"),
+        scale=_number(scale, "scale", optional=True),
+        epsilon=_number(epsilon, "epsilon"),
+        end_planes=_choice(end_planes, "end_planes", _END_PLANES),
     )
     return _net("cnets.construct_coplanar", inputs, d, g)
 
@@ -181,8 +264,27 @@ construct_coplanar.__doc__ = _doc(
 
 
 def encode(vertices: Union[npt.ArrayLike, QuadMesh]) -> Dict[str, Any]:
-    mesh = vertices if hasattr(vertices, "vertices") else QuadMesh(vertices)
+    if isinstance(vertices, QuadMesh):
+        mesh = vertices
+    elif isinstance(vertices, np.ndarray) and vertices.dtype.kind in "fiu":
+        if vertices.ndim != 3 or vertices.shape[-1] != 3:
+            raise CnetsError(f"vertices: expected an (N, M, 3) array, a QuadMesh or a ConeNet, got "
+                             f"{_describe(vertices)}")
+        # Passed on as it is: the engine checks its size before copying it.
+        mesh = _VertexView(vertices)
+    else:
+        try:
+            mesh = QuadMesh(vertices)
+        except CnetsError as e:
+            raise CnetsError(f"vertices: expected an (N, M, 3) array, a QuadMesh or a ConeNet ({e})") from None
     return _cnets.eval("cnets.encode", {"mesh": mesh})
+
+
+class _VertexView:
+    """An (N, M, 3) array handed to the engine as a quad mesh without a copy."""
+
+    def __init__(self, vertices: np.ndarray) -> None:
+        self.vertices = vertices
 
 
 encode.__doc__ = _doc(
@@ -220,11 +322,12 @@ def eval(
     return _cnets.eval(
         node_type,
         inputs,
-        outputs=list(_outputs) if _outputs is not None else None,
+        outputs=_outputs,
         max_memory=_max_memory,
-        allow_read=[str(p) for p in _allow_read] if _allow_read is not None else None,
-        library=[str(p) for p in _library] if _library is not None else None,
-        out=str(_out) if _out is not None else None,
+        allow_read=_allow_read,
+        library=_library,
+        out=_out,
+        option_prefix="_",
     )
 
 

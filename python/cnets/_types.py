@@ -16,18 +16,15 @@ __all__ = ["Polyline", "QuadMesh", "PolygonMesh", "ConeNet"]
 
 class Polyline:
     """A polyline: ``points`` an (n, 3) float64 array, ``closed`` whether the last point connects
-    back to the first. A plain (n, 3) array-like passed where a polyline is expected is an open
-    polyline."""
+    back to the first (default ``False``: open, as a plain (n, 3) array-like passed where a
+    polyline is expected)."""
 
     __slots__ = ("points", "closed")
 
-    def __init__(self, points: Any, closed: bool = True) -> None:
-        pts = np.asarray(points, dtype=np.float64)
-        if pts.ndim != 2 or pts.shape[1] != 3:
-            raise _cnets.CnetsError(
-                f"a polyline needs an (n, 3) array of points, got shape {pts.shape}"
-            )
-        self.points = pts
+    def __init__(self, points: Any, closed: bool = False) -> None:
+        self.points = _point_array(points, "points", 2)
+        if not isinstance(closed, (bool, np.bool_)):
+            raise _cnets.CnetsError(f"closed: expected True or False, got {_describe(closed)}")
         self.closed = bool(closed)
 
     def __len__(self) -> int:
@@ -49,13 +46,10 @@ class QuadMesh:
     ``wrap_rows`` / ``wrap_cols`` whether quads join the last row (column) to the first."""
 
     def __init__(self, vertices: Any, wrap_rows: bool = False, wrap_cols: bool = False) -> None:
-        v = vertices if isinstance(vertices, np.ndarray) and vertices.dtype == np.float64 else np.asarray(
-            vertices, dtype=np.float64)
-        if v.ndim != 3 or v.shape[2] != 3:
-            raise _cnets.CnetsError(
-                f"a quad mesh needs an (N, M, 3) array of vertices, got shape {v.shape}"
-            )
-        self.vertices = v
+        self.vertices = _point_array(vertices, "vertices", 3)
+        for name, flag in (("wrap_rows", wrap_rows), ("wrap_cols", wrap_cols)):
+            if not isinstance(flag, (bool, np.bool_)):
+                raise _cnets.CnetsError(f"{name}: expected True or False, got {_describe(flag)}")
         self.wrap_rows = bool(wrap_rows)
         self.wrap_cols = bool(wrap_cols)
 
@@ -80,8 +74,17 @@ class PolygonMesh:
     lists."""
 
     def __init__(self, vertices: Any, faces: List[List[int]]) -> None:
-        self.vertices = np.asarray(vertices, dtype=np.float64)
-        self.faces = [list(map(int, f)) for f in faces]
+        self.vertices = _point_array(vertices, "vertices", 2)
+        try:
+            self.faces = [[_index(i) for i in f] for f in faces]
+        except (TypeError, ValueError) as e:
+            raise _cnets.CnetsError(
+                f"faces: expected lists of vertex indices, got {_describe(faces)} ({e})") from None
+        count = len(self.vertices)
+        for k, f in enumerate(self.faces):
+            if len(f) < 3 or any(not 0 <= i < count for i in f):
+                raise _cnets.CnetsError(
+                    f"faces[{k}]: a face needs 3 or more vertex indices in 0..{count - 1}, got {f}")
 
     def __repr__(self) -> str:
         return f"PolygonMesh({len(self.vertices)} vertices, {len(self.faces)} faces)"
@@ -178,12 +181,52 @@ class ConeNet(QuadMesh):
 
 
 def _apices(apices: Any, count: int) -> np.ndarray:
-    if apices is None or (isinstance(apices, list) and not apices):
+    if apices is None:
         return np.full((count, 3), np.nan)
-    if isinstance(apices, np.ndarray):
-        return apices.astype(np.float64).reshape(-1, 3)
-    rows = [[np.nan] * 3 if a is None else list(np.asarray(a, dtype=np.float64)) for a in apices]
-    return np.asarray(rows, dtype=np.float64).reshape(-1, 3)
+    # The engine's point outputs always come back as an (n, 3) array (NaN rows at infinity).
+    return np.asarray(apices, dtype=np.float64).reshape(-1, 3)
+
+
+def _describe(x: Any) -> str:
+    """A value's type (and short repr) for messages."""
+    if x is None:
+        return "None"
+    text = repr(x)
+    kind = type(x).__name__
+    if isinstance(x, np.ndarray):
+        return f"a numpy array of shape {x.shape} and dtype {x.dtype}"
+    article = "an" if kind[:1] in "aeiou" else "a"
+    if isinstance(x, (list, tuple)) and len(text) > 40:
+        return f"{article} {kind} of {len(x)} item{'' if len(x) == 1 else 's'}"
+    return f"{article} {kind} ({text})" if len(text) <= 40 else f"{article} {kind}"
+
+
+def _index(i: Any) -> int:
+    if isinstance(i, (bool, np.bool_)) or not isinstance(i, (int, np.integer)):
+        raise TypeError(f"{i!r} is not an int")
+    return int(i)
+
+
+def _point_array(x: Any, name: str, ndim: int) -> np.ndarray:
+    """``x`` as a float64 array of points: (n, 3) when ``ndim`` is 2, (N, M, 3) when 3. A float64
+    array is kept as it is (a view is not copied); anything that is not numbers raises
+    ``CnetsError`` naming ``name``."""
+    if isinstance(x, np.ndarray) and x.dtype == np.float64:
+        arr = x
+    else:
+        if isinstance(x, (str, bytes, dict)) or x is None:
+            raise _cnets.CnetsError(f"{name}: expected an array of points, got {_describe(x)}")
+        if isinstance(x, np.ndarray) and x.dtype.kind not in "fiub":
+            raise _cnets.CnetsError(f"{name}: expected an array of numbers, got {_describe(x)}")
+        try:
+            arr = np.asarray(x, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise _cnets.CnetsError(
+                f"{name}: expected an array of points, got {_describe(x)} ({e})") from None
+    shape = "(n, 3)" if ndim == 2 else "(N, M, 3)"
+    if arr.ndim != ndim or arr.shape[-1] != 3:
+        raise _cnets.CnetsError(f"{name}: expected an {shape} array of points, got shape {arr.shape}")
+    return arr
 
 
 def _floats(x: Any) -> np.ndarray:

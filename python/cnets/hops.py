@@ -1,6 +1,7 @@
 """cnets in Grasshopper through McNeel's Hops component: ``python -m cnets.hops [--port 5000]
-[--library DIR]`` serves the components below with ``ghhops-server``'s built-in HTTP server (no
-other web framework). In Grasshopper: a Hops component, Path ``http://localhost:5000/cnets_construct``.
+[--library DIR] [--max-body 64MB] [--max-memory SIZE]`` serves the components below over HTTP on
+127.0.0.1 (werkzeug's threaded server). In Grasshopper: a Hops component, Path
+``http://localhost:5000/cnets_construct``.
 
 Components (inputs → outputs):
 
@@ -15,391 +16,856 @@ Components (inputs → outputs):
   ``Apex`` (its apex output), ``Factor`` number → ``Axes`` (the torsion-free node axes, lines),
   ``Support`` (a conical second layer, a mesh).
 - one component per graph file of ``--library`` that has ``graph.input`` / ``graph.output`` nodes,
-  at ``/<file name without .ron>``, with the graph's inputs and outputs.
+  at ``/<file name without .ron>`` (percent-encoded in URLs: ``my tube.ron`` is ``/my%20tube``),
+  with the graph's inputs and outputs. A file whose name cannot be a URL of its own (``...ron``,
+  a name of a built-in component, two names that differ only in case) is skipped with the reason
+  at start-up.
+
+The server parses Hops' requests and encodes its answers itself: numbers are read straight from
+the request, curves decoded with rhino3dm, meshes written in bulk from the engine's arrays with
+double-precision vertices (``cnets._opennurbs``), nothing printed per request. Every failure —
+a body that is not JSON, an input of the wrong kind, a node that fails, a body over ``--max-body``
+(HTTP 413) — is answered with a Hops response whose error is one sentence; the solves run under
+the engine's memory budget (``--max-memory``).
 
 Curves: a polyline curve gives its vertices; any other Rhino curve (NURBS, arc…) is sampled at
-``--samples`` points (default 33). Errors of the engine come back to Grasshopper as the
-component's error message.
+``--samples`` points (default 33).
 """
 
 from __future__ import annotations
 
 import argparse
-import inspect
 import json
-import os
+import logging
+import math
 import sys
+import unicodedata
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Optional, Sequence
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from urllib.parse import quote, unquote, urlsplit
 
 import numpy as np
 
 from . import _cnets
+from ._opennurbs import encode_mesh
 from ._types import PolygonMesh, Polyline, QuadMesh
-from .rhino import curve_points, mesh_from_rhino, polygon_mesh_to_rhino, polyline_to_rhino, quad_mesh_to_rhino
 
-__all__ = ["create_app", "main"]
+__all__ = ["HopsServer", "create_app", "main", "DEFAULT_MAX_BODY"]
 
+#: The default limit of a request body: 64 MB.
+DEFAULT_MAX_BODY = 64_000_000
 
-def _hs():
-    try:
-        import ghhops_server
-    except ImportError as e:  # pragma: no cover - depends on the environment
-        raise ImportError("the Hops server needs ghhops-server: pip install cnets[hops]") from e
-    return ghhops_server
+_log = logging.getLogger("cnets.hops")
+
+ITEM, LIST, TREE = "item", "list", "tree"
 
 
-def _param(cls: Any, name: str, nickname: str, desc: str, access: Any = None,
-           default: Any = None, optional: bool = False) -> Any:
-    """A Hops parameter that reads an empty or missing input as its default (Hops' own reader
-    fails on an empty branch)."""
-    hs = _hs()
+class HopsError(Exception):
+    """A request that cannot be answered with a solution: its one-sentence message goes back to
+    Grasshopper as the component's error, with an HTTP status."""
 
-    class Param(cls):  # type: ignore[misc, valid-type]
-        def from_input(self, input_data):  # noqa: D401 - Hops API
-            tree = input_data.get("InnerTree") or {}
-            if not any(tree.values()):
-                return None if self.access == hs.HopsParamAccess.ITEM else (
-                    {} if self.access == hs.HopsParamAccess.TREE else [])
-            return super().from_input(input_data)
-
-    Param.__name__ = cls.__name__
-    kwargs: Dict[str, Any] = {"access": access or hs.HopsParamAccess.ITEM, "optional": optional}
-    if default is not None:
-        kwargs["default"] = default
-    return Param(name, nickname, desc, **kwargs)
+    def __init__(self, message: str, status: int = 400) -> None:
+        super().__init__(message)
+        self.status = status
 
 
-def _numbers(x: Any) -> Any:
-    """A Hops number input (item, list or tree) as a cnets number, list or table."""
-    if x is None:
-        return None
-    if isinstance(x, dict):
-        branches = [[float(v) for v in x[k]] for k in sorted(x, key=_path_key)]
-        branches = [b for b in branches if b]
-        if not branches:
-            return None
-        if len(branches) == 1:
-            b = branches[0]
-            return b[0] if len(b) == 1 else b
-        return branches
-    if isinstance(x, (list, tuple)):
-        values = [float(v) for v in x]
-        if not values:
-            return None
-        return values[0] if len(values) == 1 else values
-    return float(x)
+def _sentence(message: str) -> str:
+    """One line, ending with a full stop."""
+    text = " ".join(part.strip() for part in str(message).splitlines() if part.strip())
+    text = text or "unknown error"
+    return text if text.endswith((".", "!", "?")) else text + "."
 
 
-def _path_key(path: str) -> List[int]:
-    return [int(p) for p in path.strip("{}").split(";") if p.strip().lstrip("-").isdigit()]
+# -------------------------------------------------------------------------------------------
+# Parameters
 
 
-class _Server:
-    """Builds the components on a ``ghhops_server.Hops`` app."""
+@dataclass
+class Param:
+    """A Hops parameter: its Grasshopper type, access (one item, a list or a tree) and default.
+    ``metadata()`` is what Hops reads when it asks the component's URL."""
 
-    def __init__(self, samples: int = 33, library: Sequence[str] = ()) -> None:
-        self.samples = samples
-        self.library = [str(p) for p in library]
+    name: str
+    nickname: str
+    description: str
+    kind: str  # Curve, Number, Integer, Boolean, Text, Point, Vector, Mesh, Line
+    access: str = ITEM
+    default: Any = None
+    optional: bool = False
 
-    def curve(self, c: Any, what: str) -> Polyline:
-        if c is None:
-            raise _cnets.CnetsError(f"{what}: no curve given")
-        return curve_points(c, self.samples)
+    _RESULT_TYPES = {
+        "Curve": "Rhino.Geometry.Curve",
+        "Number": "System.Double",
+        "Integer": "System.Int32",
+        "Boolean": "System.Boolean",
+        "Text": "System.String",
+        "Point": "Rhino.Geometry.Point3d",
+        "Vector": "Rhino.Geometry.Vector3d",
+        "Mesh": "Rhino.Geometry.Mesh",
+    }
 
-    def mesh_out(self, value: Any) -> Any:
-        if isinstance(value, QuadMesh):
-            return quad_mesh_to_rhino(value)
-        if isinstance(value, PolygonMesh):
-            return polygon_mesh_to_rhino(value)
-        raise _cnets.CnetsError(f"not a mesh: {type(value).__name__}")
-
-    def construct(self, node: str, inputs: Dict[str, Any]) -> tuple:
-        out = _cnets.eval(node, {k: v for k, v in inputs.items() if v is not None})
-        apex = [float(a) for a in np.asarray(out["apex"]).reshape(-1)]
-        quality = float(out["quality"]["max_planarity"])
-        return self.mesh_out(out["mesh"]), apex, quality
-
-
-def create_app(library: Optional[str] = None, samples: int = 33) -> Any:
-    """The Hops app with every cnets component (and the library's graphs)."""
-    hs = _hs()
-    hops = hs.Hops()
-    server = _Server(samples=samples)
-    LIST, TREE = hs.HopsParamAccess.LIST, hs.HopsParamAccess.TREE
-
-    construct_outputs = [
-        hs.HopsMesh("Mesh", "M", "The cone-net: a quad mesh, N rows (generatrix points) × M columns"),
-        hs.HopsNumber("Apex", "A", "The apex values a_j used (M−1), after normalization and correction",
-                      access=LIST),
-        hs.HopsNumber("Quality", "Q", "The largest planarity defect of a face (0: every face planar)"),
-    ]
-
-    @hops.component(
-        "/cnets_construct",
-        name="CNets Construct",
-        nickname="CNets",
-        description="CNets Construct (paper Sec. 4.4.1): a cone-net swept from the generatrix along "
-        "the directrix; ratios pick each plane's ruling; assistance repairs folded configurations.",
-        category="cnets",
-        subcategory="Cone-nets",
-        inputs=[
-            _param(hs.HopsCurve, "Directrix", "X", "Directrix X (any curve; NURBS curves are sampled)"),
-            _param(hs.HopsCurve, "Generatrix", "G", "Generatrix G (closed: the mesh wraps)"),
-            _param(hs.HopsNumber, "Apex", "A", "Apex function a_j: one number or one per directrix edge",
-                   access=LIST, default=1.0),
-            _param(hs.HopsNumber, "Ratios", "R", "Ratios r_ij: one number, a list of M−1, or a tree of "
-                   "N branches of M−1", access=TREE, default=0.5),
-            _param(hs.HopsNumber, "Assistance", "α", "Assisted correction: negative off, 0 planes, 1 apex",
-                   default=-1.0),
-        ],
-        outputs=construct_outputs,
-    )
-    def cnets_construct(directrix, generatrix, apex, ratios, assistance):
-        return server.construct("cnets.construct", {
-            "directrix": server.curve(directrix, "Directrix"),
-            "generatrix": server.curve(generatrix, "Generatrix"),
-            "apex": _numbers(apex),
-            "ratios": _numbers(ratios),
-            "assistance": _numbers(assistance),
-        })
-
-    @hops.component(
-        "/cnets_construct_coplanar",
-        name="CNets Construct Coplanar",
-        nickname="CNetsCop",
-        description="CNets Construct Coplanar: one plane per directrix vertex, so every "
-        "generatrix-aligned polyline is planar.",
-        category="cnets",
-        subcategory="Cone-nets",
-        inputs=[
-            _param(hs.HopsCurve, "Directrix", "X", "Directrix X (any curve; NURBS curves are sampled)"),
-            _param(hs.HopsCurve, "Generatrix", "G", "Generatrix G (closed: the mesh wraps)"),
-            _param(hs.HopsNumber, "Apex", "A", "Apex function a_j", access=LIST, default=1.0),
-            _param(hs.HopsNumber, "RulingRatios", "ρ", "Ruling ratios ρ_j", access=LIST, default=0.5),
-            _param(hs.HopsNumber, "PlaneRatios", "τ", "Plane-rotation ratios τ_j", access=LIST, default=0.5),
-            _param(hs.HopsNumber, "Assistance", "α", "Assisted correction", default=-1.0),
-        ],
-        outputs=[
-            hs.HopsMesh("Mesh", "M", "The cone-net; every column is planar"),
-            hs.HopsNumber("Apex", "A", "The apex values used (M−1)", access=LIST),
-            hs.HopsNumber("Quality", "Q", "The largest planarity defect of a face"),
-        ],
-    )
-    def cnets_construct_coplanar(directrix, generatrix, apex, ruling_ratios, plane_ratios, assistance):
-        return server.construct("cnets.construct_coplanar", {
-            "directrix": server.curve(directrix, "Directrix"),
-            "generatrix": server.curve(generatrix, "Generatrix"),
-            "apex": _numbers(apex),
-            "ruling_ratios": _numbers(ruling_ratios),
-            "plane_ratios": _numbers(plane_ratios),
-            "assistance": _numbers(assistance),
-        })
-
-    @hops.component(
-        "/cnets_graph_to_apex",
-        name="CNets Graph to Apex",
-        nickname="G2A",
-        description="The widths y_j of the support strips give the apex function a_j = y_j / y_{j−1}.",
-        category="cnets",
-        subcategory="Cone-nets",
-        inputs=[
-            _param(hs.HopsNumber, "Widths", "Y", "Widths y_0 … y_{M−1} (> 0), one per directrix point",
-                   access=LIST),
-            _param(hs.HopsBoolean, "Normalized", "N", "Output the normalized apex function", default=False),
-            _param(hs.HopsCurve, "Directrix", "X", "The directrix (needed when normalized)", optional=True),
-            _param(hs.HopsNumber, "Scale", "L", "Normalization scale L (0: directrix length / 5)",
-                   default=0.0),
-        ],
-        outputs=[hs.HopsNumber("Apex", "A", "The apex values (M−1)", access=LIST)],
-    )
-    def cnets_graph_to_apex(widths, normalized, directrix, scale):
-        inputs: Dict[str, Any] = {"widths": [float(w) for w in (widths or [])],
-                                  "normalized": bool(normalized)}
-        if directrix is not None:
-            inputs["directrix"] = server.curve(directrix, "Directrix")
-        if scale:
-            inputs["scale"] = float(scale)
-        out = _cnets.eval("cnets.graph_to_apex", inputs)
-        return [float(a) for a in np.asarray(out["apex"]).reshape(-1)]
-
-    @hops.component(
-        "/cnets_support",
-        name="CNets Support",
-        nickname="Support",
-        description="The torsion-free node axes of a cone-net and a conical support layer (a second "
-        "cone-net with the same apices, its first column scaled by Factor about X_0).",
-        category="cnets",
-        subcategory="Cone-nets",
-        inputs=[
-            _param(hs.HopsCurve, "Directrix", "X", "The directrix the mesh was built from"),
-            _param(hs.HopsMesh, "Mesh", "M", "The cone-net (the Mesh output of CNets Construct)"),
-            _param(hs.HopsNumber, "Apex", "A", "The Apex output of CNets Construct", access=LIST),
-            _param(hs.HopsNumber, "Factor", "λ", "Scale of the support's first column about X_0",
-                   default=0.8),
-        ],
-        outputs=[
-            hs.HopsCurve("Axes", "Ax", "The node axes X_j → G_ij, one line per vertex", access=LIST),
-            hs.HopsMesh("Support", "S", "The conical support layer"),
-        ],
-    )
-    def cnets_support(directrix, mesh, apex, factor):
-        d = server.curve(directrix, "Directrix")
-        grid = _grid_from_rhino(mesh, d)
-        axes = _cnets.eval("cnets.torsion_free_axes", {"directrix": d, "mesh": grid})["axes"]
-        inputs = {"directrix": d, "mesh": grid, "apex": [float(a) for a in (apex or [])]}
-        if factor is not None:
-            inputs["factor"] = float(factor)
-        support = _cnets.eval("cnets.conical_support", inputs)["mesh"]
-        return [_line_curve(a, b) for a, b in np.asarray(axes).tolist()], server.mesh_out(support)
-
-    if library:
-        for path in sorted(Path(library).glob("*.ron")):
-            _register_graph(hops, server, path, [library])
-    return hops
+    def metadata(self) -> Dict[str, Any]:
+        at_least, at_most = {ITEM: (1, 1), LIST: (1, 2147483647), TREE: (-1, -1)}[self.access]
+        data: Dict[str, Any] = {
+            "Name": self.name,
+            "Nickname": self.nickname,
+            "Description": self.description,
+            "ParamType": self.kind,
+            "ResultType": self._RESULT_TYPES[self.kind],
+            "AtLeast": at_least,
+            "AtMost": at_most,
+        }
+        if self.default is not None:
+            data["Default"] = self.default
+        return data
 
 
-def _line_curve(a: Sequence[float], b: Sequence[float]) -> Any:
-    import rhino3dm
+@dataclass
+class Component:
+    """A Hops component: ``solve`` takes the decoded inputs by name and returns the outputs in
+    order (each a value or a list of values, already encoded as Hops items)."""
 
-    return rhino3dm.LineCurve(rhino3dm.Point3d(*a), rhino3dm.Point3d(*b))
+    path: str  # the decoded URL path, "/cnets_construct"
+    name: str
+    nickname: str
+    description: str
+    subcategory: str
+    inputs: List[Param]
+    outputs: List[Param]
+    solve: Callable[[Dict[str, Any]], List[List[Dict[str, str]]]]
+    category: str = "cnets"
+
+    @property
+    def uri(self) -> str:
+        return quote(self.path)
+
+    def metadata(self) -> Dict[str, Any]:
+        return {
+            "Uri": self.uri,
+            "Name": self.name,
+            "Nickname": self.nickname,
+            "Description": self.description,
+            "Category": self.category,
+            "Subcategory": self.subcategory,
+            "Inputs": [p.metadata() for p in self.inputs],
+            "Outputs": [p.metadata() for p in self.outputs],
+        }
 
 
-def _grid_from_rhino(mesh: Any, directrix: Polyline) -> QuadMesh:
-    """The quad grid of a Rhino mesh written by ``/cnets_construct``: row-major vertices, as many
-    columns as the swept directrix has points."""
-    if mesh is None:
-        raise _cnets.CnetsError("Mesh: no mesh given")
-    poly = mesh_from_rhino(mesh)
-    cols = len(directrix.points) + (1 if directrix.closed else 0)
-    count = len(poly.vertices)
-    if cols == 0 or count % cols:
-        raise _cnets.CnetsError(
-            f"Mesh: {count} vertices are not rows of {cols} (the directrix's points): use the "
-            "mesh of CNets Construct built on this directrix"
-        )
-    rows = count // cols
-    wrap_rows = len(poly.faces) == rows * (cols - 1) and rows > 2
-    return QuadMesh(poly.vertices.reshape(rows, cols, 3), wrap_rows=wrap_rows)
+# -------------------------------------------------------------------------------------------
+# Reading Hops items
 
-
-_HOPS_TYPES = {
-    "number": "HopsNumber",
-    "integer": "HopsInteger",
-    "boolean": "HopsBoolean",
-    "text": "HopsString",
-    "point": "HopsPoint",
-    "vector": "HopsVector",
-    "polyline": "HopsCurve",
-    "quad_mesh": "HopsMesh",
-    "mesh": "HopsMesh",
-    "lines": "HopsCurve",
+_KIND_WORDS = {
+    "System.Double": "a number",
+    "System.Int32": "an integer",
+    "System.Boolean": "a boolean",
+    "System.String": "a text",
 }
 
 
-def _port_param(hs: Any, port: Dict[str, Any], output: bool) -> Any:
+def _what(item_type: str) -> str:
+    if item_type in _KIND_WORDS:
+        return f"{_KIND_WORDS[item_type]} ({item_type})"
+    if item_type.startswith("Rhino.Geometry."):
+        return f"a {item_type[len('Rhino.Geometry.'):]} ({item_type})"
+    return f"a {item_type or 'value of no type'}"
+
+
+def _branches(param: Param, entry: Any) -> List[Tuple[str, List[Any]]]:
+    """The branches of one input of the request, in path order, checked for shape."""
+    tree = entry.get("InnerTree") if isinstance(entry, dict) else None
+    if tree is None:
+        return []
+    if not isinstance(tree, dict):
+        raise HopsError(f"{param.name}: \"InnerTree\" must map tree paths to lists of items")
+    branches = []
+    for path, items in tree.items():
+        if not isinstance(items, list):
+            raise HopsError(f"{param.name}: the branch {path} is not a list of items")
+        branches.append((path, items))
+    try:
+        branches.sort(key=lambda b: [int(p) for p in b[0].strip("{}").split(";") if p.strip()])
+    except ValueError:
+        raise HopsError(f"{param.name}: a tree path is not a list of integers such as {{0;1}}") from None
+    return branches
+
+
+def _item_parts(param: Param, item: Any, where: str) -> Tuple[str, str]:
+    if not isinstance(item, dict) or not isinstance(item.get("data"), str):
+        raise HopsError(f"{param.name}: item {where} must be an object with a \"type\" and a "
+                        "\"data\" text")
+    return str(item.get("type") or ""), item["data"]
+
+
+def _decode_number(param: Param, item: Any, where: str, integer: bool = False) -> Any:
+    item_type, data = _item_parts(param, item, where)
+    text = data.strip().strip('"')
+    try:
+        value = float(text)
+    except ValueError:
+        raise HopsError(f"{param.name}: item {where} is {_what(item_type)} ({data[:40]!r}), not a "
+                        "number") from None
+    if not math.isfinite(value):
+        raise HopsError(f"{param.name}: item {where} ({data[:40]!r}) is not a finite number")
+    if integer:
+        if value != int(value):
+            raise HopsError(f"{param.name}: item {where} ({data[:40]!r}) is not a whole number")
+        return int(value)
+    return value
+
+
+def _decode_boolean(param: Param, item: Any, where: str) -> bool:
+    item_type, data = _item_parts(param, item, where)
+    text = data.strip().strip('"').lower()
+    if text in ("true", "1"):
+        return True
+    if text in ("false", "0"):
+        return False
+    raise HopsError(f"{param.name}: item {where} is {_what(item_type)} ({data[:40]!r}), not True "
+                    "or False")
+
+
+def _decode_text(param: Param, item: Any, where: str) -> str:
+    _, data = _item_parts(param, item, where)
+    try:
+        value = json.loads(data)
+    except ValueError:
+        return data
+    return value if isinstance(value, str) else data
+
+
+def _decode_geometry(param: Param, item: Any, where: str) -> Any:
+    import rhino3dm
+
+    item_type, data = _item_parts(param, item, where)
+    expected = "a curve" if param.kind in ("Curve", "Line") else "a mesh"
+    if not item_type.startswith("Rhino.Geometry."):
+        raise HopsError(f"{param.name}: item {where} is {_what(item_type)}, expected {expected}")
+    try:
+        encoded = json.loads(data)
+        geometry = rhino3dm.CommonObject.Decode(encoded) if isinstance(encoded, dict) else None
+    except Exception:  # rhino3dm raises plain exceptions on bad archives
+        geometry = None
+    if geometry is None:
+        raise HopsError(f"{param.name}: item {where} ({item_type}) could not be decoded as Rhino "
+                        "geometry")
+    wanted = rhino3dm.Curve if param.kind in ("Curve", "Line") else rhino3dm.Mesh
+    if not isinstance(geometry, wanted):
+        raise HopsError(f"{param.name}: item {where} is a {type(geometry).__name__}, expected "
+                        f"{expected}")
+    return geometry
+
+
+def _decode_point(param: Param, item: Any, where: str) -> List[float]:
+    item_type, data = _item_parts(param, item, where)
+    try:
+        p = json.loads(data)
+        return [float(p["X"]), float(p["Y"]), float(p["Z"])]
+    except (ValueError, TypeError, KeyError):
+        raise HopsError(f"{param.name}: item {where} is {_what(item_type)}, expected a point with "
+                        "X, Y and Z") from None
+
+
+def _decoder(param: Param) -> Callable[[Param, Any, str], Any]:
+    return {
+        "Number": _decode_number,
+        "Integer": lambda p, i, w: _decode_number(p, i, w, integer=True),
+        "Boolean": _decode_boolean,
+        "Text": _decode_text,
+        "Curve": _decode_geometry,
+        "Line": _decode_geometry,
+        "Mesh": _decode_geometry,
+        "Point": _decode_point,
+        "Vector": _decode_point,
+    }[param.kind]
+
+
+def read_input(param: Param, entry: Any) -> Any:
+    """One input of a request as Python values: an item (or ``None`` when empty), a list, or a
+    list of branches (a tree), decoded by the parameter's kind."""
+    decode = _decoder(param)
+    branches = _branches(param, entry)
+    decoded = [[decode(param, item, f"{k} of branch {path}") for k, item in enumerate(items)]
+               for path, items in branches]
+    decoded = [b for b in decoded if b]
+    if param.access == TREE:
+        return decoded
+    flat = [v for b in decoded for v in b]
+    if param.access == LIST:
+        return flat
+    if len(flat) > 1:
+        raise HopsError(f"{param.name}: expected one item, got {len(flat)}")
+    return flat[0] if flat else None
+
+
+# -------------------------------------------------------------------------------------------
+# Writing Hops items
+
+
+def _number_item(x: Any) -> Dict[str, str]:
+    return {"type": "System.Double", "data": repr(float(x))}
+
+
+def _mesh_item(mesh: Any) -> Dict[str, str]:
+    if isinstance(mesh, QuadMesh):
+        encoded = encode_mesh(mesh.vertices.reshape(-1, 3), mesh.faces())
+    elif isinstance(mesh, PolygonMesh):
+        encoded = encode_mesh(mesh.vertices, _polygon_faces(mesh.faces))
+    else:
+        raise HopsError(f"the output is a {type(mesh).__name__}, not a mesh", 500)
+    return {"type": "Rhino.Geometry.Mesh", "data": json.dumps(encoded)}
+
+
+def _polygon_faces(faces: Sequence[Sequence[int]]) -> np.ndarray:
+    """Faces as Rhino's quads and triangles (a triangle repeats its third index; larger
+    polygons are fanned into triangles)."""
+    out: List[Tuple[int, int, int, int]] = []
+    for f in faces:
+        if len(f) == 4:
+            out.append((f[0], f[1], f[2], f[3]))
+        elif len(f) >= 3:
+            out.extend((f[0], f[k], f[k + 1], f[k + 1]) for k in range(1, len(f) - 1))
+    return np.asarray(out, dtype=np.int64).reshape(-1, 4)
+
+
+def _curve_item(points: np.ndarray, closed: bool) -> Dict[str, str]:
+    import rhino3dm
+
+    pts = [rhino3dm.Point3d(*p) for p in np.asarray(points, dtype=np.float64).tolist()]
+    if closed and pts:
+        pts.append(pts[0])
+    curve = rhino3dm.LineCurve(pts[0], pts[1]) if len(pts) == 2 else rhino3dm.PolylineCurve(pts)
+    kind = "LineCurve" if len(pts) == 2 else "PolylineCurve"
+    return {"type": f"Rhino.Geometry.{kind}", "data": json.dumps(curve.Encode())}
+
+
+def _point_item(p: Any, kind: str) -> Dict[str, str]:
+    x, y, z = (float(c) for c in np.asarray(p, dtype=np.float64).reshape(3))
+    return {"type": f"Rhino.Geometry.{'Point3d' if kind == 'Point' else 'Vector3d'}",
+            "data": json.dumps({"X": x, "Y": y, "Z": z})}
+
+
+def write_output(param: Param, value: Any) -> List[Dict[str, str]]:
+    """A cnets value as the list of Hops items of one output."""
+    if value is None:
+        return []
+    kind = param.kind
+    if kind == "Mesh":
+        items = value if isinstance(value, list) else [value]
+        return [_mesh_item(m) for m in items]
+    if kind in ("Curve", "Line"):
+        if isinstance(value, Polyline):
+            return [_curve_item(value.points, value.closed)]
+        if isinstance(value, np.ndarray) and value.ndim == 3 and value.shape[1:] == (2, 3):
+            return [_curve_item(line, False) for line in value]
+        if isinstance(value, list):
+            return [item for v in value for item in write_output(param, v)]
+        raise HopsError(f"{param.name}: the output is a {type(value).__name__}, not a curve", 500)
+    if kind in ("Point", "Vector"):
+        arr = np.asarray(value, dtype=np.float64)
+        return [_point_item(p, kind) for p in arr.reshape(-1, 3)]
+    if kind == "Number":
+        return [_number_item(x) for x in np.asarray(value, dtype=np.float64).reshape(-1)]
+    if kind == "Integer":
+        return [{"type": "System.Int32", "data": str(int(x))}
+                for x in np.asarray(value).reshape(-1)]
+    if kind == "Boolean":
+        flat = value if isinstance(value, list) else [value]
+        return [{"type": "System.Boolean", "data": "true" if v else "false"} for v in flat]
+    flat = value if isinstance(value, list) else [value]
+    return [{"type": "System.String", "data": json.dumps(_text(v))} for v in flat]
+
+
+def _text(v: Any) -> str:
+    if isinstance(v, str):
+        return v
+    if isinstance(v, dict):
+        return json.dumps({k: (x.tolist() if isinstance(x, np.ndarray) else x) for k, x in v.items()},
+                          default=str)
+    if isinstance(v, np.ndarray):
+        return json.dumps(v.tolist())
+    return str(v)
+
+
+# -------------------------------------------------------------------------------------------
+# cnets values from Rhino geometry
+
+
+def curve_polyline(param_name: str, curve: Any, samples: int) -> Polyline:
+    """A Rhino curve as a cnets polyline (see ``cnets.rhino.curve_points``)."""
+    from .rhino import curve_points
+
+    try:
+        return curve_points(curve, samples)
+    except _cnets.CnetsError as e:
+        raise HopsError(f"{param_name}: {e}") from None
+
+
+def grid_from_rhino(param_name: str, mesh: Any) -> QuadMesh:
+    """The quad grid of a Rhino mesh written by cnets (row-major vertices, quads
+    ``(i·M+j, i·M+j+1, (i+1)·M+j+1, (i+1)·M+j)``, the wrapping row last), with its vertices at
+    full precision."""
+    from .rhino import mesh_from_rhino
+
+    poly = mesh_from_rhino(mesh)
+    faces = np.asarray([f if len(f) == 4 else f + [f[-1]] for f in poly.faces], dtype=np.int64)
+    count = len(poly.vertices)
+    bad = HopsError(f"{param_name}: the mesh is not a quad grid as cnets writes it (use the Mesh "
+                    "output of a cnets component)")
+    if len(faces) == 0 or faces.shape[1] != 4:
+        raise bad
+    cols = int(faces[0, 3] - faces[0, 0])
+    if cols < 2 or count % cols:
+        raise bad
+    rows = count // cols
+    i = np.arange(rows)[:, None]
+    j = np.arange(cols - 1)[None, :]
+    a = i * cols + j
+    grid = np.stack([a, a + 1, (a + 1 + cols) % count, (a + cols) % count], axis=-1)
+    open_faces = grid[:-1].reshape(-1, 4)
+    if len(faces) == len(open_faces) and np.array_equal(faces, open_faces):
+        wrap = False
+    elif len(faces) == rows * (cols - 1) and np.array_equal(faces, grid.reshape(-1, 4)):
+        wrap = True
+    else:
+        raise bad
+    return QuadMesh(poly.vertices.reshape(rows, cols, 3), wrap_rows=wrap)
+
+
+# -------------------------------------------------------------------------------------------
+# The server
+
+
+class HopsServer:
+    """The cnets components and the WSGI application that serves them to Hops (a werkzeug
+    application: ``make_server(host, port, server, threaded=True)``)."""
+
+    def __init__(self, library: Optional[str] = None, samples: int = 33,
+                 max_body: int = DEFAULT_MAX_BODY, max_memory: Any = None) -> None:
+        self.samples = int(samples)
+        self.max_body = int(max_body)
+        self.max_memory = max_memory
+        self.library = [str(library)] if library else []
+        self.components: Dict[str, Component] = {}
+        #: Library files that are not served, with the reason (reported at start-up).
+        self.skipped: List[str] = []
+        for component in _builtin_components(self):
+            self.components[component.path] = component
+        if library:
+            self._add_library(Path(library))
+
+    # -- the engine
+
+    def eval(self, node_type: str, inputs: Dict[str, Any], outputs: Optional[List[str]] = None,
+             title: str = "") -> Dict[str, Any]:
+        try:
+            return _cnets.eval(node_type, {k: v for k, v in inputs.items() if v is not None},
+                               outputs=outputs, max_memory=self.max_memory,
+                               library=self.library or None)
+        except _cnets.CnetsError as e:
+            message = str(e)
+            if message.startswith(node_type + ": "):
+                message = message[len(node_type) + 2:]
+            raise HopsError(f"{title or node_type}: {message}") from None
+
+    def curve(self, name: str, value: Any, required: bool = True) -> Optional[Polyline]:
+        if value is None:
+            if required:
+                raise HopsError(f"{name}: no curve given")
+            return None
+        return curve_polyline(name, value, self.samples)
+
+    # -- the library
+
+    def _add_library(self, folder: Path) -> None:
+        taken = {unicodedata.normalize("NFC", p).casefold(): p for p in self.components}
+        taken["/solve"] = "/solve"
+        for path in sorted(folder.glob("*.ron")):
+            name = path.name[: -len(".ron")]
+            reason = _unsafe_name(name)
+            url = "/" + name
+            key = unicodedata.normalize("NFC", url).casefold()
+            if reason is None and key in taken:
+                reason = (f"its URL {quote(url)} would be the same as {quote(taken[key])}'s "
+                          "(URLs that differ only in case or Unicode form are not told apart)")
+            if reason is not None:
+                self.skipped.append(f"{path.name}: skipped: {reason}")
+                continue
+            try:
+                component = _library_component(self, path, url)
+            except _cnets.CnetsError as e:
+                self.skipped.append(f"{path.name}: skipped: {_sentence(e)}")
+                continue
+            if component is None:
+                continue  # a graph without an interface: not a component
+            taken[key] = url
+            self.components[url] = component
+
+    # -- HTTP
+
+    def __call__(self, environ: Dict[str, Any], start_response: Callable) -> Any:
+        from werkzeug.exceptions import ClientDisconnected, HTTPException, RequestEntityTooLarge
+        from werkzeug.wrappers import Request, Response
+
+        request = Request(environ)
+        request.max_content_length = self.max_body
+        try:
+            status, body = self.handle(request)
+        except RequestEntityTooLarge:
+            status, body = 413, self._too_large(request)
+        except ClientDisconnected:
+            status, body = 400, {"values": [], "errors": [
+                "The request ended before its body was complete (the client disconnected)."]}
+        except HTTPException as e:
+            status, body = e.code or 400, {"values": [], "errors": [_sentence(
+                f"the request could not be read ({e.description})")]}
+        except HopsError as e:
+            status, body = e.status, {"values": [], "errors": [_sentence(e)]}
+        except Exception as e:  # a bug: one sentence to Grasshopper, the traceback to the log
+            _log.exception("internal error on %s %s", request.method, request.path)
+            status, body = 500, {"values": [], "errors": [_sentence(
+                f"internal error of the cnets Hops server ({type(e).__name__}: {e})")]}
+        if status >= 400 and isinstance(body, dict):
+            _log.warning("%s %s: %d %s", request.method, request.path, status,
+                         "; ".join(body.get("errors", [])))
+        data = body.encode() if isinstance(body, str) else json.dumps(body).encode()
+        response = Response(data, status=status, mimetype="application/json")
+        return response(environ, start_response)
+
+    def _too_large(self, request: Any) -> Dict[str, Any]:
+        size = request.content_length
+        what = f"the request body ({_cnets.format_bytes(size)})" if size else "the request body"
+        return {"values": [], "errors": [_sentence(
+            f"{what} is over this server's limit of {_cnets.format_bytes(self.max_body)}; send less "
+            "data (fewer or coarser items) or start the server with a larger --max-body")]}
+
+    def handle(self, request: Any) -> Tuple[int, Any]:
+        """Answers one request: ``(status, JSON body)``."""
+        path = request.path  # already percent-decoded by the server ("/my tube")
+        if request.method in ("GET", "HEAD"):
+            if path == "/":
+                return 200, [c.metadata() for c in self.components.values()]
+            if path == "/solve":
+                raise HopsError("/solve takes a POST with the inputs", 405)
+            component = self.components.get(path)
+            if component is None:
+                raise HopsError(f"no component at {quote(path)}; GET / lists them", 404)
+            return 200, component.metadata()
+        if request.method != "POST":
+            raise HopsError(f"{request.method} is not supported: GET a component, POST its inputs",
+                            405)
+        if request.content_length is not None and request.content_length > self.max_body:
+            from werkzeug.exceptions import RequestEntityTooLarge
+
+            raise RequestEntityTooLarge()
+        raw = request.get_data(cache=False)
+        try:
+            payload = json.loads(raw)
+        except ValueError as e:
+            raise HopsError(f"the request body is not JSON ({e})") from None
+        if not isinstance(payload, dict):
+            raise HopsError("the request body must be a JSON object with \"values\"")
+        if path == "/solve":
+            pointer = payload.get("pointer")
+            if not isinstance(pointer, str) or not pointer.strip():
+                raise HopsError("a request to /solve must name its component in \"pointer\" "
+                                "(for example \"/cnets_construct\")")
+            target = unquote(urlsplit(pointer.strip()).path or "/")
+            if not target.startswith("/"):
+                target = "/" + target
+            component = self.components.get(target)
+            if component is None:
+                raise HopsError(f"the pointer {pointer!r} names no component of this server; "
+                                "GET / lists them", 404)
+        else:
+            component = self.components.get(path)
+            if component is None:
+                raise HopsError(f"no component at {quote(path)}; GET / lists them", 404)
+        return 200, self.solve(component, payload)
+
+    def solve(self, component: Component, payload: Dict[str, Any]) -> Dict[str, Any]:
+        """Decodes the inputs of a request, solves the component and encodes its outputs."""
+        values = payload.get("values")
+        if not isinstance(values, list):
+            raise HopsError("the request has no \"values\" list of inputs")
+        by_name: Dict[str, Any] = {}
+        params = {p.name: p for p in component.inputs}
+        for entry in values:
+            name = entry.get("ParamName") if isinstance(entry, dict) else None
+            if not isinstance(name, str):
+                raise HopsError("every entry of \"values\" needs a \"ParamName\"")
+            if name.startswith("RH_IN:"):
+                name = name[len("RH_IN:"):]
+            if name not in params:
+                raise HopsError(f"{component.name} has no input {name!r} (its inputs: "
+                                f"{', '.join(params)})")
+            by_name[name] = read_input(params[name], entry)
+        inputs = {}
+        for p in component.inputs:
+            value = by_name.get(p.name)
+            if value is None or (p.access != ITEM and not value):
+                value = None
+            inputs[p.name] = value
+        outputs = component.solve(inputs)
+        return {
+            "values": [{"ParamName": p.name, "InnerTree": {"{0}": items}}
+                       for p, items in zip(component.outputs, outputs)],
+            "errors": [],
+            "warnings": [],
+        }
+
+
+def _unsafe_name(name: str) -> Optional[str]:
+    """Why a file name cannot be a component's URL (``None`` when it can)."""
+    if not name:
+        return "its name is empty"
+    if set(name) == {"."}:
+        return f"its name {name!r} is made of dots only ('.' and '..' are not URL paths of their own)"
+    if any(unicodedata.category(c).startswith("C") for c in name):
+        return "its name contains control characters"
+    if "/" in name or "\\" in name:
+        return "its name contains a slash"
+    if name != name.strip():
+        return "its name starts or ends with a space"
+    return None
+
+
+def _numbers(x: Any) -> Any:
+    """A Hops number input (item, list or tree branches) as a cnets number, list or table."""
+    if x is None:
+        return None
+    if isinstance(x, list) and x and isinstance(x[0], list):  # a tree: branches
+        if len(x) == 1:
+            b = x[0]
+            return b[0] if len(b) == 1 else b
+        return x
+    if isinstance(x, list):
+        return x[0] if len(x) == 1 else x
+    return x
+
+
+def _builtin_components(server: HopsServer) -> List[Component]:
+    construct_outputs = [
+        Param("Mesh", "M", "The cone-net: a quad mesh, N rows (generatrix points) × M columns", "Mesh"),
+        Param("Apex", "A", "The apex values a_j used (M−1), after normalization and correction",
+              "Number", LIST),
+        Param("Quality", "Q", "The largest planarity defect of a face (0: every face planar)", "Number"),
+    ]
+
+    def construction(node: str, title: str, extra: Dict[str, str]) -> Callable:
+        def solve(inputs: Dict[str, Any]) -> List[List[Dict[str, str]]]:
+            values = {
+                "directrix": server.curve("Directrix", inputs["Directrix"]),
+                "generatrix": server.curve("Generatrix", inputs["Generatrix"]),
+                "apex": _numbers(inputs["Apex"]),
+                "assistance": inputs["Assistance"],
+            }
+            for hops_name, port in extra.items():
+                values[port] = _numbers(inputs[hops_name])
+            out = server.eval(node, values, outputs=["mesh", "apex", "quality"], title=title)
+            return [
+                write_output(construct_outputs[0], out["mesh"]),
+                write_output(construct_outputs[1], out["apex"]),
+                write_output(construct_outputs[2], out["quality"]["max_planarity"]),
+            ]
+        return solve
+
+    curve_in = [
+        Param("Directrix", "X", "Directrix X (any curve; NURBS curves are sampled)", "Curve"),
+        Param("Generatrix", "G", "Generatrix G, drawn from a point off the directrix (closed: the "
+              "mesh wraps)", "Curve"),
+    ]
+    components = [
+        Component(
+            "/cnets_construct", "CNets Construct", "CNets",
+            "CNets Construct (paper Sec. 4.4.1): a cone-net swept from the generatrix along the "
+            "directrix; ratios pick each plane's ruling; assistance repairs folded configurations.",
+            "Cone-nets",
+            curve_in + [
+                Param("Apex", "A", "Apex function a_j: one number or one per directrix edge",
+                      "Number", LIST, default=1.0),
+                Param("Ratios", "R", "Ratios r_ij: one number, a list of M−1, or a tree of N "
+                      "branches of M−1", "Number", TREE, default=0.5),
+                Param("Assistance", "α", "Assisted correction: negative off, 0 planes, 1 apex",
+                      "Number", default=-1.0),
+            ],
+            construct_outputs,
+            construction("cnets.construct", "CNets Construct", {"Ratios": "ratios"}),
+        ),
+        Component(
+            "/cnets_construct_coplanar", "CNets Construct Coplanar", "CNetsCop",
+            "CNets Construct Coplanar: one plane per directrix vertex, so every generatrix-aligned "
+            "polyline is planar.",
+            "Cone-nets",
+            curve_in + [
+                Param("Apex", "A", "Apex function a_j", "Number", LIST, default=1.0),
+                Param("RulingRatios", "ρ", "Ruling ratios ρ_j", "Number", LIST, default=0.5),
+                Param("PlaneRatios", "τ", "Plane-rotation ratios τ_j", "Number", LIST, default=0.5),
+                Param("Assistance", "α", "Assisted correction", "Number", default=-1.0),
+            ],
+            [Param("Mesh", "M", "The cone-net; every column is planar", "Mesh"),
+             construct_outputs[1], construct_outputs[2]],
+            construction("cnets.construct_coplanar", "CNets Construct Coplanar",
+                         {"RulingRatios": "ruling_ratios", "PlaneRatios": "plane_ratios"}),
+        ),
+    ]
+
+    apex_out = Param("Apex", "A", "The apex values (M−1)", "Number", LIST)
+
+    def graph_to_apex(inputs: Dict[str, Any]) -> List[List[Dict[str, str]]]:
+        values: Dict[str, Any] = {"widths": inputs["Widths"] or [],
+                                  "normalized": bool(inputs["Normalized"])}
+        values["directrix"] = server.curve("Directrix", inputs["Directrix"], required=False)
+        if inputs["Scale"]:
+            values["scale"] = inputs["Scale"]
+        out = server.eval("cnets.graph_to_apex", values, title="CNets Graph to Apex")
+        return [write_output(apex_out, out["apex"])]
+
+    components.append(Component(
+        "/cnets_graph_to_apex", "CNets Graph to Apex", "G2A",
+        "The widths y_j of the support strips give the apex function a_j = y_j / y_{j−1}.",
+        "Cone-nets",
+        [
+            Param("Widths", "Y", "Widths y_0 … y_{M−1} (> 0), one per directrix point", "Number", LIST),
+            Param("Normalized", "N", "Output the normalized apex function", "Boolean", default=False),
+            Param("Directrix", "X", "The directrix (needed when normalized)", "Curve", optional=True),
+            Param("Scale", "L", "Normalization scale L (0: directrix length / 5)", "Number", default=0.0),
+        ],
+        [apex_out],
+        graph_to_apex,
+    ))
+
+    support_out = [
+        Param("Axes", "Ax", "The node axes X_j → G_ij, one line per vertex", "Curve", LIST),
+        Param("Support", "S", "The conical support layer", "Mesh"),
+    ]
+
+    def support(inputs: Dict[str, Any]) -> List[List[Dict[str, str]]]:
+        d = server.curve("Directrix", inputs["Directrix"])
+        if inputs["Mesh"] is None:
+            raise HopsError("Mesh: no mesh given")
+        grid = grid_from_rhino("Mesh", inputs["Mesh"])
+        axes = server.eval("cnets.torsion_free_axes", {"directrix": d, "mesh": grid},
+                           title="CNets Support")["axes"]
+        values = {"directrix": d, "mesh": grid, "apex": inputs["Apex"] or [],
+                  "factor": inputs["Factor"]}
+        layer = server.eval("cnets.conical_support", values, title="CNets Support")["mesh"]
+        return [write_output(support_out[0], axes), write_output(support_out[1], layer)]
+
+    components.append(Component(
+        "/cnets_support", "CNets Support", "Support",
+        "The torsion-free node axes of a cone-net and a conical support layer (a second cone-net "
+        "with the same apices, its first column scaled by Factor about X_0).",
+        "Cone-nets",
+        [
+            Param("Directrix", "X", "The directrix the mesh was built from", "Curve"),
+            Param("Mesh", "M", "The cone-net (the Mesh output of CNets Construct)", "Mesh"),
+            Param("Apex", "A", "The Apex output of CNets Construct", "Number", LIST),
+            Param("Factor", "λ", "Scale of the support's first column about X_0", "Number",
+                  default=0.8),
+        ],
+        support_out,
+        support,
+    ))
+    return components
+
+
+# Engine port types → Hops parameter kinds.
+_KINDS = {
+    "number": "Number",
+    "integer": "Integer",
+    "boolean": "Boolean",
+    "text": "Text",
+    "point": "Point",
+    "vector": "Vector",
+    "polyline": "Curve",
+    "quad_mesh": "Mesh",
+    "mesh": "Mesh",
+    "lines": "Curve",
+}
+
+
+def _port_param(port: Dict[str, Any]) -> Tuple[Param, str]:
+    """A Hops parameter for a graph's port, and the port's base type."""
     ty: str = port["type"]
-    access = hs.HopsParamAccess.ITEM
-    base = ty
-    if ty.startswith("list<"):
-        access, base = hs.HopsParamAccess.LIST, ty[5:-1]
-    elif ty.startswith("tree<"):
-        access, base = hs.HopsParamAccess.TREE, ty[5:-1]
-    cls = getattr(hs, _HOPS_TYPES.get(base, "HopsString"))
+    access, base = ITEM, ty
+    for prefix, a in (("list<", LIST), ("tree<", TREE), ("table<", TREE)):
+        if ty.startswith(prefix) and ty.endswith(">"):
+            access, base = a, ty[len(prefix):-1]
     if base == "lines":
-        access = hs.HopsParamAccess.LIST
-    name = port["name"]
-    doc = port.get("doc") or name
-    if output:
-        return cls(name, name, doc, access=access)
+        access = LIST
+    kind = _KINDS.get(base, "Text")
     default = port.get("default")
-    default = default if isinstance(default, (int, float, str, bool)) else None
-    return _param(cls, name, name, doc, access=access, default=default,
-                  optional=bool(port.get("optional")))
+    if not isinstance(default, (int, float, str, bool)):
+        default = None
+    name = port["name"]
+    return Param(name, name, port.get("doc") or name, kind, access, default,
+                 bool(port.get("optional"))), base
 
 
-def _from_rhino(value: Any, ty: str, server: _Server) -> Any:
-    """A Hops input value as a cnets value for a port of type ``ty``."""
+def _to_cnets(value: Any, base: str, param: Param, server: HopsServer) -> Any:
+    """A decoded Hops input as a cnets value for a port of base type ``base``."""
     if value is None:
         return None
-    if isinstance(value, dict):  # a tree
-        return [_from_rhino(v, ty, server) for k in sorted(value, key=_path_key) for v in [value[k]]]
     if isinstance(value, list):
-        return [_from_rhino(v, ty, server) for v in value]
-    name = type(value).__name__
-    if hasattr(value, "X") and hasattr(value, "Y") and hasattr(value, "Z"):
-        return [value.X, value.Y, value.Z]
-    if "Curve" in name:
-        return server.curve(value, "curve")
-    if name == "Mesh":
+        items = [_to_cnets(v, base, param, server) for v in value]
+        if base == "lines":
+            return np.asarray(items, dtype=np.float64).reshape(-1, 2, 3)
+        return items
+    if base == "lines":
+        poly = curve_polyline(param.name, value, server.samples)
+        return [poly.points[0].tolist(), poly.points[-1].tolist()]
+    if param.kind == "Curve":
+        return curve_polyline(param.name, value, server.samples)
+    if param.kind == "Mesh":
+        if base == "quad_mesh":
+            return grid_from_rhino(param.name, value)
+        from .rhino import mesh_from_rhino
+
         return mesh_from_rhino(value)
     return value
 
 
-def _to_rhino(value: Any, ty: str, server: _Server) -> Any:
-    """A cnets output value as what Hops encodes for a port of type ``ty``."""
-    import rhino3dm
-
-    base = ty[5:-1] if ty.startswith(("list<", "tree<")) else ty
-    if isinstance(value, (QuadMesh, PolygonMesh)):
-        return server.mesh_out(value)
-    if isinstance(value, Polyline):
-        return polyline_to_rhino(value)
-    if isinstance(value, np.ndarray):
-        if base == "lines" and value.ndim == 3:
-            return [_line_curve(a, b) for a, b in value.tolist()]
-        if base in ("point", "vector") and value.shape[-1:] == (3,):
-            cls = rhino3dm.Point3d if base == "point" else rhino3dm.Vector3d
-            if value.ndim == 1:
-                return cls(*value.tolist())
-            return [cls(*p) for p in value.reshape(-1, 3).tolist()]
-        return value.reshape(-1).tolist() if value.ndim else value.item()
-    if isinstance(value, list):
-        flat: List[Any] = []
-        for v in value:
-            r = _to_rhino(v, base, server)
-            flat.extend(r if isinstance(r, list) else [r])
-        return flat
-    if isinstance(value, dict):
-        return json.dumps({k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in value.items()})
-    return value
-
-
-def _register_graph(hops: Any, server: _Server, path: Path, library: List[str]) -> None:
-    """One component for a graph file with an interface; files without one are skipped."""
-    hs = _hs()
+def _library_component(server: HopsServer, path: Path, url: str) -> Optional[Component]:
+    """The component of a graph file with an interface (``None`` without one)."""
     node_type = f"cluster:{path}"
     try:
-        interface = _cnets.node_interface(node_type, library)
+        interface = _cnets.node_interface(node_type, server.library or None)
     except _cnets.CnetsError as e:
-        print(f"cnets.hops: skipped {path.name}: {e}", file=sys.stderr)
-        return
-    ins, outs = interface["inputs"], interface["outputs"]
+        if "no graph.input or graph.output" in str(e):
+            return None
+        raise
+    ins = [_port_param(p) for p in interface["inputs"]]
+    outs = [_port_param(p) for p in interface["outputs"]]
+    title = path.name[: -len(".ron")]
 
-    def handler(*args):
-        inputs = {}
-        for port, value in zip(ins, args):
-            v = _from_rhino(value, port["type"], server)
+    def solve(inputs: Dict[str, Any]) -> List[List[Dict[str, str]]]:
+        values = {}
+        for (param, base), port in zip(ins, interface["inputs"]):
+            v = _to_cnets(inputs[param.name], base, param, server)
             if v is not None:
-                inputs[port["name"]] = v
-        out = _cnets.eval(node_type, inputs, library=library)
-        results = tuple(_to_rhino(out.get(p["name"]), p["type"], server) for p in outs)
-        return results if len(results) != 1 else results[0]
+                values[port["name"]] = v
+        out = server.eval(node_type, values, title=title)
+        return [write_output(param, out.get(param.name)) for param, _ in outs]
 
-    handler.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
-        [inspect.Parameter(f"p{k}", inspect.Parameter.POSITIONAL_OR_KEYWORD) for k in range(len(ins))]
-    )
-    handler.__doc__ = interface["doc"]
-    hops.component(
-        f"/{path.stem}",
-        name=interface.get("name") or path.stem,
-        nickname=path.stem,
-        description=interface["doc"] or f"The graph {path.name}",
-        category="cnets",
-        subcategory="Library",
-        inputs=[_port_param(hs, p, False) for p in ins],
-        outputs=[_port_param(hs, p, True) for p in outs],
-    )(handler)
+    doc = interface.get("doc") or f"The graph {path.name}"
+    return Component(url, title, title[:12], doc, "Library", [p for p, _ in ins],
+                     [p for p, _ in outs], solve)
+
+
+def create_app(library: Optional[str] = None, samples: int = 33,
+               max_body: int = DEFAULT_MAX_BODY, max_memory: Any = None) -> HopsServer:
+    """The Hops application with every cnets component (and the library's graphs): a WSGI
+    application."""
+    return HopsServer(library=library, samples=samples, max_body=max_body, max_memory=max_memory)
+
+
+def _size(text: str) -> int:
+    try:
+        return _cnets.parse_size(text)
+    except _cnets.CnetsError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
 
 
 def main(argv: Optional[Sequence[str]] = None) -> None:
@@ -413,12 +879,56 @@ def main(argv: Optional[Sequence[str]] = None) -> None:
     parser.add_argument("--library", help="a folder of graph files to serve as components")
     parser.add_argument("--samples", type=int, default=33,
                         help="points sampled on a curve that is not a polyline (default 33)")
+    parser.add_argument("--max-body", type=_size, default=DEFAULT_MAX_BODY, metavar="SIZE",
+                        help="largest request body (default 64MB); larger ones get HTTP 413")
+    parser.add_argument("--max-memory", type=_size, default=None, metavar="SIZE",
+                        help="memory budget of a solve (default: half the machine's memory)")
     args = parser.parse_args(argv)
-    if args.library and not os.path.isdir(args.library):
+    if args.library and not Path(args.library).is_dir():
         parser.error(f"--library {args.library}: not a folder")
-    app = create_app(library=args.library, samples=args.samples)
-    print(f"cnets.hops: serving on http://{args.host}:{args.port}/", flush=True)
-    app.start(address=args.host, port=args.port)
+    if args.samples < 2:
+        parser.error("--samples must be at least 2")
+    missing = _missing_dependency()
+    if missing:
+        print(f"python -m cnets.hops: {missing}", file=sys.stderr)
+        sys.exit(2)
+    from werkzeug.serving import WSGIRequestHandler, make_server
+
+    class Handler(WSGIRequestHandler):
+        timeout = 120  # seconds a silent client may hold its connection
+
+        def log_request(self, code: Any = "-", size: Any = "-") -> None:
+            pass  # no line per request: errors are logged by the application
+
+    logging.basicConfig(level=logging.INFO, format="cnets.hops: %(message)s", stream=sys.stderr)
+    logging.getLogger("werkzeug").setLevel(logging.ERROR)
+    server = create_app(library=args.library, samples=args.samples, max_body=args.max_body,
+                        max_memory=args.max_memory)
+    for line in server.skipped:
+        _log.warning("%s", line)
+    httpd = make_server(args.host, args.port, server, threaded=True, request_handler=Handler)
+    library = sum(1 for c in server.components.values() if c.subcategory == "Library")
+    print(f"cnets.hops: serving {len(server.components)} components ({library} from the library) "
+          f"on http://{args.host}:{httpd.server_port}/", flush=True)
+    try:
+        httpd.serve_forever()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        httpd.server_close()
+
+
+def _missing_dependency() -> Optional[str]:
+    """What the server needs and cannot import, said plainly (``None`` when all is there)."""
+    for package in ("werkzeug", "rhino3dm"):
+        try:
+            __import__(package)
+        except ImportError as e:
+            missing = e.name or package
+            via = "" if missing == package else f" (needed by {package})"
+            return (f"the Hops server needs the Python package '{missing}'{via}, which is not "
+                    f"installed: pip install \"cnets[hops]\" (or pip install {missing})")
+    return None
 
 
 if __name__ == "__main__":

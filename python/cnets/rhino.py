@@ -8,6 +8,10 @@ and conversions between Rhino geometry and cnets values (used by the Hops server
   ``Axes`` and a conical support layer on ``Support`` (both computed by the node library:
   ``cnets.torsion_free_axes``, ``cnets.conical_support``; left out, with a warning, where they are
   undefined: a generatrix point on the directrix).
+
+Every coordinate is written in double precision — mesh vertices too (``cnets._opennurbs`` builds
+the mesh from the arrays in bulk, with Rhino's double-precision vertex list), so a file read back
+gives the very numbers cnets computed, far from the origin as well.
 """
 
 from __future__ import annotations
@@ -19,7 +23,8 @@ import warnings
 import numpy as np
 
 from . import _cnets
-from ._types import ConeNet, PolygonMesh, Polyline, QuadMesh
+from ._opennurbs import encode_mesh
+from ._types import ConeNet, PolygonMesh, Polyline, QuadMesh, _describe
 
 __all__ = [
     "LAYER_COLOURS",
@@ -52,34 +57,25 @@ def _rhino3dm():
 
 
 def quad_mesh_to_rhino(mesh: QuadMesh) -> Any:
-    """A ``rhino3dm.Mesh`` of quads from a quad mesh (double-precision vertices, row-major
-    vertex ``i * M + j``)."""
+    """A ``rhino3dm.Mesh`` of quads from a quad mesh: double-precision vertices (row-major,
+    vertex ``i * M + j``), built in bulk."""
     r = _rhino3dm()
-    out = r.Mesh()
-    out.Vertices.UseDoublePrecisionVertices = True
-    for x, y, z in mesh.vertices.reshape(-1, 3).tolist():
-        out.Vertices.Add(x, y, z)
-    for a, b, c, d in mesh.faces().tolist():
-        out.Faces.AddFace(a, b, c, d)
-    return out
+    return r.CommonObject.Decode(encode_mesh(mesh.vertices.reshape(-1, 3), mesh.faces()))
 
 
 def polygon_mesh_to_rhino(mesh: PolygonMesh) -> Any:
-    """A ``rhino3dm.Mesh`` from a polygon mesh (triangles and quads; larger faces are fanned)."""
+    """A ``rhino3dm.Mesh`` from a polygon mesh (triangles and quads; larger faces are fanned into
+    triangles), with double-precision vertices."""
     r = _rhino3dm()
-    out = r.Mesh()
-    out.Vertices.UseDoublePrecisionVertices = True
-    for x, y, z in np.asarray(mesh.vertices).tolist():
-        out.Vertices.Add(x, y, z)
+    faces: List[Tuple[int, int, int, int]] = []
     for f in mesh.faces:
-        if len(f) == 3:
-            out.Faces.AddFace(f[0], f[1], f[2])
-        elif len(f) == 4:
-            out.Faces.AddFace(f[0], f[1], f[2], f[3])
+        if len(f) == 4:
+            faces.append((f[0], f[1], f[2], f[3]))
         else:
-            for k in range(1, len(f) - 1):
-                out.Faces.AddFace(f[0], f[k], f[k + 1])
-    return out
+            faces.extend((f[0], f[k], f[k + 1], f[k + 1]) for k in range(1, len(f) - 1))
+    return r.CommonObject.Decode(
+        encode_mesh(np.asarray(mesh.vertices, dtype=np.float64), np.asarray(faces, dtype=np.int64))
+    )
 
 
 def _points(points: np.ndarray, closed: bool) -> List[Any]:
@@ -101,37 +97,44 @@ def polyline_to_rhino(polyline: Union[Polyline, np.ndarray]) -> Any:
 def curve_points(curve: Any, samples: int = 33) -> Polyline:
     """The points of any Rhino curve as a ``Polyline``: a polyline curve gives its vertices; any
     other curve (NURBS, arc, line…) is sampled at ``samples`` parameters evenly spaced over its
-    domain. A closed curve gives a closed polyline (the seam point once)."""
+    domain. A closed curve gives a closed polyline (the seam point once). Anything but a
+    ``rhino3dm.Curve`` raises ``CnetsError``."""
+    r = _rhino3dm()
+    if not isinstance(curve, r.Curve):
+        raise _cnets.CnetsError(f"expected a curve, got {_describe(curve)}")
     closed = bool(curve.IsClosed)
-    ok = curve.TryGetPolyline() if hasattr(curve, "TryGetPolyline") else None
     pts: List[Tuple[float, float, float]] = []
-    if isinstance(ok, tuple):
-        ok = ok[1] if ok[0] else None
-    if ok is not None and not isinstance(ok, bool):
-        pts = [(p.X, p.Y, p.Z) for p in (ok[k] for k in range(ok.Count))]
-    elif hasattr(curve, "PointCount") and type(curve).__name__ == "PolylineCurve":
+    if isinstance(curve, r.PolylineCurve):
         pts = [(p.X, p.Y, p.Z) for p in (curve.Point(k) for k in range(curve.PointCount))]
+    elif isinstance(curve, r.LineCurve):
+        a, b = curve.PointAtStart, curve.PointAtEnd
+        pts = [(a.X, a.Y, a.Z), (b.X, b.Y, b.Z)]
     else:
         domain = curve.Domain
         n = max(2, int(samples))
-        ts = np.linspace(domain.T0, domain.T1, n)
-        for t in ts:
+        for t in np.linspace(domain.T0, domain.T1, n):
             p = curve.PointAt(float(t))
             pts.append((p.X, p.Y, p.Z))
     arr = np.asarray(pts, dtype=np.float64).reshape(-1, 3)
-    if closed and len(arr) > 1 and np.allclose(arr[0], arr[-1], atol=1e-12 * (1 + np.abs(arr).max())):
+    if closed and len(arr) > 1 and np.allclose(arr[0], arr[-1], rtol=0.0,
+                                               atol=1e-12 * (1 + np.abs(arr).max())):
         arr = arr[:-1]
     return Polyline(arr, closed=closed)
 
 
 def mesh_from_rhino(mesh: Any) -> PolygonMesh:
-    """A polygon mesh from a ``rhino3dm.Mesh``."""
-    vertices = [(p.X, p.Y, p.Z) for p in (mesh.Vertices[k] for k in range(len(mesh.Vertices)))]
+    """A polygon mesh from a ``rhino3dm.Mesh``, with its vertices at full precision (the
+    double-precision vertex list when the mesh has one)."""
+    r = _rhino3dm()
+    if not isinstance(mesh, r.Mesh):
+        raise _cnets.CnetsError(f"expected a mesh, got {_describe(mesh)}")
+    vertices = np.asarray([(p.X, p.Y, p.Z) for p in mesh.Vertices.ToPoint3dArray()],
+                          dtype=np.float64).reshape(-1, 3)
     faces = []
     for k in range(mesh.Faces.Count):
         f = mesh.Faces[k]
         faces.append(list(f[:3]) if f[2] == f[3] else list(f))
-    return PolygonMesh(np.asarray(vertices, dtype=np.float64).reshape(-1, 3), faces)
+    return PolygonMesh(vertices, faces)
 
 
 def _layer(model: Any, name: str, cache: Dict[str, int]) -> int:
@@ -151,7 +154,7 @@ def _attributes(layer: Optional[int], name: Optional[str]) -> Any:
     return attr
 
 
-def _add(model: Any, item: Any, layer: Optional[int], name: Optional[str]) -> None:
+def _add(model: Any, item: Any, layer: Optional[int], name: Optional[str], where: str) -> None:
     attr = _attributes(layer, name)
     if isinstance(item, QuadMesh):
         model.Objects.AddMesh(quad_mesh_to_rhino(item), attr)
@@ -160,7 +163,7 @@ def _add(model: Any, item: Any, layer: Optional[int], name: Optional[str]) -> No
     elif isinstance(item, Polyline):
         model.Objects.AddCurve(polyline_to_rhino(item), attr)
     else:
-        arr = np.asarray(item, dtype=np.float64)
+        arr = _geometry_array(item, where)
         if arr.ndim == 3 and arr.shape[1:] == (2, 3):
             r = _rhino3dm()
             for (a, b) in arr.tolist():
@@ -171,8 +174,23 @@ def _add(model: Any, item: Any, layer: Optional[int], name: Optional[str]) -> No
             model.Objects.AddMesh(quad_mesh_to_rhino(QuadMesh(arr)), attr)
         else:
             raise _cnets.CnetsError(
-                f"write_3dm: cannot write a {type(item).__name__} of shape {arr.shape}"
+                f"{where}: cannot write an array of shape {arr.shape}: expected (n, 3) points, "
+                "(K, 2, 3) lines or (N, M, 3) quad-mesh vertices"
             )
+
+
+_WRITABLE = ("a ConeNet, QuadMesh, PolygonMesh or Polyline, or an array of (n, 3) points, (K, 2, 3) "
+             "lines or (N, M, 3) quad-mesh vertices")
+
+
+def _geometry_array(item: Any, where: str) -> np.ndarray:
+    if isinstance(item, (str, bytes, dict)) or item is None or isinstance(item, (bool, int, float)):
+        raise _cnets.CnetsError(f"{where}: cannot write {_describe(item)}: expected {_WRITABLE}")
+    try:
+        return np.asarray(item, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise _cnets.CnetsError(
+            f"{where}: cannot write {_describe(item)}: expected {_WRITABLE}") from None
 
 
 def cone_net_layers(net: ConeNet, support: Optional[float] = 0.8, axes: bool = True) -> Dict[str, Any]:
@@ -192,7 +210,7 @@ def cone_net_layers(net: ConeNet, support: Optional[float] = 0.8, axes: bool = T
                 "cnets.torsion_free_axes", {"directrix": net.directrix, "mesh": net}
             )["axes"]
         except _cnets.CnetsError as e:
-            warnings.warn(f"to_3dm: no Axes layer: {e}")
+            warnings.warn(f"to_3dm: no Axes layer: {e}", _cnets.CnetsWarning)
     if net.directrix is not None and support is not None:
         try:
             layers["Support"] = _cnets.eval(
@@ -200,7 +218,7 @@ def cone_net_layers(net: ConeNet, support: Optional[float] = 0.8, axes: bool = T
                 {"directrix": net.directrix, "mesh": net, "apex": net.apex, "factor": support},
             )["mesh"]
         except _cnets.CnetsError as e:
-            warnings.warn(f"to_3dm: no Support layer: {e}")
+            warnings.warn(f"to_3dm: no Support layer: {e}", _cnets.CnetsWarning)
     return layers
 
 
@@ -219,41 +237,68 @@ def write_cone_net(path: Any, net: ConeNet, layers: bool = True, support: Option
 
 
 def write_3dm(path: Any, objects: Any, layers: bool = True, version: int = 8) -> None:
-    """Writes geometry to a Rhino .3dm file (Rhino ``version``, default 8).
+    """Writes geometry to a Rhino .3dm file (Rhino ``version``, 2 to 8, default 8).
 
     ``objects``: a dict of layer name → item (or list of items), or a sequence of items. An item
     is a ``ConeNet`` (written as ``ConeNet.to_3dm`` does: its mesh, curves, axes and support on
     their layers), a ``QuadMesh`` / (N, M, 3) array (a quad mesh), a ``PolygonMesh``, a
     ``Polyline`` / (n, 3) array (a polyline curve) or a (K, 2, 3) array (lines). With ``layers``
     each name (or item kind, for a sequence) gets its own layer; without, everything goes on the
-    default layer. The file is written whole, then renamed into place.
+    default layer. Coordinates are written in double precision. The file is written whole, then
+    renamed into place. A bad argument raises ``CnetsError`` naming it.
     """
-    r = _rhino3dm()
     import os
 
+    try:
+        path = os.fspath(path)
+    except TypeError:
+        raise _cnets.CnetsError(
+            f"path: expected a path (a str or a pathlib.Path), got {_describe(path)}") from None
+    if not isinstance(path, str) or not path:
+        raise _cnets.CnetsError(f"path: expected a non-empty path, got {_describe(path)}")
+    if not isinstance(layers, (bool, np.bool_)):
+        raise _cnets.CnetsError(f"layers: expected True or False, got {_describe(layers)}")
+    if isinstance(version, bool) or not isinstance(version, (int, np.integer)) or not 2 <= version <= 8:
+        raise _cnets.CnetsError(f"version: expected a Rhino file version from 2 to 8, got "
+                                f"{_describe(version)}")
+    r = _rhino3dm()
     model = r.File3dm()
     cache: Dict[str, int] = {}
     if isinstance(objects, dict):
-        entries: Iterable[Tuple[Optional[str], Any]] = objects.items()
+        for key in objects:
+            if not isinstance(key, str) or not key:
+                raise _cnets.CnetsError(f"objects: layer names must be non-empty str, got "
+                                        f"{_describe(key)}")
+        entries: List[Tuple[Optional[str], Any, str]] = [
+            (k, v, f"objects[{k!r}]") for k, v in objects.items()]
     elif isinstance(objects, (ConeNet, QuadMesh, PolygonMesh, Polyline, np.ndarray)):
-        entries = [(None, objects)]
+        entries = [(None, objects, "objects")]
+    elif isinstance(objects, (list, tuple)):
+        entries = [(None, o, f"objects[{k}]") for k, o in enumerate(objects)]
     else:
-        entries = [(None, o) for o in objects]
-    for name, value in entries:
-        items = value if isinstance(value, list) else [value]
-        for item in items:
+        raise _cnets.CnetsError(f"objects: expected a dict of layer name → geometry or a list of "
+                                f"geometry, got {_describe(objects)}")
+    for name, value, where in entries:
+        items = [(v, f"{where}[{k}]") for k, v in enumerate(value)] if isinstance(value, list) \
+            else [(value, where)]
+        for item, at in items:
             if isinstance(item, ConeNet):
                 for sub, geometry in cone_net_layers(item).items():
                     layer = _layer(model, sub if name is None else f"{name}/{sub}", cache) if layers else None
-                    _add(model, geometry, layer, sub)
+                    _add(model, geometry, layer, sub, at)
                 continue
+            if not isinstance(item, (QuadMesh, PolygonMesh, Polyline)):
+                item = _geometry_array(item, at)
             layer_name = name or _kind(item)
             layer = _layer(model, layer_name, cache) if layers else None
-            _add(model, item, layer, name)
-    path = os.fspath(path)
+            _add(model, item, layer, name, at)
     tmp = f"{path}.{os.getpid()}.tmp"
-    if not model.Write(tmp, version):
-        raise _cnets.CnetsError(f"{path}: rhino3dm could not write the file")
+    if not model.Write(tmp, int(version)):
+        try:
+            os.remove(tmp)
+        except OSError:
+            pass
+        raise _cnets.CnetsError(f"path: rhino3dm could not write {path}")
     os.replace(tmp, path)
 
 

@@ -9,6 +9,10 @@ client points (a SLURM cluster through ``dask-jobqueue``, Kubernetes…; see doc
 Each worker process loads the graph once (a per-worker cache keyed by the file's absolute path and
 modification time) and re-evaluates incrementally: a design sets only its parameters and the
 engine re-runs only what depends on the ones that changed.
+
+A parameter node changes a value it cannot take (a slider clamps to its range, snaps to its step):
+the row then holds the value actually used, and the sweep issues a ``cnets.CnetsWarning`` saying
+so.
 """
 
 from __future__ import annotations
@@ -16,6 +20,7 @@ from __future__ import annotations
 import itertools
 import os
 import threading
+import warnings
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -35,15 +40,37 @@ def designs(parameters: Parameters) -> List[Dict[str, Any]]:
     """The parameter sets of a sweep: a dict of ``"node.input"`` → values is the full grid
     (itertools.product, the first parameter varying slowest); a list of dicts is taken as is."""
     if isinstance(parameters, dict):
+        for name, values in parameters.items():
+            _check_target(name, f"parameters[{name!r}]")
+            if isinstance(values, (str, bytes, dict)) or not hasattr(values, "__iter__"):
+                raise _cnets.CnetsError(f"parameters[{name!r}]: expected a list of values, got "
+                                        f"{_describe(values)}")
         keys = list(parameters)
         values = [list(parameters[k]) for k in keys]
         return [dict(zip(keys, combo)) for combo in itertools.product(*values)]
-    out = [dict(p) for p in parameters]
-    for k, p in enumerate(out):
+    if isinstance(parameters, (str, bytes)) or not isinstance(parameters, (list, tuple)):
+        raise _cnets.CnetsError("parameters: expected a dict of \"node.input\" → values or a list "
+                                f"of dicts, got {_describe(parameters)}")
+    out = []
+    for k, p in enumerate(parameters):
+        if not isinstance(p, dict):
+            raise _cnets.CnetsError(f"parameters[{k}]: expected a dict of \"node.input\" → value, "
+                                    f"got {_describe(p)}")
         for name in p:
-            if not isinstance(name, str) or "." not in name:
-                raise _cnets.CnetsError(f"design {k}: parameter {name!r} is not \"node.input\"")
+            _check_target(name, f"parameters[{k}]")
+        out.append(dict(p))
     return out
+
+
+def _check_target(name: Any, where: str) -> None:
+    if not isinstance(name, str) or "." not in name:
+        raise _cnets.CnetsError(f"{where}: parameter {name!r} is not \"node.input\"")
+
+
+def _describe(x: Any) -> str:
+    from ._types import _describe as describe
+
+    return describe(x)
 
 
 def _cached_graph(path: str, settings: Tuple[Any, ...]) -> Tuple[Any, threading.Lock, Dict[str, Any]]:
@@ -102,7 +129,9 @@ def evaluate_design(
     path = os.path.abspath(graph)
     g, lock, initial = _cached_graph(path, (tuple(allow_read), max_memory, tuple(library)))
     row: Dict[str, Any] = dict(design)
-    with lock:
+    notes: List[str] = []
+    with lock, warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", _cnets.CnetsWarning)
         try:
             # Inputs a previous design set but this one does not go back to the file's value.
             for target in list(initial):
@@ -112,7 +141,10 @@ def evaluate_design(
                 if target not in initial:
                     initial[target] = g.get(target)
                 g.set(target, value)
-            nodes = sorted({o.split(".")[0] for o in outputs})
+            # Parameter nodes are evaluated too: their output is the value actually used.
+            params = {t.split(".")[0] for t in design
+                      if g.node_type(t.split(".")[0]).startswith("param.")}
+            nodes = sorted({o.split(".")[0] for o in outputs} | params)
             if out is not None:
                 folder = os.path.join(out, f"design-{index:04d}")
                 g.out = folder
@@ -121,6 +153,15 @@ def evaluate_design(
             else:
                 results = g.run(nodes=nodes, check=False)
             errors = [m for _, m in g.errors]
+            for target, value in design.items():
+                node, name = target.split(".", 1)
+                if node in params and name in results.get(node, {}):
+                    used = results[node][name]
+                    used = used.item() if isinstance(used, np.ndarray) and used.ndim == 0 else used
+                    if not _same(used, value):
+                        notes.append(f"{target} = {value!r} was changed by its node to {used!r} "
+                                     "(the row holds the value used)")
+                    row[target] = used
             for name in outputs:
                 row[name] = _output(results, g, name)
             row["error"] = "\n".join(errors) if errors else None
@@ -128,7 +169,16 @@ def evaluate_design(
             for name in outputs:
                 row.setdefault(name, np.nan)
             row["error"] = str(e)
+        notes.extend(str(w.message) for w in caught if issubclass(w.category, _cnets.CnetsWarning))
+    row["__notes__"] = notes
     return row
+
+
+def _same(a: Any, b: Any) -> bool:
+    try:
+        return bool(np.array_equal(np.asarray(a), np.asarray(b)))
+    except Exception:
+        return False
 
 
 def sweep(
@@ -156,7 +206,21 @@ def sweep(
     import pandas as pd
     from dask.distributed import Client, LocalCluster
 
-    path = os.path.abspath(os.fspath(graph))
+    try:
+        path = os.path.abspath(os.fspath(graph))
+    except TypeError:
+        raise _cnets.CnetsError(f"graph: expected the path of a graph file, got {_describe(graph)}") from None
+    if isinstance(outputs, str):
+        outputs = [outputs]
+    if not isinstance(outputs, (list, tuple)) or not all(isinstance(o, str) for o in outputs):
+        raise _cnets.CnetsError(f"outputs: expected a list of \"node.output\" names, got "
+                                f"{_describe(outputs)}")
+    if n_workers is not None and (isinstance(n_workers, bool) or not isinstance(n_workers, int)
+                                  or n_workers < 1):
+        raise _cnets.CnetsError(f"n_workers: expected a positive int, got {_describe(n_workers)}")
+    for name, folders in (("allow_read", allow_read), ("library", library)):
+        if isinstance(folders, (str, os.PathLike)):
+            raise _cnets.CnetsError(f"{name}: expected a list of folders, got {_describe(folders)}")
     # Fail here, not on every worker, when the file does not load.
     probe = _cnets.Graph.load(path, allow_read=[os.fspath(p) for p in allow_read] or None,
                               max_memory=max_memory, library=[os.fspath(p) for p in library] or None)
@@ -191,6 +255,9 @@ def sweep(
         if own:
             client.close()
             cluster.close()
+    for k, row in enumerate(rows):
+        for note in row.pop("__notes__", []):
+            warnings.warn(f"design {k}: {note}", _cnets.CnetsWarning, stacklevel=2)
     columns: List[str] = []
     for d in sets:
         columns.extend(c for c in d if c not in columns)

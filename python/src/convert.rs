@@ -6,13 +6,15 @@
 //! type: an `(n, 3)` array is a polyline on a polyline port, a list of points on a point port, rows
 //! of numbers elsewhere), objects with `points` and `closed` (`cnets.Polyline`), with `vertices` of
 //! shape `(N, M, 3)` (`cnets.QuadMesh`, `cnets.ConeNet`), with `vertices` and `faces`
-//! (`cnets.PolygonMesh`), and dicts (records; planes on plane ports).
-//! Out: see [`to_py`].
+//! (`cnets.PolygonMesh`), and dicts (records; planes on plane ports). Every array is checked
+//! against the memory budget before it is copied.
+//! Out: see [`to_py`] and [`to_py_typed`].
 
 use std::sync::Arc;
 
+use cnets_engine::budget::bytes_of;
 use cnets_engine::value::Packed;
-use cnets_engine::{Items, Record, Value, ValueType};
+use cnets_engine::{Items, MemoryBudget, Record, Value, ValueType};
 use cnets_geometry::{DVec3, Line, Plane, PolygonMesh, Polyline, QuadGrid};
 use numpy::{
     PyArray1, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray,
@@ -24,55 +26,291 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 /// How deep nested Python sequences may go (a self-containing list would recurse forever).
 const MAX_DEPTH: usize = 64;
 
-/// Converts a Python object to a value for a port of item type `ty`.
-pub fn to_value(obj: &Bound<'_, PyAny>, ty: &ValueType) -> Result<Value, String> {
-    to_value_at(obj, ty.base(), 0)
+/// Converts a Python object to a value for a port of item type `ty`. Arrays are checked against
+/// `budget` before they are copied: a broadcast view of 10¹⁰ numbers fails with what it would
+/// need at once, without allocating.
+pub fn to_value(
+    obj: &Bound<'_, PyAny>,
+    ty: &ValueType,
+    budget: &MemoryBudget,
+) -> Result<Value, String> {
+    In { budget }.value(obj, ty.base(), 0)
 }
 
-fn to_value_at(obj: &Bound<'_, PyAny>, ty: &ValueType, depth: usize) -> Result<Value, String> {
-    if depth > MAX_DEPTH {
-        return Err(format!("nested more than {MAX_DEPTH} deep"));
+/// The conversion of inputs under a memory budget.
+struct In<'a> {
+    budget: &'a MemoryBudget,
+}
+
+impl In<'_> {
+    fn value(&self, obj: &Bound<'_, PyAny>, ty: &ValueType, depth: usize) -> Result<Value, String> {
+        if depth > MAX_DEPTH {
+            return Err(format!("nested more than {MAX_DEPTH} deep"));
+        }
+        if obj.is_none() {
+            return Ok(Value::Null);
+        }
+        if obj.is_instance_of::<PyBool>() {
+            return Ok(Value::Boolean(obj.extract::<bool>().map_err(err)?));
+        }
+        if obj.is_instance_of::<PyInt>() {
+            return match obj.extract::<i64>() {
+                Ok(i) if *ty == ValueType::Number => Ok(Value::Number(i as f64)),
+                Ok(i) => Ok(Value::Integer(i)),
+                Err(_) => Err("an integer too large for 64 bits".to_string()),
+            };
+        }
+        if obj.is_instance_of::<PyFloat>() {
+            return Ok(Value::Number(obj.extract::<f64>().map_err(err)?));
+        }
+        if obj.is_instance_of::<PyString>() {
+            return Ok(Value::text(obj.extract::<String>().map_err(err)?));
+        }
+        if let Ok(array) = obj.cast::<PyUntypedArray>() {
+            let (shape, data) = self.array_f64(array)?;
+            return shaped_value(&shape, &data, ty);
+        }
+        if let Ok(dict) = obj.cast::<PyDict>() {
+            return self.dict(dict, ty, depth);
+        }
+        if obj.hasattr("points").map_err(err)? && obj.hasattr("closed").map_err(err)? {
+            let points = self.points(&obj.getattr("points").map_err(err)?, "points")?;
+            let closed = obj
+                .getattr("closed")
+                .and_then(|c| c.is_truthy())
+                .map_err(err)?;
+            return Ok(Value::from(Polyline { points, closed }));
+        }
+        if obj.hasattr("vertices").map_err(err)? {
+            return self.mesh(obj);
+        }
+        if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+            return self.sequence(obj, ty, depth);
+        }
+        Err(format!("cannot use a {} here", type_name(obj)))
     }
-    if obj.is_none() {
-        return Ok(Value::Null);
-    }
-    if obj.is_instance_of::<PyBool>() {
-        return Ok(Value::Boolean(obj.extract::<bool>().map_err(err)?));
-    }
-    if obj.is_instance_of::<PyInt>() {
-        return match obj.extract::<i64>() {
-            Ok(i) if *ty == ValueType::Number => Ok(Value::Number(i as f64)),
-            Ok(i) => Ok(Value::Integer(i)),
-            Err(_) => Err("an integer too large for 64 bits".to_string()),
+
+    /// The contents of a numeric numpy array (any numeric dtype, any strides) as f64 in row-major
+    /// order, with its shape — after checking that the copy fits the budget.
+    fn array_f64(
+        &self,
+        array: &Bound<'_, PyUntypedArray>,
+    ) -> Result<(Vec<usize>, Vec<f64>), String> {
+        let kind = array.dtype().kind();
+        if !matches!(kind, b'f' | b'i' | b'u' | b'b') {
+            return Err(format!(
+                "a numpy array of dtype {} (expected numbers)",
+                array
+                    .dtype()
+                    .str()
+                    .map_or_else(|_| "?".into(), |s| s.to_string())
+            ));
+        }
+        let shape = array.shape().to_vec();
+        let count = shape
+            .iter()
+            .fold(1u128, |n, &d| n.saturating_mul(d as u128));
+        self.budget
+            .check(
+                bytes_of(count, 8),
+                0,
+                &format!("an array of shape {shape:?}"),
+            )
+            .map_err(|e| e.to_string())?;
+        let converted;
+        let typed = match array.cast::<PyArrayDyn<f64>>() {
+            Ok(a) => a,
+            Err(_) => {
+                converted = array.call_method1("astype", ("float64",)).map_err(err)?;
+                converted
+                    .cast::<PyArrayDyn<f64>>()
+                    .map_err(|e| e.to_string())?
+            }
         };
+        let readonly = typed.try_readonly().map_err(|e| e.to_string())?;
+        let data = match readonly.as_slice() {
+            Ok(s) => s.to_vec(),
+            Err(_) => readonly.as_array().iter().copied().collect(),
+        };
+        Ok((shape, data))
     }
-    if obj.is_instance_of::<PyFloat>() {
-        return Ok(Value::Number(obj.extract::<f64>().map_err(err)?));
+
+    /// Any array-like of numbers (numpy array or nested sequences) as shape and data.
+    fn numeric(&self, obj: &Bound<'_, PyAny>) -> Result<(Vec<usize>, Vec<f64>), String> {
+        if let Ok(array) = obj.cast::<PyUntypedArray>() {
+            return self.array_f64(array);
+        }
+        let np = obj.py().import("numpy").map_err(err)?;
+        let array = np
+            .call_method1("asarray", (obj, "float64"))
+            .map_err(|e| format!("not an array of numbers ({e})"))?;
+        let array = array.cast::<PyUntypedArray>().map_err(|e| e.to_string())?;
+        self.array_f64(array)
     }
-    if obj.is_instance_of::<PyString>() {
-        return Ok(Value::text(obj.extract::<String>().map_err(err)?));
+
+    /// Points from an `(n, 3)` array-like.
+    fn points(&self, obj: &Bound<'_, PyAny>, what: &str) -> Result<Vec<DVec3>, String> {
+        let (shape, data) = self.numeric(obj).map_err(|e| format!("{what}: {e}"))?;
+        match shape.as_slice() {
+            [_, 3] => Ok(vec3s(&data)),
+            [0] => Ok(Vec::new()),
+            _ => Err(format!(
+                "{what}: expected an (n, 3) array, got shape {shape:?}"
+            )),
+        }
     }
-    if let Ok(array) = obj.cast::<PyUntypedArray>() {
-        return array_value(array, ty);
+
+    /// A dict: a plane on plane ports, else a record.
+    fn dict(
+        &self,
+        dict: &Bound<'_, PyDict>,
+        ty: &ValueType,
+        depth: usize,
+    ) -> Result<Value, String> {
+        if *ty == ValueType::Plane {
+            let get = |name: &str| -> Result<Option<DVec3>, String> {
+                match dict.get_item(name).map_err(err)? {
+                    Some(v) if !v.is_none() => {
+                        let (shape, data) = self.numeric(&v)?;
+                        if shape != [3] {
+                            return Err(format!("plane {name}: expected 3 numbers"));
+                        }
+                        Ok(Some(DVec3::from_slice(&data)))
+                    }
+                    _ => Ok(None),
+                }
+            };
+            let origin = get("origin")?.unwrap_or(DVec3::ZERO);
+            let plane = match (get("normal")?, get("x_axis")?, get("y_axis")?) {
+                (_, Some(x), Some(y)) => Plane::from_axes(origin, x, y),
+                (Some(n), _, _) => Plane::from_normal(origin, n),
+                _ => return Err("a plane needs a normal, or x_axis and y_axis".to_string()),
+            };
+            return plane.map(Value::from).map_err(|e| e.to_string());
+        }
+        let mut record = Record::new();
+        for (k, v) in dict.iter() {
+            let name = k
+                .extract::<String>()
+                .map_err(|_| "record keys must be strings".to_string())?;
+            let value = self
+                .value(&v, &ValueType::Any, depth + 1)
+                .map_err(|e| format!("['{name}']: {e}"))?;
+            record.set(name, value);
+        }
+        Ok(Value::from(record))
     }
-    if let Ok(dict) = obj.cast::<PyDict>() {
-        return dict_value(dict, ty, depth);
+
+    /// An object with `vertices`: `(N, M, 3)` is a quad mesh (with `wrap_rows` / `wrap_cols` when
+    /// it has them); `(V, 3)` with `faces` a polygon mesh.
+    fn mesh(&self, obj: &Bound<'_, PyAny>) -> Result<Value, String> {
+        let (shape, data) = self
+            .numeric(&obj.getattr("vertices").map_err(err)?)
+            .map_err(|e| format!("vertices: {e}"))?;
+        let flag = |name: &str| -> Result<bool, String> {
+            match obj.getattr(name) {
+                Ok(v) => v.is_truthy().map_err(err),
+                Err(_) => Ok(false),
+            }
+        };
+        match shape.as_slice() {
+            [rows, cols, 3] => {
+                let grid = QuadGrid::new(*rows, *cols, vec3s(&data))
+                    .map_err(|e| e.to_string())?
+                    .with_wrap(flag("wrap_rows")?, flag("wrap_cols")?);
+                grid.validate().map_err(|e| e.to_string())?;
+                Ok(Value::from(grid))
+            }
+            [_, 3] => {
+                let faces = obj
+                    .getattr("faces")
+                    .map_err(|_| "a mesh of (V, 3) vertices needs faces".to_string())?;
+                let faces: Vec<Vec<i64>> = faces
+                    .extract()
+                    .or_else(|_| faces.call_method0("tolist").and_then(|l| l.extract()))
+                    .map_err(|_| "faces must be lists of vertex indices".to_string())?;
+                let count = data.len() / 3;
+                let mut indices = Vec::new();
+                let mut face_starts = Vec::new();
+                for (k, face) in faces.iter().enumerate() {
+                    face_starts.push(indices.len() as u32);
+                    for &i in face {
+                        if i < 0 || i as usize >= count {
+                            return Err(format!("faces[{k}]: vertex {i} is not in 0..{count}"));
+                        }
+                        indices.push(i as u32);
+                    }
+                }
+                Ok(Value::from(PolygonMesh {
+                    vertices: vec3s(&data),
+                    indices,
+                    face_starts,
+                }))
+            }
+            _ => Err(format!(
+                "vertices: expected shape (N, M, 3) or (V, 3), got {shape:?}"
+            )),
+        }
     }
-    if obj.hasattr("points").map_err(err)? && obj.hasattr("closed").map_err(err)? {
-        let points = points_of(&obj.getattr("points").map_err(err)?, "points")?;
-        let closed = obj
-            .getattr("closed")
-            .and_then(|c| c.is_truthy())
+
+    /// A list or tuple: a point (3 numbers) on point ports, a polyline (points) on polyline ports,
+    /// a numeric row packed, anything else item by item.
+    fn sequence(
+        &self,
+        obj: &Bound<'_, PyAny>,
+        ty: &ValueType,
+        depth: usize,
+    ) -> Result<Value, String> {
+        use ValueType as T;
+        let items: Vec<Bound<'_, PyAny>> = obj
+            .try_iter()
+            .map_err(err)?
+            .collect::<PyResult<_>>()
             .map_err(err)?;
-        return Ok(Value::from(Polyline { points, closed }));
+        let is_number = |o: &Bound<'_, PyAny>| {
+            (o.is_instance_of::<PyFloat>() || o.is_instance_of::<PyInt>())
+                && !o.is_instance_of::<PyBool>()
+        };
+        let all_numbers = !items.is_empty() && items.iter().all(is_number);
+        if all_numbers {
+            let row: Vec<f64> = items
+                .iter()
+                .map(|o| o.extract::<f64>().map_err(err))
+                .collect::<Result<_, _>>()?;
+            return match ty {
+                T::Point | T::Vector if row.len() == 3 => {
+                    let p = DVec3::from_slice(&row);
+                    Ok(if *ty == T::Point {
+                        Value::Point(p)
+                    } else {
+                        Value::Vector(p)
+                    })
+                }
+                T::Number | T::Any => {
+                    let n = row.len();
+                    Ok(Value::List(Items::numbers(Arc::new(row), 0..n)))
+                }
+                _ => items
+                    .iter()
+                    .map(|o| self.value(o, ty, depth + 1))
+                    .collect::<Result<Vec<_>, _>>()
+                    .map(Value::list),
+            };
+        }
+        if matches!(ty, T::Polyline | T::QuadMesh | T::Lines)
+            && let Ok((shape, data)) = self.numeric(obj)
+            && shape.len() >= 2
+            && shape.last() == Some(&3)
+        {
+            return shaped_value(&shape, &data, ty);
+        }
+        items
+            .iter()
+            .enumerate()
+            .map(|(k, o)| self.value(o, ty, depth + 1).map_err(|e| at_index(k, &e)))
+            .collect::<Result<Vec<_>, _>>()
+            .map(Value::list)
     }
-    if obj.hasattr("vertices").map_err(err)? {
-        return mesh_value(obj);
-    }
-    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
-        return sequence_value(obj, ty, depth);
-    }
-    Err(format!("cannot use a {} here", type_name(obj)))
 }
 
 fn err(e: PyErr) -> String {
@@ -85,73 +323,10 @@ fn type_name(obj: &Bound<'_, PyAny>) -> String {
         .map_or_else(|_| "value".to_string(), |n| n.to_string())
 }
 
-/// The contents of a numeric numpy array (any numeric dtype, any strides) as f64 in row-major
-/// order, with its shape.
-fn array_f64(array: &Bound<'_, PyUntypedArray>) -> Result<(Vec<usize>, Vec<f64>), String> {
-    let kind = array.dtype().kind();
-    if !matches!(kind, b'f' | b'i' | b'u' | b'b') {
-        return Err(format!(
-            "a numpy array of dtype {} (expected numbers)",
-            array
-                .dtype()
-                .str()
-                .map_or_else(|_| "?".into(), |s| s.to_string())
-        ));
-    }
-    let converted;
-    let typed = match array.cast::<PyArrayDyn<f64>>() {
-        Ok(a) => a,
-        Err(_) => {
-            converted = array.call_method1("astype", ("float64",)).map_err(err)?;
-            converted
-                .cast::<PyArrayDyn<f64>>()
-                .map_err(|e| e.to_string())?
-        }
-    };
-    let shape = typed.shape().to_vec();
-    let readonly = typed.try_readonly().map_err(|e| e.to_string())?;
-    let data = match readonly.as_slice() {
-        Ok(s) => s.to_vec(),
-        Err(_) => readonly.as_array().iter().copied().collect(),
-    };
-    Ok((shape, data))
-}
-
 fn vec3s(data: &[f64]) -> Vec<DVec3> {
     data.chunks_exact(3)
         .map(|c| DVec3::new(c[0], c[1], c[2]))
         .collect()
-}
-
-/// Points from an `(n, 3)` array-like.
-fn points_of(obj: &Bound<'_, PyAny>, what: &str) -> Result<Vec<DVec3>, String> {
-    let (shape, data) = numeric(obj).map_err(|e| format!("{what}: {e}"))?;
-    match shape.as_slice() {
-        [_, 3] => Ok(vec3s(&data)),
-        [0] => Ok(Vec::new()),
-        _ => Err(format!(
-            "{what}: expected an (n, 3) array, got shape {shape:?}"
-        )),
-    }
-}
-
-/// Any array-like of numbers (numpy array or nested sequences) as shape and data.
-fn numeric(obj: &Bound<'_, PyAny>) -> Result<(Vec<usize>, Vec<f64>), String> {
-    if let Ok(array) = obj.cast::<PyUntypedArray>() {
-        return array_f64(array);
-    }
-    let np = obj.py().import("numpy").map_err(err)?;
-    let array = np
-        .call_method1("asarray", (obj, "float64"))
-        .map_err(|e| format!("not an array of numbers ({e})"))?;
-    let array = array.cast::<PyUntypedArray>().map_err(|e| e.to_string())?;
-    array_f64(array)
-}
-
-/// A numpy array read by the port's type.
-fn array_value(array: &Bound<'_, PyUntypedArray>, ty: &ValueType) -> Result<Value, String> {
-    let (shape, data) = array_f64(array)?;
-    shaped_value(&shape, &data, ty)
 }
 
 fn shaped_value(shape: &[usize], data: &[f64], ty: &ValueType) -> Result<Value, String> {
@@ -200,146 +375,6 @@ fn shaped_value(shape: &[usize], data: &[f64], ty: &ValueType) -> Result<Value, 
         }
         _ => sub(data, shape),
     }
-}
-
-/// A dict: a plane on plane ports, else a record.
-fn dict_value(dict: &Bound<'_, PyDict>, ty: &ValueType, depth: usize) -> Result<Value, String> {
-    if *ty == ValueType::Plane {
-        let get = |name: &str| -> Result<Option<DVec3>, String> {
-            match dict.get_item(name).map_err(err)? {
-                Some(v) if !v.is_none() => {
-                    let (shape, data) = numeric(&v)?;
-                    if shape != [3] {
-                        return Err(format!("plane {name}: expected 3 numbers"));
-                    }
-                    Ok(Some(DVec3::from_slice(&data)))
-                }
-                _ => Ok(None),
-            }
-        };
-        let origin = get("origin")?.unwrap_or(DVec3::ZERO);
-        let plane = match (get("normal")?, get("x_axis")?, get("y_axis")?) {
-            (_, Some(x), Some(y)) => Plane::from_axes(origin, x, y),
-            (Some(n), _, _) => Plane::from_normal(origin, n),
-            _ => return Err("a plane needs a normal, or x_axis and y_axis".to_string()),
-        };
-        return plane.map(Value::from).map_err(|e| e.to_string());
-    }
-    let mut record = Record::new();
-    for (k, v) in dict.iter() {
-        let name = k
-            .extract::<String>()
-            .map_err(|_| "record keys must be strings".to_string())?;
-        let value =
-            to_value_at(&v, &ValueType::Any, depth + 1).map_err(|e| format!("['{name}']: {e}"))?;
-        record.set(name, value);
-    }
-    Ok(Value::from(record))
-}
-
-/// An object with `vertices`: `(N, M, 3)` is a quad mesh (with `wrap_rows` / `wrap_cols` when it
-/// has them); `(V, 3)` with `faces` a polygon mesh.
-fn mesh_value(obj: &Bound<'_, PyAny>) -> Result<Value, String> {
-    let (shape, data) =
-        numeric(&obj.getattr("vertices").map_err(err)?).map_err(|e| format!("vertices: {e}"))?;
-    let flag = |name: &str| -> Result<bool, String> {
-        match obj.getattr(name) {
-            Ok(v) => v.is_truthy().map_err(err),
-            Err(_) => Ok(false),
-        }
-    };
-    match shape.as_slice() {
-        [rows, cols, 3] => {
-            let grid = QuadGrid::new(*rows, *cols, vec3s(&data))
-                .map_err(|e| e.to_string())?
-                .with_wrap(flag("wrap_rows")?, flag("wrap_cols")?);
-            grid.validate().map_err(|e| e.to_string())?;
-            Ok(Value::from(grid))
-        }
-        [_, 3] => {
-            let faces = obj
-                .getattr("faces")
-                .map_err(|_| "a mesh of (V, 3) vertices needs faces".to_string())?;
-            let faces: Vec<Vec<i64>> = faces
-                .extract()
-                .or_else(|_| faces.call_method0("tolist").and_then(|l| l.extract()))
-                .map_err(|_| "faces must be lists of vertex indices".to_string())?;
-            let count = data.len() / 3;
-            let mut indices = Vec::new();
-            let mut face_starts = Vec::new();
-            for (k, face) in faces.iter().enumerate() {
-                face_starts.push(indices.len() as u32);
-                for &i in face {
-                    if i < 0 || i as usize >= count {
-                        return Err(format!("faces[{k}]: vertex {i} is not in 0..{count}"));
-                    }
-                    indices.push(i as u32);
-                }
-            }
-            Ok(Value::from(PolygonMesh {
-                vertices: vec3s(&data),
-                indices,
-                face_starts,
-            }))
-        }
-        _ => Err(format!(
-            "vertices: expected shape (N, M, 3) or (V, 3), got {shape:?}"
-        )),
-    }
-}
-
-/// A list or tuple: a point (3 numbers) on point ports, a polyline (points) on polyline ports, a
-/// numeric row packed, anything else item by item.
-fn sequence_value(obj: &Bound<'_, PyAny>, ty: &ValueType, depth: usize) -> Result<Value, String> {
-    use ValueType as T;
-    let items: Vec<Bound<'_, PyAny>> = obj
-        .try_iter()
-        .map_err(err)?
-        .collect::<PyResult<_>>()
-        .map_err(err)?;
-    let is_number = |o: &Bound<'_, PyAny>| {
-        (o.is_instance_of::<PyFloat>() || o.is_instance_of::<PyInt>())
-            && !o.is_instance_of::<PyBool>()
-    };
-    let all_numbers = !items.is_empty() && items.iter().all(is_number);
-    if all_numbers {
-        let row: Vec<f64> = items
-            .iter()
-            .map(|o| o.extract::<f64>().map_err(err))
-            .collect::<Result<_, _>>()?;
-        return match ty {
-            T::Point | T::Vector if row.len() == 3 => {
-                let p = DVec3::from_slice(&row);
-                Ok(if *ty == T::Point {
-                    Value::Point(p)
-                } else {
-                    Value::Vector(p)
-                })
-            }
-            T::Number | T::Any => {
-                let n = row.len();
-                Ok(Value::List(Items::numbers(Arc::new(row), 0..n)))
-            }
-            _ => items
-                .iter()
-                .map(|o| to_value_at(o, ty, depth + 1))
-                .collect::<Result<Vec<_>, _>>()
-                .map(Value::list),
-        };
-    }
-    if matches!(ty, T::Polyline | T::QuadMesh | T::Lines)
-        && let Ok((shape, data)) = numeric(obj)
-        && shape.len() >= 2
-        && shape.last() == Some(&3)
-    {
-        return shaped_value(&shape, &data, ty);
-    }
-    items
-        .iter()
-        .enumerate()
-        .map(|(k, o)| to_value_at(o, ty, depth + 1).map_err(|e| at_index(k, &e)))
-        .collect::<Result<Vec<_>, _>>()
-        .map(Value::list)
 }
 
 fn at_index(k: usize, error: &str) -> String {
@@ -407,8 +442,24 @@ pub fn to_py<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, PyAny>>
             }
             d.into_any()
         }
-        Value::List(items) => list_to_py(py, items)?,
+        Value::List(items) => list_to_py(py, items, false)?,
     })
+}
+
+/// Converts an output of a port of type `ty` to Python as [`to_py`] does, except that on ports of
+/// points or vectors a list is always an array of points: `(n, 3)` with NaN rows for missing
+/// points (apices at infinity), even when every point is missing or the list is empty.
+pub fn to_py_typed<'py>(
+    py: Python<'py>,
+    value: &Value,
+    ty: &ValueType,
+) -> PyResult<Bound<'py, PyAny>> {
+    match value {
+        Value::List(items) if matches!(ty.base(), ValueType::Point | ValueType::Vector) => {
+            list_to_py(py, items, true)
+        }
+        _ => to_py(py, value),
+    }
 }
 
 /// A quad mesh as `cnets.QuadMesh(vertices (rows, cols, 3), wrap_rows, wrap_cols)`.
@@ -438,8 +489,9 @@ fn points_array<'py>(py: Python<'py>, points: &[DVec3]) -> PyResult<Bound<'py, P
 /// The shape of a value as a numeric array, when it is one: numbers `[]`, points `[3]`, lists of
 /// equal shapes `[n, …]`. `None` for anything else (text, meshes, ragged lists, empty lists).
 /// `ints` stays true while every leaf is an integer. A `Null` item takes its siblings' shape when
-/// they are points (an apex at infinity: a NaN row).
-fn shape_of(v: &Value, ints: &mut bool) -> Option<Vec<usize>> {
+/// they are points (an apex at infinity: a NaN row). With `points` (the port carries points or
+/// vectors) a `Null` is a point even without siblings, and an empty list a list of no points.
+fn shape_of(v: &Value, ints: &mut bool, points: bool) -> Option<Vec<usize>> {
     match v {
         Value::Number(_) => {
             *ints = false;
@@ -450,6 +502,10 @@ fn shape_of(v: &Value, ints: &mut bool) -> Option<Vec<usize>> {
             *ints = false;
             Some(vec![3])
         }
+        Value::Null if points => {
+            *ints = false;
+            Some(vec![3])
+        }
         Value::List(items) => {
             if let Some(packed) = items.as_packed() {
                 return match packed {
@@ -457,21 +513,25 @@ fn shape_of(v: &Value, ints: &mut bool) -> Option<Vec<usize>> {
                         *ints = false;
                         Some(vec![range.len()])
                     }
-                    Packed::Vectors { range, .. } if !range.is_empty() => {
+                    Packed::Vectors { range, .. } if !range.is_empty() || points => {
                         *ints = false;
                         Some(vec![range.len(), 3])
                     }
                     _ => None,
                 };
             }
+            if items.is_empty() && points {
+                *ints = false;
+                return Some(vec![0, 3]);
+            }
             let mut inner: Option<Vec<usize>> = None;
             let mut nulls = false;
             for item in items.iter() {
-                if item.is_null() {
+                if item.is_null() && !points {
                     nulls = true;
                     continue;
                 }
-                let s = shape_of(item, ints)?;
+                let s = shape_of(item, ints, points)?;
                 match &inner {
                     None => inner = Some(s),
                     Some(prev) if *prev == s => {}
@@ -520,10 +580,10 @@ fn fill_ints(v: &Value, out: &mut Vec<i64>) {
     }
 }
 
-fn list_to_py<'py>(py: Python<'py>, items: &Items) -> PyResult<Bound<'py, PyAny>> {
+fn list_to_py<'py>(py: Python<'py>, items: &Items, points: bool) -> PyResult<Bound<'py, PyAny>> {
     let list = Value::List(items.clone());
     let mut ints = true;
-    if let Some(shape) = shape_of(&list, &mut ints) {
+    if let Some(shape) = shape_of(&list, &mut ints, points) {
         if ints {
             let mut data = Vec::with_capacity(shape.iter().product());
             fill_ints(&list, &mut data);

@@ -1,6 +1,7 @@
 //! `cnets.Graph`: a graph file loaded with the engine (as `cnets run` loads it), edited by
 //! `set("node.input", value)` and evaluated incrementally by one evaluator kept with it.
 
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 use cnets_engine::file::{Document, GraphMeta, save_file};
@@ -9,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::settings::Settings;
-use crate::{convert, error};
+use crate::{args, convert, error, warn};
 
 /// A graph file loaded for evaluation. `Graph.load(path)`, then `set("node.input", value)` and
 /// `run()`; after an edit only what depends on it runs again (`last_run_nodes`).
@@ -20,8 +21,11 @@ pub struct PyGraph {
     evaluator: Evaluator,
     path: PathBuf,
     settings: Settings,
-    /// Run counts of every node before the last run (to tell which ran).
+    /// The nodes that ran in the last evaluation (the others were up to date).
     last_run: Vec<String>,
+    /// The nodes the last evaluation verified: the requested ones and everything they depend on
+    /// (`None`: every node). Failures are reported for these only.
+    evaluated: Option<HashSet<usize>>,
     files: Vec<PathBuf>,
     warnings: Vec<String>,
 }
@@ -36,23 +40,49 @@ impl PyGraph {
             path,
             settings,
             last_run: Vec::new(),
+            evaluated: None,
             files: Vec::new(),
         }
     }
 
-    /// Evaluates the requested nodes (all when empty) with the GIL released.
-    fn evaluate(&mut self, py: Python<'_>, ids: &[String]) -> PyResult<()> {
-        let request = if ids.is_empty() {
-            self.graph.nodes().map(|(k, _)| k).collect()
-        } else {
-            ids.iter()
-                .map(|id| self.graph.index(id).map_err(|e| error(e.to_string())))
-                .collect::<PyResult<Vec<_>>>()?
-        };
-        let exports = self
+    /// `"node.input"` split and checked: the node's index and the input's index.
+    fn target(&self, target: &str) -> PyResult<(String, usize)> {
+        let (id, input) = cnets_host::split_target(target)
+            .ok_or_else(|| error(format!("'{target}': expected \"<node>.<input>\"")))?;
+        let def = &self
             .graph
-            .nodes()
-            .any(|(_, n)| n.def.has_flag(NodeFlag::Export) && n.enabled);
+            .node(id)
+            .ok_or_else(|| error(format!("'{target}': no node '{id}'")))?
+            .def;
+        let k = def.input_index(input).ok_or_else(|| {
+            error(format!(
+                "'{target}': {}",
+                cnets_host::inputs::unknown_input(def, input)
+            ))
+        })?;
+        Ok((id.to_string(), k))
+    }
+
+    /// Evaluates the requested nodes (all when `None`) with the GIL released, then issues the
+    /// warnings of the nodes that ran as `cnets.CnetsWarning`s.
+    fn evaluate(&mut self, py: Python<'_>, ids: Option<&[String]>) -> PyResult<()> {
+        let request: Vec<_> = match ids {
+            None => self.graph.nodes().map(|(k, _)| k).collect(),
+            Some(ids) => ids
+                .iter()
+                .map(|id| {
+                    self.graph
+                        .index(id)
+                        .map_err(|_| error(format!("nodes: no node '{id}'")))
+                })
+                .collect::<PyResult<Vec<_>>>()?,
+        };
+        let exports = self.graph.nodes().any(|(_, n)| {
+            n.enabled
+                && (n.def.has_flag(NodeFlag::Export)
+                    || cnets_engine::cluster::Cluster::of(&n.def)
+                        .is_some_and(|c| cnets_host::writes_files(&c.template)))
+        });
         let base = self.path.parent().map(Path::to_path_buf);
         let before: Vec<u64> = self
             .graph
@@ -65,6 +95,16 @@ impl PyGraph {
             Ok::<_, String>(evaluator.evaluate(graph, &request, &ctx, &mut |_, _| {}))
         });
         outcome.map_err(error)?;
+        self.evaluated = ids.map(|_| {
+            let mut seen = HashSet::new();
+            let mut stack = request.clone();
+            while let Some(k) = stack.pop() {
+                if seen.insert(k.index()) {
+                    stack.extend(self.graph.sources(k));
+                }
+            }
+            seen
+        });
         self.last_run = self
             .graph
             .nodes()
@@ -80,6 +120,20 @@ impl PyGraph {
             .filter_map(NodeResult::outputs)
             .flat_map(|o| o.files.iter().cloned())
             .collect();
+        for id in &self.last_run {
+            let Some(node) = self.graph.node(id) else {
+                continue;
+            };
+            if let Some(outputs) = self
+                .evaluator
+                .result(&self.graph, id)
+                .and_then(NodeResult::outputs)
+            {
+                for w in &outputs.warnings {
+                    warn(py, &format!("node '{id}' ({}): {w}", node.def.id))?;
+                }
+            }
+        }
         Ok(())
     }
 
@@ -96,8 +150,13 @@ impl PyGraph {
             return Ok(None);
         };
         let d = PyDict::new(py);
-        for (port, value) in node.def.outputs.iter().zip(&outputs.values) {
-            d.set_item(port.name.as_ref(), convert::to_py(py, value)?)?;
+        for (k, port) in node.def.outputs.iter().enumerate() {
+            if let Some(value) = outputs.computed(k) {
+                d.set_item(
+                    port.name.as_ref(),
+                    convert::to_py_typed(py, value, &port.ty)?,
+                )?;
+            }
         }
         Ok(Some(d))
     }
@@ -106,6 +165,11 @@ impl PyGraph {
     fn failures(&self) -> Vec<(String, String)> {
         self.graph
             .nodes()
+            .filter(|(k, _)| {
+                self.evaluated
+                    .as_ref()
+                    .is_none_or(|e| e.contains(&k.index()))
+            })
             .filter_map(|(k, n)| {
                 let result = self.evaluator.result_at(&self.graph, k)?;
                 match result {
@@ -136,86 +200,96 @@ impl PyGraph {
     #[staticmethod]
     #[pyo3(signature = (path, allow_read=None, max_memory=None, library=None, out=None))]
     fn load(
-        path: PathBuf,
-        allow_read: Option<Vec<PathBuf>>,
+        path: &Bound<'_, PyAny>,
+        allow_read: Option<&Bound<'_, PyAny>>,
         max_memory: Option<&Bound<'_, PyAny>>,
-        library: Option<Vec<PathBuf>>,
-        out: Option<PathBuf>,
+        library: Option<&Bound<'_, PyAny>>,
+        out: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let settings = Settings::new(max_memory, allow_read, library, out)?;
+        let path = args::path(path, "path")?;
+        let settings = Settings::new(max_memory, allow_read, library, out, "")?;
         let doc = cnets_host::load_graph(&path, &settings.library, &[], &settings.allow_read)
             .map_err(|e| error(e.to_string()))?;
         Ok(Self::from_document(doc, path, settings))
     }
 
     /// Sets the literal value of an input, `target` = `"node.input"`. The value is converted to
-    /// the port's type; a wrong node, input or type raises `CnetsError`.
-    fn set(&mut self, target: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        let (id, input) = cnets_host::split_target(target)
-            .ok_or_else(|| error(format!("'{target}': expected \"<node>.<input>\"")))?;
-        let node = self
+    /// the port's type; a wrong node, input or type raises `CnetsError`, and so does an input
+    /// fed by a wire (its value comes from the wire: set the source instead). A value the node
+    /// then changes (a slider clamping to its range) is reported by a `CnetsWarning` when it
+    /// runs.
+    fn set(&mut self, target: &Bound<'_, PyAny>, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let target = args::text(target, "target")?;
+        let (id, k) = self.target(&target)?;
+        let index = self.graph.index(&id).map_err(|e| error(e.to_string()))?;
+        let node = self.graph.node_at(index).expect("indexed node");
+        if let Some((from, wire)) = self
             .graph
-            .node(id)
-            .ok_or_else(|| error(format!("'{target}': no node '{id}'")))?;
+            .wires_into(index)
+            .into_iter()
+            .find(|(_, w)| w.to_input == k)
+        {
+            let source = self.graph.node_at(from).expect("wired node");
+            return Err(error(format!(
+                "'{target}' is wired from '{}.{}': its value comes from the wire, so setting it \
+                 would change nothing; set an input of '{}' instead",
+                source.id, source.def.outputs[wire.from_output].name, source.id
+            )));
+        }
         let def = node.def.clone();
-        let k = def.input_index(input).ok_or_else(|| {
-            error(format!(
-                "'{target}': {}",
-                cnets_host::inputs::unknown_input(&def, input)
-            ))
-        })?;
         let port = &def.inputs[k];
-        let v = convert::to_value(value, &port.ty)
+        let budget = self.settings.budget();
+        let v = convert::to_value(value, &port.ty, &budget)
             .map_err(|e| error(format!("'{target}' ({}): {e}", port.type_name())))?;
         self.graph
-            .set_value(id, input, v)
+            .set_value(&id, &port.name, v)
             .map_err(|e| error(format!("'{target}': {e}")))?;
         Ok(())
     }
 
     /// Removes the literal value of an input (`"node.input"`): it falls back to the port's default.
-    fn unset(&mut self, target: &str) -> PyResult<()> {
-        let (id, input) = cnets_host::split_target(target)
-            .ok_or_else(|| error(format!("'{target}': expected \"<node>.<input>\"")))?;
+    fn unset(&mut self, target: &Bound<'_, PyAny>) -> PyResult<()> {
+        let target = args::text(target, "target")?;
+        let (id, k) = self.target(&target)?;
+        let input = self.graph.node(&id).expect("checked node").def.inputs[k]
+            .name
+            .clone();
         self.graph
-            .clear_value(id, input)
+            .clear_value(&id, &input)
             .map_err(|e| error(format!("'{target}': {e}")))?;
         Ok(())
     }
 
     /// The literal value of an input (`"node.input"`), or `None` when it has none.
-    fn get<'py>(&self, py: Python<'py>, target: &str) -> PyResult<Bound<'py, PyAny>> {
-        let (id, input) = cnets_host::split_target(target)
-            .ok_or_else(|| error(format!("'{target}': expected \"<node>.<input>\"")))?;
-        let node = self
-            .graph
-            .node(id)
-            .ok_or_else(|| error(format!("'{target}': no node '{id}'")))?;
-        if node.def.input_index(input).is_none() {
-            return Err(error(format!(
-                "'{target}': {}",
-                cnets_host::inputs::unknown_input(&node.def, input)
-            )));
-        }
-        match node.value_of(input) {
-            Some(v) => convert::to_py(py, v),
+    fn get<'py>(&self, py: Python<'py>, target: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let target = args::text(target, "target")?;
+        let (id, k) = self.target(&target)?;
+        let node = self.graph.node(&id).expect("checked node");
+        match node.value(k) {
+            Some(v) => convert::to_py_typed(py, v, &node.def.inputs[k].ty),
             None => Ok(py.None().into_bound(py)),
         }
     }
 
     /// Evaluates the graph (only what changed since the last run) and returns the outputs of
-    /// every node that ran successfully: `{node_id: {output: value}}`. With `check` (the default)
-    /// a failed node raises `CnetsError` naming every failure; otherwise see `errors`. `nodes`
-    /// limits the evaluation to those nodes and what they depend on.
-    #[pyo3(signature = (nodes=None, check=true))]
+    /// the nodes evaluated now that succeeded: `{node_id: {output: value}}`. `nodes` (a node id
+    /// or a list of them) limits the evaluation to those nodes and what they depend on, and the
+    /// result to those nodes; without it every node is evaluated and returned. With `check` (the
+    /// default) a failed node among them raises `CnetsError` naming every failure; otherwise see
+    /// `errors`. Warnings of the nodes that ran are issued as `cnets.CnetsWarning`.
+    #[pyo3(signature = (nodes=None, check=None))]
     fn run<'py>(
         &mut self,
         py: Python<'py>,
-        nodes: Option<Vec<String>>,
-        check: bool,
+        nodes: Option<&Bound<'py, PyAny>>,
+        check: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let ids = nodes.unwrap_or_default();
-        self.evaluate(py, &ids)?;
+        let ids = args::texts(nodes, "nodes")?;
+        let check = match check.filter(|c| !c.is_none()) {
+            Some(c) => args::flag(c, "check")?,
+            None => true,
+        };
+        self.evaluate(py, ids.as_deref())?;
         if check {
             let failures = self.failures();
             let failed: Vec<&str> = failures
@@ -232,8 +306,11 @@ impl PyGraph {
             }
         }
         let result = PyDict::new(py);
-        let ids: Vec<String> = self.graph.nodes().map(|(_, n)| n.id.clone()).collect();
-        for id in ids {
+        let returned: Vec<String> = match ids {
+            Some(ids) => ids,
+            None => self.graph.nodes().map(|(_, n)| n.id.clone()).collect(),
+        };
+        for id in returned {
             if let Some(d) = self.outputs_dict(py, &id)? {
                 result.set_item(id, d)?;
             }
@@ -243,17 +320,22 @@ impl PyGraph {
 
     /// The outputs of one node (`{output: value}`), evaluating it first when needed; a node that
     /// failed or is blocked raises `CnetsError` with its message.
-    fn outputs<'py>(&mut self, py: Python<'py>, node_id: &str) -> PyResult<Bound<'py, PyDict>> {
-        if self.graph.node(node_id).is_none() {
-            return Err(error(format!("no node '{node_id}'")));
+    fn outputs<'py>(
+        &mut self,
+        py: Python<'py>,
+        node_id: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let node_id = args::text(node_id, "node_id")?;
+        if self.graph.node(&node_id).is_none() {
+            return Err(error(format!("node_id: no node '{node_id}'")));
         }
-        self.evaluate(py, &[node_id.to_string()])?;
-        match self.outputs_dict(py, node_id)? {
+        self.evaluate(py, Some(std::slice::from_ref(&node_id)))?;
+        match self.outputs_dict(py, &node_id)? {
             Some(d) => Ok(d),
             None => {
                 let message = self
                     .evaluator
-                    .result(&self.graph, node_id)
+                    .result(&self.graph, &node_id)
                     .and_then(NodeResult::error)
                     .unwrap_or("not evaluated")
                     .to_string();
@@ -263,7 +345,8 @@ impl PyGraph {
     }
 
     /// Saves the graph (with the values set) as a graph file, atomically.
-    fn save(&self, path: PathBuf) -> PyResult<()> {
+    fn save(&self, path: &Bound<'_, PyAny>) -> PyResult<()> {
+        let path = args::path(path, "path")?;
         save_file(&path, &self.graph, &self.meta)
             .map_err(|e| error(format!("{}: cannot save: {e}", path.display())))
     }
@@ -281,11 +364,12 @@ impl PyGraph {
     }
 
     /// The node type id of a node.
-    fn node_type(&self, node_id: &str) -> PyResult<String> {
+    fn node_type(&self, node_id: &Bound<'_, PyAny>) -> PyResult<String> {
+        let node_id = args::text(node_id, "node_id")?;
         self.graph
-            .node(node_id)
+            .node(&node_id)
             .map(|n| n.def.id.to_string())
-            .ok_or_else(|| error(format!("no node '{node_id}'")))
+            .ok_or_else(|| error(format!("node_id: no node '{node_id}'")))
     }
 
     /// Messages of the nodes that failed or were blocked in the last evaluation, by node id.
@@ -320,15 +404,21 @@ impl PyGraph {
 
     /// Sets the folder export nodes write into.
     #[setter]
-    fn set_out(&mut self, out: Option<PathBuf>) {
-        self.settings.out = out;
+    fn set_out(&mut self, out: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+        self.settings.out = args::opt_path(out, "out")?;
+        Ok(())
     }
 
     /// Milliseconds a node took on its last run.
-    fn time_ms(&self, node_id: &str) -> Option<f64> {
-        self.evaluator
-            .time(&self.graph, node_id)
-            .map(|t| t.as_secs_f64() * 1e3)
+    fn time_ms(&self, node_id: &Bound<'_, PyAny>) -> PyResult<Option<f64>> {
+        let node_id = args::text(node_id, "node_id")?;
+        if self.graph.node(&node_id).is_none() {
+            return Err(error(format!("node_id: no node '{node_id}'")));
+        }
+        Ok(self
+            .evaluator
+            .time(&self.graph, &node_id)
+            .map(|t| t.as_secs_f64() * 1e3))
     }
 
     fn __repr__(&self) -> String {

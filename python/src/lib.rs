@@ -7,11 +7,11 @@
 //! with the GIL released; panics in nodes are caught by the engine, and pyo3 turns any other panic
 //! into a Python exception.
 
+mod args;
 mod convert;
 mod graph;
 mod settings;
 
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
@@ -25,6 +25,14 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::settings::Settings;
+
+create_exception!(
+    cnets,
+    CnetsWarning,
+    pyo3::exceptions::PyUserWarning,
+    "A warning of a node that ran but reported something (a value clamped to a slider's range, a \
+     wrap dropped…)."
+);
 
 create_exception!(
     cnets,
@@ -57,29 +65,41 @@ pub(crate) fn error(message: impl Into<String>) -> PyErr {
 
 /// Evaluates one node type on inputs (a dict by input name) and returns its outputs by name.
 /// `label_tables`: lists of label rows (configurations) come back as `(codes, labels)`.
+/// `option_prefix` is how the caller spells the options in messages (`cnets.eval` takes them as
+/// `_outputs`, `_max_memory`, …).
 #[pyfunction]
-#[pyo3(signature = (node_type, inputs, outputs=None, max_memory=None, allow_read=None, library=None, out=None, label_tables=false))]
+#[pyo3(signature = (node_type, inputs, outputs=None, max_memory=None, allow_read=None, library=None, out=None, label_tables=false, option_prefix=""))]
 #[allow(clippy::too_many_arguments)]
 fn eval<'py>(
     py: Python<'py>,
-    node_type: &str,
-    inputs: &Bound<'py, PyDict>,
-    outputs: Option<Vec<String>>,
+    node_type: &Bound<'py, PyAny>,
+    inputs: &Bound<'py, PyAny>,
+    outputs: Option<&Bound<'py, PyAny>>,
     max_memory: Option<&Bound<'py, PyAny>>,
-    allow_read: Option<Vec<PathBuf>>,
-    library: Option<Vec<PathBuf>>,
-    out: Option<PathBuf>,
+    allow_read: Option<&Bound<'py, PyAny>>,
+    library: Option<&Bound<'py, PyAny>>,
+    out: Option<&Bound<'py, PyAny>>,
     label_tables: bool,
+    option_prefix: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let settings = Settings::new(max_memory, allow_read, library, out)?;
+    let node_type = node_type_arg(node_type)?;
+    let inputs = inputs.cast::<PyDict>().map_err(|_| {
+        error(format!(
+            "inputs: expected a dict, got {}",
+            args::describe(inputs)
+        ))
+    })?;
+    let outputs = args::texts(outputs, &format!("{option_prefix}outputs"))?;
+    let settings = Settings::new(max_memory, allow_read, library, out, option_prefix)?;
     let node = cnets_host::resolve(
-        node_type,
+        &node_type,
         registry(),
         &settings.library,
         &settings.allow_read,
     )
     .map_err(|e| error(e.to_string()))?;
     let def = node.def().clone();
+    let budget = settings.budget();
     let mut given: Vec<Option<Value>> = vec![None; def.inputs.len()];
     for (name, value) in inputs.iter() {
         let name: String = name
@@ -91,7 +111,7 @@ fn eval<'py>(
             ));
         };
         let port = &def.inputs[k];
-        let v = convert::to_value(&value, &port.ty).map_err(|e| {
+        let v = convert::to_value(&value, &port.ty, &budget).map_err(|e| {
             error(format!(
                 "{}: input '{name}' ({}): {e}",
                 def.id,
@@ -124,11 +144,8 @@ fn eval<'py>(
     });
     let result = result.map_err(error)?;
     let outputs_of = result.map_err(|m| error(format!("{}: {m}", def.id)))?;
-    if !outputs_of.warnings.is_empty() {
-        let warnings = py.import("warnings")?;
-        for w in &outputs_of.warnings {
-            warnings.call_method1("warn", (format!("{}: {w}", def.id),))?;
-        }
+    for w in &outputs_of.warnings {
+        warn(py, &format!("{}: {w}", def.id))?;
     }
     let dict = PyDict::new(py);
     for (port, value) in def.outputs.iter().zip(&outputs_of.values) {
@@ -143,7 +160,10 @@ fn eval<'py>(
             };
             match table {
                 Some(t) => dict.set_item(port.name.as_ref(), t)?,
-                None => dict.set_item(port.name.as_ref(), convert::to_py(py, value)?)?,
+                None => dict.set_item(
+                    port.name.as_ref(),
+                    convert::to_py_typed(py, value, &port.ty)?,
+                )?,
             }
         }
     }
@@ -158,6 +178,29 @@ fn eval<'py>(
     Ok(dict)
 }
 
+/// A node type argument: a registry id or `cluster:<path>`.
+fn node_type_arg(obj: &Bound<'_, PyAny>) -> PyResult<String> {
+    if obj.is_instance_of::<pyo3::types::PyString>() {
+        return obj.extract();
+    }
+    Err(error(format!(
+        "node_type: expected a node type id such as \"cnets.construct\" (see cnets.node_types()) \
+         or \"cluster:<graph.ron>\", got {}",
+        args::describe(obj)
+    )))
+}
+
+/// Issues a `cnets.CnetsWarning` (a node's warning: a clamped value, a dropped wrap…).
+pub(crate) fn warn(py: Python<'_>, message: &str) -> PyResult<()> {
+    let category = py.get_type::<CnetsWarning>();
+    PyErr::warn(
+        py,
+        &category,
+        &std::ffi::CString::new(message.replace('\0', " "))?,
+        1,
+    )
+}
+
 /// Seconds the node itself took in the last `eval` call (inputs already converted, outputs not
 /// yet), for comparing the Python overhead with the node's own time.
 #[pyfunction]
@@ -170,16 +213,17 @@ fn last_eval_seconds() -> f64 {
 #[pyfunction]
 fn quad_faces<'py>(
     py: Python<'py>,
-    rows: usize,
-    cols: usize,
-    wrap_rows: bool,
-    wrap_cols: bool,
+    rows: &Bound<'py, PyAny>,
+    cols: &Bound<'py, PyAny>,
+    wrap_rows: &Bound<'py, PyAny>,
+    wrap_cols: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let (rows, cols) = (args::count(rows, "rows")?, args::count(cols, "cols")?);
     let grid = cnets_geometry::QuadGrid {
         rows,
         cols,
-        wrap_rows,
-        wrap_cols,
+        wrap_rows: args::flag(wrap_rows, "wrap_rows")?,
+        wrap_cols: args::flag(wrap_cols, "wrap_cols")?,
         vertices: Vec::new(),
     };
     let (qr, qc) = (grid.quad_rows(), grid.quad_cols());
@@ -197,6 +241,33 @@ fn quad_faces<'py>(
     PyArray1::from_vec(py, data)
         .reshape([qr * qc, 4])
         .map(|a| a.into_any())
+}
+
+/// Bytes of a size text (`"64MB"`, `"2G"`, `"1.5GiB"`, a plain number of bytes), as the command
+/// line's `--max-memory` reads it.
+#[pyfunction]
+fn parse_size(text: &Bound<'_, PyAny>) -> PyResult<u64> {
+    let text = args::text(text, "size")?;
+    cnets_engine::budget::parse_size(&text).map_err(error)
+}
+
+/// Bytes for messages, in decimal units (`64 MB`, `1.5 GB`).
+#[pyfunction]
+fn format_bytes(bytes: u64) -> String {
+    cnets_engine::budget::format_bytes(bytes)
+}
+
+/// Checks that copying `count` numbers (8 bytes each) for `what` fits the memory budget
+/// (`max_memory`, else half the machine's memory), before the copy is made; raises `CnetsError`
+/// with what it would need otherwise.
+#[pyfunction]
+#[pyo3(signature = (count, what, max_memory=None))]
+fn check_memory(count: u128, what: &str, max_memory: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+    let settings = Settings::new(max_memory, None, None, None, "")?;
+    settings
+        .budget()
+        .check(cnets_engine::budget::bytes_of(count, 8), 0, what)
+        .map_err(|e| error(e.to_string()))
 }
 
 /// A node type as a dict: `id`, `category`, `doc`, `inputs` and `outputs` (each a dict with
@@ -244,15 +315,15 @@ fn node_types<'py>(py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
 #[pyo3(signature = (node_type, library=None, allow_read=None))]
 fn node_interface<'py>(
     py: Python<'py>,
-    node_type: &str,
-    library: Option<Vec<PathBuf>>,
-    allow_read: Option<Vec<PathBuf>>,
+    node_type: &Bound<'py, PyAny>,
+    library: Option<&Bound<'py, PyAny>>,
+    allow_read: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let node = cnets_host::resolve(
-        node_type,
+        &node_type_arg(node_type)?,
         registry(),
-        &library.unwrap_or_default(),
-        &allow_read.unwrap_or_default(),
+        &args::paths(library, "library")?,
+        &args::paths(allow_read, "allow_read")?,
     )
     .map_err(|e| error(e.to_string()))?;
     def_dict(py, node.def())
@@ -264,11 +335,15 @@ use numpy::PyArrayMethods;
 #[pymodule]
 fn _cnets(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("CnetsError", m.py().get_type::<CnetsError>())?;
+    m.add("CnetsWarning", m.py().get_type::<CnetsWarning>())?;
     m.add_function(wrap_pyfunction!(eval, m)?)?;
     m.add_function(wrap_pyfunction!(last_eval_seconds, m)?)?;
     m.add_function(wrap_pyfunction!(quad_faces, m)?)?;
     m.add_function(wrap_pyfunction!(node_types, m)?)?;
     m.add_function(wrap_pyfunction!(node_interface, m)?)?;
+    m.add_function(wrap_pyfunction!(parse_size, m)?)?;
+    m.add_function(wrap_pyfunction!(format_bytes, m)?)?;
+    m.add_function(wrap_pyfunction!(check_memory, m)?)?;
     m.add_class::<graph::PyGraph>()?;
     Ok(())
 }

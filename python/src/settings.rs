@@ -5,8 +5,9 @@ use std::path::PathBuf;
 
 use cnets_engine::{MemoryBudget, NodeContext};
 use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyInt, PyString};
 
-use crate::error;
+use crate::{args, error};
 
 /// Resource settings of an evaluation, from Python keyword arguments.
 #[derive(Debug, Clone, Default)]
@@ -22,20 +23,32 @@ pub struct Settings {
 }
 
 impl Settings {
-    /// Settings from keyword arguments; `max_memory` is a number of bytes or a size text such as
-    /// `"512MB"` or `"2G"`.
+    /// Settings from keyword arguments, named in messages as `names` gives them (`max_memory`,
+    /// `allow_read`, `library`, `out`, each with `prefix` before it: `cnets.eval` takes them as
+    /// `_max_memory` …). `max_memory` is a number of bytes or a size text such as `"512MB"`;
+    /// `allow_read` and `library` a folder or a list of folders; `out` a folder.
     pub fn new(
         max_memory: Option<&Bound<'_, PyAny>>,
-        allow_read: Option<Vec<PathBuf>>,
-        library: Option<Vec<PathBuf>>,
-        out: Option<PathBuf>,
+        allow_read: Option<&Bound<'_, PyAny>>,
+        library: Option<&Bound<'_, PyAny>>,
+        out: Option<&Bound<'_, PyAny>>,
+        prefix: &str,
     ) -> PyResult<Self> {
         Ok(Self {
-            max_memory: max_memory.map(parse_memory).transpose()?,
-            allow_read: allow_read.unwrap_or_default(),
-            library: library.unwrap_or_default(),
-            out,
+            max_memory: max_memory
+                .filter(|m| !m.is_none())
+                .map(|m| parse_memory(m, &format!("{prefix}max_memory")))
+                .transpose()?,
+            allow_read: args::paths(allow_read, &format!("{prefix}allow_read"))?,
+            library: args::paths(library, &format!("{prefix}library"))?,
+            out: args::opt_path(out, &format!("{prefix}out"))?,
         })
+    }
+
+    /// The memory budget of an evaluation (`max_memory`, else half the machine's memory).
+    pub fn budget(&self) -> MemoryBudget {
+        self.max_memory
+            .map_or_else(MemoryBudget::default, MemoryBudget::new)
     }
 
     /// The node context of one evaluation; creates the output folder when the graph exports.
@@ -58,15 +71,22 @@ impl Settings {
     }
 }
 
-fn parse_memory(value: &Bound<'_, PyAny>) -> PyResult<u64> {
-    if let Ok(bytes) = value.extract::<u64>() {
-        return Ok(bytes);
+fn parse_memory(value: &Bound<'_, PyAny>, name: &str) -> PyResult<u64> {
+    if value.is_instance_of::<PyInt>() && !value.is_instance_of::<PyBool>() {
+        return match value.extract::<u64>() {
+            Ok(bytes) if bytes > 0 => Ok(bytes),
+            _ => Err(error(format!(
+                "{name}: expected a positive number of bytes, got {}",
+                args::describe(value)
+            ))),
+        };
     }
-    if let Ok(text) = value.extract::<String>() {
-        return cnets_engine::budget::parse_size(&text)
-            .map_err(|e| error(format!("max_memory: {e}")));
+    if value.is_instance_of::<PyString>() {
+        let text: String = value.extract()?;
+        return cnets_engine::budget::parse_size(&text).map_err(|e| error(format!("{name}: {e}")));
     }
-    Err(error(
-        "max_memory must be a number of bytes or a size such as \"512MB\" or \"2G\"",
-    ))
+    Err(error(format!(
+        "{name}: expected a number of bytes or a size such as \"512MB\" or \"2G\", got {}",
+        args::describe(value)
+    )))
 }

@@ -1,9 +1,21 @@
-"""Shared fixtures: small graph files and curves for the cnets tests."""
+"""Shared fixtures: small graph files and curves for the cnets tests, the repository's folders,
+and a Hops server started as `python -m cnets.hops` on a free loopback port."""
 
+import os
+import socket
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
 from pathlib import Path
 
 import numpy as np
 import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+GRAPHS = REPO / "graphs"
+LIBRARY = GRAPHS / "library"
 
 DESIGN = """(
     version: 1,
@@ -63,5 +75,62 @@ def arc(n: int, radius: float = 5.0, degrees: float = 120.0) -> np.ndarray:
 
 
 def profile(n: int, radius: float = 5.0, height: float = 3.0) -> np.ndarray:
+    """A generatrix starting on the directrix's first point (radius, 0, 0)."""
     s = np.linspace(0.0, 1.0, n)
     return np.c_[radius + 0.8 * s + 0.3 * np.sin(3 * s), np.zeros(n), height * s]
+
+
+def lifted(n: int, radius: float = 5.0, height: float = 3.0) -> np.ndarray:
+    """A generatrix drawn as the docs advise: starting off the directrix (half a unit above)."""
+    return profile(n, radius, height) + [0.0, 0.0, 0.5]
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class HopsProcess:
+    """`python -m cnets.hops` on a free loopback port; `log()` is what it printed."""
+
+    def __init__(self, log_path: Path, *args: str) -> None:
+        self.port = free_port()
+        self.url = f"http://127.0.0.1:{self.port}"
+        self.log_path = log_path
+        self._log = open(log_path, "w+b")
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", "cnets.hops", "--port", str(self.port), *args],
+            stdout=self._log, stderr=subprocess.STDOUT, cwd=str(REPO),
+        )
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                urllib.request.urlopen(self.url + "/", timeout=5).read()
+                break
+            except (urllib.error.URLError, ConnectionError):
+                if self.proc.poll() is not None or time.monotonic() > deadline:
+                    self.stop()
+                    raise RuntimeError(f"the Hops server did not start: {self.log()}")
+                time.sleep(0.1)
+
+    def log(self) -> str:
+        return self.log_path.read_bytes().decode(errors="replace")
+
+    def stop(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.terminate()
+            try:
+                self.proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+        self._log.close()
+
+
+@pytest.fixture(scope="session")
+def cnets_bin() -> Path:
+    """The `cnets` command line (scripts/test-python.sh builds it; CNETS_BIN names another)."""
+    path = Path(os.environ.get("CNETS_BIN") or REPO / "target" / "debug" / "cnets")
+    assert path.is_file(), f"no cnets binary at {path}: cargo build -p cnets, or set CNETS_BIN"
+    return path

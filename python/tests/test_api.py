@@ -1,13 +1,16 @@
 """The Python API: construction, eval, Graph, conversions (docs/python.md)."""
 
+import resource
 import threading
 import time
+import tracemalloc
+import warnings
 
 import numpy as np
 import pytest
 
 import cnets
-from conftest import arc, profile
+from conftest import arc, lifted, profile
 
 
 def test_construct_shapes_and_planarity():
@@ -278,39 +281,258 @@ def test_help_reads_like_the_nodes_doc():
 
 
 def test_the_gil_is_released_during_evaluation():
-    d, g = arc(300), profile(300)
-    done = threading.Event()
+    """The main thread keeps running Python while another thread constructs. No time limit: the
+    main thread counts its turns during single calls; with the GIL held through a call it could
+    get at most two (when the call's own Python code lets it in), released it runs all along."""
+    d, g = arc(1000), profile(1000)
     ticks = 0
+    during = []
+    done = threading.Event()
 
     def work():
-        for _ in range(4):
+        for _ in range(30):
+            before = ticks
             cnets.construct(d, g, apex=0.95)
+            during.append(ticks - before)
+            if during[-1] >= 8:
+                break
         done.set()
 
     t = threading.Thread(target=work)
-    start = time.perf_counter()
     t.start()
     while not done.is_set():
         ticks += 1
-        time.sleep(0.0005)
+        time.sleep(0.0002)
     t.join()
-    elapsed = time.perf_counter() - start
-    # With the GIL held, this loop would get no turn while the construction runs.
-    assert ticks > 0.3 * elapsed / 0.0015, (ticks, elapsed)
+    assert max(during) >= 8, during
 
 
-def test_speed_within_1_5x_of_the_nodes_own_time():
+def test_no_python_object_per_vertex():
+    """The regression guard of the binding's speed (issue 30: a count, not a time; the speed
+    itself is a figure of python/benchmarks/bench_python.py): a 100 × 100 construction allocates
+    no Python object per vertex — its arrays are the engine's buffers, its labels a table."""
     d, g = arc(100), profile(100)
-    totals, nodes = [], []
-    start = time.perf_counter()
-    for k in range(60):
-        if k >= 5 and time.perf_counter() - start > 2.0:  # an unoptimized (dev-profile) build
-            break
-        t0 = time.perf_counter()
-        cnets.construct(d, g, apex=0.95, ratios=0.5)
-        totals.append(time.perf_counter() - t0)
-        nodes.append(cnets._cnets.last_eval_seconds())
-    best_total, best_node = min(totals), min(nodes)
-    print(f"100 x 100: cnets.construct {best_total * 1e3:.3f} ms, node {best_node * 1e3:.3f} ms, "
-          f"ratio {best_total / best_node:.2f}")
-    assert best_total <= 1.5 * best_node, (best_total, best_node)
+    cnets.construct(d, g, apex=0.95, ratios=0.5)  # warm: docstrings, imports, caches
+    tracemalloc.start()
+    try:
+        tracemalloc.reset_peak()
+        net = cnets.construct(d, g, apex=0.95, ratios=0.5)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert net.vertices.shape == (100, 100, 3)
+    # 10 000 vertices as Python floats or tuples would take ≥ 240 kB; measured: see the report.
+    print(f"Python allocations of one 100 x 100 construction: {peak} bytes")
+    assert peak < 48_000, peak
+
+
+def _grew_by(before_kb: int) -> int:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before_kb
+
+
+def test_sizes_are_checked_against_the_budget_before_any_copy():
+    d, g = arc(10), profile(5)
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    huge = np.broadcast_to(0.5, (10**5, 10**5 - 1))  # 80 GB if copied; no memory as a view
+    with pytest.raises(cnets.CnetsError, match=r"ratios.*needs 80 GB, the limit is"):
+        cnets.construct(d, g, ratios=huge)
+    with pytest.raises(cnets.CnetsError, match=r"mesh.*needs 240 GB, the limit is"):
+        cnets.encode(np.broadcast_to(0.5, (10**5, 10**5, 3)))
+    with pytest.raises(cnets.CnetsError, match=r"needs 2\.4 GB, the limit is 1 GB"):
+        cnets.eval("math.add", a=np.broadcast_to(1, (10**8, 3)), _max_memory="1GB")
+    with pytest.raises(cnets.CnetsError, match=r"directrix.*needs"):
+        cnets.construct(np.broadcast_to(1.0, (10**10, 3)), g)
+    assert _grew_by(before) < 200_000, "no copy was made (peak memory grew by less than 200 MB)"
+
+
+def _call(f, *args, **kwargs):
+    return lambda: f(*args, **kwargs)
+
+
+D, G = arc(6), lifted(4)
+_HOSTILE = [
+    # (call, the argument the message must name)
+    (_call(cnets.construct, D, G, assistance=[0.5, 0.2]), "assistance"),
+    (_call(cnets.construct, D, G, epsilon=[0.1]), "epsilon"),
+    (_call(cnets.construct, D, G, normalized=[True]), "normalized"),
+    (_call(cnets.construct, D, G, normalized=1), "normalized"),
+    (_call(cnets.construct, D, G, scale=[2.0]), "scale"),
+    (_call(cnets.construct, D, G, scale="x"), "scale"),
+    (_call(cnets.construct, D, G, end_planes="sideways"), "end_planes"),
+    (_call(cnets.construct, D, G, end_planes=1), "end_planes"),
+    (_call(cnets.construct, "abc", G), "directrix"),
+    (_call(cnets.construct, D, "abc"), "generatrix"),
+    (_call(cnets.construct, None, G), "directrix"),
+    (_call(cnets.construct, D, {"a": 1}), "generatrix"),
+    (_call(cnets.construct, D, np.zeros((4, 2))), "generatrix"),
+    (_call(cnets.construct, D, np.array(["a", "b", "c"])), "generatrix"),
+    (_call(cnets.construct, D, G, apex="steep"), "apex"),
+    (_call(cnets.construct, D, G, apex=[[[1.0]]]), "apex"),
+    (_call(cnets.construct, D, G, apex=["a", "b"]), "apex"),
+    (_call(cnets.construct, D, G, ratios={"a": 1}), "ratios"),
+    (_call(cnets.construct, D, G, ratios=np.zeros((2, 2, 2))), "ratios"),
+    (_call(cnets.construct, D, G, apex=[0.9, 0.9]), "apex"),
+    (_call(cnets.ctube, D, G, normals="up"), "normals"),
+    (_call(cnets.ctube, D, G, normals=np.zeros((3, 3))), "normals"),
+    (_call(cnets.construct_coplanar, D, G, ruling_ratios="x"), "ruling_ratios"),
+    (_call(cnets.construct_coplanar, D, G, plane_ratios=[[[0.5]]]), "plane_ratios"),
+    (_call(cnets.construct_coplanar, D, G, assistance=[1]), "assistance"),
+    (_call(cnets.encode, "abc"), "vertices"),
+    (_call(cnets.encode, np.zeros((3, 3))), "vertices"),
+    (_call(cnets.eval, None), "node_type"),
+    (_call(cnets.eval, 3), "node_type"),
+    (_call(cnets.eval, "math.add", a=1, _outputs=5), "_outputs"),
+    (_call(cnets.eval, "math.add", a=1, _max_memory=[1]), "_max_memory"),
+    (_call(cnets.eval, "math.add", a=1, _max_memory=True), "_max_memory"),
+    (_call(cnets.eval, "math.add", a=1, _max_memory="lots"), "_max_memory"),
+    (_call(cnets.eval, "math.add", a=1, _allow_read=3), "_allow_read"),
+    (_call(cnets.eval, "math.add", a=1, _library=[None]), "_library[0]"),
+    (_call(cnets.eval, "math.add", a=1, _out=2.5), "_out"),
+    (_call(cnets.eval, "math.add", a=object()), "'a'"),
+    (_call(cnets.Graph.load, None), "path"),
+    (_call(cnets.Graph.load, 42), "path"),
+    (_call(cnets.Graph.load, "x.ron", max_memory={}), "max_memory"),
+    (_call(cnets.Graph.load, "x.ron", library=7), "library"),
+    (_call(cnets.write_3dm, "x.3dm", {"a": "hi"}), "objects['a']"),
+    (_call(cnets.write_3dm, "x.3dm", {"a": [np.zeros((2, 3)), "hi"]}), "objects['a'][1]"),
+    (_call(cnets.write_3dm, "x.3dm", {1: np.zeros((2, 3))}), "objects"),
+    (_call(cnets.write_3dm, "x.3dm", 5), "objects"),
+    (_call(cnets.write_3dm, None, {"a": np.zeros((2, 3))}), "path"),
+    (_call(cnets.write_3dm, "x.3dm", {"a": np.zeros((2, 3))}, layers="yes"), "layers"),
+    (_call(cnets.write_3dm, "x.3dm", {"a": np.zeros((2, 3))}, version=99), "version"),
+    (_call(cnets.Polyline, "abc"), "points"),
+    (_call(cnets.Polyline, np.zeros((3, 3)), closed="yes"), "closed"),
+    (_call(cnets.QuadMesh, np.zeros((2, 3))), "vertices"),
+    (_call(cnets.QuadMesh, np.zeros((2, 2, 3)), wrap_rows=1), "wrap_rows"),
+    (_call(cnets.PolygonMesh, np.zeros((3, 3)), [[0, 1, 5]]), "faces[0]"),
+    (_call(cnets.PolygonMesh, np.zeros((3, 3)), [["a", 1, 2]]), "faces"),
+    (_call(cnets._cnets.quad_faces, -1, 2, False, False), "rows"),
+    (_call(cnets._cnets.quad_faces, 2, 2, 0, False), "wrap_rows"),
+]
+
+
+@pytest.mark.parametrize("call,argument", _HOSTILE, ids=[f"{k}-{a}" for k, (_, a) in enumerate(_HOSTILE)])
+def test_bad_arguments_raise_cnets_errors_naming_the_argument(call, argument, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(cnets.CnetsError) as e:
+        call()
+    assert argument in str(e.value), str(e.value)
+    assert "Traceback" not in str(e.value)
+
+
+def test_graph_arguments_raise_cnets_errors_naming_the_argument(design):
+    g = cnets.Graph.load(design)
+    for call, argument in [
+        (_call(g.set, None, 1), "target"),
+        (_call(g.set, 5, 1), "target"),
+        (_call(g.set, "apex.value", "steep"), "apex.value"),
+        (_call(g.set, "apex.value", [0.5, 0.6, "x"]), "apex.value"),
+        (_call(g.get, ["apex.value"]), "target"),
+        (_call(g.unset, None), "target"),
+        (_call(g.run, nodes=5), "nodes"),
+        (_call(g.run, nodes=["len", 3]), "nodes[1]"),
+        (_call(g.run, nodes=["nope"]), "no node 'nope'"),
+        (_call(g.run, check="no"), "check"),
+        (_call(g.outputs, None), "node_id"),
+        (_call(g.outputs, "nope"), "no node 'nope'"),
+        (_call(g.node_type, 3), "node_id"),
+        (_call(g.time_ms, "nope"), "no node 'nope'"),
+        (_call(g.save, None), "path"),
+        (_call(setattr, g, "out", 3), "out"),
+    ]:
+        with pytest.raises(cnets.CnetsError) as e:
+            call()
+        assert argument in str(e.value), (argument, str(e.value))
+
+
+def test_run_with_nodes_returns_only_what_it_evaluated_now(design):
+    """No stale results: after an edit, run(nodes=…) returns those nodes, freshly evaluated."""
+    g = cnets.Graph.load(design)
+    first = g.run()
+    g.set("apex.value", 0.8)
+    only = g.run(nodes=["len"])
+    assert set(only) == {"len"}, "only the requested node comes back"
+    assert "net" not in only, "the net was not re-evaluated, so it is not returned (stale)"
+    net = g.run(nodes="net")["net"]["mesh"]
+    assert not np.array_equal(net.vertices, first["net"]["mesh"].vertices)
+    np.testing.assert_array_equal(net.vertices, cnets.construct(
+        first["dir"]["curve"], first["gen"]["curve"], apex=0.8).vertices)
+    # A failure of a node that is not evaluated now is not reported now.
+    g.set("gen.count", 1)
+    with pytest.raises(cnets.CnetsError):
+        g.run()
+    assert g.run(nodes=["len"])["len"]["length"] == first["len"]["length"]
+    assert g.errors == []
+
+
+def test_setting_a_wired_input_raises(design):
+    g = cnets.Graph.load(design)
+    with pytest.raises(cnets.CnetsError, match=r"'net.apex' is wired from 'apex.value'"):
+        g.set("net.apex", 0.5)
+    with pytest.raises(cnets.CnetsError, match=r"'dir.radius' is wired from 'radius.value'"):
+        g.set("dir.radius", 2.0)
+    g.set("net.ratios", 0.4)  # not wired: fine
+    assert g.get("net.ratios") == pytest.approx(0.4)
+
+
+def test_a_clamped_value_is_reported(design):
+    g = cnets.Graph.load(design)
+    g.set("apex.value", 0.3)  # the slider's range is [0.5, 1.5]
+    with pytest.warns(cnets.CnetsWarning, match=r"node 'apex' \(param.number\): value 0.3 is outside \[0.5, 1.5\]; clamped to 0.5"):
+        out = g.run()
+    assert out["apex"]["value"] == 0.5
+    assert g.get("apex.value") == 0.3, "the file keeps what was set"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        g.run()  # nothing ran again: no second warning
+
+
+def test_point_outputs_are_always_arrays():
+    """Apices come back as an (M−1, 3) array whatever the values: NaN rows at infinity."""
+    d, g = arc(6), profile(4)
+    for out in (cnets.eval("cnets.construct", directrix=d, generatrix=g, apex=1.0),
+                cnets.eval("cnets.construct", directrix=d, generatrix=g, apex=0.9),
+                cnets.eval("cnets.construct", directrix=d, generatrix=g, apex=[1.0, 0.9, 1.0, 1.0, 1.0])):
+        apices = out["apices"]
+        assert isinstance(apices, np.ndarray) and apices.shape == (5, 3) and apices.dtype == np.float64
+    assert np.isnan(cnets.eval("cnets.construct", directrix=d, generatrix=g, apex=1.0)["apices"]).all()
+    mixed = cnets.eval("cnets.construct", directrix=d, generatrix=g, apex=[1.0, 0.9, 1.0, 1.0, 1.0])["apices"]
+    assert np.isnan(mixed[0]).all() and np.isfinite(mixed[1]).all()
+    assert cnets.construct(d, g, apex=1.0).apices.shape == (5, 3)
+
+
+def test_polylines_are_open_by_default():
+    pts = arc(8)
+    assert not cnets.Polyline(pts).closed
+    a = cnets.construct(arc(41), cnets.Polyline(profile(5)))
+    b = cnets.construct(arc(41), profile(5))
+    assert a.vertices.shape == b.vertices.shape == (5, 41, 3)
+    np.testing.assert_array_equal(a.vertices, b.vertices)
+    assert cnets.construct(arc(41), cnets.Polyline(profile(5), closed=True)).wrap_rows
+
+
+def test_the_drawing_advice_holds():
+    """docs/python.md tells designers to draw the generatrix from a point off the directrix (the
+    docs' curves: an arc of 40 points, a profile of 20 starting half a unit above its first
+    point): then the assisted correction, the node axes, the support layer and the coplanar
+    construction are all defined. Drawn from a point on the directrix they are not, and the
+    errors say where."""
+    t = np.radians(np.linspace(0, 120, 40))
+    d = np.c_[5 * np.cos(t), 5 * np.sin(t), np.zeros_like(t)]
+    s = np.linspace(0, 1, 20)
+    off = np.c_[5 + 0.8 * s, np.zeros_like(s), 0.5 + 3 * s]
+    on = off - [0.0, 0.0, 0.5]
+    net = cnets.construct(d, off, apex=1.1, assistance=0.5)
+    assert net.corrections, "the correction repaired the folds"
+    axes = cnets.eval("cnets.torsion_free_axes", directrix=d, mesh=net)["axes"]
+    assert axes.shape == (20 * 40, 2, 3) and np.isfinite(axes).all()
+    layer = cnets.eval("cnets.conical_support", directrix=d, mesh=net, apex=net.apex)["mesh"]
+    assert np.isfinite(layer.vertices).all()
+    assert cnets.construct_coplanar(d, off, apex=0.9, ruling_ratios=0.4,
+                                    plane_ratios=0.6).vertices.shape == (20, 40, 3)
+    with pytest.raises(cnets.CnetsError, match=r"support plane at row 0, .* is undefined"):
+        cnets.construct(d, on, apex=1.1, assistance=0.5)
+    with pytest.raises(cnets.CnetsError, match=r"support plane at row 0, .* is undefined"):
+        cnets.construct_coplanar(d, on, apex=0.9, ruling_ratios=0.4, plane_ratios=0.6)
+    with pytest.raises(cnets.CnetsError, match=r"coincides with X_0"):
+        cnets.eval("cnets.torsion_free_axes", directrix=d, mesh=cnets.construct(d, on, apex=0.95))

@@ -1,8 +1,11 @@
 """The Hops server: started as `python -m cnets.hops` on a free loopback port, sent what
-Grasshopper's Hops component sends (JSON with rhino3dm-encoded curves) with a plain HTTP client."""
+Grasshopper's Hops component sends (JSON with rhino3dm-encoded curves) with a plain HTTP client:
+solutions exact to the last bit, every failure a Hops response with one sentence, bodies over the
+limit refused with 413, library graphs at safe URLs, concurrent requests all answered."""
 
+import concurrent.futures
+import http.client
 import json
-import os
 import socket
 import subprocess
 import sys
@@ -14,67 +17,53 @@ import numpy as np
 import pytest
 
 import cnets
-from conftest import arc, profile
+from conftest import CLUSTER, LIBRARY, HopsProcess, arc, lifted, profile
 
-import ghhops_server  # noqa: F401  (the tests need it: fail, do not skip, without it)
 import rhino3dm
-
-
-def _free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
-    from conftest import CLUSTER
-
     lib = tmp_path_factory.mktemp("library")
     (lib / "arc-length.ron").write_text(CLUSTER)
+    (lib / "my tube.ron").write_text(CLUSTER)
+    (lib / "...ron").write_text(CLUSTER)
+    (lib / "cnets_construct.ron").write_text(CLUSTER)
+    (lib / "Twice.ron").write_text(CLUSTER)
+    (lib / "twice.ron").write_text(CLUSTER)
     (lib / "no-interface.ron").write_text('(version: 1, nodes: {"a": (type: "math.add")})')
-    port = _free_port()
-    # ghhops-server prints every request's inputs: to a file, so that no pipe fills up.
-    log = open(tmp_path_factory.mktemp("log") / "hops.log", "w+b")
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "cnets.hops", "--port", str(port), "--library", str(lib)],
-        stdout=log, stderr=subprocess.STDOUT,
-    )
-    base = f"http://127.0.0.1:{port}"
-    deadline = time.time() + 30
-    while True:
-        try:
-            urllib.request.urlopen(base + "/", timeout=2).read()
-            break
-        except (urllib.error.URLError, ConnectionError):
-            if proc.poll() is not None or time.time() > deadline:
-                proc.kill()
-                log.seek(0)
-                out = log.read().decode(errors="replace")
-                raise RuntimeError(f"the Hops server did not start: {out}")
-            time.sleep(0.2)
-    yield base
-    proc.terminate()
-    try:
-        proc.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-    log.close()
+    (lib / "broken.ron").write_text("(version: ")
+    hops = HopsProcess(tmp_path_factory.mktemp("log") / "hops.log", "--library", str(lib))
+    yield hops
+    hops.stop()
+
+
+@pytest.fixture(scope="module")
+def small_server(tmp_path_factory):
+    """A server with a 1 MB body limit and a 2 MB memory budget for solves."""
+    hops = HopsProcess(tmp_path_factory.mktemp("log") / "hops.log", "--max-body", "1MB",
+                       "--max-memory", "2MB")
+    yield hops
+    hops.stop()
 
 
 def _get(url):
-    with urllib.request.urlopen(url, timeout=30) as r:
-        return json.loads(r.read())
-
-
-def _post(url, payload):
-    req = urllib.request.Request(url, data=json.dumps(payload).encode(), method="POST",
-                                 headers={"Content-Type": "application/json"})
     try:
-        with urllib.request.urlopen(req, timeout=60) as r:
+        with urllib.request.urlopen(url, timeout=60) as r:
             return r.status, json.loads(r.read())
     except urllib.error.HTTPError as e:
-        return e.code, json.loads(e.read() or b"{}")
+        return e.code, json.loads(e.read())
+
+
+def _post(url, payload, raw=None):
+    data = raw if raw is not None else json.dumps(payload).encode()
+    req = urllib.request.Request(url, data=data, method="POST",
+                                 headers={"Content-Type": "application/json"})
+    try:
+        with urllib.request.urlopen(req, timeout=120) as r:
+            return r.status, json.loads(r.read())
+    except urllib.error.HTTPError as e:
+        return e.code, json.loads(e.read())
 
 
 def _item(type_, data):
@@ -103,25 +92,12 @@ def _values(response):
 
 
 def _mesh_vertices(mesh):
-    return np.array([[p.X, p.Y, p.Z] for p in (mesh.Vertices[k] for k in range(len(mesh.Vertices)))])
+    assert mesh.Vertices.UseDoublePrecisionVertices
+    return np.array([[p.X, p.Y, p.Z] for p in mesh.Vertices.ToPoint3dArray()])
 
 
-def test_components_are_listed_with_the_contracted_ports(server):
-    listing = _get(server + "/")
-    uris = {c["Uri"] for c in listing}
-    assert {"/cnets_construct", "/cnets_construct_coplanar", "/cnets_graph_to_apex",
-            "/cnets_support", "/arc-length"} <= uris, uris
-    assert "/no-interface" not in uris
-    meta = _get(server + "/cnets_construct")
-    assert [p["Name"] for p in meta["Inputs"]] == ["Directrix", "Generatrix", "Apex", "Ratios", "Assistance"]
-    assert [p["ParamType"] for p in meta["Inputs"]] == ["Curve", "Curve", "Number", "Number", "Number"]
-    assert meta["Inputs"][2]["AtMost"] > 1, "Apex is a list"
-    assert meta["Inputs"][3]["AtLeast"] == -1, "Ratios is a tree"
-    assert meta["Inputs"][4]["AtMost"] == 1, "Assistance is one number"
-    assert [p["Name"] for p in meta["Outputs"]] == ["Mesh", "Apex", "Quality"]
-    lib = _get(server + "/arc-length")
-    assert [p["Name"] for p in lib["Inputs"]] == ["radius"]
-    assert [p["Name"] for p in lib["Outputs"]] == ["length"]
+def _polyline(points):
+    return rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in np.asarray(points).tolist()])
 
 
 def _construct_payload(directrix, generatrix, apex, ratios_tree, assistance, pointer=None):
@@ -139,92 +115,307 @@ def _construct_payload(directrix, generatrix, apex, ratios_tree, assistance, poi
     return payload
 
 
-def test_construct_with_a_nurbs_directrix_and_a_polyline_generatrix(server):
+def _one_error(status, response, expected_status, *words):
+    """A Hops response carrying exactly one error: one sentence, no traceback, naming `words`."""
+    assert status == expected_status, (status, response)
+    assert response["values"] == [], response
+    (error,) = response["errors"]
+    assert "\n" not in error and "Traceback" not in error and 'File "' not in error, error
+    assert error.endswith("."), error
+    for w in words:
+        assert w in error, (w, error)
+    return error
+
+
+def test_components_are_listed_with_the_contracted_ports(server):
+    status, listing = _get(server.url + "/")
+    assert status == 200
+    uris = {c["Uri"] for c in listing}
+    assert {"/cnets_construct", "/cnets_construct_coplanar", "/cnets_graph_to_apex",
+            "/cnets_support", "/arc-length", "/my%20tube"} <= uris, uris
+    assert "/no-interface" not in uris and "/broken" not in uris
+    status, meta = _get(server.url + "/cnets_construct")
+    assert status == 200
+    assert [p["Name"] for p in meta["Inputs"]] == ["Directrix", "Generatrix", "Apex", "Ratios", "Assistance"]
+    assert [p["ParamType"] for p in meta["Inputs"]] == ["Curve", "Curve", "Number", "Number", "Number"]
+    assert meta["Inputs"][2]["AtMost"] > 1, "Apex is a list"
+    assert meta["Inputs"][3]["AtLeast"] == -1, "Ratios is a tree"
+    assert meta["Inputs"][4]["AtMost"] == 1, "Assistance is one number"
+    assert [p["Name"] for p in meta["Outputs"]] == ["Mesh", "Apex", "Quality"]
+    status, lib = _get(server.url + "/arc-length")
+    assert [p["Name"] for p in lib["Inputs"]] == ["radius"]
+    assert [p["Name"] for p in lib["Outputs"]] == ["length"]
+
+
+def test_library_names_are_percent_decoded_and_unsafe_ones_refused_at_start_up(server):
+    status, meta = _get(server.url + "/my%20tube")
+    assert status == 200 and meta["Uri"] == "/my%20tube", meta
+    status, response = _post(server.url + "/my%20tube", {"values": [_param("radius", _number_items([2.0]))]})
+    assert status == 200, response
+    assert json.loads(_values(response)["length"][0]["data"]) == pytest.approx(2 * np.pi, rel=1e-3)
+    # The legacy route with the pointer as Hops sends it: the component's whole URL.
+    status, response = _post(server.url + "/solve", {"pointer": server.url + "/my%20tube",
+                                                      "values": [_param("radius", _number_items([1.0]))]})
+    assert status == 200, response
+    log = server.log()
+    assert "...ron: skipped: its name '..' is made of dots only" in log, log
+    assert "cnets_construct.ron: skipped: its URL /cnets_construct would be the same as /cnets_construct's" in log
+    assert "twice.ron: skipped: its URL /twice would be the same as /Twice's" in log
+    assert "broken.ron: skipped:" in log
+    _one_error(*_get(server.url + "/.."), 404, "no component")
+    _one_error(*_get(server.url + "/twice"), 404, "no component at /twice")
+    assert _get(server.url + "/Twice")[0] == 200
+
+
+def test_construct_is_exact_to_the_last_bit(server):
+    """The mesh Grasshopper decodes holds the engine's doubles: vertex for vertex equal to
+    cnets.construct on the curve as the server samples it."""
     control = [rhino3dm.Point3d(*p) for p in arc(6).tolist()]
     directrix = rhino3dm.NurbsCurve.Create(False, 3, control)
-    generatrix = rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in profile(5).tolist()])
-    status, response = _post(server + "/cnets_construct",
+    generatrix = _polyline(lifted(5) + [250_000.0, 0.0, 0.0])
+    status, response = _post(server.url + "/cnets_construct",
                              _construct_payload(directrix, generatrix, [0.95], {"{0}": [0.5]}, -1.0))
     assert status == 200, response
-    assert not response.get("errors"), response
+    assert response["errors"] == [], response
     values = _values(response)
     mesh = _decode(values["Mesh"][0])
     assert isinstance(mesh, rhino3dm.Mesh)
-    # The same construction in Python on the curve as the server samples it.
     from cnets.rhino import curve_points
 
     d = curve_points(directrix, 33)
-    expected = cnets.construct(d, profile(5), apex=0.95)
-    np.testing.assert_allclose(_mesh_vertices(mesh), expected.vertices.reshape(-1, 3), atol=1e-6)
-    assert mesh.Faces.Count == len(expected.faces())
-    apex = [json.loads(a["data"]) for a in values["Apex"]]
-    np.testing.assert_allclose(apex, expected.apex)
-    quality = json.loads(values["Quality"][0]["data"])
-    assert quality == pytest.approx(expected.quality["max_planarity"])
+    expected = cnets.construct(d, lifted(5) + [250_000.0, 0.0, 0.0], apex=0.95)
+    np.testing.assert_array_equal(_mesh_vertices(mesh), expected.vertices.reshape(-1, 3))
+    assert [list(mesh.Faces[k]) for k in range(mesh.Faces.Count)] == expected.faces().tolist()
+    apex = [float(a["data"]) for a in values["Apex"]]
+    np.testing.assert_array_equal(apex, expected.apex)
+    assert float(values["Quality"][0]["data"]) == expected.quality["max_planarity"]
 
 
 def test_ratio_trees_and_the_legacy_solve_route(server):
-    d = rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in arc(7).tolist()])
-    g = rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in profile(4).tolist()])
+    d, g = _polyline(arc(7)), _polyline(profile(4))
     rows = np.linspace(0.3, 0.7, 24).reshape(4, 6)
     tree = {"{%d}" % i: rows[i].tolist() for i in range(4)}
-    status, response = _post(server + "/solve", _construct_payload(d, g, [0.9] * 6, tree, 0.5,
-                                                                  pointer="/cnets_construct"))
-    assert status == 200, response
-    mesh = _decode(_values(response)["Mesh"][0])
     expected = cnets.construct(arc(7), profile(4), apex=[0.9] * 6, ratios=rows, assistance=0.5)
-    np.testing.assert_allclose(_mesh_vertices(mesh), expected.vertices.reshape(-1, 3), atol=1e-6)
+    for pointer in ("/cnets_construct", "cnets_construct", server.url + "/cnets_construct"):
+        status, response = _post(server.url + "/solve",
+                                 _construct_payload(d, g, [0.9] * 6, tree, 0.5, pointer=pointer))
+        assert status == 200, response
+        mesh = _decode(_values(response)["Mesh"][0])
+        np.testing.assert_array_equal(_mesh_vertices(mesh), expected.vertices.reshape(-1, 3))
 
 
-def test_engine_errors_reach_grasshopper(server):
-    d = rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in arc(5).tolist()])
-    g = rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in profile(4).tolist()])
-    status, response = _post(server + "/cnets_construct",
-                             _construct_payload(d, g, [0.9, 0.9], {"{0}": [0.5]}, -1.0))
-    assert status != 200
-    assert any("apex" in e for e in response["errors"]), response
+def test_malformed_requests_get_one_sentence(server):
+    url = server.url
+    good = _construct_payload(_polyline(arc(5)), _polyline(profile(4)), [0.9], {"{0}": [0.5]}, -1.0)
+    _one_error(*_post(url + "/cnets_construct", None, raw=b"{not json"), 400, "not JSON")
+    _one_error(*_post(url + "/cnets_construct", None, raw=b""), 400, "not JSON")
+    _one_error(*_post(url + "/cnets_construct", None, raw=b"\xff\xfe"), 400, "not JSON")
+    _one_error(*_post(url + "/cnets_construct", [1, 2]), 400, "JSON object")
+    _one_error(*_post(url + "/cnets_construct", {"nothing": 1}), 400, "\"values\"")
+    _one_error(*_post(url + "/solve", good), 400, "\"pointer\"")
+    _one_error(*_post(url + "/solve", dict(good, pointer=5)), 400, "\"pointer\"")
+    _one_error(*_post(url + "/solve", dict(good, pointer="/nope")), 404, "'/nope'")
+    _one_error(*_post(url + "/nope", good), 404, "no component at /nope")
+    _one_error(*_post(url + "/", good), 404, "no component at /")
+    _one_error(*_get(url + "/nope"), 404, "no component at /nope")
+    _one_error(*_get(url + "/solve"), 405, "POST")
+
+    def with_input(name, items, tree=None):
+        payload = json.loads(json.dumps(good))
+        payload["values"] = [v for v in payload["values"] if v["ParamName"] != name]
+        if items is not None or tree is not None:
+            payload["values"].append(_param(name, items, tree))
+        return payload
+
+    construct = url + "/cnets_construct"
+    _one_error(*_post(construct, with_input("Apex", [_item("System.String", '"abc"')])), 400,
+               "Apex", "'\"abc\"'", "not a number")
+    _one_error(*_post(construct, with_input("Apex", [_item("System.Double", "abc")])), 400,
+               "Apex", "'abc'", "not a number")
+    _one_error(*_post(construct, with_input("Assistance", _number_items([0.5, 0.2]))), 400,
+               "Assistance", "expected one item, got 2")
+    _one_error(*_post(construct, with_input("Directrix", _number_items([3.0]))), 400,
+               "Directrix", "a number (System.Double)", "expected a curve")
+    _one_error(*_post(construct, with_input("Directrix", None)), 400, "Directrix: no curve given")
+    mesh = rhino3dm.Mesh()
+    _one_error(*_post(construct, with_input("Generatrix", [_item("Rhino.Geometry.Mesh", json.dumps(mesh.Encode()))])),
+               400, "Generatrix", "Mesh", "expected a curve")
+    _one_error(*_post(construct, with_input("Generatrix", [_item("Rhino.Geometry.Curve", "{bad")])),
+               400, "Generatrix", "could not be decoded")
+    _one_error(*_post(construct, with_input("Ratios", None, tree=[1, 2])), 400, "Ratios", "InnerTree")
+    _one_error(*_post(construct, with_input("Ratios", None, tree={"{a}": _number_items([1])})), 400,
+               "Ratios", "tree path")
+    _one_error(*_post(construct, with_input("Ratios", [{"type": "System.Double"}])), 400,
+               "Ratios", "\"data\"")
+    bogus = json.loads(json.dumps(good))
+    bogus["values"].append(_param("Colour", _number_items([1])))
+    _one_error(*_post(construct, bogus), 400, "no input 'Colour'", "Directrix, Generatrix")
+    bogus["values"] = [{"InnerTree": {}}]
+    _one_error(*_post(construct, bogus), 400, "\"ParamName\"")
+
+
+def test_engine_errors_reach_grasshopper_as_one_sentence(server):
+    d, g = _polyline(arc(5)), _polyline(profile(4))
+    error = _one_error(*_post(server.url + "/cnets_construct",
+                              _construct_payload(d, g, [0.9, 0.9], {"{0}": [0.5]}, -1.0)),
+                       400, "CNets Construct", "apex has 2 entries, expected 4")
+    assert "cnets.construct:" not in error
+
+
+def test_bodies_over_the_limit_get_413(server, small_server):
+    big = b'{"values": [' + b" " * 2_000_000 + b"]}"
+    error = _one_error(*_post(small_server.url + "/cnets_construct", None, raw=big), 413,
+                       "2 MB", "limit of 1 MB", "--max-body")
+    assert "request body" in error
+    # The default limit is 64 MB: 65 MB is refused, the server stays up and answers.
+    status, response = _post(server.url + "/cnets_construct", None,
+                             raw=b'{"values": [' + b" " * 65_000_000 + b"]}")
+    _one_error(status, response, 413, "65 MB", "limit of 64 MB")
+    assert _get(server.url + "/")[0] == 200
+    # A body just under the limit is read (and fails as the JSON it is).
+    _one_error(*_post(small_server.url + "/cnets_construct", None, raw=b" " * 900_000 + b"{x"),
+               400, "not JSON")
+
+
+def test_solves_run_under_the_memory_budget(small_server):
+    d, g = _polyline(arc(200)), _polyline(profile(200))
+    _one_error(*_post(small_server.url + "/cnets_construct",
+                      _construct_payload(d, g, [0.95], {"{0}": [0.5]}, -1.0)),
+               400, "CNets Construct", "needs", "the limit is 2 MB")
 
 
 def test_coplanar_graph_to_apex_support_and_library(server):
-    lifted = profile(4) + [0.0, 0.0, 0.5]  # off the directrix: support planes and axes defined
-    d = rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in arc(6).tolist()])
-    g = rhino3dm.PolylineCurve([rhino3dm.Point3d(*p) for p in lifted.tolist()])
-    status, response = _post(server + "/cnets_construct_coplanar", {"values": [
+    d, g = _polyline(arc(6)), _polyline(lifted(4))
+    status, response = _post(server.url + "/cnets_construct_coplanar", {"values": [
         _param("Directrix", [_curve_item(d)]), _param("Generatrix", [_curve_item(g)]),
         _param("Apex", _number_items([0.9])), _param("RulingRatios", _number_items([0.4])),
         _param("PlaneRatios", _number_items([0.6])), _param("Assistance", _number_items([-1])),
     ]})
     assert status == 200, response
-    expected = cnets.construct_coplanar(arc(6), lifted, apex=0.9, ruling_ratios=0.4, plane_ratios=0.6)
+    expected = cnets.construct_coplanar(arc(6), lifted(4), apex=0.9, ruling_ratios=0.4, plane_ratios=0.6)
     mesh = _decode(_values(response)["Mesh"][0])
-    np.testing.assert_allclose(_mesh_vertices(mesh), expected.vertices.reshape(-1, 3), atol=1e-6)
+    np.testing.assert_array_equal(_mesh_vertices(mesh), expected.vertices.reshape(-1, 3))
 
     widths = [1.0, 1.1, 1.3, 1.2, 1.0, 0.9]
-    status, response = _post(server + "/cnets_graph_to_apex", {"values": [
+    status, response = _post(server.url + "/cnets_graph_to_apex", {"values": [
         _param("Widths", _number_items(widths)),
         _param("Normalized", [_item("System.Boolean", "false")]),
         _param("Directrix", []), _param("Scale", _number_items([0])),
     ]})
     assert status == 200, response
-    apex = [json.loads(a["data"]) for a in _values(response)["Apex"]]
-    np.testing.assert_allclose(apex, np.array(widths[1:]) / np.array(widths[:-1]))
+    apex = [float(a["data"]) for a in _values(response)["Apex"]]
+    np.testing.assert_allclose(apex, np.array(widths[1:]) / np.array(widths[:-1]), rtol=1e-15)
 
-    net = cnets.construct(arc(6), lifted, apex=0.9)
+    net = cnets.construct(arc(6), lifted(4), apex=0.9)
     from cnets.rhino import quad_mesh_to_rhino
 
-    status, response = _post(server + "/cnets_support", {"values": [
+    status, response = _post(server.url + "/cnets_support", {"values": [
         _param("Directrix", [_curve_item(d)]),
         _param("Mesh", [_item("Rhino.Geometry.Mesh", json.dumps(quad_mesh_to_rhino(net).Encode()))]),
         _param("Apex", _number_items(net.apex)), _param("Factor", _number_items([0.8])),
     ]})
     assert status == 200, response
     values = _values(response)
+    axes = cnets.eval("cnets.torsion_free_axes", directrix=arc(6), mesh=net)["axes"]
     assert len(values["Axes"]) == 4 * 6
+    first = _decode(values["Axes"][0])
+    assert [first.PointAtStart.X, first.PointAtStart.Y, first.PointAtStart.Z] == axes[0, 0].tolist()
     support = cnets.eval("cnets.conical_support", directrix=arc(6), mesh=net, apex=net.apex, factor=0.8)["mesh"]
-    np.testing.assert_allclose(_mesh_vertices(_decode(values["Support"][0])),
-                               support.vertices.reshape(-1, 3), atol=1e-6)
+    np.testing.assert_array_equal(_mesh_vertices(_decode(values["Support"][0])),
+                                  support.vertices.reshape(-1, 3))
+    _one_error(*_post(server.url + "/cnets_support", {"values": [
+        _param("Directrix", [_curve_item(d)]),
+        _param("Mesh", [_item("Rhino.Geometry.Mesh", json.dumps(rhino3dm.Mesh().Encode()))]),
+        _param("Apex", _number_items(net.apex)),
+    ]}), 400, "Mesh", "not a quad grid")
 
-    status, response = _post(server + "/arc-length", {"values": [_param("radius", _number_items([2.0]))]})
+    status, response = _post(server.url + "/arc-length", {"values": [_param("radius", _number_items([2.0]))]})
     assert status == 200, response
-    length = json.loads(_values(response)["length"][0]["data"])
-    assert length == pytest.approx(2 * np.pi, rel=1e-3)
+    assert json.loads(_values(response)["length"][0]["data"]) == pytest.approx(2 * np.pi, rel=1e-3)
+
+
+def test_concurrent_solves_are_all_answered_while_slow_clients_wait(server):
+    """20 solves at once, each answered correctly, while 10 clients hold connections open with
+    half-sent requests (a thread each: they delay no one)."""
+    host, port = "127.0.0.1", server.port
+    slow = []
+    for _ in range(10):
+        s = socket.create_connection((host, port), timeout=30)
+        s.sendall(b"POST /cnets_construct HTTP/1.1\r\nHost: x\r\nContent-Length: 1000\r\n\r\n{")
+        slow.append(s)
+    try:
+        def solve(k):
+            n = 4 + k % 5
+            d, g = _polyline(arc(5 + k)), _polyline(lifted(n))
+            status, response = _post(server.url + "/cnets_construct",
+                                     _construct_payload(d, g, [0.95], {"{0}": [0.5]}, -1.0))
+            assert status == 200, response
+            mesh = _decode(_values(response)["Mesh"][0])
+            expected = cnets.construct(arc(5 + k), lifted(n), apex=0.95)
+            np.testing.assert_array_equal(_mesh_vertices(mesh), expected.vertices.reshape(-1, 3))
+            return k
+
+        with concurrent.futures.ThreadPoolExecutor(20) as pool:
+            assert sorted(pool.map(solve, range(20))) == list(range(20))
+    finally:
+        for s in slow:
+            s.close()
+    # Each half-sent request is answered as what it is (logged as one line), not as a crash.
+    deadline = time.monotonic() + 30
+    while server.log().count("the client disconnected") < 10 and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert server.log().count("the client disconnected") == 10, server.log()
+    assert "Traceback" not in server.log()
+
+
+def test_nothing_is_printed_per_request(server):
+    before = server.log()
+    d, g = _polyline(arc(5)), _polyline(profile(4))
+    for _ in range(3):
+        assert _post(server.url + "/cnets_construct",
+                     _construct_payload(d, g, [0.9], {"{0}": [0.5]}, -1.0))[0] == 200
+    time.sleep(0.2)
+    assert server.log() == before, "a successful solve prints nothing"
+
+
+def test_a_missing_package_is_named(tmp_path):
+    """Without werkzeug the server says werkzeug is missing (not ghhops-server), and exits 2."""
+    code = ("import sys, runpy; sys.modules['werkzeug'] = None; sys.argv = ['x', '--port', '0'];"
+            " runpy.run_module('cnets.hops', run_name='__main__')")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
+                            cwd=str(tmp_path))
+    assert result.returncode == 2, result
+    assert "needs the Python package 'werkzeug'" in result.stderr, result.stderr
+    assert "pip install" in result.stderr and "Traceback" not in result.stderr
+    assert "ghhops" not in result.stderr
+
+
+def test_the_shipped_library_is_served(tmp_path):
+    hops = HopsProcess(tmp_path / "hops.log", "--library", str(LIBRARY))
+    try:
+        status, listing = _get(hops.url + "/")
+        uris = {c["Uri"] for c in listing}
+        assert {"/strip-fabrication", "/support-structure", "/reference-fit", "/closed-tube"} <= uris
+        assert "skipped" not in hops.log(), hops.log()
+        status, meta = _get(hops.url + "/closed-tube")
+        assert [p["Name"] for p in meta["Inputs"]] == ["profile", "path", "apex", "ratios"]
+        assert [p["ParamType"] for p in meta["Inputs"]] == ["Curve", "Curve", "Number", "Number"]
+        prof = cnets.eval("curve.circle", centre=(4, 0, 0), radius=0.8,
+                          plane={"origin": (4, 0, 0), "normal": (0, 2, 1)}, count=8)["curve"]
+        t = np.radians(np.linspace(0, 90, 12))
+        path = np.c_[4 * np.cos(t), 4 * np.sin(t), np.zeros(12)]
+        from cnets.rhino import polyline_to_rhino
+
+        status, response = _post(hops.url + "/closed-tube", {"values": [
+            _param("profile", [_curve_item(polyline_to_rhino(prof))]),
+            _param("path", [_curve_item(_polyline(path))]),
+        ]})
+        assert status == 200, response
+        values = _values(response)
+        expected = cnets.eval(f"cluster:{LIBRARY / 'closed-tube.ron'}", profile=prof, path=path)
+        mesh = _decode(values["mesh"][0])
+        np.testing.assert_array_equal(_mesh_vertices(mesh), expected["mesh"].vertices.reshape(-1, 3))
+        assert mesh.Faces.Count == 8 * 11, "the tube wraps around its profile"
+        assert float(values["closure_gap"][0]["data"]) == expected["closure_gap"]
+    finally:
+        hops.stop()

@@ -11,5 +11,5 @@ pub mod node_type;
 
 pub use error::HostError;
 pub use inputs::{apply_set, complete_inputs, decode_input, node_inputs, split_target};
-pub use library::{PREFIX, cluster_def, folder_defs, load_graph, options};
+pub use library::{PREFIX, cluster_def, folder_defs, load_graph, options, writes_files};
 pub use node_type::{NodeType, resolve};

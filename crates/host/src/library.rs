@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use cnets_engine::cluster::{Cluster, ClusterSource};
 use cnets_engine::file::{Document, LoadOptions, load_file_with};
-use cnets_engine::{NodeDef, Registry};
+use cnets_engine::{Graph, NodeDef, NodeFlag, Registry};
 
 use crate::HostError;
 
@@ -68,7 +68,19 @@ pub fn cluster_def(
     }
     let mut def = cluster.node_def();
     def.id = format!("{PREFIX}{path}").into();
+    if writes_files(&cluster.template) {
+        // Run as one node (`cnets eval cluster:…`, Python, Hops), it needs the output folder.
+        def.flags.push(NodeFlag::Export);
+    }
     Ok(def)
+}
+
+/// Whether a graph writes files: an export node in it, or in a cluster inside it.
+pub fn writes_files(graph: &Graph) -> bool {
+    graph.nodes().any(|(_, n)| {
+        n.def.has_flag(NodeFlag::Export)
+            || Cluster::of(&n.def).is_some_and(|c| writes_files(&c.template))
+    })
 }
 
 /// Every graph of a folder that declares an interface, as node types (sorted by file name), and a
