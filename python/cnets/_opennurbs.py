@@ -20,7 +20,7 @@ from typing import Dict, List, Sequence, Union
 
 import numpy as np
 
-__all__ = ["encode_mesh", "ARCHIVE_3DM", "OPENNURBS_VERSION"]
+__all__ = ["encode_mesh", "encode_mesh_json", "ARCHIVE_3DM", "OPENNURBS_VERSION"]
 
 #: The 3dm archive version of the encoding (openNURBS 8 writes meshes for version 60).
 ARCHIVE_3DM = 60
@@ -133,6 +133,23 @@ def encode_mesh(vertices: np.ndarray, faces: Union[np.ndarray, Sequence[Sequence
     """A mesh as Rhino's JSON encoding (``rhino3dm.CommonObject.Decode`` reads it back into a
     ``rhino3dm.Mesh``; Hops into a Grasshopper mesh). ``vertices``: (V, 3) float64, stored
     exactly; ``faces``: (F, 4) vertex indices, a triangle repeating its third index."""
+    return {
+        "version": 10000,
+        "archive3dm": ARCHIVE_3DM,
+        "opennurbs": OPENNURBS_VERSION,
+        "data": _archive(vertices, faces),
+    }
+
+
+def encode_mesh_json(vertices: np.ndarray, faces: Union[np.ndarray, Sequence[Sequence[int]]]) -> str:
+    """``json.dumps(encode_mesh(vertices, faces))``, written directly (base64 needs no escaping:
+    a megabyte string is not scanned again)."""
+    return (f'{{"version": 10000, "archive3dm": {ARCHIVE_3DM}, "opennurbs": {OPENNURBS_VERSION}, '
+            f'"data": "{_archive(vertices, faces)}"}}')
+
+
+def _archive(vertices: np.ndarray, faces: Union[np.ndarray, Sequence[Sequence[int]]]) -> str:
+    """The base64 archive of the mesh."""
     v = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
     f = np.asarray(faces, dtype=np.int64).reshape(-1, 4)
     if f.size and (f.min() < 0 or f.max() >= len(v)):
@@ -143,9 +160,4 @@ def encode_mesh(vertices: np.ndarray, faces: Union[np.ndarray, Sequence[Sequence
     record.nest(uuid)
     record.nest(_mesh_data(v, f))
     record.parts.append(struct.pack("<Iq", _TCODE_OPENNURBS_CLASS_END, 0))
-    return {
-        "version": 10000,
-        "archive3dm": ARCHIVE_3DM,
-        "opennurbs": OPENNURBS_VERSION,
-        "data": base64.b64encode(record.bytes()).decode("ascii"),
-    }
+    return base64.b64encode(record.bytes()).decode("ascii")

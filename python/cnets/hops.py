@@ -48,7 +48,7 @@ from urllib.parse import quote, unquote, urlsplit
 import numpy as np
 
 from . import _cnets
-from ._opennurbs import encode_mesh
+from ._opennurbs import encode_mesh_json
 from ._types import PolygonMesh, Polyline, QuadMesh
 
 __all__ = ["HopsServer", "create_app", "main", "DEFAULT_MAX_BODY"]
@@ -215,6 +215,16 @@ def _decode_number(param: Param, item: Any, where: str, integer: bool = False) -
     return value
 
 
+def _fast_numbers(items: List[Any]) -> Optional[List[float]]:
+    """A branch of plain finite numbers read in one pass (the common case: a ratio tree of
+    15 000 items); ``None`` when any item is not one."""
+    try:
+        values = [float(item["data"]) for item in items]
+    except (TypeError, KeyError, ValueError):
+        return None
+    return values if all(map(math.isfinite, values)) else None
+
+
 def _decode_boolean(param: Param, item: Any, where: str) -> bool:
     item_type, data = _item_parts(param, item, where)
     text = data.strip().strip('"').lower()
@@ -286,8 +296,12 @@ def read_input(param: Param, entry: Any) -> Any:
     list of branches (a tree), decoded by the parameter's kind."""
     decode = _decoder(param)
     branches = _branches(param, entry)
-    decoded = [[decode(param, item, f"{k} of branch {path}") for k, item in enumerate(items)]
-               for path, items in branches]
+    decoded = []
+    for path, items in branches:
+        values = _fast_numbers(items) if param.kind == "Number" else None
+        if values is None:  # not plain numbers: item by item, for a precise message
+            values = [decode(param, item, f"{k} of branch {path}") for k, item in enumerate(items)]
+        decoded.append(values)
     decoded = [b for b in decoded if b]
     if param.access == TREE:
         return decoded
@@ -309,12 +323,12 @@ def _number_item(x: Any) -> Dict[str, str]:
 
 def _mesh_item(mesh: Any) -> Dict[str, str]:
     if isinstance(mesh, QuadMesh):
-        encoded = encode_mesh(mesh.vertices.reshape(-1, 3), mesh.faces())
+        data = encode_mesh_json(mesh.vertices.reshape(-1, 3), mesh.faces())
     elif isinstance(mesh, PolygonMesh):
-        encoded = encode_mesh(mesh.vertices, _polygon_faces(mesh.faces))
+        data = encode_mesh_json(mesh.vertices, _polygon_faces(mesh.faces))
     else:
         raise HopsError(f"the output is a {type(mesh).__name__}, not a mesh", 500)
-    return {"type": "Rhino.Geometry.Mesh", "data": json.dumps(encoded)}
+    return {"type": "Rhino.Geometry.Mesh", "data": data}
 
 
 def _polygon_faces(faces: Sequence[Sequence[int]]) -> np.ndarray:

@@ -61,3 +61,13 @@ def test_meshes_of_any_size_read_back_exactly(rows, cols):
 def test_bad_faces_are_refused():
     with pytest.raises(ValueError, match="out of range"):
         encode_mesh(np.zeros((3, 3)), np.array([[0, 1, 2, 3]]))
+
+
+def test_the_json_text_is_json_dumps_of_the_encoding():
+    import json
+
+    from cnets._opennurbs import encode_mesh_json
+
+    v = np.random.default_rng(5).normal(size=(7, 3))
+    f = np.array([[0, 1, 2, 3], [3, 4, 5, 6]])
+    assert encode_mesh_json(v, f) == json.dumps(encode_mesh(v, f))
