@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds the cnets Python package (python/: maturin + PyO3) into a virtual environment and runs its
-# pytest suite (python/tests: the API, Rhino files, the Hops server, Dask sweeps). Called at the end
-# of scripts/test.sh; runs on its own too. The venv lives in target/pyenv; the Rust build goes to
-# the workspace's target/ (CARGO_TARGET_DIR), so a second run reuses it.
+# pytest suite (python/tests: the API, Rhino files, the Hops server, Dask sweeps, the shipped
+# library, the docs' code blocks). Called at the end of scripts/test.sh; runs on its own too. The
+# venv lives in target/pyenv; the Rust build goes to the workspace's target/ (CARGO_TARGET_DIR),
+# so a second run reuses it. The Windows wheel has its own script: scripts/windows-wheel.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -21,6 +22,16 @@ pip=("$venv/bin/python" -m pip --disable-pip-version-check -q)
 profile="${CNETS_PYTHON_PROFILE:-dev}"
 "${pip[@]}" install --force-reinstall --no-deps \
   --config-settings=build-args="--profile $profile" "./python[rhino]"
+# The library's command-line tests and the docs' `cnets` lines run the cnets binary: the one
+# `cargo test --workspace` built (scripts/test.sh), else it is built here (CNETS_BIN names another).
+if [ -z "${CNETS_BIN:-}" ]; then
+  export CNETS_BIN="$CARGO_TARGET_DIR/debug/cnets"
+  if [ ! -x "$CNETS_BIN" ]; then
+    cargo build -q -p cnets
+  fi
+fi
 # pytest (not `python -m pytest`): the source folder python/cnets must not shadow the installed
-# package.
-"$venv/bin/pytest" -q python/tests
+# package. The venv's bin first on PATH: the docs' `pip install` lines build metadata with its
+# maturin.
+export CNETS_PYTHON_PROFILE="$profile"
+PATH="$venv/bin:$PATH" "$venv/bin/pytest" -q python/tests

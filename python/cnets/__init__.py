@@ -336,12 +336,12 @@ def node_types() -> List[Dict[str, Any]]:
     return _cnets.node_types()
 
 
-def write_3dm(path: _Path, objects: Any, **kwargs: Any) -> None:
-    """Writes cone-nets, meshes and polylines to a Rhino .3dm file (needs ``rhino3dm``:
-    ``pip install cnets[rhino]``). See ``cnets.rhino.write_3dm``."""
+def write_3dm(path: _Path, objects: Any, layers: bool = True, version: int = 8) -> None:
+    """Writes cone-nets, meshes and polylines to a Rhino .3dm file, every coordinate in double
+    precision (needs ``rhino3dm``: ``pip install cnets[rhino]``). See ``cnets.rhino.write_3dm``."""
     from .rhino import write_3dm as _write
 
-    _write(path, objects, **kwargs)
+    _write(path, objects, layers=layers, version=version)
 
 
 def sweep(

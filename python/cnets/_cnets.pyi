@@ -9,7 +9,11 @@ import numpy.typing as npt
 _Path = Union[str, "PathLike[str]"]
 
 class CnetsError(ValueError):
-    """An error of cnets, with the engine's message (file:line:col for graph files)."""
+    """An error of cnets, with the engine's message (file:line:col for graph files); a bad
+    argument's message names the argument."""
+
+class CnetsWarning(UserWarning):
+    """A warning of a node that ran (a value clamped to a slider's range…)."""
 
 class Graph:
     """A graph file loaded for evaluation; edits re-run only what depends on them."""
@@ -26,7 +30,7 @@ class Graph:
     def get(self, target: str) -> Any: ...
     def unset(self, target: str) -> None: ...
     def run(
-        self, nodes: Optional[Sequence[str]] = None, check: bool = True
+        self, nodes: Union[str, Sequence[str], None] = None, check: Optional[bool] = True
     ) -> Dict[str, Dict[str, Any]]: ...
     def outputs(self, node_id: str) -> Dict[str, Any]: ...
     def save(self, path: _Path) -> None: ...
@@ -50,16 +54,22 @@ class Graph:
 def eval(
     node_type: str,
     inputs: Dict[str, Any],
-    outputs: Optional[Sequence[str]] = None,
+    outputs: Union[str, Sequence[str], None] = None,
     max_memory: Union[int, str, None] = None,
-    allow_read: Optional[Sequence[str]] = None,
-    library: Optional[Sequence[str]] = None,
-    out: Optional[str] = None,
+    allow_read: Union[_Path, Sequence[_Path], None] = None,
+    library: Union[_Path, Sequence[_Path], None] = None,
+    out: Optional[_Path] = None,
     label_tables: bool = False,
+    option_prefix: str = "",
 ) -> Dict[str, Any]: ...
 def last_eval_seconds() -> float: ...
 def quad_faces(rows: int, cols: int, wrap_rows: bool, wrap_cols: bool) -> npt.NDArray[np.int64]: ...
 def node_types() -> List[Dict[str, Any]]: ...
 def node_interface(
-    node_type: str, library: Optional[Sequence[str]] = None, allow_read: Optional[Sequence[str]] = None
+    node_type: str,
+    library: Union[_Path, Sequence[_Path], None] = None,
+    allow_read: Union[_Path, Sequence[_Path], None] = None,
 ) -> Dict[str, Any]: ...
+def parse_size(text: str) -> int: ...
+def format_bytes(bytes: int) -> str: ...
+def check_memory(count: int, what: str, max_memory: Union[int, str, None] = None) -> None: ...

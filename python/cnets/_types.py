@@ -218,6 +218,8 @@ def _point_array(x: Any, name: str, ndim: int) -> np.ndarray:
             raise _cnets.CnetsError(f"{name}: expected an array of points, got {_describe(x)}")
         if isinstance(x, np.ndarray) and x.dtype.kind not in "fiub":
             raise _cnets.CnetsError(f"{name}: expected an array of numbers, got {_describe(x)}")
+        if isinstance(x, np.ndarray):  # the float64 copy must fit the memory budget
+            _cnets.check_memory(x.size, f"{name}: an array of shape {list(x.shape)}")
         try:
             arr = np.asarray(x, dtype=np.float64)
         except (TypeError, ValueError) as e:

@@ -232,7 +232,14 @@ def _as_polyline(x: Any) -> Polyline:
 
 def write_cone_net(path: Any, net: ConeNet, layers: bool = True, support: Optional[float] = 0.8,
                    axes: bool = True, version: int = 8) -> None:
-    """Writes a cone-net to a .3dm file (``ConeNet.to_3dm``)."""
+    """Writes a cone-net to a .3dm file (``ConeNet.to_3dm``): ``support`` is the factor of the
+    conical support layer (``None``: no support layer), ``axes`` whether to write the node
+    axes."""
+    if support is not None and (isinstance(support, (bool, np.bool_))
+                                or not isinstance(support, (int, float, np.integer, np.floating))):
+        raise _cnets.CnetsError(f"support: expected a number or None, got {_describe(support)}")
+    if not isinstance(axes, (bool, np.bool_)):
+        raise _cnets.CnetsError(f"axes: expected True or False, got {_describe(axes)}")
     write_3dm(path, cone_net_layers(net, support=support, axes=axes), layers=layers, version=version)
 
 

@@ -342,6 +342,8 @@ def test_sizes_are_checked_against_the_budget_before_any_copy():
         cnets.eval("math.add", a=np.broadcast_to(1, (10**8, 3)), _max_memory="1GB")
     with pytest.raises(cnets.CnetsError, match=r"directrix.*needs"):
         cnets.construct(np.broadcast_to(1.0, (10**10, 3)), g)
+    with pytest.raises(cnets.CnetsError, match=r"vertices: an array of shape \[100000, 100000, 3\] needs"):
+        cnets.QuadMesh(np.broadcast_to(np.int32(1), (10**5, 10**5, 3)))
     assert _grew_by(before) < 200_000, "no copy was made (peak memory grew by less than 200 MB)"
 
 
@@ -400,6 +402,9 @@ _HOSTILE = [
     (_call(cnets.write_3dm, None, {"a": np.zeros((2, 3))}), "path"),
     (_call(cnets.write_3dm, "x.3dm", {"a": np.zeros((2, 3))}, layers="yes"), "layers"),
     (_call(cnets.write_3dm, "x.3dm", {"a": np.zeros((2, 3))}, version=99), "version"),
+    (_call(cnets.construct(D, G).to_3dm, "x.3dm", support="big"), "support"),
+    (_call(cnets.construct(D, G).to_3dm, "x.3dm", axes=None), "axes"),
+    (_call(cnets.construct(D, G).to_3dm, "x.3dm", layers=2), "layers"),
     (_call(cnets.Polyline, "abc"), "points"),
     (_call(cnets.Polyline, np.zeros((3, 3)), closed="yes"), "closed"),
     (_call(cnets.QuadMesh, np.zeros((2, 3))), "vertices"),

@@ -85,3 +85,36 @@ def test_bad_requests_fail_before_the_cluster_works(design, client):
 def test_without_a_client_a_local_cluster_is_started(design):
     df = cnets.sweep(design, {"radius.value": [2.0, 3.0]}, ["len.length"], n_workers=1)
     assert df["len.length"].tolist() == pytest.approx([2.0 * np.radians(120), 3.0 * np.radians(120)], rel=1e-2)
+
+
+def test_a_clamped_parameter_is_reported_and_the_row_holds_the_value_used(design, client):
+    """The apex slider's range is [0.5, 1.5]: 0.3 is clamped to 0.5, 2.0 to 1.5. The rows say
+    what was used (not what was asked), the sweep warns, and the outputs are those of the values
+    used."""
+    with pytest.warns(cnets.CnetsWarning) as record:
+        df = cnets.sweep(design, {"apex.value": [0.3, 0.8, 2.0]}, ["net.quality.max_planarity"],
+                         client=client)
+    assert df["apex.value"].tolist() == [0.5, 0.8, 1.5]
+    messages = [str(w.message) for w in record]
+    assert any("design 0: apex.value = 0.3 was changed by its node to 0.5" in m for m in messages), messages
+    assert any("design 2: apex.value = 2.0 was changed by its node to 1.5" in m for m in messages), messages
+    assert not any(m.startswith("design 1:") for m in messages), messages
+    direct = cnets.sweep(design, {"apex.value": [0.5, 1.5]}, ["net.quality.max_planarity"], client=client)
+    assert df["net.quality.max_planarity"].iloc[[0, 2]].tolist() == direct["net.quality.max_planarity"].tolist()
+
+
+def test_bad_sweep_arguments_name_the_argument(design, client):
+    for kwargs, argument in [
+        (dict(parameters={"radius.value": 3.0}, outputs=["len.length"]), "parameters['radius.value']"),
+        (dict(parameters={"radius": [3.0]}, outputs=["len.length"]), "parameters"),
+        (dict(parameters=["radius.value"], outputs=["len.length"]), "parameters[0]"),
+        (dict(parameters="radius.value", outputs=["len.length"]), "parameters"),
+        (dict(parameters={"radius.value": [3.0]}, outputs=[1]), "outputs"),
+        (dict(parameters={"radius.value": [3.0]}, outputs=["len.length"], n_workers=0), "n_workers"),
+        (dict(parameters={"radius.value": [3.0]}, outputs=["len.length"], library="lib"), "library"),
+    ]:
+        with pytest.raises(cnets.CnetsError) as e:
+            cnets.sweep(design, client=client, **kwargs)
+        assert argument in str(e.value), (argument, str(e.value))
+    with pytest.raises(cnets.CnetsError, match="graph"):
+        cnets.sweep(None, {"radius.value": [3.0]}, ["len.length"], client=client)
