@@ -13,9 +13,9 @@
 use std::sync::Arc;
 
 use cnets_engine::budget::bytes_of;
-use cnets_engine::value::Packed;
+use cnets_engine::value::{Packed, plane_from_fields};
 use cnets_engine::{Items, MemoryBudget, Record, Value, ValueType};
-use cnets_geometry::{DVec3, Line, Plane, PolygonMesh, Polyline, QuadGrid};
+use cnets_geometry::{DVec3, Line, PolygonMesh, Polyline, QuadGrid};
 use numpy::{
     PyArray1, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray,
     PyUntypedArrayMethods,
@@ -181,12 +181,15 @@ impl In<'_> {
                 }
             };
             let origin = get("origin")?.unwrap_or(DVec3::ZERO);
-            let plane = match (get("normal")?, get("x_axis")?, get("y_axis")?) {
-                (_, Some(x), Some(y)) => Plane::from_axes(origin, x, y),
-                (Some(n), _, _) => Plane::from_normal(origin, n),
-                _ => return Err("a plane needs a normal, or x_axis and y_axis".to_string()),
-            };
-            return plane.map(Value::from).map_err(|e| e.to_string());
+            let (normal, x, y) = (get("normal")?, get("x_axis")?, get("y_axis")?);
+            if normal.is_none() && (x.is_none() || y.is_none()) {
+                return Err("a plane needs a normal, or x_axis and y_axis".to_string());
+            }
+            // The engine's one rule (as JSON and graph files read planes): a given orthonormal
+            // frame is kept exactly.
+            return plane_from_fields(origin, normal, x, y)
+                .map(Value::from)
+                .map_err(|e| e.to_string());
         }
         let mut record = Record::new();
         for (k, v) in dict.iter() {
@@ -254,7 +257,8 @@ impl In<'_> {
     }
 
     /// A list or tuple: a point (3 numbers) on point ports, a polyline (points) on polyline ports,
-    /// a numeric row packed, anything else item by item.
+    /// a numeric row packed (on `any` ports only a row of floats: ints stay integers), anything
+    /// else item by item.
     fn sequence(
         &self,
         obj: &Bound<'_, PyAny>,
@@ -286,7 +290,13 @@ impl In<'_> {
                         Value::Vector(p)
                     })
                 }
-                T::Number | T::Any => {
+                // On `any` ports ints stay integers (as `[1, 2]` in a graph file or JSON): only
+                // a row of floats is packed there.
+                T::Number => {
+                    let n = row.len();
+                    Ok(Value::List(Items::numbers(Arc::new(row), 0..n)))
+                }
+                T::Any if !items.iter().any(|o| o.is_instance_of::<PyInt>()) => {
                     let n = row.len();
                     Ok(Value::List(Items::numbers(Arc::new(row), 0..n)))
                 }

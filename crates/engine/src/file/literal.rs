@@ -13,7 +13,7 @@ use cnets_geometry::{Line, Plane, PolygonMesh, Polyline, QuadGrid};
 use glam::DVec3;
 
 use super::ron::{Kind, Node, Pos};
-use crate::value::{Record, Value, ValueType};
+use crate::value::{Record, Value, ValueType, is_orthonormal_frame, plane_from_fields};
 
 /// A literal that does not fit its port: where and why.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -166,30 +166,16 @@ fn plane(node: &Node) -> Res<Plane> {
     };
     let origin = point("origin")?;
     let normal = point("normal")?;
-    let x_axis = field(node, "x_axis").and_then(vec3);
-    if let (Some(x), Some(y)) = (x_axis, field(node, "y_axis").and_then(vec3)) {
-        let frame = Plane {
-            origin,
-            x_axis: x,
-            y_axis: y,
-            normal,
-        };
-        let orthonormal = [x, y, normal]
-            .iter()
-            .all(|v| (v.length() - 1.0).abs() < 1e-9)
-            && x.dot(y).abs() < 1e-9
-            && (x.cross(y) - normal).length() < 1e-9;
-        return if orthonormal {
-            Ok(frame)
-        } else {
-            err(node, "plane axes are not a right-handed orthonormal frame")
-        };
+    let (x_axis, y_axis) = (
+        field(node, "x_axis").and_then(vec3),
+        field(node, "y_axis").and_then(vec3),
+    );
+    if let (Some(x), Some(y)) = (x_axis, y_axis)
+        && !is_orthonormal_frame(x, y, normal)
+    {
+        return err(node, "plane axes are not a right-handed orthonormal frame");
     }
-    let result = match x_axis {
-        Some(x) => Plane::from_axes(origin, x, normal.cross(x)),
-        None => Plane::from_normal(origin, normal),
-    };
-    result.or_else(|e| err(node, e.to_string()))
+    plane_from_fields(origin, Some(normal), x_axis, y_axis).or_else(|e| err(node, e.to_string()))
 }
 
 fn polyline(node: &Node) -> Res<Polyline> {

@@ -5,6 +5,7 @@ mod finite;
 mod footprint;
 pub mod json;
 mod list;
+mod plane;
 mod record;
 mod types;
 pub(crate) mod walk;
@@ -13,6 +14,7 @@ pub use equality::content_hash;
 pub use finite::{first_non_finite, is_all_finite};
 pub use footprint::{Footprint, footprint};
 pub use list::{Items, Packed};
+pub use plane::{is_orthonormal_frame, plane_from_fields};
 pub use record::Record;
 pub use types::{Access, ValueType};
 

@@ -9,7 +9,7 @@ use indexmap::IndexMap;
 use serde_json::Value as Json;
 
 use super::{Document, JsonError};
-use crate::value::{Items, Record, Value, ValueType};
+use crate::value::{Items, Record, Value, ValueType, plane_from_fields};
 
 /// An object's fields.
 type Fields = IndexMap<String, Document>;
@@ -29,11 +29,17 @@ pub fn from_document(doc: Document, ty: &ValueType) -> Result<Value, JsonError> 
         Item::Value(v) => return Ok(v),
         Item::List(doc) => doc,
     };
+    let number = *ty.base() == ValueType::Number;
+    // On a port of type `any` a row packs only when none of its numbers was written as an integer
+    // (those stay integers, as a graph file's `[1, 2]` does).
+    let any = *ty.base() == ValueType::Any;
     match doc {
         // An array of numbers where numbers are expected: one packed row (a ratio table of a
         // million entries is a thousand rows, not a million values).
-        Document::Numbers(row) if *ty.base() == ValueType::Number => Ok(packed(row)),
-        Document::Triple(row) if *ty.base() == ValueType::Number => Ok(packed(row.to_vec())),
+        Document::Numbers(row, ints) if number || (any && ints.none()) => Ok(packed(row)),
+        Document::Triple(row, ints) if number || (any && ints.none()) => Ok(packed(row.to_vec())),
+        // Triples where numbers are expected: rows of one shared table.
+        Document::Points(points, ints) if number || (any && ints.none()) => Ok(rows_of(&points)),
         other if other.is_array() => decode_items(other, ty),
         other => Err(JsonError::Expected {
             expected: ty.base().to_string(),
@@ -45,6 +51,16 @@ pub fn from_document(doc: Document, ty: &ValueType) -> Result<Value, JsonError> 
 fn packed(row: Vec<f64>) -> Value {
     let len = row.len();
     Value::List(Items::numbers(Arc::new(row), 0..len))
+}
+
+/// Triples of numbers as lists of three numbers, packed rows of one table.
+fn rows_of(points: &[DVec3]) -> Value {
+    let table: Arc<Vec<f64>> = Arc::new(points.iter().flat_map(|p| p.to_array()).collect());
+    Value::list(
+        (0..points.len())
+            .map(|k| Value::List(Items::numbers(table.clone(), 3 * k..3 * k + 3)))
+            .collect(),
+    )
 }
 
 /// Decodes the items of an array one by one, naming the position of a failing item.
@@ -91,14 +107,14 @@ fn decode_item(doc: Document, ty: &ValueType) -> Result<Item, JsonError> {
         (T::Integer, Document::Number(x)) => Value::Integer(as_integer(x)?),
         (T::Boolean, Document::Bool(b)) => Value::Boolean(b),
         (T::Text, Document::Text(s)) => Value::text(&s),
-        (T::Point, Document::Triple(t)) => Value::Point(DVec3::from_array(t)),
-        (T::Vector, Document::Triple(t)) => Value::Vector(DVec3::from_array(t)),
+        (T::Point, Document::Triple(t, _)) => Value::Point(DVec3::from_array(t)),
+        (T::Vector, Document::Triple(t, _)) => Value::Vector(DVec3::from_array(t)),
         (T::Plane, Document::Object(o)) => Value::Plane(Arc::new(decode_plane(&o)?)),
         (T::Lines, Document::Array(items)) if is_segments(&items) => {
             Value::Lines(Arc::new(items.iter().filter_map(as_segment).collect()))
         }
         (T::Polyline, Document::Object(o)) => Value::Polyline(Arc::new(decode_polyline(*o)?)),
-        (T::Polyline, Document::Points(points)) => {
+        (T::Polyline, Document::Points(points, _)) => {
             Value::Polyline(Arc::new(Polyline::open(points)))
         }
         (T::QuadMesh, Document::Object(o)) => Value::QuadMesh(Arc::new(decode_quad_mesh(*o)?)),
@@ -113,15 +129,16 @@ fn decode_item(doc: Document, ty: &ValueType) -> Result<Item, JsonError> {
     }))
 }
 
-/// An item of any type, told apart by its shape.
+/// An item of any type, told apart by its shape. Every array is a list, as in a graph file and in
+/// Python (`[1, 2, 3]` is three numbers, not a point: JSON has no point literal of its own), and a
+/// number written as an integer is an integer.
 fn decode_any(doc: Document) -> Result<Item, JsonError> {
     Ok(Item::Value(match doc {
         Document::Null => Value::Null,
         Document::Bool(b) => Value::Boolean(b),
         Document::Number(x) => Value::Number(x),
-        Document::Integer(i) => Value::Number(i as f64),
+        Document::Integer(i) => Value::Integer(i),
         Document::Text(s) => Value::text(&s),
-        Document::Triple(t) => Value::Point(DVec3::from_array(t)),
         Document::Object(o) if o.contains_key("rows") => {
             Value::QuadMesh(Arc::new(decode_quad_mesh(*o)?))
         }
@@ -153,7 +170,7 @@ fn is_segments(items: &[Document]) -> bool {
 
 fn as_segment(doc: &Document) -> Option<Line> {
     match doc {
-        Document::Points(p) if p.len() == 2 => Some(Line::new(p[0], p[1])),
+        Document::Points(p, _) if p.len() == 2 => Some(Line::new(p[0], p[1])),
         _ => None,
     }
 }
@@ -175,7 +192,7 @@ fn take_field(o: &mut Fields, name: &str, what: &str) -> Result<Document, JsonEr
 /// An array of `[x, y, z]` points (a packed one is moved, not copied).
 fn point_list(doc: Document, what: &str) -> Result<Vec<DVec3>, JsonError> {
     match doc {
-        Document::Points(points) => Ok(points),
+        Document::Points(points, _) => Ok(points),
         other => other
             .into_items()
             .ok_or_else(|| malformed(format!("{what} must be an array of [x, y, z]")))?
@@ -197,11 +214,13 @@ fn decode_point(o: &Fields, name: &str) -> Result<DVec3, JsonError> {
 fn decode_plane(o: &Fields) -> Result<Plane, JsonError> {
     let origin = decode_point(o, "origin")?;
     let normal = decode_point(o, "normal")?;
-    let plane = match o.get("x_axis").and_then(Document::as_vec3) {
-        Some(x) => Plane::from_axes(origin, x, normal.cross(x)),
-        None => Plane::from_normal(origin, normal),
-    };
-    Ok(plane?)
+    let axis = |name: &str| o.get(name).and_then(Document::as_vec3);
+    Ok(plane_from_fields(
+        origin,
+        Some(normal),
+        axis("x_axis"),
+        axis("y_axis"),
+    )?)
 }
 
 fn decode_polyline(mut o: Fields) -> Result<Polyline, JsonError> {

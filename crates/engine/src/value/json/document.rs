@@ -6,6 +6,10 @@
 //! `Vec<DVec3>`, so a document costs about as much as the numbers it holds (8 bytes each). It is read
 //! straight from text or a reader by serde (no tree in between) or from an existing tree, and keeps
 //! serde_json's limits (nesting deeper than 128 is a syntax error, not a stack overflow).
+//!
+//! A number written as an integer (`3`, not `3.0` or `3e0`) stays one: [`Document::Integer`], and in
+//! a packed row a bit of [`Integers`] (allocated at the row's first integer). On a port of type `any`
+//! it decodes to an integer value, as a graph file's `3` and Python's `3` do.
 
 use std::fmt;
 
@@ -16,6 +20,61 @@ use serde::de::{Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 /// The largest magnitude up to which every integer is exact as an `f64` (2⁵³).
 const EXACT_INTEGER: u64 = 1 << 53;
 
+/// Which numbers of a packed row were written as integers: one bit per number, nothing allocated
+/// while there is none (a row of `0.5, 1.0, …` costs no more than its numbers). The words grow by
+/// doubling; unused words are zero.
+#[derive(Debug, Clone, Default)]
+pub struct Integers(Option<Box<[u64]>>);
+
+impl PartialEq for Integers {
+    fn eq(&self, other: &Self) -> bool {
+        let used = |w: &Option<Box<[u64]>>| {
+            let w = w.as_deref().unwrap_or_default();
+            let n = w.iter().rposition(|&x| x != 0).map_or(0, |k| k + 1);
+            w[..n].to_vec()
+        };
+        used(&self.0) == used(&other.0)
+    }
+}
+
+impl Integers {
+    /// Marks number `k` as written as an integer.
+    fn set(&mut self, k: usize) {
+        let word = k / 64;
+        let len = self.0.as_ref().map_or(0, |w| w.len());
+        if word >= len {
+            let mut grown = self.0.take().map(Vec::from).unwrap_or_default();
+            grown.resize((word + 1).max(2 * len), 0);
+            self.0 = Some(grown.into_boxed_slice());
+        }
+        if let Some(words) = self.0.as_mut() {
+            words[word] |= 1 << (k % 64);
+        }
+    }
+
+    /// Whether number `k` was written as an integer.
+    pub fn get(&self, k: usize) -> bool {
+        self.0
+            .as_ref()
+            .and_then(|w| w.get(k / 64))
+            .is_some_and(|w| w & (1 << (k % 64)) != 0)
+    }
+
+    /// Whether no number of the row was written as an integer.
+    pub fn none(&self) -> bool {
+        self.0.is_none()
+    }
+
+    /// The number `x` at position `k` as a document item: an integer when it was written as one.
+    fn item(&self, k: usize, x: f64) -> Document {
+        if self.get(k) {
+            Document::Integer(x as i64)
+        } else {
+            Document::Number(x)
+        }
+    }
+}
+
 /// A JSON document: the shapes of JSON with number rows and point lists packed.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Document {
@@ -23,18 +82,19 @@ pub enum Document {
     Null,
     /// `true` / `false`.
     Bool(bool),
-    /// A number (an integer of at most 2⁵³ in magnitude is exact here).
+    /// A number written with a fraction or an exponent (`1.5`, `3.0`, `1e3`), or an integer beyond
+    /// the range of `i64`.
     Number(f64),
-    /// An integer beyond ±2⁵³ that fits an `i64` (kept exact).
+    /// A number written as an integer that fits an `i64` (kept exact).
     Integer(i64),
     /// A string.
     Text(String),
-    /// An array of exactly three numbers.
-    Triple([f64; 3]),
-    /// A non-empty array of numbers other than a triple.
-    Numbers(Vec<f64>),
-    /// A non-empty array of triples.
-    Points(Vec<DVec3>),
+    /// An array of exactly three numbers (which of them were integers).
+    Triple([f64; 3], Integers),
+    /// A non-empty array of numbers other than a triple (which were integers).
+    Numbers(Vec<f64>, Integers),
+    /// A non-empty array of triples (which coordinates were integers, three bits a point).
+    Points(Vec<DVec3>, Integers),
     /// Any other array (including the empty one).
     Array(Vec<Document>),
     /// An object, its fields in the order written (a repeated field keeps its first place and its
@@ -50,9 +110,9 @@ impl Document {
             Document::Bool(_) => "a boolean",
             Document::Number(_) | Document::Integer(_) => "a number",
             Document::Text(_) => "a string",
-            Document::Triple(_)
-            | Document::Numbers(_)
-            | Document::Points(_)
+            Document::Triple(..)
+            | Document::Numbers(..)
+            | Document::Points(..)
             | Document::Array(_) => "an array",
             Document::Object(_) => "an object",
         }
@@ -62,7 +122,10 @@ impl Document {
     pub fn is_array(&self) -> bool {
         matches!(
             self,
-            Document::Triple(_) | Document::Numbers(_) | Document::Points(_) | Document::Array(_)
+            Document::Triple(..)
+                | Document::Numbers(..)
+                | Document::Points(..)
+                | Document::Array(_)
         )
     }
 
@@ -78,7 +141,7 @@ impl Document {
     /// The point, when this is an `[x, y, z]` triple.
     pub fn as_vec3(&self) -> Option<DVec3> {
         match self {
-            Document::Triple(t) => Some(DVec3::from_array(*t)),
+            Document::Triple(t, _) => Some(DVec3::from_array(*t)),
             _ => None,
         }
     }
@@ -86,21 +149,31 @@ impl Document {
     /// The number of items, when this is an array.
     pub fn array_len(&self) -> Option<usize> {
         match self {
-            Document::Triple(_) => Some(3),
-            Document::Numbers(v) => Some(v.len()),
-            Document::Points(v) => Some(v.len()),
+            Document::Triple(..) => Some(3),
+            Document::Numbers(v, _) => Some(v.len()),
+            Document::Points(v, _) => Some(v.len()),
             Document::Array(v) => Some(v.len()),
             _ => None,
         }
     }
 
-    /// The items of an array, one document each (a packed row yields its numbers or triples);
-    /// `None` when this is not an array.
+    /// The items of an array, one document each (a packed row yields its numbers or triples,
+    /// integers as integers); `None` when this is not an array.
     pub fn into_items(self) -> Option<Box<dyn ExactSizeIterator<Item = Document>>> {
         Some(match self {
-            Document::Triple(t) => Box::new(t.into_iter().map(Document::Number)),
-            Document::Numbers(v) => Box::new(v.into_iter().map(Document::Number)),
-            Document::Points(v) => Box::new(v.into_iter().map(|p| Document::Triple(p.to_array()))),
+            Document::Triple(t, ints) => Box::new((0..3).map(move |k| ints.item(k, t[k]))),
+            Document::Numbers(v, ints) => {
+                Box::new(v.into_iter().enumerate().map(move |(k, x)| ints.item(k, x)))
+            }
+            Document::Points(v, ints) => Box::new(v.into_iter().enumerate().map(move |(k, p)| {
+                let mut marks = Integers::default();
+                for c in 0..3 {
+                    if ints.get(3 * k + c) {
+                        marks.set(c);
+                    }
+                }
+                Document::Triple(p.to_array(), marks)
+            })),
             Document::Array(v) => Box::new(v.into_iter()),
             _ => return None,
         })
@@ -145,17 +218,13 @@ impl<'de> Visitor<'de> for DocumentVisitor {
     }
 
     fn visit_i64<E>(self, i: i64) -> Result<Document, E> {
-        Ok(if i.unsigned_abs() <= EXACT_INTEGER {
-            Document::Number(i as f64)
-        } else {
-            Document::Integer(i)
-        })
+        Ok(Document::Integer(i))
     }
 
     fn visit_u64<E>(self, u: u64) -> Result<Document, E> {
         Ok(match i64::try_from(u) {
-            Ok(i) if u > EXACT_INTEGER => Document::Integer(i),
-            _ => Document::Number(u as f64),
+            Ok(i) => Document::Integer(i),
+            Err(_) => Document::Number(u as f64),
         })
     }
 
@@ -193,32 +262,63 @@ impl<'de> Visitor<'de> for DocumentVisitor {
 enum ArrayBuilder {
     Empty,
     /// Up to three numbers, not yet allocated.
-    Short([f64; 3], usize),
-    Numbers(Vec<f64>),
-    Points(Vec<DVec3>),
+    Short([f64; 3], usize, Integers),
+    Numbers(Vec<f64>, Integers),
+    Points(Vec<DVec3>, Integers),
     General(Vec<Document>),
+}
+
+/// A number that packs into a row (an integer only while it is exact as an `f64`), and whether it
+/// was written as an integer.
+fn packable(item: &Document) -> Option<(f64, bool)> {
+    match *item {
+        Document::Number(x) => Some((x, false)),
+        Document::Integer(i) if i.unsigned_abs() <= EXACT_INTEGER => Some((i as f64, true)),
+        _ => None,
+    }
 }
 
 impl ArrayBuilder {
     fn push(&mut self, item: Document) {
-        match (&mut *self, item) {
-            (ArrayBuilder::Empty, Document::Number(x)) => {
-                *self = ArrayBuilder::Short([x, 0.0, 0.0], 1)
+        match (&mut *self, packable(&item), item) {
+            (ArrayBuilder::Empty, Some((x, int)), _) => {
+                let mut ints = Integers::default();
+                if int {
+                    ints.set(0);
+                }
+                *self = ArrayBuilder::Short([x, 0.0, 0.0], 1, ints)
             }
-            (ArrayBuilder::Short(t, n), Document::Number(x)) if *n < 3 => {
+            (ArrayBuilder::Short(t, n, ints), Some((x, int)), _) if *n < 3 => {
+                if int {
+                    ints.set(*n);
+                }
                 t[*n] = x;
                 *n += 1;
             }
-            (ArrayBuilder::Short(t, _), Document::Number(x)) => {
-                *self = ArrayBuilder::Numbers(vec![t[0], t[1], t[2], x]);
+            (ArrayBuilder::Short(t, _, ints), Some((x, int)), _) => {
+                let mut ints = std::mem::take(ints);
+                if int {
+                    ints.set(3);
+                }
+                *self = ArrayBuilder::Numbers(vec![t[0], t[1], t[2], x], ints);
             }
-            (ArrayBuilder::Numbers(v), Document::Number(x)) => v.push(x),
-            (ArrayBuilder::Empty, Document::Triple(t)) => {
-                *self = ArrayBuilder::Points(vec![DVec3::from_array(t)]);
+            (ArrayBuilder::Numbers(v, ints), Some((x, int)), _) => {
+                if int {
+                    ints.set(v.len());
+                }
+                v.push(x);
             }
-            (ArrayBuilder::Points(v), Document::Triple(t)) => v.push(DVec3::from_array(t)),
-            (ArrayBuilder::General(v), item) => v.push(item),
-            (_, item) => {
+            (ArrayBuilder::Empty, None, Document::Triple(t, marks)) => {
+                *self = ArrayBuilder::Points(vec![DVec3::from_array(t)], marks);
+            }
+            (ArrayBuilder::Points(v, ints), None, Document::Triple(t, marks)) => {
+                for c in (0..3).filter(|&c| marks.get(c)) {
+                    ints.set(3 * v.len() + c);
+                }
+                v.push(DVec3::from_array(t));
+            }
+            (ArrayBuilder::General(v), _, item) => v.push(item),
+            (_, _, item) => {
                 let mut items = std::mem::replace(self, ArrayBuilder::Empty).into_documents();
                 items.push(item);
                 *self = ArrayBuilder::General(items);
@@ -237,10 +337,10 @@ impl ArrayBuilder {
     fn finish(self) -> Document {
         match self {
             ArrayBuilder::Empty => Document::Array(Vec::new()),
-            ArrayBuilder::Short(t, 3) => Document::Triple(t),
-            ArrayBuilder::Short(t, n) => Document::Numbers(t[..n].to_vec()),
-            ArrayBuilder::Numbers(v) => Document::Numbers(v),
-            ArrayBuilder::Points(v) => Document::Points(v),
+            ArrayBuilder::Short(t, 3, ints) => Document::Triple(t, ints),
+            ArrayBuilder::Short(t, n, ints) => Document::Numbers(t[..n].to_vec(), ints),
+            ArrayBuilder::Numbers(v, ints) => Document::Numbers(v, ints),
+            ArrayBuilder::Points(v, ints) => Document::Points(v, ints),
             ArrayBuilder::General(v) => Document::Array(v),
         }
     }
@@ -263,45 +363,95 @@ mod tests {
         serde_json::from_str(text).unwrap()
     }
 
+    /// The marks of the numbers at `at`.
+    fn ints(at: &[usize]) -> Integers {
+        let mut marks = Integers::default();
+        at.iter().for_each(|&k| marks.set(k));
+        marks
+    }
+
     #[test]
     fn number_rows_and_point_lists_are_packed() {
-        assert_eq!(doc("[1, 2.5, 3]"), Document::Triple([1.0, 2.5, 3.0]));
-        assert_eq!(doc("[1, 2]"), Document::Numbers(vec![1.0, 2.0]));
         assert_eq!(
-            doc("[1, 2, 3, 4]"),
-            Document::Numbers(vec![1.0, 2.0, 3.0, 4.0])
+            doc("[1, 2.5, 3]"),
+            Document::Triple([1.0, 2.5, 3.0], ints(&[0, 2]))
         );
         assert_eq!(
-            doc("[[0, 0, 0], [1, 2, 3]]"),
-            Document::Points(vec![DVec3::ZERO, DVec3::new(1.0, 2.0, 3.0)])
+            doc("[1.0, 2.5, 3e0]"),
+            Document::Triple([1.0, 2.5, 3.0], Integers::default())
+        );
+        assert_eq!(
+            doc("[1, 2.0]"),
+            Document::Numbers(vec![1.0, 2.0], ints(&[0]))
+        );
+        assert_eq!(
+            doc("[1, 2, 3, 4]"),
+            Document::Numbers(vec![1.0, 2.0, 3.0, 4.0], ints(&[0, 1, 2, 3]))
+        );
+        assert_eq!(
+            doc("[[0.0, 0.5, 0.0], [1, 2.5, 3]]"),
+            Document::Points(
+                vec![DVec3::new(0.0, 0.5, 0.0), DVec3::new(1.0, 2.5, 3.0)],
+                ints(&[3, 5])
+            )
         );
         assert_eq!(doc("[]"), Document::Array(Vec::new()));
     }
 
     #[test]
+    fn integers_come_back_as_integers_item_by_item() {
+        let items: Vec<Document> = doc("[[0.5, 1, 2], [3, 4.5, 5.0]]")
+            .into_items()
+            .unwrap()
+            .flat_map(|p| p.into_items().unwrap())
+            .collect();
+        assert_eq!(
+            items,
+            [
+                Document::Number(0.5),
+                Document::Integer(1),
+                Document::Integer(2),
+                Document::Integer(3),
+                Document::Number(4.5),
+                Document::Number(5.0),
+            ]
+        );
+        let row: Vec<Document> = doc("[1, 2.0, 3, 4]").into_items().unwrap().collect();
+        assert_eq!(row[0], Document::Integer(1));
+        assert_eq!(row[1], Document::Number(2.0));
+        // The 65th number of a row has its mark in the second word.
+        let long = format!("[{}1]", "0.5, ".repeat(64));
+        let Document::Numbers(v, marks) = doc(&long) else {
+            panic!("a packed row")
+        };
+        assert_eq!(v.len(), 65);
+        assert!(marks.get(64) && !marks.get(63) && !marks.get(128));
+    }
+
+    #[test]
     fn a_mixed_array_keeps_every_item_in_order() {
         assert_eq!(
-            doc(r#"[1, 2, 3, 4, "x"]"#),
+            doc(r#"[1, 2, 3, 4.5, "x"]"#),
             Document::Array(vec![
-                Document::Number(1.0),
-                Document::Number(2.0),
-                Document::Number(3.0),
-                Document::Number(4.0),
+                Document::Integer(1),
+                Document::Integer(2),
+                Document::Integer(3),
+                Document::Number(4.5),
                 Document::Text("x".into()),
             ])
         );
         assert_eq!(
-            doc("[[0, 0, 0], [1, 2]]"),
+            doc("[[0, 0, 0.5], [1, 2]]"),
             Document::Array(vec![
-                Document::Triple([0.0; 3]),
-                Document::Numbers(vec![1.0, 2.0]),
+                Document::Triple([0.0, 0.0, 0.5], ints(&[0, 1])),
+                Document::Numbers(vec![1.0, 2.0], ints(&[0, 1])),
             ])
         );
         assert_eq!(
             doc("[1, [1, 2, 3]]"),
             Document::Array(vec![
-                Document::Number(1.0),
-                Document::Triple([1.0, 2.0, 3.0])
+                Document::Integer(1),
+                Document::Triple([1.0, 2.0, 3.0], ints(&[0, 1, 2]))
             ])
         );
     }
@@ -312,9 +462,17 @@ mod tests {
             doc("9007199254740993"),
             Document::Integer(9_007_199_254_740_993)
         );
+        // Beyond 2⁵³ an integer does not pack into a row of f64s: the row stays general.
+        assert_eq!(
+            doc("[1, 9007199254740993]"),
+            Document::Array(vec![
+                Document::Integer(1),
+                Document::Integer(9_007_199_254_740_993)
+            ])
+        );
         assert_eq!(
             doc("-9007199254740992"),
-            Document::Number(-9_007_199_254_740_992.0)
+            Document::Integer(-9_007_199_254_740_992)
         );
         assert_eq!(
             doc("18446744073709551615"),
