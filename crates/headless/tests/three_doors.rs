@@ -601,3 +601,61 @@ fn every_node_type_gives_one_answer_through_every_door() {
         path.display()
     );
 }
+
+/// The five calls of issue 27 §1, through the `cnets` binary, answer as a graph file does.
+#[test]
+fn the_issue_calls_answer_as_a_graph_file_does() {
+    let cases = [
+        (
+            "list.cross_reference",
+            r#"{"a": [1, 2], "b": [10, 20, 30]}"#,
+            r#"{"a":[1,1,1,2,2,2],"b":[10,20,30,10,20,30]}"#,
+        ),
+        (
+            "list.flatten",
+            r#"{"tree": [[1,2,3],[10,20,30]]}"#,
+            r#"{"list":[1,2,3,10,20,30]}"#,
+        ),
+        (
+            "list.transpose",
+            r#"{"table": [[1,2,3],[10,20,30]]}"#,
+            r#"{"table":[[1,10],[2,20],[3,30]]}"#,
+        ),
+        (
+            "list.weave",
+            r#"{"lists": [[1,2,3],[10,20,30]], "pattern": [0,1]}"#,
+            r#"{"list":[1,10,2,20,3,30]}"#,
+        ),
+        (
+            "view.panel",
+            r#"{"value": [[1,2,3],[10,20,30]]}"#,
+            r#"{"text":"{0}\n0  1\n1  2\n2  3\n{1}\n0  10\n1  20\n2  30"}"#,
+        ),
+    ];
+    let folder = common::Folder::new("three-doors-issue");
+    let registry = Arc::new(cnets_nodes::registry());
+    for (node, inputs, expected) in cases {
+        let def = registry.get(node).expect("registered");
+        let expected: Json = serde_json::from_str(expected).unwrap();
+        check_cli(def, inputs, &json!({ "outputs": expected }), &folder);
+        // The same inputs written as RON in a graph file give the same values.
+        let doc = read_document(inputs.as_bytes()).unwrap();
+        let values = cnets_host::inputs::node_inputs(def, doc).unwrap();
+        let case = Case {
+            inputs: values
+                .into_iter()
+                .enumerate()
+                .filter(|(k, _)| {
+                    let name = &def.inputs[*k].name;
+                    inputs.contains(&format!("\"{name}\""))
+                })
+                .collect(),
+        };
+        let ron = ron_door(&registry, def, &case);
+        assert!(
+            ron.same_as(&json_door(def, inputs)),
+            "{node}: {ron:?}\n{}",
+            graph_text(def, &case)
+        );
+    }
+}
