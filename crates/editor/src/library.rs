@@ -2,6 +2,8 @@
 //! nodes), shown in the palette's "Library" category and inserted as `cluster` nodes whose
 //! `source` is the file — resolved exactly as `cnets run --library DIR` resolves it
 //! ([`LoadOptions`]: next to the graph first, then each library folder, then `CNETS_LIBRARY`).
+//! A library folder's `library` subfolder is a library folder too (right after it): the examples
+//! folder `graphs/` ships its reusable clusters in `graphs/library/`.
 //!
 //! Also the watch on cluster files: [`ClusterWatch`] remembers the content of every file a cluster
 //! node of the graph being edited comes from and reports the files that changed, so the editor
@@ -34,10 +36,20 @@ pub fn load_options(doc_path: Option<&Path>, library: &[PathBuf]) -> LoadOptions
     if doc_path.is_none() {
         options.base_dir = None;
     }
-    for dir in library {
-        options = options.with_library(dir.clone());
+    for dir in with_subfolders(library) {
+        options = options.with_library(dir);
     }
     options
+}
+
+/// The folders with each one's `library` subfolder (when it has one) right after it.
+fn with_subfolders(dirs: &[PathBuf]) -> Vec<PathBuf> {
+    dirs.iter()
+        .flat_map(|d| {
+            let sub = d.join("library");
+            std::iter::once(d.clone()).chain(sub.is_dir().then_some(sub))
+        })
+        .collect()
 }
 
 /// One graph of the library.
@@ -84,7 +96,7 @@ impl Library {
     pub fn scan(&mut self, registry: &Arc<Registry>) -> &[LibraryEntry] {
         let mut entries = Vec::new();
         let mut seen = std::collections::HashSet::new();
-        for dir in self.dirs.clone() {
+        for dir in with_subfolders(&self.dirs) {
             for path in crate::menus::examples_in(&dir) {
                 let Some(name) = path.file_stem().map(|s| s.to_string_lossy().into_owned()) else {
                     continue;
