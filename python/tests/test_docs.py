@@ -42,7 +42,7 @@ NOT_RUN = {
     "~/.rhinocode/py39-rh8/python3.9 -m pip install dist/cnets-0.1.0-cp39-abi3-macosx_11_0_arm64.whl":
         "installs into Rhino 8's own Python on macOS: there is no Rhino here",
     "scripts/windows-wheel.sh":
-        "the Windows wheel's own script (about 8 minutes of 2 cores from cold): run by hand",
+        "the Windows wheel's own script (12 minutes from cold on 2 cores): run by hand",
 }
 
 
