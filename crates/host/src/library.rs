@@ -111,3 +111,31 @@ pub fn folder_defs(
     }
     Ok((defs, skipped))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn shipped(name: &str) -> String {
+        format!(
+            "{}/../../graphs/library/{name}.ron",
+            env!("CARGO_MANIFEST_DIR")
+        )
+    }
+
+    #[test]
+    fn a_cluster_that_writes_files_is_an_export_node() {
+        let registry = Arc::new(cnets_nodes::registry());
+        let strips = cluster_def(&shipped("strip-fabrication"), &registry, &[], &[]).unwrap();
+        assert!(
+            strips.has_flag(NodeFlag::Export),
+            "it writes the cutting sheets"
+        );
+        let support = cluster_def(&shipped("support-structure"), &registry, &[], &[]).unwrap();
+        assert!(!support.has_flag(NodeFlag::Export));
+        let (defs, skipped) =
+            folder_defs(Path::new(&shipped("x")).parent().unwrap(), &registry).unwrap();
+        assert!(skipped.is_empty(), "{skipped:?}");
+        assert_eq!(defs.len(), 4, "the shipped library's four clusters");
+    }
+}
