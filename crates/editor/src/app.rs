@@ -25,7 +25,7 @@ use crate::recovery::{Autosave, Recovered, Recovery};
 use crate::request::UiRequest;
 use crate::settings::Settings;
 use crate::unsaved::{self, Answer, Replace};
-use crate::viewport::Viewport;
+use crate::viewport::{Viewport, ViewportAction, ViewportInput};
 use crate::worker::{Carry, NodeStatus, Worker};
 
 pub use crate::viewport::GpuTarget;
@@ -752,6 +752,122 @@ impl EditorApp {
         }
     }
 
+    /// Carries out what the 3D view asked for: an edit, selecting a node, a drawn curve.
+    pub fn apply_view(&mut self, action: ViewportAction) {
+        match action {
+            ViewportAction::Edit(e) => {
+                self.edit(e);
+            }
+            ViewportAction::SelectNode(id) => {
+                self.canvas.focused = Some(id.clone());
+                self.canvas.select(vec![id.clone()]);
+                self.message = format!("selected '{id}'");
+            }
+            ViewportAction::AddCurve(curve) => self.add_curve(curve),
+            ViewportAction::Message(m) => self.message = m,
+        }
+    }
+
+    /// Adds a drawn curve as a `param.points` node wired into a `curve.spline` (or
+    /// `curve.polyline`), placed on the canvas right of the selection (else in the middle of the
+    /// canvas), and selects both (one undo step).
+    pub fn add_curve(&mut self, curve: crate::viewport::DrawnCurve) {
+        let at = self.new_node_place();
+        match self.edit_created(Edit::AddCurves {
+            curves: vec![curve],
+            at,
+        }) {
+            Some(created) => {
+                self.message = format!(
+                    "added {}: wire its curve into a construction",
+                    created.join(" and ")
+                );
+                self.canvas.focused = created.last().cloned();
+                self.canvas.select(created);
+            }
+            None => {}
+        }
+    }
+
+    /// Most curves one "Internalise" turns into points.
+    pub const MAX_INTERNALISED: usize = 64;
+
+    /// Turns the curves node `id` outputs into `param.points` + `curve.polyline` pairs right of
+    /// it (one undo step): the node is evaluated now, on the document's graph and folder.
+    pub fn internalise(&mut self, id: &str) -> Result<String, String> {
+        let graph = self.doc.eval_graph();
+        let index = graph.index(id).map_err(|e| e.to_string())?;
+        let ctx = cnets_engine::NodeContext::new(None, self.doc.base_dir());
+        let mut evaluator = cnets_engine::Evaluator::new();
+        evaluator.evaluate(&graph, &[index], &ctx, &mut |_, _| {});
+        let result = evaluator
+            .result(&graph, id)
+            .ok_or_else(|| format!("'{id}' did not run"))?;
+        let outputs = result
+            .outputs()
+            .ok_or_else(|| result.error().unwrap_or("it failed").to_string())?;
+        let mut curves = Vec::new();
+        fn gather(v: &cnets_engine::Value, into: &mut Vec<crate::viewport::DrawnCurve>) {
+            match v {
+                cnets_engine::Value::Polyline(p) => into.push(crate::viewport::DrawnCurve {
+                    points: p.points.clone(),
+                    closed: p.closed,
+                    spline: false,
+                }),
+                cnets_engine::Value::List(items) => items.iter().for_each(|i| gather(i, into)),
+                _ => {}
+            }
+        }
+        for v in &outputs.values {
+            gather(v, &mut curves);
+        }
+        if curves.is_empty() {
+            return Err(format!("'{id}' outputs no curves"));
+        }
+        let total = curves.len();
+        curves.truncate(Self::MAX_INTERNALISED);
+        let at = match self.canvas.node_rect(id) {
+            Some(r) => [r.right() + 60.0, r.top()],
+            None => self.new_node_place(),
+        };
+        let created = self
+            .edit_created(Edit::AddCurves { curves, at })
+            .ok_or_else(|| self.message.clone())?;
+        self.canvas.select(created.clone());
+        Ok(if total > Self::MAX_INTERNALISED {
+            format!(
+                "internalised the first {} of {total} curves of '{id}'",
+                Self::MAX_INTERNALISED
+            )
+        } else {
+            format!("internalised {total} curve(s) of '{id}' as editable points")
+        })
+    }
+
+    /// Where new nodes go on the canvas: right of the selected (or focused) nodes, else the
+    /// middle of the visible canvas.
+    pub fn new_node_place(&self) -> [f32; 2] {
+        match self.canvas.bounds_of(&self.canvas.targets()) {
+            Some(r) => [r.right() + 60.0, r.top()],
+            None => {
+                let c = self.canvas.to_canvas(self.canvas.screen_rect().center());
+                [c.x, c.y]
+            }
+        }
+    }
+
+    /// Applies an edit and returns the nodes it created (`None` when refused: the message says
+    /// why).
+    pub fn edit_created(&mut self, edit: Edit) -> Option<Vec<String>> {
+        match edit::apply(&mut self.doc, edit) {
+            Ok(created) => Some(created),
+            Err(e) => {
+                self.message = format!("refused: {e}");
+                None
+            }
+        }
+    }
+
     /// Carries out a UI request; a refusal becomes the status message. Returns whether it was
     /// carried out.
     pub fn handle(&mut self, request: UiRequest) -> bool {
@@ -789,6 +905,7 @@ impl EditorApp {
                 self.optimization.open = true;
                 self.optimization.add_penalty(&mut self.doc, path)
             }
+            UiRequest::Internalise(id) => self.internalise(&id),
         };
         match handled {
             Ok(m) => {
@@ -931,6 +1048,18 @@ impl EditorApp {
             MenuAction::CopyLink => {
                 self.message = "share links are made by the web page (cnets in the browser)".into()
             }
+            MenuAction::View(v) => self.viewport.set_view(v),
+            MenuAction::FrameSelection => {
+                let targets = self.canvas.targets();
+                self.viewport.frame_selection(&targets);
+            }
+            MenuAction::Tool(t) => self.viewport.toggle_tool(t),
+            MenuAction::ToggleSnap => self.viewport.snap = !self.viewport.snap,
+            MenuAction::ToggleGrid => self.viewport.show_grid = !self.viewport.show_grid,
+            MenuAction::ToggleDimensions => {
+                self.viewport.show_dimensions = !self.viewport.show_dimensions
+            }
+            MenuAction::PerspectivePlane(p) => self.viewport.perspective_plane = p,
         }
     }
 
@@ -1000,19 +1129,24 @@ impl EditorApp {
 
     fn poll_worker(&mut self) {
         if let Some(r) = self.worker.poll() {
-            self.statuses = r.statuses;
-            if r.view != self.statuses_view || std::mem::take(&mut self.refit_on_results) {
-                // The first results of a document or of another graph level: frame it once
-                // they are drawn.
-                self.canvas.fit_later();
-            }
-            self.statuses_view = r.view;
-            self.latency.eval_ms = r.eval_ms;
-            self.latency.scene_ms = r.stats.build_ms;
-            self.latency.ran = r.ran;
-            self.viewport.set_scene(r.scene, r.stats);
-            self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
+            self.take_response(r);
         }
+    }
+
+    /// Takes an evaluation's results: node statuses, the scene and its figures.
+    fn take_response(&mut self, r: crate::worker::EvalResponse) {
+        self.statuses = r.statuses;
+        if r.view != self.statuses_view || std::mem::take(&mut self.refit_on_results) {
+            // The first results of a document or of another graph level: frame it once they are
+            // drawn.
+            self.canvas.fit_later();
+        }
+        self.statuses_view = r.view;
+        self.latency.eval_ms = r.eval_ms;
+        self.latency.scene_ms = r.stats.build_ms;
+        self.latency.ran = r.ran;
+        self.viewport.set_scene(r.scene, r.stats, r.picks);
+        self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
     }
 
     /// Sends the graph to the worker when it (or the display options) changed since the last
@@ -1066,18 +1200,7 @@ impl EditorApp {
     pub fn wait_for_worker(&mut self, timeout: Duration) {
         self.submit_if_changed();
         if let Some(r) = self.worker.wait(timeout) {
-            self.statuses = r.statuses;
-            if r.view != self.statuses_view || std::mem::take(&mut self.refit_on_results) {
-                // The first results of a document or of another graph level: frame it once
-                // they are drawn.
-                self.canvas.fit_later();
-            }
-            self.statuses_view = r.view;
-            self.latency.eval_ms = r.eval_ms;
-            self.latency.scene_ms = r.stats.build_ms;
-            self.latency.ran = r.ran;
-            self.viewport.set_scene(r.scene, r.stats);
-            self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
+            self.take_response(r);
         }
     }
 
@@ -1106,6 +1229,13 @@ impl EditorApp {
                 parameters: self.parameters_open,
                 library: &self.library.dirs[0],
                 web: self.page.is_some(),
+                view: menus::ViewMenuState {
+                    view: self.viewport.view,
+                    snap: self.viewport.snap,
+                    grid: self.viewport.show_grid,
+                    dimensions: self.viewport.show_dimensions,
+                    perspective_plane: self.viewport.perspective_plane,
+                },
             };
             if let Some(a) = menus::menu_bar(ui, &mc) {
                 self.run(a);
@@ -1154,12 +1284,13 @@ impl EditorApp {
                 .min_size(180.0)
                 .show(ui, |ui| {
                     ui.heading("Parameters");
-                    actions = crate::parameters::show(ui, &self.doc.graph);
+                    actions = crate::parameters::show(ui, &self.doc.graph, &self.statuses);
                 });
             for a in actions {
                 self.apply(a);
             }
         }
+        let mut view_actions = Vec::new();
         egui::Panel::right("cnets-viewport")
             .resizable(true)
             .default_size(ui.available_width() * 0.45)
@@ -1202,8 +1333,18 @@ impl EditorApp {
                     }
                     self.viewport.options = o;
                 });
-                self.viewport.show(ui, self.gpu.as_ref());
+                ui.horizontal_wrapped(|ui| self.viewport.toolbar(ui));
+                let selected = self.canvas.targets();
+                let input = ViewportInput {
+                    graph: &self.doc.graph,
+                    selected: &selected,
+                    typing: ui.ctx().egui_wants_keyboard_input(),
+                };
+                view_actions = self.viewport.show(ui, self.gpu.as_ref(), &input);
             });
+        for a in view_actions {
+            self.apply_view(a);
+        }
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {

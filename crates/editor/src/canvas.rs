@@ -72,8 +72,13 @@ pub struct Canvas {
     rects: HashMap<String, Rect>,
     /// The node last clicked.
     pub focused: Option<String>,
-    /// Nodes selected (Shift+click, box selection) in the last frame.
+    /// Nodes selected (Shift+click, box selection, or [`Canvas::select`]) in the last frame.
     pub selected: Vec<String>,
+    /// Nodes selected from outside the canvas (a curve drawn in the 3D view, internalised
+    /// points): selected until the designer's canvas selection changes.
+    chosen: Vec<String>,
+    /// The canvas's own selection in the last frame.
+    own_selection: Vec<String>,
     widget: SnarlWidget,
     /// Frame the whole graph once its nodes have been measured (after a new document).
     fit_pending: bool,
@@ -86,6 +91,8 @@ pub struct Canvas {
     ui_rect: Rect,
     /// Plot rectangles of graph-mapper widgets (canvas coordinates).
     plots: HashMap<String, Rect>,
+    /// What each graph-mapper widget showed in the last frame, and the row drawn.
+    mapper_views: HashMap<String, (mapper::Shown, usize)>,
     /// Rectangles of the inline value editors, by (node, input) (canvas coordinates).
     editors: HashMap<(String, String), Rect>,
     /// Readout rectangles of `view.panel` nodes (canvas coordinates).
@@ -166,12 +173,15 @@ impl Canvas {
             rects: HashMap::new(),
             focused: None,
             selected: Vec::new(),
+            chosen: Vec::new(),
+            own_selection: Vec::new(),
             widget: SnarlWidget::new().id(id).style(style()),
             fit_pending: true,
             fit_whole: false,
             fit_delay: 0,
             ui_rect: Rect::NOTHING,
             plots: HashMap::new(),
+            mapper_views: HashMap::new(),
             editors: HashMap::new(),
             panels: HashMap::new(),
             zoom_pending: None,
@@ -382,6 +392,12 @@ impl Canvas {
         Some(self.to_global * Pos2::new(r.left() + u * r.width(), r.bottom() - v * r.height()))
     }
 
+    /// What the graph-mapper widget of `node` showed in the last frame (kind and handle rows the
+    /// node runs on) and the row it drew.
+    pub fn mapper_view(&self, node: &str) -> Option<&(mapper::Shown, usize)> {
+        self.mapper_views.get(node)
+    }
+
     /// Screen rectangle of a `view.panel` node's readout after the last frame (its bottom-right
     /// corner is the resize handle).
     pub fn panel_screen_rect(&self, node: &str) -> Option<Rect> {
@@ -411,6 +427,13 @@ impl Canvas {
     /// Canvas position of a screen point.
     pub fn to_canvas(&self, screen: Pos2) -> Pos2 {
         self.to_global.inverse() * screen
+    }
+
+    /// Selects `ids` (nodes made outside the canvas: a drawn curve, internalised points) until the
+    /// designer selects something else on the canvas.
+    pub fn select(&mut self, ids: Vec<String>) {
+        self.selected = ids.clone();
+        self.chosen = ids;
     }
 
     /// The nodes commands act on: the selection, else the focused node.
@@ -478,14 +501,17 @@ impl Canvas {
             pressed_node: None,
             fit,
             plots: HashMap::new(),
+            mapper_views: HashMap::new(),
             editors: HashMap::new(),
             panels: HashMap::new(),
             selected: self.selected.clone(),
+            chosen: self.chosen.clone(),
         };
         let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
         self.to_global = viewer.to_global;
         self.rects = viewer.rects;
         self.plots = viewer.plots;
+        self.mapper_views = viewer.mapper_views;
         self.editors = viewer.editors;
         self.panels = viewer.panels;
         if let Some(id) = &viewer.pressed_node {
@@ -509,12 +535,24 @@ impl Canvas {
         {
             actions.push(CanvasAction::Request(UiRequest::OpenPalette([p.x, p.y])));
         }
-        self.selected = self
+        let own: Vec<String> = self
             .widget
             .get_selected_nodes_at(ui.id(), ui.ctx())
             .into_iter()
             .filter_map(|nid| self.snarl.get_node(nid).map(|n| n.id.clone()))
             .collect();
+        if own != self.own_selection || response.clicked() {
+            // The designer selected on the canvas: that selection takes over.
+            self.chosen.clear();
+        }
+        self.chosen.retain(|id| graph.node(id).is_some());
+        self.own_selection = own.clone();
+        self.selected = own;
+        for id in &self.chosen {
+            if !self.selected.contains(id) {
+                self.selected.push(id.clone());
+            }
+        }
         // Positions moved by dragging, written back to the graph.
         let moves: Vec<(String, [f32; 2])> = self
             .snarl
@@ -629,9 +667,12 @@ struct Viewer<'a> {
     pressed_node: Option<String>,
     fit: Option<TSTransform>,
     plots: HashMap<String, Rect>,
+    mapper_views: HashMap<String, (mapper::Shown, usize)>,
     editors: HashMap<(String, String), Rect>,
     panels: HashMap<String, Rect>,
     selected: Vec<String>,
+    /// Nodes selected from outside the canvas (outlined here: the snarl does not know them).
+    chosen: Vec<String>,
 }
 
 impl Viewer<'_> {
@@ -1023,8 +1064,12 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             return;
         }
         if let Some(instance) = self.graph.node(&id) {
-            let r = mapper::show(ui, self.graph, instance);
+            let ran_on = self.statuses.get(&id).and_then(NodeStatus::ran_on);
+            let r = mapper::show(ui, self.graph, instance, ran_on);
             self.plots.insert(id.clone(), r.plot);
+            if let Some(shown) = r.shown {
+                self.mapper_views.insert(id.clone(), shown);
+            }
             if let Some(values) = r.changes {
                 self.actions
                     .push(CanvasAction::Edit(Edit::SetValues { node: id, values }));
@@ -1055,6 +1100,14 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         if pressed_at.is_some_and(|p| rect.contains(self.to_global.inverse() * p)) {
             self.pressed_node = Some(id.clone());
         }
+        if self.chosen.contains(&id) {
+            ui.painter().rect_stroke(
+                rect.expand(3.0),
+                6.0,
+                Stroke::new(2.0, Color32::from_rgb(0x3a, 0x8e, 0xe6)),
+                egui::StrokeKind::Outside,
+            );
+        }
         self.rects.insert(id, rect);
     }
 
@@ -1081,6 +1134,22 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         if ui.button("Delete").clicked() {
             self.actions
                 .push(CanvasAction::Edit(Edit::Remove(vec![id.clone()])));
+            ui.close();
+        }
+        if self
+            .graph
+            .node(&id)
+            .is_some_and(|n| n.def.outputs.iter().any(|p| p.ty == ValueType::Polyline))
+            && ui
+                .button("Internalise as editable points")
+                .on_hover_text(
+                    "insert a param.points node per curve, holding its points, wired into a \
+                 curve.polyline: drag them in the 3D view",
+                )
+                .clicked()
+        {
+            self.actions
+                .push(CanvasAction::Request(UiRequest::Internalise(id.clone())));
             ui.close();
         }
         ui.separator();

@@ -79,6 +79,9 @@ pub enum Edit {
         /// `(input, value)` pairs.
         values: Vec<(String, Value)>,
     },
+    /// Set the points of point nodes moved in the 3D view: (node, input, value) — one undo step
+    /// per drag.
+    SetPoints(Vec<(String, String, Value)>),
     /// Turn the preview of a node on or off.
     SetPreview(String, bool),
     /// Enable or disable a node.
@@ -100,7 +103,19 @@ pub enum Edit {
     },
     /// Replace a cluster node by the nodes of its subgraph.
     ExplodeCluster(String),
+    /// Add curves as editable points: per curve a `param.points` node holding its points wired
+    /// into a `curve.spline` (or `curve.polyline`), the first pair at canvas position `at`, the
+    /// next ones below it. Creates the nodes in that order.
+    AddCurves {
+        /// The curves.
+        curves: Vec<crate::viewport::DrawnCurve>,
+        /// Canvas position of the first `param.points` node.
+        at: [f32; 2],
+    },
 }
+
+/// Canvas spacing of the nodes [`Edit::AddCurves`] places.
+const CURVE_NODE_STEP: [f32; 2] = [230.0, 150.0];
 
 /// Applies an edit to a document as one undoable step. Returns the ids of the nodes the edit
 /// created (the cluster node, the duplicates). Errors are messages for the status bar; the graph
@@ -154,6 +169,12 @@ pub fn apply(doc: &mut GraphDocument, edit: Edit) -> Result<Vec<String>, String>
                 Ok(())
             }))
         }
+        Edit::SetPoints(values) => none(doc.edit(Some(EditKey::Points), |g, _| {
+            for (node, input, value) in values {
+                g.set_value(&node, &input, value).map_err(err)?;
+            }
+            Ok(())
+        })),
         Edit::SetPreview(node, on) => {
             none(doc.edit(None, |g, _| g.set_preview(&node, on).map_err(err)))
         }
@@ -189,6 +210,41 @@ pub fn apply(doc: &mut GraphDocument, edit: Edit) -> Result<Vec<String>, String>
         Edit::ExplodeCluster(id) => none(doc.edit(None, |g, _| {
             explode(g, &id).map(|_| ()).map_err(|e| e.to_string())
         })),
+        Edit::AddCurves { curves, at } => {
+            let mut created = Vec::new();
+            doc.edit(None, |g, _| {
+                for (k, curve) in curves.into_iter().enumerate() {
+                    let y = at[1] + k as f32 * CURVE_NODE_STEP[1];
+                    let points = fresh_id(g, "points");
+                    g.add_node(&points, "param.points").map_err(err)?;
+                    g.set_position(&points, [at[0], y]).map_err(err)?;
+                    let list = curve
+                        .points
+                        .iter()
+                        .map(|p| Value::Point(*p))
+                        .collect::<Vec<_>>();
+                    g.set_value(&points, "points", Value::list(list))
+                        .map_err(err)?;
+                    let (kind, stem) = if curve.spline {
+                        ("curve.spline", "spline")
+                    } else {
+                        ("curve.polyline", "polyline")
+                    };
+                    let id = fresh_id(g, stem);
+                    g.add_node(&id, kind).map_err(err)?;
+                    g.set_position(&id, [at[0] + CURVE_NODE_STEP[0], y])
+                        .map_err(err)?;
+                    g.set_value(&id, "closed", Value::Boolean(curve.closed))
+                        .map_err(err)?;
+                    g.connect(&points, "points", &id, "points").map_err(err)?;
+                    g.set_preview(&id, true).map_err(err)?;
+                    created.push(points);
+                    created.push(id);
+                }
+                Ok(())
+            })?;
+            Ok(created)
+        }
     }
 }
 

@@ -171,7 +171,9 @@ impl FileDialog {
                         Purpose::ExportFolder(_) => "Export here",
                         Purpose::LibraryFolder => "Use this folder",
                     };
-                    if ui.button(ok).clicked() || enter {
+                    let ok_button = ui.button(ok);
+                    crate::probe::record(ui.ctx(), ok, ok_button.rect);
+                    if ok_button.clicked() || enter {
                         match self.validate() {
                             Ok(p) => outcome = Outcome::Chosen(p),
                             Err(e) => self.error = Some(e),

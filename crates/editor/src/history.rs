@@ -18,6 +18,8 @@ pub enum EditKey {
     Move,
     /// Dragging a graph mapper's handles (node id).
     Mapper(String),
+    /// Moving point handles in the 3D view.
+    Points,
     /// Editing a field of the optimization setup (which one).
     Optimization(String),
 }

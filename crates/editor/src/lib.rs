@@ -19,7 +19,8 @@
 //!   [`unsaved`]: the Save / Don't save / Cancel guard on everything that replaces the document;
 //!   [`load_failure`]: a file that failed to load, with its diagnostics; [`parameters`]: the
 //!   docked parameter panel; [`cluster_ports`]: ports renamed inside an opened cluster keep
-//!   their wires; [`page`]: what the web page does for the editor in a browser.
+//!   their wires; [`page`]: what the web page does for the editor in a browser; [`probe`]:
+//!   where named controls were drawn, for scripted window tests.
 //! - [`app`]: the editor state and one frame of UI, shared by the window (`main.rs`) and tests.
 
 pub mod app;
@@ -43,6 +44,7 @@ pub mod page;
 pub mod palette;
 pub mod parameters;
 pub mod plot;
+pub mod probe;
 pub mod recovery;
 pub mod request;
 pub mod settings;

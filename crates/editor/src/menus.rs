@@ -5,6 +5,8 @@ use std::path::{Path, PathBuf};
 
 use crate::export::ExportFormat;
 use crate::preview::{ColorMode, Layer, PreviewOptions};
+use crate::viewport::screen::CPlane;
+use crate::viewport::{DrawTool, MeasureTool, NamedView, Tool};
 
 /// Something picked in a menu (or by a shortcut).
 #[derive(Clone, Debug, PartialEq)]
@@ -63,6 +65,20 @@ pub enum MenuAction {
     CopyLink,
     /// Close the editor.
     Quit,
+    /// Show a named view of the 3D view.
+    View(NamedView),
+    /// Frame the geometry of the selected nodes and handles.
+    FrameSelection,
+    /// Switch the 3D view's tool (back to Select when it is the active one).
+    Tool(Tool),
+    /// Turn grid snap on or off.
+    ToggleSnap,
+    /// Show or hide the grid and axes.
+    ToggleGrid,
+    /// Show or hide the size of the previewed geometry.
+    ToggleDimensions,
+    /// Set the Perspective view's construction plane.
+    PerspectivePlane(CPlane),
 }
 
 /// What the menus need to know.
@@ -89,6 +105,23 @@ pub struct MenuContext<'a> {
     pub library: &'a Path,
     /// In a web page: File ▸ Copy link, downloads instead of save dialogs, no Quit.
     pub web: bool,
+    /// The 3D view's state: named view, grid snap, grid, size shown, Perspective plane.
+    pub view: ViewMenuState,
+}
+
+/// What the View menu shows of the 3D view.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewMenuState {
+    /// The named view shown.
+    pub view: NamedView,
+    /// Grid snap is on.
+    pub snap: bool,
+    /// The grid is shown.
+    pub grid: bool,
+    /// The size of the geometry is shown.
+    pub dimensions: bool,
+    /// The Perspective view's construction plane.
+    pub perspective_plane: CPlane,
 }
 
 fn file_label(p: &Path) -> String {
@@ -102,16 +135,20 @@ fn file_label(p: &Path) -> String {
 pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
     let mut action = None;
     let mut pick_preview = None;
+    let mut pick_plane = None;
+    let mut pick_view = None;
     let mut pick =
         |ui: &mut egui::Ui, label: &str, shortcut: &str, a: MenuAction, enabled: bool| {
             let button = egui::Button::new(label).shortcut_text(shortcut);
-            if ui.add_enabled(enabled, button).clicked() {
+            let response = ui.add_enabled(enabled, button);
+            crate::probe::record(ui.ctx(), label, response.rect);
+            if response.clicked() {
                 action = Some(a);
                 ui.close();
             }
         };
     egui::MenuBar::new().ui(ui, |ui| {
-        ui.menu_button("File", |ui| {
+        let file = ui.menu_button("File", |ui| {
             pick(ui, "New", "", MenuAction::New, true);
             pick(ui, "Open…", "Ctrl+O", MenuAction::Open, true);
             ui.menu_button("Open example", |ui| {
@@ -145,7 +182,7 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
             ui.separator();
             pick(ui, "Save", "Ctrl+S", MenuAction::Save, true);
             pick(ui, "Save as…", "Ctrl+Shift+S", MenuAction::SaveAs, true);
-            ui.menu_button("Export", |ui| {
+            let export = ui.menu_button("Export", |ui| {
                 for f in ExportFormat::ALL {
                     pick(
                         ui,
@@ -156,6 +193,7 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                     );
                 }
             });
+            crate::probe::record(ui.ctx(), "Export", export.response.rect);
             ui.separator();
             if mc.web {
                 pick(ui, "Copy link", "", MenuAction::CopyLink, true);
@@ -163,6 +201,7 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                 pick(ui, "Quit", "Ctrl+Q", MenuAction::Quit, true);
             }
         });
+        crate::probe::record(ui.ctx(), "File", file.response.rect);
         ui.menu_button("Edit", |ui| {
             pick(ui, "Undo", "Ctrl+Z", MenuAction::Undo, mc.can_undo);
             pick(ui, "Redo", "Ctrl+Shift+Z", MenuAction::Redo, mc.can_redo);
@@ -208,7 +247,35 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
             pick(ui, "Library folder…", "", MenuAction::LibraryFolder, true);
         });
         ui.menu_button("View", |ui| {
+            for v in NamedView::ALL {
+                let r = ui
+                    .radio(mc.view.view == v, format!("{}   {}", v.label(), v.shortcut()));
+                crate::probe::record(ui.ctx(), v.label(), r.rect);
+                if r.clicked() {
+                    pick_view = Some(MenuAction::View(v));
+                    ui.close();
+                }
+            }
+            ui.menu_button("Perspective construction plane", |ui| {
+                for p in CPlane::ALL {
+                    if ui
+                        .radio(mc.view.perspective_plane == p, p.label())
+                        .clicked()
+                    {
+                        pick_plane = Some(MenuAction::PerspectivePlane(p));
+                        ui.close();
+                    }
+                }
+            });
+            ui.separator();
             pick(ui, "Frame geometry", "F", MenuAction::Fit, true);
+            pick(
+                ui,
+                "Frame selection",
+                "Shift+F",
+                MenuAction::FrameSelection,
+                true,
+            );
             pick(ui, "Frame graph", "Home", MenuAction::FitCanvas, true);
             pick(ui, "Arrange graph", "Ctrl+L", MenuAction::Arrange, true);
             let label = if mc.optimization {
@@ -223,6 +290,43 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                 "Parameters"
             };
             pick(ui, label, "Ctrl+P", MenuAction::ToggleParameters, true);
+            ui.separator();
+            pick(
+                ui,
+                "Draw curve",
+                "C",
+                MenuAction::Tool(Tool::Draw(DrawTool::default())),
+                true,
+            );
+            pick(
+                ui,
+                "Measure",
+                "M",
+                MenuAction::Tool(Tool::Measure(MeasureTool::default())),
+                true,
+            );
+            let check = |on: bool, what: &str| format!("{} {what}", if on { "☑" } else { "☐" });
+            pick(
+                ui,
+                &check(mc.view.snap, "Grid snap"),
+                "F9",
+                MenuAction::ToggleSnap,
+                true,
+            );
+            pick(
+                ui,
+                &check(mc.view.grid, "Grid and axes"),
+                "F7",
+                MenuAction::ToggleGrid,
+                true,
+            );
+            pick(
+                ui,
+                &check(mc.view.dimensions, "Size (W × D × H)"),
+                "",
+                MenuAction::ToggleDimensions,
+                true,
+            );
             ui.separator();
             ui.label("Colour faces by");
             for mode in ColorMode::ALL {
@@ -243,7 +347,11 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
             }
         });
     });
-    pick_preview.map(MenuAction::SetPreview).or(action)
+    pick_preview
+        .map(MenuAction::SetPreview)
+        .or(pick_plane)
+        .or(pick_view)
+        .or(action)
 }
 
 /// Graph files of a folder (the examples menu), sorted.

@@ -52,7 +52,11 @@ pub fn cluster_groups(graph: &Graph) -> Vec<(String, Vec<String>)> {
 }
 
 /// Shows the panel's contents; returns the edits (and cluster openings) asked for.
-pub fn show(ui: &mut egui::Ui, graph: &Graph) -> Vec<CanvasAction> {
+pub fn show(
+    ui: &mut egui::Ui,
+    graph: &Graph,
+    statuses: &std::collections::HashMap<String, crate::worker::NodeStatus>,
+) -> Vec<CanvasAction> {
     let mut actions = Vec::new();
     let params = parameters(graph);
     let groups = cluster_groups(graph);
@@ -75,7 +79,8 @@ pub fn show(ui: &mut egui::Ui, graph: &Graph) -> Vec<CanvasAction> {
                                     crate::palette::display_name(&node.def)
                                 ));
                                 if crate::mapper::is_mapper(node) {
-                                    let r = crate::mapper::show(ui, graph, node);
+                                    let ran_on = statuses.get(id).and_then(|s| s.ran_on());
+                                    let r = crate::mapper::show(ui, graph, node, ran_on);
                                     if let Some(values) = r.changes {
                                         actions.push(CanvasAction::Edit(Edit::SetValues {
                                             node: id.clone(),

@@ -28,4 +28,8 @@ pub enum UiRequest {
     Minimize(ValuePath),
     /// Add a number output as an optimization penalty (kept at most at its current value).
     Penalize(ValuePath),
+    /// Turn the curves a node outputs (e.g. read from a file) into editable points: a
+    /// `param.points` node per curve wired into a `curve.polyline` (Grasshopper's "Internalise
+    /// data").
+    Internalise(String),
 }

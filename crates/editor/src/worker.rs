@@ -24,7 +24,7 @@ use cnets_engine::eval::OutputMask;
 use cnets_engine::{Continued, Evaluator, Graph, NodeContext, NodeFlag, NodeResult, Value};
 use cnets_render::Scene;
 
-use crate::preview::{PreviewOptions, PreviewStats, build_scene};
+use crate::preview::{Picks, PreviewOptions, PreviewStats, build_preview};
 
 /// The state of one node after an evaluation, for badges and pin labels.
 #[derive(Clone, Debug, PartialEq)]
@@ -39,6 +39,8 @@ pub enum NodeStatus {
         time_ms: f64,
         /// The whole text a `view.panel` node shows inside itself (its `text` output).
         readout: Option<String>,
+        /// The input values a graph mapper ran on (its widget shows wired ones from these).
+        ran_on: Option<Vec<Value>>,
     },
     /// The node failed, or could not start (missing input, bad value).
     Error(String),
@@ -55,6 +57,14 @@ impl NodeStatus {
     pub fn error(&self) -> Option<&str> {
         match self {
             NodeStatus::Error(m) => Some(m),
+            _ => None,
+        }
+    }
+
+    /// The input values a graph mapper ran on (`None` for other nodes and before a run).
+    pub fn ran_on(&self) -> Option<&[Value]> {
+        match self {
+            NodeStatus::Ok { ran_on, .. } => ran_on.as_deref(),
             _ => None,
         }
     }
@@ -118,6 +128,8 @@ pub struct EvalResponse {
     pub scene: Arc<Scene>,
     /// Figures about it.
     pub stats: PreviewStats,
+    /// What the scene drew, by node (for picking in the 3D view).
+    pub picks: Arc<Picks>,
     /// Evaluation time in milliseconds (nodes only).
     pub eval_ms: f64,
     /// Nodes that ran.
@@ -391,10 +403,10 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
     if summary.cancelled || request.cancel.load(Ordering::Relaxed) {
         return None;
     }
-    let (statuses, (scene, stats)) = if request.view.is_empty() {
+    let (statuses, preview) = if request.view.is_empty() {
         (
-            statuses(graph, evaluator),
-            build_scene(graph, evaluator, &request.options),
+            statuses(graph, evaluator, &ctx),
+            build_preview(graph, evaluator, &request.options),
         )
     } else {
         // Inside opened clusters: the statuses of the innermost instance's subgraph, with the
@@ -410,11 +422,11 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
             let mut inner = NodeContext::new(None, cluster.base_dir.clone());
             inner.cancel = request.cancel.clone();
             ev.evaluate(g, &wanted, &inner, &mut |_, _| {});
-            statuses(g, ev)
+            statuses(g, ev, &inner)
         });
         (
             inner.unwrap_or_default(),
-            build_scene(graph, evaluator, &request.options),
+            build_preview(graph, evaluator, &request.options),
         )
     };
     if request.cancel.load(Ordering::Relaxed) {
@@ -424,8 +436,9 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
         seq: request.seq,
         view: request.view.clone(),
         statuses,
-        scene: Arc::new(scene),
-        stats,
+        scene: Arc::new(preview.scene),
+        stats: preview.stats,
+        picks: Arc::new(preview.picks),
         eval_ms,
         ran: summary.ran,
         changed_at: request.changed_at,
@@ -437,7 +450,11 @@ pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<Eval
 pub const PANEL_TYPE: &str = "view.panel";
 
 /// The status of every node of `graph` after an evaluation with `evaluator`.
-pub fn statuses(graph: &Graph, evaluator: &Evaluator) -> HashMap<String, NodeStatus> {
+pub fn statuses(
+    graph: &Graph,
+    evaluator: &Evaluator,
+    ctx: &NodeContext,
+) -> HashMap<String, NodeStatus> {
     graph
         .nodes()
         .map(|(k, n)| {
@@ -464,6 +481,9 @@ pub fn statuses(graph: &Graph, evaluator: &Evaluator) -> HashMap<String, NodeSta
                                 Some(Value::Text(t)) => Some(t.to_string()),
                                 _ => None,
                             })
+                            .flatten(),
+                        ran_on: crate::mapper::is_mapper(n)
+                            .then(|| evaluator.inputs_of(graph, k, ctx).ok())
                             .flatten(),
                     },
                     Some(NodeResult::Failed(m)) | Some(NodeResult::Invalid(m)) => {

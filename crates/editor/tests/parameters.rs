@@ -29,7 +29,7 @@ fn the_panel_is_docked_and_its_sliders_edit_the_graph() {
         .with_size(egui::vec2(320.0, 420.0))
         .build_ui_state(
             |ui, state: &mut (Graph, Vec<CanvasAction>)| {
-                let a = parameters::show(ui, &state.0);
+                let a = parameters::show(ui, &state.0, &Default::default());
                 state.1.extend(a);
             },
             (graph, Vec::new()),

@@ -113,6 +113,25 @@ node! {
 }
 
 node! {
+    /// Points set by the designer (Grasshopper's "Set multiple points"): a literal list the editor
+    /// shows as handles in the 3D view — drawn with the Draw curve tool, dragged, nudged or typed.
+    /// Every point must be finite.
+    #[node(id = "param.points", category = "Params", flags(Parameter))]
+    pub fn points(
+        /// The points.
+        points: k::List<k::Point> = Value::list(vec![]),
+    ) -> (
+        /// The points.
+        points: k::List<k::Point>,
+    ) {
+        if let Some(k) = points.iter().position(|p| !p.is_finite()) {
+            return Err(format!("point {k} ({}) is not finite", points[k]).into());
+        }
+        Ok((points,))
+    }
+}
+
+node! {
     /// A vector set by the designer (x, y, z).
     #[node(id = "param.vector", category = "Params", flags(Parameter))]
     pub fn vector(
@@ -346,6 +365,7 @@ pub fn nodes() -> Vec<NodeDef> {
         integer(),
         boolean(),
         point(),
+        points(),
         vector(),
         text(),
         choice(),

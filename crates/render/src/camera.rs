@@ -5,7 +5,11 @@
 //! fine: the camera's up vector is derived from yaw and pitch, never from a fixed world axis).
 //!
 //! The projection is an infinite-far, reverse-Z perspective (`near` maps to depth 1, infinity to 0),
-//! which keeps `Depth32Float` precise over any scene size; `near` follows the orbit distance.
+//! which keeps `Depth32Float` precise over any scene size; `near` follows the orbit distance. An
+//! orthographic camera ([`Projection::Orthographic`], the named Top, Front and Right views of the
+//! editor) shows the same picture height at the target as the perspective one would
+//! (`2 · distance · tan(fov / 2)`), with linear reverse-Z depth over [`ORTHO_DEPTH`] orbit
+//! distances on either side of the target.
 
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4};
 use std::fmt;
@@ -81,6 +85,29 @@ impl FromStr for View {
     }
 }
 
+/// How the camera projects: perspective, or parallel (orthographic) as Rhino's Top, Front and
+/// Right views.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Projection {
+    /// Perspective (the default).
+    #[default]
+    Perspective,
+    /// Parallel projection: sizes do not shrink with depth.
+    Orthographic,
+}
+
+/// An orthographic camera sees this many orbit distances in front of and behind the target.
+pub const ORTHO_DEPTH: f32 = 1000.0;
+
+/// A ray from the eye through a point of the image: `origin + t · direction`, `t ≥ 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    /// Where the ray starts (the eye, or on the image plane of an orthographic camera).
+    pub origin: Vec3,
+    /// Unit direction.
+    pub direction: Vec3,
+}
+
 /// Margin kept around a fitted box, as a fraction of the half field of view.
 const FIT_MARGIN: f32 = 0.92;
 /// Smallest orbit distance, relative to nothing (absolute world units); keeps matrices invertible.
@@ -101,6 +128,8 @@ pub struct Camera {
     pub distance: f32,
     /// Vertical field of view in radians.
     pub fov_y: f32,
+    /// Perspective or orthographic.
+    pub projection: Projection,
 }
 
 impl Default for Camera {
@@ -112,6 +141,7 @@ impl Default for Camera {
             pitch,
             distance: 10.0,
             fov_y: 40f32.to_radians(),
+            projection: Projection::Perspective,
         }
     }
 }
@@ -167,9 +197,59 @@ impl Camera {
         self.forward().cross(self.up())
     }
 
-    /// Eye position.
+    /// Eye position (for an orthographic camera: far back along the view axis, where the depth
+    /// range starts).
     pub fn eye(&self) -> Vec3 {
-        self.target + self.back() * self.distance()
+        self.target + self.back() * self.eye_distance()
+    }
+
+    /// Whether the projection is orthographic.
+    pub fn is_orthographic(&self) -> bool {
+        self.projection == Projection::Orthographic
+    }
+
+    /// Distance from the eye to the target along the view axis.
+    fn eye_distance(&self) -> f32 {
+        match self.projection {
+            Projection::Perspective => self.distance(),
+            Projection::Orthographic => self.distance() * ORTHO_DEPTH,
+        }
+    }
+
+    /// Half the height of the picture at the target, in world units.
+    pub fn half_height_at_target(&self) -> f32 {
+        self.distance() * (self.fov() * 0.5).tan()
+    }
+
+    /// The ray through a point of the image given in normalized device coordinates (x right,
+    /// y up, both in `-1..=1` over the view).
+    pub fn ray(&self, ndc_x: f32, ndc_y: f32, aspect: f32) -> Ray {
+        let aspect = safe_aspect(aspect);
+        let (right, up, forward) = (self.right(), self.up(), self.forward());
+        let half_h = (self.fov() * 0.5).tan();
+        match self.projection {
+            Projection::Perspective => Ray {
+                origin: self.eye(),
+                direction: (forward + right * (ndc_x * half_h * aspect) + up * (ndc_y * half_h))
+                    .normalize(),
+            },
+            Projection::Orthographic => {
+                let h = self.half_height_at_target();
+                Ray {
+                    origin: self.eye() + right * (ndc_x * h * aspect) + up * (ndc_y * h),
+                    direction: forward,
+                }
+            }
+        }
+    }
+
+    /// Depth bias scale for the renderer: 0 for perspective (biases are relative to the depth),
+    /// else the orbit distance in normalized depth units (biases are added, relative to it).
+    pub fn ortho_bias_scale(&self) -> f32 {
+        match self.projection {
+            Projection::Perspective => 0.0,
+            Projection::Orthographic => 1.0 / (2.0 * ORTHO_DEPTH),
+        }
     }
 
     /// The orbit distance, made safe (finite and positive).
@@ -202,14 +282,30 @@ impl Camera {
         rh::view::look_at_mat4(self.eye(), self.target, self.up())
     }
 
-    /// Projection matrix: infinite reverse-Z perspective (depth 1 at the near plane, 0 at infinity).
+    /// Projection matrix: infinite reverse-Z perspective (depth 1 at the near plane, 0 at
+    /// infinity), or orthographic with linear reverse-Z depth (1 at the eye, 0 at
+    /// `2 · ORTHO_DEPTH` orbit distances from it).
     pub fn projection_matrix(&self, aspect: f32) -> Mat4 {
-        // wgpu's NDC is DirectX-like: z in 0..1, y up.
-        rh::proj::directx::perspective_infinite_reverse(
-            self.fov(),
-            safe_aspect(aspect),
-            self.near(),
-        )
+        match self.projection {
+            // wgpu's NDC is DirectX-like: z in 0..1, y up.
+            Projection::Perspective => rh::proj::directx::perspective_infinite_reverse(
+                self.fov(),
+                safe_aspect(aspect),
+                self.near(),
+            ),
+            Projection::Orthographic => {
+                let h = self.half_height_at_target();
+                let w = h * safe_aspect(aspect);
+                let far = 2.0 * self.eye_distance();
+                // View space looks along −z: depth d = −z; ndc z = (far − d) / far.
+                Mat4::from_cols(
+                    glam::Vec4::new(1.0 / w, 0.0, 0.0, 0.0),
+                    glam::Vec4::new(0.0, 1.0 / h, 0.0, 0.0),
+                    glam::Vec4::new(0.0, 0.0, 1.0 / far, 0.0),
+                    glam::Vec4::new(0.0, 0.0, 1.0, 1.0),
+                )
+            }
+        }
     }
 
     /// Near plane distance.
@@ -270,6 +366,10 @@ impl Camera {
     }
 
     fn fit_points_inner(&mut self, points: &[Vec3], b: Bounds, aspect: f32, recenter: bool) {
+        if self.is_orthographic() {
+            self.fit_orthographic(points, b, aspect);
+            return;
+        }
         let (hx, hy) = self.half_fovs(aspect);
         let (tx, ty) = (hx.tan() * FIT_MARGIN, hy.tan() * FIT_MARGIN);
         let (right, up, back) = (self.right(), self.up(), self.back());
@@ -317,6 +417,49 @@ impl Camera {
         }
         self.target = center;
         self.distance = d;
+    }
+
+    /// Orthographic framing: the image of the points centred, the larger of their half width
+    /// (over the aspect) and half height filling the view up to the margin.
+    fn fit_orthographic(&mut self, points: &[Vec3], b: Bounds, aspect: f32) {
+        let (right, up) = (self.right(), self.up());
+        let (mut lo, mut hi) = (
+            glam::Vec2::splat(f32::INFINITY),
+            glam::Vec2::splat(f32::NEG_INFINITY),
+        );
+        let center = b.center();
+        for p in points.iter().filter(|p| p.is_finite()) {
+            let c = *p - center;
+            let q = glam::Vec2::new(c.dot(right), c.dot(up));
+            lo = lo.min(q);
+            hi = hi.max(q);
+        }
+        if !(lo.is_finite() && hi.is_finite()) {
+            (lo, hi) = (glam::Vec2::splat(-0.5), glam::Vec2::splat(0.5));
+        }
+        let mid = (lo + hi) * 0.5;
+        let half = (hi - lo) * 0.5;
+        let half_h = (half.y.max(half.x / safe_aspect(aspect)) / FIT_MARGIN)
+            .max(b.radius() * 1e-3)
+            .max(MIN_DISTANCE);
+        self.target = center + right * mid.x + up * mid.y;
+        self.distance = half_h / (self.fov() * 0.5).tan();
+    }
+
+    /// Zooms by `factor` (< 1 zooms in) keeping the point of the target's plane under the image
+    /// point `(ndc_x, ndc_y)` where it is on screen (the mouse wheel zooms towards the pointer).
+    pub fn zoom_at(&mut self, factor: f32, ndc_x: f32, ndc_y: f32, aspect: f32) {
+        if !(factor.is_finite() && factor > 0.0 && ndc_x.is_finite() && ndc_y.is_finite()) {
+            return;
+        }
+        let h = self.half_height_at_target();
+        let under = self.target
+            + self.right() * (ndc_x * h * safe_aspect(aspect))
+            + self.up() * (ndc_y * h);
+        let before = self.distance();
+        self.zoom(factor);
+        let actual = self.distance() / before;
+        self.target = under + (self.target - under) * actual;
     }
 
     /// Turns the eye around the target by `d_yaw` and `d_pitch` radians (pitch clamped to ±90°).

@@ -116,7 +116,7 @@ pub mod renderer;
 pub mod scene;
 
 pub use blit::{BlitSource, Blitter};
-pub use camera::{Camera, ParseViewError, View};
+pub use camera::{Camera, ORTHO_DEPTH, ParseViewError, Projection, Ray, View};
 pub use cnets_geometry::{Line, PolygonMesh, Polyline, QuadGrid};
 pub use error::RenderError;
 pub use offscreen::{Image, Offscreen, read_texture};

@@ -123,6 +123,9 @@ pub struct SceneRenderer {
     segments: GrowBuffer,
     points: GrowBuffer,
     counts: Counts,
+    guide_segments: GrowBuffer,
+    guide_points: GrowBuffer,
+    guide_counts: (usize, usize),
     background: Color,
     targets: Option<Targets>,
     /// Incremented whenever the colour texture is recreated.
@@ -261,6 +264,9 @@ impl SceneRenderer {
             segments: GrowBuffer::new("cnets segments", wgpu::BufferUsages::VERTEX),
             points: GrowBuffer::new("cnets points", wgpu::BufferUsages::VERTEX),
             counts: Counts::default(),
+            guide_segments: GrowBuffer::new("cnets guide segments", wgpu::BufferUsages::VERTEX),
+            guide_points: GrowBuffer::new("cnets guide points", wgpu::BufferUsages::VERTEX),
+            guide_counts: (0, 0),
             background: crate::palette::BACKGROUND,
             targets: None,
             generation: 0,
@@ -290,6 +296,23 @@ impl SceneRenderer {
             points: scene.points().len(),
         };
         self.background = scene.background;
+        self.last = None;
+    }
+
+    /// Uploads guides drawn with the scene (depth-tested like it): an editor's grid, axes and
+    /// highlights. They change with the camera, the scene does not; empty slices draw none.
+    pub fn set_guides(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        segments: &[Segment],
+        points: &[PointInstance],
+    ) {
+        self.guide_segments
+            .write(device, queue, bytemuck::cast_slice(segments));
+        self.guide_points
+            .write(device, queue, bytemuck::cast_slice(points));
+        self.guide_counts = (segments.len(), points.len());
         self.last = None;
     }
 
@@ -325,7 +348,7 @@ impl SceneRenderer {
         let light = (back + 0.35 * up - 0.25 * right).normalize();
         let globals = Globals {
             view_proj: camera.view_projection(aspect).to_cols_array_2d(),
-            eye: camera.eye().extend(1.0).to_array(),
+            eye: camera.eye().extend(camera.ortho_bias_scale()).to_array(),
             light: light.extend(AMBIENT).to_array(),
             viewport: [
                 width as f32,
@@ -385,23 +408,28 @@ impl SceneRenderer {
                 pass.set_index_buffer(ib, wgpu::IndexFormat::Uint32);
                 pass.draw_indexed(0..c.indices as u32, 0, 0..1);
             }
-            if c.segments > 0
-                && let Some(sb) = self
-                    .segments
-                    .slice((c.segments * std::mem::size_of::<Segment>()) as u64)
-            {
-                pass.set_pipeline(&self.line_pipeline);
-                pass.set_vertex_buffer(0, sb);
-                pass.draw(0..6, 0..c.segments as u32);
+            let (guide_segments, guide_points) = self.guide_counts;
+            for (buffer, count) in [
+                (&self.guide_segments, guide_segments),
+                (&self.segments, c.segments),
+            ] {
+                if count > 0
+                    && let Some(sb) = buffer.slice((count * std::mem::size_of::<Segment>()) as u64)
+                {
+                    pass.set_pipeline(&self.line_pipeline);
+                    pass.set_vertex_buffer(0, sb);
+                    pass.draw(0..6, 0..count as u32);
+                }
             }
-            if c.points > 0
-                && let Some(pb) = self
-                    .points
-                    .slice((c.points * std::mem::size_of::<PointInstance>()) as u64)
-            {
-                pass.set_pipeline(&self.point_pipeline);
-                pass.set_vertex_buffer(0, pb);
-                pass.draw(0..6, 0..c.points as u32);
+            for (buffer, count) in [(&self.points, c.points), (&self.guide_points, guide_points)] {
+                if count > 0
+                    && let Some(pb) =
+                        buffer.slice((count * std::mem::size_of::<PointInstance>()) as u64)
+                {
+                    pass.set_pipeline(&self.point_pipeline);
+                    pass.set_vertex_buffer(0, pb);
+                    pass.draw(0..6, 0..count as u32);
+                }
             }
         }
         self.last = Some((*camera, width, height));

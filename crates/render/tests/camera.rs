@@ -240,3 +240,43 @@ fn degenerate_bounds_give_a_usable_camera() {
     c.fit_points(&[], 1.0);
     assert!(c.view_projection(1.0).is_finite());
 }
+
+#[test]
+fn orthographic_views_frame_tightly_keep_sizes_and_zoom_towards_a_point() {
+    use cnets_render::Projection;
+    for b in boxes() {
+        for view in View::ALL {
+            for aspect in ASPECTS {
+                let mut camera = Camera::new(view);
+                camera.projection = Projection::Orthographic;
+                camera.fit(Some(b), aspect);
+                for p in b.corners() {
+                    assert_inside(&camera, p, aspect, &format!("ortho {view:?} {b:?}"));
+                }
+                // Parallel projection: a segment's image does not depend on its depth.
+                let r = b.radius();
+                let (right, back) = (camera.right() * r, camera.back() * r);
+                let near = camera.project(b.center() + back, aspect).unwrap();
+                let near2 = camera.project(b.center() + back + right, aspect).unwrap();
+                let far = camera.project(b.center() - back, aspect).unwrap();
+                let far2 = camera.project(b.center() - back + right, aspect).unwrap();
+                let (a, c) = (near2.x - near.x, far2.x - far.x);
+                assert!(
+                    (a - c).abs() <= 1e-3 * a.abs().max(1.0),
+                    "{view:?} {b:?}: sizes kept with depth ({a} vs {c})"
+                );
+                // The wheel's zoom keeps the point under the pointer in place.
+                let (x, y) = (0.6, -0.3);
+                let h = camera.half_height_at_target();
+                let under = camera.target + camera.right() * (x * h * aspect) + camera.up() * (y * h);
+                let before = camera.project(under, aspect).unwrap();
+                camera.zoom_at(0.5, x, y, aspect);
+                let after = camera.project(under, aspect).unwrap();
+                assert!(
+                    (before.truncate() - after.truncate()).length() < 1e-3,
+                    "{view:?}: {before} → {after}"
+                );
+            }
+        }
+    }
+}

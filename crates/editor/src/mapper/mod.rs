@@ -1,23 +1,24 @@
 //! The graph-mapper widget: for `mapper.graph` nodes (Grasshopper's Graph Mapper), a plot of the
 //! curve in its unit square whose handles the designer drags, with a picker for the curve kind.
 //!
-//! The node's ports (see `docs/inputs.md`) are found from the registry rather than hard-coded:
-//! the handles are its first list-of-points input (`handles`: (u, v) in the unit square), the
-//! kind its first text input (`kind`). The curve is drawn with the same
+//! The widget shows the truth of what the node runs on ([`node::shown`]): a wired `kind` or wired
+//! handles are read from the last evaluation and shown read-only, labelled as coming from a wire;
+//! handles given as a tree are shown row by row (a row selector, the other rows faint); with no
+//! handles set, the kind's default handles are shown and dragging one writes that row. A drag
+//! replaces exactly one point of the stored value ([`node::with_handle_moved`]): the nesting and
+//! the number of items never change. The curve is drawn with the same
 //! [`GraphMapper`](cnets_geometry::curves::GraphMapper) the node evaluates, so the picture is
-//! exact; when the node has no handles set, the kind's default handles are shown and dragging
-//! one writes the whole list. A kind or handle set the mapper refuses is drawn as far as possible
-//! and the node shows the error.
+//! exact; a kind or handle set the mapper refuses is drawn as far as possible and the node shows
+//! the error.
 
 use cnets_engine::{Graph, NodeInstance, Value};
-use cnets_geometry::DVec3;
 use cnets_geometry::curves::{GraphMapper, MapperKind};
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, vec2};
 use glam::DVec2;
 
 pub mod node;
 
-pub use node::{handles, handles_port, is_mapper, kind, kind_port};
+pub use node::{Shown, handles, handles_port, is_mapper, kind, kind_port};
 
 /// Samples drawn for the curve.
 const SAMPLES: usize = 96;
@@ -43,6 +44,19 @@ pub struct MapperResponse {
     pub plot: Rect,
     /// A handle coordinate picked in the plot's context menu ("Optimize a value").
     pub optimize: Option<crate::request::UiRequest>,
+    /// What the plot showed: the kind and handle rows the node runs on, and the row drawn.
+    pub shown: Option<(Shown, usize)>,
+}
+
+impl MapperResponse {
+    fn nothing() -> Self {
+        Self {
+            changes: None,
+            plot: Rect::NOTHING,
+            optimize: None,
+            shown: None,
+        }
+    }
 }
 
 /// Font size, in screen points, of the value label of a hovered or dragged handle (the same at
@@ -113,34 +127,85 @@ pub fn snap(x: f64) -> f64 {
     (x * 1000.0).round() / 1000.0
 }
 
-/// Shows the graph-mapper widget of `node`; returns the changes and the plot rectangle.
-pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse {
-    let (Some(kind_k), Some(handles_k)) = (kind_port(node), handles_port(node)) else {
-        return MapperResponse {
-            changes: None,
-            plot: Rect::NOTHING,
-            optimize: None,
-        };
-    };
-    let mut changes: Vec<(String, Value)> = Vec::new();
-    let current = kind(node);
-    egui::ComboBox::from_id_salt(("mapper-kind", &node.id))
-        .selected_text(current.map_or("?", MapperKind::name))
-        .show_ui(ui, |ui| {
-            for k in MapperKind::ALL {
-                if ui.selectable_label(current == Some(k), k.name()).clicked() {
-                    changes.push((
-                        node.def.inputs[kind_k].name.to_string(),
-                        Value::text(k.name()),
-                    ));
-                    // A new kind starts from its own default handles.
-                    changes.push((
-                        node.def.inputs[handles_k].name.to_string(),
-                        Value::list(Vec::new()),
-                    ));
-                }
+/// The row of a tree of handles the widget shows for `node` (kept in egui's memory).
+fn row_id(node: &NodeInstance) -> egui::Id {
+    egui::Id::new(("mapper-row", &node.id))
+}
+
+/// The row selector of a tree of handles: `◀ row 3 / 8 ▶`; returns the row shown.
+fn row_selector(ui: &mut Ui, node: &NodeInstance, rows: usize) -> usize {
+    let id = row_id(node);
+    let mut row = ui
+        .data(|d| d.get_temp::<usize>(id))
+        .unwrap_or(0)
+        .min(rows - 1);
+    if rows > 1 {
+        ui.horizontal(|ui| {
+            if ui.small_button("◀").clicked() {
+                row = row.saturating_sub(1);
+            }
+            ui.label(format!("row {} / {rows}", row + 1))
+                .on_hover_text("the handles are a tree: one curve per row (the others in grey)");
+            if ui.small_button("▶").clicked() {
+                row = (row + 1).min(rows - 1);
             }
         });
+    }
+    ui.data_mut(|d| d.insert_temp(id, row));
+    row
+}
+
+/// Shows the graph-mapper widget of `node` of `graph`; `ran_on` holds the input values the node
+/// last ran on (wired inputs are shown from it, read-only). Returns the changes and the plot
+/// rectangle.
+pub fn show(
+    ui: &mut Ui,
+    graph: &Graph,
+    node: &NodeInstance,
+    ran_on: Option<&[Value]>,
+) -> MapperResponse {
+    let (Some(kind_k), Some(handles_k), Some(shown)) = (
+        kind_port(node),
+        handles_port(node),
+        node::shown(graph, node, ran_on),
+    ) else {
+        return MapperResponse::nothing();
+    };
+    let wire_ink = Color32::from_rgb(0x3a, 0x6e, 0xa5);
+    let mut changes: Vec<(String, Value)> = Vec::new();
+    let row = row_selector(ui, node, shown.rows.len().max(1));
+    let current = shown.kind(row);
+    let kind_name = current.map_or("?", MapperKind::name);
+    if shown.kind_wired || shown.kinds.len() > 1 {
+        let from = if shown.kind_wired {
+            "from a wire"
+        } else {
+            "one per row"
+        };
+        ui.colored_label(wire_ink, format!("{kind_name}  ({from})"))
+            .on_hover_text("the curve kind the node runs on; change it where it comes from");
+    } else {
+        egui::ComboBox::from_id_salt(("mapper-kind", &node.id))
+            .selected_text(kind_name)
+            .show_ui(ui, |ui| {
+                for k in MapperKind::ALL {
+                    if ui.selectable_label(current == Some(k), k.name()).clicked() {
+                        changes.push((
+                            node.def.inputs[kind_k].name.to_string(),
+                            Value::text(k.name()),
+                        ));
+                        // A new kind starts from its own default handles — unless the handles are
+                        // a tree or wired: those are never replaced by a kind change.
+                        if !shown.nested && !shown.handles_wired {
+                            changes.push((
+                                node.def.inputs[handles_k].name.to_string(),
+                                Value::list(Vec::new()),
+                            ));
+                        }
+                    }
+                }
+            });
+    }
     let (rect, plot_response) = ui.allocate_exact_size(vec2(180.0, 130.0), Sense::click());
     let mut optimize = None;
     plot_response.context_menu(|ui| {
@@ -169,74 +234,118 @@ pub fn show(ui: &mut Ui, _graph: &Graph, node: &NodeInstance) -> MapperResponse 
             snap(f64::from((rect.bottom() - p.y) / rect.height()).clamp(0.0, 1.0)),
         )
     };
-    let handles = handles(node);
-    let line: Vec<Pos2> = match current.and_then(|k| curve(k, &handles)) {
-        Some(points) => points.into_iter().map(to_screen).collect(),
-        None => handles.iter().map(|&h| to_screen(h)).collect(),
+    if shown.unknown {
+        painter.text(
+            rect.center(),
+            egui::Align2::CENTER_CENTER,
+            "waiting for the wired values",
+            egui::FontId::proportional(11.0),
+            Color32::from_gray(110),
+        );
+        return MapperResponse {
+            changes: (!changes.is_empty()).then_some(changes),
+            plot: rect,
+            optimize,
+            shown: Some((shown, row)),
+        };
+    }
+    let curve_line = |r: usize| -> Vec<Pos2> {
+        let handles = &shown.rows[r];
+        match shown.kind(r).and_then(|k| curve(k, handles)) {
+            Some(points) => points.into_iter().map(to_screen).collect(),
+            None => handles.iter().map(|&h| to_screen(h)).collect(),
+        }
     };
+    // The other rows of a tree, faint behind the one being edited.
+    for r in (0..shown.rows.len()).filter(|&r| r != row) {
+        painter.add(egui::Shape::line(
+            curve_line(r),
+            Stroke::new(1.0, Color32::from_gray(200)),
+        ));
+    }
     painter.add(egui::Shape::line(
-        line,
+        curve_line(row),
         Stroke::new(1.5, Color32::from_rgb(0x1f, 0x5f, 0xbf)),
     ));
-    let mut moved = handles.clone();
-    let mut any = false;
+    if shown.handles_wired || shown.irregular {
+        let why = if shown.handles_wired {
+            "handles from a wire"
+        } else {
+            "handles nest deeper than rows: edit the list"
+        };
+        painter.text(
+            rect.left_top() + vec2(4.0, 3.0),
+            egui::Align2::LEFT_TOP,
+            why,
+            egui::FontId::proportional(10.0),
+            wire_ink,
+        );
+    }
+    let handles = shown.rows.get(row).cloned().unwrap_or_default();
+    let editable = shown.editable();
+    let mut moved: Option<(usize, DVec2)> = None;
     let mut active: Option<DVec2> = None;
     for (k, h) in handles.iter().enumerate() {
         let center = to_screen(*h);
+        let sense = if editable {
+            Sense::drag()
+        } else {
+            Sense::hover()
+        };
         let r = ui.interact(
             Rect::from_center_size(center, vec2(14.0, 14.0)),
-            ui.id().with(("mapper-handle", &node.id, k)),
-            Sense::drag(),
+            ui.id().with(("mapper-handle", &node.id, row, k)),
+            sense,
         );
+        let mut at = *h;
         if r.dragged()
             && let Some(p) = r.interact_pointer_pos()
         {
-            moved[k] = to_unit(p);
-            any = true;
+            at = to_unit(p);
+            if at != *h {
+                moved = Some((k, at));
+            }
         }
-        let shown = moved[k];
         r.widget_info(|| {
             egui::WidgetInfo::labeled(
                 egui::WidgetType::Other,
-                true,
-                format!("handle {}: {}", k + 1, handle_label(shown)),
+                editable,
+                format!("handle {}: {}", k + 1, handle_label(at)),
             )
         });
         if r.hovered() || r.dragged() {
-            active = Some(shown);
+            active = Some(at);
         }
-        let red = Color32::from_rgb(0xd0, 0x31, 0x2d);
-        let fill = if r.hovered() || r.dragged() {
+        let (red, grey) = (Color32::from_rgb(0xd0, 0x31, 0x2d), wire_ink);
+        let ring = if editable { red } else { grey };
+        let fill = if editable && (r.hovered() || r.dragged()) {
             red
         } else {
             Color32::WHITE
         };
-        painter.circle(center, 5.0, fill, Stroke::new(1.5, red));
+        painter.circle(center, 5.0, fill, Stroke::new(1.5, ring));
     }
     if let Some(p) = active {
         show_label(ui, rect, to_screen(p), &handle_label(p));
     }
-    if any {
-        changes.push((
-            node.def.inputs[handles_k].name.to_string(),
-            Value::list(
-                moved
-                    .into_iter()
-                    .map(|p| Value::Point(DVec3::new(p.x, p.y, 0.0)))
-                    .collect(),
-            ),
-        ));
+    if let Some((k, to)) = moved {
+        let stored = node.value(handles_k);
+        if let Some(value) = node::with_handle_moved(stored, &shown, row, k, to) {
+            changes.push((node.def.inputs[handles_k].name.to_string(), value));
+        }
     }
     MapperResponse {
         changes: (!changes.is_empty()).then_some(changes),
         plot: rect,
         optimize,
+        shown: Some((shown, row)),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use cnets_geometry::DVec3;
     use std::sync::Arc;
 
     fn mapper_graph() -> Graph {

@@ -1,54 +1,103 @@
-//! The 3D viewport: the preview [`Scene`] drawn with wgpu through an egui-wgpu paint callback
-//! (`cnets-render`'s [`SceneRenderer`] renders into its own texture in `prepare`, the [`Blitter`]
-//! copies it into egui's pass in `paint`), an orbit camera driven by the mouse, and an overlay
-//! with the legend, vertex count and max planarity.
+//! The 3D view: where designs are watched and made.
 //!
-//! Mouse: left-drag orbits, right- or middle-drag (or Shift + left-drag) pans, the wheel zooms;
-//! F (or the Fit button) frames everything.
+//! The preview [`Scene`] is drawn with wgpu ([`gpu`]) over a ground grid and the world axes
+//! ([`grid`]), from named views — Top, Front, Right (orthographic) and Perspective
+//! ([`navigation`]). Each tool is a small state machine fed by the pointer that returns graph
+//! edits, applied by the app through the one `edit::apply`:
+//!
+//! - select ([`handles`], [`pick`]): grab, box select, nudge and type the points of `param.point`
+//!   and `param.points` nodes; hover a mesh for the node, row and column, class and planarity of a
+//!   face or vertex, click it to select its node;
+//! - Draw curve ([`draw`]): click points on the construction plane → `param.points` + a curve;
+//! - Measure ([`measure`]): two clicks snapped to vertices → their distance.
+//!
+//! The overlay ([`overlay`]) shows counts, the legend with its fold entry, and the size of the
+//! previewed geometry. The same code runs in the web build. Keys and mouse: docs/editor.md,
+//! "Drawing and editing in the 3D view".
+
+pub mod draw;
+pub mod gpu;
+pub mod grid;
+pub mod handles;
+pub mod measure;
+pub mod navigation;
+pub mod overlay;
+pub mod pick;
+pub mod screen;
 
 use std::sync::Arc;
 
-use cnets_render::{BlitSource, Blitter, Camera, RendererOptions, Scene, SceneRenderer, View};
-use eframe::egui_wgpu::{self, CallbackResources, CallbackTrait, ScreenDescriptor, wgpu};
-use egui::{Color32, Rect, Sense, Ui};
+use cnets_engine::{Graph, NodeInstance};
+use cnets_geometry::DVec3;
+use cnets_render::{Bounds, Camera, Color, Scene, Segment, View};
+use eframe::egui_wgpu;
+use egui::{Color32, Key, Modifiers, PointerButton, Pos2, Rect, Sense, Ui};
 
-use crate::preview::{LegendInfo, PreviewOptions, PreviewStats};
-use crate::worker::format_number;
+use crate::edit::Edit;
+use crate::preview::{Picks, PreviewOptions, PreviewStats};
 
-/// What the viewport's render pipelines must match: egui's render pass and the adapter.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GpuTarget {
-    /// Colour format of egui's pass (eframe on X11: `Bgra8Unorm`, kittest: `Rgba8Unorm`).
-    pub target_format: wgpu::TextureFormat,
-    /// MSAA samples of egui's pass.
-    pub msaa_samples: u32,
-    /// Depth format of egui's pass, if it has one.
-    pub depth_format: Option<wgpu::TextureFormat>,
-    /// Renderer options for the adapter (no MSAA on software rasterizers).
-    pub options: RendererOptions,
-    /// The adapter is a software rasterizer (lavapipe, llvmpipe): while the picture changes
-    /// (slider drags, orbiting) the view renders at half resolution, then once more at full
-    /// resolution when it settles.
-    pub software: bool,
+pub use draw::{DrawTool, DrawnCurve};
+pub use gpu::GpuTarget;
+use gpu::{Guides, ViewportCallback};
+use grid::{Grid, Spacing};
+use handles::{DragPlane, Handle, HandleTool};
+pub use measure::MeasureTool;
+pub use navigation::NamedView;
+use pick::Hit;
+use screen::{CPlane, ScreenMap};
+
+/// The active tool of the view.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum Tool {
+    /// Select, grab and move handles; pick meshes.
+    #[default]
+    Select,
+    /// Draw a curve.
+    Draw(DrawTool),
+    /// Measure a distance.
+    Measure(MeasureTool),
 }
 
-impl GpuTarget {
-    /// From an egui-wgpu render state; `msaa_samples` and `depth_format` as configured for the
-    /// window (eframe's defaults: 1 and none).
-    pub fn from_render_state(
-        rs: &egui_wgpu::RenderState,
-        msaa_samples: u32,
-        depth_format: Option<wgpu::TextureFormat>,
-    ) -> Self {
-        Self {
-            target_format: rs.target_format,
-            msaa_samples: msaa_samples.max(1),
-            depth_format,
-            options: RendererOptions::for_adapter(&rs.adapter.get_info()),
-            software: rs.adapter.get_info().device_type == wgpu::DeviceType::Cpu,
+impl Tool {
+    /// Button and menu label.
+    pub fn label(&self) -> &'static str {
+        match self {
+            Tool::Select => "Select",
+            Tool::Draw(_) => "Draw curve",
+            Tool::Measure(_) => "Measure",
         }
     }
 }
+
+/// What the view asks the app to do.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ViewportAction {
+    /// Change the document.
+    Edit(Edit),
+    /// Select this node on the canvas.
+    SelectNode(String),
+    /// Add a drawn curve as nodes.
+    AddCurve(DrawnCurve),
+    /// Say this in the status bar.
+    Message(String),
+}
+
+/// What the view needs to know of the rest of the editor each frame.
+pub struct ViewportInput<'a> {
+    /// The document's graph (the points of its point nodes are handles).
+    pub graph: &'a Graph,
+    /// The nodes selected (or focused) on the canvas.
+    pub selected: &'a [String],
+    /// A text field has the keyboard.
+    pub typing: bool,
+}
+
+/// Resolution factor while the picture changes on a software rasterizer.
+pub const INTERACTIVE_SCALE: f32 = 0.5;
+/// Seconds without changes after which the view is rendered at full resolution again.
+const SETTLE_SECONDS: f64 = 0.3;
+/// Screen distance (points) within which a measured point snaps to a drawn vertex.
+pub const SNAP_RADIUS: f32 = 10.0;
 
 /// The viewport's state.
 pub struct Viewport {
@@ -60,6 +109,9 @@ pub struct Viewport {
     scene_version: u64,
     /// Figures of the current scene.
     pub stats: PreviewStats,
+    picks: Arc<Picks>,
+    /// The box of the drawn surfaces and curves (markers such as apices left out).
+    bounds: Option<Bounds>,
     fit_pending: bool,
     fitted_once: bool,
     aspect: f32,
@@ -72,12 +124,37 @@ pub struct Viewport {
     pub render_scale: f32,
     /// Where the view was drawn in the last frame (screen points).
     pub rect: egui::Rect,
+    /// The named view shown.
+    pub view: NamedView,
+    /// The Perspective view's construction plane.
+    pub perspective_plane: CPlane,
+    /// Grid snap (F9; Alt suspends it while held).
+    pub snap: bool,
+    /// The grid and axes are drawn (F7).
+    pub show_grid: bool,
+    /// The size of the previewed geometry is shown (W × D × H).
+    pub show_dimensions: bool,
+    /// The active tool.
+    pub tool: Tool,
+    /// Handle selection and drags.
+    pub handles: HandleTool,
+    /// The handles of the last frame.
+    handle_list: Vec<Handle>,
+    /// What the pointer was over in the last frame.
+    pub hover: Option<Hit>,
+    hover_at: Option<Pos2>,
+    /// Where a tool would put a point under the pointer (snapped).
+    tool_point: Option<DVec3>,
+    /// The folded faces are outlined (the legend's fold entry).
+    pub folds_shown: bool,
+    highlight: Arc<Vec<Segment>>,
+    guides: Guides,
+    guides_key: Option<(Camera, [u32; 2], bool, CPlane, usize)>,
+    /// The grid spacing of the last frame (the snap step).
+    pub spacing: Spacing,
+    /// The legend's fold entry in the last frame (screen).
+    pub fold_entry: Option<Rect>,
 }
-
-/// Resolution factor while the picture changes on a software rasterizer.
-pub const INTERACTIVE_SCALE: f32 = 0.5;
-/// Seconds without changes after which the view is rendered at full resolution again.
-const SETTLE_SECONDS: f64 = 0.3;
 
 impl Default for Viewport {
     fn default() -> Self {
@@ -87,6 +164,8 @@ impl Default for Viewport {
             scene: Arc::new(Scene::new()),
             scene_version: 0,
             stats: PreviewStats::default(),
+            picks: Arc::new(Picks::default()),
+            bounds: None,
             fit_pending: false,
             fitted_once: false,
             aspect: 1.0,
@@ -94,82 +173,60 @@ impl Default for Viewport {
             last_change: f64::NEG_INFINITY,
             render_scale: 1.0,
             rect: egui::Rect::NOTHING,
+            view: NamedView::Perspective,
+            perspective_plane: CPlane::XY,
+            snap: true,
+            show_grid: true,
+            show_dimensions: true,
+            tool: Tool::Select,
+            handles: HandleTool::default(),
+            handle_list: Vec::new(),
+            hover: None,
+            hover_at: None,
+            tool_point: None,
+            folds_shown: false,
+            highlight: Arc::new(Vec::new()),
+            guides: Guides::default(),
+            guides_key: None,
+            spacing: Spacing {
+                minor: 1.0,
+                major: 5.0,
+            },
+            fold_entry: None,
         }
     }
 }
 
-/// Per-viewport GPU state kept in egui's callback resources.
-struct ViewportGpu {
-    renderer: SceneRenderer,
-    blitter: Blitter,
-    source: Option<BlitSource>,
-    version: u64,
+/// The box of a scene's surfaces and curves (point markers such as apices can lie far away).
+fn drawn_bounds(scene: &Scene) -> Option<Bounds> {
+    let faces = scene
+        .face_vertices()
+        .iter()
+        .map(|v| glam::Vec3::from(v.position));
+    let lines = scene
+        .segments()
+        .iter()
+        .flat_map(|s| [glam::Vec3::from(s.a), glam::Vec3::from(s.b)]);
+    Bounds::from_points(faces.chain(lines).filter(|p| p.is_finite()))
 }
 
-/// The paint callback of one frame.
-struct ViewportCallback {
-    scene: Arc<Scene>,
-    version: u64,
-    camera: Camera,
-    size_px: [u32; 2],
-    target: GpuTarget,
-}
-
-impl CallbackTrait for ViewportCallback {
-    fn prepare(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        _screen: &ScreenDescriptor,
-        encoder: &mut wgpu::CommandEncoder,
-        resources: &mut CallbackResources,
-    ) -> Vec<wgpu::CommandBuffer> {
-        let t = self.target;
-        let gpu = resources
-            .entry::<ViewportGpu>()
-            .or_insert_with(|| ViewportGpu {
-                renderer: SceneRenderer::new(device, t.options),
-                blitter: Blitter::new(device, t.target_format, t.msaa_samples, t.depth_format),
-                source: None,
-                version: u64::MAX,
-            });
-        if gpu.version != self.version {
-            gpu.renderer.set_scene(device, queue, &self.scene);
-            gpu.version = self.version;
-        }
-        let [w, h] = self.size_px;
-        if gpu
-            .renderer
-            .render(device, queue, encoder, &self.camera, w, h)
-            .is_ok()
-        {
-            gpu.blitter
-                .update_source(device, &gpu.renderer, &mut gpu.source);
-        }
-        Vec::new()
-    }
-
-    fn paint(
-        &self,
-        _info: egui::PaintCallbackInfo,
-        pass: &mut wgpu::RenderPass<'static>,
-        resources: &CallbackResources,
-    ) {
-        if let Some(gpu) = resources.get::<ViewportGpu>()
-            && let Some(source) = &gpu.source
-        {
-            gpu.blitter.draw(pass, source);
-        }
-    }
-}
+/// The colour of fold outlines.
+const FOLD_OUTLINE: Color = Color::rgb(0xff, 0x6a, 0x00);
 
 impl Viewport {
-    /// Replaces the scene (from a finished evaluation).
-    pub fn set_scene(&mut self, scene: Arc<Scene>, stats: PreviewStats) {
+    /// Replaces the scene (from a finished evaluation) and what was drawn in it.
+    pub fn set_scene(&mut self, scene: Arc<Scene>, stats: PreviewStats, picks: Arc<Picks>) {
+        self.bounds = drawn_bounds(&scene);
         self.scene = scene;
         self.stats = stats;
+        self.picks = picks;
         self.scene_version += 1;
         self.last_change = f64::NAN; // stamped with egui's time in the next `show`
+        self.hover = None;
+        self.hover_at = None;
+        if self.folds_shown {
+            self.highlight = Arc::new(self.fold_outlines());
+        }
         if !self.fitted_once && !self.scene.is_empty() {
             self.fit_pending = true;
         }
@@ -177,13 +234,26 @@ impl Viewport {
 
     /// Clears the scene for a new document (the next geometry is framed again).
     pub fn reset(&mut self) {
-        self.set_scene(Arc::new(Scene::new()), PreviewStats::default());
+        self.set_scene(
+            Arc::new(Scene::new()),
+            PreviewStats::default(),
+            Arc::new(Picks::default()),
+        );
         self.fitted_once = false;
+        self.folds_shown = false;
+        self.highlight = Arc::new(Vec::new());
+        self.handles = HandleTool::default();
+        self.tool = Tool::Select;
     }
 
     /// The scene shown.
     pub fn scene(&self) -> &Arc<Scene> {
         &self.scene
+    }
+
+    /// What the scene drew, by node.
+    pub fn picks(&self) -> &Arc<Picks> {
+        &self.picks
     }
 
     /// The figures and legend of the scene shown.
@@ -196,30 +266,321 @@ impl Viewport {
         self.scene_version
     }
 
+    /// The box of the previewed surfaces and curves (W × D × H).
+    pub fn bounds(&self) -> Option<Bounds> {
+        self.bounds
+    }
+
+    /// The handles shown in the last frame.
+    pub fn handle_list(&self) -> &[Handle] {
+        &self.handle_list
+    }
+
+    /// The screen mapping of the last frame.
+    pub fn screen_map(&self) -> ScreenMap {
+        ScreenMap {
+            rect: self.rect,
+            camera: self.camera,
+        }
+    }
+
+    /// The construction plane of the view shown.
+    pub fn cplane(&self) -> CPlane {
+        self.view.cplane(self.perspective_plane)
+    }
+
     /// Frames everything on the next frame (the F key).
     pub fn fit(&mut self) {
         self.fit_pending = true;
     }
 
-    /// Points the camera at the surfaces (apices and other markers can lie far away, even near
-    /// infinity, and would shrink the mesh to a dot), or at everything when there are none.
-    fn frame_geometry(&mut self) {
-        self.camera.fit_surfaces(&self.scene, self.aspect);
+    /// Shows a named view, framing the previewed geometry.
+    pub fn set_view(&mut self, view: NamedView) {
+        self.view = view;
+        navigation::turn_to(&mut self.camera, view);
+        self.fit();
     }
 
-    /// Shows the viewport in the rest of `ui`.
-    pub fn show(&mut self, ui: &mut Ui, gpu: Option<&GpuTarget>) {
+    /// Points the camera at the surfaces (apices and other markers can lie far away, even near
+    /// infinity, and would shrink the mesh to a dot), or at everything when there are none; with
+    /// nothing at all, at 20 m around the origin. Handles are included.
+    fn frame_geometry(&mut self) {
+        let mut points: Vec<glam::Vec3> = self
+            .scene
+            .face_vertices()
+            .iter()
+            .map(|v| glam::Vec3::from(v.position))
+            .collect();
+        if points.is_empty() {
+            points.extend(self.scene.positions());
+        }
+        points.extend(self.handle_list.iter().map(|h| h.position.as_vec3()));
+        if points.is_empty() {
+            let b = Bounds::new(
+                glam::Vec3::new(-10.0, -10.0, 0.0),
+                glam::Vec3::new(10.0, 10.0, 0.0),
+            );
+            points.extend(b.corners());
+        }
+        self.camera.fit_points(&points, self.aspect);
+    }
+
+    /// Frames the geometry of the nodes `ids` (their previewed meshes and curves, their handles)
+    /// and the selected handles; everything when there is none.
+    pub fn frame_selection(&mut self, ids: &[String]) {
+        let picks = self.picks.clone();
+        let mut points: Vec<glam::Vec3> = Vec::new();
+        for m in picks.meshes.iter().filter(|m| ids.contains(&m.node)) {
+            points.extend(m.geometry.vertices().iter().map(|p| p.as_vec3()));
+        }
+        for c in picks.curves.iter().filter(|c| ids.contains(&c.node)) {
+            points.extend(c.polyline.points.iter().map(|p| p.as_vec3()));
+        }
+        for h in &self.handle_list {
+            if ids.contains(&h.key.node) || self.handles.selected.contains(&h.key) {
+                points.push(h.position.as_vec3());
+            }
+        }
+        if points.is_empty() {
+            self.fit();
+        } else {
+            self.camera.fit_points(&points, self.aspect);
+        }
+    }
+
+    /// Outlines of the faces that are not (++)(++), drawn on top.
+    fn fold_outlines(&self) -> Vec<Segment> {
+        let f = |p: DVec3| [p.x as f32, p.y as f32, p.z as f32];
+        let mut segments = Vec::new();
+        for (m, face) in self.picks.folded_faces() {
+            let corners = self.picks.meshes[m].geometry.face_corners(face);
+            for k in 0..corners.len() {
+                segments.push(Segment {
+                    a: f(corners[k]),
+                    b: f(corners[(k + 1) % corners.len()]),
+                    color: FOLD_OUTLINE,
+                    width: 2.5,
+                    flags: cnets_render::scene::FLAG_ON_TOP,
+                });
+            }
+        }
+        segments
+    }
+
+    /// The legend's fold entry: frames the faces that are not (++)(++) and outlines them.
+    pub fn show_folds(&mut self) {
+        let picks = self.picks.clone();
+        let corners: Vec<glam::Vec3> = picks
+            .folded_faces()
+            .into_iter()
+            .flat_map(|(m, f)| picks.meshes[m].geometry.face_corners(f))
+            .map(|p| p.as_vec3())
+            .collect();
+        if corners.is_empty() {
+            return;
+        }
+        self.camera.fit_points(&corners, self.aspect);
+        self.folds_shown = true;
+        self.highlight = Arc::new(self.fold_outlines());
+    }
+
+    /// The outline segments drawn for the folds (empty unless shown).
+    pub fn highlight(&self) -> &[Segment] {
+        &self.highlight
+    }
+
+    /// The snap step, or none while snapping is off or Alt is held.
+    fn snap_step(&self, modifiers: Modifiers) -> Option<f64> {
+        (self.snap && !modifiers.alt).then_some(self.spacing.minor)
+    }
+
+    /// Where the pointer at `at` puts a point on the construction plane, snapped to the grid.
+    pub fn plane_point(&self, map: &ScreenMap, at: Pos2, modifiers: Modifiers) -> Option<DVec3> {
+        let plane = self.cplane();
+        let hit = plane.world().hit(&map.ray(at))?;
+        Some(match self.snap_step(modifiers) {
+            Some(step) => plane.snap(hit, step),
+            // Unsnapped: a hundredth of the grid step is resolution enough.
+            None => plane.snap(hit, self.spacing.minor / 100.0),
+        })
+    }
+
+    /// Where a measured point at `at` lands: the nearest drawn vertex or handle within
+    /// [`SNAP_RADIUS`], else the construction plane.
+    fn measure_point(&self, map: &ScreenMap, at: Pos2, modifiers: Modifiers) -> Option<DVec3> {
+        let handle = handles::handle_at(&self.handle_list, map, at).map(|h| h.position);
+        handle
+            .or_else(|| pick::nearest_vertex(&self.picks, map, at, SNAP_RADIUS))
+            .or_else(|| self.plane_point(map, at, modifiers))
+    }
+
+    /// The buttons above the view: named views, tools, snap and size toggles.
+    pub fn toolbar(&mut self, ui: &mut Ui) {
+        for v in NamedView::ALL {
+            let label = if v == NamedView::Perspective {
+                "Persp"
+            } else {
+                v.label()
+            };
+            if ui
+                .selectable_label(self.view == v, label)
+                .on_hover_text(format!("{} view ({})", v.label(), v.shortcut()))
+                .clicked()
+            {
+                self.set_view(v);
+            }
+        }
+        ui.separator();
+        let drawing = matches!(self.tool, Tool::Draw(_));
+        if ui
+            .selectable_label(drawing, "✏ Draw curve")
+            .on_hover_text(
+                "click points on the construction plane (C); click the first point to close, \
+                 Enter or double-click to finish, Esc to cancel",
+            )
+            .clicked()
+        {
+            self.toggle_tool(Tool::Draw(DrawTool::default()));
+        }
+        let measuring = matches!(self.tool, Tool::Measure(_));
+        if ui
+            .selectable_label(measuring, "📏 Measure")
+            .on_hover_text("click two points (snapping to vertices) for their distance (M)")
+            .clicked()
+        {
+            self.toggle_tool(Tool::Measure(MeasureTool::default()));
+        }
+        ui.separator();
+        ui.toggle_value(&mut self.snap, "Snap")
+            .on_hover_text("grid snap (F9); hold Alt to suspend it");
+        ui.toggle_value(&mut self.show_dimensions, "W×D×H")
+            .on_hover_text("the size of the previewed geometry in the view's corner");
+    }
+
+    /// Switches to `tool`, or back to Select when it is the active one.
+    pub fn toggle_tool(&mut self, tool: Tool) {
+        let same = std::mem::discriminant(&self.tool) == std::mem::discriminant(&tool);
+        self.tool = if same { Tool::Select } else { tool };
+    }
+
+    /// The keys of the view (when no text field has the keyboard): named views, tools, snap,
+    /// grid, nudging and the tools' Enter / Backspace / Esc.
+    fn keys(
+        &mut self,
+        ctx: &egui::Context,
+        input: &ViewportInput<'_>,
+        actions: &mut Vec<ViewportAction>,
+    ) {
+        if input.typing {
+            return;
+        }
+        if let Some(v) = NamedView::pressed(ctx) {
+            self.set_view(v);
+        }
+        let (c, m, f9, f7, shift_f, enter, backspace, esc) = ctx.input_mut(|i| {
+            (
+                i.consume_key(Modifiers::NONE, Key::C),
+                i.consume_key(Modifiers::NONE, Key::M),
+                i.consume_key(Modifiers::NONE, Key::F9),
+                i.consume_key(Modifiers::NONE, Key::F7),
+                i.consume_key(Modifiers::SHIFT, Key::F),
+                i.key_pressed(Key::Enter),
+                i.key_pressed(Key::Backspace),
+                i.key_pressed(Key::Escape),
+            )
+        });
+        if c {
+            self.toggle_tool(Tool::Draw(DrawTool::default()));
+        }
+        if m {
+            self.toggle_tool(Tool::Measure(MeasureTool::default()));
+        }
+        if f9 {
+            self.snap = !self.snap;
+            actions.push(ViewportAction::Message(format!(
+                "grid snap {}",
+                if self.snap { "on" } else { "off" }
+            )));
+        }
+        if f7 {
+            self.show_grid = !self.show_grid;
+        }
+        if shift_f {
+            self.frame_selection(input.selected);
+        }
+        match &mut self.tool {
+            Tool::Draw(d) => {
+                if enter && let Some(curve) = d.finish() {
+                    actions.push(ViewportAction::AddCurve(curve));
+                }
+                if backspace {
+                    d.undo_point();
+                }
+                if esc {
+                    self.tool = Tool::Select;
+                }
+            }
+            Tool::Measure(_) if esc => self.tool = Tool::Select,
+            _ if esc => {
+                self.handles.selected.clear();
+                self.folds_shown = false;
+                self.highlight = Arc::new(Vec::new());
+            }
+            _ => {}
+        }
+        // Arrow keys nudge the selected handles one grid step in the view's plane (Page Up /
+        // Page Down along its normal).
+        if !self.handles.selected.is_empty() {
+            let (u, v, n) = self.cplane().axes();
+            let step = self.spacing.minor;
+            let delta = ctx.input_mut(|i| {
+                let mut d = DVec3::ZERO;
+                for (key, dir) in [
+                    (Key::ArrowRight, u),
+                    (Key::ArrowLeft, -u),
+                    (Key::ArrowUp, v),
+                    (Key::ArrowDown, -v),
+                    (Key::PageUp, n),
+                    (Key::PageDown, -n),
+                ] {
+                    if i.consume_key(Modifiers::NONE, key) {
+                        d += dir * step;
+                    }
+                }
+                d
+            });
+            if delta != DVec3::ZERO
+                && let Some(edit) = self.handles.nudge(input.graph, &self.handle_list, delta)
+            {
+                actions.push(ViewportAction::Edit(edit));
+            }
+        }
+    }
+
+    /// Shows the viewport in the rest of `ui`; returns what the designer asked for.
+    pub fn show(
+        &mut self,
+        ui: &mut Ui,
+        gpu: Option<&GpuTarget>,
+        input: &ViewportInput<'_>,
+    ) -> Vec<ViewportAction> {
+        let mut actions = Vec::new();
         let rect = ui.available_rect_before_wrap();
         let response = ui.allocate_rect(rect, Sense::click_and_drag());
         self.rect = rect;
         self.aspect = rect.width().max(1.0) / rect.height().max(1.0);
-        if self.fit_pending && !self.scene.is_empty() {
+        let shown = |n: &NodeInstance| (n.preview && n.enabled) || input.selected.contains(&n.id);
+        self.handle_list = handles::collect(input.graph, shown);
+        self.handles.retain_existing(&self.handle_list);
+        if self.fit_pending {
             self.frame_geometry();
             self.fit_pending = false;
-            self.fitted_once = true;
+            self.fitted_once = !self.scene.is_empty();
         }
+        self.spacing = Spacing::for_scale(self.screen_map().world_per_point());
         let camera_before = self.camera;
-        self.handle_input(ui, &response, rect);
+        self.keys(ui.ctx(), input, &mut actions);
+        self.pointer(ui, &response, input, &mut actions);
         let now = ui.input(|i| i.time);
         if self.camera != camera_before || self.last_change.is_nan() {
             self.last_change = now;
@@ -233,11 +594,285 @@ impl Viewport {
         } else {
             1.0
         };
+        let map = self.screen_map();
+        let grid = self.show_grid.then(|| Grid::new(&map, self.cplane()));
+        self.paint_scene(ui, gpu, rect, grid.as_ref());
+        let painter = ui.painter_at(rect);
+        if let Some(grid) = &grid {
+            grid.paint_labels(&painter, &map);
+        }
+        grid::paint_gizmo(&painter, &map);
+        let pointer = ui
+            .input(|i| i.pointer.hover_pos())
+            .filter(|p| rect.contains(*p));
+        self.handles
+            .paint(&painter, &self.handle_list, &map, pointer);
+        match &self.tool {
+            Tool::Draw(d) => d.paint(&painter, &map, self.tool_point),
+            Tool::Measure(m) => m.paint(&painter, &map, self.tool_point),
+            Tool::Select => {}
+        }
+        overlay::paint_stats(ui, rect, &self.stats);
+        let folds = self.picks.folded_faces().len();
+        let (clicked, entry) = overlay::legend(ui, rect, &self.stats, folds);
+        self.fold_entry = entry;
+        if clicked {
+            self.show_folds();
+            actions.push(ViewportAction::Message(format!(
+                "{folds} faces are not (++)(++): framed and outlined (Esc clears)"
+            )));
+        }
+        if self.show_dimensions {
+            overlay::paint_dimensions(ui, rect, self.bounds.as_ref());
+        }
+        if let Some(edit) = self.inspector(ui, rect, input.graph) {
+            actions.push(ViewportAction::Edit(edit));
+        }
+        if let (Tool::Select, Some(hit), Some(at)) = (&self.tool, &self.hover, pointer)
+            && !self.handles.dragging()
+        {
+            let text = pick::describe(&self.picks, hit);
+            egui::Tooltip::always_open(
+                ui.ctx().clone(),
+                ui.layer_id(),
+                egui::Id::new("cnets-viewport-pick"),
+                egui::PopupAnchor::Position(at + egui::vec2(14.0, 14.0)),
+            )
+            .show(|ui| ui.label(text));
+        }
+        actions
+    }
+
+    /// The pointer: handle drags and box selection, tool clicks, orbit / pan / zoom, hover picks.
+    fn pointer(
+        &mut self,
+        ui: &Ui,
+        response: &egui::Response,
+        input: &ViewportInput<'_>,
+        actions: &mut Vec<ViewportAction>,
+    ) {
+        let map = self.screen_map();
+        let (modifiers, scroll, press_origin, hover) = ui.input(|i| {
+            (
+                i.modifiers,
+                i.smooth_scroll_delta.y,
+                i.pointer.press_origin(),
+                i.pointer.hover_pos(),
+            )
+        });
+        let hover = hover.filter(|p| self.rect.contains(*p));
+        let primary = response.dragged_by(PointerButton::Primary);
+        let ortho = self.view.is_orthographic();
+        let cplane = self.cplane();
+        // A primary drag starting on a handle moves it; on empty space it box-selects in the
+        // orthographic views (or with Ctrl in Perspective), else orbits (Shift: pans).
+        if response.drag_started_by(PointerButton::Primary)
+            && let Some(p0) = press_origin
+            && matches!(self.tool, Tool::Select)
+        {
+            let elevator = modifiers.command && !ortho;
+            // Orthographic views: the view's plane through the handle; Perspective: the
+            // construction plane through it, or its normal with Ctrl.
+            let how = |at: DVec3| {
+                if elevator {
+                    DragPlane::Normal(cplane)
+                } else {
+                    DragPlane::Plane(cplane.through(at), cplane)
+                }
+            };
+            let grabbed = self
+                .handles
+                .press(&self.handle_list, &map, p0, how, modifiers.shift);
+            if !grabbed && (ortho || modifiers.command) && !modifiers.shift {
+                self.handles.boxing = Some(p0);
+            }
+        }
+        if primary && self.handles.dragging() {
+            if let Some(at) = response.interact_pointer_pos()
+                && let Some(edit) =
+                    self.handles
+                        .drag_to(input.graph, &map, at, self.snap_step(modifiers))
+            {
+                actions.push(ViewportAction::Edit(edit));
+            }
+        } else if primary && self.handles.boxing.is_some() {
+            // The box is painted with the handles.
+        } else {
+            let delta = response.drag_delta();
+            let orbiting = (primary && !modifiers.shift && !ortho)
+                || (response.dragged_by(PointerButton::Secondary) && modifiers.shift);
+            if orbiting {
+                if ortho {
+                    // Orbiting leaves the named orthographic view for Perspective.
+                    self.view = NamedView::Perspective;
+                    self.camera.projection = cnets_render::Projection::Perspective;
+                }
+                navigation::orbit(&mut self.camera, delta);
+            } else if response.dragged_by(PointerButton::Secondary)
+                || response.dragged_by(PointerButton::Middle)
+                || (primary && modifiers.shift)
+            {
+                self.camera.pan(delta.x, delta.y, self.rect.height());
+            }
+        }
+        if response.drag_stopped() {
+            self.handles.release();
+            if self.handles.boxing.is_some()
+                && let Some(at) = response.interact_pointer_pos().or(hover)
+            {
+                self.handles
+                    .select_box(&self.handle_list, &map, at, modifiers.shift);
+            }
+            self.handles.boxing = None;
+        }
+        if response.hovered() && scroll != 0.0 {
+            let at = hover.unwrap_or(self.rect.center());
+            let mut m = map;
+            navigation::wheel(&mut m, scroll, at);
+            self.camera = m.camera;
+        }
+        let map = self.screen_map();
+        // Where the tools would put a point under the pointer.
+        self.tool_point = hover.and_then(|at| match &self.tool {
+            Tool::Draw(_) => self.plane_point(&map, at, modifiers),
+            Tool::Measure(_) => self.measure_point(&map, at, modifiers),
+            Tool::Select => None,
+        });
+        let clicked = response.clicked_by(PointerButton::Primary);
+        let at = response.interact_pointer_pos().or(hover);
+        match &mut self.tool {
+            Tool::Draw(d) => {
+                if response.double_clicked() {
+                    if let Some(curve) = d.finish() {
+                        actions.push(ViewportAction::AddCurve(curve));
+                    }
+                } else if clicked
+                    && let Some(at) = at
+                    && let Some(p) = self.tool_point
+                    && let draw::Click::Finished(curve) = d.click(&map, at, p)
+                {
+                    actions.push(ViewportAction::AddCurve(curve));
+                }
+            }
+            Tool::Measure(m) => {
+                if clicked && let Some(p) = self.tool_point {
+                    m.click(p);
+                    if let Some(text) = m.text() {
+                        actions.push(ViewportAction::Message(text));
+                    }
+                }
+            }
+            Tool::Select => {
+                if response.double_clicked() {
+                    self.fit();
+                } else if clicked && let Some(at) = at {
+                    match handles::handle_at(&self.handle_list, &map, at) {
+                        Some(h) => {
+                            let key = h.key.clone();
+                            if modifiers.shift && self.handles.selected.contains(&key) {
+                                self.handles.selected.remove(&key);
+                            } else {
+                                if !modifiers.shift {
+                                    self.handles.selected.clear();
+                                }
+                                self.handles.selected.insert(key.clone());
+                            }
+                            actions.push(ViewportAction::SelectNode(key.node));
+                        }
+                        None => {
+                            if !modifiers.shift {
+                                self.handles.selected.clear();
+                            }
+                            if let Some(hit) = pick::pick(&self.picks, &map, at) {
+                                actions.push(ViewportAction::SelectNode(
+                                    self.picks.meshes[hit.mesh()].node.clone(),
+                                ));
+                            }
+                        }
+                    }
+                }
+                // Hover: what is under the pointer (recomputed when it moves).
+                self.handles.hovered = hover
+                    .and_then(|p| handles::handle_at(&self.handle_list, &map, p))
+                    .map(|h| h.key.clone());
+                let busy = ui.input(|i| i.pointer.any_down());
+                if busy || self.handles.hovered.is_some() {
+                    self.hover = None;
+                    self.hover_at = None;
+                } else if hover != self.hover_at {
+                    self.hover_at = hover;
+                    self.hover = hover.and_then(|p| pick::pick(&self.picks, &map, p));
+                }
+            }
+        }
+    }
+
+    /// The inspector of the one selected handle: its coordinates, typed or dragged.
+    fn inspector(&mut self, ui: &mut Ui, rect: Rect, graph: &Graph) -> Option<Edit> {
+        if self.handles.selected.len() != 1 || self.handles.dragging() {
+            return None;
+        }
+        let key = self.handles.selected.iter().next()?.clone();
+        let handle = self.handle_list.iter().find(|h| h.key == key)?.clone();
+        let area = Rect::from_min_size(
+            rect.left_top() + egui::vec2(8.0, 44.0),
+            egui::vec2(330.0, 26.0),
+        );
+        let mut p = handle.position;
+        let speed = self.spacing.minor / 10.0;
+        let mut changed = false;
+        ui.scope_builder(egui::UiBuilder::new().max_rect(area), |ui| {
+            egui::Frame::popup(ui.style()).show(ui, |ui| {
+                ui.horizontal(|ui| {
+                    let name = match graph.node(&key.node).map(|n| n.def.id.as_ref()) {
+                        Some("param.points") => format!("{} [{}]", key.node, key.index),
+                        _ => key.node.clone(),
+                    };
+                    ui.label(name);
+                    for (axis, value) in [("x", &mut p.x), ("y", &mut p.y), ("z", &mut p.z)] {
+                        ui.label(axis);
+                        changed |= ui
+                            .add(egui::DragValue::new(value).speed(speed).max_decimals(6))
+                            .changed();
+                    }
+                });
+            });
+        });
+        changed
+            .then(|| handles::move_edit(graph, &[(key, p)]))
+            .flatten()
+    }
+
+    /// Hands the scene and the guides to the GPU (or says there is no renderer).
+    fn paint_scene(
+        &mut self,
+        ui: &mut Ui,
+        gpu: Option<&GpuTarget>,
+        rect: Rect,
+        grid: Option<&Grid>,
+    ) {
         let ppp = ui.ctx().pixels_per_point() * self.render_scale;
         let size_px = [
             (rect.width() * ppp).round().max(1.0) as u32,
             (rect.height() * ppp).round().max(1.0) as u32,
         ];
+        let key = (
+            self.camera,
+            size_px,
+            grid.is_some(),
+            self.cplane(),
+            Arc::as_ptr(&self.highlight) as usize,
+        );
+        if self.guides_key != Some(key) {
+            let mut segments = grid.map(|g| g.segments.clone()).unwrap_or_default();
+            segments.extend(self.highlight.iter().copied());
+            self.guides = Guides {
+                segments: Arc::new(segments),
+                points: Arc::new(Vec::new()),
+                version: self.guides.version + 1,
+            };
+            self.guides_key = Some(key);
+        }
         match gpu {
             Some(target) => {
                 ui.painter().add(egui_wgpu::Callback::new_paint_callback(
@@ -245,6 +880,7 @@ impl Viewport {
                     ViewportCallback {
                         scene: self.scene.clone(),
                         version: self.scene_version,
+                        guides: self.guides.clone(),
                         camera: self.camera,
                         size_px,
                         target: *target,
@@ -263,120 +899,11 @@ impl Viewport {
                 );
             }
         }
-        self.overlay(ui, rect);
-    }
-
-    fn handle_input(&mut self, ui: &Ui, response: &egui::Response, rect: Rect) {
-        let (shift, scroll) = ui.input(|i| (i.modifiers.shift, i.smooth_scroll_delta.y));
-        let delta = response.drag_delta();
-        if response.dragged_by(egui::PointerButton::Primary) && !shift {
-            self.camera.orbit(-delta.x * 0.008, delta.y * 0.008);
-        } else if response.dragged_by(egui::PointerButton::Secondary)
-            || response.dragged_by(egui::PointerButton::Middle)
-            || (response.dragged_by(egui::PointerButton::Primary) && shift)
-        {
-            self.camera.pan(delta.x, delta.y, rect.height());
-        }
-        if response.hovered() && scroll != 0.0 {
-            self.camera.zoom((-scroll * 0.002).exp());
-        }
-        if response.double_clicked() {
-            self.fit();
-        }
-    }
-
-    fn overlay(&self, ui: &mut Ui, rect: Rect) {
-        let painter = ui.painter_at(rect);
-        let font = egui::FontId::proportional(12.0);
-        let ink = Color32::from_gray(30);
-        let s = &self.stats;
-        let mut lines = vec![format!("{} vertices · {} faces", s.vertices, s.faces)];
-        if let Some(p) = s.max_planarity {
-            // Below 1e-12 the digits are rounding noise (and differ between machines).
-            let shown = if p < 1e-12 {
-                "< 1e-12".to_string()
-            } else {
-                format_number(p)
-            };
-            lines.push(format!("max planarity {shown}"));
-        }
-        for (k, line) in lines.iter().enumerate() {
-            painter.text(
-                rect.left_top() + egui::vec2(8.0, 6.0 + 16.0 * k as f32),
-                egui::Align2::LEFT_TOP,
-                line,
-                font.clone(),
-                ink,
-            );
-        }
-        let swatch =
-            |painter: &egui::Painter, y: f32, color: cnets_render::Color, label: String| {
-                let [r, g, b, _] = color.0;
-                let x = rect.right() - 170.0;
-                painter.rect_filled(
-                    Rect::from_min_size(egui::pos2(x, y), egui::vec2(14.0, 12.0)),
-                    2.0,
-                    Color32::from_rgb(r, g, b),
-                );
-                painter.text(
-                    egui::pos2(x + 20.0, y),
-                    egui::Align2::LEFT_TOP,
-                    label,
-                    font.clone(),
-                    ink,
-                );
-            };
-        let top = rect.top() + 8.0;
-        match &s.legend {
-            LegendInfo::None => {}
-            LegendInfo::Classes(classes) => {
-                painter.text(
-                    egui::pos2(rect.right() - 170.0, top),
-                    egui::Align2::LEFT_TOP,
-                    "configuration",
-                    font.clone(),
-                    ink,
-                );
-                for (k, (class, count)) in classes.iter().enumerate() {
-                    swatch(
-                        &painter,
-                        top + 18.0 + 16.0 * k as f32,
-                        crate::preview::class_color(*class),
-                        format!("{}  {}  {count}", paper_class(*class), class.name()),
-                    );
-                }
-            }
-            LegendInfo::Planarity(legend) => {
-                painter.text(
-                    egui::pos2(rect.right() - 170.0, top),
-                    egui::Align2::LEFT_TOP,
-                    &legend.title,
-                    font.clone(),
-                    ink,
-                );
-                for (k, (value, color)) in legend.stops.iter().enumerate().rev() {
-                    let row = legend.stops.len() - 1 - k;
-                    let label = legend
-                        .labels
-                        .get(k)
-                        .cloned()
-                        .unwrap_or_else(|| format_number(*value));
-                    swatch(&painter, top + 18.0 + 16.0 * row as f32, *color, label);
-                }
-            }
-        }
     }
 }
 
 /// The configuration class of a face in the paper's notation: the (±±) configurations of its two
 /// construction planes (CNets, Fig. 4).
 pub fn paper_class(class: cnets_geometry::fabrication::FaceClass) -> &'static str {
-    use cnets_geometry::fabrication::FaceClass;
-    match class {
-        FaceClass::Convex => "(++)(++)",
-        FaceClass::NonConvex => "(++)(−−)",
-        FaceClass::MinusMinus => "(−−)(−−)",
-        FaceClass::NegativeApex => "(+−)/(−+)",
-        FaceClass::Unclassified => "—",
-    }
+    crate::preview::paper_class(class)
 }

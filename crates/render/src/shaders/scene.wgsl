@@ -4,7 +4,8 @@
 
 struct Globals {
     view_proj: mat4x4<f32>,
-    // xyz: eye position.
+    // xyz: eye position; w: 0 for a perspective camera, else the orbit distance in normalized
+    // depth units of an orthographic camera (depth biases are added, not scaled, there).
     eye: vec4<f32>,
     // xyz: unit direction towards the light (a headlight slightly above and left of the eye), w: ambient.
     light: vec4<f32>,
@@ -87,6 +88,9 @@ fn apply_depth(c: vec4<f32>, flags: u32, bias: f32) -> vec4<f32> {
     var out = c;
     if ((flags & FLAG_ON_TOP) != 0u) {
         out.z = out.w; // depth 1: nearest possible, passes against everything
+    } else if (g.eye.w > 0.0) {
+        // Orthographic (linear depth): towards the eye by `bias` orbit distances.
+        out.z = min(out.z + bias * g.eye.w * out.w, out.w);
     } else {
         // Reverse-Z: scaling z moves the point towards the eye by a relative amount along its ray.
         out.z = min(out.z * (1.0 + bias), out.w);

@@ -10,7 +10,10 @@
 //! Test modes (the real window under Xvfb, `tests/window.rs`): `--drive-drag` drags the first
 //! `param.number` slider with injected pointer events (press, moves, release), prints the values
 //! shown once released and keeps running (the test kills it); `--restore-and-print` accepts the
-//! recovery file's restore, prints the values and quits.
+//! recovery file's restore, prints the values and quits; `--drive-script NAME [--drive-out DIR]`
+//! plays a scripted design session (`scenarios.rs`: handles, draw, pick, folds, canopy) with
+//! injected pointer events and keys, printing `script: key = value` lines and saving screenshots
+//! into DIR.
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -19,6 +22,16 @@ use std::time::Duration;
 use anyhow::{Context as _, bail};
 use cnets_editor::app::{AppOptions, EditorApp};
 use cnets_editor::viewport::GpuTarget;
+
+mod bench;
+mod canopy;
+mod drive;
+mod scenarios;
+mod script;
+
+use bench::Bench;
+use drive::{Drive, slider_values};
+use script::Script;
 
 /// The process allocator: mimalloc keeps freed memory for reuse, where glibc's malloc hands large
 /// freed blocks (a 1000 × 1000 construction's 49 MB) back to the kernel and page-faults them in again
@@ -34,6 +47,8 @@ struct Args {
     size: [f32; 2],
     drive_drag: bool,
     restore_and_print: bool,
+    drive_script: Option<String>,
+    drive_out: PathBuf,
 }
 
 fn parse_args() -> anyhow::Result<Args> {
@@ -45,6 +60,8 @@ fn parse_args() -> anyhow::Result<Args> {
         size: [1400.0, 860.0],
         drive_drag: false,
         restore_and_print: false,
+        drive_script: None,
+        drive_out: PathBuf::from("."),
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -71,6 +88,16 @@ fn parse_args() -> anyhow::Result<Args> {
                 args.size = [w.parse()?, h.parse()?];
             }
             "--drive-drag" => args.drive_drag = true,
+            "--drive-script" => {
+                let name = it.next().context("--drive-script needs a name")?;
+                if scenarios::script(&name).is_none() {
+                    bail!("unknown script {name} (known: {})", scenarios::NAMES);
+                }
+                args.drive_script = Some(name);
+            }
+            "--drive-out" => {
+                args.drive_out = it.next().context("--drive-out needs a folder")?.into()
+            }
             "--restore-and-print" => args.restore_and_print = true,
             "-h" | "--help" => {
                 println!(
@@ -95,206 +122,9 @@ struct Window {
     result: Arc<Mutex<Option<anyhow::Result<()>>>>,
     bench: Option<Bench>,
     drive: Option<Drive>,
+    script: Option<Script>,
     restore_and_print: bool,
     config_dir: PathBuf,
-}
-
-/// The values of every `param.number` slider, one `node.value = x` a line (full precision).
-fn slider_values(app: &EditorApp) -> String {
-    let mut lines: Vec<String> = app
-        .doc
-        .graph
-        .nodes()
-        .filter(|(_, n)| n.def.id == "param.number")
-        .map(|(_, n)| {
-            let v = n.value_of("value").and_then(cnets_engine::Value::as_f64);
-            format!("{}.value = {v:?}", n.id)
-        })
-        .collect();
-    lines.sort();
-    lines.join("\n")
-}
-
-/// `--drive-drag`: a slider drag made of real egui pointer events, injected into the window's
-/// raw input (the same path a mouse takes after winit).
-struct Drive {
-    frames: u32,
-    /// Where the press happens and how far the drag goes (screen points), once the slider is
-    /// drawn.
-    from: Option<egui::Pos2>,
-    to: egui::Pos2,
-    step: u32,
-    node: String,
-    /// The dragged slider's value before the drag.
-    was: Option<f64>,
-    reported: bool,
-}
-
-/// Moves between the press and the release.
-const DRIVE_MOVES: u32 = 12;
-
-impl Drive {
-    /// Finds the slider once the canvas has been framed (a few frames after the first results).
-    fn locate(&mut self, app: &EditorApp) {
-        if self.from.is_some() {
-            return;
-        }
-        self.frames += 1;
-        if self.frames < 30 {
-            return;
-        }
-        let Some(id) = first_slider(app) else {
-            return;
-        };
-        if let Some(r) = app.canvas.editor_screen_rect(&id, "value") {
-            // On the rail: from a quarter of the way to 85 % (the rail is the left part of the
-            // editor; the value box follows it).
-            let rail = r.width().min(110.0 * app.canvas.zoom());
-            let y = r.center().y;
-            self.from = Some(egui::pos2(r.left() + rail * 0.25, y));
-            self.to = egui::pos2(r.left() + rail * 0.85, y);
-            self.was = app
-                .doc
-                .graph
-                .node(&id)
-                .and_then(|n| n.value_of("value"))
-                .and_then(cnets_engine::Value::as_f64);
-            self.node = id;
-        }
-    }
-
-    fn inject(&mut self, raw: &mut egui::RawInput) {
-        let Some(from) = self.from else {
-            return;
-        };
-        let press = |pos, pressed| egui::Event::PointerButton {
-            pos,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        };
-        let t = self.step as f32 / DRIVE_MOVES as f32;
-        let at = from + (self.to - from) * t.min(1.0);
-        match self.step {
-            0 => {
-                raw.events.push(egui::Event::PointerMoved(from));
-                raw.events.push(press(from, true));
-            }
-            s if s <= DRIVE_MOVES => raw.events.push(egui::Event::PointerMoved(at)),
-            s if s == DRIVE_MOVES + 1 => raw.events.push(press(self.to, false)),
-            _ => return,
-        }
-        self.step += 1;
-    }
-
-    /// After the release frame: prints what the window shows (the test kills the process then).
-    fn report(&mut self, app: &EditorApp) {
-        if self.reported || self.step <= DRIVE_MOVES + 1 {
-            return;
-        }
-        self.reported = true;
-        println!(
-            "drive-drag: released {} pid {}",
-            self.node,
-            std::process::id()
-        );
-        println!("{}.value was {:?}", self.node, self.was);
-        println!("{}", slider_values(app));
-        println!("drive-drag: end");
-        use std::io::Write as _;
-        let _ = std::io::stdout().flush();
-    }
-}
-
-/// `--bench-drag N`: moves the first `param.number` slider every frame for N frames (as a drag
-/// would, one undo step), then prints change-to-picture latency and frame intervals.
-struct Bench {
-    frames: u32,
-    done: u32,
-    last_frame: Option<std::time::Instant>,
-    intervals: Vec<f64>,
-    evals: Vec<f64>,
-    scenes: Vec<f64>,
-    uis: Vec<f64>,
-    seen: usize,
-    reported: bool,
-}
-
-fn stats(v: &mut [f64]) -> String {
-    if v.is_empty() {
-        return "n/a".into();
-    }
-    v.sort_by(f64::total_cmp);
-    let q = |f: f64| v[((v.len() - 1) as f64 * f).round() as usize];
-    format!(
-        "median {:.1} ms, p90 {:.1} ms, max {:.1} ms (n = {})",
-        q(0.5),
-        q(0.9),
-        q(1.0),
-        v.len()
-    )
-}
-
-impl Bench {
-    fn step(&mut self, app: &mut EditorApp, ctx: &egui::Context) {
-        let now = std::time::Instant::now();
-        if let Some(t) = self.last_frame {
-            self.intervals.push((now - t).as_secs_f64() * 1e3);
-        }
-        self.last_frame = Some(now);
-        if app.latency.samples.len() > self.seen {
-            self.seen = app.latency.samples.len();
-            self.evals.push(app.latency.eval_ms);
-            self.scenes.push(app.latency.scene_ms);
-        }
-        if self.done >= self.frames {
-            if std::mem::replace(&mut self.reported, true) {
-                return;
-            }
-            let mut lat = app.latency.samples.clone();
-            println!("bench-drag: {} frames, {} pictures", self.frames, lat.len());
-            println!(
-                "  change-to-picture (CPU side, up to the frame handing the scene to wgpu): {}",
-                stats(&mut lat)
-            );
-            println!(
-                "  frame interval (UI + GPU render + present): {}",
-                stats(&mut self.intervals)
-            );
-            println!(
-                "  UI thread per frame (egui + canvas + edit + submit): {}",
-                stats(&mut self.uis)
-            );
-            println!("  evaluation (worker): {}", stats(&mut self.evals));
-            println!("  scene build (worker): {}", stats(&mut self.scenes));
-            println!("  vertices: {}", app.viewport.stats.vertices);
-            // Quit without the unsaved-changes question.
-            app.quit = true;
-            ctx.request_repaint();
-            return;
-        }
-        self.done += 1;
-        ctx.request_repaint();
-        if std::env::var_os("CNETS_BENCH_IDLE").is_some() {
-            // Baseline: frames without changes (nothing re-evaluated, the 3D view not re-rendered).
-            return;
-        }
-        let Some(id) = first_slider(app) else {
-            return;
-        };
-        let node = app.doc.graph.node(&id).expect("the node");
-        let (min, max, _) = cnets_editor::widgets::slider_range(node);
-        let t = f64::from(self.done - 1) / 60.0;
-        let value = min + (max - min) * (0.5 + 0.4 * (t * std::f64::consts::TAU).sin());
-        let _ = cnets_editor::edit::apply(
-            &mut app.doc,
-            cnets_editor::edit::Edit::SetValue {
-                node: id,
-                input: "value".into(),
-                value: cnets_engine::Value::Number(value),
-            },
-        );
-    }
 }
 
 impl eframe::App for Window {
@@ -336,6 +166,9 @@ impl eframe::App for Window {
         if let Some(b) = &mut self.bench {
             b.uis.push(started.elapsed().as_secs_f64() * 1e3);
             b.step(&mut self.app, &ctx);
+        }
+        if let Some(s) = &mut self.script {
+            s.after_frame(&mut self.app, &ctx);
         }
         if self.app.quit {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
@@ -382,10 +215,13 @@ impl eframe::App for Window {
         ctx.request_repaint();
     }
 
-    fn raw_input_hook(&mut self, _ctx: &egui::Context, raw_input: &mut egui::RawInput) {
+    fn raw_input_hook(&mut self, ctx: &egui::Context, raw_input: &mut egui::RawInput) {
         self.app.raw_input(raw_input);
         if let Some(d) = &mut self.drive {
             d.inject(raw_input);
+        }
+        if let Some(s) = &mut self.script {
+            s.inject(&self.app, ctx, raw_input);
         }
     }
 
@@ -434,6 +270,7 @@ fn main() -> anyhow::Result<()> {
     let test_mode = args.screenshot.is_some()
         || args.bench_drag.is_some()
         || args.drive_drag
+        || args.drive_script.is_some()
         || args.restore_and_print;
     if !test_mode
         && let Some(file) = &args.file
@@ -482,26 +319,13 @@ fn main() -> anyhow::Result<()> {
                 frames: 0,
                 requested: false,
                 result: result2,
-                bench: args.bench_drag.map(|frames| Bench {
-                    frames,
-                    done: 0,
-                    last_frame: None,
-                    intervals: Vec::new(),
-                    evals: Vec::new(),
-                    scenes: Vec::new(),
-                    uis: Vec::new(),
-                    seen: 0,
-                    reported: false,
-                }),
-                drive: args.drive_drag.then(|| Drive {
-                    frames: 0,
-                    from: None,
-                    to: egui::Pos2::ZERO,
-                    step: 0,
-                    node: String::new(),
-                    was: None,
-                    reported: false,
-                }),
+                bench: args.bench_drag.map(Bench::new),
+                drive: args.drive_drag.then(Drive::new),
+                script: args
+                    .drive_script
+                    .as_deref()
+                    .and_then(scenarios::script)
+                    .map(|steps| Script::new(steps, args.drive_out.clone())),
                 restore_and_print: args.restore_and_print,
                 config_dir: config_dir.clone(),
             }))
@@ -515,13 +339,4 @@ fn main() -> anyhow::Result<()> {
         }
     }
     Ok(())
-}
-
-/// The id of the graph's first number slider (what the drag measurements move).
-fn first_slider(app: &EditorApp) -> Option<String> {
-    app.doc
-        .graph
-        .nodes()
-        .find(|(_, n)| n.def.id == "param.number")
-        .map(|(_, n)| n.id.clone())
 }

@@ -1,0 +1,247 @@
+//! The ground grid, the world axes and the axis gizmo: orientation and size at a glance.
+//!
+//! The grid lies in the view's construction plane (Top: XY, Front: XZ, Right: YZ, Perspective:
+//! the chosen plane, world XY by default). Its spacing adapts to the zoom — 1, 2 or 5 × 10ⁿ metres,
+//! the smallest whose cells are at least [`MIN_CELL_POINTS`] on screen — with a major line every
+//! 5 or 10 cells, labelled in metres along the axes. The spacing is also the snap step of every
+//! tool. The world axes are drawn through the origin (x red, y green, z blue) and a small gizmo in
+//! the view's corner shows how they point.
+
+use cnets_geometry::DVec3;
+use cnets_render::{Color, Segment};
+use egui::{Color32, Painter, Pos2, Rect, vec2};
+
+use super::screen::{CPlane, ScreenMap, clean};
+
+/// The smallest grid cell on screen, in points.
+pub const MIN_CELL_POINTS: f64 = 14.0;
+
+/// Minor and major grid lines per side of the target, at most.
+const HALF_CELLS: i64 = 60;
+
+/// The x axis colour (red).
+pub const X_COLOR: Color32 = Color32::from_rgb(0xd0, 0x31, 0x2d);
+/// The y axis colour (green).
+pub const Y_COLOR: Color32 = Color32::from_rgb(0x2a, 0x9d, 0x3c);
+/// The z axis colour (blue).
+pub const Z_COLOR: Color32 = Color32::from_rgb(0x1f, 0x5f, 0xd0);
+
+/// The grid's spacing at a zoom.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spacing {
+    /// Distance between minor lines (the snap step), in metres.
+    pub minor: f64,
+    /// Distance between major (labelled) lines.
+    pub major: f64,
+}
+
+impl Spacing {
+    /// The spacing for a view where one screen point is `world_per_point` metres at the target.
+    pub fn for_scale(world_per_point: f64) -> Spacing {
+        let wanted = (world_per_point * MIN_CELL_POINTS).max(1e-9);
+        let decade = 10f64.powf(wanted.log10().floor());
+        let (mantissa, per_major) = [(1.0, 5.0), (2.0, 5.0), (5.0, 2.0), (10.0, 5.0)]
+            .into_iter()
+            .find(|(m, _)| m * decade >= wanted * (1.0 - 1e-9))
+            .unwrap_or((10.0, 5.0));
+        let minor = clean(mantissa * decade);
+        Spacing {
+            minor,
+            major: clean(minor * per_major),
+        }
+    }
+}
+
+/// A length in metres as the grid labels write it: `5 m`, `0.25 m`, `1 200 m`.
+pub fn metres(x: f64) -> String {
+    let x = clean(x);
+    let text = if x.abs() >= 1e4 || (x != 0.0 && x.abs() < 1e-3) {
+        format!("{x:e}")
+    } else {
+        let s = format!("{x:.6}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    };
+    format!("{text} m")
+}
+
+fn rgba(c: Color32) -> Color {
+    Color::rgba(c.r(), c.g(), c.b(), c.a())
+}
+
+fn segment(a: DVec3, b: DVec3, color: Color, width: f32) -> Segment {
+    let f = |p: DVec3| [p.x as f32, p.y as f32, p.z as f32];
+    Segment {
+        a: f(a),
+        b: f(b),
+        color,
+        width,
+        flags: 0,
+    }
+}
+
+/// The grid of a view: its spacing, the square it covers and the line segments to draw.
+pub struct Grid {
+    /// The spacing.
+    pub spacing: Spacing,
+    /// The construction plane it lies in.
+    pub plane: CPlane,
+    /// Grid lines and world axes, for the renderer (depth-tested with the scene).
+    pub segments: Vec<Segment>,
+    /// Major line positions along the plane's first and second axis, for labels.
+    majors: (Vec<f64>, Vec<f64>),
+}
+
+impl Grid {
+    /// The grid of `plane` around the camera's target, spaced for the map's zoom.
+    pub fn new(map: &ScreenMap, plane: CPlane) -> Grid {
+        let spacing = Spacing::for_scale(map.world_per_point());
+        let (u, v, _) = plane.axes();
+        // The target projected into the plane, on the major grid.
+        let target = map.target();
+        let centre = |axis: DVec3| (target.dot(axis) / spacing.major).round() * spacing.major;
+        let (cu, cv) = (centre(u), centre(v));
+        let half = spacing.minor * HALF_CELLS as f64;
+        let (u0, u1, v0, v1) = (cu - half, cu + half, cv - half, cv + half);
+        let minor = rgba(Color32::from_rgba_unmultiplied(120, 128, 140, 70));
+        let major = rgba(Color32::from_rgba_unmultiplied(90, 98, 110, 140));
+        let mut segments = Vec::with_capacity(4 * HALF_CELLS as usize + 8);
+        let mut majors = (Vec::new(), Vec::new());
+        let per_major = (spacing.major / spacing.minor).round() as i64;
+        for k in -HALF_CELLS..=HALF_CELLS {
+            let is_major = k.rem_euclid(per_major) == 0;
+            let (color, width) = if is_major { (major, 1.2) } else { (minor, 1.0) };
+            let a = clean(cu + k as f64 * spacing.minor);
+            let b = clean(cv + k as f64 * spacing.minor);
+            // Lines on the axes are drawn as axes below.
+            if a != 0.0 {
+                segments.push(segment(u * a + v * v0, u * a + v * v1, color, width));
+            }
+            if b != 0.0 {
+                segments.push(segment(u * u0 + v * b, u * u1 + v * b, color, width));
+            }
+            if is_major {
+                majors.0.push(a);
+                majors.1.push(b);
+            }
+        }
+        // World axes through the origin, across the grid (and as far the other way).
+        let reach = half + target.length();
+        for (axis, color) in [
+            (DVec3::X, X_COLOR),
+            (DVec3::Y, Y_COLOR),
+            (DVec3::Z, Z_COLOR),
+        ] {
+            segments.push(segment(-axis * reach, axis * reach, rgba(color), 1.6));
+        }
+        Grid {
+            spacing,
+            plane,
+            segments,
+            majors,
+        }
+    }
+
+    /// Labels the major lines in metres where they cross the plane's axes, and names the
+    /// spacing in the view's corner.
+    pub fn paint_labels(&self, painter: &Painter, map: &ScreenMap) {
+        let (u, v, _) = self.plane.axes();
+        let font = egui::FontId::proportional(10.5);
+        let ink = Color32::from_gray(95);
+        let inside = map.rect.shrink(4.0);
+        let mut placed: Vec<Rect> = Vec::new();
+        let mut label = |p: DVec3, text: String| {
+            let Some(at) = map.to_screen(p) else {
+                return;
+            };
+            if !inside.contains(at) {
+                return;
+            }
+            let galley = painter.layout_no_wrap(text, font.clone(), ink);
+            let r = Rect::from_min_size(at + vec2(3.0, 2.0), galley.size());
+            if placed.iter().any(|o| o.expand(3.0).intersects(r)) {
+                return;
+            }
+            placed.push(r);
+            painter.galley(r.min, galley, ink);
+        };
+        for &a in &self.majors.0 {
+            if a != 0.0 {
+                label(u * a, metres(a));
+            }
+        }
+        for &b in &self.majors.1 {
+            if b != 0.0 {
+                label(v * b, metres(b));
+            }
+        }
+        painter.text(
+            map.rect.left_bottom() + vec2(76.0, -8.0),
+            egui::Align2::LEFT_BOTTOM,
+            format!(
+                "grid {} · {}",
+                metres(self.spacing.minor),
+                self.plane.label()
+            ),
+            font,
+            ink,
+        );
+    }
+}
+
+/// Paints the axis gizmo in the view's bottom-left corner: the world axes as the camera sees them.
+pub fn paint_gizmo(painter: &Painter, map: &ScreenMap) {
+    let centre = map.rect.left_bottom() + vec2(36.0, -40.0);
+    let cam = map.camera;
+    let (right, up) = (cam.right(), cam.up());
+    let font = egui::FontId::proportional(11.0);
+    painter.circle_filled(
+        centre,
+        27.0,
+        Color32::from_rgba_unmultiplied(255, 255, 255, 150),
+    );
+    // Back to front, so the axis pointing at the viewer is drawn last.
+    let mut axes = [
+        (glam::Vec3::X, X_COLOR, "x"),
+        (glam::Vec3::Y, Y_COLOR, "y"),
+        (glam::Vec3::Z, Z_COLOR, "z"),
+    ];
+    axes.sort_by(|a, b| a.0.dot(cam.back()).total_cmp(&b.0.dot(cam.back())));
+    for (axis, color, name) in axes {
+        let d = egui::vec2(axis.dot(right), -axis.dot(up)) * 20.0;
+        let tip: Pos2 = centre + d;
+        painter.line_segment([centre, tip], egui::Stroke::new(2.0, color));
+        painter.text(
+            centre + d * 1.25,
+            egui::Align2::CENTER_CENTER,
+            name,
+            font.clone(),
+            color,
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_spacing_is_one_two_or_five_and_cells_stay_readable() {
+        for wpp in [1e-4, 0.003, 0.01, 0.037, 0.1, 0.5, 2.0, 70.0] {
+            let s = Spacing::for_scale(wpp);
+            let cell_points = s.minor / wpp;
+            assert!(cell_points >= MIN_CELL_POINTS * 0.999, "{wpp}: {s:?}");
+            assert!(cell_points < MIN_CELL_POINTS * 2.6, "{wpp}: {s:?}");
+            let mantissa = s.minor / 10f64.powf(s.minor.log10().floor());
+            assert!(
+                [1.0, 2.0, 5.0].iter().any(|m| (m - mantissa).abs() < 1e-9),
+                "{s:?}"
+            );
+            let per_major = s.major / s.minor;
+            assert!((per_major - per_major.round()).abs() < 1e-9);
+        }
+        assert_eq!(Spacing::for_scale(0.05).minor, 1.0);
+        assert_eq!(metres(5.0), "5 m");
+        assert_eq!(metres(0.25), "0.25 m");
+        assert_eq!(metres(3.0 * 0.1), "0.3 m");
+    }
+}

@@ -1,0 +1,380 @@
+//! Design in space (issue 25), in kittest with the wgpu renderer: handles dragged in the Top view
+//! move their point by the grid-snapped amount and nothing else, a curve drawn in the Front view
+//! becomes `param.points` + `curve.spline` with the snapped clicks, a face of a cone-net is picked
+//! by node and (i, j), the legend's fold entry frames the folds, the measure tool snaps to
+//! vertices, the named views are one key away, and a curve read from a file is internalised as
+//! editable points.
+
+mod common;
+
+use cnets_editor::app::EditorApp;
+use cnets_editor::viewport::pick::Hit;
+use cnets_editor::viewport::screen::clean;
+use cnets_editor::viewport::{NamedView, Tool};
+use cnets_engine::Value;
+use cnets_geometry::DVec3;
+use common::{graphs_dir, harness_with, settle, temp_config};
+use egui::{Key, Pos2, vec2};
+use egui_kittest::Harness;
+
+/// A graph of four points (preview on) drawn as a spline.
+const POINTS_GRAPH: &str = r#"(
+    version: 1,
+    nodes: {
+        "pts": (
+            type: "param.points",
+            position: (0.0, 0.0),
+            preview: true,
+            inputs: {
+                "points": [(0.0, 0.0, 0.0), (2.0, 1.0, 0.0), (4.0, -1.0, 0.0), (6.0, 0.5, 0.25)],
+            },
+        ),
+        "curve": (
+            type: "curve.spline",
+            position: (300.0, 0.0),
+        ),
+    },
+    edges: ["pts.points -> curve.points"],
+)"#;
+
+fn open(name: &str, text: &str) -> Harness<'static, EditorApp> {
+    let dir = temp_config(&format!("{name}-files"));
+    let file = dir.join(format!("{name}.ron"));
+    std::fs::write(&file, text).unwrap();
+    harness_with(name, Some(file), temp_config(name))
+}
+
+fn points_of(app: &EditorApp, node: &str) -> Vec<Value> {
+    app.doc
+        .graph
+        .node(node)
+        .and_then(|n| n.value_of("points"))
+        .and_then(Value::as_list)
+        .map(<[Value]>::to_vec)
+        .unwrap_or_default()
+}
+
+/// Shows a named view and lets it settle.
+fn view(h: &mut Harness<'static, EditorApp>, v: NamedView) {
+    h.state_mut().viewport.set_view(v);
+    h.run_steps(3);
+}
+
+fn screen_of(h: &Harness<'static, EditorApp>, p: DVec3) -> Pos2 {
+    h.state()
+        .viewport
+        .screen_map()
+        .to_screen(p)
+        .expect("in front of the camera")
+}
+
+fn drag(h: &mut Harness<'static, EditorApp>, a: Pos2, b: Pos2) {
+    h.hover_at(a);
+    h.run_steps(1);
+    h.drag_at(a);
+    h.run_steps(1);
+    for t in [0.2, 0.5, 0.8, 1.0] {
+        h.hover_at(a + (b - a) * t);
+        h.run_steps(1);
+    }
+    h.drop_at(b);
+    h.run_steps(2);
+}
+
+fn click(h: &mut Harness<'static, EditorApp>, at: Pos2) {
+    h.hover_at(at);
+    h.run_steps(1);
+    h.drag_at(at);
+    h.run_steps(1);
+    h.drop_at(at);
+    h.run_steps(1);
+}
+
+#[test]
+fn a_handle_dragged_in_the_top_view_moves_by_the_snapped_amount_and_undo_restores_it() {
+    let mut h = open("handles", POINTS_GRAPH);
+    view(&mut h, NamedView::Top);
+    let before = points_of(h.state(), "pts");
+    let text_before = h.state().doc.to_ron();
+    assert_eq!(h.state().viewport.handle_list().len(), 4, "four handles");
+    let step = h.state().viewport.spacing.minor;
+    let wpp = h.state().viewport.screen_map().world_per_point();
+    // Three grid steps right and two down (−y in the Top view), plus a third of a step of slack
+    // that the snap takes away.
+    let from = screen_of(&h, DVec3::new(2.0, 1.0, 0.0));
+    let by = vec2(
+        ((3.0 + 0.3) * step / wpp) as f32,
+        ((2.0 - 0.3) * step / wpp) as f32,
+    );
+    let steps = h.state().doc.history.undo_len();
+    drag(&mut h, from, from + by);
+    settle(&mut h);
+    let after = points_of(h.state(), "pts");
+    assert_eq!(after.len(), 4, "the list keeps its length");
+    let expected = DVec3::new(2.0 + 3.0 * step, 1.0 - 2.0 * step, 0.0);
+    let moved = after[1].as_vec3().unwrap();
+    assert!(
+        (moved - expected).length() < 1e-12,
+        "moved to {moved}, expected {expected} (grid {step})"
+    );
+    for k in [0, 2, 3] {
+        assert_eq!(after[k], before[k], "point {k} is untouched, bit for bit");
+    }
+    assert_eq!(h.state().doc.history.undo_len(), steps + 1, "one undo step");
+    assert!(h.state_mut().doc.undo());
+    assert_eq!(
+        h.state().doc.to_ron(),
+        text_before,
+        "undo restores the text"
+    );
+}
+
+#[test]
+fn a_curve_drawn_in_the_front_view_becomes_points_and_a_spline() {
+    let mut h = open("draw", POINTS_GRAPH);
+    view(&mut h, NamedView::Front);
+    h.state_mut()
+        .viewport
+        .toggle_tool(Tool::Draw(Default::default()));
+    let step = h.state().viewport.spacing.minor;
+    let wpp = h.state().viewport.screen_map().world_per_point();
+    // Four clicks on XZ, each a little off the grid (less than half a step).
+    let clicks: Vec<DVec3> = [(0.0, 0.0), (2.0, 3.0), (5.0, 3.0), (7.0, 0.0)]
+        .iter()
+        .map(|&(x, z)| DVec3::new(clean(x * step), 0.0, clean(z * step)))
+        .collect();
+    let jitter = vec2((0.3 * step / wpp) as f32, (-0.2 * step / wpp) as f32);
+    for p in &clicks {
+        let at = screen_of(&h, *p) + jitter;
+        click(&mut h, at);
+    }
+    h.key_press(Key::Enter);
+    h.run_steps(2);
+    settle(&mut h);
+    let app = h.state();
+    let spline = app
+        .doc
+        .graph
+        .nodes()
+        .find(|(_, n)| n.def.id == "curve.spline" && n.id != "curve")
+        .map(|(_, n)| n.id.clone())
+        .expect("a new curve.spline");
+    let wires = app.doc.graph.wires();
+    let source = wires
+        .iter()
+        .find(|w| w.to == spline && w.input == "points")
+        .expect("wired");
+    let points = points_of(app, &source.from);
+    let got: Vec<DVec3> = points.iter().filter_map(Value::as_vec3).collect();
+    assert_eq!(got, clicks, "the snapped clicks, on the XZ plane");
+    assert!(
+        app.canvas.selected.contains(&spline) && app.canvas.selected.contains(&source.from),
+        "both new nodes are selected"
+    );
+    assert!(
+        matches!(
+            app.statuses.get(&spline),
+            Some(cnets_editor::worker::NodeStatus::Ok { .. })
+        ),
+        "the spline evaluates"
+    );
+}
+
+#[test]
+fn picking_a_face_names_its_node_and_row_and_column_and_a_click_selects_the_node() {
+    let mut h = harness_with(
+        "pick",
+        Some(graphs_dir().join("torus-monge.ron")),
+        temp_config("pick"),
+    );
+    view(&mut h, NamedView::Top);
+    settle(&mut h);
+    let picks = h.state().viewport.picks().clone();
+    let (m, mesh) = picks
+        .meshes
+        .iter()
+        .enumerate()
+        .find(|(_, m)| m.geometry.face_row_col(0).is_some())
+        .expect("a previewed quad mesh");
+    // A face in the middle of the grid, seen from the top: its centre.
+    let faces = mesh.geometry.face_count();
+    let target = (0..faces)
+        .map(|f| (f, mesh.geometry.face_corners(f)))
+        .filter(|(_, c)| {
+            let centre = c.iter().copied().sum::<DVec3>() / c.len() as f64;
+            h.state()
+                .viewport
+                .screen_map()
+                .to_screen(centre)
+                .is_some_and(|s| h.state().viewport.rect.shrink(40.0).contains(s))
+        })
+        .max_by(|a, b| {
+            let z = |c: &Vec<DVec3>| c.iter().map(|p| p.z).sum::<f64>();
+            z(&a.1).total_cmp(&z(&b.1))
+        })
+        .expect("a face in view");
+    let centre = target.1.iter().copied().sum::<DVec3>() / 4.0;
+    let at = screen_of(&h, centre);
+    h.hover_at(at);
+    h.run_steps(2);
+    let hit = h
+        .state()
+        .viewport
+        .hover
+        .clone()
+        .expect("something under the pointer");
+    let Hit::Face { mesh: hm, face, .. } = hit else {
+        panic!("a face, not {hit:?}")
+    };
+    // The topmost face under the pointer: the one chosen, or one drawn over it at that point.
+    let (i, j) = picks.meshes[hm].geometry.face_row_col(face).unwrap();
+    let text = cnets_editor::viewport::pick::describe(&picks, &hit);
+    assert!(text.contains(&format!("face (i {i}, j {j})")), "{text}");
+    assert!(text.contains(&picks.meshes[hm].node), "{text}");
+    if hm == m {
+        assert_eq!(face, target.0, "the face under its centre");
+    }
+    click(&mut h, at);
+    assert_eq!(
+        h.state().canvas.focused.as_deref(),
+        Some(picks.meshes[hm].node.as_str()),
+        "clicking selects the node"
+    );
+}
+
+#[test]
+fn the_fold_entry_of_the_legend_frames_the_folded_faces() {
+    let mut h = harness_with(
+        "folds",
+        Some(graphs_dir().join("correction.ron")),
+        temp_config("folds"),
+    );
+    settle(&mut h);
+    let folds = h.state().viewport.picks().folded_faces();
+    assert!(!folds.is_empty(), "correction.ron shows folding inputs");
+    let entry = h
+        .state()
+        .viewport
+        .fold_entry
+        .expect("the legend's fold entry");
+    click(&mut h, entry.center());
+    h.run_steps(3);
+    let app = h.state();
+    assert!(app.viewport.folds_shown);
+    let picks = app.viewport.picks().clone();
+    let map = app.viewport.screen_map();
+    for (m, f) in &folds {
+        for p in picks.meshes[*m].geometry.face_corners(*f) {
+            let s = map.to_screen(p).expect("in front");
+            assert!(
+                app.viewport.rect.expand(1.0).contains(s),
+                "fold corner {p} at {s:?} is framed in {:?}",
+                app.viewport.rect
+            );
+        }
+    }
+    let edges: usize = folds
+        .iter()
+        .map(|(m, f)| picks.meshes[*m].geometry.face_corners(*f).len())
+        .sum();
+    assert_eq!(app.viewport.highlight().len(), edges, "every fold outlined");
+    h.key_press(Key::Escape);
+    h.run_steps(2);
+    assert!(
+        h.state().viewport.highlight().is_empty(),
+        "Esc clears the outline"
+    );
+}
+
+#[test]
+fn the_measure_tool_snaps_to_vertices_and_reports_their_distance() {
+    let mut h = open("measure", POINTS_GRAPH);
+    view(&mut h, NamedView::Top);
+    h.state_mut()
+        .viewport
+        .toggle_tool(Tool::Measure(Default::default()));
+    let a = DVec3::new(0.0, 0.0, 0.0);
+    let b = DVec3::new(6.0, 0.5, 0.25);
+    // A few points off each handle: the clicks snap to them.
+    let (sa, sb) = (screen_of(&h, a), screen_of(&h, b));
+    click(&mut h, sa + vec2(3.0, -2.0));
+    click(&mut h, sb + vec2(-2.0, 3.0));
+    let Tool::Measure(m) = &h.state().viewport.tool else {
+        panic!("still measuring")
+    };
+    let d = m.distance().expect("two points");
+    assert!((d - (b - a).length()).abs() < 1e-12, "{d}");
+    assert!(
+        h.state().message.starts_with("distance "),
+        "{}",
+        h.state().message
+    );
+}
+
+#[test]
+fn named_views_are_one_key_away_and_orthographic() {
+    let mut h = open("views", POINTS_GRAPH);
+    for (key, v) in [
+        (Key::Num1, NamedView::Top),
+        (Key::Num2, NamedView::Front),
+        (Key::Num3, NamedView::Right),
+        (Key::Num4, NamedView::Perspective),
+    ] {
+        // The pointer over the 3D view, nothing typed.
+        let centre = h.state().viewport.rect.center();
+        h.hover_at(centre);
+        h.key_press(key);
+        h.run_steps(3);
+        let vp = &h.state().viewport;
+        assert_eq!(vp.view, v);
+        assert_eq!(vp.camera.is_orthographic(), v != NamedView::Perspective);
+        // Each frames the previewed geometry: every handle is in view.
+        for handle in vp.handle_list() {
+            let s = vp.screen_map().to_screen(handle.position).unwrap();
+            assert!(vp.rect.contains(s), "{v:?}: {handle:?} at {s:?}");
+        }
+    }
+}
+
+#[test]
+fn a_curve_read_from_a_file_is_internalised_as_editable_points() {
+    let dir = temp_config("internalise-files");
+    std::fs::write(
+        dir.join("outline.svg"),
+        r#"<svg xmlns="http://www.w3.org/2000/svg"><polyline points="0,0 10,0 10,5"/></svg>"#,
+    )
+    .unwrap();
+    let file = dir.join("internalise.ron");
+    std::fs::write(
+        &file,
+        r#"(version: 1, nodes: {
+            "read": (type: "io.read_polylines", position: (0.0, 0.0), inputs: {"path": "outline.svg"}),
+        }, edges: [])"#,
+    )
+    .unwrap();
+    let mut h = harness_with("internalise", Some(file), temp_config("internalise"));
+    let message = h.state_mut().internalise("read").expect("internalised");
+    assert!(message.contains("1 curve"), "{message}");
+    settle(&mut h);
+    let app = h.state();
+    let points = app
+        .doc
+        .graph
+        .nodes()
+        .find(|(_, n)| n.def.id == "param.points")
+        .map(|(_, n)| n.id.clone())
+        .expect("a param.points node");
+    let got: Vec<DVec3> = points_of(app, &points)
+        .iter()
+        .filter_map(Value::as_vec3)
+        .collect();
+    assert_eq!(got.len(), 3, "{got:?}");
+    assert!(
+        app.doc
+            .graph
+            .wires()
+            .iter()
+            .any(|w| w.from == points && w.input == "points"),
+        "wired into a polyline"
+    );
+}

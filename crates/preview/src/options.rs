@@ -1,0 +1,170 @@
+//! Display options of the preview: the colour mode and the layers shown.
+
+use cnets_render::ToleranceMap;
+
+/// How surfaces are coloured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ColorMode {
+    /// By face class (paper Fig. 5b: the configurations of a face's two support-strip quads) from
+    /// the construction node's `configurations` output; plain when the node has none.
+    #[default]
+    Configuration,
+    /// By per-face planarity (viridis on a log scale anchored to tolerances: planar below 1e-9
+    /// relative, not planar from 1e-3; `ToleranceMap`).
+    Planarity,
+    /// One colour.
+    Plain,
+}
+
+impl ColorMode {
+    /// All modes, for menus.
+    pub const ALL: [ColorMode; 3] = [
+        ColorMode::Configuration,
+        ColorMode::Planarity,
+        ColorMode::Plain,
+    ];
+
+    /// Menu label.
+    pub fn label(self) -> &'static str {
+        match self {
+            ColorMode::Configuration => "Configuration class",
+            ColorMode::Planarity => "Planarity",
+            ColorMode::Plain => "Plain",
+        }
+    }
+}
+
+/// A toggleable group of preview geometry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Layer {
+    /// Meshes.
+    Surfaces,
+    /// Mesh edges.
+    Edges,
+    /// Polylines and segment sets (directrix, generatrix, …).
+    Curves,
+    /// Cone apices.
+    Apices,
+    /// Torsion-free node axes.
+    Axes,
+    /// Support layers.
+    Supports,
+    /// Other points.
+    Points,
+}
+
+impl Layer {
+    /// All layers, for menus.
+    pub const ALL: [Layer; 7] = [
+        Layer::Surfaces,
+        Layer::Edges,
+        Layer::Curves,
+        Layer::Apices,
+        Layer::Axes,
+        Layer::Supports,
+        Layer::Points,
+    ];
+
+    /// Menu label.
+    pub fn label(self) -> &'static str {
+        match self {
+            Layer::Surfaces => "Surfaces",
+            Layer::Edges => "Edges",
+            Layer::Curves => "Curves (directrix…)",
+            Layer::Apices => "Apices",
+            Layer::Axes => "Torsion-free axes",
+            Layer::Supports => "Support layers",
+            Layer::Points => "Points",
+        }
+    }
+
+    /// Short name for command lines: surfaces, edges, curves, apices, axes, supports, points.
+    pub fn name(self) -> &'static str {
+        match self {
+            Layer::Surfaces => "surfaces",
+            Layer::Edges => "edges",
+            Layer::Curves => "curves",
+            Layer::Apices => "apices",
+            Layer::Axes => "axes",
+            Layer::Supports => "supports",
+            Layer::Points => "points",
+        }
+    }
+
+    /// The layer with this short name.
+    pub fn parse(name: &str) -> Option<Layer> {
+        Layer::ALL
+            .into_iter()
+            .find(|l| l.name().eq_ignore_ascii_case(name.trim()))
+    }
+
+    fn bit(self) -> u8 {
+        1 << (self as u8)
+    }
+}
+
+/// Display options of the viewport: colour mode and visible layers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PreviewOptions {
+    /// Surface colouring.
+    pub color_mode: ColorMode,
+    layers: u8,
+    /// The top of the planarity scale (see [`PreviewOptions::planarity_limit`]), as `f64` bits
+    /// so the options stay `Eq`.
+    planarity_limit: u64,
+}
+
+impl Default for PreviewOptions {
+    fn default() -> Self {
+        Self {
+            color_mode: ColorMode::default(),
+            layers: Layer::ALL.iter().fold(0, |acc, l| acc | l.bit()),
+            planarity_limit: ToleranceMap::DEFAULT.limit.to_bits(),
+        }
+    }
+}
+
+/// The smallest and largest planarity limit a designer can set (the scale's bottom, 1e-9
+/// relative, stays the anchor).
+pub const PLANARITY_LIMIT_RANGE: (f64, f64) = (1e-8, 1.0);
+
+impl PreviewOptions {
+    /// The user-set top of the planarity colour scale: faces from this relative planarity up are
+    /// "not planar" (default 1e-3). The bottom stays anchored at 1e-9 ([`ToleranceMap::DEFAULT`]).
+    pub fn planarity_limit(&self) -> f64 {
+        f64::from_bits(self.planarity_limit)
+    }
+
+    /// Sets the top of the planarity scale; refused (false) unless finite and within
+    /// [`PLANARITY_LIMIT_RANGE`].
+    pub fn set_planarity_limit(&mut self, limit: f64) -> bool {
+        let (lo, hi) = PLANARITY_LIMIT_RANGE;
+        if !(limit.is_finite() && (lo..=hi).contains(&limit)) {
+            return false;
+        }
+        self.planarity_limit = limit.to_bits();
+        true
+    }
+
+    /// The planarity colour scale: planar below 1e-9, not planar from the user-set limit.
+    pub fn planarity_map(&self) -> ToleranceMap {
+        ToleranceMap {
+            planar: ToleranceMap::DEFAULT.planar,
+            limit: self.planarity_limit(),
+        }
+    }
+
+    /// Whether a layer is shown.
+    pub fn shows(&self, layer: Layer) -> bool {
+        self.layers & layer.bit() != 0
+    }
+
+    /// Shows or hides a layer.
+    pub fn set(&mut self, layer: Layer, on: bool) {
+        if on {
+            self.layers |= layer.bit();
+        } else {
+            self.layers &= !layer.bit();
+        }
+    }
+}
