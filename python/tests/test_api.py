@@ -283,19 +283,24 @@ def test_help_reads_like_the_nodes_doc():
 def test_the_gil_is_released_during_evaluation():
     """The main thread keeps running Python while another thread constructs. No time limit: the
     main thread counts its turns during single calls; with the GIL held through a call it could
-    get at most two (when the call's own Python code lets it in), released it runs all along."""
-    d, g = arc(1000), profile(1000)
+    get at most two (when the call's own Python code lets it in), released it runs all along.
+    The grid grows until one call lasts long enough for a few turns (an unoptimized build needs
+    a small one, a release build a larger one)."""
     ticks = 0
     during = []
     done = threading.Event()
 
     def work():
+        n = 200
         for _ in range(30):
-            before = ticks
+            d, g = arc(n), profile(n)
+            before, started = ticks, time.perf_counter()
             cnets.construct(d, g, apex=0.95)
             during.append(ticks - before)
             if during[-1] >= 8:
                 break
+            if time.perf_counter() - started < 0.1:
+                n = min(int(n * 1.5), 1500)
         done.set()
 
     t = threading.Thread(target=work)

@@ -183,8 +183,19 @@ def _python_env():
     return env
 
 
+_PASSED = set()
+
+
 def run_sh(line, scratch, cnets_bin):
-    """Runs one documented shell line as the module docstring says."""
+    """Runs one documented shell line as the module docstring says (a `pip install` line that
+    passed once is not run again)."""
+    if line.startswith("pip install") and line in _PASSED:
+        return
+    _run_sh(line, scratch, cnets_bin)
+    _PASSED.add(line)
+
+
+def _run_sh(line, scratch, cnets_bin):
     words = line.split()
     env = _python_env()
     if words[:2] == ["pip", "install"]:
