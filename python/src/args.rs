@@ -143,7 +143,7 @@ pub fn flag(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<bool> {
     let numpy_bool = obj
         .get_type()
         .name()
-        .is_ok_and(|n| n.to_string() == "bool" || n.to_string() == "bool_");
+        .is_ok_and(|n| n == "bool" || n == "bool_");
     if numpy_bool && let Ok(b) = obj.call_method0("__bool__").and_then(|b| b.extract()) {
         return Ok(b);
     }
