@@ -106,6 +106,7 @@ class Param:
     }
 
     def metadata(self) -> Dict[str, Any]:
+        """The parameter as Hops reads it (the fields ghhops-server writes)."""
         at_least, at_most = {ITEM: (1, 1), LIST: (1, 2147483647), TREE: (-1, -1)}[self.access]
         data: Dict[str, Any] = {
             "Name": self.name,
@@ -138,9 +139,11 @@ class Component:
 
     @property
     def uri(self) -> str:
+        """The component's URL path, percent-encoded (``/my%20tube``)."""
         return quote(self.path)
 
     def metadata(self) -> Dict[str, Any]:
+        """The component as Hops reads it from its URL (``GET /<component>``)."""
         return {
             "Uri": self.uri,
             "Name": self.name,
@@ -473,6 +476,8 @@ class HopsServer:
 
     def eval(self, node_type: str, inputs: Dict[str, Any], outputs: Optional[List[str]] = None,
              title: str = "") -> Dict[str, Any]:
+        """Evaluates a node under the server's memory budget; a failure is a ``HopsError`` whose
+        message starts with the component's ``title``."""
         try:
             return _cnets.eval(node_type, {k: v for k, v in inputs.items() if v is not None},
                                outputs=outputs, max_memory=self.max_memory,
@@ -484,6 +489,8 @@ class HopsServer:
             raise HopsError(f"{title or node_type}: {message}") from None
 
     def curve(self, name: str, value: Any, required: bool = True) -> Optional[Polyline]:
+        """The Rhino curve of input ``name`` as a polyline (``None`` when absent and not
+        ``required``)."""
         if value is None:
             if required:
                 raise HopsError(f"{name}: no curve given")
