@@ -67,9 +67,16 @@ pub fn coerce_item(v: &Value, ty: &ValueType) -> Result<Value, ConvertError> {
         (T::Mesh, Value::QuadMesh(g)) => Value::Mesh(Arc::new(PolygonMesh::from(g.as_ref()))),
         (T::List(inner), _) => return coerce_item(v, inner),
         _ => {
+            // A list is named as such, not by its first item's type: a graph file converts its
+            // literal lists when they are set and `cnets eval` when the node runs, and the error
+            // must read the same through both.
+            let got = match v {
+                Value::List(_) => "a list".to_string(),
+                other => other.type_name(),
+            };
             return Err(ConvertError::Mismatch {
                 expected: ty.to_string(),
-                got: v.type_name(),
+                got,
             });
         }
     })

@@ -2,6 +2,7 @@
 
 use std::borrow::Cow;
 use std::fmt;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::Mutex;
@@ -542,13 +543,38 @@ impl NodeContext {
     /// the output directory, atomically and without following symbolic links out of it
     /// ([`files::write_inside`](crate::files::write_inside)); records and returns the path.
     pub fn write_output(&self, name: &str, bytes: &[u8]) -> Result<PathBuf, NodeError> {
+        let mut file = self.create_output(name)?;
+        file.write_all(bytes)
+            .map_err(|e| NodeError::new(format!("cannot write '{name}': {}", file.error(e))))?;
+        self.commit_output(name, file)
+    }
+
+    /// Opens an export named `name` for streaming (see [`NodeContext::write_output`]): write to
+    /// it (through a `BufWriter`), then [`NodeContext::commit_output`]. Writes stop with
+    /// "cancelled" once the evaluation is cancelled, and a file dropped without its commit leaves
+    /// nothing behind, so an export never holds the whole file in memory and a Ctrl+C stops it
+    /// mid-file.
+    pub fn create_output(&self, name: &str) -> Result<crate::files::AtomicFile, NodeError> {
         let dir = self
             .out_dir
             .as_ref()
             .ok_or_else(|| NodeError::new("no output directory is set for exports"))?;
         let parts =
             crate::files::check_export_name(name).map_err(|e| NodeError::new(e.to_string()))?;
-        let path = crate::files::write_inside(dir, &parts, bytes)
+        let file = crate::files::create_inside(dir, &parts)
+            .map_err(|e| NodeError::new(format!("cannot write '{name}': {e}")))?;
+        Ok(file.with_cancel(self.cancel.clone()))
+    }
+
+    /// Moves an export opened by [`NodeContext::create_output`] into place; records and returns
+    /// the path.
+    pub fn commit_output(
+        &self,
+        name: &str,
+        file: crate::files::AtomicFile,
+    ) -> Result<PathBuf, NodeError> {
+        let path = file
+            .commit()
             .map_err(|e| NodeError::new(format!("cannot write '{name}': {e}")))?;
         self.record_file(path.clone());
         Ok(path)
@@ -613,15 +639,12 @@ impl NodeContext {
     #[cfg(not(target_arch = "wasm32"))]
     fn read_checked_on_disk(&self, name: &str, path: &Path) -> Result<Vec<u8>, NodeError> {
         let access = self.read_access();
-        let real = access
-            .check(path)
-            .map_err(|e| NodeError::new(format!("cannot read '{name}': {e}")))?;
-        if let Ok(meta) = std::fs::metadata(&real) {
-            self.reserve(meta.len(), &format!("reading '{name}'"))?;
-        }
-        access
-            .read(path)
-            .map_err(|e| NodeError::new(format!("cannot read '{name}': {e}")))
+        let failed =
+            |e: crate::files::FileError| NodeError::new(format!("cannot read '{name}': {e}"));
+        // Checked, opened and checked again (what was opened), then read from that descriptor.
+        let opened = access.open(path).map_err(failed)?;
+        self.reserve(opened.len, &format!("reading '{name}'"))?;
+        access.read_opened(path, opened).map_err(failed)
     }
 
     /// [`NodeContext::read_file`] as UTF-8 text.

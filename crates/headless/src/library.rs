@@ -44,7 +44,7 @@ pub fn cluster_def(
 pub fn folder_defs(dir: &Path, registry: &Arc<Registry>) -> Result<Vec<NodeDef>, Failure> {
     let (defs, skipped) = cnets_host::folder_defs(dir, registry)?;
     for m in skipped {
-        eprintln!("warning: skipped {m}");
+        crate::errln!("warning: skipped {m}");
     }
     Ok(defs)
 }

@@ -47,8 +47,31 @@ enum Command {
     Render(commands::render::Args),
 }
 
+/// The exit of a command line clap did not run: help and version on stdout (a failed write is
+/// reported, as for every output), usage errors on stderr.
+fn clap_exit(e: clap::Error) -> ExitCode {
+    let code = u8::try_from(e.exit_code()).unwrap_or(2);
+    if e.use_stderr() {
+        crate::errln!("{}", e.render().to_string().trim_end());
+        return ExitCode::from(code);
+    }
+    let written = output::text(format_args!("{}", e.render())).and_then(|()| output::flush());
+    match written {
+        Ok(()) => ExitCode::from(code),
+        Err(Failure { code, messages }) => {
+            for m in messages {
+                crate::errln!("error: {m}");
+            }
+            ExitCode::from(code)
+        }
+    }
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return clap_exit(e),
+    };
     let renders = match &cli.command {
         Command::Render(_) => true,
         Command::Run(args) => args.renders(),
@@ -74,7 +97,7 @@ fn main() -> ExitCode {
         Ok(code) => code,
         Err(Failure { code, messages }) => {
             for m in messages {
-                eprintln!("error: {m}");
+                crate::errln!("error: {m}");
             }
             ExitCode::from(code)
         }

@@ -1,7 +1,9 @@
-//! Writing to stdout without panicking: `println!` panics when stdout is a closed pipe
-//! (`cnets nodes | head`) or a full disk (`> /dev/full`). [`outln!`] and [`out!`] return the write
-//! error to the command instead (`?` turns it into a [`Failure`]): a broken pipe ends the program
-//! quietly, as other command-line tools do; any other error is one line and exit 2.
+//! Writing to stdout and stderr without panicking: `println!` panics when stdout is a closed pipe
+//! (`cnets nodes | head`) or a full disk (`> /dev/full`), `eprintln!` when stderr is. [`outln!`]
+//! and [`out!`] return the write error to the command instead (`?` turns it into a [`Failure`]): a
+//! broken pipe ends the program quietly, as other command-line tools do; any other error is one
+//! line and exit 2. [`errln!`] writes a line to stderr and ignores a failure (there is nowhere left
+//! to report it): the exit code still tells.
 
 use std::io::{self, Write};
 
@@ -33,6 +35,12 @@ pub fn json_line<T: serde::Serialize + ?Sized>(value: &T) -> Result<(), Failure>
         .map_err(Failure::from)
 }
 
+/// Writes formatted text and a newline to stderr; a failure to write is ignored.
+pub fn error_line(args: std::fmt::Arguments<'_>) {
+    let mut err = io::stderr().lock();
+    let _ = err.write_fmt(args).and_then(|()| err.write_all(b"\n"));
+}
+
 /// Flushes stdout (the end of every command), so a late write error is reported too.
 pub fn flush() -> Result<(), Failure> {
     io::stdout().lock().flush().map_err(Failure::from)
@@ -44,6 +52,14 @@ pub fn flush() -> Result<(), Failure> {
 macro_rules! outln {
     ($($t:tt)*) => {
         $crate::output::line(format_args!($($t)*))?
+    };
+}
+
+/// `eprintln!` that never panics (a write error on stderr is ignored).
+#[macro_export]
+macro_rules! errln {
+    ($($t:tt)*) => {
+        $crate::output::error_line(format_args!($($t)*))
     };
 }
 

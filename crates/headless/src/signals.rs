@@ -29,7 +29,7 @@ pub fn install() {
         flag.store(true, Ordering::SeqCst);
         std::thread::sleep(GRACE);
         cnets_engine::files::temp::remove_own();
-        eprintln!("error: cancelled");
+        crate::errln!("error: cancelled");
         std::process::exit(i32::from(CANCELLED));
     });
 }

@@ -80,18 +80,36 @@ fn bad_export_names_are_refused_by_name() {
 }
 
 #[test]
-fn an_export_removes_stale_temporary_files_of_dead_processes() {
+fn an_export_removes_only_abandoned_temporary_files_of_its_own_scheme() {
     let d = folder("stale");
     let out = d.join("out");
     std::fs::create_dir_all(&out).unwrap();
-    // Above Linux's pid_max: no such process.
-    let stale = out.join(".data.json.4000000000.0.tmp");
+    let old = std::time::SystemTime::now() - Duration::from_secs(120);
+    let aged = |p: &Path| {
+        std::fs::File::options()
+            .write(true)
+            .open(p)
+            .unwrap()
+            .set_modified(old)
+            .unwrap()
+    };
+    // Ours, abandoned (killed mid-write): the marker, no lock, two minutes old.
+    let stale = out.join(".data.json.cnets-tmp-00112233aabbccdd.tmp");
     std::fs::write(&stale, vec![0u8; 1 << 16]).unwrap();
+    aged(&stale);
+    // A user's file of the old shape (a pid that is not running here): not ours to delete.
+    let users = out.join(".data.json.4000000000.0.tmp");
+    std::fs::write(&users, b"mine").unwrap();
+    aged(&users);
     let g = export_graph(&d, "data");
     let o = cnets(&["run", g.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(out.join("data.json").is_file());
-    assert!(!stale.exists(), "the stale temporary file is still there");
+    assert!(
+        !stale.exists(),
+        "the abandoned temporary file is still there"
+    );
+    assert_eq!(std::fs::read(&users).unwrap(), b"mine");
 }
 
 fn read_graph(d: &Path, path: &str) -> PathBuf {

@@ -18,7 +18,7 @@ pub mod svg;
 pub mod table;
 pub mod write;
 
-use write::write_export;
+use write::{stream_export, write_export};
 
 /// Face colours for the glTF meshes: the given list (one per face over all meshes, or one for all),
 /// or the planarity colour map.
@@ -126,12 +126,13 @@ node! {
         let meshes = meshes.unwrap_or_default();
         let lines = lines.unwrap_or_default();
         let polylines = polylines.unwrap_or_default();
-        let text = obj::encode_obj(
-            &meshes.iter().map(|m| &**m).collect::<Vec<_>>(),
-            &lines.iter().map(|l| l.as_slice()).collect::<Vec<_>>(),
-            &polylines.iter().map(|p| &**p).collect::<Vec<_>>(),
-        )?;
-        Ok((write_export(ctx, &name, "obj", text.as_bytes())?,))
+        let meshes: Vec<_> = meshes.iter().map(|m| &**m).collect();
+        let lines: Vec<_> = lines.iter().map(|l| l.as_slice()).collect();
+        let polylines: Vec<_> = polylines.iter().map(|p| &**p).collect();
+        let path = stream_export(ctx, &name, "obj", |out| {
+            obj::write_obj(out, &meshes, &lines, &polylines)
+        })?;
+        Ok((path,))
     }
 }
 
@@ -216,8 +217,7 @@ node! {
         /// The written file.
         path: k::Text,
     ) {
-        let text = table::encode_json(&value)?;
-        Ok((write_export(ctx, &name, "json", text.as_bytes())?,))
+        Ok((stream_export(ctx, &name, "json", |out| table::write_json(out, &value))?,))
     }
 }
 
@@ -235,8 +235,7 @@ node! {
         /// The written file.
         path: k::Text,
     ) {
-        let text = table::encode_csv(&value)?;
-        Ok((write_export(ctx, &name, "csv", text.as_bytes())?,))
+        Ok((stream_export(ctx, &name, "csv", |out| table::write_csv(out, &value))?,))
     }
 }
 

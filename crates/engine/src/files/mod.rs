@@ -2,12 +2,14 @@
 //!
 //! - [`names`]: export names are checked by name first (no control characters, no `.`, `..` or
 //!   empty components, no root).
-//! - [`write`]: exports are written inside the output directory without following any symbolic
-//!   link out of it: each folder is opened relative to the previous one with `O_NOFOLLOW`
-//!   (`openat`, through `rustix`), the file is written under a temporary name, synced and renamed
-//!   in the same folder.
-//! - [`temp`]: temporary files of dead processes are removed when an export writes into their
-//!   folder; a process's own are removed on SIGINT/SIGTERM ([`temp::remove_own`]).
+//! - [`write`]: every write is atomic (a locked temporary file, synced, moved into place) and
+//!   replaces only nothing or a regular file ([`write_file`] for paths a user names, with
+//!   [`check_replaceable`] to ask first; [`write_inside`] / [`create_inside`] for exports, which
+//!   also never follow a symbolic link out of the output directory). Writes stream through
+//!   [`AtomicFile`], which stops at a cancel request.
+//! - [`temp`]: abandoned temporary files (our marker, unlocked, old) are removed when an export
+//!   writes into their folder; a process's own are removed on SIGINT/SIGTERM
+//!   ([`temp::remove_own`]).
 //! - [`read`]: reads are allowed only under the graph file's folder and folders allowed
 //!   explicitly (`--allow-read DIR`); devices, FIFOs and sockets are refused, and files over a size
 //!   limit (1 GB by default). Nodes read through [`NodeContext::read_file`](crate::NodeContext::read_file)
@@ -24,7 +26,9 @@ pub mod write;
 
 pub use names::check_export_name;
 pub use read::{DEFAULT_MAX_READ_BYTES, ReadAccess};
-pub use write::write_inside;
+pub use write::{
+    AtomicFile, check_replaceable, create_file, create_inside, write_file, write_inside,
+};
 
 use std::path::PathBuf;
 
@@ -65,6 +69,12 @@ pub enum FileError {
         /// The limit.
         limit: u64,
     },
+    /// Something other than a regular file is where a write would put its file.
+    #[error("{0} is {1}: a write replaces only a regular file (or creates one)")]
+    NotReplaceable(PathBuf, &'static str),
+    /// The write was cancelled (Ctrl+C, SIGTERM, a newer edit); nothing was written.
+    #[error("{0}: cancelled")]
+    Cancelled(PathBuf),
     /// An operating-system error on a path.
     #[error("{0}: {1}")]
     Io(PathBuf, std::io::Error),

@@ -1,13 +1,29 @@
-//! Temporary files of atomic writes: `.<name>.<pid>.<n>.tmp` beside the target.
+//! Temporary files of atomic writes: `.<name>.cnets-tmp-<random>.tmp` beside the target, created
+//! exclusively and locked (`flock`) by the writing process for as long as it writes.
 //!
-//! A process killed mid-write (`kill -9`) leaves its temporary file behind; the next export into
-//! that folder removes the ones whose process is gone ([`remove_stale`], Linux: a process is gone
-//! when `/proc/<pid>` is). A process's own temporary files are listed while they exist so a
-//! SIGINT/SIGTERM handler can remove them ([`remove_own`]).
+//! A process killed mid-write (`kill -9`) leaves its temporary file behind. The next write into
+//! that folder removes it ([`remove_stale`]) only when it is provably ours and abandoned: its name
+//! carries the marker and a random part no user file has by chance, it is a regular file, nobody
+//! holds its lock (a lock dies with its process, in every PID namespace: two containers sharing
+//! a folder see each other's live writes as locked) and it is older than [`STALE_AFTER`] (the
+//! instant between creating a file and locking it). Process ids are not used: a live writer in
+//! another PID namespace has a pid this process cannot see. A process's own temporary files are
+//! listed while they exist so a SIGINT/SIGTERM handler can remove them ([`remove_own`]).
 
+use std::hash::{BuildHasher, Hasher};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Duration;
+
+/// What every temporary name carries between the target's name and the random part.
+pub const MARKER: &str = ".cnets-tmp-";
+
+/// How old an unlocked temporary file must be before it counts as abandoned.
+pub const STALE_AFTER: Duration = Duration::from_secs(30);
+
+/// The longest target name kept whole in a temporary name (a file name has at most 255 bytes).
+const NAME_KEPT: usize = 200;
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 static OWN: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
@@ -16,13 +32,36 @@ fn own() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
     OWN.lock().unwrap_or_else(|p| p.into_inner())
 }
 
-/// A fresh temporary name for writing `file` (`.<file>.<pid>.<n>.tmp`).
+/// 64 random bits: the OS-seeded hasher of the standard library over a counter, the pid and the
+/// time (no random crate needed for a name that only has to be unique).
+fn random() -> u64 {
+    let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+    h.write_u64(COUNTER.fetch_add(1, Ordering::Relaxed));
+    h.write_u32(std::process::id());
+    if let Ok(t) = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH) {
+        h.write_u128(t.as_nanos());
+    }
+    h.finish()
+}
+
+/// A fresh temporary name for writing `file`: `.<file>.cnets-tmp-<16 hex digits>.tmp` (a long
+/// `file` is cut to its first 200 bytes).
 pub fn temp_name(file: &str) -> String {
-    format!(
-        ".{file}.{}.{}.tmp",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    )
+    let mut cut = file.len().min(NAME_KEPT);
+    while !file.is_char_boundary(cut) {
+        cut -= 1;
+    }
+    format!(".{}{MARKER}{:016x}.tmp", &file[..cut], random())
+}
+
+/// True when `name` has the shape of [`temp_name`]'s names.
+pub fn is_temp_name(name: &str) -> bool {
+    let Some(inner) = name.strip_prefix('.').and_then(|n| n.strip_suffix(".tmp")) else {
+        return false;
+    };
+    inner.rsplit_once(MARKER).is_some_and(|(target, random)| {
+        !target.is_empty() && random.len() == 16 && random.bytes().all(|b| b.is_ascii_hexdigit())
+    })
 }
 
 /// A temporary file listed for [`remove_own`] while this lives.
@@ -52,46 +91,108 @@ pub fn remove_own() -> usize {
         .count()
 }
 
-/// The process id in a temporary name of this scheme (`.<name>.<pid>.<n>.tmp`).
-pub fn temp_owner(name: &str) -> Option<u32> {
-    let inner = name.strip_prefix('.')?.strip_suffix(".tmp")?;
-    let mut parts = inner.rsplitn(3, '.');
-    let n = parts.next()?;
-    let pid = parts.next()?;
-    let target = parts.next()?;
-    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-    (digits(n) && !target.is_empty()).then_some(())?;
-    digits(pid).then(|| pid.parse().ok()).flatten()
-}
-
-/// True when process `pid` is still running (Linux: `/proc/<pid>` exists). Where that cannot be
-/// told, a process counts as alive, so nothing of a live process is removed.
-pub fn alive(pid: u32) -> bool {
-    if pid == std::process::id() {
-        return true;
-    }
-    let proc = Path::new("/proc");
-    if !proc.join("self").exists() {
-        return true;
-    }
-    proc.join(pid.to_string()).exists()
-}
-
-/// Removes, in `dir`, temporary files of this scheme whose process is gone; returns how many.
+/// Removes, in `dir`, the abandoned temporary files of this scheme (see the module); returns how
+/// many. Files of other shapes, live writers' files and anything that is not a regular file stay.
 pub fn remove_stale(dir: &Path) -> usize {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return 0;
-    };
-    entries
-        .flatten()
-        .filter(|e| {
-            let name = e.file_name();
-            let name = name.to_string_lossy();
-            temp_owner(&name).is_some_and(|pid| !alive(pid))
-                && e.file_type().is_ok_and(|t| t.is_file())
-                && std::fs::remove_file(e.path()).is_ok()
-        })
-        .count()
+    imp::remove_stale(dir)
+}
+
+#[cfg(unix)]
+pub(crate) use imp::{create_locked, remove_stale_in};
+
+#[cfg(unix)]
+mod imp {
+    use super::*;
+    use rustix::fd::{AsFd, BorrowedFd, OwnedFd};
+    use rustix::fs::{AtFlags, CWD, FileType, FlockOperation, Mode, OFlags};
+    use rustix::io::Errno;
+
+    /// Creates the temporary file `name` in `dir` (exclusively, without following a link) and
+    /// locks it for as long as the returned descriptor is open.
+    pub(crate) fn create_locked(dir: BorrowedFd<'_>, name: &str) -> Result<OwnedFd, Errno> {
+        let fd = rustix::fs::openat(
+            dir,
+            name,
+            OFlags::WRONLY | OFlags::CREATE | OFlags::EXCL | OFlags::NOFOLLOW | OFlags::CLOEXEC,
+            Mode::from_raw_mode(0o644),
+        )?;
+        // Nobody else can hold the lock of a file just created exclusively: this cannot block.
+        if let Err(e) = rustix::fs::flock(&fd, FlockOperation::NonBlockingLockExclusive) {
+            let _ = rustix::fs::unlinkat(dir, name, AtFlags::empty());
+            return Err(e);
+        }
+        Ok(fd)
+    }
+
+    pub(super) fn remove_stale(dir: &Path) -> usize {
+        match rustix::fs::openat(
+            CWD,
+            dir,
+            OFlags::RDONLY | OFlags::DIRECTORY | OFlags::CLOEXEC,
+            Mode::empty(),
+        ) {
+            Ok(fd) => remove_stale_in(fd.as_fd(), dir),
+            Err(_) => 0,
+        }
+    }
+
+    /// [`remove_stale`] in the open folder `dir` (whose path `shown` is for listing only).
+    pub(crate) fn remove_stale_in(dir: BorrowedFd<'_>, shown: &Path) -> usize {
+        let Ok(entries) = std::fs::read_dir(shown) else {
+            return 0;
+        };
+        entries
+            .flatten()
+            .filter(|e| {
+                let name = e.file_name();
+                let Some(name) = name.to_str() else {
+                    return false;
+                };
+                // The lock is held until the file is gone.
+                is_temp_name(name)
+                    && abandoned(dir, name).is_some_and(|_locked| {
+                        rustix::fs::unlinkat(dir, name, AtFlags::empty()).is_ok()
+                    })
+            })
+            .count()
+    }
+
+    /// The file `name` in `dir`, locked by this process, when it is a regular file older than
+    /// [`STALE_AFTER`] whose lock nobody held.
+    fn abandoned(dir: BorrowedFd<'_>, name: &str) -> Option<OwnedFd> {
+        let fd = rustix::fs::openat(
+            dir,
+            name,
+            OFlags::RDONLY | OFlags::NOFOLLOW | OFlags::NONBLOCK | OFlags::CLOEXEC,
+            Mode::empty(),
+        )
+        .ok()?;
+        let st = rustix::fs::fstat(&fd).ok()?;
+        if FileType::from_raw_mode(st.st_mode) != FileType::RegularFile {
+            return None;
+        }
+        let modified = std::time::UNIX_EPOCH + Duration::from_secs(st.st_mtime.max(0) as u64);
+        let old = std::time::SystemTime::now()
+            .duration_since(modified)
+            .is_ok_and(|age| age > STALE_AFTER);
+        if !old {
+            return None;
+        }
+        rustix::fs::flock(&fd, FlockOperation::NonBlockingLockExclusive).ok()?;
+        // Still the same file under that name (not replaced since it was opened).
+        let now = rustix::fs::statat(dir, name, AtFlags::SYMLINK_NOFOLLOW).ok()?;
+        (now.st_dev == st.st_dev && now.st_ino == st.st_ino).then_some(fd)
+    }
+}
+
+#[cfg(not(unix))]
+mod imp {
+    use super::*;
+
+    /// Without file locks nothing proves a temporary file abandoned: nothing is removed.
+    pub(super) fn remove_stale(_dir: &Path) -> usize {
+        0
+    }
 }
 
 #[cfg(test)]
@@ -99,36 +200,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn owners_are_read_from_temporary_names() {
-        assert_eq!(temp_owner(".mesh.obj.1234.7.tmp"), Some(1234));
-        assert_eq!(temp_owner(".a.b.c.99.0.tmp"), Some(99));
-        assert_eq!(temp_owner("mesh.obj.1234.7.tmp"), None);
-        assert_eq!(temp_owner(".mesh.obj.12x.7.tmp"), None);
-        assert_eq!(temp_owner(".1234.7.tmp"), None);
-        assert_eq!(temp_owner(".obj"), None);
-    }
-
-    #[test]
-    fn stale_files_of_dead_processes_go_and_others_stay() {
-        let dir = std::env::temp_dir().join(format!("cnets-temp-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        // No process has pid 4 000 000 000 (above Linux's pid_max).
-        let dead = dir.join(".m.obj.4000000000.3.tmp");
-        let mine = dir.join(format!(".m.obj.{}.3.tmp", std::process::id()));
-        let other = dir.join(".notes.tmp");
-        for p in [&dead, &mine, &other] {
-            std::fs::write(p, b"x").unwrap();
-        }
-        assert_eq!(
-            remove_stale(&dir),
-            usize::from(Path::new("/proc/self").exists())
+    fn temporary_names_carry_the_marker_and_a_random_part() {
+        let a = temp_name("mesh.obj");
+        assert!(
+            a.starts_with(".mesh.obj.cnets-tmp-") && a.ends_with(".tmp"),
+            "{a}"
         );
-        assert!(mine.exists() && other.exists());
-        let listed = list(mine.clone());
-        assert_eq!(remove_own(), 1);
-        assert!(!mine.exists());
-        drop(listed);
-        std::fs::remove_dir_all(&dir).unwrap();
+        assert!(is_temp_name(&a));
+        assert_ne!(a, temp_name("mesh.obj"));
+        assert!(temp_name(&"é".repeat(300)).len() < 255);
+        for other in [
+            ".mesh.obj.1234.7.tmp",
+            "mesh.obj.cnets-tmp-0123456789abcdef.tmp",
+            ".mesh.obj.cnets-tmp-0123.tmp",
+            ".cnets-tmp-0123456789abcdef.tmp",
+            ".notes.tmp",
+        ] {
+            assert!(!is_temp_name(other), "{other}");
+        }
     }
 }

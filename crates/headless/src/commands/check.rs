@@ -25,7 +25,7 @@ pub struct Args {
 pub fn run(args: Args) -> CommandResult {
     let doc = library::load_graph_allowing(&args.graph, &args.library, &[], &args.allow_read)?;
     for w in &doc.warnings {
-        eprintln!("warning: {w}");
+        crate::errln!("warning: {w}");
     }
     crate::outln!(
         "ok: {}: {} nodes, {} edges{}",

@@ -71,12 +71,7 @@ pub fn run(args: Args) -> CommandResult {
     let inputs = node_inputs(def, read_json(&args.inputs)?)?;
     let out_dir = def.has_flag(NodeFlag::Export).then(|| args.out.clone());
     if let Some(dir) = &out_dir {
-        std::fs::create_dir_all(dir).map_err(|e| {
-            Failure::usage(format!(
-                "{}: cannot create the output directory: {e}",
-                dir.display()
-            ))
-        })?;
+        crate::commands::create_out_dir(dir)?;
     }
     let base = std::env::current_dir().ok();
     let mut ctx = NodeContext::new(out_dir, base);
@@ -99,11 +94,18 @@ pub fn run(args: Args) -> CommandResult {
     let result = evaluate_node(def, &ctx, &inputs);
     let elapsed = start.elapsed();
     if args.timing {
-        eprintln!("time: {:.3} ms", elapsed.as_secs_f64() * 1e3);
+        crate::errln!("time: {:.3} ms", elapsed.as_secs_f64() * 1e3);
+    }
+    if ctx.cancelled() {
+        cnets_engine::files::temp::remove_own();
+        return Err(Failure {
+            code: crate::signals::CANCELLED,
+            messages: vec!["cancelled".to_string()],
+        });
     }
     let outputs = result.map_err(|message| Failure::node(format!("{}: {message}", def.id)))?;
     for w in &outputs.warnings {
-        eprintln!("warning: {}: {w}", def.id);
+        crate::errln!("warning: {}: {w}", def.id);
     }
     let printed: Vec<(&str, &Value)> = def
         .outputs
@@ -114,7 +116,7 @@ pub fn run(args: Args) -> CommandResult {
         .collect();
     crate::output::json_line(&Outputs(&printed))?;
     if let Some(peak) = crate::peak::peak_memory().filter(|_| args.timing) {
-        eprintln!("peak memory: {:.1} MB", peak as f64 / 1e6);
+        crate::errln!("peak memory: {:.1} MB", peak as f64 / 1e6);
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -75,6 +75,9 @@ pub fn run(args: Args) -> CommandResult {
         exact_gradients: !args.finite_differences,
         ..Options::default()
     };
+    if let Some(out) = &args.out {
+        crate::commands::render::check_target(out)?;
+    }
     let ctx = NodeContext::new(None, args.graph.parent().map(Path::to_path_buf));
     if args.check_gradient {
         return check(&args, &doc.graph, &setup, &ctx);
@@ -99,7 +102,7 @@ pub fn run(args: Args) -> CommandResult {
         progress.message(&format!("iteration {} objective {:.6e}", it.iteration, it.objective));
         progress.update(it.iteration, limit);
         if args.verbose {
-            eprintln!(
+            crate::errln!(
                 "iteration {:>4}  objective {:.9e}  gradient {:.3e}  evaluations {}  node runs {}  ({})",
                 it.iteration,
                 it.objective,

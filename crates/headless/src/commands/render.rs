@@ -156,6 +156,13 @@ pub fn legend_blocks(stats: &PreviewStats) -> Vec<LegendBlock> {
     blocks
 }
 
+/// Refuses, before any work, a file argument naming something a write may not replace (a FIFO, a
+/// device, a folder, a link); the write checks again.
+pub fn check_target(path: &Path) -> Result<(), Failure> {
+    cnets_engine::files::check_replaceable(path)
+        .map_err(|e| Failure::usage(format!("cannot write there: {e}")))
+}
+
 /// Renders the previewed geometry of an evaluated graph to a PNG (atomically), with its legend;
 /// returns a one-line summary.
 pub fn render_png(
@@ -176,9 +183,12 @@ pub fn render_png(
         .render(&scene, &camera, width, height)
         .map_err(|e| Failure::node(format!("cannot render: {e}")))?;
     draw_legend(&mut image, &legend_blocks(&stats));
-    image
-        .save_png(png)
-        .map_err(|e| Failure::usage(format!("{}: cannot write: {e}", png.display())))?;
+    let bytes = image
+        .encode_png()
+        .map_err(|e| Failure::node(format!("{}: cannot encode the picture: {e}", png.display())))?;
+    // Atomic, and only over nothing or a regular file (never a FIFO or a device).
+    cnets_engine::files::write_file(png, &bytes)
+        .map_err(|e| Failure::usage(format!("cannot write the picture: {e}")))?;
     let planarity = stats
         .max_planarity
         .map_or(String::new(), |p| format!(", max planarity {p:.1e}"));
@@ -205,6 +215,7 @@ pub fn run(args: Args) -> CommandResult {
     if let Some(limit) = args.planarity_limit {
         look.set_planarity_limit(limit)?;
     }
+    check_target(&args.png)?;
     let doc = library::load_graph(&args.graph, &args.library, &args.sets)?;
     let graph = doc.graph;
     // Pull only what is previewed (exports are not run by a render).
@@ -221,7 +232,7 @@ pub fn run(args: Args) -> CommandResult {
             .result_at(&graph, index)
             .filter(|r| r.is_failure())
         {
-            eprintln!(
+            crate::errln!(
                 "warning: node '{}' ({}): {}",
                 node.id,
                 node.def.id,

@@ -72,6 +72,9 @@ impl Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
+    if let Some(png) = &args.png {
+        crate::commands::render::check_target(png)?;
+    }
     let doc =
         library::load_graph_allowing(&args.graph, &args.library, &args.sets, &args.allow_read)?;
     let graph = doc.graph;
@@ -79,12 +82,7 @@ pub fn run(args: Args) -> CommandResult {
         .nodes()
         .any(|(_, n)| n.def.has_flag(NodeFlag::Export) && n.enabled);
     if exports {
-        std::fs::create_dir_all(&args.out).map_err(|e| {
-            Failure::usage(format!(
-                "{}: cannot create the output directory: {e}",
-                args.out.display()
-            ))
-        })?;
+        crate::commands::create_out_dir(&args.out)?;
     }
     let base = args.graph.parent().map(Path::to_path_buf);
     let mut ctx = NodeContext::new(exports.then(|| args.out.clone()), base);
@@ -115,7 +113,8 @@ pub fn run(args: Args) -> CommandResult {
     });
     let elapsed = start.elapsed();
     progress.finish();
-    if summary.cancelled {
+    // A cancel seen by a node (an export stopped mid-file) counts as much as one between nodes.
+    if summary.cancelled || ctx.cancelled() {
         cnets_engine::files::temp::remove_own();
         return Err(Failure {
             code: crate::signals::CANCELLED,
@@ -181,7 +180,7 @@ pub fn run(args: Args) -> CommandResult {
                 .and_then(NodeResult::outputs)
             {
                 for w in &o.warnings {
-                    eprintln!("warning: node '{}': {w}", node.id);
+                    crate::errln!("warning: node '{}': {w}", node.id);
                 }
             }
         }
@@ -193,7 +192,7 @@ pub fn run(args: Args) -> CommandResult {
         let look = Look::parse("1280x720", "iso", "config", &[])?;
         let line = render_png(&graph, &evaluator, &look, png)?;
         if args.json {
-            eprintln!("{line}");
+            crate::errln!("{line}");
         } else {
             crate::outln!("{line}");
         }

@@ -4,25 +4,63 @@
 //! model units with the shortest decimal text that reads back to the same f64; indices are 1-based
 //! and global.
 
-use std::fmt::Write;
+use std::io::Write;
 
 use cnets_geometry::{DVec3, Line, PolygonMesh, Polyline};
 
-/// Appends a `v` line.
-fn vertex(out: &mut String, p: DVec3) {
-    let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
+/// Writes a `v` line.
+fn vertex(out: &mut dyn Write, p: DVec3) -> std::io::Result<()> {
+    writeln!(out, "v {} {} {}", p.x, p.y, p.z)
 }
 
-/// Encodes meshes, line sets and polylines as OBJ text. Fails when there is nothing to export or a
-/// coordinate is not finite.
+/// Encodes meshes, line sets and polylines as OBJ text (see [`write_obj`]).
 pub fn encode_obj(
     meshes: &[&PolygonMesh],
     lines: &[&[Line]],
     polylines: &[&Polyline],
 ) -> Result<String, String> {
-    let mut out = String::from(
-        "# cnets OBJ export (model units; faces are the mesh polygons, lines are l elements)\n",
-    );
+    let mut out = Vec::new();
+    write_obj(&mut out, meshes, lines, polylines)?;
+    String::from_utf8(out).map_err(|e| e.to_string())
+}
+
+/// Writes meshes, line sets and polylines as OBJ text into `out`, item by item (nothing is held
+/// beyond one line). Fails when there is nothing to export, a coordinate is not finite or the
+/// write fails (a cancelled export says "cancelled").
+pub fn write_obj(
+    out: &mut dyn Write,
+    meshes: &[&PolygonMesh],
+    lines: &[&[Line]],
+    polylines: &[&Polyline],
+) -> Result<(), String> {
+    write_items(out, meshes, lines, polylines).map_err(|e| match e {
+        Failure::Io(e) => e.to_string(),
+        Failure::Invalid(m) => m,
+    })
+}
+
+/// Why OBJ writing stopped.
+enum Failure {
+    Io(std::io::Error),
+    Invalid(String),
+}
+
+impl From<std::io::Error> for Failure {
+    fn from(e: std::io::Error) -> Self {
+        Failure::Io(e)
+    }
+}
+
+fn write_items(
+    out: &mut dyn Write,
+    meshes: &[&PolygonMesh],
+    lines: &[&[Line]],
+    polylines: &[&Polyline],
+) -> Result<(), Failure> {
+    let invalid = |m: String| Failure::Invalid(m);
+    out.write_all(
+        b"# cnets OBJ export (model units; faces are the mesh polygons, lines are l elements)\n",
+    )?;
     let mut next = 1usize;
     let mut written = 0usize;
     for (k, m) in meshes.iter().enumerate() {
@@ -30,19 +68,20 @@ pub fn encode_obj(
             continue;
         }
         if let Some(v) = m.vertices.iter().position(|p| !p.is_finite()) {
-            return Err(format!("mesh {k}, vertex {v} is not finite"));
+            return Err(invalid(format!("mesh {k}, vertex {v} is not finite")));
         }
-        m.validate().map_err(|e| format!("mesh {k}: {e}"))?;
-        let _ = writeln!(out, "o mesh_{k}");
+        m.validate()
+            .map_err(|e| invalid(format!("mesh {k}: {e}")))?;
+        writeln!(out, "o mesh_{k}")?;
         for p in &m.vertices {
-            vertex(&mut out, *p);
+            vertex(out, *p)?;
         }
         for f in m.faces() {
-            out.push('f');
+            out.write_all(b"f")?;
             for v in f {
-                let _ = write!(out, " {}", next + *v as usize);
+                write!(out, " {}", next + *v as usize)?;
             }
-            out.push('\n');
+            out.write_all(b"\n")?;
         }
         next += m.vertices.len();
         written += 1;
@@ -55,15 +94,15 @@ pub fn encode_obj(
             .iter()
             .position(|l| !(l.start.is_finite() && l.end.is_finite()))
         {
-            return Err(format!("line set {k}, segment {s} is not finite"));
+            return Err(invalid(format!("line set {k}, segment {s} is not finite")));
         }
-        let _ = writeln!(out, "o lines_{k}");
+        writeln!(out, "o lines_{k}")?;
         for l in set.iter() {
-            vertex(&mut out, l.start);
-            vertex(&mut out, l.end);
+            vertex(out, l.start)?;
+            vertex(out, l.end)?;
         }
         for s in 0..set.len() {
-            let _ = writeln!(out, "l {} {}", next + 2 * s, next + 2 * s + 1);
+            writeln!(out, "l {} {}", next + 2 * s, next + 2 * s + 1)?;
         }
         next += 2 * set.len();
         written += 1;
@@ -73,25 +112,27 @@ pub fn encode_obj(
             continue;
         }
         if let Some(v) = p.points.iter().position(|q| !q.is_finite()) {
-            return Err(format!("polyline {k}, point {v} is not finite"));
+            return Err(invalid(format!("polyline {k}, point {v} is not finite")));
         }
-        let _ = writeln!(out, "o polyline_{k}");
+        writeln!(out, "o polyline_{k}")?;
         for q in &p.points {
-            vertex(&mut out, *q);
+            vertex(out, *q)?;
         }
-        out.push('l');
+        out.write_all(b"l")?;
         for v in 0..p.points.len() {
-            let _ = write!(out, " {}", next + v);
+            write!(out, " {}", next + v)?;
         }
         if p.closed {
-            let _ = write!(out, " {next}");
+            write!(out, " {next}")?;
         }
-        out.push('\n');
+        out.write_all(b"\n")?;
         next += p.points.len();
         written += 1;
     }
     if written == 0 {
-        return Err("nothing to export: no mesh face, line or polyline".into());
+        return Err(invalid(
+            "nothing to export: no mesh face, line or polyline".into(),
+        ));
     }
-    Ok(out)
+    Ok(())
 }

@@ -3,139 +3,154 @@
 //! mesh `{rows, cols, wrap_rows, wrap_cols, vertices}`, points `[x, y, z]`, non-finite numbers
 //! `null`); CSV files list every vertex found in the value, one per line.
 
-use std::fmt::Write;
+//!
+//! Both are written as streams (`write_json`, `write_csv`): nothing but the value itself and a
+//! buffer is in memory while a file of ten million points is written.
+
+use std::io::Write;
 
 use cnets_engine::Value;
-use cnets_engine::value::json::to_json;
+use cnets_engine::value::json::JsonOut;
 use cnets_geometry::DVec3;
 
 /// The value as pretty-printed JSON text (runner encoding), with a final newline.
 pub fn encode_json(value: &Value) -> Result<String, String> {
+    let mut out = Vec::new();
+    write_json(&mut out, value)?;
+    String::from_utf8(out).map_err(|e| e.to_string())
+}
+
+/// Writes the value as pretty-printed JSON (runner encoding, streamed from the value: no JSON tree
+/// is built), with a final newline.
+pub fn write_json(out: &mut dyn Write, value: &Value) -> Result<(), String> {
     if value.is_null() {
         return Err("nothing to export: the value is empty".into());
     }
-    let mut text = serde_json::to_string_pretty(&to_json(value)).map_err(|e| e.to_string())?;
-    text.push('\n');
-    Ok(text)
+    serde_json::to_writer_pretty(&mut *out, &JsonOut(value)).map_err(|e| e.to_string())?;
+    out.write_all(b"\n").map_err(|e| e.to_string())
 }
 
-/// One CSV row: which item, which vertex, grid position, coordinates.
-struct Row {
+/// Where CSV rows go, counting the vertices and numbering the top-level items.
+struct Rows<'a> {
+    out: &'a mut dyn Write,
     item: usize,
-    index: usize,
-    grid: Option<(usize, usize)>,
-    p: DVec3,
+    written: usize,
 }
 
-/// Collects the vertices of `value` (points, vectors, polylines, lines, quad meshes, meshes, and
-/// lists of them); `item` numbers the top-level items in order.
-fn collect(value: &Value, item: &mut usize, rows: &mut Vec<Row>, top: bool) -> Result<(), String> {
-    let start = rows.len();
-    match value {
-        Value::Point(p) | Value::Vector(p) => rows.push(Row {
-            item: *item,
-            index: 0,
-            grid: None,
-            p: *p,
-        }),
-        Value::Polyline(pl) => rows.extend(pl.points.iter().enumerate().map(|(k, p)| Row {
-            item: *item,
-            index: k,
-            grid: None,
-            p: *p,
-        })),
-        Value::Lines(lines) => rows.extend(
-            lines
-                .iter()
-                .flat_map(|l| [l.start, l.end])
-                .enumerate()
-                .map(|(k, p)| Row {
-                    item: *item,
-                    index: k,
-                    grid: None,
-                    p,
-                }),
-        ),
-        Value::QuadMesh(g) => {
-            g.validate().map_err(|e| e.to_string())?;
-            rows.extend(g.vertices.iter().enumerate().map(|(k, p)| Row {
-                item: *item,
-                index: k,
-                grid: Some((k / g.cols.max(1), k % g.cols.max(1))),
-                p: *p,
-            }))
-        }
-        Value::Mesh(m) => rows.extend(m.vertices.iter().enumerate().map(|(k, p)| Row {
-            item: *item,
-            index: k,
-            grid: None,
-            p: *p,
-        })),
-        Value::List(items) => {
-            // A list of points is one item; any other list holds items.
-            if items
-                .iter()
-                .all(|v| matches!(v, Value::Point(_) | Value::Vector(_)))
-            {
-                rows.extend(items.iter().enumerate().filter_map(|(k, v)| {
-                    v.as_vec3().map(|p| Row {
-                        item: *item,
-                        index: k,
-                        grid: None,
-                        p,
-                    })
-                }));
-            } else {
-                for v in items.iter() {
-                    collect(v, item, rows, true)?;
-                }
-                return Ok(());
-            }
-        }
-        Value::Null => return Ok(()),
-        other => {
-            return Err(format!(
-                "cannot write {} as a vertex table: give points, polylines, lines or meshes",
-                other.type_name()
-            ));
-        }
+/// Why a CSV table stopped.
+enum Failure {
+    Io(std::io::Error),
+    Invalid(String),
+}
+
+impl From<std::io::Error> for Failure {
+    fn from(e: std::io::Error) -> Self {
+        Failure::Io(e)
     }
-    if top && rows.len() > start {
-        *item += 1;
-    }
-    Ok(())
 }
 
 /// A number as the runner's JSON writes it (`null` for non-finite: an empty CSV field).
-fn num(x: f64) -> String {
-    serde_json::Number::from_f64(x).map_or_else(String::new, |n| n.to_string())
+fn num(out: &mut dyn Write, x: f64) -> std::io::Result<()> {
+    match serde_json::Number::from_f64(x) {
+        Some(n) => write!(out, "{n}"),
+        None => Ok(()),
+    }
 }
 
-/// The vertices of `value` as CSV: header `item,index,row,col,x,y,z`; `row`/`col` are filled for quad
-/// meshes (vertex (i, j)) and empty otherwise.
+impl Rows<'_> {
+    /// One row: which item, which vertex, grid position, coordinates.
+    fn row(&mut self, index: usize, grid: Option<(usize, usize)>, p: DVec3) -> Result<(), Failure> {
+        write!(self.out, "{},{},", self.item, index)?;
+        if let Some((i, j)) = grid {
+            write!(self.out, "{i},{j},")?;
+        } else {
+            self.out.write_all(b",,")?;
+        }
+        num(self.out, p.x)?;
+        self.out.write_all(b",")?;
+        num(self.out, p.y)?;
+        self.out.write_all(b",")?;
+        num(self.out, p.z)?;
+        self.out.write_all(b"\n")?;
+        self.written += 1;
+        Ok(())
+    }
+
+    fn points(&mut self, points: impl Iterator<Item = DVec3>) -> Result<(), Failure> {
+        points
+            .enumerate()
+            .try_for_each(|(k, p)| self.row(k, None, p))
+    }
+
+    /// Writes the vertices of `value` (points, vectors, polylines, lines, quad meshes, meshes, and
+    /// lists of them); a top-level item that wrote rows advances the item number.
+    fn value(&mut self, value: &Value, top: bool) -> Result<(), Failure> {
+        let start = self.written;
+        match value {
+            Value::Point(p) | Value::Vector(p) => self.row(0, None, *p)?,
+            Value::Polyline(pl) => self.points(pl.points.iter().copied())?,
+            Value::Lines(lines) => self.points(lines.iter().flat_map(|l| [l.start, l.end]))?,
+            Value::QuadMesh(g) => {
+                g.validate().map_err(|e| Failure::Invalid(e.to_string()))?;
+                let cols = g.cols.max(1);
+                for (k, p) in g.vertices.iter().enumerate() {
+                    self.row(k, Some((k / cols, k % cols)), *p)?;
+                }
+            }
+            Value::Mesh(m) => self.points(m.vertices.iter().copied())?,
+            Value::List(items) => {
+                // A list of points is one item; any other list holds items.
+                if items
+                    .iter()
+                    .all(|v| matches!(v, Value::Point(_) | Value::Vector(_)))
+                {
+                    self.points(items.iter().filter_map(Value::as_vec3))?;
+                } else {
+                    for v in items.iter() {
+                        self.value(v, true)?;
+                    }
+                    return Ok(());
+                }
+            }
+            Value::Null => return Ok(()),
+            other => {
+                return Err(Failure::Invalid(format!(
+                    "cannot write {} as a vertex table: give points, polylines, lines or meshes",
+                    other.type_name()
+                )));
+            }
+        }
+        if top && self.written > start {
+            self.item += 1;
+        }
+        Ok(())
+    }
+}
+
+/// The vertices of `value` as CSV text (see [`write_csv`]).
 pub fn encode_csv(value: &Value) -> Result<String, String> {
-    let mut rows = Vec::new();
-    let mut item = 0;
-    collect(value, &mut item, &mut rows, true)?;
-    if rows.is_empty() {
+    let mut out = Vec::new();
+    write_csv(&mut out, value)?;
+    String::from_utf8(out).map_err(|e| e.to_string())
+}
+
+/// Writes the vertices of `value` as CSV, row by row: header `item,index,row,col,x,y,z`;
+/// `row`/`col` are filled for quad meshes (vertex (i, j)) and empty otherwise.
+pub fn write_csv(out: &mut dyn Write, value: &Value) -> Result<(), String> {
+    let message = |f: Failure| match f {
+        Failure::Io(e) => e.to_string(),
+        Failure::Invalid(m) => m,
+    };
+    out.write_all(b"item,index,row,col,x,y,z\n")
+        .map_err(|e| e.to_string())?;
+    let mut rows = Rows {
+        out,
+        item: 0,
+        written: 0,
+    };
+    rows.value(value, true).map_err(message)?;
+    if rows.written == 0 {
         return Err("nothing to export: the value has no vertices".into());
     }
-    let mut out = String::from("item,index,row,col,x,y,z\n");
-    for r in rows {
-        let (i, j) = r.grid.map_or((String::new(), String::new()), |(i, j)| {
-            (i.to_string(), j.to_string())
-        });
-        let _ = writeln!(
-            out,
-            "{},{},{},{},{},{},{}",
-            r.item,
-            r.index,
-            i,
-            j,
-            num(r.p.x),
-            num(r.p.y),
-            num(r.p.z)
-        );
-    }
-    Ok(out)
+    Ok(())
 }
