@@ -769,10 +769,21 @@ impl EditorApp {
     }
 
     /// Adds a drawn curve as a `param.points` node wired into a `curve.spline` (or
-    /// `curve.polyline`), placed on the canvas right of the selection (else in the middle of the
+    /// `curve.polyline`), placed on the canvas below the selection (else in the middle of the
     /// canvas), and selects both (one undo step).
     pub fn add_curve(&mut self, curve: crate::viewport::DrawnCurve) {
-        let at = self.new_node_place();
+        // Below the selection (the curve drawn before: curves stack up on the left, as
+        // parameters do in Grasshopper), else in the middle of the canvas.
+        let at = match self.canvas.bounds_of(&self.canvas.targets()) {
+            Some(r) => {
+                let p = self.canvas.free_spot(
+                    egui::pos2(r.left(), r.bottom() + 40.0),
+                    egui::vec2(460.0, 140.0),
+                );
+                [p.x, p.y]
+            }
+            None => self.new_node_place(),
+        };
         match self.edit_created(Edit::AddCurves {
             curves: vec![curve],
             at,
@@ -845,15 +856,14 @@ impl EditorApp {
     }
 
     /// Where new nodes go on the canvas: right of the selected (or focused) nodes, else the
-    /// middle of the visible canvas.
+    /// middle of the visible canvas — moved down past any node there.
     pub fn new_node_place(&self) -> [f32; 2] {
-        match self.canvas.bounds_of(&self.canvas.targets()) {
-            Some(r) => [r.right() + 60.0, r.top()],
-            None => {
-                let c = self.canvas.to_canvas(self.canvas.screen_rect().center());
-                [c.x, c.y]
-            }
-        }
+        let start = match self.canvas.bounds_of(&self.canvas.targets()) {
+            Some(r) => egui::pos2(r.right() + 60.0, r.top()),
+            None => self.canvas.to_canvas(self.canvas.screen_rect().center()),
+        };
+        let p = self.canvas.free_spot(start, egui::vec2(460.0, 140.0));
+        [p.x, p.y]
     }
 
     /// Applies an edit and returns the nodes it created (`None` when refused: the message says
@@ -1007,7 +1017,10 @@ impl EditorApp {
                     }
                 }
             }
-            MenuAction::AddNode => self.palette.open_at([0.0, 0.0]),
+            MenuAction::AddNode => {
+                let at = self.new_node_place();
+                self.palette.open_at(at);
+            }
             MenuAction::Fit => self.viewport.fit(),
             MenuAction::FitCanvas => self.canvas.fit(),
             MenuAction::Arrange => {

@@ -374,6 +374,26 @@ impl Canvas {
         self.rects.get(node).copied()
     }
 
+    /// The first place at or below `at` (canvas coordinates) where a box of `size` overlaps no
+    /// node drawn in the last frame.
+    pub fn free_spot(&self, at: Pos2, size: egui::Vec2) -> Pos2 {
+        let mut p = at;
+        for _ in 0..200 {
+            let area = Rect::from_min_size(p, size).expand(10.0);
+            match self
+                .rects
+                .values()
+                .filter(|r| r.intersects(area))
+                .map(|r| r.bottom())
+                .reduce(f32::max)
+            {
+                Some(bottom) => p.y = bottom + 20.0,
+                None => return p,
+            }
+        }
+        p
+    }
+
     /// The canvas rectangle around the nodes `ids` measured in the last frame.
     pub fn bounds_of(&self, ids: &[String]) -> Option<Rect> {
         ids.iter()

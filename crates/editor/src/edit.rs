@@ -115,7 +115,7 @@ pub enum Edit {
 }
 
 /// Canvas spacing of the nodes [`Edit::AddCurves`] places.
-const CURVE_NODE_STEP: [f32; 2] = [230.0, 150.0];
+const CURVE_NODE_STEP: [f32; 2] = [270.0, 150.0];
 
 /// Applies an edit to a document as one undoable step. Returns the ids of the nodes the edit
 /// created (the cluster node, the duplicates). Errors are messages for the status bar; the graph

@@ -234,7 +234,7 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                 mc.depth > 0,
             );
         });
-        ui.menu_button("Add", |ui| {
+        let add = ui.menu_button("Add", |ui| {
             pick(
                 ui,
                 "Node…",
@@ -246,10 +246,13 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
             ui.weak(format!("library: {}", mc.library.display()));
             pick(ui, "Library folder…", "", MenuAction::LibraryFolder, true);
         });
-        ui.menu_button("View", |ui| {
+        crate::probe::record(ui.ctx(), "Add", add.response.rect);
+        let view = ui.menu_button("View", |ui| {
             for v in NamedView::ALL {
-                let r = ui
-                    .radio(mc.view.view == v, format!("{}   {}", v.label(), v.shortcut()));
+                let r = ui.radio(
+                    mc.view.view == v,
+                    format!("{}   {}", v.label(), v.shortcut()),
+                );
                 crate::probe::record(ui.ctx(), v.label(), r.rect);
                 if r.clicked() {
                     pick_view = Some(MenuAction::View(v));
@@ -346,6 +349,7 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                 }
             }
         });
+        crate::probe::record(ui.ctx(), "View", view.response.rect);
     });
     pick_preview
         .map(MenuAction::SetPreview)

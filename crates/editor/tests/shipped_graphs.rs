@@ -211,4 +211,3 @@ fn every_shipped_graph_opens_framed_with_node_text_at_least_10_px() {
     }
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
-

@@ -200,3 +200,294 @@ fn every_shipped_graph_opens_with_its_design_drawn_in_the_real_window() {
     assert!(failed.is_empty(), "blank or failed:\n{}", failed.join("\n"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+// ------------------------------------------------------------------------------------------------
+// Design in space (issue 25) in the real window: scripted sessions of pointer events and keys
+// (`cnets-editor --drive-script NAME`, src/bin/cnets-editor/scenarios.rs and canopy.rs).
+
+/// A graph of four points (preview on) drawn as a spline, for the handle and draw scripts.
+const POINTS_GRAPH: &str = r#"(
+    version: 1,
+    nodes: {
+        "pts": (
+            type: "param.points",
+            position: (0.0, 0.0),
+            preview: true,
+            inputs: {
+                "points": [(0.0, 0.0, 0.0), (2.0, 1.0, 0.0), (4.0, -1.0, 0.0), (6.0, 0.5, 0.25)],
+            },
+        ),
+        "curve": (type: "curve.spline", position: (300.0, 0.0)),
+    },
+    edges: ["pts.points -> curve.points"],
+)"#;
+
+/// Where the scripts' screenshots are kept (looked at by a person: `target/tmp/design-in-space`).
+fn shots_dir() -> std::path::PathBuf {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("design-in-space");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs script `name` on `graph` (a file written into a scratch folder, which is also the
+/// working folder) in the real window; returns its `key = value` lines and the folder.
+fn run_script(
+    name: &str,
+    graph: Option<(&str, &str)>,
+    example: Option<&str>,
+) -> (
+    std::collections::HashMap<String, String>,
+    std::path::PathBuf,
+) {
+    let dir = std::env::temp_dir().join(format!("cnets-script-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = match (graph, example) {
+        (Some((file, text)), _) => {
+            let path = dir.join(file);
+            std::fs::write(&path, text).unwrap();
+            path
+        }
+        (None, Some(example)) => {
+            std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../graphs"))
+                .join(example)
+        }
+        (None, None) => panic!("a graph"),
+    };
+    let out = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1600x1000x24"])
+        .arg(env!("CARGO_BIN_EXE_cnets-editor"))
+        .arg(&file)
+        .args(["--drive-script", name, "--drive-out"])
+        .arg(shots_dir())
+        .args(["--size", "1400x860"])
+        .current_dir(&dir)
+        .env("CNETS_EDITOR_HOME", dir.join("home"))
+        .output()
+        .expect("xvfb-run runs");
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success() && stdout.contains("script: end"),
+        "script {name}: {}\n{stdout}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines = stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("script: "))
+        .filter_map(|l| l.split_once(" = "))
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect();
+    (lines, dir)
+}
+
+/// `x,y,z x,y,z …` as points.
+fn points(text: &str) -> Vec<[f64; 3]> {
+    text.split_whitespace()
+        .map(|p| {
+            let v: Vec<f64> = p.split(',').map(|c| c.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect()
+}
+
+/// A multiple of a grid step as the editor stores it (the nearest short decimal).
+fn on_grid(k: f64, step: f64) -> f64 {
+    format!("{:.9}", k * step).parse().unwrap()
+}
+
+fn skip() -> bool {
+    std::env::var_os("CNETS_SKIP_WINDOW_TEST").is_some()
+}
+
+#[test]
+fn a_handle_dragged_in_the_top_view_moves_by_the_grid_snapped_amount_in_the_real_window() {
+    if skip() {
+        return;
+    }
+    let (lines, _) = run_script("handles", Some(("points.ron", POINTS_GRAPH)), None);
+    assert_eq!(lines["view"], "Top");
+    let step: f64 = lines["step"].parse().unwrap();
+    let (before, after, undone) = (
+        points(&lines["before"]),
+        points(&lines["after"]),
+        points(&lines["undone"]),
+    );
+    // 3.3 steps right and 1.7 steps down on screen: snapped to 3 and 2 grid steps.
+    let expected = [
+        on_grid(2.0 / step + 3.0, step),
+        on_grid(1.0 / step - 2.0, step),
+        0.0,
+    ];
+    assert_eq!(after[1], expected, "grid {step}");
+    for k in [0, 2, 3] {
+        assert_eq!(after[k], before[k], "point {k} untouched");
+    }
+    assert_eq!(undone, before, "Ctrl+Z restores the points");
+}
+
+#[test]
+fn a_four_point_curve_drawn_in_the_front_view_becomes_points_and_a_spline_in_the_real_window() {
+    if skip() {
+        return;
+    }
+    let (lines, _) = run_script("draw", Some(("points.ron", POINTS_GRAPH)), None);
+    assert_eq!(lines["view"], "Front");
+    let step: f64 = lines["step"].parse().unwrap();
+    let expected: Vec<[f64; 3]> = [(0.0, 0.0), (2.0, 3.0), (5.0, 3.0), (7.0, 0.0)]
+        .iter()
+        .map(|&(x, z)| [on_grid(x, step), 0.0, on_grid(z, step)])
+        .collect();
+    assert_eq!(
+        points(&lines["drawn"]),
+        expected,
+        "the snapped clicks on XZ"
+    );
+    assert!(lines["wires"].contains("points.points->spline.points"));
+    assert_eq!(lines["splines"], "curve spline");
+    assert_eq!(
+        lines["selected"], "points spline",
+        "both new nodes selected"
+    );
+}
+
+#[test]
+fn picking_a_face_names_its_node_and_row_and_column_in_the_real_window() {
+    if skip() {
+        return;
+    }
+    let (lines, _) = run_script("pick", None, Some("torus-monge.ron"));
+    let expected = &lines["expected"];
+    let (node, face) = expected.split_once(' ').unwrap();
+    assert!(
+        lines["hover"].starts_with(&format!("{node} · mesh | {face}")),
+        "{lines:?}"
+    );
+    assert!(lines["hover"].contains("planarity"), "{lines:?}");
+    assert_eq!(lines["focused"], node, "the click selects the node");
+}
+
+#[test]
+fn the_fold_entry_frames_and_outlines_the_folds_in_the_real_window() {
+    if skip() {
+        return;
+    }
+    let (lines, _) = run_script("folds", None, Some("correction.ron"));
+    let folds: usize = lines["folds"].parse().unwrap();
+    assert!(folds > 0, "correction.ron shows folds");
+    assert_eq!(lines["framed"], "true");
+    assert_eq!(
+        lines["outlined"],
+        (4 * folds).to_string(),
+        "four edges a fold"
+    );
+}
+
+/// The bounding box of a GLB's POSITION accessors.
+fn glb_size(path: &std::path::Path) -> [f64; 3] {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[0..4], b"glTF");
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + len]).unwrap();
+    let accessors = json["accessors"].as_array().unwrap();
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for mesh in json["meshes"].as_array().unwrap() {
+        for prim in mesh["primitives"].as_array().unwrap() {
+            let a = &accessors[prim["attributes"]["POSITION"].as_u64().unwrap() as usize];
+            for k in 0..3 {
+                lo[k] = lo[k].min(a["min"][k].as_f64().unwrap());
+                hi[k] = hi[k].max(a["max"][k].as_f64().unwrap());
+            }
+        }
+    }
+    [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]]
+}
+
+#[test]
+fn the_canopy_brief_played_with_pointer_events_only() {
+    if skip() {
+        return;
+    }
+    let started = std::time::Instant::now();
+    let (lines, dir) = run_script(
+        "canopy",
+        Some(("canopy.ron", "(version: 1, nodes: {}, edges: [])")),
+        None,
+    );
+    eprintln!(
+        "canopy: scripted design {} s, whole run {:.1} s; screenshots in {}",
+        lines["seconds"],
+        started.elapsed().as_secs_f64(),
+        shots_dir().display()
+    );
+    // Drawn on the grid, exactly: the S-curve in Top, the arch in Front.
+    for key in ["top step", "front step"] {
+        let step: f64 = lines[key].parse().unwrap();
+        assert!(
+            (1.0 / step - (1.0 / step).round()).abs() < 1e-9,
+            "{key}: a grid of {step} m holds whole metres"
+        );
+    }
+    assert_eq!(
+        points(&lines["directrix points"]),
+        [
+            [0.0, 0.0, 0.0],
+            [1.0, 2.0, 0.0],
+            [-1.0, 4.0, 0.0],
+            [0.0, 6.0, 0.0]
+        ]
+    );
+    assert_eq!(
+        points(&lines["arch points"]),
+        [
+            [-5.0, 0.0, 0.0],
+            [-3.0, 0.0, 3.0],
+            [0.0, 0.0, 4.0],
+            [3.0, 0.0, 3.0],
+            [5.0, 0.0, 0.0]
+        ]
+    );
+    assert!(lines["wires"].contains("spline.curve->construct.directrix"));
+    assert!(lines["wires"].contains("spline_2.curve->construct.generatrix"));
+    // The cone-net's size against the grid: 4 m high (the arch's top, to its sampling), and the
+    // corner's W × D × H is the box of what is shown.
+    let size = points(&lines["mesh size"])[0];
+    assert!((size[2] - 4.0).abs() < 0.01, "height {}", size[2]);
+    assert!(size[0] >= 10.0, "at least the arch's 10 m wide: {size:?}");
+    let folds: usize = lines["folds before"].parse().unwrap();
+    assert!(folds > 0, "the drawn design folds");
+    assert_eq!(lines["outlined"], (4 * folds).to_string());
+    // Repaired with the assistance dragged to about ½.
+    let alpha: f64 = lines["assistance"].parse().unwrap();
+    assert!((0.45..0.6).contains(&alpha), "{alpha}");
+    assert_eq!(lines["folds after"], "0", "no fold left");
+    assert!(lines["corrections"].contains("items"), "{lines:?}");
+    // Exported: the GLB holds the repaired cone-net at its size.
+    let glb = dir.join("canopy.glb");
+    let dxf = dir.join("canopy.dxf");
+    assert!(glb.is_file() && dxf.is_file(), "{lines:?}");
+    assert!(
+        std::fs::read_to_string(&dxf)
+            .unwrap()
+            .contains("LWPOLYLINE")
+    );
+    let exported = glb_size(&glb);
+    let shown = points(&lines["mesh size after"])[0];
+    for k in 0..3 {
+        assert!(
+            (exported[k] - shown[k]).abs() < 1e-3,
+            "GLB {exported:?} vs shown {shown:?}"
+        );
+    }
+    for shot in [
+        "canopy-1-top-directrix",
+        "canopy-2-front-arch",
+        "canopy-3-constructed",
+        "canopy-4-folds",
+        "canopy-5-repaired",
+    ] {
+        assert!(shots_dir().join(format!("{shot}.png")).is_file());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -268,7 +268,8 @@ fn orthographic_views_frame_tightly_keep_sizes_and_zoom_towards_a_point() {
                 // The wheel's zoom keeps the point under the pointer in place.
                 let (x, y) = (0.6, -0.3);
                 let h = camera.half_height_at_target();
-                let under = camera.target + camera.right() * (x * h * aspect) + camera.up() * (y * h);
+                let under =
+                    camera.target + camera.right() * (x * h * aspect) + camera.up() * (y * h);
                 let before = camera.project(under, aspect).unwrap();
                 camera.zoom_at(0.5, x, y, aspect);
                 let after = camera.project(under, aspect).unwrap();

@@ -512,6 +512,9 @@ impl Viewport {
             Tool::Draw(d) => {
                 if enter && let Some(curve) = d.finish() {
                     actions.push(ViewportAction::AddCurve(curve));
+                    // As a Rhino command ends with its curve.
+                    self.tool = Tool::Select;
+                    return;
                 }
                 if backspace {
                     d.undo_point();
@@ -742,16 +745,21 @@ impl Viewport {
         let at = response.interact_pointer_pos().or(hover);
         match &mut self.tool {
             Tool::Draw(d) => {
-                if response.double_clicked() {
-                    if let Some(curve) = d.finish() {
-                        actions.push(ViewportAction::AddCurve(curve));
-                    }
+                let finished = if response.double_clicked() {
+                    d.finish()
                 } else if clicked
                     && let Some(at) = at
                     && let Some(p) = self.tool_point
                     && let draw::Click::Finished(curve) = d.click(&map, at, p)
                 {
+                    Some(curve)
+                } else {
+                    None
+                };
+                if let Some(curve) = finished {
                     actions.push(ViewportAction::AddCurve(curve));
+                    // As a Rhino command ends with its curve.
+                    self.tool = Tool::Select;
                 }
             }
             Tool::Measure(m) => {

@@ -145,12 +145,7 @@ fn draw() -> Vec<Step> {
                 .collect::<Vec<_>>()
                 .join(" ")
         }),
-        print("drawn", |app| {
-            nodes_of(app, "param.points")
-                .last()
-                .map(|id| points_text(app, id))
-                .unwrap_or_default()
-        }),
+        print("drawn", |app| points_text(app, "points")),
         print("selected", |app| app.canvas.selected.join(" ")),
         Step::Shot("draw-front"),
         Step::Quit,

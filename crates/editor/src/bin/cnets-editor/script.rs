@@ -32,6 +32,9 @@ pub enum Step {
     Click(Target, Modifiers),
     /// Drag with a button from one target to another in several moves (modifiers held).
     Drag(Target, Target, PointerButton, Modifiers),
+    /// Press on a target and move by a step each frame until the check holds, then release (a
+    /// drag value dragged to a value).
+    DragUntil(Target, egui::Vec2, Box<dyn Fn(&EditorApp) -> bool>),
     /// Turn the wheel over a target (points; positive away from you) until the check holds.
     WheelUntil(Target, f32, Box<dyn Fn(&EditorApp) -> bool>),
     /// Print `script: key = value`.
@@ -63,6 +66,8 @@ pub struct Script {
     shot_requested: bool,
     started: std::time::Instant,
     settled_frames: u32,
+    /// Frames since a drag-until's check held (its release goes out in the first).
+    released: u32,
 }
 
 fn say(key: &str, value: &str) {
@@ -85,6 +90,7 @@ impl Script {
             shot_requested: false,
             started: std::time::Instant::now(),
             settled_frames: 0,
+            released: 0,
         }
     }
 
@@ -182,6 +188,31 @@ impl Script {
                     _ => {}
                 }
             }
+            Step::DragUntil(target, by, done) => match phase {
+                0 => {
+                    if let Some(p) = target(app, ctx) {
+                        self.pointer = p;
+                        self.drag = Some((p, p));
+                        raw.events.push(Event::PointerMoved(p));
+                    }
+                }
+                1 => raw.events.push(button(
+                    self.pointer,
+                    PointerButton::Primary,
+                    true,
+                    Modifiers::NONE,
+                )),
+                _ if done(app) => raw.events.push(button(
+                    self.pointer,
+                    PointerButton::Primary,
+                    false,
+                    Modifiers::NONE,
+                )),
+                _ => {
+                    self.pointer += *by;
+                    raw.events.push(Event::PointerMoved(self.pointer));
+                }
+            },
             Step::WheelUntil(target, points, _) => {
                 if let Some(p) = target(app, ctx) {
                     self.pointer = p;
@@ -253,6 +284,18 @@ impl Script {
             Step::WheelUntil(_, _, done) => {
                 if done(app) {
                     self.next();
+                }
+            }
+            Step::DragUntil(_, _, done) => {
+                if phase == 1 && self.drag.is_none() {
+                    self.phase = 0; // wait for the target
+                } else if phase > 2 && done(app) {
+                    // The release was injected before this frame.
+                    self.released += 1;
+                    if self.released >= 2 {
+                        self.released = 0;
+                        self.next();
+                    }
                 }
             }
             Step::Print(key, value) => {
