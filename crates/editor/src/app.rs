@@ -784,19 +784,16 @@ impl EditorApp {
             }
             None => self.new_node_place(),
         };
-        match self.edit_created(Edit::AddCurves {
+        if let Some(created) = self.edit_created(Edit::AddCurves {
             curves: vec![curve],
             at,
         }) {
-            Some(created) => {
-                self.message = format!(
-                    "added {}: wire its curve into a construction",
-                    created.join(" and ")
-                );
-                self.canvas.focused = created.last().cloned();
-                self.canvas.select(created);
-            }
-            None => {}
+            self.message = format!(
+                "added {}: wire its curve into a construction",
+                created.join(" and ")
+            );
+            self.canvas.focused = created.last().cloned();
+            self.canvas.select(created);
         }
     }
 
