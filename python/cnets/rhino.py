@@ -16,7 +16,7 @@ gives the very numbers cnets computed, far from the origin as well.
 
 from __future__ import annotations
 
-from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 import warnings
 

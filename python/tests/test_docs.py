@@ -24,7 +24,6 @@ import time
 import types
 import urllib.request
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -4,7 +4,6 @@ solutions exact to the last bit, every failure a Hops response with one sentence
 limit refused with 413, library graphs at safe URLs, concurrent requests all answered."""
 
 import concurrent.futures
-import http.client
 import json
 import socket
 import subprocess
