@@ -386,7 +386,9 @@ mod tests {
         eprintln!("40 000 segments joined in {took:?}");
         assert_eq!(joined.len(), 1);
         assert_eq!(joined[0].points.len(), n + 1);
-        assert!(took.as_secs_f64() < 2.0, "{took:?}");
+        // A figure (≈ 1 s in the test build on the 2-core machine), with a bound that no busy
+        // machine reaches and a hang or a cubic search would (issue 30: 30× the measured time).
+        assert!(took.as_secs_f64() < 30.0, "{took:?}");
     }
 
     #[test]
