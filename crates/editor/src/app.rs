@@ -17,6 +17,7 @@ use crate::edit::{self, Edit};
 use crate::export;
 use crate::file_dialog::{FileDialog, Outcome, Purpose};
 use crate::library::{ClusterWatch, Library, LibraryEntry};
+use crate::list_editor::ListEditors;
 use crate::load_failure::LoadFailure;
 use crate::menus::{self, MenuAction, MenuContext};
 use crate::optimization::OptimizationPanel;
@@ -136,6 +137,8 @@ pub struct EditorApp {
     pub optimization: OptimizationPanel,
     /// Whether the parameter panel (View › Parameters) is shown.
     pub parameters_open: bool,
+    /// The open table windows of literal lists (a node's **Edit…**).
+    pub list_editors: ListEditors,
     /// The pointer's last position seen by [`EditorApp::raw_input`].
     pointer: Option<egui::Pos2>,
     /// The opened clusters the canvas was showing in the last frame.
@@ -229,6 +232,7 @@ impl EditorApp {
             last_watch: Instant::now(),
             optimization: OptimizationPanel::new(options.wake),
             parameters_open: false,
+            list_editors: ListEditors::default(),
             pointer: None,
             canvas_view: Vec::new(),
             canvas_serial: 0,
@@ -338,6 +342,7 @@ impl EditorApp {
         self.viewport.reset();
         self.pending_change = Some(Instant::now());
         self.optimization.reset();
+        self.list_editors.close_all();
         self.watch.clear();
         self.import_watch.clear();
         self.watch.changed(&self.doc.graph);
@@ -913,6 +918,12 @@ impl EditorApp {
                 self.optimization.add_penalty(&mut self.doc, path)
             }
             UiRequest::Internalise(id) => self.internalise(&id),
+            UiRequest::EditList { node, input } => {
+                let at = self.pointer.map(|p| p + egui::vec2(24.0, 12.0));
+                self.list_editors
+                    .open(self.doc.view_path(), &node, &input, at);
+                return true;
+            }
         };
         match handled {
             Ok(m) => {
@@ -1219,6 +1230,8 @@ impl EditorApp {
         let ctx = ui.ctx().clone();
         self.poll_worker();
         self.optimization.poll();
+        // An active list editor window takes pasted text, Copy and Delete before the shortcuts.
+        self.list_editors.claim_input(&ctx);
         self.shortcuts(&ctx);
         if self.last_watch.elapsed() >= WATCH_INTERVAL {
             self.check_cluster_files();
@@ -1383,6 +1396,9 @@ impl EditorApp {
                     self.apply(a);
                 }
             });
+        if let Some(m) = self.list_editors.show(&ctx, &mut self.doc) {
+            self.message = m;
+        }
 
         if self.palette.open && !self.palette_was_open {
             self.library.scan(&self.registry);

@@ -27,7 +27,7 @@ use egui_snarl::{InPin, InPinId, NodeId, OutPin, OutPinId, Snarl};
 use crate::edit::Edit;
 use crate::request::UiRequest;
 use crate::worker::{NodeStatus, PANEL_TYPE};
-use crate::{mapper, widgets};
+use crate::{list_editor, mapper, widgets};
 
 /// A node on the canvas: the id of the graph node it shows.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -976,6 +976,23 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                         node: id.clone(),
                         input: port.name.to_string(),
                     }));
+                }
+            } else if !wired && let Some(list) = list_editor::on_node(instance, k) {
+                // A literal list: its summary, and a button opening it as a table.
+                ui.weak(&list.summary);
+                if list.editable {
+                    let button = ui.small_button("Edit…").on_hover_text(
+                        "edit the list as a table: cells, rows, paste from a spreadsheet",
+                    );
+                    self.editors
+                        .insert((id.clone(), port.name.to_string()), button.rect);
+                    if button.clicked() {
+                        self.actions
+                            .push(CanvasAction::Request(UiRequest::EditList {
+                                node: id.clone(),
+                                input: port.name.to_string(),
+                            }));
+                    }
                 }
             }
         });

@@ -9,7 +9,8 @@
 //!   results.
 //! - [`canvas`]: the node canvas (an egui-snarl view of the graph, kept in sync both ways);
 //!   [`palette`]: the searchable node palette; [`widgets`]: inline value editors;
-//!   [`mapper`]: the graph-mapper widget.
+//!   [`mapper`]: the graph-mapper widget; [`list_editor`]: literal lists as tables (a summary on
+//!   the node, a window to edit them).
 //! - [`viewport`]: the 3D view (a wgpu paint callback through `cnets-render`) and its camera.
 //! - [`menus`], [`file_dialog`]: the menu bar and a built-in path dialog; [`export`]: exports
 //!   through the export nodes.
@@ -36,6 +37,7 @@ pub mod import_watch;
 pub mod instance;
 pub mod layout;
 pub mod library;
+pub mod list_editor;
 pub mod load_failure;
 pub mod mapper;
 pub mod menus;

@@ -1,5 +1,6 @@
 //! UI requests: what a gesture asks of the editor's interface rather than of the document (open
-//! the palette, open a cluster in place, pick an optimization variable or objective). The app
+//! the palette, open a cluster in place, pick an optimization variable or objective, open a list
+//! editor). The app
 //! carries them out (`EditorApp::handle`); graph changes are [`crate::edit::Edit`]s instead.
 
 use cnets_engine::Value;
@@ -32,4 +33,12 @@ pub enum UiRequest {
     /// `param.points` node per curve wired into a `curve.polyline` (Grasshopper's "Internalise
     /// data").
     Internalise(String),
+    /// Open the table editor of an input's literal list (its **Edit…** button on the node; see
+    /// [`crate::list_editor`]).
+    EditList {
+        /// Node id.
+        node: String,
+        /// Input name.
+        input: String,
+    },
 }

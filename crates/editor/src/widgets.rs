@@ -61,7 +61,9 @@ pub fn snap_to_range(x: f64, range: f64) -> f64 {
 }
 
 /// Whether an input gets an inline editor (an item of a simple type, a list / tree port whose
-/// current value is a single number, or a `param.choice`'s options: one a line).
+/// current value is a single number, or a `param.choice`'s options: one a line). An item port
+/// holding a literal list has none: it shows the list's summary instead
+/// ([`crate::list_editor`]), since a single field would replace the list.
 pub fn has_editor(node: &NodeInstance, k: usize) -> bool {
     let Some(port) = node.def.inputs.get(k) else {
         return false;
@@ -83,7 +85,7 @@ pub fn has_editor(node: &NodeInstance, k: usize) -> bool {
         return false;
     }
     match port.access {
-        Access::Item => true,
+        Access::Item => !matches!(effective_value(node, k), Some(Value::List(_))),
         _ => {
             matches!(
                 effective_value(node, k),
