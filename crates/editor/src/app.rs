@@ -919,7 +919,12 @@ impl EditorApp {
             }
             UiRequest::Internalise(id) => self.internalise(&id),
             UiRequest::EditList { node, input } => {
-                let at = self.pointer.map(|p| p + egui::vec2(24.0, 12.0));
+                // Beside the Edit… button clicked (else the pointer).
+                let at = self
+                    .canvas
+                    .editor_screen_rect(&node, &input)
+                    .map(|r| r.right_top() + egui::vec2(16.0, -8.0))
+                    .or(self.pointer);
                 self.list_editors
                     .open(self.doc.view_path(), &node, &input, at);
                 return true;
@@ -1166,8 +1171,11 @@ impl EditorApp {
         self.latency.eval_ms = r.eval_ms;
         self.latency.scene_ms = r.stats.build_ms;
         self.latency.ran = r.ran;
-        self.viewport.set_scene(r.scene, r.stats, r.picks);
-        self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
+        // The rest of the graph finished after the preview: the same scene, nothing to upload.
+        if !Arc::ptr_eq(&r.scene, self.viewport.scene()) {
+            self.viewport.set_scene(r.scene, r.stats, r.picks);
+            self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
+        }
     }
 
     /// Sends the graph to the worker when it (or the display options) changed since the last

@@ -867,6 +867,16 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                     ui.colored_label(WARNING_COLOR, "⚠")
                         .on_hover_text(s.warnings().join("\n"));
                 }
+                Some(NodeStatus::Running { last_ms }) => {
+                    ui.spinner().on_hover_text(if *last_ms > 0.0 {
+                        format!(
+                            "running after the 3D view was updated (last run {})",
+                            crate::worker::format_ms(*last_ms)
+                        )
+                    } else {
+                        "running after the 3D view was updated".to_string()
+                    });
+                }
                 _ => {}
             }
         });

@@ -23,8 +23,9 @@ use cnets_engine::cluster::Cluster;
 use cnets_engine::eval::OutputMask;
 use cnets_engine::{Continued, Evaluator, Graph, NodeContext, NodeFlag, NodeResult, Value};
 use cnets_render::Scene;
+use petgraph::stable_graph::NodeIndex;
 
-use crate::preview::{Picks, PreviewOptions, PreviewStats, build_preview};
+use crate::preview::{Picks, Preview, PreviewOptions, PreviewStats, build_preview};
 
 /// The state of one node after an evaluation, for badges and pin labels.
 #[derive(Clone, Debug, PartialEq)]
@@ -50,6 +51,12 @@ pub enum NodeStatus {
     Disabled,
     /// Not evaluated in the editor (export nodes run on File › Export only).
     Idle,
+    /// Waiting or running: the 3D view was updated first, this node (not previewed, or slow) runs
+    /// after; `last_ms` is how long its last run took.
+    Running {
+        /// Duration of its last run in milliseconds (0 before its first run).
+        last_ms: f64,
+    },
 }
 
 impl NodeStatus {
@@ -138,7 +145,14 @@ pub struct EvalResponse {
     pub changed_at: Instant,
     /// When the response was ready.
     pub finished_at: Instant,
+    /// Every node has its final status. A first, incomplete response comes as soon as the
+    /// previewed nodes are done (the 3D view is updated then); the rest of the graph follows.
+    pub complete: bool,
 }
+
+/// A previewed node whose last run took longer than this runs after the 3D view is updated
+/// (its previous result stays in the view meanwhile).
+pub const SLOW_MS: f64 = 40.0;
 
 /// The handle the UI keeps: submit snapshots, poll results.
 pub struct Worker {
@@ -146,6 +160,8 @@ pub struct Worker {
     rx: Receiver<EvalResponse>,
     seq: u64,
     last_received: u64,
+    /// The sequence number of the last complete response.
+    last_complete: u64,
     running_cancel: Option<Arc<AtomicBool>>,
     carry: Option<Carry>,
     thread: Option<JoinHandle<()>>,
@@ -181,6 +197,7 @@ impl Worker {
             rx,
             seq: 0,
             last_received: 0,
+            last_complete: 0,
             running_cancel: None,
             carry: None,
             thread,
@@ -198,6 +215,7 @@ impl Worker {
             rx,
             seq: 0,
             last_received: 0,
+            last_complete: 0,
             running_cancel: None,
             carry: None,
             thread: None,
@@ -218,14 +236,16 @@ impl Worker {
         let Ok(first) = inline.requests.try_recv() else {
             return;
         };
-        if let Some(response) = step(
+        let responses = inline.responses.clone();
+        step(
             first,
             &inline.requests,
             &mut inline.evaluator,
             &mut inline.generation,
-        ) {
-            let _ = inline.responses.send(response);
-        }
+            &mut |r| {
+                let _ = responses.send(r);
+            },
+        );
     }
 
     /// Submits a snapshot; cancels the evaluation in progress. Returns its sequence number.
@@ -287,17 +307,31 @@ impl Worker {
             latest = Some(r);
         }
         if let Some(r) = &latest {
-            self.last_received = r.seq;
+            self.received(r);
         }
         latest
     }
 
-    /// Whether a submitted snapshot has not been answered yet.
+    fn received(&mut self, r: &EvalResponse) {
+        self.last_received = r.seq;
+        if r.complete {
+            self.last_complete = r.seq;
+        }
+    }
+
+    /// Whether a submitted snapshot has not been answered completely yet.
     pub fn busy(&self) -> bool {
+        self.last_complete < self.seq
+    }
+
+    /// Whether the newest submission's 3D view is not ready yet (the rest of the graph may still
+    /// be running).
+    pub fn preview_pending(&self) -> bool {
         self.last_received < self.seq
     }
 
-    /// Blocks until the newest submission is answered or `timeout` passes; returns it.
+    /// Blocks until the newest submission is answered completely or `timeout` passes; returns
+    /// the last response.
     pub fn wait(&mut self, timeout: Duration) -> Option<EvalResponse> {
         self.run_inline();
         let deadline = Instant::now() + timeout;
@@ -309,7 +343,7 @@ impl Worker {
             }
             match self.rx.recv_timeout(left) {
                 Ok(r) => {
-                    self.last_received = r.seq;
+                    self.received(&r);
                     latest = Some(r);
                 }
                 Err(_) => break,
@@ -339,24 +373,32 @@ fn run(
     let mut evaluator = Evaluator::new();
     let mut generation = None;
     while let Ok(first) = requests.recv() {
-        let Some(response) = step(first, &requests, &mut evaluator, &mut generation) else {
-            continue; // cancelled: a newer request is queued
-        };
-        if responses.send(response).is_err() {
+        let mut open = true;
+        step(
+            first,
+            &requests,
+            &mut evaluator,
+            &mut generation,
+            &mut |r| {
+                open &= responses.send(r).is_ok();
+                wake();
+            },
+        );
+        if !open {
             break;
         }
-        wake();
     }
 }
 
 /// Evaluates the newest of `first` and the requests queued after it with `evaluator` (a fresh one
-/// for a new document generation); `None` when it was cancelled.
+/// for a new document generation), handing each response to `send` (nothing when cancelled).
 fn step(
     first: EvalRequest,
     requests: &Receiver<EvalRequest>,
     evaluator: &mut Evaluator,
     generation: &mut Option<u64>,
-) -> Option<EvalResponse> {
+    send: &mut dyn FnMut(EvalResponse),
+) {
     let mut request = first;
     // Latest change wins: skip every queued snapshot but the newest.
     while let Ok(newer) = requests.try_recv() {
@@ -372,78 +414,165 @@ fn step(
         }
         *generation = Some(request.generation);
     }
-    evaluate(evaluator, &request)
+    evaluate(evaluator, &request, send);
 }
 
-/// Evaluates a request with `evaluator` and builds its preview; `None` when it was cancelled.
-pub fn evaluate(evaluator: &mut Evaluator, request: &EvalRequest) -> Option<EvalResponse> {
+/// Evaluates a request with `evaluator` in two phases, handing each response to `send`:
+///
+/// 1. the previewed nodes (and panels) — but not those whose last run was slow ([`SLOW_MS`]) —
+///    with what they need; then the preview is built and sent (`complete: false` when more
+///    follows), so the 3D view follows an edit however slow the rest of the graph is;
+/// 2. every other node (not previewed, or slow); the final statuses follow (`complete: true`),
+///    with the preview built again only when a slow previewed node ran.
+///
+/// A newer request cancels the evaluation (the cancel flag is checked between nodes): nothing more
+/// is sent then.
+pub fn evaluate(
+    evaluator: &mut Evaluator,
+    request: &EvalRequest,
+    send: &mut dyn FnMut(EvalResponse),
+) {
     let graph = &request.graph;
     let mut ctx = NodeContext::new(None, request.base_dir.clone());
     ctx.cancel = request.cancel.clone();
-    // Every node runs (its status shows); previewed nodes and panels are asked for all their
-    // outputs, the others only for what is wired from them (lazy outputs).
-    let wanted: Vec<_> = graph
+    let cancelled = || request.cancel.load(Ordering::Relaxed);
+    // Previewed nodes and panels are asked for all their outputs, the others only for what is
+    // wired from them (lazy outputs). Every node runs (its status shows).
+    let mut first: Vec<(NodeIndex, OutputMask)> = Vec::new();
+    let mut deferred_shown = false;
+    let all: Vec<(NodeIndex, OutputMask)> = graph
         .nodes()
         .filter(|(_, n)| !n.def.has_flag(NodeFlag::Export))
         .map(|(k, n)| {
             let shown = (n.preview && n.enabled) || n.def.id == PANEL_TYPE;
-            (
-                k,
-                if shown {
-                    OutputMask::ALL
+            let mask = if shown {
+                OutputMask::ALL
+            } else {
+                OutputMask::NONE
+            };
+            if shown {
+                let slow = evaluator
+                    .time(graph, &n.id)
+                    .is_some_and(|t| t.as_secs_f64() * 1e3 > SLOW_MS);
+                if slow {
+                    deferred_shown = true;
                 } else {
-                    OutputMask::NONE
-                },
-            )
+                    first.push((k, mask));
+                }
+            }
+            (k, mask)
         })
         .collect();
+    // The nodes phase 1 brings up to date: the requested ones and everything upstream.
+    let fresh = upstream(graph, first.iter().map(|(k, _)| *k));
+    let rest: Vec<(NodeIndex, OutputMask)> = all
+        .iter()
+        .copied()
+        .filter(|(k, _)| !fresh.contains(k))
+        .collect();
+    // What the rest took last time (a node that never ran counts as slow).
+    let rest_ms: f64 = rest
+        .iter()
+        .filter_map(|(k, _)| graph.node_at(*k))
+        .map(|n| {
+            evaluator
+                .time(graph, &n.id)
+                .map_or(SLOW_MS, |t| t.as_secs_f64() * 1e3)
+        })
+        .sum();
+    let split = deferred_shown || rest_ms >= SLOW_MS;
+    let first = if split { first } else { all.clone() };
     let start = Instant::now();
-    let summary = evaluator.evaluate_outputs(graph, &wanted, &ctx, &mut |_, _| {});
+    let summary = evaluator.evaluate_outputs(graph, &first, &ctx, &mut |_, _| {});
+    if summary.cancelled || cancelled() {
+        return;
+    }
     let eval_ms = start.elapsed().as_secs_f64() * 1e3;
-    if summary.cancelled || request.cancel.load(Ordering::Relaxed) {
-        return None;
-    }
-    let (statuses, preview) = if request.view.is_empty() {
-        (
-            statuses(graph, evaluator, &ctx),
-            build_preview(graph, evaluator, &request.options),
-        )
-    } else {
-        // Inside opened clusters: the statuses of the innermost instance's subgraph, with the
-        // values the cluster received (every inner node is evaluated, not only those feeding the
-        // outputs); the 3D view keeps showing the whole design.
-        let inner = descend(graph, &request.view, &mut |cluster, g, ev| {
-            let wanted: Vec<_> = g
-                .nodes()
-                .filter(|(_, n)| !n.def.has_flag(NodeFlag::Export))
-                .map(|(k, _)| k)
-                .collect();
-            // Relative paths inside resolve against the cluster's own folder, as when it runs.
-            let mut inner = NodeContext::new(None, cluster.base_dir.clone());
-            inner.cancel = request.cancel.clone();
-            ev.evaluate(g, &wanted, &inner, &mut |_, _| {});
-            statuses(g, ev, &inner)
-        });
-        (
-            inner.unwrap_or_default(),
-            build_preview(graph, evaluator, &request.options),
-        )
+    let shown = |p: Preview| (Arc::new(p.scene), p.stats, Arc::new(p.picks));
+    let (scene, stats, picks) = shown(build_preview(graph, evaluator, &request.options));
+    let respond = |evaluator: &Evaluator, complete: bool, eval_ms: f64, ran: usize| {
+        let statuses = if request.view.is_empty() {
+            let mut statuses = statuses(graph, evaluator, &ctx);
+            if !complete {
+                for (k, _) in &rest {
+                    if let Some(n) = graph.node_at(*k) {
+                        let last_ms = evaluator
+                            .time(graph, &n.id)
+                            .map_or(0.0, |t| t.as_secs_f64() * 1e3);
+                        statuses.insert(n.id.clone(), NodeStatus::Running { last_ms });
+                    }
+                }
+            }
+            statuses
+        } else {
+            // Inside opened clusters: the statuses of the innermost instance's subgraph, with the
+            // values the cluster received (every inner node is evaluated, not only those feeding
+            // the outputs); the 3D view keeps showing the whole design.
+            descend(graph, &request.view, &mut |cluster, g, ev| {
+                let wanted: Vec<_> = g
+                    .nodes()
+                    .filter(|(_, n)| !n.def.has_flag(NodeFlag::Export))
+                    .map(|(k, _)| k)
+                    .collect();
+                // Relative paths inside resolve against the cluster's own folder, as when it runs.
+                let mut inner = NodeContext::new(None, cluster.base_dir.clone());
+                inner.cancel = request.cancel.clone();
+                ev.evaluate(g, &wanted, &inner, &mut |_, _| {});
+                statuses(g, ev, &inner)
+            })
+            .unwrap_or_default()
+        };
+        EvalResponse {
+            seq: request.seq,
+            view: request.view.clone(),
+            statuses,
+            scene: scene.clone(),
+            stats: stats.clone(),
+            picks: picks.clone(),
+            eval_ms,
+            ran,
+            changed_at: request.changed_at,
+            finished_at: Instant::now(),
+            complete,
+        }
     };
-    if request.cancel.load(Ordering::Relaxed) {
-        return None;
+    let response = respond(evaluator, !split, eval_ms, summary.ran);
+    if cancelled() {
+        return;
     }
-    Some(EvalResponse {
-        seq: request.seq,
-        view: request.view.clone(),
-        statuses,
-        scene: Arc::new(preview.scene),
-        stats: preview.stats,
-        picks: Arc::new(preview.picks),
-        eval_ms,
-        ran: summary.ran,
-        changed_at: request.changed_at,
-        finished_at: Instant::now(),
-    })
+    send(response);
+    if !split {
+        return;
+    }
+    let summary2 = evaluator.evaluate_outputs(graph, &rest, &ctx, &mut |_, _| {});
+    if summary2.cancelled || cancelled() {
+        return;
+    }
+    let eval_ms = start.elapsed().as_secs_f64() * 1e3;
+    let mut last = respond(evaluator, true, eval_ms, summary.ran + summary2.ran);
+    if deferred_shown {
+        // A slow previewed node ran: the preview again, with its new result.
+        (last.scene, last.stats, last.picks) =
+            shown(build_preview(graph, evaluator, &request.options));
+    }
+    if !cancelled() {
+        send(last);
+    }
+}
+
+/// `nodes` and every node upstream of them.
+fn upstream(
+    graph: &Graph,
+    nodes: impl Iterator<Item = NodeIndex>,
+) -> std::collections::HashSet<NodeIndex> {
+    let mut seen = std::collections::HashSet::new();
+    let mut stack: Vec<NodeIndex> = nodes.collect();
+    while let Some(k) = stack.pop() {
+        if seen.insert(k) {
+            stack.extend(graph.sources(k));
+        }
+    }
+    seen
 }
 
 /// The node type whose text output is shown inside the node (Grasshopper's Panel).
@@ -545,6 +674,15 @@ pub fn describe(value: &Value) -> String {
     }
 }
 
+/// A duration in milliseconds as the canvas shows it: `612 ms`, `1.4 s`.
+pub fn format_ms(ms: f64) -> String {
+    if ms >= 1000.0 {
+        format!("{:.1} s", ms / 1000.0)
+    } else {
+        format!("{ms:.0} ms")
+    }
+}
+
 /// A number with at most 4 significant decimals, no trailing zeros.
 pub fn format_number(x: f64) -> String {
     if !x.is_finite() {
@@ -635,7 +773,74 @@ mod tests {
             cancel,
             changed_at: Instant::now(),
         };
-        assert!(evaluate(&mut Evaluator::new(), &request).is_none());
+        assert!(responses(&mut Evaluator::new(), &request).is_empty());
+    }
+
+    /// Every response `evaluate` gives for a request.
+    fn responses(ev: &mut Evaluator, request: &EvalRequest) -> Vec<EvalResponse> {
+        let mut out = Vec::new();
+        evaluate(ev, request, &mut |r| out.push(r));
+        out
+    }
+
+    fn request(g: &Graph, seq: u64) -> EvalRequest {
+        EvalRequest {
+            seq,
+            generation: 0,
+            carry: None,
+            graph: g.clone(),
+            options: PreviewOptions::default(),
+            base_dir: None,
+            view: Vec::new(),
+            cancel: Arc::new(AtomicBool::new(false)),
+            changed_at: Instant::now(),
+        }
+    }
+
+    #[test]
+    fn the_view_follows_an_edit_before_a_slow_node_downstream_runs() {
+        use cnets_engine::{Access, NodeDef, PortDef, ValueType};
+        // A slider feeds a previewed arc and a slow node that is not previewed.
+        let slow = NodeDef::new("t.slow", "Test", "Takes 150 ms.")
+            .input(PortDef::new("x", ValueType::Number, Access::Item))
+            .output(PortDef::new("y", ValueType::Number, Access::Item))
+            .run(|_, inputs| {
+                std::thread::sleep(Duration::from_millis(150));
+                Ok(vec![inputs[0].clone()])
+            });
+        let mut g = graph();
+        g.add_node_with_def("slow", Arc::new(slow)).unwrap();
+        g.connect("n", "value", "slow", "x").unwrap();
+        g.set_preview("slow", false).unwrap();
+        let mut ev = Evaluator::new();
+        let first = responses(&mut ev, &request(&g, 1));
+        assert!(first.last().unwrap().complete);
+        // Edit the slider: the preview comes first, the slow node's status follows.
+        g.set_value("n", "value", Value::Number(3.0)).unwrap();
+        let second = responses(&mut ev, &request(&g, 2));
+        assert_eq!(second.len(), 2, "the 3D view first, then the rest");
+        assert!(!second[0].complete && second[1].complete);
+        assert!(
+            matches!(second[0].statuses["slow"], NodeStatus::Running { last_ms } if last_ms >= 150.0),
+            "{:?}",
+            second[0].statuses["slow"]
+        );
+        assert!(matches!(second[0].statuses["arc"], NodeStatus::Ok { .. }));
+        assert_ne!(
+            second[0].scene.face_vertices().len() + second[0].scene.segments().len(),
+            0
+        );
+        let before: Vec<_> = first[0].scene.segments().to_vec();
+        assert_ne!(
+            second[0].scene.segments().to_vec(),
+            before,
+            "the first response already shows the new arc"
+        );
+        assert!(matches!(second[1].statuses["slow"], NodeStatus::Ok { .. }));
+        assert!(
+            Arc::ptr_eq(&second[0].scene, &second[1].scene),
+            "nothing previewed was slow: the same scene"
+        );
     }
 
     #[test]
@@ -653,7 +858,7 @@ mod tests {
             cancel: Arc::new(AtomicBool::new(false)),
             changed_at: Instant::now(),
         };
-        let r = evaluate(&mut Evaluator::new(), &request).unwrap();
+        let r = responses(&mut Evaluator::new(), &request).pop().unwrap();
         assert!(
             r.statuses["arc"].error().is_some(),
             "{:?}",
