@@ -411,8 +411,36 @@ impl NodeContext {
     /// Checks, before allocating, that `bytes` more fit in the memory budget beside the values
     /// already live; `what` names the allocation in the error ("a table of 10000000 × 10000000
     /// numbers needs 3200 TB, the limit is 12 GB").
+    ///
+    /// Where the process's allocations are counted ([`budget::allocated`](crate::budget::allocated))
+    /// the check counts them when they are more than the values held (an input document, a
+    /// reader's buffers).
     pub fn reserve(&self, bytes: u64, what: &str) -> Result<(), NodeError> {
-        Ok(self.budget.check(bytes, self.in_use(), what)?)
+        let live = self.in_use().max(crate::budget::allocated().unwrap_or(0));
+        Ok(self.budget.check(bytes, live, what)?)
+    }
+
+    /// A [`Guard`](crate::budget::Guard) for work that grows step by step (a reader's records, a
+    /// curve's segments): each step declares its bytes before allocating them.
+    pub fn guard(&self, what: impl Into<String>) -> crate::budget::Guard {
+        crate::budget::Guard::new(self.budget, self.in_use(), what)
+    }
+
+    /// Fails when the process has allocated more than the memory budget (where allocations are
+    /// counted, [`budget::allocated`](crate::budget::allocated); else never). Readers, mapped
+    /// nodes and writers call it where their work is split — every few thousand records, items or
+    /// rows — so a file that expands far beyond its size stops at the budget with `what` named
+    /// (`reading 'big.obj' took 1.1 GB, the limit is 1 GB`), not at the machine's end.
+    pub fn check_memory(&self, what: &str) -> Result<(), NodeError> {
+        match crate::budget::allocated() {
+            Some(now) if now > self.budget.limit => Err(crate::budget::BudgetError::Exceeded {
+                what: what.to_string(),
+                allocated: now,
+                limit: self.budget.limit,
+            }
+            .into()),
+            _ => Ok(()),
+        }
     }
 
     /// True when the output named `output` was asked for: by the evaluator (it is wired to a node

@@ -20,8 +20,17 @@ use crate::failure::Failure;
 /// The process allocator: mimalloc keeps freed memory for reuse, where glibc's malloc hands large
 /// freed blocks (a 1000 × 1000 construction's 49 MB) back to the kernel and page-faults them in again
 /// on the next evaluation (docs/geometry.md, Performance).
+///
+/// It is counted (the `cap` crate's wrapper, never limiting: the limit is `usize::MAX`) so the
+/// memory budget sees everything the process allocates — readers, writers, input conversion — not
+/// only the values held (`cnets_engine::budget::allocated`).
 #[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+static ALLOCATOR: cap::Cap<mimalloc::MiMalloc> = cap::Cap::new(mimalloc::MiMalloc, usize::MAX);
+
+/// The process's allocated bytes, for the memory budget.
+fn allocated() -> u64 {
+    ALLOCATOR.allocated() as u64
+}
 
 /// cnets: design cone-nets (planar-quad meshes on discrete cones) from node graphs.
 #[derive(Debug, Parser)]
@@ -68,6 +77,7 @@ fn clap_exit(e: clap::Error) -> ExitCode {
 }
 
 fn main() -> ExitCode {
+    cnets_engine::budget::set_allocated_probe(allocated);
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return clap_exit(e),

@@ -9,8 +9,23 @@
 //! after every node run (`eval::Evaluator`). Both fail with [`BudgetError`]:
 //! `needs 240 GB, the limit is 12 GB`.
 //!
-//! The default limit is half the machine's memory ([`MemoryBudget::machine_default`]); front ends
-//! set another with `cnets run/eval --max-memory SIZE` ([`parse_size`]).
+//! The default limit is half the memory the process really has: the smallest of the machine's
+//! memory, its cgroup's limit and its `RLIMIT_AS` / `RLIMIT_DATA` ([`MemoryBudget::machine_default`],
+//! [`limits`]); front ends set another with `cnets run/eval --max-memory SIZE` ([`parse_size`]).
+//!
+//! Values are not all a process allocates: readers, writers and input conversion allocate on the
+//! way. A front end that counts the process's allocations ([`allocated`]: the `cnets` binary wraps
+//! its allocator in the `cap` crate's counter) registers that count, and the checks then count
+//! what is allocated, not only the values held: [`NodeContext::reserve`](crate::NodeContext::reserve)
+//! and [`NodeContext::check_memory`](crate::NodeContext::check_memory), which readers, mapped nodes
+//! and writers call where their work is split (records, items, rows).
+
+pub mod allocated;
+pub mod guard;
+pub mod limits;
+
+pub use allocated::{allocated, set_allocated_probe};
+pub use guard::Guard;
 
 use std::sync::OnceLock;
 
@@ -33,10 +48,14 @@ impl MemoryBudget {
         Self { limit }
     }
 
-    /// Half the machine's physical memory (from `/proc/meminfo`; 4 GB when it cannot be read).
+    /// Half the memory the process really has ([`limits::process_memory_limit`]: the machine,
+    /// the cgroup, `RLIMIT_AS`, `RLIMIT_DATA`; 4 GB when none can be read).
     pub fn machine_default() -> Self {
         static DEFAULT: OnceLock<u64> = OnceLock::new();
-        Self::new(*DEFAULT.get_or_init(|| machine_memory().map_or(4_000_000_000, |m| m / 2)))
+        Self::new(
+            *DEFAULT
+                .get_or_init(|| limits::process_memory_limit().map_or(4_000_000_000, |m| m / 2)),
+        )
     }
 
     /// Checks that `needed` more bytes fit beside `in_use` bytes already live.
@@ -68,6 +87,16 @@ pub enum BudgetError {
         /// The budget.
         limit: u64,
     },
+    /// The process has allocated more than the budget while doing `what`.
+    #[error("{what} took {}, the limit is {}", format_bytes(*.allocated), format_bytes(*.limit))]
+    Exceeded {
+        /// What was being done (e.g. "reading 'big.obj'").
+        what: String,
+        /// Bytes the process had allocated.
+        allocated: u64,
+        /// The budget.
+        limit: u64,
+    },
 }
 
 fn in_use_note(in_use: u64) -> String {
@@ -76,14 +105,6 @@ fn in_use_note(in_use: u64) -> String {
     } else {
         format!(" ({} already held by other values)", format_bytes(in_use))
     }
-}
-
-/// The machine's physical memory in bytes (Linux: `MemTotal` of `/proc/meminfo`).
-fn machine_memory() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    kb.checked_mul(1024)
 }
 
 /// Bytes in decimal units for messages: `240 GB`, `12 GB`, `1.5 MB`, `512 bytes`.

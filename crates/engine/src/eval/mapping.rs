@@ -9,7 +9,18 @@
 
 use crate::convert::{coerce_for_port, excess_depth};
 use crate::node::{NodeContext, NodeDef, NodeError};
-use crate::value::Value;
+use crate::value::{Items, Value};
+
+/// Items run between two looks at the process's memory ([`NodeContext::check_memory`]).
+const CHECK_EVERY: usize = 4096;
+
+/// Item `k` of a list: a packed row's item is made on its own, without building the row's values.
+fn item(items: &Items, k: usize) -> Value {
+    match items.as_packed() {
+        Some(packed) => packed.value(k),
+        None => items[k].clone(),
+    }
+}
 
 /// Runs `def` on raw input values (one per input port, `Null` for empty), mapping over list levels
 /// the ports do not consume themselves. Outputs of a mapped run are lists (nested as deep as the
@@ -46,10 +57,15 @@ pub fn run_mapped(
     // Only the deepest inputs are split at this level; shallower ones stay whole until the deeper
     // ones have come down to their depth.
     let deepest = excess.iter().copied().max().unwrap_or(0);
-    let lists: Vec<Option<&[Value]>> = inputs
+    // The lists as they are: a packed row gives its items one at a time (a row of 10⁸ numbers is
+    // never turned into 10⁸ values at once).
+    let lists: Vec<Option<&Items>> = inputs
         .iter()
         .zip(&excess)
-        .map(|(v, &e)| if e == deepest { v.as_list() } else { None })
+        .map(|(v, &e)| match v {
+            Value::List(items) if e == deepest => Some(items),
+            _ => None,
+        })
         .collect();
     let count = lists.iter().flatten().map(|l| l.len()).max().unwrap_or(0);
     let empty = lists.iter().flatten().any(|l| l.is_empty());
@@ -65,9 +81,12 @@ pub fn run_mapped(
             if ctx.cancelled() {
                 return Err(NodeError::new("cancelled"));
             }
+            if k % CHECK_EVERY == CHECK_EVERY - 1 {
+                ctx.check_memory(&format!("running '{}' on {count} items", def.id))?;
+            }
             for (slot, list) in item_inputs.iter_mut().zip(&lists) {
                 if let Some(list) = list {
-                    *slot = list[k.min(list.len() - 1)].clone();
+                    *slot = item(list, k.min(list.len() - 1));
                 }
             }
             let outputs = run_mapped(def, ctx, &item_inputs)

@@ -48,6 +48,7 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
+    let _peak = PeakOnExit(args.timing);
     let registry = Arc::new(cnets_nodes::registry());
     let cluster;
     let def = if let Some(path) = args.node_type.strip_prefix(library::PREFIX) {
@@ -68,16 +69,17 @@ pub fn run(args: Args) -> CommandResult {
         )));
     };
     // The document is consumed by decoding: its packed rows move into the input values.
-    let inputs = node_inputs(def, read_json(&args.inputs)?)?;
+    let budget = args
+        .max_memory
+        .map_or_else(MemoryBudget::default, MemoryBudget::new);
+    let inputs = node_inputs(def, read_json(&args.inputs, budget.limit)?)?;
     let out_dir = def.has_flag(NodeFlag::Export).then(|| args.out.clone());
     if let Some(dir) = &out_dir {
         crate::commands::create_out_dir(dir)?;
     }
     let base = std::env::current_dir().ok();
     let mut ctx = NodeContext::new(out_dir, base);
-    if let Some(limit) = args.max_memory {
-        ctx.budget = MemoryBudget::new(limit);
-    }
+    ctx.budget = budget;
     ctx.allow_read = args.allow_read.clone();
     ctx.cancel = crate::signals::cancel_flag();
     if let Some(names) = &args.outputs {
@@ -115,10 +117,19 @@ pub fn run(args: Args) -> CommandResult {
         .map(|(p, v)| (p.name.as_ref(), v))
         .collect();
     crate::output::json_line(&Outputs(&printed))?;
-    if let Some(peak) = crate::peak::peak_memory().filter(|_| args.timing) {
-        crate::errln!("peak memory: {:.1} MB", peak as f64 / 1e6);
-    }
     Ok(ExitCode::SUCCESS)
+}
+
+/// With `--timing`, prints the peak memory when the command ends, also when it fails (a refused
+/// input or a node over the budget are measured too).
+struct PeakOnExit(bool);
+
+impl Drop for PeakOnExit {
+    fn drop(&mut self) {
+        if let Some(peak) = crate::peak::peak_memory().filter(|_| self.0) {
+            crate::errln!("peak memory: {:.1} MB", peak as f64 / 1e6);
+        }
+    }
 }
 
 /// `{ "<output>": <value>, … }`, streamed.

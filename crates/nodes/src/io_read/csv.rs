@@ -1,17 +1,29 @@
 //! CSV polylines: one point per row, `x, y` or `x, y, z` (z = 0 when absent), fields separated by
 //! commas, semicolons, tabs or spaces. A blank line ends a polyline; `#` starts a comment line; a
-//! first non-numeric row is a header and is skipped.
+//! first row with no number at all is a header and is skipped (a first row that mixes numbers and
+//! words is an error on its own line). At most four fields of a row are looked at: a line of 3·10⁸
+//! columns is an error, not 3·10⁸ fields in memory.
 
+use cnets_engine::budget::Guard;
 use cnets_engine::prelude::*;
 
 use super::tidy;
 
+/// Points read between two looks at the memory budget.
+const CHECK_EVERY: usize = 1 << 16;
+
 /// Parses CSV text into polylines; errors name the line (1-based).
 pub fn parse(text: &str) -> Result<Vec<Polyline>, String> {
+    parse_within(text, &mut Guard::unlimited())
+}
+
+/// [`parse`] counting its points against `guard` every 65 536 points.
+pub fn parse_within(text: &str, guard: &mut Guard) -> Result<Vec<Polyline>, String> {
     let mut out = Vec::new();
     let mut current: Vec<DVec3> = Vec::new();
     let mut start_line = 0;
     let mut seen_data = false;
+    let mut points = 0usize;
     let finish = |points: &mut Vec<DVec3>, start: usize, out: &mut Vec<Polyline>| {
         if points.is_empty() {
             return Ok(());
@@ -34,18 +46,26 @@ pub fn parse(text: &str) -> Result<Vec<Polyline>, String> {
         if line.starts_with('#') {
             continue;
         }
-        let fields: Vec<&str> = line
+        // The first four fields, no more.
+        let mut fields = line
             .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
-            .filter(|f| !f.is_empty())
-            .collect();
-        let numbers: Result<Vec<f64>, _> = fields.iter().map(|f| f.parse::<f64>()).collect();
-        let numbers = match numbers {
-            Ok(n) => n,
-            Err(_) if !seen_data => {
-                seen_data = true; // a header row
+            .filter(|f| !f.is_empty());
+        let first: Vec<&str> = fields.by_ref().take(4).collect();
+        if first.len() > 3 {
+            return Err(format!(
+                "line {line_no}: expected 2 or 3 numbers, got 4 or more fields ('{}')",
+                cnets_engine::files::excerpt(line, 40)
+            ));
+        }
+        let parsed: Vec<Option<f64>> = first.iter().map(|f| f.parse::<f64>().ok()).collect();
+        let numbers: Vec<f64> = match parsed.iter().copied().collect::<Option<Vec<f64>>>() {
+            Some(n) => n,
+            // A header: the first row, with no number in it.
+            None if !seen_data && parsed.iter().all(Option::is_none) => {
+                seen_data = true;
                 continue;
             }
-            Err(_) => {
+            None => {
                 return Err(format!(
                     "line {line_no}: expected 2 or 3 numbers, got '{}'",
                     cnets_engine::files::excerpt(line, 40)
@@ -68,6 +88,13 @@ pub fn parse(text: &str) -> Result<Vec<Polyline>, String> {
         }
         if current.is_empty() {
             start_line = line_no;
+        }
+        points += 1;
+        if points.is_multiple_of(CHECK_EVERY) {
+            // A point, its slot as the vector doubles and its tidied copy.
+            guard
+                .grow_items(CHECK_EVERY as u64, 72)
+                .map_err(|e| format!("line {line_no}: {e}"))?;
         }
         current.push(p);
     }
@@ -103,6 +130,16 @@ mod tests {
     fn errors_name_the_line() {
         assert!(parse("0,0\n1,a\n").unwrap_err().starts_with("line 2"));
         assert!(parse("0,0,0,0\n").unwrap_err().contains("got 4"));
+        // A first row that mixes numbers and words is not a header: line 1 is to blame.
+        assert!(parse("1,x,3\n0,0\n").unwrap_err().starts_with("line 1"));
+        assert!(parse("x,y,z\n0,0\n1,1\n").is_ok());
+        // Millions of columns are an error on their line, without a field list of them.
+        let wide = "1,".repeat(1_000_000);
+        assert!(
+            parse(&wide)
+                .unwrap_err()
+                .starts_with("line 1: expected 2 or 3 numbers")
+        );
         assert!(
             parse("0,0\n\n1,1\n")
                 .unwrap_err()

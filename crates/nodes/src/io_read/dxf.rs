@@ -7,11 +7,25 @@
 
 use std::f64::consts::TAU;
 
+use cnets_engine::budget::Guard;
 use cnets_engine::prelude::*;
 use cnets_geometry::curves::Nurbs;
 use dxf::entities::EntityType;
 
 use super::tidy;
+
+/// The `dxf` crate's error, said where the numbers come from: a count that does not fit its field
+/// (over 32 bits) is "code pair 70 not expected" there.
+fn dxf_error(e: dxf::DxfError) -> String {
+    let text = e.to_string();
+    if text.contains("not expected") || text.contains("Unexpected") {
+        format!(
+            "{text} (a value out of its field's range, e.g. a count over 32 bits, or a misplaced group code)"
+        )
+    } else {
+        text
+    }
+}
 
 fn point(p: &dxf::Point) -> DVec3 {
     DVec3::new(p.x, p.y, p.z)
@@ -88,13 +102,44 @@ fn bulged(vertices: &[(DVec3, f64)], closed: bool, segments: usize) -> Vec<DVec3
     out
 }
 
+/// Bytes a sampled point may take while it is made (the point and its copy in the tidied curve).
+const POINT_BYTES: usize = 48;
+
+/// At most how many points an entity samples to (declared to the memory guard before it is).
+fn sampled_points(entity: &EntityType, segments: usize) -> u64 {
+    let s = segments as u64 + 1;
+    match entity {
+        EntityType::Line(_) => 2,
+        EntityType::LwPolyline(l) => (l.vertices.len() as u64).saturating_mul(s),
+        EntityType::Polyline(l) => (l.vertices().count() as u64).saturating_mul(s),
+        EntityType::Arc(_) | EntityType::Circle(_) | EntityType::Ellipse(_) => s.max(4),
+        EntityType::Spline(sp) => {
+            let spans = (sp.knot_values.len() as u64).max(sp.fit_points.len() as u64) + 1;
+            spans.saturating_mul(s)
+        }
+        _ => 0,
+    }
+}
+
 /// Parses DXF bytes (ascii or binary) into polylines and warnings.
 pub fn parse(bytes: &[u8], segments: usize) -> Result<(Vec<Polyline>, Vec<String>), String> {
-    let drawing =
-        dxf::Drawing::load(&mut std::io::Cursor::new(bytes)).map_err(|e| e.to_string())?;
+    parse_within(bytes, segments, &mut Guard::unlimited())
+}
+
+/// [`parse`] declaring every entity's sampled points to `guard` before sampling them: 100 000
+/// bulged vertices × 10 000 segments stop at the memory budget.
+pub fn parse_within(
+    bytes: &[u8],
+    segments: usize,
+    guard: &mut Guard,
+) -> Result<(Vec<Polyline>, Vec<String>), String> {
+    let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(bytes)).map_err(dxf_error)?;
     let mut curves = Vec::new();
     let mut skipped = 0usize;
-    for entity in drawing.entities() {
+    for (k, entity) in drawing.entities().enumerate() {
+        guard
+            .grow_items(sampled_points(&entity.specific, segments), POINT_BYTES)
+            .map_err(|e| format!("entity {k}: {e}"))?;
         match &entity.specific {
             EntityType::Line(l) => curves.push(tidy(vec![point(&l.p1), point(&l.p2)], false)),
             EntityType::LwPolyline(l) => {

@@ -13,6 +13,8 @@ pub mod svg;
 
 use std::path::Path;
 
+use cnets_engine::budget::Guard;
+use cnets_engine::files;
 use cnets_engine::prelude::*;
 
 /// A format input, lower-cased, and the key to match: the name itself, or for `auto` (or empty)
@@ -97,6 +99,16 @@ pub fn parse(
     format: Format,
     segments: usize,
 ) -> Result<(Vec<Polyline>, Vec<String>), String> {
+    parse_within(bytes, format, segments, &mut Guard::unlimited())
+}
+
+/// [`parse`] counting what the parser builds against `guard` (records, sampled points).
+pub fn parse_within(
+    bytes: &[u8],
+    format: Format,
+    segments: usize,
+    guard: &mut Guard,
+) -> Result<(Vec<Polyline>, Vec<String>), String> {
     let text = || {
         std::str::from_utf8(bytes).map_err(|e| {
             format!(
@@ -106,11 +118,11 @@ pub fn parse(
         })
     };
     match format {
-        Format::Csv => csv::parse(text()?).map(|p| (p, Vec::new())),
+        Format::Csv => csv::parse_within(text()?, guard).map(|p| (p, Vec::new())),
         Format::Json => json::parse(text()?).map(|p| (p, Vec::new())),
         Format::Obj => obj::parse(text()?),
-        Format::Svg => svg::parse(text()?, segments),
-        Format::Dxf => dxf::parse(bytes, segments),
+        Format::Svg => svg::parse_within(text()?, segments, guard),
+        Format::Dxf => dxf::parse_within(bytes, segments, guard),
     }
 }
 
@@ -145,7 +157,8 @@ node! {
             .filter(|s| (1..=10_000).contains(s))
             .ok_or_else(|| NodeError::new(format!("segments must be 1 to 10000, got {segments}")))?;
         let (file, bytes) = ctx.read_file(&path)?;
-        let (curves, warnings) = parse(&bytes, format, segments).map_err(|e| {
+        let mut guard = ctx.guard(format!("reading '{}'", files::excerpt(&path, 60)));
+        let (curves, warnings) = parse_within(&bytes, format, segments, &mut guard).map_err(|e| {
             NodeError::new(format!("{}: {}", file.display(), cnets_engine::files::excerpt(&e, 200)))
         })?;
         if curves.is_empty() {

@@ -9,6 +9,7 @@
 //! loop and billion-laughs protection: hostile files end in a clear error with their line); the
 //! Bézier and arc maths is `cnets_geometry::curves::flatten`. Only the path-data syntax is read here.
 
+use cnets_engine::budget::Guard;
 use cnets_engine::prelude::*;
 use cnets_geometry::curves::flatten::{elliptical_arc, flatten_cubic, flatten_quadratic};
 use glam::DVec2;
@@ -365,14 +366,100 @@ fn to_world(points: &[DVec2]) -> Vec<DVec3> {
     points.iter().map(|p| DVec3::new(p.x, -p.y, 0.0)).collect()
 }
 
+/// At most how many points a path's `d` flattens to: a curve takes at least two numbers and gives
+/// at most `segments` points, a line at least one number and one point.
+fn path_points_bound(d: &str, segments: usize) -> u64 {
+    let bytes = d.as_bytes();
+    let numbers = bytes
+        .iter()
+        .enumerate()
+        .filter(|&(k, &b)| {
+            let starts = b.is_ascii_digit() || b == b'.';
+            starts && (k == 0 || !(bytes[k - 1].is_ascii_digit() || bytes[k - 1] == b'.'))
+        })
+        .count() as u64;
+    let curves = bytes
+        .iter()
+        .any(|b| matches!(b.to_ascii_uppercase(), b'C' | b'S' | b'Q' | b'T' | b'A'));
+    if curves {
+        (numbers / 2 + 1).saturating_mul(segments as u64 + 1)
+    } else {
+        numbers + 1
+    }
+}
+
+/// At most how many bytes the document's text takes once its internal entities are expanded: the
+/// text plus, for every `&name;`, the length of what `name` expands to (entities inside entities
+/// expanded as far as they go). A 2 GB expansion hidden in a 1 kB file is seen before parsing.
+fn expanded_bound(text: &str) -> u64 {
+    if !text.contains("<!ENTITY") {
+        return text.len() as u64;
+    }
+    // `<!ENTITY name "value">` or with single quotes.
+    let mut entities: Vec<(&str, &str)> = Vec::new();
+    for decl in text.split("<!ENTITY").skip(1) {
+        let decl = decl.trim_start();
+        let Some((name, rest)) = decl.split_once(char::is_whitespace) else {
+            continue;
+        };
+        let rest = rest.trim_start();
+        let Some(quote) = rest.chars().next().filter(|c| *c == '"' || *c == '\'') else {
+            continue;
+        };
+        if let Some(value) = rest[1..].split(quote).next() {
+            entities.push((name, value));
+        }
+    }
+    let count = |s: &str, name: &str| s.matches(&format!("&{name};")).count() as u64;
+    // Sizes by fixed point over the declarations (nested references), saturating.
+    let mut sizes: Vec<u64> = entities.iter().map(|(_, v)| v.len() as u64).collect();
+    for _ in 0..entities.len().min(64) {
+        let next: Vec<u64> = entities
+            .iter()
+            .map(|(_, v)| {
+                entities
+                    .iter()
+                    .zip(&sizes)
+                    .fold(v.len() as u64, |acc, ((n, _), &size)| {
+                        acc.saturating_add(count(v, n).saturating_mul(size))
+                    })
+            })
+            .collect();
+        if next == sizes {
+            break;
+        }
+        sizes = next;
+    }
+    entities
+        .iter()
+        .zip(&sizes)
+        .fold(text.len() as u64, |acc, ((n, _), &size)| {
+            acc.saturating_add(count(text, n).saturating_mul(size))
+        })
+}
+
 /// Parses SVG text into polylines (and warnings). The XML is parsed by `roxmltree`; undeclared
 /// namespace prefixes are tolerated (at most [`MAX_PREFIXES`]).
 pub fn parse(text: &str, segments: usize) -> Result<(Vec<Polyline>, Vec<String>), String> {
+    parse_within(text, segments, &mut Guard::unlimited())
+}
+
+/// [`parse`] declaring to `guard` the expanded text (entities) before parsing and every path's
+/// flattened points before flattening them.
+pub fn parse_within(
+    text: &str,
+    segments: usize,
+    guard: &mut Guard,
+) -> Result<(Vec<Polyline>, Vec<String>), String> {
+    // The parser keeps the text and its expansions (about twice the expanded text).
+    guard
+        .grow(expanded_bound(text).saturating_mul(2))
+        .map_err(|e| format!("{e} (the document's entities expand the text)"))?;
     let mut patched: Option<String> = None;
     for _ in 0..=MAX_PREFIXES {
         let src = patched.as_deref().unwrap_or(text);
         let next = match document(src) {
-            Ok(doc) => return shapes(&doc, segments),
+            Ok(doc) => return shapes(&doc, segments, guard),
             Err(roxmltree::Error::UnknownNamespace(prefix, pos)) => declare(src, &prefix)
                 .ok_or_else(|| {
                     format!(
@@ -393,6 +480,7 @@ pub fn parse(text: &str, segments: usize) -> Result<(Vec<Polyline>, Vec<String>)
 fn shapes(
     doc: &roxmltree::Document,
     segments: usize,
+    guard: &mut Guard,
 ) -> Result<(Vec<Polyline>, Vec<String>), String> {
     let mut out = Vec::new();
     let mut transforms = 0;
@@ -423,7 +511,14 @@ fn shapes(
                 );
                 vec![(vec![a, b], false)]
             }
-            "path" => path(node.attribute("d").unwrap_or(""), segments).map_err(at)?,
+            "path" => {
+                let d = node.attribute("d").unwrap_or("");
+                // A point as flattened and as kept (16 + 24 bytes, and the tidied copy).
+                guard
+                    .grow_items(path_points_bound(d, segments), 64)
+                    .map_err(|e| at(e.to_string()))?;
+                path(d, segments).map_err(at)?
+            }
             _ => continue,
         };
         for (pts, closed) in shapes {

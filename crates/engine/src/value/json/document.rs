@@ -232,17 +232,26 @@ impl<'de> Visitor<'de> for DocumentVisitor {
         Ok(Document::Number(x))
     }
 
-    fn visit_str<E>(self, s: &str) -> Result<Document, E> {
+    fn visit_str<E: serde::de::Error>(self, s: &str) -> Result<Document, E> {
+        charge(s.len())?;
         Ok(Document::Text(s.to_owned()))
     }
 
-    fn visit_string<E>(self, s: String) -> Result<Document, E> {
+    fn visit_string<E: serde::de::Error>(self, s: String) -> Result<Document, E> {
+        charge(s.len())?;
         Ok(Document::Text(s))
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Document, A::Error> {
         let mut array = ArrayBuilder::Empty;
         while let Some(item) = seq.next_element::<Document>()? {
+            // What the item costs in the array: a number 8 bytes, a point 24, anything else its
+            // slot (its own contents were charged when it was read).
+            charge(match (&array, &item) {
+                (_, Document::Number(_) | Document::Integer(_)) => 8,
+                (ArrayBuilder::Empty | ArrayBuilder::Points(..), Document::Triple(..)) => 24,
+                _ => std::mem::size_of::<Document>(),
+            })?;
             array.push(item);
         }
         Ok(array.finish())
@@ -251,10 +260,35 @@ impl<'de> Visitor<'de> for DocumentVisitor {
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Document, A::Error> {
         let mut fields = IndexMap::new();
         while let Some((key, value)) = map.next_entry::<String, Document>()? {
+            charge(key.len() + std::mem::size_of::<Document>() + 16)?;
             fields.insert(key, value);
         }
         Ok(Document::Object(Box::new(fields)))
     }
+}
+
+thread_local! {
+    /// The memory limit of the document being read on this thread and what it has taken so far.
+    static MEMORY: std::cell::Cell<Option<(u64, u64)>> = const { std::cell::Cell::new(None) };
+}
+
+/// Counts `bytes` more of the document being read against its limit ([`read_document_within`]).
+fn charge<E: serde::de::Error>(bytes: usize) -> Result<(), E> {
+    MEMORY.with(|m| match m.get() {
+        Some((limit, used)) => {
+            let used = used.saturating_add(bytes as u64);
+            m.set(Some((limit, used)));
+            if used > limit {
+                Err(E::custom(format!(
+                    "the input needs more than the memory limit of {}",
+                    crate::budget::format_bytes(limit)
+                )))
+            } else {
+                Ok(())
+            }
+        }
+        None => Ok(()),
+    })
 }
 
 /// An array being read: packed while its items allow it, general from the first item that does not
@@ -344,6 +378,20 @@ impl ArrayBuilder {
             ArrayBuilder::General(v) => Document::Array(v),
         }
     }
+}
+
+/// [`read_document`] that fails, where it is in the text, as soon as the document would take more
+/// than `limit` bytes (numbers 8 bytes each, points 24, texts their length, other items their
+/// slot): a JSON input larger than the memory budget is refused while it is read, before it is in
+/// memory.
+pub fn read_document_within<R: std::io::Read>(
+    reader: R,
+    limit: u64,
+) -> serde_json::Result<Document> {
+    MEMORY.with(|m| m.set(Some((limit, 0))));
+    let read = read_document(reader);
+    MEMORY.with(|m| m.set(None));
+    read
 }
 
 /// Reads a document from a JSON reader (buffered internally by serde_json), rejecting trailing
@@ -499,5 +547,23 @@ mod tests {
         assert!(serde_json::from_str::<Document>(&deep).is_err());
         let err = read_document("[1, 2] x".as_bytes()).unwrap_err();
         assert_eq!((err.line(), err.column()), (1, 8));
+    }
+
+    #[test]
+    fn a_document_over_its_memory_limit_stops_where_it_is() {
+        let numbers = format!("[{}0]", "0.5,\n".repeat(1000));
+        assert!(read_document_within(numbers.as_bytes(), 8 * 1001).is_ok());
+        let err = read_document_within(numbers.as_bytes(), 8 * 500).unwrap_err();
+        assert!(
+            err.to_string()
+                .contains("more than the memory limit of 4 kB"),
+            "{err}"
+        );
+        // The 501st number (on line 501) is one too many: the error is where the reader stands.
+        assert_eq!(err.line(), 502, "{err}");
+        let text = format!("{{\"a\": \"{}\"}}", "x".repeat(10_000));
+        assert!(read_document_within(text.as_bytes(), 1000).is_err());
+        // No limit after a limited read on the same thread.
+        assert!(read_document(numbers.as_bytes()).is_ok());
     }
 }

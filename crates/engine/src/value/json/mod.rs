@@ -16,7 +16,7 @@ mod document;
 mod encode;
 
 pub use decode::{from_document, from_json};
-pub use document::{Document, read_document};
+pub use document::{Document, read_document, read_document_within};
 pub use encode::{JsonOut, to_json, write_json};
 
 /// Why a JSON document does not decode into a value of a port's type.

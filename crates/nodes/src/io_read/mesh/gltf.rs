@@ -3,7 +3,10 @@
 //! scene order (or every mesh as it is, when the file has no scene). Strips and fans become
 //! triangles; points and lines are skipped with a warning.
 
+use std::borrow::Cow;
+
 use base64::Engine as _;
+use cnets_engine::budget::Guard;
 use cnets_engine::prelude::*;
 use glam::DMat4;
 use gltf::mesh::Mode;
@@ -13,25 +16,41 @@ use super::MeshObject;
 /// Reads a buffer the file refers to by a relative name.
 pub type ExternalReader<'a> = dyn Fn(&str) -> Result<Vec<u8>, String> + 'a;
 
-fn buffers(doc: &gltf::Gltf, external: &ExternalReader<'_>) -> Result<Vec<Vec<u8>>, String> {
+/// The buffers' bytes: the GLB chunk is borrowed however many buffers name it (a file of 1 000
+/// buffers all naming a 10 MB chunk holds it once), a data URI is declared to `guard` before it is
+/// decoded.
+fn buffers<'d>(
+    doc: &'d gltf::Gltf,
+    external: &ExternalReader<'_>,
+    guard: &mut Guard,
+) -> Result<Vec<Cow<'d, [u8]>>, String> {
     doc.buffers()
         .map(|buffer| {
-            let data = match buffer.source() {
-                gltf::buffer::Source::Bin => doc.blob.clone().ok_or_else(|| {
-                    format!(
-                        "buffer {} refers to a GLB chunk the file does not have",
-                        buffer.index()
-                    )
-                })?,
+            let data: Cow<'d, [u8]> = match buffer.source() {
+                gltf::buffer::Source::Bin => {
+                    Cow::Borrowed(doc.blob.as_deref().ok_or_else(|| {
+                        format!(
+                            "buffer {} refers to a GLB chunk the file does not have",
+                            buffer.index()
+                        )
+                    })?)
+                }
                 gltf::buffer::Source::Uri(uri) if uri.starts_with("data:") => {
                     let (_, payload) = uri.split_once(";base64,").ok_or_else(|| {
                         format!("buffer {}: only base64 data URIs are read", buffer.index())
                     })?;
-                    base64::engine::general_purpose::STANDARD
-                        .decode(payload)
-                        .map_err(|e| format!("buffer {}: bad base64 data: {e}", buffer.index()))?
+                    guard
+                        .grow(payload.len() as u64 / 4 * 3)
+                        .map_err(|e| format!("buffer {}: {e}", buffer.index()))?;
+                    Cow::Owned(
+                        base64::engine::general_purpose::STANDARD
+                            .decode(payload)
+                            .map_err(|e| {
+                                format!("buffer {}: bad base64 data: {e}", buffer.index())
+                            })?,
+                    )
                 }
-                gltf::buffer::Source::Uri(uri) => external(uri)?,
+                gltf::buffer::Source::Uri(uri) => Cow::Owned(external(uri)?),
             };
             if data.len() < buffer.length() {
                 return Err(format!(
@@ -46,14 +65,89 @@ fn buffers(doc: &gltf::Gltf, external: &ExternalReader<'_>) -> Result<Vec<Vec<u8
         .collect()
 }
 
+/// Checks that an accessor's elements lie inside its buffer view and its view inside its buffer,
+/// with a stride at least one element wide: the `gltf` crate's reader asserts (panics) or reads
+/// nothing otherwise. The error names the accessor and what does not fit.
+fn check_accessor(
+    accessor: &gltf::Accessor<'_>,
+    data: &[Cow<'_, [u8]>],
+    what: &str,
+) -> Result<(), String> {
+    let name = format!("{what}: accessor {}", accessor.index());
+    if accessor.sparse().is_some() {
+        return Err(format!("{name} is sparse, which is not read"));
+    }
+    let Some(view) = accessor.view() else {
+        return Err(format!("{name} has no buffer view"));
+    };
+    let buffer = data
+        .get(view.buffer().index())
+        .ok_or_else(|| format!("{name}: buffer {} does not exist", view.buffer().index()))?;
+    let view_end = view.offset().checked_add(view.length());
+    if view_end.is_none_or(|end| end > buffer.len()) {
+        return Err(format!(
+            "{name}: buffer view {} (offset {}, length {}) runs past the end of buffer {} ({} bytes)",
+            view.index(),
+            view.offset(),
+            view.length(),
+            view.buffer().index(),
+            buffer.len()
+        ));
+    }
+    let size = accessor.size();
+    let stride = view.stride().unwrap_or(size);
+    if stride < size {
+        return Err(format!(
+            "{name}: byteStride {stride} is smaller than an element ({size} bytes)"
+        ));
+    }
+    let count = accessor.count();
+    if count > 0 {
+        let last = (count - 1)
+            .checked_mul(stride)
+            .and_then(|x| x.checked_add(accessor.offset()))
+            .and_then(|x| x.checked_add(size));
+        if last.is_none_or(|end| end > view.length()) {
+            return Err(format!(
+                "{name}: {count} elements from offset {} (stride {stride}) run past the end of buffer view {} ({} bytes)",
+                accessor.offset(),
+                view.index(),
+                view.length()
+            ));
+        }
+    }
+    Ok(())
+}
+
 fn primitive_mesh(
     primitive: &gltf::Primitive<'_>,
-    data: &[Vec<u8>],
+    data: &[Cow<'_, [u8]>],
     transform: &DMat4,
     warnings: &mut Vec<String>,
     what: &str,
+    guard: &mut Guard,
 ) -> Result<Option<PolygonMesh>, String> {
-    let reader = primitive.reader(|b| data.get(b.index()).map(Vec::as_slice));
+    let Some(positions) = primitive.get(&gltf::Semantic::Positions) else {
+        warnings.push(format!("{what} has no positions: skipped"));
+        return Ok(None);
+    };
+    check_accessor(&positions, data, what)?;
+    let indices = primitive.indices();
+    if let Some(indices) = &indices {
+        check_accessor(indices, data, what)?;
+    }
+    // Every instance is made anew (a node listing the same child 99 990 times makes it 99 990
+    // times): declared before it is read. A vertex is 24 bytes, a corner 4 and its face start 4,
+    // each twice (the object and the joined mesh).
+    let corners = indices.as_ref().map_or(positions.count(), |i| i.count()) as u64;
+    guard
+        .grow(
+            (positions.count() as u64)
+                .saturating_mul(48)
+                .saturating_add(corners.saturating_mul(24)),
+        )
+        .map_err(|e| format!("{what}: {e}"))?;
+    let reader = primitive.reader(|b| data.get(b.index()).map(|d| &**d));
     let Some(positions) = reader.read_positions() else {
         warnings.push(format!("{what} has no positions: skipped"));
         return Ok(None);
@@ -117,15 +211,16 @@ fn primitive_mesh(
 
 fn mesh_objects(
     mesh: &gltf::Mesh<'_>,
-    data: &[Vec<u8>],
+    data: &[Cow<'_, [u8]>],
     transform: &DMat4,
     out: &mut Vec<MeshObject>,
     warnings: &mut Vec<String>,
+    guard: &mut Guard,
 ) -> Result<(), String> {
     let name = mesh.name().unwrap_or("").to_string();
     for primitive in mesh.primitives() {
         let what = format!("mesh {} primitive {}", mesh.index(), primitive.index());
-        if let Some(m) = primitive_mesh(&primitive, data, transform, warnings, &what)? {
+        if let Some(m) = primitive_mesh(&primitive, data, transform, warnings, &what, guard)? {
             out.push(MeshObject {
                 name: name.clone(),
                 mesh: m,
@@ -145,8 +240,17 @@ pub fn parse(
     bytes: &[u8],
     external: &ExternalReader<'_>,
 ) -> Result<(Vec<MeshObject>, Vec<String>), String> {
+    parse_within(bytes, external, &mut Guard::unlimited())
+}
+
+/// [`parse`] declaring every buffer it decodes and every primitive instance it makes to `guard`.
+pub fn parse_within(
+    bytes: &[u8],
+    external: &ExternalReader<'_>,
+    guard: &mut Guard,
+) -> Result<(Vec<MeshObject>, Vec<String>), String> {
     let doc = gltf::Gltf::from_slice(bytes).map_err(|e| e.to_string())?;
-    let data = buffers(&doc, external)?;
+    let data = buffers(&doc, external, guard)?;
     let mut out = Vec::new();
     let mut warnings = Vec::new();
     let scene = doc.default_scene().or_else(|| doc.scenes().next());
@@ -167,7 +271,7 @@ pub fn parse(
                     DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(f64::from)));
                 let world = parent * local;
                 if let Some(mesh) = node.mesh() {
-                    mesh_objects(&mesh, &data, &world, &mut out, &mut warnings)?;
+                    mesh_objects(&mesh, &data, &world, &mut out, &mut warnings, guard)?;
                 }
                 if depth >= MAX_NODE_DEPTH {
                     warnings.push(format!("node {} nests deeper than {MAX_NODE_DEPTH} levels: its children are skipped", node.index()));
@@ -180,7 +284,14 @@ pub fn parse(
         }
         None => {
             for mesh in doc.meshes() {
-                mesh_objects(&mesh, &data, &DMat4::IDENTITY, &mut out, &mut warnings)?;
+                mesh_objects(
+                    &mesh,
+                    &data,
+                    &DMat4::IDENTITY,
+                    &mut out,
+                    &mut warnings,
+                    guard,
+                )?;
             }
         }
     }

@@ -114,15 +114,16 @@ node! {
         let named = |e: String| {
             NodeError::new(format!("{}: {}", file.display(), cnets_engine::files::excerpt(&e, 200)))
         };
+        let mut guard = ctx.guard(format!("reading '{}'", cnets_engine::files::excerpt(&path, 60)));
         let file_mesh = match format {
             MeshFormat::Obj => {
                 let text = std::str::from_utf8(&bytes).map_err(|e| {
                     named(format!("not UTF-8 text (invalid byte at offset {})", e.valid_up_to()))
                 })?;
-                obj::parse(text).map_err(named)?
+                obj::parse_within(text, &mut guard).map_err(named)?
             }
             MeshFormat::Stl => MeshFile::from_objects(stl::parse(&bytes).map_err(named)?),
-            MeshFormat::Ply => MeshFile::from_objects(ply::parse(&bytes).map_err(named)?),
+            MeshFormat::Ply => MeshFile::from_objects(ply::parse_within(&bytes, &mut guard).map_err(named)?),
             MeshFormat::Gltf => {
                 let folder = Path::new(&path).parent().unwrap_or(Path::new(""));
                 let external = |uri: &str| {
@@ -131,7 +132,8 @@ node! {
                         .map(|(_, bytes)| bytes)
                         .map_err(|e| e.to_string())
                 };
-                let (objects, warnings) = gltf::parse(&bytes, &external).map_err(named)?;
+                let (objects, warnings) =
+                    gltf::parse_within(&bytes, &external, &mut guard).map_err(named)?;
                 for w in warnings {
                     ctx.warn(format!("{}: {w}", file.display()));
                 }

@@ -2,25 +2,60 @@
 //! the last vertex, `i/t/n` forms allowed); `o` and `g` records start a new object. Polygons stay
 //! polygons. Other records (normals, texture coordinates, materials, lines) are ignored.
 
+use cnets_engine::budget::Guard;
 use cnets_engine::prelude::*;
 
 use super::{MeshFile, MeshObject};
 use crate::io_read::obj::{index, vertex};
 
+/// Records read between two looks at the memory budget.
+const CHECK_EVERY: usize = 1 << 16;
+
+/// Bytes a record may take while the file is read: a vertex (24 bytes, and its slot in the
+/// compaction tables) or a face corner (4 bytes, counted as 16 with the joined and per-object
+/// copies).
+const VERTEX_BYTES: u64 = 48;
+const CORNER_BYTES: u64 = 16;
+
+/// An object of the file: its name and its faces, stored flat (corner indices and face starts).
+#[derive(Default)]
+struct Object {
+    name: String,
+    indices: Vec<u32>,
+    starts: Vec<u32>,
+}
+
 /// Parses OBJ text into its objects (errors name the line); objects share the file's vertices in
 /// the joined mesh.
 pub fn parse(text: &str) -> Result<MeshFile, String> {
+    parse_within(text, &mut Guard::unlimited())
+}
+
+/// [`parse`] counting what it builds against `guard` every 65 536 records: a 240 MB file of
+/// faces stops at the memory budget, not at the machine's end.
+pub fn parse_within(text: &str, guard: &mut Guard) -> Result<MeshFile, String> {
     let mut vertices: Vec<DVec3> = Vec::new();
-    let mut objects: Vec<(String, Vec<Vec<u32>>)> = vec![(String::new(), Vec::new())];
+    let mut objects: Vec<Object> = vec![Object::default()];
+    let mut corners = 0u64;
+    let mut face: Vec<u32> = Vec::new();
     for (k, raw) in text.lines().enumerate() {
         let line_no = k + 1;
+        if k % CHECK_EVERY == CHECK_EVERY - 1 {
+            guard
+                .grow(
+                    (vertices.len() as u64 * VERTEX_BYTES + corners * CORNER_BYTES)
+                        .saturating_sub(guard.grown()),
+                )
+                .map_err(|e| format!("line {line_no}: {e}"))?;
+        }
         let mut tokens = raw.split_whitespace();
         match tokens.next() {
             Some("v") => vertices.push(vertex(tokens, line_no)?),
             Some("f") => {
-                let face = tokens
-                    .map(|t| index(t, vertices.len(), line_no).map(|i| i as u32))
-                    .collect::<Result<Vec<_>, _>>()?;
+                face.clear();
+                for t in tokens {
+                    face.push(index(t, vertices.len(), line_no)? as u32);
+                }
                 if face.len() < 3 {
                     return Err(format!(
                         "line {line_no}: a face needs at least 3 vertices, got {}",
@@ -28,42 +63,87 @@ pub fn parse(text: &str) -> Result<MeshFile, String> {
                     ));
                 }
                 if let Some(last) = objects.last_mut() {
-                    last.1.push(face);
+                    last.starts.push(last.indices.len() as u32);
+                    last.indices.extend_from_slice(&face);
+                    corners += face.len() as u64;
                 }
             }
             Some("o" | "g") => {
                 let name = tokens.collect::<Vec<_>>().join(" ");
                 match objects.last_mut() {
-                    Some(last) if last.1.is_empty() => last.0 = name,
-                    _ => objects.push((name, Vec::new())),
+                    Some(last) if last.starts.is_empty() => last.name = name,
+                    _ => objects.push(Object {
+                        name,
+                        ..Object::default()
+                    }),
                 }
             }
             _ => {}
         }
     }
-    let objects: Vec<(String, Vec<Vec<u32>>)> = objects
-        .into_iter()
-        .filter(|(_, faces)| !faces.is_empty())
-        .collect();
-    let all_faces: Vec<Vec<u32>> = objects
-        .iter()
-        .flat_map(|(_, f)| f.iter().cloned())
-        .collect();
-    let compacted = |faces: &[Vec<u32>]| {
-        PolygonMesh::from_faces(vertices.clone(), faces)
-            .map(|m| cnets_geometry::mesh_weld::compact(&m))
-            .map_err(|e| e.to_string())
+    objects.retain(|o| !o.starts.is_empty());
+    guard
+        .grow(
+            (vertices.len() as u64 * VERTEX_BYTES + corners * CORNER_BYTES)
+                .saturating_sub(guard.grown()),
+        )
+        .map_err(|e| e.to_string())?;
+    // One table of the used vertices' new indices, reused object by object (no copy of the file's
+    // vertices per object).
+    let mut slot = vec![u32::MAX; vertices.len()];
+    let mut compact = |indices: &mut dyn Iterator<Item = u32>,
+                       starts: &mut dyn Iterator<Item = u32>| {
+        let mut mesh = PolygonMesh::new();
+        let mut used: Vec<u32> = Vec::new();
+        mesh.indices = indices
+            .map(|v| {
+                let s = &mut slot[v as usize];
+                if *s == u32::MAX {
+                    *s = used.len() as u32;
+                    used.push(v);
+                }
+                *s
+            })
+            .collect();
+        mesh.face_starts = starts.collect();
+        // New indices in order of first use; the vertices keep the file's order.
+        let mut order: Vec<u32> = (0..used.len() as u32).collect();
+        order.sort_unstable_by_key(|&k| used[k as usize]);
+        let mut renumber = vec![0u32; used.len()];
+        for (new, &old_slot) in order.iter().enumerate() {
+            renumber[old_slot as usize] = new as u32;
+        }
+        mesh.vertices = order
+            .iter()
+            .map(|&k| vertices[used[k as usize] as usize])
+            .collect();
+        for i in &mut mesh.indices {
+            *i = renumber[*i as usize];
+        }
+        for &v in &used {
+            slot[v as usize] = u32::MAX;
+        }
+        mesh
     };
-    let joined = compacted(&all_faces)?;
+    let joined = {
+        let mut starts = Vec::new();
+        let mut offset = 0u32;
+        for o in &objects {
+            starts.extend(o.starts.iter().map(|s| s + offset));
+            offset += o.indices.len() as u32;
+        }
+        compact(
+            &mut objects.iter().flat_map(|o| o.indices.iter().copied()),
+            &mut starts.into_iter(),
+        )
+    };
     let objects = objects
         .into_iter()
-        .map(|(name, faces)| {
-            Ok(MeshObject {
-                name,
-                mesh: compacted(&faces)?,
-            })
+        .map(|o| MeshObject {
+            mesh: compact(&mut o.indices.into_iter(), &mut o.starts.into_iter()),
+            name: o.name,
         })
-        .collect::<Result<Vec<_>, String>>()?;
+        .collect();
     Ok(MeshFile { joined, objects })
 }
 

@@ -1,6 +1,8 @@
 //! PLY meshes, ascii and binary (little and big endian), read with `ply-rs`: the `vertex` element's
 //! `x`, `y`, `z` and the `face` element's `vertex_indices` (or `vertex_index`) lists.
 
+use cnets_engine::budget::Guard;
+use cnets_engine::files;
 use cnets_engine::prelude::*;
 use ply_rs::parser::Parser;
 use ply_rs::ply::{DefaultElement, Property};
@@ -33,8 +35,93 @@ fn indices(p: &Property) -> Option<Vec<i64>> {
     })
 }
 
+/// Bytes of a scalar PLY property type in a binary file (`None`: not a type).
+fn type_size(name: &str) -> Option<u64> {
+    Some(match name {
+        "char" | "uchar" | "int8" | "uint8" => 1,
+        "short" | "ushort" | "int16" | "uint16" => 2,
+        "int" | "uint" | "float" | "int32" | "uint32" | "float32" => 4,
+        "double" | "float64" => 8,
+        _ => return None,
+    })
+}
+
+/// Memory `ply-rs` takes per item of an element: its map and a slot per property.
+const ITEM_BYTES: u64 = 96;
+const PROPERTY_BYTES: u64 = 64;
+
+/// Reads the header before `ply-rs` does: every element's count must be a number the rest of the
+/// file can hold (each item takes at least one byte per property in binary, two in ascii), and what
+/// `ply-rs` will build for them is declared to `guard`. A 242-byte file declaring 10⁹ items is an
+/// error naming its line, not 3.8 GB of reservations; a count beyond 64 bits is an error, not a
+/// panic inside `ply-rs`.
+fn check_header(bytes: &[u8], guard: &mut Guard) -> Result<(), String> {
+    let end = bytes
+        .windows(10)
+        .position(|w| w == b"end_header")
+        .ok_or("the PLY header has no end_header line")?;
+    let header = String::from_utf8_lossy(&bytes[..end]);
+    let data = bytes.len().saturating_sub(end + 11) as u64;
+    let ascii = header.lines().any(|l| l.trim() == "format ascii 1.0");
+    // (line, name, count, least bytes of an item)
+    let mut elements: Vec<(usize, String, u64, u64)> = Vec::new();
+    for (k, line) in header.lines().enumerate() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.as_slice() {
+            ["element", name, count] => {
+                let count: u64 = count.parse().map_err(|_| {
+                    format!(
+                        "line {}: element '{}' has the count '{}', not a whole number of at most 20 digits",
+                        k + 1,
+                        files::excerpt(name, 40),
+                        files::excerpt(count, 40)
+                    )
+                })?;
+                elements.push((k + 1, name.to_string(), count, 0));
+            }
+            ["property", "list", count_type, _, _] => {
+                if let Some(e) = elements.last_mut() {
+                    e.3 += if ascii {
+                        2
+                    } else {
+                        type_size(count_type).unwrap_or(1)
+                    };
+                }
+            }
+            ["property", ty, _] => {
+                if let Some(e) = elements.last_mut() {
+                    e.3 += if ascii { 2 } else { type_size(ty).unwrap_or(1) };
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut least = 0u64;
+    for (line, name, count, item) in &elements {
+        let needs = count.saturating_mul((*item).max(1));
+        least = least.saturating_add(needs);
+        if least > data {
+            return Err(format!(
+                "line {line}: element '{}' declares {count} items, more than the file's {data} bytes of data can hold",
+                files::excerpt(name, 40)
+            ));
+        }
+        let properties = (*item).max(1);
+        guard
+            .grow(count.saturating_mul(ITEM_BYTES + PROPERTY_BYTES * properties))
+            .map_err(|e| format!("line {line}: {e}"))?;
+    }
+    Ok(())
+}
+
 /// Parses PLY bytes into one mesh object (header and ascii errors name the line).
 pub fn parse(bytes: &[u8]) -> Result<Vec<MeshObject>, String> {
+    parse_within(bytes, &mut Guard::unlimited())
+}
+
+/// [`parse`] with the header checked against the file's size and `guard` first.
+pub fn parse_within(bytes: &[u8], guard: &mut Guard) -> Result<Vec<MeshObject>, String> {
+    check_header(bytes, guard)?;
     let mut reader = bytes;
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut reader)
@@ -111,6 +198,31 @@ mod tests {
             parse(out_of_range.as_bytes())
                 .unwrap_err()
                 .contains("vertex 9")
+        );
+    }
+
+    #[test]
+    fn counts_the_file_cannot_hold_are_refused_before_ply_rs_reserves_them() {
+        // The 242-byte file: an element of a billion items.
+        let text = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement junk 1000000000\nproperty uchar a\nend_header\n";
+        let mut bytes = text.as_bytes().to_vec();
+        bytes.extend_from_slice(&[0u8; 36]);
+        let e = parse(&bytes).unwrap_err();
+        assert!(
+            e.starts_with("line 7: element 'junk' declares 1000000000 items"),
+            "{e}"
+        );
+        // A count beyond 64 bits is an error, not ply-rs's panic.
+        let huge = text.replace("1000000000", "99999999999999999999999");
+        let e = parse(huge.as_bytes()).unwrap_err();
+        assert!(e.contains("not a whole number"), "{e}");
+        // A count the file holds but the budget does not.
+        let ok = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+        let mut small = Guard::new(cnets_engine::MemoryBudget::new(100), 0, "reading 'x.ply'");
+        assert!(
+            parse_within(ok.as_bytes(), &mut small)
+                .unwrap_err()
+                .contains("the limit is 100 bytes")
         );
     }
 }
