@@ -84,6 +84,22 @@ impl Rebuilt {
     }
 }
 
+/// Whether an edit changed `after` from `before` in anything the graph file stores: its revision
+/// (values, wires, nodes, flags — the engine bumps it only for real changes), or a node's canvas
+/// position or preview flag (not evaluation edits: they keep the revision). Constant in the text
+/// size: a drag of a slider in a graph of thousands of nodes does not write the graph out twice a
+/// frame.
+pub fn differs(after: &Graph, before: &Graph) -> bool {
+    if after.revision() != before.revision() || after.node_count() != before.node_count() {
+        return true;
+    }
+    after.nodes().any(|(_, n)| {
+        before
+            .node(&n.id)
+            .is_none_or(|b| b.position != n.position || b.preview != n.preview)
+    })
+}
+
 /// Rebuilds the cluster of `level` from an edited subgraph: the graph around it with the cluster
 /// node's new definition (the level's own graph when the subgraph is unchanged).
 pub fn rebuild(level: &Level, graph: &Graph, meta: &GraphMeta) -> Result<(Graph, Rebuilt), String> {
@@ -536,7 +552,7 @@ impl GraphDocument {
         let mut graph = self.graph.clone();
         let mut meta = self.meta.clone();
         let result = f(&mut graph, &mut meta)?;
-        let changed = file::to_ron(&graph, &meta) != file::to_ron(&before.graph, &before.meta);
+        let changed = differs(&graph, &before.graph) || meta != before.meta;
         if changed {
             self.history.record(before, key);
             self.graph = graph;
@@ -655,6 +671,40 @@ mod tests {
         .unwrap();
         assert_eq!(doc.fresh_id("curve.arc"), "arc_2");
         assert_eq!(doc.fresh_id("arc_2"), "arc_2");
+    }
+
+    #[test]
+    fn an_edit_is_a_change_exactly_when_the_file_text_changes() {
+        let mut doc = GraphDocument::new(registry());
+        doc.edit(None, |g, _| {
+            g.add_node("n", "param.number").map_err(|e| e.to_string())?;
+            g.set_value("n", "value", cnets_engine::Value::Number(0.25))
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+        let (steps, version, text) = (doc.history.undo_len(), doc.version(), doc.to_ron());
+        // The same value again, the same position, the same flag: no step, no new version.
+        doc.edit(None, |g, _| {
+            g.set_value("n", "value", cnets_engine::Value::Number(0.25))
+                .map_err(|e| e.to_string())?;
+            let at = g.node("n").unwrap().position;
+            g.set_position("n", at).map_err(|e| e.to_string())?;
+            g.set_preview("n", true).map_err(|e| e.to_string())
+        })
+        .unwrap();
+        assert_eq!((doc.history.undo_len(), doc.version()), (steps, version));
+        assert_eq!(doc.to_ron(), text);
+        // A move and a preview toggle change the text (not the evaluation): each a step.
+        for edit in [
+            |g: &mut Graph| g.set_position("n", [40.0, 50.0]),
+            |g: &mut Graph| g.set_preview("n", false),
+        ] {
+            let before = doc.to_ron();
+            doc.edit(None, |g, _| edit(g).map_err(|e| e.to_string()))
+                .unwrap();
+            assert_ne!(doc.to_ron(), before);
+        }
+        assert_eq!(doc.history.undo_len(), steps + 2);
     }
 
     #[test]
