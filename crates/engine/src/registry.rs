@@ -51,8 +51,13 @@ impl Registry {
         self.defs.is_empty()
     }
 
-    /// Ids close to `id` (same prefix or small edit distance), for "did you mean" hints.
+    /// Ids close to `id` (same prefix or small edit distance), for "did you mean" hints. A name
+    /// longer than [`MAX_SIMILAR`] characters is like none (the search is bounded: a 10⁷-character
+    /// name took minutes and gigabytes of edit-distance tables).
     pub fn similar_ids(&self, id: &str) -> Vec<&str> {
+        if id.chars().nth(MAX_SIMILAR).is_some() {
+            return Vec::new();
+        }
         let mut scored: Vec<(usize, &str)> = self
             .defs
             .iter()
@@ -65,6 +70,9 @@ impl Registry {
         scored.into_iter().take(3).map(|(_, s)| s).collect()
     }
 }
+
+/// The longest name a "did you mean" search compares (registered ids are far shorter).
+pub const MAX_SIMILAR: usize = 64;
 
 /// Edit distance counting insertions, deletions, substitutions and swaps of neighbours (optimal
 /// string alignment), so that the common typo `nmu` for `num` counts as one edit.
@@ -106,6 +114,7 @@ mod tests {
         assert_eq!(r.similar_ids("curve.arcs"), vec!["curve.arc"]);
         assert_eq!(edit_distance("kitten", "sitting"), 3);
         assert_eq!(edit_distance("t.nmu", "t.num"), 1);
+        assert!(r.similar_ids(&"curve.arc".repeat(1_000_000)).is_empty());
         r.register(NodeDef::new("curve.arc", "Curves", "Replaced."));
         assert_eq!(r.len(), 2);
         assert_eq!(r.get("curve.arc").unwrap().doc, "Replaced.");

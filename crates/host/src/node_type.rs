@@ -48,7 +48,8 @@ pub fn resolve(
         format!(" (did you mean {}?)", hints.join(", "))
     };
     Err(HostError::usage(format!(
-        "unknown node type '{id}'{hint}; `cnets nodes` lists them"
+        "unknown node type '{}'{hint}; `cnets nodes` lists them",
+        cnets_engine::files::excerpt(id, 60)
     )))
 }
 

@@ -6,16 +6,16 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum GraphError {
     /// No node with this id.
-    #[error("no node '{0}'")]
+    #[error("no node '{}'", q(.0))]
     UnknownNode(String),
     /// A node with this id already exists.
-    #[error("a node '{0}' already exists")]
+    #[error("a node '{}' already exists", q(.0))]
     DuplicateId(String),
     /// Node ids are non-empty and use letters, digits, '_' and '-'.
-    #[error("invalid node id '{0}': use letters, digits, '_' and '-'")]
+    #[error("invalid node id '{}': use letters, digits, '_' and '-'", q(.0))]
     InvalidId(String),
     /// No node type with this id.
-    #[error("unknown node type '{type_id}'{}", did_you_mean(.suggestions))]
+    #[error("unknown node type '{}'{}", q(.type_id), did_you_mean(.suggestions))]
     UnknownType {
         /// The requested type.
         type_id: String,
@@ -23,7 +23,7 @@ pub enum GraphError {
         suggestions: Vec<String>,
     },
     /// The node has no input with this name.
-    #[error("node '{node}' ({type_id}) has no input '{port}'; its inputs are: {valid}")]
+    #[error("node '{}' ({type_id}) has no input '{}'; its inputs are: {valid}", q(.node), q(.port))]
     UnknownInput {
         /// Node id.
         node: String,
@@ -35,7 +35,7 @@ pub enum GraphError {
         valid: String,
     },
     /// The node has no output with this name.
-    #[error("node '{node}' ({type_id}) has no output '{port}'; its outputs are: {valid}")]
+    #[error("node '{}' ({type_id}) has no output '{}'; its outputs are: {valid}", q(.node), q(.port))]
     UnknownOutput {
         /// Node id.
         node: String,
@@ -47,7 +47,7 @@ pub enum GraphError {
         valid: String,
     },
     /// The output's type cannot flow into the input.
-    #[error("type mismatch: {from} gives {from_type} but {to} takes {to_type}")]
+    #[error("type mismatch: {} gives {from_type} but {} takes {to_type}", q(.from), q(.to))]
     TypeMismatch {
         /// `node.output`.
         from: String,
@@ -59,7 +59,7 @@ pub enum GraphError {
         to_type: String,
     },
     /// The connection would close a cycle.
-    #[error("connecting {from} -> {to} would create a cycle: {path}")]
+    #[error("connecting {} -> {} would create a cycle: {}", q(.from), q(.to), q(.path))]
     Cycle {
         /// `node.output`.
         from: String,
@@ -69,7 +69,7 @@ pub enum GraphError {
         path: String,
     },
     /// The same wire exists already.
-    #[error("{from} -> {to} is already connected")]
+    #[error("{} -> {} is already connected", q(.from), q(.to))]
     AlreadyConnected {
         /// `node.output`.
         from: String,
@@ -77,7 +77,7 @@ pub enum GraphError {
         to: String,
     },
     /// No such wire.
-    #[error("{from} -> {to} is not connected")]
+    #[error("{} -> {} is not connected", q(.from), q(.to))]
     NotConnected {
         /// `node.output`.
         from: String,
@@ -85,7 +85,7 @@ pub enum GraphError {
         to: String,
     },
     /// A literal value does not fit the input.
-    #[error("input '{node}.{port}': {message}")]
+    #[error("input '{}.{}': {message}", q(.node), q(.port))]
     BadValue {
         /// Node id.
         node: String,
@@ -94,6 +94,11 @@ pub enum GraphError {
         /// What is wrong.
         message: String,
     },
+}
+
+/// A name as an error quotes it: at most 60 characters (a 10⁷-character id is not echoed whole).
+fn q(name: &str) -> String {
+    crate::files::excerpt(name, 60)
 }
 
 fn did_you_mean(suggestions: &[String]) -> String {

@@ -65,7 +65,7 @@ pub fn run(args: Args) -> CommandResult {
         };
         return Err(Failure::usage(format!(
             "unknown node type '{}'{hint}; `cnets nodes` lists them",
-            args.node_type
+            cnets_engine::files::excerpt(&args.node_type, 60)
         )));
     };
     // The document is consumed by decoding: its packed rows move into the input values.

@@ -14,6 +14,46 @@ use dxf::entities::EntityType;
 
 use super::tidy;
 
+/// The bits of the integer a group code holds (DXF reference: 60–79 and 270–289 16-bit, 90–99 32-bit,
+/// 170–179, 370–389, 400–409 16-bit, 420–429, 440–459, 1071 32-bit), `None` for other codes.
+fn integer_bits(code: i32) -> Option<u32> {
+    match code {
+        60..=79 | 170..=179 | 270..=289 | 370..=389 | 400..=409 | 1060..=1070 => Some(16),
+        90..=99 | 420..=429 | 440..=459 | 1071 => Some(32),
+        _ => None,
+    }
+}
+
+/// Reads the group codes of an ascii DXF before the `dxf` crate does: an integer value that does
+/// not fit its code's width (a count over 32 bits) is named with its line, where the crate would
+/// say that the *next* code pair was not expected.
+fn check_integer_values(bytes: &[u8]) -> Result<(), String> {
+    if bytes.starts_with(b"AutoCAD Binary DXF") {
+        return Ok(());
+    }
+    let text = String::from_utf8_lossy(bytes);
+    let mut lines = text.lines().enumerate();
+    while let (Some((_, code)), Some((k, value))) = (lines.next(), lines.next()) {
+        let Some(bits) = code.trim().parse::<i32>().ok().and_then(integer_bits) else {
+            continue;
+        };
+        let value = value.trim();
+        let fits = match bits {
+            16 => value.parse::<i16>().is_ok(),
+            _ => value.parse::<i32>().is_ok(),
+        };
+        if !fits {
+            return Err(format!(
+                "line {}: group code {} holds '{}', not a {bits}-bit integer",
+                k + 1,
+                code.trim(),
+                cnets_engine::files::excerpt(value, 30)
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The `dxf` crate's error, said where the numbers come from: a count that does not fit its field
 /// (over 32 bits) is "code pair 70 not expected" there.
 fn dxf_error(e: dxf::DxfError) -> String {
@@ -133,6 +173,7 @@ pub fn parse_within(
     segments: usize,
     guard: &mut Guard,
 ) -> Result<(Vec<Polyline>, Vec<String>), String> {
+    check_integer_values(bytes)?;
     let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(bytes)).map_err(dxf_error)?;
     let mut curves = Vec::new();
     let mut skipped = 0usize;
@@ -275,6 +316,16 @@ mod tests {
             (pts[2] - DVec3::new(1.0, -1.0, 0.0)).length() < 1e-15,
             "{}",
             pts[2]
+        );
+    }
+
+    #[test]
+    fn a_count_over_32_bits_is_named_on_its_line() {
+        let text = "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\n0\n90\n99999999999\n70\n0\n0\nENDSEC\n0\nEOF\n";
+        let e = parse(text.as_bytes(), 16).unwrap_err();
+        assert_eq!(
+            e,
+            "line 10: group code 90 holds '99999999999', not a 32-bit integer"
         );
     }
 

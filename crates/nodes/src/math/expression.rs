@@ -1,5 +1,8 @@
 //! Arithmetic expressions over x, y and z (`math.expression`): a small recursive-descent parser that
-//! builds a tree once, and an evaluator over `f64`.
+//! compiles the text once into postfix instructions, and a stack evaluator over `f64`. Flat sums
+//! and products are loops in the parser and runs of instructions in the program, so a sum of a
+//! million terms parses, evaluates and drops without recursion; nesting (parentheses, signs,
+//! powers, calls) is what recurses, and it stops at 200 levels with an error.
 //!
 //! Hand-written rather than `evalexpr`: evalexpr reads `1/2` as integer division (0) and its errors
 //! carry no position, while a designer needs real-number arithmetic and an error that points at the
@@ -49,19 +52,27 @@ pub struct ExpressionError {
     pub column: usize,
 }
 
-/// A parsed expression.
+/// A parsed expression: postfix instructions and the stack they need.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Expr {
-    /// A number literal or a constant.
+pub struct Expr {
+    code: Vec<Instr>,
+    stack: usize,
+}
+
+/// One postfix instruction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Instr {
+    /// Push a number literal or a constant.
     Number(f64),
-    /// x (0), y (1) or z (2).
+    /// Push x (0), y (1) or z (2).
     Variable(usize),
-    /// −a.
-    Negate(Box<Expr>),
-    /// a op b.
-    Binary(Op, Box<Expr>, Box<Expr>),
-    /// A function call: the index into the function table and its arguments.
-    Call(usize, Vec<Expr>),
+    /// Negate the top.
+    Negate,
+    /// Pop b, pop a, push a op b.
+    Binary(Op),
+    /// Pop the arguments, push the function's value: index into the function table, argument
+    /// count.
+    Call(usize, usize),
 }
 
 /// A binary operator.
@@ -193,6 +204,8 @@ struct Parser {
     tokens: Vec<(Token, usize)>,
     at: usize,
     depth: usize,
+    /// The program compiled so far.
+    code: Vec<Instr>,
 }
 
 impl Parser {
@@ -223,54 +236,53 @@ impl Parser {
         Ok(())
     }
 
-    fn sum(&mut self) -> Result<Expr, ExpressionError> {
-        let mut left = self.product()?;
+    fn sum(&mut self) -> Result<(), ExpressionError> {
+        self.product()?;
         while let Token::Op(op @ (Op::Add | Op::Subtract)) = *self.peek() {
             self.next();
-            let right = self.product()?;
-            left = Expr::Binary(op, Box::new(left), Box::new(right));
+            self.product()?;
+            self.code.push(Instr::Binary(op));
         }
-        Ok(left)
+        Ok(())
     }
 
-    fn product(&mut self) -> Result<Expr, ExpressionError> {
-        let mut left = self.unary()?;
+    fn product(&mut self) -> Result<(), ExpressionError> {
+        self.unary()?;
         while let Token::Op(op @ (Op::Multiply | Op::Divide)) = *self.peek() {
             self.next();
-            let right = self.unary()?;
-            left = Expr::Binary(op, Box::new(left), Box::new(right));
+            self.unary()?;
+            self.code.push(Instr::Binary(op));
         }
-        Ok(left)
+        Ok(())
     }
 
-    fn unary(&mut self) -> Result<Expr, ExpressionError> {
+    fn unary(&mut self) -> Result<(), ExpressionError> {
         match self.peek() {
             Token::Op(op @ (Op::Subtract | Op::Add)) => {
                 let negate = *op == Op::Subtract;
                 self.next();
                 self.deeper()?;
-                let inner = self.unary()?;
+                self.unary()?;
                 self.depth -= 1;
-                Ok(if negate {
-                    Expr::Negate(Box::new(inner))
-                } else {
-                    inner
-                })
+                if negate {
+                    self.code.push(Instr::Negate);
+                }
+                Ok(())
             }
             _ => self.power(),
         }
     }
 
-    fn power(&mut self) -> Result<Expr, ExpressionError> {
-        let base = self.atom()?;
+    fn power(&mut self) -> Result<(), ExpressionError> {
+        self.atom()?;
         if *self.peek() == Token::Op(Op::Power) {
             self.next();
             self.deeper()?;
-            let exponent = self.unary()?;
+            self.unary()?;
             self.depth -= 1;
-            return Ok(Expr::Binary(Op::Power, Box::new(base), Box::new(exponent)));
+            self.code.push(Instr::Binary(Op::Power));
         }
-        Ok(base)
+        Ok(())
     }
 
     fn expect_close(&mut self, opened_at: usize) -> Result<(), ExpressionError> {
@@ -283,19 +295,25 @@ impl Parser {
         }
     }
 
-    fn atom(&mut self) -> Result<Expr, ExpressionError> {
+    fn atom(&mut self) -> Result<(), ExpressionError> {
         let (token, column) = self.next();
         match token {
-            Token::Number(x) => Ok(Expr::Number(x)),
+            Token::Number(x) => {
+                self.code.push(Instr::Number(x));
+                Ok(())
+            }
             Token::Open => {
                 self.deeper()?;
-                let inner = self.sum()?;
+                self.sum()?;
                 self.depth -= 1;
-                self.expect_close(column)?;
-                Ok(inner)
+                self.expect_close(column)
             }
             Token::Name(name) if *self.peek() == Token::Open => self.call(name, column),
-            Token::Name(name) => name_value(&name, column),
+            Token::Name(name) => {
+                let value = name_value(&name, column)?;
+                self.code.push(value);
+                Ok(())
+            }
             other => Err(error(
                 format!("expected a number, a name or '(', found {other}"),
                 column,
@@ -303,11 +321,12 @@ impl Parser {
         }
     }
 
-    fn call(&mut self, name: String, column: usize) -> Result<Expr, ExpressionError> {
+    fn call(&mut self, name: String, column: usize) -> Result<(), ExpressionError> {
         let Some(index) = FUNCTIONS.iter().position(|(n, _)| *n == name) else {
             return Err(error(
                 format!(
-                    "unknown function '{name}' (known: {})",
+                    "unknown function '{}' (known: {})",
+                    excerpt(&name),
                     FUNCTIONS
                         .iter()
                         .map(|(n, _)| *n)
@@ -319,16 +338,18 @@ impl Parser {
         };
         let (_, open) = self.next();
         self.deeper()?;
-        let mut args = vec![self.sum()?];
+        self.sum()?;
+        let mut args = 1;
         while *self.peek() == Token::Comma {
             self.next();
-            args.push(self.sum()?);
+            self.sum()?;
+            args += 1;
         }
         self.depth -= 1;
         self.expect_close(open)?;
         let count_ok = match FUNCTIONS[index].1 {
-            Some(n) => args.len() == n,
-            None => args.len() >= 2,
+            Some(n) => args == n,
+            None => args >= 2,
         };
         if !count_ok {
             let wanted = match FUNCTIONS[index].1 {
@@ -336,98 +357,135 @@ impl Parser {
                 Some(n) => format!("{n} arguments"),
                 None => "2 or more arguments".to_string(),
             };
-            return Err(error(
-                format!("{name} takes {wanted}, got {}", args.len()),
-                column,
-            ));
+            return Err(error(format!("{name} takes {wanted}, got {args}"), column));
         }
-        Ok(Expr::Call(index, args))
+        self.code.push(Instr::Call(index, args));
+        Ok(())
     }
 }
 
-fn name_value(name: &str, column: usize) -> Result<Expr, ExpressionError> {
+/// A name as an error message quotes it: at most 40 characters.
+fn excerpt(name: &str) -> String {
+    cnets_engine::files::excerpt(name, 40)
+}
+
+fn name_value(name: &str, column: usize) -> Result<Instr, ExpressionError> {
     if let Some(k) = VARIABLES.iter().position(|v| *v == name) {
-        return Ok(Expr::Variable(k));
+        return Ok(Instr::Variable(k));
     }
     match name {
-        "pi" => Ok(Expr::Number(std::f64::consts::PI)),
-        "e" => Ok(Expr::Number(std::f64::consts::E)),
+        "pi" => Ok(Instr::Number(std::f64::consts::PI)),
+        "e" => Ok(Instr::Number(std::f64::consts::E)),
         _ if FUNCTIONS.iter().any(|(n, _)| *n == name) => Err(error(
             format!("'{name}' is a function: call it with parentheses, e.g. {name}(x)"),
             column,
         )),
         _ => Err(error(
-            format!("unknown name '{name}' (known: x, y, z, pi, e)"),
+            format!("unknown name '{}' (known: x, y, z, pi, e)", excerpt(name)),
             column,
         )),
     }
 }
 
-/// Parses an expression.
+/// Parses an expression into its program.
 pub fn parse(text: &str) -> Result<Expr, ExpressionError> {
     let tokens = tokenize(text)?;
     let mut parser = Parser {
         tokens,
         at: 0,
         depth: 0,
+        code: Vec::new(),
     };
     if *parser.peek() == Token::End {
         return Err(error("the expression is empty", 1));
     }
-    let expr = parser.sum()?;
+    parser.sum()?;
     match parser.next() {
-        (Token::End, _) => Ok(expr),
-        (Token::Close, column) => Err(error("')' without a matching '('", column)),
-        (other, column) => Err(error(
-            format!("expected an operator or the end, found {other}"),
-            column,
-        )),
+        (Token::End, _) => {}
+        (Token::Close, column) => return Err(error("')' without a matching '('", column)),
+        (other, column) => {
+            return Err(error(
+                format!("expected an operator or the end, found {other}"),
+                column,
+            ));
+        }
     }
+    // The deepest the stack gets (a parsed program is balanced: one value at the end).
+    let (mut height, mut stack) = (0usize, 0usize);
+    for instr in &parser.code {
+        height = match *instr {
+            Instr::Number(_) | Instr::Variable(_) => height + 1,
+            Instr::Negate => height,
+            Instr::Binary(_) => height - 1,
+            Instr::Call(_, n) => height + 1 - n,
+        };
+        stack = stack.max(height);
+    }
+    Ok(Expr {
+        code: parser.code,
+        stack,
+    })
 }
 
 impl Expr {
     /// The value for the given x, y and z (radians for the trigonometric functions). May be NaN or
     /// infinite (the node checks).
     pub fn eval(&self, vars: &[f64; 3]) -> f64 {
-        match self {
-            Expr::Number(x) => *x,
-            Expr::Variable(k) => vars[*k],
-            Expr::Negate(a) => -a.eval(vars),
-            Expr::Binary(op, a, b) => {
-                let (a, b) = (a.eval(vars), b.eval(vars));
-                match op {
-                    Op::Add => a + b,
-                    Op::Subtract => a - b,
-                    Op::Multiply => a * b,
-                    Op::Divide => a / b,
-                    Op::Power => a.powf(b),
+        let mut stack: Vec<f64> = Vec::with_capacity(self.stack);
+        for instr in &self.code {
+            match *instr {
+                Instr::Number(x) => stack.push(x),
+                Instr::Variable(k) => stack.push(vars[k]),
+                Instr::Negate => {
+                    if let Some(top) = stack.last_mut() {
+                        *top = -*top;
+                    }
                 }
-            }
-            Expr::Call(index, args) => {
-                let a = args[0].eval(vars);
-                let rest = || args[1..].iter().map(|e| e.eval(vars));
-                match FUNCTIONS[*index].0 {
-                    "sin" => a.sin(),
-                    "cos" => a.cos(),
-                    "tan" => a.tan(),
-                    "asin" => a.asin(),
-                    "acos" => a.acos(),
-                    "atan" => a.atan(),
-                    "atan2" => a.atan2(args[1].eval(vars)),
-                    "sqrt" => a.sqrt(),
-                    "abs" => a.abs(),
-                    "exp" => a.exp(),
-                    "ln" => a.ln(),
-                    "log10" => a.log10(),
-                    "floor" => a.floor(),
-                    "ceil" => a.ceil(),
-                    "round" => a.round(),
-                    "min" => rest().fold(a, f64::min),
-                    "max" => rest().fold(a, f64::max),
-                    _ => f64::NAN,
+                Instr::Binary(op) => {
+                    let b = stack.pop().unwrap_or(f64::NAN);
+                    let a = stack.pop().unwrap_or(f64::NAN);
+                    stack.push(match op {
+                        Op::Add => a + b,
+                        Op::Subtract => a - b,
+                        Op::Multiply => a * b,
+                        Op::Divide => a / b,
+                        Op::Power => a.powf(b),
+                    });
+                }
+                Instr::Call(index, n) => {
+                    let start = stack.len().saturating_sub(n);
+                    let value = call(index, &stack[start..]);
+                    stack.truncate(start);
+                    stack.push(value);
                 }
             }
         }
+        stack.pop().unwrap_or(f64::NAN)
+    }
+}
+
+/// Function `index` of the table on its arguments.
+fn call(index: usize, args: &[f64]) -> f64 {
+    let a = args.first().copied().unwrap_or(f64::NAN);
+    match FUNCTIONS[index].0 {
+        "sin" => a.sin(),
+        "cos" => a.cos(),
+        "tan" => a.tan(),
+        "asin" => a.asin(),
+        "acos" => a.acos(),
+        "atan" => a.atan(),
+        "atan2" => a.atan2(args.get(1).copied().unwrap_or(f64::NAN)),
+        "sqrt" => a.sqrt(),
+        "abs" => a.abs(),
+        "exp" => a.exp(),
+        "ln" => a.ln(),
+        "log10" => a.log10(),
+        "floor" => a.floor(),
+        "ceil" => a.ceil(),
+        "round" => a.round(),
+        "min" => args.iter().copied().fold(a, f64::min),
+        "max" => args.iter().copied().fold(a, f64::max),
+        _ => f64::NAN,
     }
 }
 
@@ -497,5 +555,24 @@ mod tests {
         assert!(parse(&signs).is_err());
         let powers = vec!["2"; 100_000].join("^");
         assert!(parse(&powers).is_err());
+    }
+
+    #[test]
+    fn long_flat_sums_and_products_evaluate_without_recursion() {
+        // 150 000 terms (the issue's): parsed, evaluated and dropped on a small thread stack.
+        let sum = vec!["x"; 150_000].join(" + ");
+        let product = vec!["1"; 150_000].join(" * ");
+        let handle = std::thread::Builder::new()
+            .stack_size(256 * 1024)
+            .spawn(move || {
+                let s = parse(&sum).unwrap().eval(&[2.0, 0.0, 0.0]);
+                let p = parse(&product).unwrap().eval(&[0.0; 3]);
+                (s, p)
+            })
+            .unwrap();
+        assert_eq!(handle.join().unwrap(), (300_000.0, 1.0));
+        // A name of a million characters is quoted short.
+        let e = parse(&"q".repeat(1_000_000)).unwrap_err();
+        assert!(e.message.len() < 100, "{}", e.message.len());
     }
 }

@@ -271,10 +271,12 @@ fn parsed(text: &str) -> Result<Arc<expression::Expr>, NodeError> {
         {
             return Ok(expr.clone());
         }
-        let expr = Arc::new(
-            expression::parse(text)
-                .map_err(|e| NodeError::new(format!("expression '{text}': {e}")))?,
-        );
+        let expr = Arc::new(expression::parse(text).map_err(|e| {
+            NodeError::new(format!(
+                "expression '{}': {e}",
+                cnets_engine::files::excerpt(text, 60)
+            ))
+        })?);
         *last = Some((text.to_string(), expr.clone()));
         Ok(expr)
     })
@@ -306,7 +308,8 @@ node! {
         let value = expr.eval(&[x, y, z]);
         if !value.is_finite() {
             return Err(format!(
-                "expression '{expression}' is not a finite number at x = {x}, y = {y}, z = {z} (got {value})"
+                "expression '{}' is not a finite number at x = {x}, y = {y}, z = {z} (got {value})",
+                cnets_engine::files::excerpt(&expression, 60)
             )
             .into());
         }

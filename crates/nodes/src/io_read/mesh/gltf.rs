@@ -297,3 +297,73 @@ pub fn parse_within(
     }
     Ok((out, warnings))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A glTF of one triangle whose position accessor and view are given as JSON.
+    fn document(accessor: &str, view: &str) -> String {
+        let floats: Vec<u8> = [0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+            .iter()
+            .flat_map(|x| x.to_le_bytes())
+            .collect();
+        let uri = format!(
+            "data:application/octet-stream;base64,{}",
+            base64::engine::general_purpose::STANDARD.encode(&floats)
+        );
+        format!(
+            r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": 36, "uri": "{uri}"}}],
+"bufferViews": [{view}], "accessors": [{accessor}],
+"meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}}}]}}]}}"#
+        )
+    }
+
+    fn read(text: &str) -> Result<Vec<MeshObject>, String> {
+        parse(text.as_bytes(), &|_| Err("no files".into())).map(|(o, _)| o)
+    }
+
+    #[test]
+    fn a_well_formed_triangle_reads() {
+        let text = document(
+            r#"{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}"#,
+            r#"{"buffer": 0, "byteLength": 36}"#,
+        );
+        assert_eq!(read(&text).unwrap()[0].mesh.face_count(), 1);
+    }
+
+    #[test]
+    fn strides_counts_and_offsets_outside_the_buffer_are_named() {
+        let cases = [
+            // A stride of 4 bytes for 12-byte elements (the gltf crate's assertion).
+            (
+                r#"{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}"#,
+                r#"{"buffer": 0, "byteLength": 36, "byteStride": 4}"#,
+                "byteStride 4 is smaller than an element (12 bytes)",
+            ),
+            // A count far beyond the view.
+            (
+                r#"{"bufferView": 0, "componentType": 5126, "count": 1000000000, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}"#,
+                r#"{"buffer": 0, "byteLength": 36}"#,
+                "1000000000 elements from offset 0 (stride 12) run past the end of buffer view 0",
+            ),
+            // An offset beyond the view.
+            (
+                r#"{"bufferView": 0, "byteOffset": 4000, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}"#,
+                r#"{"buffer": 0, "byteLength": 36}"#,
+                "run past the end of buffer view 0",
+            ),
+            // A view beyond the buffer.
+            (
+                r#"{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}"#,
+                r#"{"buffer": 0, "byteOffset": 18446744073709551000, "byteLength": 36}"#,
+                "",
+            ),
+        ];
+        for (accessor, view, expected) in cases {
+            let e = read(&document(accessor, view)).unwrap_err();
+            assert!(e.contains(expected), "{e}");
+            assert!(!e.contains("no faces"), "{e}");
+        }
+    }
+}
