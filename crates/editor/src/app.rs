@@ -1239,7 +1239,7 @@ impl EditorApp {
         self.poll_worker();
         self.optimization.poll();
         // An active list editor window takes pasted text, Copy and Delete before the shortcuts.
-        self.list_editors.claim_input(&ctx);
+        self.list_editors.claim_input(&ctx, &self.doc.view_path());
         self.shortcuts(&ctx);
         if self.last_watch.elapsed() >= WATCH_INTERVAL {
             self.check_cluster_files();

@@ -178,6 +178,8 @@ pub fn show(
                                                     text: e.text,
                                                 });
                                             }
+                                            // Its field is drawn from the next frame on.
+                                            editing_drawn = true;
                                             state.editing = Some(Editing {
                                                 row: r,
                                                 col: c,
@@ -333,6 +335,8 @@ fn clip(text: &str) -> String {
 fn edit_cell(ui: &mut Ui, rect: Rect, id: egui::Id, state: &mut GridState) -> Option<Commit> {
     let editing = state.editing.as_mut()?;
     if editing.focus {
+        // Focused before it is drawn: an unfocused field collapses its selection.
+        ui.memory_mut(|m| m.request_focus(id));
         let mut s = egui::text_edit::TextEditState::load(ui.ctx(), id).unwrap_or_default();
         let end = editing.text.chars().count();
         s.cursor
@@ -349,7 +353,6 @@ fn edit_cell(ui: &mut Ui, rect: Rect, id: egui::Id, state: &mut GridState) -> Op
             .background_color(ui.visuals().extreme_bg_color),
     );
     if std::mem::take(&mut editing.focus) {
-        resp.request_focus();
         return None;
     }
     if resp.lost_focus() {

@@ -174,13 +174,15 @@ impl ListEditors {
     /// Before the app's shortcuts, each frame: while a window is active, pasted text (Ctrl+V),
     /// Copy (Ctrl+C) and Delete with rows selected go to it — not to the canvas, which would
     /// paste or delete nodes. Text pasted into a cell being typed in stays the field's, unless it
-    /// holds tabs or line breaks (then it is pasted into the table at that cell).
-    pub fn claim_input(&mut self, ctx: &egui::Context) {
+    /// holds tabs or line breaks (then it is pasted into the table at that cell). `view` is the
+    /// graph level being edited (a window of another level is not shown and takes nothing).
+    pub fn claim_input(&mut self, ctx: &egui::Context, view: &[String]) {
         self.claimed.clear();
         let Some(window) = self
             .active
             .as_ref()
             .and_then(|key| self.windows.iter().find(|w| &w.key == key))
+            .filter(|w| w.key.view == view)
         else {
             return;
         };

@@ -20,8 +20,8 @@ pub fn summary(value: &Value) -> String {
     }
 }
 
-/// `1 point`, `4 points`.
-fn count(n: usize, (one, many): (&str, &str)) -> String {
+/// `1 point`, `4 points`: `n` and the noun, singular or plural.
+pub fn count(n: usize, (one, many): (&str, &str)) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 

@@ -13,6 +13,7 @@ use std::sync::Arc;
 use cnets_engine::{Value, ValueType};
 use cnets_geometry::{DVec3, Polyline};
 
+use super::summary::count;
 use super::tsv;
 
 /// One cell: a single value.
@@ -487,11 +488,12 @@ impl Table {
             let width = next.rows[row].width();
             if c + fields.len() > width {
                 return Err(format!(
-                    "line {}: {} field(s) from column {} do not fit in row {row}, which has {width} \
-                     column(s); nothing was pasted",
+                    "line {}: {} from column {} do not fit in row {row}, which has {}; nothing \
+                     was pasted",
                     i + 1,
-                    fields.len(),
-                    self.column_name(c)
+                    count(fields.len(), ("field", "fields")),
+                    self.column_name(c),
+                    count(width, ("column", "columns")),
                 ));
             }
             for (j, field) in fields.iter().enumerate() {
@@ -502,12 +504,12 @@ impl Table {
         }
         *self = next;
         let mut done = format!(
-            "pasted {} line(s) at {}",
-            lines.len(),
+            "pasted {} at {}",
+            count(lines.len(), ("line", "lines")),
             self.cell_name(start, c)
         );
         if added > 0 {
-            done.push_str(&format!(" ({added} row(s) added)"));
+            done.push_str(&format!(" ({} added)", count(added, ("row", "rows"))));
         }
         Ok(done)
     }
@@ -568,8 +570,8 @@ impl Table {
                 if self.polyline.is_some() || layout == Layout::Xyz || !self.tables =>
             {
                 Err(format!(
-                    ": {} field(s), but points need 3 (x, y, z)",
-                    fields.len()
+                    ": {}, but points need 3 (x, y, z)",
+                    count(fields.len(), ("field", "fields"))
                 ))
             }
             Row::Triple { .. } => (0..fields.len())
@@ -877,7 +879,7 @@ mod tests {
         let v = points(&[[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]);
         let mut t = Table::new(Some(&v), &of(ValueType::Point, false)).unwrap();
         let done = t.paste_at(1, 1, &lines("5\t6\n7\t8\n9\t10\n")).unwrap();
-        assert_eq!(done, "pasted 3 line(s) at row 1 y (2 row(s) added)");
+        assert_eq!(done, "pasted 3 lines at row 1 y (2 rows added)");
         let after = t.to_value();
         let expected = points(&[
             [0.0, 0.0, 0.0],
@@ -889,7 +891,7 @@ mod tests {
         // Too wide, or a bad field: refused, naming the line and field, nothing changed.
         let e = t.paste_at(0, 2, &lines("1,2")).unwrap_err();
         assert!(
-            e.starts_with("line 1: 2 field(s) from column z do not fit"),
+            e.starts_with("line 1: 2 fields from column z do not fit"),
             "{e}"
         );
         let e = t.paste_at(0, 0, &lines("1;2;3\n4;x;6")).unwrap_err();
@@ -931,7 +933,7 @@ mod tests {
         let e = p.replace_all(&lines("1\t2\t3\n4\t5")).unwrap_err();
         assert_eq!(
             e,
-            "line 2: 2 field(s), but points need 3 (x, y, z); nothing was pasted"
+            "line 2: 2 fields, but points need 3 (x, y, z); nothing was pasted"
         );
         let texts = Value::list(vec![Value::text("a")]);
         let mut c = Table::new(Some(&texts), &of(ValueType::Text, false)).unwrap();

@@ -7,6 +7,7 @@ use cnets_engine::{NodeInstance, Value};
 use egui::{Color32, Ui};
 
 use super::grid::{self, GridState};
+use super::summary::count;
 use super::table::Table;
 use super::{EditorKey, item_type, summary, tsv};
 use crate::widgets;
@@ -115,19 +116,27 @@ impl EditorWindow {
         if std::mem::take(&mut self.raise) {
             ctx.move_to_top(egui::LayerId::new(egui::Order::Middle, id));
         }
+        let current = widgets::effective_value(node, k);
+        let table = Table::new(current.as_ref(), &item_type(node, k));
+        // Sized to the table at first (up to a screenful): 21 points a row, about 64 a column.
+        let (rows, columns) = table.as_ref().map_or((0, 1), |t| (t.len(), t.width()));
+        let size = [
+            (70.0 + 64.0 * columns as f32).clamp(380.0, 720.0),
+            (180.0 + 21.0 * (rows + 1) as f32).clamp(240.0, 520.0),
+        ];
         let mut open = true;
         let mut window = egui::Window::new(format!("{} · {}", self.key.node, self.key.input))
             .id(id)
             .open(&mut open)
             .collapsible(false)
             .resizable(true)
-            .default_size([400.0, 320.0]);
+            .default_size(size);
         if let Some(at) = self.open_at.take() {
             window = window.default_pos(at);
         }
         let mut value = None;
         let response = window.show(ctx, |ui| {
-            value = self.body(ui, node, k, wired, requests);
+            value = self.body(ui, node, k, (current, table), wired, requests);
         });
         Shown {
             value,
@@ -141,11 +150,11 @@ impl EditorWindow {
         ui: &mut Ui,
         node: &NodeInstance,
         k: usize,
+        (current, table): (Option<Value>, Result<Table, String>),
         wired: bool,
         requests: Vec<Request>,
     ) -> Option<(Value, String)> {
         let port = &node.def.inputs[k];
-        let current = widgets::effective_value(node, k);
         ui.horizontal(|ui| {
             ui.weak(port.type_name());
             if let Some(v) = &current {
@@ -159,7 +168,7 @@ impl EditorWindow {
                  read-only.",
             );
         }
-        let table = match Table::new(current.as_ref(), &item_type(node, k)) {
+        let table = match table {
             Ok(t) => t,
             Err(e) => {
                 ui.label(format!(
@@ -183,7 +192,10 @@ impl EditorWindow {
             {
                 ui.ctx().copy_text(table.to_tsv(None));
                 self.note(
-                    format!("copied {} row(s) as tab-separated text", table.len()),
+                    format!(
+                        "copied {} as tab-separated text",
+                        count(table.len(), ("row", "rows"))
+                    ),
                     false,
                 );
             }
@@ -257,7 +269,7 @@ impl EditorWindow {
         let label = if n == 0 {
             "Remove rows".to_string()
         } else {
-            format!("Remove {n} row(s)")
+            format!("Remove {}", count(n, ("row", "rows")))
         };
         if ui
             .add_enabled(n > 0, egui::Button::new(label))
@@ -266,7 +278,7 @@ impl EditorWindow {
             .clicked()
         {
             let removed = next.remove_rows(&self.grid.rows);
-            done.push(format!("removed {removed} row(s)"));
+            done.push(format!("removed {}", count(removed, ("row", "rows"))));
             self.grid.rows.clear();
             self.grid.cell = None;
         }
@@ -275,8 +287,11 @@ impl EditorWindow {
     /// Where Ctrl+V pastes: at the selected cell or replacing all rows.
     fn paste_choice(&mut self, ui: &mut Ui, table: &Table) {
         let (r, c) = self.grid.cell.unwrap_or((0, 0));
-        ui.horizontal_wrapped(|ui| {
-            ui.label("Ctrl+V pastes tab- or comma-separated text");
+        ui.horizontal(|ui| {
+            ui.label("Paste (Ctrl+V):").on_hover_text(
+                "tab-, semicolon- or comma-separated text, e.g. cells copied from a spreadsheet; \
+                 numbers with '.' as the decimal point",
+            );
             ui.radio_value(
                 &mut self.paste_mode,
                 PasteMode::AtCell,
@@ -306,12 +321,17 @@ impl EditorWindow {
                 let only = (!self.grid.rows.is_empty()).then_some(&self.grid.rows);
                 ui.ctx().copy_text(table.to_tsv(only));
                 let n = only.map_or(table.len(), |o| o.len());
-                self.note(format!("copied {n} row(s) as tab-separated text"), false);
+                self.note(
+                    format!("copied {} as tab-separated text", count(n, ("row", "rows"))),
+                    false,
+                );
             }
             Request::Paste(_) | Request::RemoveSelected if wired => {
                 self.note("read-only: the input is connected by a wire", true);
             }
             Request::Paste(text) => {
+                // Block text pasted while a cell was typed in goes into the table at that cell.
+                self.grid.editing = None;
                 let lines = tsv::parse(&text);
                 let (r, c) = self.grid.cell.unwrap_or((0, 0));
                 let result = match self.paste_mode {
@@ -327,8 +347,9 @@ impl EditorWindow {
                 }
             }
             Request::RemoveSelected => {
+                self.grid.editing = None;
                 let removed = next.remove_rows(&self.grid.rows);
-                done.push(format!("removed {removed} row(s)"));
+                done.push(format!("removed {}", count(removed, ("row", "rows"))));
                 self.grid.rows.clear();
                 self.grid.cell = None;
             }
