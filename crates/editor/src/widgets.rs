@@ -48,17 +48,8 @@ pub fn choice_options(node: &NodeInstance) -> Option<Vec<String>> {
         .collect()
 }
 
-/// `x` rounded to a thousandth of `range` (a power of ten: range 1 → 0.001, range 30 → 0.01).
-pub fn snap_to_range(x: f64, range: f64) -> f64 {
-    if !(range.is_finite() && range > 0.0) {
-        return x;
-    }
-    let unit = 10f64.powf((range.log10() - 3.0).floor());
-    let snapped = (x / unit).round() * unit;
-    // Through the shortest decimal text, so 0.1 + 0.2 is stored as 0.3.
-    let decimals = (-unit.log10()).ceil().max(0.0) as usize;
-    format!("{snapped:.decimals$}").parse().unwrap_or(snapped)
-}
+/// `x` rounded to a thousandth of `range` (the engine's rule: [`cnets_engine::numbers`]).
+pub use cnets_engine::numbers::snap_to_range;
 
 /// Whether an input gets an inline editor (an item of a simple type, a list / tree port whose
 /// current value is a single number, or a `param.choice`'s options: one a line). An item port
@@ -153,10 +144,15 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
                     slider = slider.step_by(step);
                 }
                 let changed = ui.add(slider).changed();
-                if changed && step == 0.0 {
-                    // No step: a dragged value snaps to a thousandth of the slider's range (a pixel
-                    // is about a hundredth), so the file gets 1.234, not 1.2340169334411621.
-                    x = snap_to_range(x, max - min);
+                if changed {
+                    // The node's own rule: multiples of the step from min, as short decimals; no
+                    // step: a thousandth of the slider's range (a pixel is about a hundredth), so
+                    // the file gets 1.234, not 1.2340169334411621.
+                    x = if step > 0.0 {
+                        cnets_engine::numbers::snap(x, min, step)
+                    } else {
+                        snap_to_range(x, max - min)
+                    };
                 }
                 changed
             } else {
@@ -307,11 +303,6 @@ mod tests {
 
     #[test]
     fn dragged_values_snap_to_a_sensible_precision() {
-        assert_eq!(snap_to_range(1.2340169334411621, 1.0), 1.234);
-        assert_eq!(snap_to_range(0.40179139375686646, 1.0), 0.402);
-        assert_eq!(snap_to_range(17.436, 30.0), 17.44);
-        assert_eq!(snap_to_range(-0.30000000000000004, 2.0), -0.3);
-        assert_eq!(snap_to_range(5.0, 0.0), 5.0, "no range: unchanged");
         assert_eq!(crate::mapper::snap(0.40179139375686646), 0.402);
     }
 

@@ -9,7 +9,7 @@ mod common;
 
 use cnets_editor::app::EditorApp;
 use cnets_editor::viewport::pick::Hit;
-use cnets_editor::viewport::screen::clean;
+use cnets_editor::viewport::screen::steps;
 use cnets_editor::viewport::{NamedView, Tool};
 use cnets_engine::Value;
 use cnets_geometry::DVec3;
@@ -141,7 +141,7 @@ fn a_curve_drawn_in_the_front_view_becomes_points_and_a_spline() {
     // Four clicks on XZ, each a little off the grid (less than half a step).
     let clicks: Vec<DVec3> = [(0.0, 0.0), (2.0, 3.0), (5.0, 3.0), (7.0, 0.0)]
         .iter()
-        .map(|&(x, z)| DVec3::new(clean(x * step), 0.0, clean(z * step)))
+        .map(|&(x, z)| DVec3::new(steps(x, step), 0.0, steps(z, step)))
         .collect();
     let jitter = vec2((0.3 * step / wpp) as f32, (-0.2 * step / wpp) as f32);
     for p in &clicks {

@@ -293,7 +293,7 @@ fn points(text: &str) -> Vec<[f64; 3]> {
 
 /// A multiple of a grid step as the editor stores it (the nearest short decimal).
 fn on_grid(k: f64, step: f64) -> f64 {
-    format!("{:.9}", k * step).parse().unwrap()
+    cnets_editor::viewport::screen::steps(k, step)
 }
 
 fn skip() -> bool {

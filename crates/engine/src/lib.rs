@@ -18,6 +18,7 @@ pub mod graph;
 pub mod kinds;
 pub mod node;
 mod node_macro;
+pub mod numbers;
 pub mod optimize;
 pub mod registry;
 pub mod value;

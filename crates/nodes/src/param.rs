@@ -49,7 +49,7 @@ node! {
             ));
         }
         if step > 0.0 {
-            v = (min + ((v - min) / step).round() * step).clamp(min, max);
+            v = cnets_engine::numbers::snap(v, min, step).clamp(min, max);
         }
         Ok((v,))
     }
@@ -410,7 +410,7 @@ mod tests {
         let def = number();
         assert_eq!(
             run(&def, &[0.26, 0.0, 1.0, 0.1]).unwrap(),
-            vec![Value::Number(0.30000000000000004)]
+            vec![Value::Number(0.3)]
         );
         assert_eq!(
             run(&def, &[5.0, 0.0, 1.0, 0.0]).unwrap(),

@@ -122,9 +122,9 @@ fn show_label(ui: &Ui, plot: Rect, anchor: Pos2, text: &str) {
     painter.galley(min + vec2(4.0, 2.0), galley, ink);
 }
 
-/// A handle coordinate rounded to a thousandth (see `show`).
+/// A handle coordinate rounded to a thousandth (see `show`), as the shortest decimal.
 pub fn snap(x: f64) -> f64 {
-    (x * 1000.0).round() / 1000.0
+    cnets_engine::numbers::snap(x, 0.0, 0.001)
 }
 
 /// The row of a tree of handles the widget shows for `node` (kept in egui's memory).

@@ -11,7 +11,9 @@ use cnets_geometry::DVec3;
 use cnets_render::{Color, Segment};
 use egui::{Color32, Painter, Pos2, Rect, vec2};
 
-use super::screen::{CPlane, ScreenMap, clean};
+use cnets_engine::numbers::snap;
+
+use super::screen::{CPlane, ScreenMap};
 
 /// The smallest grid cell on screen, in points.
 pub const MIN_CELL_POINTS: f64 = 14.0;
@@ -44,17 +46,16 @@ impl Spacing {
             .into_iter()
             .find(|(m, _)| m * decade >= wanted * (1.0 - 1e-9))
             .unwrap_or((10.0, 5.0));
-        let minor = clean(mantissa * decade);
+        let minor = snap(mantissa * decade, 0.0, decade);
         Spacing {
             minor,
-            major: clean(minor * per_major),
+            major: snap(minor * per_major, 0.0, minor),
         }
     }
 }
 
 /// A length in metres as the grid labels write it: `5 m`, `0.25 m`, `1 200 m`.
 pub fn metres(x: f64) -> String {
-    let x = clean(x);
     let text = if x.abs() >= 1e4 || (x != 0.0 && x.abs() < 1e-3) {
         format!("{x:e}")
     } else {
@@ -110,8 +111,8 @@ impl Grid {
         for k in -HALF_CELLS..=HALF_CELLS {
             let is_major = k.rem_euclid(per_major) == 0;
             let (color, width) = if is_major { (major, 1.2) } else { (minor, 1.0) };
-            let a = clean(cu + k as f64 * spacing.minor);
-            let b = clean(cv + k as f64 * spacing.minor);
+            let a = snap(cu + k as f64 * spacing.minor, 0.0, spacing.minor);
+            let b = snap(cv + k as f64 * spacing.minor, 0.0, spacing.minor);
             // Lines on the axes are drawn as axes below.
             if a != 0.0 {
                 segments.push(segment(u * a + v * v0, u * a + v * v1, color, width));
@@ -242,6 +243,6 @@ mod tests {
         assert_eq!(Spacing::for_scale(0.05).minor, 1.0);
         assert_eq!(metres(5.0), "5 m");
         assert_eq!(metres(0.25), "0.25 m");
-        assert_eq!(metres(3.0 * 0.1), "0.3 m");
+        assert_eq!(metres(snap(3.0 * 0.1, 0.0, 0.1)), "0.3 m");
     }
 }

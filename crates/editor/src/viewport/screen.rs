@@ -2,6 +2,7 @@
 //! screen point, the construction planes (Top → XY, Front → XZ, Right → YZ) and their grid snap.
 //! Every viewport tool goes through these, so they agree on what is under the pointer.
 
+use cnets_engine::numbers::snap;
 use cnets_geometry::DVec3;
 use cnets_render::Camera;
 use egui::{Pos2, Rect};
@@ -176,12 +177,9 @@ impl CPlane {
 }
 
 /// `p` with its coordinate along the world axis `axis` (±X, ±Y or ±Z) rounded to a multiple of
-/// `step`.
+/// `step`, as the shortest decimal ([`cnets_engine::numbers::snap`]).
 pub fn snap_along(p: DVec3, axis: DVec3, step: f64) -> DVec3 {
-    if !(step > 0.0 && step.is_finite()) {
-        return p;
-    }
-    let round = |x: f64| clean((x / step).round() * step);
+    let round = |x: f64| snap(x, 0.0, step);
     let mut q = p;
     if axis.x != 0.0 {
         q.x = round(p.x);
@@ -195,18 +193,9 @@ pub fn snap_along(p: DVec3, axis: DVec3, step: f64) -> DVec3 {
     q
 }
 
-/// A multiple of a grid step as the nearest short decimal (`3 × 0.1` is stored as 0.3, not
-/// 0.30000000000000004).
-pub fn clean(x: f64) -> f64 {
-    if x == 0.0 || !x.is_finite() {
-        return if x == 0.0 { 0.0 } else { x };
-    }
-    let digits = 12 - x.abs().log10().floor() as i32;
-    if !(0..=300).contains(&digits) {
-        return x;
-    }
-    let s = format!("{x:.*}", digits as usize);
-    s.parse().unwrap_or(x)
+/// `k` grid steps as the editor stores them (the shortest decimal: `3 × 0.1` is 0.3).
+pub fn steps(k: f64, step: f64) -> f64 {
+    snap(k * step, 0.0, step)
 }
 
 #[cfg(test)]
@@ -256,6 +245,6 @@ mod tests {
             Some(DVec3::new(2.0, 3.0, 0.0))
         );
         assert_eq!(CPlane::XZ.world().hit(&ray), None, "parallel");
-        assert_eq!(clean(3.0 * 0.1), 0.3);
+        assert_eq!(steps(3.0, 0.1), 0.3);
     }
 }
