@@ -89,13 +89,20 @@ fn open_editor(h: &mut H, node: &str, input: &str) {
 
 /// Types `text` into cell `cell` (its accessible name, e.g. `row 1 y`) and presses Enter.
 fn type_into(h: &mut H, cell: &str, text: &str) {
-    h.get_by_label(cell).click();
+    type_only(h, cell, text);
+    h.key_press(Key::Enter);
     h.run_steps(3);
+}
+
+/// Clicks cell `cell` (press and release in frames of their own, as a hand does) and types
+/// `text` in it (its text is selected first: typing replaces it).
+fn type_only(h: &mut H, cell: &str, text: &str) {
+    // Windows are not zoomed: their widgets' rectangles are screen rectangles.
+    let at = h.get_by_label(cell).rect().center();
+    click_at(h, at);
     let field = h.get_by(|n| n.role() == Role::TextInput && n.is_focused());
     field.type_text(text);
     h.run_steps(2);
-    h.key_press(Key::Enter);
-    h.run_steps(3);
 }
 
 /// The text a cell shows (its accessible value).
@@ -231,6 +238,9 @@ fn pasted_rows_replace_all_or_go_in_at_the_selected_cell_in_one_step_each() {
     h.run_steps(3);
     h.event(egui::Event::Paste("50,60\n80,90\n110,120".into()));
     h.run_steps(3);
+    // The cell clicked was being typed in: the paste ended that, so Enter commits nothing stale.
+    h.key_press(Key::Enter);
+    h.run_steps(3);
     settle(&mut h);
     let expected = Value::list(vec![
         Value::Point(DVec3::new(1.0, 2.0, 3.0)),
@@ -316,6 +326,24 @@ fn a_param_list_table_keeps_rows_by_columns() {
         before.replacen("0.6, 0.7, 0.8", "0.6, 0.75, 0.8", 1),
         "only that number changed"
     );
+    // A cell typed in, then another clicked and typed in: two changes, two undo steps.
+    let steps = h.state().doc.history.undo_len();
+    type_only(&mut h, "row 0, column 0", "0.15");
+    type_into(&mut h, "row 2, column 3", "1.25");
+    settle(&mut h);
+    let (_, numbers) = table_of(&literal(h.state(), "ratios", "values"));
+    assert_eq!((numbers[0], numbers[11]), (0.15, 1.25));
+    assert_eq!(h.state().doc.history.undo_len(), steps + 2, "one step each");
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut h);
+    let (_, numbers) = table_of(&literal(h.state(), "ratios", "values"));
+    assert_eq!(
+        (numbers[0], numbers[11]),
+        (0.15, 1.2),
+        "undo takes back the last only"
+    );
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut h);
     // Add row: after the selected row 0, midway to row 1.
     h.get_by_label("select row 0").click();
     h.run_steps(2);
@@ -413,4 +441,57 @@ fn snapshot_of_the_table_window() {
     h.run_steps(3);
     settle(&mut h);
     h.snapshot("editor_list_editor");
+}
+
+const PROFILES: &str = r#"(
+    version: 1,
+    nodes: {
+        "profiles": (
+            type: "param.list",
+            position: (0.0, 0.0),
+            inputs: {
+                "values": [
+                    (points: [(0.0, 0.0, 0.0), (0.0, 0.3, 3.0), (0.0, 0.9, 6.0)], closed: false),
+                    (points: [(0.0, 0.3, 3.0), (0.0, -1.2, 3.4), (0.0, -2.6, 3.6)], closed: true),
+                ],
+                "item_type": "any",
+            },
+        ),
+    },
+)"#;
+
+#[test]
+fn a_list_of_polylines_is_edited_one_polyline_at_a_time() {
+    // As facade.ron's profiles: literal polylines in a param.list.
+    let mut h = open("profiles", write_graph("profiles", PROFILES));
+    assert!(h.query_by_label("2 polylines").is_some());
+    let before = h.state().doc.to_ron();
+    let old = literal(h.state(), "profiles", "values");
+    open_editor(&mut h, "profiles", "values");
+    assert_eq!(shown(&h, "row 1 y"), "0.3", "the first polyline at first");
+    h.get_by_label("polyline 1 · 3 points, closed").click();
+    h.run_steps(3);
+    assert_eq!(shown(&h, "row 1 y"), "-1.2");
+    type_into(&mut h, "row 1 y", "-1.25");
+    settle(&mut h);
+    assert_eq!(
+        h.state().doc.to_ron(),
+        before.replacen("(0.0, -1.2, 3.4)", "(0.0, -1.25, 3.4)", 1),
+        "only that number changed"
+    );
+    let new = literal(h.state(), "profiles", "values");
+    let (old, new) = (old.as_list().unwrap(), new.as_list().unwrap());
+    assert!(new[0].same_as(&old[0]), "the other polyline is untouched");
+    let Value::Polyline(p) = &new[1] else {
+        panic!("a polyline stays a polyline")
+    };
+    assert!(p.closed, "with its closed flag");
+    assert_eq!(p.points[1], DVec3::new(0.0, -1.25, 3.4));
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut h);
+    assert_eq!(
+        h.state().doc.to_ron(),
+        before,
+        "one undo step, undone exactly"
+    );
 }

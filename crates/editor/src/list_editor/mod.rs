@@ -68,10 +68,32 @@ pub fn on_node(node: &NodeInstance, k: usize) -> Option<OnNode> {
         Value::Polyline(_) if port.ty == ValueType::Polyline => {}
         _ => return None,
     }
+    let items = item_type(node, k);
     Some(OnNode {
         summary: summary::summary(&value),
-        editable: Table::new(Some(&value), &item_type(node, k)).is_ok(),
+        editable: Table::new(Some(&value), &items).is_ok() || parts(&value, &items).is_some(),
     })
+}
+
+/// The item type of a part ([`parts`]): points.
+pub const PART_ITEMS: ItemType = ItemType {
+    item: ValueType::Point,
+    tables: false,
+};
+
+/// How many parts the table shows one at a time when `value` is not a table as a whole but a
+/// list of polylines or of lists of points (`facade.ron`'s `profiles`): each part is a table of
+/// points, edited on its own while the other parts stay as they are. `None` for other values.
+pub fn parts(value: &Value, items: &ItemType) -> Option<usize> {
+    if Table::new(Some(value), items).is_ok() {
+        return None;
+    }
+    let list = value.as_list()?;
+    let each_points = list.iter().all(|v| {
+        matches!(v, Value::Polyline(_) | Value::List(_))
+            && Table::new(Some(v), &PART_ITEMS).is_ok_and(|t| t.layout() == Layout::Xyz)
+    });
+    (!list.is_empty() && each_points).then_some(list.len())
 }
 
 /// The item type of input `k` for rows its value does not show: the port's type (for
@@ -335,8 +357,9 @@ mod tests {
             input(&g, "profiles", "values"),
             Some(OnNode {
                 summary: "1 polyline".into(),
-                editable: false
-            })
+                editable: true
+            }),
+            "one polyline at a time"
         );
         assert_eq!(
             input(&g, "mapper", "handles"),
@@ -345,6 +368,27 @@ mod tests {
         );
         assert_eq!(input(&g, "construct", "apex"), None, "a number field");
         assert_eq!(input(&g, "curve", "count"), None);
+    }
+
+    #[test]
+    fn lists_of_polylines_or_point_lists_are_edited_a_part_at_a_time() {
+        let any = ItemType {
+            item: ValueType::Any,
+            tables: true,
+        };
+        let g = graph();
+        let profiles = g.node("profiles").unwrap().value_of("values").unwrap();
+        assert_eq!(parts(profiles, &any), Some(1));
+        let point = Value::Point(cnets_geometry::DVec3::ZERO);
+        let rows = Value::list(vec![
+            Value::list(vec![point.clone(); 2]),
+            Value::list(vec![]),
+        ]);
+        assert_eq!(parts(&rows, &any), Some(2));
+        let table = g.node("table").unwrap().value_of("values").unwrap();
+        assert_eq!(parts(table, &any), None, "a table is edited whole");
+        let mixed = Value::list(vec![Value::list(vec![point]), Value::Number(1.0)]);
+        assert_eq!(parts(&mixed, &any), None);
     }
 
     #[test]

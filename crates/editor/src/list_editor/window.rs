@@ -9,7 +9,7 @@ use egui::{Color32, Ui};
 use super::grid::{self, GridState};
 use super::summary::count;
 use super::table::Table;
-use super::{EditorKey, item_type, summary, tsv};
+use super::{EditorKey, PART_ITEMS, item_type, parts, summary, tsv};
 use crate::widgets;
 
 /// Where Ctrl+V puts pasted text.
@@ -51,6 +51,8 @@ pub struct EditorWindow {
     note: Option<Note>,
     /// Where to open it (screen), the first time it is shown.
     pub open_at: Option<egui::Pos2>,
+    /// The part shown of a list edited a part at a time ([`super::parts`]).
+    part: usize,
     /// Bring it to the front on the next frame.
     pub raise: bool,
 }
@@ -74,6 +76,7 @@ impl EditorWindow {
             paste_mode: PasteMode::default(),
             note: None,
             open_at: at,
+            part: 0,
             raise: true,
         }
     }
@@ -117,7 +120,15 @@ impl EditorWindow {
             ctx.move_to_top(egui::LayerId::new(egui::Order::Middle, id));
         }
         let current = widgets::effective_value(node, k);
-        let table = Table::new(current.as_ref(), &item_type(node, k));
+        let items = item_type(node, k);
+        let parts = current.as_ref().and_then(|v| parts(v, &items));
+        let table = match (parts, current.as_ref().and_then(Value::as_list)) {
+            (Some(n), Some(list)) => {
+                self.part = self.part.min(n - 1);
+                Table::new(Some(&list[self.part]), &PART_ITEMS)
+            }
+            _ => Table::new(current.as_ref(), &items),
+        };
         // Sized to the table at first (up to a screenful): 21 points a row, about 64 a column.
         let (rows, columns) = table.as_ref().map_or((0, 1), |t| (t.len(), t.width()));
         let size = [
@@ -136,7 +147,18 @@ impl EditorWindow {
         }
         let mut value = None;
         let response = window.show(ctx, |ui| {
-            value = self.body(ui, node, k, (current, table), wired, requests);
+            if let (Some(n), Some(list)) = (parts, current.as_ref().and_then(Value::as_list)) {
+                self.part_picker(ui, list, n);
+            }
+            value = self.body(ui, node, k, (current.as_ref(), table), wired, requests);
+            // A part edited: the list with that part replaced, every other part as it was.
+            if let (Some(_), Some(list)) = (parts, current.as_ref().and_then(Value::as_list))
+                && let Some((part, what)) = value.take()
+            {
+                let mut whole = list.to_vec();
+                whole[self.part] = part;
+                value = Some((Value::list(whole), format!("part {}: {what}", self.part)));
+            }
         });
         Shown {
             value,
@@ -150,14 +172,14 @@ impl EditorWindow {
         ui: &mut Ui,
         node: &NodeInstance,
         k: usize,
-        (current, table): (Option<Value>, Result<Table, String>),
+        (current, table): (Option<&Value>, Result<Table, String>),
         wired: bool,
         requests: Vec<Request>,
     ) -> Option<(Value, String)> {
         let port = &node.def.inputs[k];
         ui.horizontal(|ui| {
             ui.weak(port.type_name());
-            if let Some(v) = &current {
+            if let Some(v) = current {
                 ui.label(summary::summary(v));
             }
         });
@@ -207,12 +229,13 @@ impl EditorWindow {
         // The note line stays at the bottom; the grid takes the room above it.
         let note_height = ui.text_style_height(&egui::TextStyle::Body) + 6.0;
         let grid_height = (ui.available_height() - note_height).max(60.0);
+        let grid_id = self.id().with(self.part);
         let commits = ui
             .allocate_ui(egui::vec2(ui.available_width(), grid_height), |ui| {
                 if table.is_empty() {
                     ui.weak("No rows: Add row, or paste rows with Ctrl+V.");
                 }
-                grid::show(ui, self.id(), &table, &shown_value, &mut self.grid, wired)
+                grid::show(ui, grid_id, &table, &shown_value, &mut self.grid, wired)
             })
             .inner;
         for c in commits {
@@ -250,6 +273,25 @@ impl EditorWindow {
         }
         let value = next.to_value();
         (!value.same_as(&shown_value)).then(|| (value, done.join(", ")))
+    }
+
+    /// The parts of a list edited a part at a time: one selectable label each (`polyline 1 · 3
+    /// points`); picking another part starts its table afresh (selection, scrolling).
+    fn part_picker(&mut self, ui: &mut Ui, list: &[Value], n: usize) {
+        ui.horizontal_wrapped(|ui| {
+            ui.label("Part:");
+            for (k, item) in list.iter().enumerate().take(n) {
+                let noun = match item {
+                    Value::Polyline(_) => "polyline",
+                    _ => "list",
+                };
+                let text = format!("{noun} {k} · {}", summary::summary(item));
+                if ui.selectable_label(self.part == k, text).clicked() && self.part != k {
+                    self.part = k;
+                    self.grid = GridState::default();
+                }
+            }
+        });
     }
 
     /// Add row, Remove rows.
