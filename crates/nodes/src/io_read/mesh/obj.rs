@@ -82,11 +82,12 @@ pub fn parse_within(text: &str, guard: &mut Guard) -> Result<MeshFile, String> {
         }
     }
     objects.retain(|o| !o.starts.is_empty());
+    // The meshes made from the records: the joined one and one per object (corners, face starts
+    // and at most every vertex each), beside the records themselves.
+    let faces: u64 = objects.iter().map(|o| o.starts.len() as u64).sum();
+    let meshes = 2 * (corners * 4 + faces * 4 + vertices.len() as u64 * 24);
     guard
-        .grow(
-            (vertices.len() as u64 * VERTEX_BYTES + corners * CORNER_BYTES)
-                .saturating_sub(guard.grown()),
-        )
+        .grow(meshes + vertices.len() as u64 * 4)
         .map_err(|e| e.to_string())?;
     // One table of the used vertices' new indices, reused object by object (no copy of the file's
     // vertices per object).
