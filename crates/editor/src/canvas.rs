@@ -70,6 +70,11 @@ pub struct Canvas {
     pins: Rc<RefCell<HashMap<PinKey, Pos2>>>,
     /// Node rectangles in canvas coordinates.
     rects: HashMap<String, Rect>,
+    /// Each node's position when its rectangle was measured (nodes out of view are not laid out:
+    /// their rectangle moves with them).
+    drawn_at: HashMap<String, [f32; 2]>,
+    /// Nodes laid out in the last frame (those in or near the view).
+    laid_out: usize,
     /// The node last clicked.
     pub focused: Option<String>,
     /// Nodes selected (Shift+click, box selection, or [`Canvas::select`]) in the last frame.
@@ -171,6 +176,8 @@ impl Canvas {
             to_global: TSTransform::IDENTITY,
             pins: Rc::default(),
             rects: HashMap::new(),
+            drawn_at: HashMap::new(),
+            laid_out: 0,
             focused: None,
             selected: Vec::new(),
             chosen: Vec::new(),
@@ -424,6 +431,12 @@ impl Canvas {
         self.panels.get(node).map(|r| self.to_global * *r)
     }
 
+    /// How many nodes were laid out in the last frame: those in or near the view (the others
+    /// keep their last rectangle and pin positions).
+    pub fn laid_out(&self) -> usize {
+        self.laid_out
+    }
+
     /// The canvas zoom of the last frame (screen points per canvas point).
     pub fn zoom(&self) -> f32 {
         self.to_global.scaling
@@ -447,6 +460,69 @@ impl Canvas {
     /// Canvas position of a screen point.
     pub fn to_canvas(&self, screen: Pos2) -> Pos2 {
         self.to_global.inverse() * screen
+    }
+
+    /// Takes the rectangles of the nodes laid out this frame; the nodes out of view (not laid out:
+    /// vendor/egui-snarl culls them) keep their rectangle and pins from the frame they were last
+    /// drawn in, moved by as much as the node moved since. Allocation-free for nodes that did not
+    /// move: a graph of thousands of nodes pays a lookup a node, not a copy.
+    fn carry_over(
+        &mut self,
+        graph: &Graph,
+        drawn: HashMap<String, Rect>,
+        old_pins: HashMap<PinKey, Pos2>,
+    ) {
+        self.laid_out = drawn.len();
+        let moved = |drawn_at: Option<&[f32; 2]>, position: [f32; 2]| {
+            drawn_at.map_or(egui::Vec2::ZERO, |at| {
+                egui::vec2(position[0] - at[0], position[1] - at[1])
+            })
+        };
+        {
+            let mut pins = self.pins.borrow_mut();
+            for ((id, input, port), p) in old_pins {
+                if drawn.contains_key(&id) {
+                    continue;
+                }
+                if let Some(node) = graph.node(&id) {
+                    let d = moved(self.drawn_at.get(&id), node.position);
+                    pins.entry((id, input, port)).or_insert(p + d);
+                }
+            }
+        }
+        for (id, r) in self.rects.iter_mut() {
+            if drawn.contains_key(id) {
+                continue;
+            }
+            if let Some(node) = graph.node(id)
+                && let Some(at) = self.drawn_at.get_mut(id)
+                && *at != node.position
+            {
+                *r = r.translate(egui::vec2(
+                    node.position[0] - at[0],
+                    node.position[1] - at[1],
+                ));
+                *at = node.position;
+            }
+        }
+        for (id, r) in drawn {
+            let position = graph.node(&id).map(|n| n.position);
+            match self.drawn_at.get_mut(&id) {
+                Some(at) => *at = position.unwrap_or(*at),
+                None => {
+                    if let Some(p) = position {
+                        self.drawn_at.insert(id.clone(), p);
+                    }
+                }
+            }
+            self.rects.insert(id, r);
+        }
+        // Nodes removed from the graph are forgotten (looked for only when the count says some
+        // were).
+        if self.rects.len() > graph.node_count() {
+            self.rects.retain(|id, _| graph.node(id).is_some());
+            self.drawn_at.retain(|id, _| graph.node(id).is_some());
+        }
     }
 
     /// Selects `ids` (nodes made outside the canvas: a drawn curve, internalised points) until the
@@ -473,7 +549,8 @@ impl Canvas {
         statuses: &HashMap<String, NodeStatus>,
     ) -> Vec<CanvasAction> {
         self.sync(graph);
-        self.pins.borrow_mut().clear();
+        // Pins are recorded while nodes are drawn; those of nodes out of view are carried over.
+        let old_pins = std::mem::take(&mut *self.pins.borrow_mut());
         self.ui_rect = ui.available_rect_before_wrap();
         // Frame the graph once every node has been measured in an earlier frame.
         let mut fit = None;
@@ -529,7 +606,9 @@ impl Canvas {
         };
         let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
         self.to_global = viewer.to_global;
-        self.rects = viewer.rects;
+        // Nodes out of view are not laid out (vendor/egui-snarl culls them): they keep the size
+        // they had when last drawn, at their position now.
+        self.carry_over(graph, viewer.rects, old_pins);
         self.plots = viewer.plots;
         self.mapper_views = viewer.mapper_views;
         self.editors = viewer.editors;
