@@ -16,6 +16,7 @@ use cnets_geometry::DVec3;
 use common::{graphs_dir, harness_with, settle, temp_config};
 use egui::{Key, Pos2, vec2};
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
 
 /// A graph of four points (preview on) drawn as a spline.
 const POINTS_GRAPH: &str = r#"(
@@ -377,4 +378,73 @@ fn a_curve_read_from_a_file_is_internalised_as_editable_points() {
             .any(|w| w.from == points && w.input == "points"),
         "wired into a polyline"
     );
+}
+
+#[test]
+fn a_box_selects_handles_arrows_nudge_them_and_the_inspector_takes_a_coordinate() {
+    let mut h = open("box", POINTS_GRAPH);
+    view(&mut h, NamedView::Top);
+    // Zoomed out, so the box's corners are in the view.
+    h.state_mut().viewport.camera.distance *= 2.0;
+    h.run_steps(2);
+    let step = h.state().viewport.spacing.minor;
+    // A box around the first three points (the fourth, at x = 6, stays out).
+    let a = screen_of(&h, DVec3::new(-0.5, 1.5, 0.0));
+    let b = screen_of(&h, DVec3::new(4.5, -1.5, 0.0));
+    drag(&mut h, a, b);
+    let selected: Vec<usize> = h
+        .state()
+        .viewport
+        .handles
+        .selected
+        .iter()
+        .map(|k| k.index)
+        .collect();
+    assert_eq!(
+        selected,
+        vec![0, 1, 2],
+        "the box selects the handles inside"
+    );
+    let before = points_of(h.state(), "pts");
+    // The arrow keys move the selected handles one grid step in the view's plane.
+    let centre = h.state().viewport.rect.center();
+    h.hover_at(centre);
+    h.key_press(Key::ArrowRight);
+    h.run_steps(2);
+    h.key_press(Key::ArrowUp);
+    h.run_steps(2);
+    let after = points_of(h.state(), "pts");
+    for k in 0..3 {
+        let (p, q) = (before[k].as_vec3().unwrap(), after[k].as_vec3().unwrap());
+        assert!(
+            (q - p - DVec3::new(step, step, 0.0)).length() < 1e-12,
+            "point {k}: {p} → {q}"
+        );
+    }
+    assert_eq!(after[3], before[3], "the fourth point stays");
+    // One handle selected: the inspector shows its coordinates and takes a typed one.
+    let at = screen_of(&h, after[3].as_vec3().unwrap());
+    click(&mut h, at);
+    assert_eq!(h.state().viewport.handles.selected.len(), 1);
+    h.run_steps(2);
+    let view_rect = h.state().viewport.rect;
+    let z_field = h
+        .get_all_by_role(egui::accesskit::Role::SpinButton)
+        .map(|n| n.rect().center())
+        .filter(|p| view_rect.contains(*p))
+        .max_by(|a, b| a.x.total_cmp(&b.x))
+        .expect("the inspector's z field (its rightmost)");
+    h.hover_at(z_field);
+    h.run_steps(1);
+    h.drag_at(z_field);
+    h.run_steps(1);
+    h.drop_at(z_field);
+    h.run_steps(2);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, Key::A);
+    h.run_steps(1);
+    h.event(egui::Event::Text("1.75".into()));
+    h.key_press(Key::Enter);
+    h.run_steps(3);
+    let z = points_of(h.state(), "pts")[3].as_vec3().unwrap().z;
+    assert_eq!(z, 1.75, "the inspector set z");
 }
