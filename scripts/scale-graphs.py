@@ -1,8 +1,13 @@
 #!/usr/bin/env python3
-"""Writes the editor's scale benchmark graphs (issue 26): a slider feeding B branches of
-add → multiply → expression → clamp, 1 + 4·B nodes, laid out in a grid.
+"""Writes the editor's benchmark graphs (issue 26):
 
-    scripts/scale-graphs.py OUT_DIR            # scale-1001.ron (B = 250) and scale-5001.ron (B = 1250)
+- scale-1001.ron and scale-5001.ron: a slider feeding B branches of add → multiply → expression →
+  clamp, 1 + 4·B nodes (B = 250, 1250), laid out in a grid;
+- slow-nest.ron: graphs/facade.ron with a slider on its support layer's factor, so a drag re-runs
+  the previewed support layer and beams and, below them, the unrolled strips and their nesting
+  (fab.nest, about 0.6 s), which are not previewed.
+
+    scripts/scale-graphs.py OUT_DIR
 
 Used by `cnets-editor --bench-drag` (docs/editor.md, Latency at project size)."""
 import pathlib
@@ -41,6 +46,16 @@ def graph(branches: int) -> str:
     )
 
 
+def slow_nest(facade: str) -> str:
+    """facade.ron with a `lean` slider driving `support.factor`."""
+    slider = (
+        '        "lean": (type: "param.number", position: (1100.0, -200.0), '
+        'inputs: {"value": 0.92, "min": 0.85, "max": 0.98}),\n'
+    )
+    text = facade.replace("    nodes: {\n", "    nodes: {\n" + slider, 1)
+    return text.replace("    edges: [\n", '    edges: [\n        "lean.value -> support.factor",\n', 1)
+
+
 def main() -> None:
     out = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "target/bench-graphs")
     out.mkdir(parents=True, exist_ok=True)
@@ -48,6 +63,11 @@ def main() -> None:
         path = out / f"scale-{1 + 4 * branches}.ron"
         path.write_text(graph(branches))
         print(path)
+    graphs = pathlib.Path(__file__).resolve().parent.parent / "graphs"
+    path = out / "slow-nest.ron"
+    # Its imported files (if any) resolve beside the shipped graph.
+    path.write_text(slow_nest((graphs / "facade.ron").read_text()))
+    print(path)
 
 
 if __name__ == "__main__":

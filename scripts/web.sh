@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Builds cnets in the browser (docs/web.md) into OUT_DIR (default target/web): the editor compiled
-# to wasm32 (crates/web, profile `web`), its JavaScript glue by wasm-bindgen, optionally shrunk by
-# wasm-opt when it is installed, next to index.html. Serve the folder statically, e.g.
+# to wasm32 (crates/web, profile `web`), its JavaScript glue by wasm-bindgen, shrunk by wasm-opt
+# when it is installed (Debian's `binaryen`), next to index.html and worker.js, with a gzip (.gz)
+# and a brotli (.br) copy of each file beside it for servers that send them. Serve the folder
+# statically, e.g.
 #   python3 -m http.server -d target/web 8000   → http://localhost:8000/?example=torus-monge
 # Needs: rustup target add wasm32-unknown-unknown; installs wasm-bindgen-cli at the version of the
 # wasm-bindgen crate in Cargo.lock when missing (cargo install, without --locked: its own lock file
-# pins a webpki-roots the registry does not serve).
+# pins a webpki-roots the registry does not serve). Brotli: the `brotli` command, else Node's zlib.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT="${1:-target/web}"
@@ -32,13 +34,41 @@ wasm="${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/web/cnets_web.wasm"
 mkdir -p "$OUT"
 echo "== wasm-bindgen → $OUT"
 wasm-bindgen "$wasm" --out-dir "$OUT" --target web --no-typescript
+bytes() { stat -c %s "$1"; }
+bindgen_size=$(bytes "$OUT/cnets_web_bg.wasm")
 if command -v wasm-opt >/dev/null 2>&1; then
-  echo "== wasm-opt -Os"
+  # The features rustc's wasm32 target turns on (binaryen 108, Debian 12, needs them named).
+  echo "== wasm-opt -Os ($(wasm-opt --version))"
+  started=$(date +%s)
   wasm-opt -Os --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
-    --enable-mutable-globals "$OUT/cnets_web_bg.wasm" -o "$OUT/cnets_web_bg.wasm.opt"
+    --enable-mutable-globals --enable-reference-types --enable-multivalue \
+    "$OUT/cnets_web_bg.wasm" -o "$OUT/cnets_web_bg.wasm.opt"
   mv "$OUT/cnets_web_bg.wasm.opt" "$OUT/cnets_web_bg.wasm"
+  echo "wasm-opt: $bindgen_size → $(bytes "$OUT/cnets_web_bg.wasm") bytes in $(( $(date +%s) - started )) s"
+else
+  echo "web.sh: wasm-opt not installed (Debian: apt-get install binaryen): the wasm is not shrunk"
 fi
-cp crates/web/static/index.html "$OUT/index.html"
-raw=$(stat -c %s "$OUT/cnets_web_bg.wasm")
-gz=$(gzip -9 -c "$OUT/cnets_web_bg.wasm" | wc -c)
-echo "web.sh: $OUT ready: cnets_web_bg.wasm $raw bytes ($gz gzipped)"
+cp crates/web/static/index.html crates/web/static/worker.js "$OUT/"
+
+# Compressed copies beside each file (docs/web.md: how to serve them).
+echo "== gzip and brotli copies"
+files=("$OUT/index.html" "$OUT/worker.js" "$OUT/cnets_web.js" "$OUT/cnets_web_bg.wasm")
+for f in "${files[@]}"; do
+  gzip -9 -n -k -f "$f"
+  rm -f "$f.br"
+  if command -v brotli >/dev/null 2>&1; then
+    brotli -q 11 -f -o "$f.br" "$f"
+  elif command -v node >/dev/null 2>&1; then
+    node -e '
+      const fs = require("fs"), zlib = require("zlib");
+      const [src, dst] = process.argv.slice(1);
+      const q = zlib.constants.BROTLI_PARAM_QUALITY, size = zlib.constants.BROTLI_PARAM_SIZE_HINT;
+      fs.writeFileSync(dst, zlib.brotliCompressSync(fs.readFileSync(src),
+        { params: { [q]: 11, [size]: fs.statSync(src).size } }));' "$f" "$f.br"
+  fi
+done
+wasm_file="$OUT/cnets_web_bg.wasm"
+br="no brotli copy"
+[ -f "$wasm_file.br" ] && br="$(bytes "$wasm_file.br") brotli"
+echo "web.sh: $OUT ready: cnets_web_bg.wasm $(bytes "$wasm_file") bytes" \
+  "($bindgen_size before wasm-opt), $(bytes "$wasm_file.gz") gzipped, $br"

@@ -180,7 +180,7 @@ impl PyGraph {
                             "node '{}' ({}): {}",
                             n.id,
                             n.def.id,
-                            r.error().unwrap_or("")
+                            r.error().as_deref().unwrap_or("")
                         ),
                     )),
                 }
@@ -337,8 +337,7 @@ impl PyGraph {
                     .evaluator
                     .result(&self.graph, &node_id)
                     .and_then(NodeResult::error)
-                    .unwrap_or("not evaluated")
-                    .to_string();
+                    .map_or_else(|| "not evaluated".to_string(), |m| m.into_owned());
                 Err(error(format!("node '{node_id}': {message}")))
             }
         }

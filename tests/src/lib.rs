@@ -61,7 +61,7 @@ impl Evaluated {
                     "node '{}' ({}) failed: {}",
                     node.id,
                     node.def.id,
-                    r.error().unwrap_or("")
+                    r.error().as_deref().unwrap_or("")
                 );
             }
         }

@@ -816,9 +816,11 @@ impl EditorApp {
         let result = evaluator
             .result(&graph, id)
             .ok_or_else(|| format!("'{id}' did not run"))?;
-        let outputs = result
-            .outputs()
-            .ok_or_else(|| result.error().unwrap_or("it failed").to_string())?;
+        let outputs = result.outputs().ok_or_else(|| {
+            result
+                .error()
+                .map_or("it failed".into(), |e| e.into_owned())
+        })?;
         let mut curves = Vec::new();
         fn gather(v: &cnets_engine::Value, into: &mut Vec<crate::viewport::DrawnCurve>) {
             match v {
@@ -1219,6 +1221,14 @@ impl EditorApp {
         self.submitted = Some(key);
     }
 
+    /// Evaluates with `worker` from now on (the web page: its Web Worker, [`Worker::remote`]);
+    /// the graph is submitted to it at the next frame.
+    pub fn set_worker(&mut self, worker: Worker) {
+        self.worker = worker;
+        self.submitted = None;
+        self.last_evaluated = None;
+    }
+
     /// Whether an evaluation is in progress.
     pub fn busy(&self) -> bool {
         self.worker.busy()
@@ -1272,7 +1282,14 @@ impl EditorApp {
                 self.run(a);
             }
         });
+        // Below a width threshold (a phone, a narrow window): the 3D view over the parameters,
+        // the canvas behind a tab (crate::narrow).
+        let narrow = crate::narrow::is_narrow(&ctx);
         egui::Panel::bottom("cnets-status").show(ui, |ui| {
+            if narrow {
+                crate::narrow::status_bar(ui, &self.doc.title(), &self.message);
+                return;
+            }
             ui.horizontal(|ui| {
                 ui.label(self.doc.title());
                 ui.separator();
@@ -1307,103 +1324,30 @@ impl EditorApp {
                     }
                 });
         }
-        if self.parameters_open {
-            let mut actions = Vec::new();
-            egui::Panel::left("cnets-parameters")
-                .resizable(true)
-                .default_size(260.0)
-                .min_size(180.0)
-                .show(ui, |ui| {
-                    ui.heading("Parameters");
-                    actions = crate::parameters::show(ui, &self.doc.graph, &self.statuses);
-                });
-            for a in actions {
-                self.apply(a);
-            }
-        }
-        let mut view_actions = Vec::new();
-        egui::Panel::right("cnets-viewport")
-            .resizable(true)
-            .default_size(ui.available_width() * 0.45)
-            .min_size(200.0)
-            .frame(egui::Frame::NONE)
-            .show(ui, |ui| {
-                ui.horizontal(|ui| {
-                    let mut o = self.viewport.options;
-                    egui::ComboBox::from_id_salt("color-mode")
-                        .selected_text(o.color_mode.label())
-                        .show_ui(ui, |ui| {
-                            for m in crate::preview::ColorMode::ALL {
-                                ui.selectable_value(&mut o.color_mode, m, m.label());
-                            }
-                        });
-                    if o.color_mode == crate::preview::ColorMode::Planarity {
-                        // The top of the scale (planar below 1e-9 stays the anchor).
-                        let (lo, hi) = crate::preview::PLANARITY_LIMIT_RANGE;
-                        let mut limit = o.planarity_limit();
-                        let r = ui
-                            .add(
-                                egui::Slider::new(&mut limit, lo..=hi)
-                                    .logarithmic(true)
-                                    .text("not planar from")
-                                    .custom_formatter(|v, _| format!("{v:.0e}")),
-                            )
-                            .on_hover_text(
-                                "the top of the planarity colour scale: faces from this relative \
-                                 planarity up are not planar (saved with the editor settings)",
-                            );
-                        if r.changed() && o.set_planarity_limit(limit) && !r.dragged() {
-                            self.settings.set_planarity_limit(o.planarity_limit());
-                        }
-                        if r.drag_stopped() {
-                            self.settings.set_planarity_limit(o.planarity_limit());
-                        }
-                    }
-                    if ui.button("Fit (F)").clicked() {
-                        self.viewport.fit();
-                    }
-                    self.viewport.options = o;
-                });
-                ui.horizontal_wrapped(|ui| self.viewport.toolbar(ui));
-                let selected = self.canvas.targets();
-                let input = ViewportInput {
-                    graph: &self.doc.graph,
-                    selected: &selected,
-                    typing: ui.ctx().egui_wants_keyboard_input(),
-                };
-                view_actions = self.viewport.show(ui, self.gpu.as_ref(), &input);
-            });
-        for a in view_actions {
-            self.apply_view(a);
-        }
-        egui::CentralPanel::default()
-            .frame(egui::Frame::NONE)
-            .show(ui, |ui| {
-                if self.canvas_view != self.doc.view_path() {
-                    // Another graph level: a fresh canvas framing it.
-                    self.canvas_serial += 1;
-                    self.canvas =
-                        Canvas::with_id(egui::Id::new(("cnets-canvas", self.canvas_serial)));
-                    self.canvas.fit_later();
-                    self.canvas_view = self.doc.view_path();
-                }
-                if self.doc.depth() > 0
-                    && let Some(to) = breadcrumbs(ui, &self.doc)
-                {
-                    self.leave_to(to);
-                }
-                // Statuses of another level (the worker has not answered yet) are not shown.
-                let none = HashMap::new();
-                let statuses = if self.statuses_view == self.canvas_view {
-                    &self.statuses
-                } else {
-                    &none
-                };
-                let actions = self.canvas.show(ui, &self.doc.graph, statuses);
+        if narrow {
+            crate::narrow::panels(self, ui);
+        } else {
+            if self.parameters_open {
+                let actions = egui::Panel::left("cnets-parameters")
+                    .resizable(true)
+                    .default_size(260.0)
+                    .min_size(180.0)
+                    .show(ui, |ui| self.parameters_contents(ui))
+                    .inner;
                 for a in actions {
                     self.apply(a);
                 }
-            });
+            }
+            egui::Panel::right("cnets-viewport")
+                .resizable(true)
+                .default_size(ui.available_width() * 0.45)
+                .min_size(200.0)
+                .frame(egui::Frame::NONE)
+                .show(ui, |ui| self.viewport_contents(ui, true));
+            egui::CentralPanel::default()
+                .frame(egui::Frame::NONE)
+                .show(ui, |ui| self.canvas_contents(ui));
+        }
         if let Some(m) = self.list_editors.show(&ctx, &mut self.doc) {
             self.message = m;
         }
@@ -1521,6 +1465,118 @@ impl EditorApp {
         {
             // Keep checking cluster and imported files while idle.
             ctx.request_repaint_after(WATCH_INTERVAL);
+        }
+    }
+
+    /// The parameter panel's contents; returns the edits made in it.
+    pub(crate) fn parameters_contents(&mut self, ui: &mut Ui) -> Vec<CanvasAction> {
+        ui.heading("Parameters");
+        crate::parameters::show(ui, &self.doc.graph, &self.statuses)
+    }
+
+    /// The 3D view with its toolbar, and what it asked for carried out. `canvas_shown`: the
+    /// canvas is on screen too (else every failed node's error is listed in the view).
+    pub(crate) fn viewport_contents(&mut self, ui: &mut Ui, canvas_shown: bool) {
+        ui.horizontal(|ui| {
+            let mut o = self.viewport.options;
+            egui::ComboBox::from_id_salt("color-mode")
+                .selected_text(o.color_mode.label())
+                .show_ui(ui, |ui| {
+                    for m in crate::preview::ColorMode::ALL {
+                        ui.selectable_value(&mut o.color_mode, m, m.label());
+                    }
+                });
+            if o.color_mode == crate::preview::ColorMode::Planarity {
+                // The top of the scale (planar below 1e-9 stays the anchor).
+                let (lo, hi) = crate::preview::PLANARITY_LIMIT_RANGE;
+                let mut limit = o.planarity_limit();
+                let r = ui
+                    .add(
+                        egui::Slider::new(&mut limit, lo..=hi)
+                            .logarithmic(true)
+                            .text("not planar from")
+                            .custom_formatter(|v, _| format!("{v:.0e}")),
+                    )
+                    .on_hover_text(
+                        "the top of the planarity colour scale: faces from this relative \
+                         planarity up are not planar (saved with the editor settings)",
+                    );
+                if r.changed() && o.set_planarity_limit(limit) && !r.dragged() {
+                    self.settings.set_planarity_limit(o.planarity_limit());
+                }
+                if r.drag_stopped() {
+                    self.settings.set_planarity_limit(o.planarity_limit());
+                }
+            }
+            if ui.button("Fit (F)").clicked() {
+                self.viewport.fit();
+            }
+            self.viewport.options = o;
+        });
+        ui.horizontal_wrapped(|ui| self.viewport.toolbar(ui));
+        let selected = self.canvas.targets();
+        let input = ViewportInput {
+            graph: &self.doc.graph,
+            selected: &selected,
+            typing: ui.ctx().egui_wants_keyboard_input(),
+        };
+        let actions = self.viewport.show(ui, self.gpu.as_ref(), &input);
+        for a in actions {
+            self.apply_view(a);
+        }
+        let on_canvas = |id: &str| canvas_shown && crate::view_errors::in_view(&self.canvas, id);
+        if let Some(id) = crate::view_errors::show(
+            ui,
+            self.viewport.rect,
+            &self.doc.graph,
+            &self.statuses,
+            &on_canvas,
+        ) {
+            self.show_node(ui.ctx(), &id);
+        }
+    }
+
+    /// Selects node `id` and brings it into the canvas's view (narrow layouts: shows the canvas).
+    fn show_node(&mut self, ctx: &egui::Context, id: &str) {
+        self.canvas.focused = Some(id.to_string());
+        self.canvas.select(vec![id.to_string()]);
+        if let Some(r) = self.canvas.node_rect(id) {
+            self.canvas.zoom_to(self.canvas.zoom(), Some(r.center()));
+        }
+        crate::narrow::show_canvas(ctx);
+        self.message = format!("selected '{id}'");
+    }
+
+    /// The node canvas, with the breadcrumbs inside opened clusters.
+    pub(crate) fn canvas_contents(&mut self, ui: &mut Ui) {
+        if self.canvas_view != self.doc.view_path() {
+            // Another graph level: a fresh canvas framing it.
+            self.canvas_serial += 1;
+            self.canvas = Canvas::with_id(egui::Id::new(("cnets-canvas", self.canvas_serial)));
+            self.canvas.fit_later();
+            self.canvas_view = self.doc.view_path();
+        }
+        if self.doc.depth() > 0
+            && let Some(to) = breadcrumbs(ui, &self.doc)
+        {
+            self.leave_to(to);
+        }
+        // Statuses of another level (the worker has not answered yet) are not shown.
+        let none = HashMap::new();
+        let statuses = if self.statuses_view == self.canvas_view {
+            &self.statuses
+        } else {
+            &none
+        };
+        let actions = self.canvas.show(ui, &self.doc.graph, statuses);
+        for a in actions {
+            self.apply(a);
+        }
+        if self.page.is_some()
+            && let Some(at) =
+                crate::overview::show(ui, &self.canvas, &self.doc.graph, &self.statuses)
+        {
+            self.canvas.zoom_to(self.canvas.zoom(), Some(at));
         }
     }
 

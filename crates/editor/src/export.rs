@@ -190,7 +190,9 @@ pub fn export(
     eval.evaluate(&g, &[index], &ctx, &mut |_, _| {});
     match eval.result(&g, &id) {
         Some(NodeResult::Ok(out)) => Ok(out.files.clone()),
-        Some(other) => Err(other.error().unwrap_or("export failed").to_string()),
+        Some(other) => Err(other
+            .error()
+            .map_or("export failed".into(), |e| e.into_owned())),
         None => Err("export did not run".into()),
     }
 }

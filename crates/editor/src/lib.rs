@@ -4,14 +4,18 @@
 //!
 //! - [`document`]: the graph document (engine graph + metadata + path), the source of truth;
 //!   [`history`]: undo / redo by snapshots, one step per gesture.
-//! - [`worker`]: evaluation on a background thread, latest change wins; [`preview`] (the
+//! - [`worker`]: evaluation on a background thread, latest change wins ([`remote`]: or in the web
+//!   page's Web Worker); [`preview`] (the
 //!   `cnets-preview` crate, shared with `cnets render`): the render scene and figures built from the
 //!   results.
 //! - [`canvas`]: the node canvas (an egui-snarl view of the graph, kept in sync both ways);
 //!   [`palette`]: the searchable node palette; [`widgets`]: inline value editors;
 //!   [`mapper`]: the graph-mapper widget; [`list_editor`]: literal lists as tables (a summary on
 //!   the node, a window to edit them).
-//! - [`viewport`]: the 3D view (a wgpu paint callback through `cnets-render`) and its camera.
+//! - [`viewport`]: the 3D view (a wgpu paint callback through `cnets-render`) and its camera;
+//!   [`view_errors`]: failed nodes that are off the canvas, listed in the 3D view.
+//! - [`narrow`]: the stacked layout of phones and narrow windows; [`overview`]: the canvas's
+//!   minimap when the graph does not fit.
 //! - [`menus`], [`file_dialog`]: the menu bar and a built-in path dialog; [`export`]: exports
 //!   through the export nodes.
 //! - [`library`]: the user library of graphs used as cluster nodes, and reloading cluster files
@@ -41,16 +45,20 @@ pub mod list_editor;
 pub mod load_failure;
 pub mod mapper;
 pub mod menus;
+pub mod narrow;
 pub mod optimization;
+pub mod overview;
 pub mod page;
 pub mod palette;
 pub mod parameters;
 pub mod plot;
 pub mod probe;
 pub mod recovery;
+pub mod remote;
 pub mod request;
 pub mod settings;
 pub mod unsaved;
+pub mod view_errors;
 pub mod viewport;
 pub mod widgets;
 pub mod worker;

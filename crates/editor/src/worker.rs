@@ -9,7 +9,8 @@
 //!
 //! Without threads (the web build, wasm32) the worker is *inline*: [`Worker::poll`] evaluates the
 //! newest submission on the calling thread (the UI's, once per frame), with the same
-//! latest-change-wins rule.
+//! latest-change-wins rule — or *remote* ([`Worker::remote`]): the web page's Web Worker
+//! evaluates ([`crate::remote`]).
 
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -167,6 +168,8 @@ pub struct Worker {
     thread: Option<JoinHandle<()>>,
     /// The inline worker's state (no thread): the requests and the evaluator.
     inline: Option<Inline>,
+    /// The service that evaluates instead of a thread (the web page's Web Worker).
+    remote: Option<Box<dyn crate::remote::Remote>>,
 }
 
 /// An inline worker's own end of the request channel and its evaluator.
@@ -202,7 +205,16 @@ impl Worker {
             carry: None,
             thread,
             inline: None,
+            remote: None,
         }
+    }
+
+    /// A worker whose requests `remote` evaluates (the web page's Web Worker).
+    pub fn remote(remote: Box<dyn crate::remote::Remote>) -> Self {
+        let mut worker = Self::inline();
+        worker.inline = None;
+        worker.remote = Some(remote);
+        worker
     }
 
     /// A worker without a thread: [`Worker::poll`] (and [`Worker::wait`]) evaluate the newest
@@ -225,6 +237,7 @@ impl Worker {
                 evaluator: Evaluator::new(),
                 generation: None,
             }),
+            remote: None,
         }
     }
 
@@ -283,18 +296,21 @@ impl Worker {
         self.seq += 1;
         let cancel = Arc::new(AtomicBool::new(false));
         self.running_cancel = Some(cancel.clone());
-        if let Some(tx) = &self.tx {
-            let _ = tx.send(EvalRequest {
-                seq: self.seq,
-                generation,
-                carry: self.carry.clone(),
-                graph,
-                options,
-                base_dir,
-                view,
-                cancel,
-                changed_at,
-            });
+        let request = EvalRequest {
+            seq: self.seq,
+            generation,
+            carry: self.carry.clone(),
+            graph,
+            options,
+            base_dir,
+            view,
+            cancel,
+            changed_at,
+        };
+        if let Some(remote) = &mut self.remote {
+            remote.send(request);
+        } else if let Some(tx) = &self.tx {
+            let _ = tx.send(request);
         }
         self.seq
     }
@@ -305,6 +321,9 @@ impl Worker {
         let mut latest = None;
         while let Ok(r) = self.rx.try_recv() {
             latest = Some(r);
+        }
+        if let Some(remote) = &mut self.remote {
+            latest = remote.receive().pop().or(latest);
         }
         if let Some(r) = &latest {
             self.received(r);
@@ -333,6 +352,10 @@ impl Worker {
     /// Blocks until the newest submission is answered completely or `timeout` passes; returns
     /// the last response.
     pub fn wait(&mut self, timeout: Duration) -> Option<EvalResponse> {
+        if self.remote.is_some() {
+            // A remote service answers between the page's frames: nothing to block on.
+            return self.poll();
+        }
         self.run_inline();
         let deadline = Instant::now() + timeout;
         let mut latest = None;
@@ -615,9 +638,8 @@ pub fn statuses(
                             .then(|| evaluator.inputs_of(graph, k, ctx).ok())
                             .flatten(),
                     },
-                    Some(NodeResult::Failed(m)) | Some(NodeResult::Invalid(m)) => {
-                        NodeStatus::Error(m.clone())
-                    }
+                    Some(NodeResult::Failed(e)) => NodeStatus::Error(e.to_string()),
+                    Some(NodeResult::Invalid(m)) => NodeStatus::Error(m.clone()),
                     Some(NodeResult::Blocked(m)) => NodeStatus::Blocked(m.clone()),
                     Some(NodeResult::Disabled) => NodeStatus::Disabled,
                     None => NodeStatus::Idle,

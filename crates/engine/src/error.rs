@@ -28,12 +28,53 @@ pub enum NodeError {
     /// An allocation would not fit in the memory budget.
     #[error(transparent)]
     Budget(#[from] BudgetError),
+    /// A problem at a place in a file a node read: the file, the line (1-based) and, when known,
+    /// the column, as fields (a front end can show or jump to them), displayed as `file: line 3,
+    /// column 7: message`.
+    #[error("{file}: line {line}{}: {message}", column.map_or(String::new(), |c| format!(", column {c}")))]
+    Located {
+        /// The file, as the node named it.
+        file: String,
+        /// The line, from 1.
+        line: usize,
+        /// The column, from 1, when the reader knows it.
+        column: Option<usize>,
+        /// What is wrong there.
+        message: String,
+    },
+    /// The node panicked (a bug: in the node or a library it calls); the panic's message.
+    #[error("node panicked: {0}")]
+    Panicked(String),
 }
 
 impl NodeError {
     /// An error with the given message.
     pub fn new(message: impl Into<String>) -> Self {
         Self::Message(message.into())
+    }
+
+    /// A reader's error about `file`: when `error` starts with `line N:` or `line N, column M:`
+    /// (as the readers write them) the place becomes [`NodeError::Located`]'s fields, else the
+    /// message is `file: error`. The message is cut to a short excerpt.
+    pub fn in_file(file: &str, error: &str) -> Self {
+        let excerpt = |s: &str| crate::files::excerpt(s, 200);
+        let located = error.strip_prefix("line ").and_then(|rest| {
+            let (place, message) = rest.split_once(": ")?;
+            let (line, column) = match place.split_once(", column ") {
+                Some((l, c)) => (l.parse().ok()?, Some(c.parse().ok()?)),
+                None => (place.parse().ok()?, None),
+            };
+            Some((line, column, message))
+        });
+        match located {
+            Some((line, column, message)) => Self::Located {
+                file: file.to_string(),
+                line,
+                column,
+                message: excerpt(message),
+            },
+            None => Self::Message(format!("{file}: {}", excerpt(error))),
+        }
     }
 }
 
@@ -58,6 +99,36 @@ impl From<std::io::Error> for NodeError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_readers_place_becomes_fields() {
+        let e = NodeError::in_file("a.csv", "line 3: expected 2 or 3 numbers");
+        assert_eq!(
+            e,
+            NodeError::Located {
+                file: "a.csv".into(),
+                line: 3,
+                column: None,
+                message: "expected 2 or 3 numbers".into()
+            }
+        );
+        assert_eq!(e.to_string(), "a.csv: line 3: expected 2 or 3 numbers");
+        let e = NodeError::in_file("d.svg", "line 1, column 9: undeclared namespace prefix 'x'");
+        assert!(matches!(
+            e,
+            NodeError::Located {
+                line: 1,
+                column: Some(9),
+                ..
+            }
+        ));
+        assert_eq!(
+            e.to_string(),
+            "d.svg: line 1, column 9: undeclared namespace prefix 'x'"
+        );
+        let e = NodeError::in_file("m.glb", "buffer 0 holds 3 bytes");
+        assert_eq!(e.to_string(), "m.glb: buffer 0 holds 3 bytes");
+    }
 
     #[test]
     fn every_kind_displays_as_its_message() {

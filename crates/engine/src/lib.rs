@@ -7,6 +7,7 @@
 //! - [`eval`]: incremental, pull-based evaluation with early cutoff.
 
 pub mod atomic;
+pub mod broadcast;
 pub mod budget;
 pub mod cluster;
 pub mod convert;

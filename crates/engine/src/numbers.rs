@@ -52,7 +52,7 @@ mod tests {
         assert_eq!(snap(7.0 * 0.2, 0.0, 0.2), 1.4);
         assert_eq!(snap(-0.01, 0.0, 0.5), 0.0);
         assert_eq!(snap(5.0, 0.0, 0.0), 5.0, "no step: unchanged");
-        assert_eq!(snap(f64::NAN, 0.0, 1.0).is_nan(), true);
+        assert!(snap(f64::NAN, 0.0, 1.0).is_nan());
         assert_eq!(snap(123456.789, 0.0, 1e-7), 123456.789);
     }
 

@@ -93,7 +93,7 @@ fn item_errors_name_the_item() {
     let mut ev = Evaluator::new();
     ev.evaluate_all(&g, &NodeContext::default());
     assert_eq!(
-        ev.result(&g, "c").unwrap().error(),
+        ev.result(&g, "c").unwrap().error().as_deref(),
         Some("item 1: x = -1 is negative")
     );
 }

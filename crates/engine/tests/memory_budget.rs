@@ -14,7 +14,7 @@ fn ctx(limit: u64) -> NodeContext {
 
 fn error(ev: &Evaluator, g: &cnets_engine::Graph, id: &str) -> String {
     match ev.result(g, id) {
-        Some(NodeResult::Failed(m)) => m.clone(),
+        Some(NodeResult::Failed(e)) => e.to_string(),
         other => panic!("{id}: expected a failure, got {other:?}"),
     }
 }
@@ -116,7 +116,7 @@ fn lists_merged_from_several_wires_count_against_the_budget() {
     let mut ev = Evaluator::new();
     ev.evaluate_all(&g, &ctx(3 * one));
     let message = match ev.result(&g, "s") {
-        Some(NodeResult::Failed(m)) => m.clone(),
+        Some(NodeResult::Failed(e)) => e.to_string(),
         other => panic!("expected a failure, got {other:?}"),
     };
     assert!(

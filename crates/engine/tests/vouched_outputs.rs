@@ -34,6 +34,7 @@ fn run(d: f64, promise: bool) -> Result<Vec<Value>, String> {
         &[Value::Number(d), Value::Boolean(promise)],
     )
     .map(|o| o.values)
+    .map_err(|e| e.to_string())
 }
 
 #[test]

@@ -25,7 +25,7 @@ use cnets_engine::eval::{Evaluator, NodeResult, evaluate_node};
 use cnets_engine::file::{literal, load_str};
 use cnets_engine::value::json::{read_document, to_json};
 use cnets_engine::{
-    Access, Items, NodeContext, NodeDef, NodeFlag, Record, Registry, Value, ValueType,
+    Access, Items, NodeContext, NodeDef, NodeError, NodeFlag, Record, Registry, Value, ValueType,
 };
 use cnets_geometry::{Line, Plane, PolygonMesh, Polyline, QuadGrid};
 use glam::DVec3;
@@ -57,8 +57,8 @@ const PYTHON_CASES: usize = 6;
 enum Outcome {
     /// The node ran: its outputs and warnings.
     Ran(Vec<Value>, Vec<String>),
-    /// The node ran and failed with this message.
-    Failed(String),
+    /// The node ran and failed with this error (compared typed: kind, fields and words).
+    Failed(NodeError),
     /// The inputs were refused before the node ran (a door's own words).
     Refused(String),
 }
@@ -340,7 +340,7 @@ fn context() -> NodeContext {
     NodeContext::new(None, None)
 }
 
-fn outcome(result: Result<cnets_engine::eval::NodeOutputs, String>) -> Outcome {
+fn outcome(result: Result<cnets_engine::eval::NodeOutputs, NodeError>) -> Outcome {
     match result {
         Ok(o) => Outcome::Ran(o.values, o.warnings),
         Err(m) => Outcome::Failed(m),
@@ -376,7 +376,7 @@ fn ron_door(registry: &Arc<Registry>, def: &NodeDef, case: &Case) -> Outcome {
     evaluator.evaluate_all(&doc.graph, &context());
     match evaluator.result(&doc.graph, "n") {
         Some(NodeResult::Ok(o)) => Outcome::Ran(o.values.clone(), o.warnings.clone()),
-        Some(NodeResult::Failed(m)) => Outcome::Failed(m.to_string()),
+        Some(NodeResult::Failed(e)) => Outcome::Failed(e.clone()),
         other => Outcome::Refused(format!("{other:?}")),
     }
 }

@@ -245,7 +245,7 @@ node! {
     /// outlines are moved rigidly; sheet s lies at x = s · (sheet_width + gap). Feed `sheets` to the
     /// SVG / DXF exports for one group of layers per sheet.
     #[node(id = "fab.nest", category = "Fabrication")]
-    pub fn nest(
+    pub fn nest[ctx](
         /// Closed flat outlines (their x and y are used).
         outlines: k::List<k::Polyline>,
         /// Sheet width, model units.
@@ -282,7 +282,11 @@ node! {
         let rotations = usize::try_from(rotations)
             .map_err(|_| NodeError::new(format!("rotations must be at least 1, got {rotations}")))?;
         let flat: Vec<Polyline> = outlines.iter().map(|o| (**o).clone()).collect();
-        let n = fab::nest(&flat, sheet_width, sheet_height, spacing, rotations).map_err(fab_err)?;
+        // Stops between outlines once the evaluation is cancelled (the editor: a newer edit).
+        let n = fab::nest_until(&flat, sheet_width, sheet_height, spacing, rotations, &|| {
+            ctx.cancelled()
+        })
+        .map_err(fab_err)?;
         let labels = labels
             .unwrap_or_else(|| (0..outlines.len()).map(|k| format!("P{k}")).collect());
         let sheets: Vec<i64> = n.sheets.iter().map(|&s| s as i64).collect();

@@ -399,10 +399,12 @@ mod tests {
         let ctx = NodeContext::default();
         let out = evaluate_node(&choice(), &ctx, &[options.clone(), Value::Integer(1)]).unwrap();
         assert_eq!(out.values, vec![Value::text("bezier"), Value::Integer(1)]);
-        let e = evaluate_node(&choice(), &ctx, &[options, Value::Integer(2)]).unwrap_err();
+        let e = evaluate_node(&choice(), &ctx, &[options, Value::Integer(2)])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("index 2") && e.contains("graph, bezier"), "{e}");
         let e = evaluate_node(&choice(), &ctx, &[Value::list(vec![]), Value::Integer(0)]);
-        assert!(e.unwrap_err().contains("no options"));
+        assert!(e.unwrap_err().to_string().contains("no options"));
     }
 
     #[test]
@@ -507,7 +509,9 @@ mod tests {
         let mixed = Value::list(vec![Value::Integer(1), Value::Number(2.5)]);
         let out = evaluate_node(&list(), &ctx, &[mixed.clone(), Value::text("number")]).unwrap();
         assert_eq!(numbers(&out.values[0]), vec![1.0, 2.5]);
-        let err = evaluate_node(&list(), &ctx, &[mixed, Value::text("integer")]).unwrap_err();
+        let err = evaluate_node(&list(), &ctx, &[mixed, Value::text("integer")])
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("item 1"), "{err}");
         // A row of three numbers parsed as a point is read back as numbers.
         let table = Value::list(vec![Value::Point(DVec3::new(0.1, 0.2, 0.3))]);
@@ -517,7 +521,9 @@ mod tests {
             vec![0.1, 0.2, 0.3]
         );
         let words = Value::list(vec![Value::text("a"), Value::Number(1.0)]);
-        let err = evaluate_node(&list(), &ctx, &[words, Value::text("text")]).unwrap_err();
+        let err = evaluate_node(&list(), &ctx, &[words, Value::text("text")])
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("item 1 is number"), "{err}");
         let single =
             evaluate_node(&list(), &ctx, &[Value::Number(3.0), Value::text("any")]).unwrap();

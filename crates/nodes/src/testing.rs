@@ -25,7 +25,9 @@ pub fn run_named(def: &NodeDef, named: &[(&str, Value)]) -> Result<Vec<Value>, S
                 .unwrap_or(Value::Null)
         })
         .collect();
-    evaluate_node(def, &NodeContext::default(), &inputs).map(|o| o.values)
+    evaluate_node(def, &NodeContext::default(), &inputs)
+        .map(|o| o.values)
+        .map_err(|e| e.to_string())
 }
 
 /// A list of numbers.

@@ -274,7 +274,9 @@ mod tests {
     use cnets_engine::eval::evaluate_node;
 
     fn run(def: NodeDef, inputs: &[Value]) -> Result<Vec<Value>, String> {
-        evaluate_node(&def, &NodeContext::default(), inputs).map(|o| o.values)
+        evaluate_node(&def, &NodeContext::default(), inputs)
+            .map(|o| o.values)
+            .map_err(|e| e.to_string())
     }
 
     #[test]

@@ -21,7 +21,9 @@ fn run(id: &str, ctx: &NodeContext, inputs: &[(&str, Value)]) -> Result<Vec<Valu
     for (name, v) in inputs {
         values[def.input_index(name).unwrap()] = v.clone();
     }
-    evaluate_node(def, ctx, &values).map(|o| o.values)
+    evaluate_node(def, ctx, &values)
+        .map(|o| o.values)
+        .map_err(|e| e.to_string())
 }
 
 fn numbers(n: usize) -> Value {

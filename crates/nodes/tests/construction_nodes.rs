@@ -48,7 +48,9 @@ fn run(id: &str, named: &[(&str, Value)]) -> Result<Vec<Value>, String> {
                 .unwrap_or(Value::Null)
         })
         .collect();
-    evaluate_node(&d, &NodeContext::default(), &inputs).map(|o| o.values)
+    evaluate_node(&d, &NodeContext::default(), &inputs)
+        .map(|o| o.values)
+        .map_err(|e| e.to_string())
 }
 
 fn output<'a>(id: &str, values: &'a [Value], name: &str) -> &'a Value {

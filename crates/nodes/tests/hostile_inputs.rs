@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use cnets_engine::eval::evaluate_node;
-use cnets_engine::{Access, Items, NodeContext, NodeDef, Record, Value, ValueType};
+use cnets_engine::{Access, Items, NodeContext, NodeDef, NodeError, Record, Value, ValueType};
 use cnets_geometry::{DVec3, Line, Plane, PolygonMesh, Polyline, QuadGrid};
 use proptest::prelude::*;
 
@@ -247,7 +247,16 @@ fn check(def: &NodeDef, rng: &mut Rng, ctx: &NodeContext) -> Result<(), TestCase
                 );
             }
         }
-        Err(message) => {
+        Err(error) => {
+            // A panic is a bug: never the answer to an input.
+            prop_assert!(
+                !matches!(error, NodeError::Panicked(_)),
+                "{}: {} on inputs {:?}",
+                def.id,
+                error,
+                inputs
+            );
+            let message = error.to_string();
             prop_assert!(
                 !message.starts_with("node panicked"),
                 "{}: {} on inputs {:?}",
@@ -297,8 +306,8 @@ fn every_node_survives_its_defaults_and_empty_inputs() {
                     _ => Value::Null,
                 })
                 .collect();
-            if let Err(message) = evaluate_node(def, &ctx, &inputs) {
-                assert!(!message.starts_with("node panicked"), "{id}: {message}");
+            if let Err(error) = evaluate_node(def, &ctx, &inputs) {
+                assert!(!matches!(error, NodeError::Panicked(_)), "{id}: {error}");
             }
         }
     }

@@ -48,7 +48,8 @@ fn read(
             Value::text("auto"),
             weld.map_or(Value::Null, Value::Number),
         ],
-    )?;
+    )
+    .map_err(|e| e.to_string())?;
     let mesh = |v: &Value| match v {
         Value::Mesh(m) => (**m).clone(),
         other => panic!("a mesh, got {}", other.type_name()),

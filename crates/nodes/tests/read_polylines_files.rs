@@ -19,7 +19,8 @@ fn read(ctx: &NodeContext, path: &str, format: &str) -> Result<Vec<Polyline>, St
         &def,
         ctx,
         &[Value::text(path), Value::text(format), Value::Integer(16)],
-    )?;
+    )
+    .map_err(|e| e.to_string())?;
     Ok(out.values[0]
         .as_list()
         .unwrap()

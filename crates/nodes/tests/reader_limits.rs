@@ -65,7 +65,7 @@ fn run(dir: &Path, node: &str, inputs: &[(&str, Value)]) -> Result<Vec<Value>, S
         .expect("the limit is above what is allocated");
     let result = evaluate_node(def, &ctx, &values);
     ALLOCATOR.set_limit(usize::MAX).unwrap();
-    result.map(|o| o.values)
+    result.map(|o| o.values).map_err(|e| e.to_string())
 }
 
 fn write(dir: &Path, name: &str, bytes: &[u8]) -> String {

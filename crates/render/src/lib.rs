@@ -125,7 +125,7 @@ pub use palette::{Color, Legend, SequentialMap, ToleranceMap};
 pub use renderer::{COLOR_FORMAT, DEPTH_FORMAT, RendererOptions, SceneRenderer};
 pub use scene::{
     Bounds, FaceColors, FaceVertex, LineStyle, MeshInfo, MeshStyle, PointInstance, PointShape,
-    PointStyle, Scene, SceneStats, Segment,
+    PointStyle, Scene, SceneParts, SceneStats, Segment,
 };
 /// The wgpu this crate is built against (30, the one egui-wgpu 0.36 uses).
 pub use wgpu;

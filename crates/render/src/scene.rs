@@ -346,6 +346,25 @@ pub struct SceneStats {
     pub skipped: usize,
 }
 
+/// The buffers of a [`Scene`], for [`Scene::from_parts`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SceneParts {
+    /// Background (clear) colour.
+    pub background: Color,
+    /// Face corners.
+    pub face_vertices: Vec<FaceVertex>,
+    /// Triangle indices into `face_vertices`.
+    pub face_indices: Vec<u32>,
+    /// Line segments.
+    pub segments: Vec<Segment>,
+    /// Point markers.
+    pub points: Vec<PointInstance>,
+    /// The box of everything drawn.
+    pub bounds: Option<Bounds>,
+    /// Items left out because of non-finite coordinates.
+    pub skipped: usize,
+}
+
 /// A renderable scene: GPU-ready buffers plus the background colour. See the module docs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
@@ -390,6 +409,30 @@ impl Scene {
             scratch: Vec::new(),
             edge_keys: Vec::new(),
         }
+    }
+
+    /// A scene from the buffers another scene's accessors returned ([`Scene::face_vertices`],
+    /// [`Scene::face_indices`], [`Scene::segments`], [`Scene::points`], [`Scene::bounds`],
+    /// [`Scene::skipped`]): a scene sent between the web page and its Web Worker. `None` when a
+    /// triangle is incomplete or an index points past the face vertices.
+    pub fn from_parts(parts: SceneParts) -> Option<Self> {
+        let n = parts.face_vertices.len();
+        if !parts.face_indices.len().is_multiple_of(3)
+            || parts.face_indices.iter().any(|&i| i as usize >= n)
+        {
+            return None;
+        }
+        Some(Self {
+            background: parts.background,
+            face_vertices: parts.face_vertices,
+            face_indices: parts.face_indices,
+            segments: parts.segments,
+            points: parts.points,
+            bounds: parts.bounds,
+            skipped: parts.skipped,
+            scratch: Vec::new(),
+            edge_keys: Vec::new(),
+        })
     }
 
     /// The same scene with another background colour.

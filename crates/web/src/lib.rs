@@ -4,13 +4,24 @@
 //! - [`bundle`]: every file of `graphs/`, compiled in: the gallery graphs and the files they
 //!   import, readable by nodes through the engine's in-memory files.
 //! - [`link`]: share links, the graph in the URL fragment (`#graph=…`), and `?example=<name>`.
-//! - `page` (wasm32 only): the entry point, the WebGL2 set-up, and the browser's side of the
-//!   editor: file picker, drag and drop, downloads, the clipboard, autosave in local storage.
+//! - [`wire`]: the messages between the page and its evaluation worker; [`service`]: the
+//!   worker's side (the engine's evaluator answering the page's requests).
+//! - wasm32 only: `page` (the entry point, the WebGL2 set-up, and the browser's side of the
+//!   editor: file picker, drag and drop, downloads, the clipboard, autosave in local storage),
+//!   `remote` (the page's end of the evaluation worker) and `worker_main` (the worker's entry
+//!   point, in a Web Worker).
 //!
-//! The native build of this crate is its tests: the links of every gallery graph are checked
-//! here without a browser.
+//! The native build of this crate is its tests: the links of every gallery graph, the messages
+//! and the worker's answers are checked here without a browser.
 
 pub mod bundle;
 pub mod link;
+pub mod service;
+pub mod wire;
+
 #[cfg(target_arch = "wasm32")]
 mod page;
+#[cfg(target_arch = "wasm32")]
+mod remote;
+#[cfg(target_arch = "wasm32")]
+mod worker_main;

@@ -14,15 +14,19 @@ use cnets_editor::app::{AppOptions, EditorApp};
 use cnets_editor::page::{Page, PageRequest};
 use cnets_editor::recovery::{Recovery, RecoveryStore};
 use cnets_editor::viewport::GpuTarget;
+use cnets_editor::worker::Worker;
 use eframe::egui_wgpu::{self, wgpu};
 use wasm_bindgen::JsCast as _;
 use wasm_bindgen::prelude::*;
 
+use crate::remote::WebWorker;
+
 /// Files picked in the browser's file picker, waiting for the next frame: (name, bytes).
 type Inbox = Rc<RefCell<Vec<(String, Vec<u8>)>>>;
 
-/// Starts the editor (called by `index.html` once the module is loaded).
-#[wasm_bindgen(start)]
+/// Starts the editor (called by `index.html` once the module is loaded; the evaluation worker
+/// loads the same module and calls `worker_start` instead).
+#[wasm_bindgen]
 pub fn start() {
     eframe::WebLogger::init(log::LevelFilter::Warn).ok();
     wasm_bindgen_futures::spawn_local(async {
@@ -73,6 +77,8 @@ async fn run() -> Result<(), JsValue> {
 /// The editor in the page.
 struct WebApp {
     app: EditorApp,
+    /// The evaluation worker (the editor's `Worker` holds it too).
+    remote: WebWorker,
     inbox: Inbox,
     ctx: egui::Context,
     frames: u64,
@@ -109,6 +115,9 @@ impl WebApp {
             wake,
         });
         app.page = Some(Page::default());
+        // Evaluation in a Web Worker: the page answers input while a graph evaluates.
+        let remote = WebWorker::start(ctx.clone());
+        app.set_worker(Worker::remote(Box::new(remote.clone())));
         // Autosave into the browser's local storage, with the desktop's recovery offer.
         app.set_recovery(Recovery::with_store(
             Path::new("localStorage"),
@@ -122,6 +131,7 @@ impl WebApp {
         );
         let mut me = Self {
             app,
+            remote,
             inbox: Rc::default(),
             ctx,
             frames: 0,
@@ -178,6 +188,9 @@ impl WebApp {
                 }
             } else {
                 let len = bytes.len();
+                // The nodes that import it read it in the worker (the page keeps a copy for
+                // exports).
+                self.remote.provide(&name, bytes.clone());
                 cnets_engine::files::memory::provide(&name, bytes);
                 self.app.reevaluate();
                 self.app.message =
@@ -324,6 +337,9 @@ impl eframe::App for WebApp {
             read_into(file, self.inbox.clone(), self.ctx.clone());
         }
         self.test_request();
+        if let Some(notice) = self.remote.take_notice() {
+            self.app.message = notice;
+        }
         // The canvas element gets its CSS size, and the panels theirs, over the first frames:
         // frame the graph and the geometry again while the page settles (and when the first
         // scene of a document arrives), until the designer touches something.

@@ -269,7 +269,7 @@ impl Cluster {
                     self.label(),
                     node.id,
                     node.def.id,
-                    r.error().unwrap_or("")
+                    r.error().as_deref().unwrap_or("")
                 );
             }
         }

@@ -7,20 +7,13 @@
 //! numbers times a flat list of 13 gives 9 lists of 13 products. Inputs of equal depth are matched
 //! branch by branch, the last branch repeating.
 
-use crate::convert::{coerce_for_port, excess_depth};
+use crate::broadcast::{self, Level};
+use crate::convert::coerce_for_port;
 use crate::node::{NodeContext, NodeDef, NodeError};
-use crate::value::{Items, Value};
+use crate::value::Value;
 
 /// Items run between two looks at the process's memory ([`NodeContext::check_memory`]).
 const CHECK_EVERY: usize = 4096;
-
-/// Item `k` of a list: a packed row's item is made on its own, without building the row's values.
-fn item(items: &Items, k: usize) -> Value {
-    match items.as_packed() {
-        Some(packed) => packed.value(k),
-        None => items[k].clone(),
-    }
-}
 
 /// Runs `def` on raw input values (one per input port, `Null` for empty), mapping over list levels
 /// the ports do not consume themselves. Outputs of a mapped run are lists (nested as deep as the
@@ -30,45 +23,29 @@ pub fn run_mapped(
     ctx: &NodeContext,
     inputs: &[Value],
 ) -> Result<Vec<Value>, NodeError> {
-    let excess: Vec<usize> = inputs
-        .iter()
-        .zip(&def.inputs)
-        .map(|(v, port)| excess_depth(v, &port.ty, port.access))
-        .collect();
-    if excess.iter().all(|&e| e == 0) {
-        let prepared = inputs
-            .iter()
-            .zip(&def.inputs)
-            .map(|(v, port)| {
-                coerce_for_port(v, &port.ty, port.access)
-                    .map_err(|e| NodeError::new(format!("input '{}': {e}", port.name)))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let outputs = (def.run)(ctx, &prepared)?;
-        if outputs.len() != def.outputs.len() {
-            return Err(NodeError::new(format!(
-                "internal: node produced {} outputs, declares {}",
-                outputs.len(),
-                def.outputs.len()
-            )));
+    let split = match broadcast::level(&def.inputs, inputs) {
+        Level::Run => {
+            let prepared = inputs
+                .iter()
+                .zip(&def.inputs)
+                .map(|(v, port)| {
+                    coerce_for_port(v, &port.ty, port.access)
+                        .map_err(|e| NodeError::new(format!("input '{}': {e}", port.name)))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            let outputs = (def.run)(ctx, &prepared)?;
+            if outputs.len() != def.outputs.len() {
+                return Err(NodeError::new(format!(
+                    "internal: node produced {} outputs, declares {}",
+                    outputs.len(),
+                    def.outputs.len()
+                )));
+            }
+            return Ok(outputs);
         }
-        return Ok(outputs);
-    }
-    // Only the deepest inputs are split at this level; shallower ones stay whole until the deeper
-    // ones have come down to their depth.
-    let deepest = excess.iter().copied().max().unwrap_or(0);
-    // The lists as they are: a packed row gives its items one at a time (a row of 10⁸ numbers is
-    // never turned into 10⁸ values at once).
-    let lists: Vec<Option<&Items>> = inputs
-        .iter()
-        .zip(&excess)
-        .map(|(v, &e)| match v {
-            Value::List(items) if e == deepest => Some(items),
-            _ => None,
-        })
-        .collect();
-    let count = lists.iter().flatten().map(|l| l.len()).max().unwrap_or(0);
-    let empty = lists.iter().flatten().any(|l| l.is_empty());
+        Level::Split(split) => split,
+    };
+    let (count, empty) = (split.count, split.empty);
     if !empty {
         let slots = (count as u128).saturating_mul(def.outputs.len() as u128);
         ctx.reserve_values(slots, &format!("running '{}' on {count} items", def.id))?;
@@ -84,11 +61,7 @@ pub fn run_mapped(
             if k % CHECK_EVERY == CHECK_EVERY - 1 {
                 ctx.check_memory(&format!("running '{}' on {count} items", def.id))?;
             }
-            for (slot, list) in item_inputs.iter_mut().zip(&lists) {
-                if let Some(list) = list {
-                    *slot = item(list, k.min(list.len() - 1));
-                }
-            }
+            split.fill(&mut item_inputs, k);
             let outputs = run_mapped(def, ctx, &item_inputs)
                 .map_err(|e| NodeError::new(format!("item {k}: {e}")))?;
             for (column, value) in columns.iter_mut().zip(outputs) {

@@ -13,17 +13,18 @@
 //! change but which is now asked for an output it skipped runs again to *fill in* that output: the
 //! outputs it had keep their values and revisions, so their consumers stay verified.
 
-pub mod demand;
 mod mapping;
 mod panic_guard;
-pub mod reads;
 mod result;
 
-pub use demand::OutputMask;
+/// What a node saw of a file it read (the node contract's own type, moved down to `node`).
+pub use crate::node::FileStamp;
+/// Which outputs are requested (the node contract's own type, moved down to `node`).
+pub use crate::node::OutputMask;
 pub use mapping::run_mapped;
-pub use reads::FileStamp;
 pub use result::{NodeOutputs, NodeResult};
 
+use std::borrow::Cow;
 use std::sync::Arc;
 use std::time::Duration;
 #[cfg(not(target_arch = "wasm32"))]
@@ -36,7 +37,7 @@ use petgraph::stable_graph::NodeIndex;
 
 use crate::budget::bytes_of;
 use crate::graph::{Continued, Graph, NodeInstance, Revision};
-use crate::node::{NodeContext, NodeDef, PortDef};
+use crate::node::{NodeContext, NodeDef, NodeError, PortDef};
 use crate::value::{Value, content_hash, first_non_finite, footprint, is_all_finite};
 
 /// The evaluator's clock: the graph's revision, then a count of the times files read by nodes
@@ -570,7 +571,7 @@ impl Evaluator {
     ) -> NodeResult {
         match evaluate_node_outputs(&instance.def, ctx, inputs, outputs) {
             Ok(outputs) => NodeResult::Ok(Arc::new(outputs)),
-            Err(message) => NodeResult::Failed(message),
+            Err(error) => NodeResult::Failed(error),
         }
     }
 
@@ -651,7 +652,7 @@ impl Evaluator {
                         values.len()
                     );
                     ctx.reserve_values(items as u128, &what)
-                        .map_err(|e| NodeResult::Failed(e.to_string()))?;
+                        .map_err(NodeResult::Failed)?;
                     merge(values)
                 }
             };
@@ -670,7 +671,10 @@ impl Evaluator {
     ) -> Result<Vec<Value>, String> {
         let instance = graph.node_at(index).ok_or("no such node")?;
         self.gather_inputs(graph, index, instance, ctx)
-            .map_err(|r| r.error().unwrap_or("the node cannot run").to_string())
+            .map_err(|r| {
+                r.error()
+                    .map_or_else(|| "the node cannot run".to_string(), Cow::into_owned)
+            })
     }
 
     /// The last result of a node.
@@ -773,7 +777,7 @@ fn within_budget(
     let owned = footprint(&outputs.values).owned_bytes.saturating_add(kept);
     let what = format!("the outputs of '{}'", instance.id);
     if let Err(e) = ctx.budget.check(owned, held, &what) {
-        return (NodeResult::Failed(e.to_string()), 0);
+        return (NodeResult::Failed(e.into()), 0);
     }
     (result, owned)
 }
@@ -786,7 +790,7 @@ pub fn evaluate_node(
     def: &NodeDef,
     ctx: &NodeContext,
     inputs: &[Value],
-) -> Result<NodeOutputs, String> {
+) -> Result<NodeOutputs, NodeError> {
     let outputs = match &ctx.requested {
         Some(names) => OutputMask::of_names(def.outputs.iter().map(|p| p.name.as_ref()), names),
         None => OutputMask::ALL,
@@ -801,8 +805,8 @@ pub fn evaluate_node_outputs(
     ctx: &NodeContext,
     inputs: &[Value],
     outputs: OutputMask,
-) -> Result<NodeOutputs, String> {
-    ctx.ask_outputs(&def.outputs, outputs);
+) -> Result<NodeOutputs, NodeError> {
+    ctx.ask_outputs(def.outputs.iter().map(|p| p.name.clone()), outputs);
     let outcome = panic_guard::catch(|| run_mapped(def, ctx, inputs));
     let vouched = ctx.take_vouched();
     let missing = ctx.skipped_outputs();
@@ -818,11 +822,9 @@ pub fn evaluate_node_outputs(
                 "reading the outputs ({} values: lists shared many times over)",
                 footprint.read_values
             );
-            ctx.budget
-                .check(read, 0, &what)
-                .map_err(|e| e.to_string())?;
+            ctx.budget.check(read, 0, &what)?;
             match non_finite_output(def, &values, &vouched) {
-                Some(message) => Err(message),
+                Some(message) => Err(NodeError::new(message)),
                 None => Ok(NodeOutputs {
                     values,
                     warnings,
@@ -832,8 +834,8 @@ pub fn evaluate_node_outputs(
                 }),
             }
         }
-        Ok(Err(e)) => Err(e.to_string()),
-        Err(panic) => Err(panic),
+        Ok(Err(e)) => Err(e),
+        Err(panic) => Err(NodeError::Panicked(panic)),
     }
 }
 

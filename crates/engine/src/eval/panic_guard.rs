@@ -29,7 +29,7 @@ fn install_hook() {
     });
 }
 
-/// Runs `f`, turning a panic into `Err(message)`.
+/// Runs `f`, turning a panic into `Err(message)` (the panic's text and where it happened).
 pub fn catch<T>(f: impl FnOnce() -> T) -> Result<T, String> {
     install_hook();
     let was = IN_NODE.with(|flag| flag.replace(true));
@@ -42,8 +42,8 @@ pub fn catch<T>(f: impl FnOnce() -> T) -> Result<T, String> {
             .or_else(|| payload.downcast_ref::<String>().cloned())
             .unwrap_or_else(|| "unknown panic".to_string());
         match LOCATION.with(|slot| slot.borrow_mut().take()) {
-            Some(loc) => format!("node panicked: {text} (at {loc})"),
-            None => format!("node panicked: {text}"),
+            Some(loc) => format!("{text} (at {loc})"),
+            None => text,
         }
     })
 }
@@ -56,7 +56,7 @@ mod tests {
     fn panics_become_messages() {
         let r: Result<(), String> = catch(|| panic!("boom {}", 7));
         let msg = r.unwrap_err();
-        assert!(msg.starts_with("node panicked: boom 7"), "{msg}");
+        assert!(msg.starts_with("boom 7"), "{msg}");
         assert_eq!(catch(|| 5), Ok(5));
     }
 }

@@ -1,9 +1,11 @@
 //! What a node's evaluation produced.
 
+use std::borrow::Cow;
 use std::path::PathBuf;
 use std::sync::Arc;
 
 use super::OutputMask;
+use crate::error::NodeError;
 use crate::value::{Footprint, Value};
 
 /// Outputs of a successful run.
@@ -34,8 +36,9 @@ impl NodeOutputs {
 pub enum NodeResult {
     /// The node ran and produced outputs.
     Ok(Arc<NodeOutputs>),
-    /// The node ran and failed (or panicked) with this message.
-    Failed(String),
+    /// The node ran and failed (or panicked): its error, typed (a reader's line and column are
+    /// fields of [`NodeError::Located`]).
+    Failed(NodeError),
     /// An upstream node failed or is disabled; the node did not run.
     Blocked(String),
     /// The node is disabled.
@@ -54,11 +57,20 @@ impl NodeResult {
     }
 
     /// The error message, for failed, invalid and blocked nodes.
-    pub fn error(&self) -> Option<&str> {
+    pub fn error(&self) -> Option<Cow<'_, str>> {
         match self {
-            NodeResult::Failed(m) | NodeResult::Blocked(m) | NodeResult::Invalid(m) => Some(m),
-            NodeResult::Disabled => Some("disabled"),
+            NodeResult::Failed(e) => Some(Cow::Owned(e.to_string())),
+            NodeResult::Blocked(m) | NodeResult::Invalid(m) => Some(Cow::Borrowed(m)),
+            NodeResult::Disabled => Some(Cow::Borrowed("disabled")),
             NodeResult::Ok(_) => None,
+        }
+    }
+
+    /// The node's own error when it ran and failed.
+    pub fn failure(&self) -> Option<&NodeError> {
+        match self {
+            NodeResult::Failed(e) => Some(e),
+            _ => None,
         }
     }
 
@@ -75,8 +87,8 @@ impl NodeResult {
                     || (a.values.len() == b.values.len()
                         && a.values.iter().zip(&b.values).all(|(x, y)| x.same_as(y)))
             }
-            (NodeResult::Failed(a), NodeResult::Failed(b))
-            | (NodeResult::Blocked(a), NodeResult::Blocked(b))
+            (NodeResult::Failed(a), NodeResult::Failed(b)) => a == b,
+            (NodeResult::Blocked(a), NodeResult::Blocked(b))
             | (NodeResult::Invalid(a), NodeResult::Invalid(b)) => a == b,
             (NodeResult::Disabled, NodeResult::Disabled) => true,
             _ => false,

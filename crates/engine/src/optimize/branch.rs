@@ -5,22 +5,8 @@
 //! is reported ("node 'construct' crossed a branch …") instead of passing silently.
 
 use std::collections::HashMap;
-use std::sync::Arc;
 
-use crate::value::Value;
-
-/// The smooth piece a node's run was on.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Branch {
-    /// Identifies the piece: equal keys, the same piece.
-    pub key: u64,
-    /// The piece in words, for the report (e.g. "ratios ≥ ½ in 4 812 of 9 900 cells").
-    pub summary: String,
-}
-
-/// A node type's branch function: the piece of a run, from its inputs and outputs (as the run
-/// function saw them); `None` when the run is smooth everywhere.
-pub type BranchFn = Arc<dyn Fn(&[Value], &[Value]) -> Option<Branch> + Send + Sync>;
+pub use crate::node::derivative::{Branch, BranchFn};
 
 /// Most crossings reported one by one; the rest are counted.
 pub const MAX_REPORTED: u64 = 10;

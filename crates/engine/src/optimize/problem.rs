@@ -286,7 +286,7 @@ impl Problem {
             format!(
                 "node '{}': {}",
                 path.node,
-                result.error().unwrap_or("failed")
+                result.error().as_deref().unwrap_or("failed")
             )
         })?;
         let k = self

@@ -8,47 +8,14 @@
 //! declines (an error: a branch it cannot differentiate), is differentiated by central finite
 //! differences of its own run over the input leaves that matter, and the reason is reported.
 
-use std::sync::Arc;
-
 use super::leaves;
-use crate::convert::{coerce_for_port, excess_depth};
+use crate::broadcast::{self, Level};
+use crate::convert::coerce_for_port;
 use crate::eval::evaluate_node;
 use crate::node::{NodeContext, NodeDef, NodeError};
 use crate::value::Value;
 
-/// What a node's vector–Jacobian product receives.
-pub struct VjpArgs<'a> {
-    /// The evaluation context.
-    pub ctx: &'a NodeContext,
-    /// The inputs the node ran on (one item per item port, converted to the port types).
-    pub inputs: &'a [Value],
-    /// The outputs it produced.
-    pub outputs: &'a [Value],
-    /// Per output, the cotangent of each of its leaves (`None`: zero).
-    pub cotangents: &'a [Option<Vec<f64>>],
-    /// Per input, whether its cotangent is needed.
-    pub wanted: &'a [bool],
-}
-
-impl VjpArgs<'_> {
-    /// The cotangent of output `k`, zeros when none was given.
-    pub fn cotangent(&self, k: usize) -> Vec<f64> {
-        match self.cotangents.get(k).and_then(|c| c.as_ref()) {
-            Some(c) => c.clone(),
-            None => vec![0.0; self.outputs.get(k).map_or(0, leaves::count)],
-        }
-    }
-}
-
-/// Per input, the cotangent of each of its leaves (`None`: zero or not asked for); an error when
-/// the node cannot differentiate this run exactly (the optimizer then uses finite differences).
-pub type VjpResult = Result<Vec<Option<Vec<f64>>>, NodeError>;
-
-/// Per input (or output), the cotangent of each of its leaves (`None`: zero).
-pub type Cotangents = Vec<Option<Vec<f64>>>;
-
-/// A node type's vector–Jacobian product.
-pub type VjpFn = Arc<dyn Fn(&VjpArgs<'_>) -> VjpResult + Send + Sync>;
+pub use crate::node::derivative::{Cotangents, VjpArgs, VjpFn, VjpResult};
 
 /// Which leaves of an input the reverse pass needs.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -113,8 +80,8 @@ pub fn node_vjp(
     })
 }
 
-/// The exact product mapped over the list levels the ports do not consume (mirrors
-/// [`crate::eval::run_mapped`]).
+/// The exact product mapped over the list levels the ports do not consume, by the evaluator's own
+/// rule ([`crate::broadcast`]).
 fn mapped(
     def: &NodeDef,
     vjp: &VjpFn,
@@ -124,59 +91,17 @@ fn mapped(
     cotangents: &[Option<Vec<f64>>],
     wanted: &[bool],
 ) -> VjpResult {
-    let excess: Vec<usize> = inputs
-        .iter()
-        .zip(&def.inputs)
-        .map(|(v, port)| excess_depth(v, &port.ty, port.access))
-        .collect();
-    if excess.iter().all(|&e| e == 0) {
-        let prepared = inputs
-            .iter()
-            .zip(&def.inputs)
-            .map(|(v, port)| coerce_for_port(v, &port.ty, port.access).map_err(NodeError::from))
-            .collect::<Result<Vec<_>, _>>()?;
-        for (k, (raw, p)) in inputs.iter().zip(&prepared).enumerate() {
-            if wanted[k] && leaves::count(raw) != leaves::count(p) {
-                return Err(NodeError::new(format!(
-                    "input '{}' changes its numbers when converted to the port type",
-                    def.inputs[k].name
-                )));
-            }
-        }
-        let result = vjp(&VjpArgs {
-            ctx,
-            inputs: &prepared,
-            outputs,
-            cotangents,
-            wanted,
-        })?;
-        for (k, c) in result.iter().enumerate() {
-            if let Some(c) = c
-                && c.len() != leaves::count(&inputs[k])
-            {
-                return Err(NodeError::new(format!(
-                    "internal: the derivative of input '{}' has {} numbers, the input {}",
-                    def.inputs.get(k).map_or("?", |p| p.name.as_ref()),
-                    c.len(),
-                    leaves::count(&inputs[k])
-                )));
-            }
-        }
-        return Ok(result);
-    }
-    let deepest = excess.iter().copied().max().unwrap_or(0);
-    let lists: Vec<Option<&[Value]>> = inputs
-        .iter()
-        .zip(&excess)
-        .map(|(v, &e)| if e == deepest { v.as_list() } else { None })
-        .collect();
-    let count = lists.iter().flatten().map(|l| l.len()).max().unwrap_or(0);
+    let split = match broadcast::level(&def.inputs, inputs) {
+        Level::Split(split) => split,
+        Level::Run => return product(def, vjp, ctx, inputs, outputs, cotangents, wanted),
+    };
+    let count = split.count;
     let mut result: Vec<Option<Vec<f64>>> = inputs
         .iter()
         .zip(wanted)
         .map(|(v, &w)| w.then(|| vec![0.0; leaves::count(v)]))
         .collect();
-    if lists.iter().flatten().any(|l| l.is_empty()) {
+    if split.empty {
         return Ok(result);
     }
     // Item outputs and their cotangents, split by item.
@@ -187,7 +112,7 @@ fn mapped(
             _ => return Err(NodeError::new("internal: a mapped output is not a list")),
         }
     }
-    let split = |c: &Option<Vec<f64>>, items: &[Value]| -> Vec<Option<Vec<f64>>> {
+    let by_item = |c: &Option<Vec<f64>>, items: &[Value]| -> Vec<Option<Vec<f64>>> {
         let Some(c) = c else {
             return vec![None; items.len()];
         };
@@ -205,10 +130,11 @@ fn mapped(
     let item_cots: Vec<Vec<Option<Vec<f64>>>> = cotangents
         .iter()
         .zip(&item_outputs)
-        .map(|(c, items)| split(c, items))
+        .map(|(c, items)| by_item(c, items))
         .collect();
     // Leaf offsets of the items of split inputs.
-    let starts: Vec<Option<Vec<usize>>> = lists
+    let starts: Vec<Option<Vec<usize>>> = split
+        .lists
         .iter()
         .map(|l| {
             l.map(|items| {
@@ -229,11 +155,7 @@ fn mapped(
         if ctx.cancelled() {
             return Err(NodeError::new("cancelled"));
         }
-        for (slot, list) in item_inputs.iter_mut().zip(&lists) {
-            if let Some(list) = list {
-                *slot = list[k.min(list.len() - 1)].clone();
-            }
-        }
+        split.fill(&mut item_inputs, k);
         let outs: Vec<Value> = item_outputs.iter().map(|items| items[k].clone()).collect();
         let cots: Vec<Option<Vec<f64>>> = item_cots.iter().map(|c| c[k].clone()).collect();
         if cots.iter().all(Option::is_none) {
@@ -244,8 +166,8 @@ fn mapped(
             let (Some(c), Some(total)) = (c, total.as_mut()) else {
                 continue;
             };
-            let at = match (&starts[input], lists[input]) {
-                (Some(s), Some(list)) => s[k.min(list.len() - 1)],
+            let at = match (&starts[input], split.index(input, k)) {
+                (Some(s), Some(i)) => s[i],
                 _ => 0,
             };
             total
@@ -254,6 +176,51 @@ fn mapped(
                 .iter_mut()
                 .zip(&c)
                 .for_each(|(t, x)| *t += x);
+        }
+    }
+    Ok(result)
+}
+
+/// The node's own product on inputs that need no more mapping, checked for its shape.
+fn product(
+    def: &NodeDef,
+    vjp: &VjpFn,
+    ctx: &NodeContext,
+    inputs: &[Value],
+    outputs: &[Value],
+    cotangents: &[Option<Vec<f64>>],
+    wanted: &[bool],
+) -> VjpResult {
+    let prepared = inputs
+        .iter()
+        .zip(&def.inputs)
+        .map(|(v, port)| coerce_for_port(v, &port.ty, port.access).map_err(NodeError::from))
+        .collect::<Result<Vec<_>, _>>()?;
+    for (k, (raw, p)) in inputs.iter().zip(&prepared).enumerate() {
+        if wanted[k] && leaves::count(raw) != leaves::count(p) {
+            return Err(NodeError::new(format!(
+                "input '{}' changes its numbers when converted to the port type",
+                def.inputs[k].name
+            )));
+        }
+    }
+    let result = vjp(&VjpArgs {
+        ctx,
+        inputs: &prepared,
+        outputs,
+        cotangents,
+        wanted,
+    })?;
+    for (k, c) in result.iter().enumerate() {
+        if let Some(c) = c
+            && c.len() != leaves::count(&inputs[k])
+        {
+            return Err(NodeError::new(format!(
+                "internal: the derivative of input '{}' has {} numbers, the input {}",
+                def.inputs.get(k).map_or("?", |p| p.name.as_ref()),
+                c.len(),
+                leaves::count(&inputs[k])
+            )));
         }
     }
     Ok(result)
@@ -272,7 +239,7 @@ fn finite_differences(
     let mut probe = inputs.to_vec();
     let mut run = |probe: &[Value]| -> Result<Vec<f64>, NodeError> {
         runs += 1;
-        let out = evaluate_node(def, ctx, probe).map_err(NodeError::new)?;
+        let out = evaluate_node(def, ctx, probe)?;
         let mut flat = Vec::new();
         for (v, c) in out.values.iter().zip(cotangents) {
             if let Some(c) = c {

@@ -4,6 +4,7 @@ mod equality;
 mod finite;
 mod footprint;
 pub mod json;
+pub mod leaves;
 mod list;
 mod plane;
 mod record;

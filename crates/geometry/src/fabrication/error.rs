@@ -14,6 +14,9 @@ pub enum FabricationError {
     /// The input mesh (or list) has nothing to work on.
     #[error("{0} is empty")]
     Empty(&'static str),
+    /// The caller asked to stop (a newer edit supersedes the work).
+    #[error("cancelled")]
+    Cancelled,
     /// A grid is too small for the operation.
     #[error("{what} needs at least {needed} {unit}, got {got}")]
     TooSmall {

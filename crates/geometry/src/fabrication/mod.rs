@@ -35,7 +35,7 @@ pub use face_attributes::{
 };
 pub use join::{join, weld};
 pub use mirror::mirror;
-pub use nest::{Nested, nest, stack_sheets};
+pub use nest::{Nested, nest, nest_until, stack_sheets};
 pub use parallel_support::parallel_support;
 pub use parallel_transform::{ParallelTransform, parallel_transform};
 pub use polygon::triangulate;

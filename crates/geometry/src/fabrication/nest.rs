@@ -67,6 +67,20 @@ pub fn nest(
     spacing: f64,
     rotations: usize,
 ) -> Result<Nested, FabricationError> {
+    nest_until(outlines, width, height, spacing, rotations, &|| false)
+}
+
+/// Like [`nest`], asking `cancelled` before each outline is placed: a slow nesting stops with
+/// [`FabricationError::Cancelled`] as soon as its caller no longer wants it (an editor whose
+/// designer dragged on).
+pub fn nest_until(
+    outlines: &[Polyline],
+    width: f64,
+    height: f64,
+    spacing: f64,
+    rotations: usize,
+    cancelled: &dyn Fn() -> bool,
+) -> Result<Nested, FabricationError> {
     for (what, v) in [("sheet_width", width), ("sheet_height", height)] {
         if !(v.is_finite() && v > 0.0 && v < 1e12) {
             return Err(FabricationError::BadParameter {
@@ -139,6 +153,9 @@ pub fn nest(
     let mut origins = Vec::with_capacity(outlines.len());
     let mut area = 0.0;
     for (k, o) in outlines.iter().enumerate() {
+        if cancelled() {
+            return Err(FabricationError::Cancelled);
+        }
         if o.points.len() < 3 {
             return Err(FabricationError::TooSmall {
                 what: "outline",
@@ -172,6 +189,9 @@ pub fn nest(
     let mut sheets: Vec<Sheet> = Vec::new();
     let mut placed: Vec<Option<(usize, DTransformation)>> = vec![None; items.len()];
     for &k in &order {
+        if cancelled() {
+            return Err(FabricationError::Cancelled);
+        }
         let item = &items[k];
         let mut done = false;
         for (s, sheet) in sheets.iter_mut().enumerate() {
@@ -492,6 +512,26 @@ mod tests {
             DVec3::new(x + w, y + h, 0.0),
             DVec3::new(x, y + h, 0.0),
         ])
+    }
+
+    #[test]
+    fn a_cancelled_nesting_stops_before_the_next_outline() {
+        let outlines: Vec<Polyline> = (0..8)
+            .map(|k| rect(k as f64 * 3.0, 5.0, 1.0, 0.45))
+            .collect();
+        let asked = std::cell::Cell::new(0);
+        // Cancelled at the third question: during the import of the outlines.
+        let r = nest_until(&outlines, 2.1, 2.0, 0.01, 4, &|| {
+            asked.set(asked.get() + 1);
+            asked.get() >= 3
+        });
+        assert_eq!(r, Err(FabricationError::Cancelled));
+        assert_eq!(asked.get(), 3, "stopped at once");
+        // Never cancelled: the same result as `nest`.
+        assert_eq!(
+            nest_until(&outlines, 2.1, 2.0, 0.01, 4, &|| false),
+            nest(&outlines, 2.1, 2.0, 0.01, 4)
+        );
     }
 
     #[test]

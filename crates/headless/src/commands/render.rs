@@ -236,7 +236,7 @@ pub fn run(args: Args) -> CommandResult {
                 "warning: node '{}' ({}): {}",
                 node.id,
                 node.def.id,
-                r.error().unwrap_or("")
+                r.error().as_deref().unwrap_or("")
             );
         }
     }

@@ -49,7 +49,7 @@ fn errors_of(result: Option<&NodeResult>) -> Vec<String> {
     match result {
         Some(NodeResult::Ok(_)) | None => Vec::new(),
         Some(NodeResult::Disabled) => Vec::new(),
-        Some(r) => r.error().map(str::to_string).into_iter().collect(),
+        Some(r) => r.error().map(|m| m.into_owned()).into_iter().collect(),
     }
 }
 
@@ -132,7 +132,7 @@ pub fn run(args: Args) -> CommandResult {
                 "node '{}' ({}): {}",
                 node.id,
                 node.def.id,
-                result.and_then(NodeResult::error).unwrap_or("")
+                result.and_then(NodeResult::error).as_deref().unwrap_or("")
             ));
         }
         let outputs = result.and_then(NodeResult::outputs);

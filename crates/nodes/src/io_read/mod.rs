@@ -158,9 +158,9 @@ node! {
             .ok_or_else(|| NodeError::new(format!("segments must be 1 to 10000, got {segments}")))?;
         let (file, bytes) = ctx.read_file(&path)?;
         let mut guard = ctx.guard(format!("reading '{}'", files::excerpt(&path, 60)));
-        let (curves, warnings) = parse_within(&bytes, format, segments, &mut guard).map_err(|e| {
-            NodeError::new(format!("{}: {}", file.display(), cnets_engine::files::excerpt(&e, 200)))
-        })?;
+        // The reader's place (line, column) becomes fields of the error.
+        let (curves, warnings) = parse_within(&bytes, format, segments, &mut guard)
+            .map_err(|e| NodeError::in_file(&file.display().to_string(), &e))?;
         if curves.is_empty() {
             return Err(format!("{}: no polylines found", file.display()).into());
         }

@@ -353,7 +353,9 @@ mod tests {
         for p in &def.inputs[inputs.len()..] {
             all.push(p.default.clone().unwrap_or(Value::Null));
         }
-        evaluate_node(&def, &NodeContext::default(), &all).map(|o| o.values)
+        evaluate_node(&def, &NodeContext::default(), &all)
+            .map(|o| o.values)
+            .map_err(|e| e.to_string())
     }
 
     fn one(def: NodeDef, inputs: &[Value]) -> f64 {

@@ -70,7 +70,7 @@ pub fn run_full(
                 .unwrap_or(Value::Null)
         })
         .collect();
-    let out = evaluate_node(&d, ctx, &inputs)?;
+    let out = evaluate_node(&d, ctx, &inputs).map_err(|e| e.to_string())?;
     let named = d
         .outputs
         .iter()

@@ -111,9 +111,8 @@ node! {
         }
         // Permission, file kind, size limit and memory budget are checked by the context.
         let (file, bytes) = ctx.read_file(&path)?;
-        let named = |e: String| {
-            NodeError::new(format!("{}: {}", file.display(), cnets_engine::files::excerpt(&e, 200)))
-        };
+        // The reader's place (line, column) becomes fields of the error.
+        let named = |e: String| NodeError::in_file(&file.display().to_string(), &e);
         let mut guard = ctx.guard(format!("reading '{}'", cnets_engine::files::excerpt(&path, 60)));
         let file_mesh = match format {
             MeshFormat::Obj => {

@@ -1,0 +1,295 @@
+//! The page's end of the evaluation worker (wasm32 only): a Web Worker running `worker.js`, which
+//! instantiates this same wasm module (the compiled module is handed over, not fetched again) and
+//! evaluates there ([`crate::worker_main`]). The editor's `Worker` hands it its requests as
+//! [`Remote`]; answers arrive as messages, are decoded into `EvalResponse`s and wake the UI.
+//!
+//! Files opened on the page are sent to the worker too (its nodes read them there). When the
+//! worker stops (a panic), a new one is started with the same files; the request it stopped on
+//! is not sent again (the next edit is).
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::rc::Rc;
+use std::sync::Arc;
+
+use cnets_editor::preview::{Picks, PreviewStats};
+use cnets_editor::remote::Remote;
+use cnets_editor::worker::{EvalRequest, EvalResponse, NodeStatus};
+use cnets_engine::file::{GraphMeta, to_ron};
+use cnets_render::Scene;
+use wasm_bindgen::JsCast as _;
+use wasm_bindgen::prelude::*;
+use web_time::Instant;
+
+use crate::wire::{self, FromWorker, Job, ToWorker};
+
+/// Figures about the worker, for the browser test.
+#[derive(Clone, Debug, Default)]
+pub struct Figures {
+    /// Requests sent.
+    pub sent: u64,
+    /// Answers received.
+    pub answers: u64,
+    /// Requests whose 3D view was answered but whose rest was dropped (a newer request came).
+    pub rests_dropped: u64,
+    /// Time spent decoding answers on the page, in milliseconds.
+    pub decode_ms: f64,
+    /// Workers started (1 unless one stopped).
+    pub started: u64,
+}
+
+struct Shared {
+    worker: Option<web_sys::Worker>,
+    ready: bool,
+    /// The newest job not yet posted (the worker is starting).
+    job: Option<Vec<u8>>,
+    /// Every file opened on the page, in order (sent again to a restarted worker).
+    files: Vec<Vec<u8>>,
+    /// When each request in flight was made.
+    changed_at: HashMap<u64, Instant>,
+    /// The newest request posted.
+    last_seq: u64,
+    /// Requests answered incompletely so far (the rest may be dropped).
+    open: Vec<u64>,
+    responses: Vec<EvalResponse>,
+    /// The last preview and statuses received (an answer may reuse them).
+    preview: (Arc<Scene>, PreviewStats, Arc<Picks>),
+    statuses: HashMap<String, NodeStatus>,
+    /// A message for the designer (the worker stopped, a graph did not load there).
+    notice: Option<String>,
+    figures: Figures,
+    ctx: egui::Context,
+}
+
+/// The evaluation worker (cheap to clone: the page and the editor's `Worker` share it).
+#[derive(Clone)]
+pub struct WebWorker(Rc<RefCell<Shared>>);
+
+impl WebWorker {
+    /// Starts the worker; answers wake `ctx`.
+    pub fn start(ctx: egui::Context) -> Self {
+        let me = Self(Rc::new(RefCell::new(Shared {
+            worker: None,
+            ready: false,
+            job: None,
+            files: Vec::new(),
+            changed_at: HashMap::new(),
+            last_seq: 0,
+            open: Vec::new(),
+            responses: Vec::new(),
+            preview: (
+                Arc::new(Scene::new()),
+                PreviewStats::default(),
+                Arc::new(Picks::default()),
+            ),
+            statuses: HashMap::new(),
+            notice: None,
+            figures: Figures::default(),
+            ctx,
+        })));
+        me.spawn();
+        me
+    }
+
+    /// Makes a file opened on the page readable by the worker's nodes.
+    pub fn provide(&self, name: &str, bytes: Vec<u8>) {
+        let message = wire::encode_to_worker(&ToWorker::Provide {
+            name: name.to_string(),
+            bytes,
+        });
+        let mut s = self.0.borrow_mut();
+        if s.ready {
+            post(s.worker.as_ref(), &message);
+        }
+        s.files.push(message);
+    }
+
+    /// A message for the designer, once (the worker stopped, or did not load a graph).
+    pub fn take_notice(&self) -> Option<String> {
+        self.0.borrow_mut().notice.take()
+    }
+
+    /// The worker's figures so far.
+    pub fn figures(&self) -> Figures {
+        self.0.borrow().figures.clone()
+    }
+
+    fn spawn(&self) {
+        let options = web_sys::WorkerOptions::new();
+        options.set_type(web_sys::WorkerType::Module);
+        let worker = match web_sys::Worker::new_with_options("./worker.js", &options) {
+            Ok(w) => w,
+            Err(e) => {
+                let text = e.as_string().unwrap_or_else(|| format!("{e:?}"));
+                self.0.borrow_mut().notice =
+                    Some(format!("cannot start the evaluation worker: {text}"));
+                return;
+            }
+        };
+        let me = self.clone();
+        let on_message = Closure::<dyn FnMut(web_sys::MessageEvent)>::new(
+            move |event: web_sys::MessageEvent| {
+                let bytes = js_sys::Uint8Array::new(&event.data()).to_vec();
+                me.received(&bytes);
+            },
+        );
+        worker.set_onmessage(Some(on_message.as_ref().unchecked_ref()));
+        on_message.forget();
+        let me = self.clone();
+        let on_error =
+            Closure::<dyn FnMut(web_sys::ErrorEvent)>::new(move |event: web_sys::ErrorEvent| {
+                me.stopped(&event.message());
+            });
+        worker.set_onerror(Some(on_error.as_ref().unchecked_ref()));
+        on_error.forget();
+        // The worker instantiates the module this page compiled.
+        if let Err(e) = worker.post_message(&wasm_bindgen::module()) {
+            web_sys::console::warn_2(&"cnets: cannot start the evaluation worker".into(), &e);
+        }
+        let mut s = self.0.borrow_mut();
+        s.worker = Some(worker);
+        s.ready = false;
+        s.figures.started += 1;
+    }
+
+    fn received(&self, bytes: &[u8]) {
+        let start = Instant::now();
+        let message = wire::decode_from_worker(bytes);
+        let mut s = self.0.borrow_mut();
+        match message {
+            Ok(FromWorker::Ready) => {
+                s.ready = true;
+                for f in &s.files {
+                    post(s.worker.as_ref(), f);
+                }
+                if let Some(job) = s.job.take() {
+                    post(s.worker.as_ref(), &job);
+                }
+            }
+            Ok(FromWorker::Answer(a)) => {
+                let a = *a;
+                if let Some((scene, stats, picks)) = a.preview {
+                    s.preview = (Arc::new(scene), stats, Arc::new(picks));
+                }
+                s.statuses = a.statuses.clone();
+                s.figures.answers += 1;
+                s.figures.decode_ms += start.elapsed().as_secs_f64() * 1e3;
+                let stale = s.open.iter().filter(|&&q| q < a.seq).count() as u64;
+                s.figures.rests_dropped += stale;
+                s.open.retain(|&q| q > a.seq);
+                if !a.complete {
+                    s.open.push(a.seq);
+                }
+                let changed_at = if a.complete {
+                    s.changed_at.retain(|&q, _| q > a.seq);
+                    s.changed_at.remove(&a.seq)
+                } else {
+                    s.changed_at.get(&a.seq).copied()
+                };
+                let response = EvalResponse {
+                    seq: a.seq,
+                    view: a.view,
+                    statuses: a.statuses,
+                    scene: s.preview.0.clone(),
+                    stats: s.preview.1.clone(),
+                    picks: s.preview.2.clone(),
+                    eval_ms: a.eval_ms,
+                    ran: a.ran,
+                    changed_at: changed_at.unwrap_or(start),
+                    finished_at: Instant::now(),
+                    complete: a.complete,
+                };
+                s.responses.push(response);
+            }
+            Ok(FromWorker::Failed { seq, message }) => {
+                s.notice = Some(format!("the evaluation could not load the graph: {message}"));
+                let done = s.answer_unchanged(seq);
+                s.responses.push(done);
+            }
+            Ok(FromWorker::Stopped { message }) => {
+                drop(s);
+                self.stopped(&message);
+                return;
+            }
+            Err(e) => web_sys::console::warn_1(&format!("cnets: {e}").into()),
+        }
+        s.ctx.request_repaint();
+    }
+
+    /// The worker stopped: say so, close the request it was on, start another worker.
+    fn stopped(&self, message: &str) {
+        {
+            let mut s = self.0.borrow_mut();
+            if let Some(w) = s.worker.take() {
+                w.terminate();
+            }
+            s.notice = Some(format!(
+                "the evaluation stopped ({message}); edit the graph to evaluate it again"
+            ));
+            let seq = s.last_seq;
+            let done = s.answer_unchanged(seq);
+            s.responses.push(done);
+            s.ctx.request_repaint();
+        }
+        self.spawn();
+    }
+}
+
+impl Shared {
+    /// A complete answer for `seq` that changes nothing (the last preview and statuses).
+    fn answer_unchanged(&mut self, seq: u64) -> EvalResponse {
+        let now = Instant::now();
+        EvalResponse {
+            seq,
+            view: Vec::new(),
+            statuses: self.statuses.clone(),
+            scene: self.preview.0.clone(),
+            stats: self.preview.1.clone(),
+            picks: self.preview.2.clone(),
+            eval_ms: 0.0,
+            ran: 0,
+            changed_at: self.changed_at.remove(&seq).unwrap_or(now),
+            finished_at: now,
+            complete: true,
+        }
+    }
+}
+
+impl Remote for WebWorker {
+    fn send(&mut self, request: EvalRequest) {
+        let job = Job {
+            seq: request.seq,
+            ron: to_ron(&request.graph, &GraphMeta::default()),
+            base_dir: request
+                .base_dir
+                .as_ref()
+                .map(|d| d.to_string_lossy().into_owned()),
+            view: request.view,
+            options: request.options,
+        };
+        let message = wire::encode_to_worker(&ToWorker::Evaluate(job));
+        let mut s = self.0.borrow_mut();
+        s.changed_at.insert(request.seq, request.changed_at);
+        s.last_seq = request.seq;
+        s.figures.sent += 1;
+        if s.ready {
+            post(s.worker.as_ref(), &message);
+        } else {
+            s.job = Some(message);
+        }
+    }
+
+    fn receive(&mut self) -> Vec<EvalResponse> {
+        std::mem::take(&mut self.0.borrow_mut().responses)
+    }
+}
+
+/// Posts a message to the worker (its bytes are transferred, not copied).
+fn post(worker: Option<&web_sys::Worker>, bytes: &[u8]) {
+    let Some(worker) = worker else { return };
+    let array = js_sys::Uint8Array::from(bytes);
+    let transfer = js_sys::Array::of1(&array.buffer());
+    if let Err(e) = worker.post_message_with_transfer(&array, &transfer) {
+        web_sys::console::warn_2(&"cnets: cannot reach the evaluation worker".into(), &e);
+    }
+}
