@@ -68,18 +68,29 @@ pub fn show(
                     ui.set_max_width(width);
                     let ink = Color32::from_rgb(0x9b, 0x1c, 0x1c);
                     for (id, message) in failed.iter().take(MAX_SHOWN) {
-                        let short: String = message.lines().next().unwrap_or_default().chars().take(MAX_CHARS).collect();
+                        let short: String = message
+                            .lines()
+                            .next()
+                            .unwrap_or_default()
+                            .chars()
+                            .take(MAX_CHARS)
+                            .collect();
                         let text = egui::RichText::new(format!("⚠ {id}: {short}")).color(ink);
                         if ui
                             .add(egui::Label::new(text).wrap().sense(egui::Sense::click()))
-                            .on_hover_text(format!("{message}\n\nclick to show '{id}' on the canvas"))
+                            .on_hover_text(format!(
+                                "{message}\n\nclick to show '{id}' on the canvas"
+                            ))
                             .clicked()
                         {
                             clicked = Some(id.to_string());
                         }
                     }
                     if failed.len() > MAX_SHOWN {
-                        ui.colored_label(ink, format!("and {} more failed nodes", failed.len() - MAX_SHOWN));
+                        ui.colored_label(
+                            ink,
+                            format!("and {} more failed nodes", failed.len() - MAX_SHOWN),
+                        );
                     }
                 });
         });

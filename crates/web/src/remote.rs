@@ -202,7 +202,9 @@ impl WebWorker {
                 s.responses.push(response);
             }
             Ok(FromWorker::Failed { seq, message }) => {
-                s.notice = Some(format!("the evaluation could not load the graph: {message}"));
+                s.notice = Some(format!(
+                    "the evaluation could not load the graph: {message}"
+                ));
                 let done = s.answer_unchanged(seq);
                 s.responses.push(done);
             }

@@ -127,11 +127,7 @@ impl Service {
     }
 
     /// Runs `request`, encoding each response that `keep(complete)` keeps.
-    fn run(
-        &mut self,
-        request: &EvalRequest,
-        keep: &mut dyn FnMut(bool) -> bool,
-    ) -> Vec<Vec<u8>> {
+    fn run(&mut self, request: &EvalRequest, keep: &mut dyn FnMut(bool) -> bool) -> Vec<Vec<u8>> {
         let Self {
             evaluator, sent, ..
         } = self;
@@ -187,7 +183,9 @@ mod tests {
     /// torus-monge's RON with the first number value of node `node` set to `value`.
     fn torus_with(node: &str, value: f64) -> String {
         let ron = crate::bundle::example("torus-monge").unwrap();
-        let at = ron.find(&format!("\"{node}\": (")).expect("node in the file");
+        let at = ron
+            .find(&format!("\"{node}\": ("))
+            .expect("node in the file");
         let v = at + ron[at..].find("\"value\": ").unwrap() + "\"value\": ".len();
         let end = v + ron[v..].find(',').unwrap();
         format!("{}{value:?}{}", &ron[..v], &ron[end..])

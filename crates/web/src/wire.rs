@@ -215,7 +215,11 @@ pub fn decode_from_worker(bytes: &[u8]) -> Res<FromWorker> {
                 statuses.insert(id, read_status(&mut r)?);
             }
             let preview = if r.bool()? {
-                Some((read_scene(&mut r)?, read_stats(&mut r)?, read_picks(&mut r)?))
+                Some((
+                    read_scene(&mut r)?,
+                    read_stats(&mut r)?,
+                    read_picks(&mut r)?,
+                ))
             } else {
                 None
             };
@@ -413,7 +417,11 @@ fn read_value(r: &mut Reader, depth: usize) -> Res<Value> {
         }
         8 => {
             let n = r.len(1)?;
-            Value::list((0..n).map(|_| read_value(r, depth + 1)).collect::<Res<_>>()?)
+            Value::list(
+                (0..n)
+                    .map(|_| read_value(r, depth + 1))
+                    .collect::<Res<_>>()?,
+            )
         }
         _ => return Err(WireError("unknown value")),
     })
@@ -608,7 +616,9 @@ fn read_picks(r: &mut Reader) -> Res<Picks> {
                 let indices: Vec<u32> = r.pods()?;
                 let face_starts: Vec<u32> = r.pods()?;
                 let ordered = face_starts.windows(2).all(|w| w[0] <= w[1])
-                    && face_starts.last().is_none_or(|&s| s as usize <= indices.len());
+                    && face_starts
+                        .last()
+                        .is_none_or(|&s| s as usize <= indices.len());
                 if !ordered || indices.iter().any(|&i| i as usize >= vertices.len()) {
                     return Err(WireError("a polygon mesh's indices are out of range"));
                 }
@@ -788,7 +798,11 @@ impl<'a> Reader<'a> {
         (0..n).map(|_| self.string()).collect()
     }
     fn opt<T>(&mut self, f: impl FnOnce(&mut Self) -> Res<T>) -> Res<Option<T>> {
-        if self.bool()? { f(self).map(Some) } else { Ok(None) }
+        if self.bool()? {
+            f(self).map(Some)
+        } else {
+            Ok(None)
+        }
     }
     fn pods<T: Pod>(&mut self) -> Res<Vec<T>> {
         let size = std::mem::size_of::<T>();
@@ -845,9 +859,10 @@ mod tests {
         )
         .unwrap();
         scene
-            .add_quad_grid(&grid, cnets_render::FaceColors::Uniform(Color(
-                [10, 20, 30, 255],
-            )))
+            .add_quad_grid(
+                &grid,
+                cnets_render::FaceColors::Uniform(Color([10, 20, 30, 255])),
+            )
             .unwrap();
         let picks = Picks {
             meshes: vec![PickMesh {
@@ -906,8 +921,7 @@ mod tests {
             finished_at: web_time::Instant::now(),
             complete: false,
         };
-        let Ok(FromWorker::Answer(a)) = decode_from_worker(&encode_answer(&response, false))
-        else {
+        let Ok(FromWorker::Answer(a)) = decode_from_worker(&encode_answer(&response, false)) else {
             panic!("an answer");
         };
         assert_eq!((a.seq, a.eval_ms, a.ran, a.complete), (9, 3.0, 4, false));
@@ -920,8 +934,7 @@ mod tests {
         assert_eq!(p.meshes[0].geometry.vertices(), grid_vertices(&response));
         assert_eq!(p.curves[0].polyline, response.picks.curves[0].polyline);
         // Without the preview: the statuses only.
-        let Ok(FromWorker::Answer(b)) = decode_from_worker(&encode_answer(&response, true))
-        else {
+        let Ok(FromWorker::Answer(b)) = decode_from_worker(&encode_answer(&response, true)) else {
             panic!("an answer");
         };
         assert!(b.preview.is_none());

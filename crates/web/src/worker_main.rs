@@ -48,7 +48,9 @@ pub fn worker_start() {
         post(&wire::encode_stopped(&text));
     }));
     crate::bundle::provide_all();
-    let service = Rc::new(RefCell::new(Service::new(Arc::new(cnets_nodes::registry()))));
+    let service = Rc::new(RefCell::new(Service::new(
+        Arc::new(cnets_nodes::registry()),
+    )));
     let inbox = Rc::new(RefCell::new(Inbox::default()));
     let on_message = Closure::<dyn FnMut(MessageEvent)>::new(move |event: MessageEvent| {
         let bytes = js_sys::Uint8Array::new(&event.data()).to_vec();
