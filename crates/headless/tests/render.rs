@@ -1,6 +1,7 @@
 //! `cnets render` draws the previewed geometry off-screen: the picture is not blank and matches its
 //! committed snapshot within a tolerance (set `UPDATE_SNAPSHOTS=1` to rewrite the snapshot after an
-//! intended change, then look at it). Runs on the software Vulkan driver in CI.
+//! intended change, then look at it). A missing snapshot fails the test: no test records its own
+//! expectation. Runs on the software Vulkan driver in CI.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -64,22 +65,76 @@ fn torus_render_is_not_blank_and_matches_its_snapshot() {
     );
 
     let snapshot = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots/torus-monge.png");
-    if std::env::var_os("UPDATE_SNAPSHOTS").is_some() || !snapshot.exists() {
-        std::fs::copy(&out, &snapshot).unwrap();
+    let verdict = match_snapshot(&out, &snapshot, update_requested());
+    let _ = std::fs::remove_file(&out);
+    if let Err(message) = verdict {
+        panic!("{message}");
     }
-    let (sw, sh, expected) = read_png(&snapshot);
-    assert_eq!((sw, sh), (w, h));
+}
+
+/// The command that re-records the snapshots of this file (then look at them before committing).
+const RECORD: &str = "UPDATE_SNAPSHOTS=1 cargo test -p cnets --test render";
+
+/// Whether `UPDATE_SNAPSHOTS` asks to rewrite snapshots (`1`, `true`, `yes`, `on`, `force`).
+fn update_requested() -> bool {
+    std::env::var("UPDATE_SNAPSHOTS").is_ok_and(|v| {
+        matches!(
+            v.to_ascii_lowercase().as_str(),
+            "1" | "true" | "yes" | "on" | "force"
+        )
+    })
+}
+
+/// Compares the picture at `actual` with the committed `snapshot`: the same size, at most 1 % of
+/// the pixels off by more than 16 in a channel. With `update` the snapshot is rewritten first; a
+/// missing snapshot is an error naming the command that records it, never re-created here.
+fn match_snapshot(actual: &Path, snapshot: &Path, update: bool) -> Result<(), String> {
+    if update {
+        std::fs::copy(actual, snapshot)
+            .map_err(|e| format!("cannot write {}: {e}", snapshot.display()))?;
+    }
+    if !snapshot.is_file() {
+        return Err(format!(
+            "no snapshot at {}: record it with `{RECORD}` and look at it before committing",
+            snapshot.display()
+        ));
+    }
+    let (w, h, pixels) = read_png(actual);
+    let (sw, sh, expected) = read_png(snapshot);
+    if (sw, sh) != (w, h) {
+        return Err(format!(
+            "the picture is {w}x{h}, its snapshot {} is {sw}x{sh} (re-record with `{RECORD}`)",
+            snapshot.display()
+        ));
+    }
     let differing = pixels
         .chunks(4)
         .zip(expected.chunks(4))
         .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 16))
         .count();
-    let _ = std::fs::remove_file(&out);
-    assert!(
-        differing <= (w * h) as usize / 100,
-        "{differing} pixels differ from {} (more than 1 %)",
-        snapshot.display()
-    );
+    if differing > (w * h) as usize / 100 {
+        return Err(format!(
+            "{differing} pixels differ from {} (more than 1 %; after an intended change re-record \
+             with `{RECORD}`)",
+            snapshot.display()
+        ));
+    }
+    Ok(())
+}
+
+#[test]
+fn a_missing_snapshot_fails_and_is_not_written() {
+    let committed = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots/torus-monge.png");
+    let missing = std::env::temp_dir().join(format!(
+        "cnets-missing-snapshot-{}/torus-monge.png",
+        std::process::id()
+    ));
+    let err = match_snapshot(&committed, &missing, false).unwrap_err();
+    assert!(err.contains("no snapshot at"), "{err}");
+    assert!(err.contains(RECORD), "{err}");
+    assert!(!missing.exists(), "the test wrote its own expectation");
+    // A snapshot compared with itself matches: the comparison above failed for the missing file only.
+    assert_eq!(match_snapshot(&committed, &committed, false), Ok(()));
 }
 
 #[test]
