@@ -1,13 +1,9 @@
 //! Joining polygon meshes and welding coincident vertices (`mesh.join`).
 //!
 //! Joining appends vertices and faces (indices shifted). Welding merges every vertex within
-//! `tolerance` of an earlier kept vertex into it (first come, first kept; a uniform grid of cell size
-//! `tolerance` finds the candidates); faces are renumbered, repeated consecutive corners removed, and
+//! `tolerance` of an earlier kept vertex into it (first come, first kept; the spatial hash of
+//! `mesh_weld::merge_map` finds the candidates); faces are renumbered, repeated consecutive corners removed, and
 //! faces left with fewer than three corners dropped. Unused vertices are removed.
-
-use std::collections::HashMap;
-
-use glam::DVec3;
 
 use super::FabricationError;
 use crate::PolygonMesh;
@@ -43,58 +39,9 @@ pub fn weld(mesh: &PolygonMesh, tolerance: f64) -> Result<PolygonMesh, Fabricati
     }
     mesh.validate()?;
     check_finite_points("mesh", &mesh.vertices)?;
-    let mut reps: Vec<DVec3> = Vec::new();
-    let mut map = Vec::with_capacity(mesh.vertices.len());
-    if tolerance == 0.0 {
-        let mut seen: HashMap<[u64; 3], u32> = HashMap::new();
-        for p in &mesh.vertices {
-            // +0.0 and −0.0 are the same position.
-            let key = (*p + DVec3::ZERO).to_array().map(f64::to_bits);
-            let k = *seen.entry(key).or_insert_with(|| {
-                reps.push(*p);
-                (reps.len() - 1) as u32
-            });
-            map.push(k);
-        }
-    } else {
-        let cell = |p: DVec3| -> Result<[i64; 3], FabricationError> {
-            let c = (p / tolerance).floor();
-            if c.abs().max_element() > 1e15 {
-                return Err(FabricationError::BadParameter {
-                    what: "weld tolerance",
-                    value: tolerance,
-                    expected: "a tolerance not that small compared with the coordinates",
-                });
-            }
-            Ok([c.x as i64, c.y as i64, c.z as i64])
-        };
-        let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
-        for p in &mesh.vertices {
-            let c = cell(*p)?;
-            let mut found = None;
-            'search: for dx in -1..=1 {
-                for dy in -1..=1 {
-                    for dz in -1..=1 {
-                        if let Some(list) = grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz])
-                            && let Some(&k) = list
-                                .iter()
-                                .find(|&&k| reps[k as usize].distance(*p) <= tolerance)
-                        {
-                            found = Some(k);
-                            break 'search;
-                        }
-                    }
-                }
-            }
-            let k = found.unwrap_or_else(|| {
-                reps.push(*p);
-                let k = (reps.len() - 1) as u32;
-                grid.entry(c).or_default().push(k);
-                k
-            });
-            map.push(k);
-        }
-    }
+    // The shared spatial hash (`mesh_weld::merge_map`): near-linear for any tolerance and any
+    // coordinates, where a grid of i64 cells saturated.
+    let (reps, map, _) = crate::mesh_weld::merge_map(&mesh.vertices, tolerance);
     let mut out = PolygonMesh::new();
     let mut remap = vec![u32::MAX; reps.len()];
     let mut faces = Vec::with_capacity(mesh.face_count());
