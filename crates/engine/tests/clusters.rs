@@ -330,3 +330,46 @@ fn cluster_ports_are_named_after_what_they_carry() {
     make_cluster(&mut g, &["fed"], "inner").unwrap();
     assert_eq!(g.node("inner").unwrap().def.input_names(), "sum");
 }
+
+#[test]
+fn a_cluster_source_loads_as_a_node_of_a_graph_would() {
+    use cnets_engine::file::{LoadOptions, load_cluster_source};
+    let d = dir("source");
+    let lib = d.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    write(&lib, "sub.ron", SUB);
+    write(
+        &lib,
+        "broken.ron",
+        "(version: 1, nodes: {\"n\": (type: \"t.nope\")}, edges: [])",
+    );
+    let registry = common::registry();
+    // An untitled document: no folder of its own, the library folder searched.
+    let mut options = LoadOptions::for_file(&d.join("untitled.ron")).with_library(&lib);
+    options.base_dir = None;
+    let cluster = load_cluster_source("sub", &registry, &options).unwrap_or_else(|e| panic!("{e}"));
+    assert!(matches!(
+        &cluster.source,
+        cnets_engine::cluster::ClusterSource::File { written, resolved }
+            if written == "sub" && resolved.ends_with("lib/sub.ron")
+    ));
+    assert_eq!(cluster.interface.inputs.len(), 2);
+    // Not found: one diagnostic of no file, shown as its message alone, listing where it looked.
+    let e = load_cluster_source("nope.ron", &registry, &options).unwrap_err();
+    assert_eq!(e.diagnostics.len(), 1, "{e}");
+    let shown = e.to_string();
+    assert!(
+        shown.starts_with("cluster source 'nope.ron' not found (looked for: "),
+        "{shown}"
+    );
+    assert!(shown.contains("nope.ron"), "{shown}");
+    // Errors inside the file: the source has errors, and the file's own diagnostic is located.
+    let e = load_cluster_source("broken.ron", &registry, &options).unwrap_err();
+    let shown = e.to_string();
+    assert!(
+        shown.starts_with("cluster source 'broken.ron' has errors\n"),
+        "{shown}"
+    );
+    assert!(shown.contains("broken.ron:1:"), "{shown}");
+    std::fs::remove_dir_all(&d).unwrap();
+}

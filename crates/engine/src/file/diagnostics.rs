@@ -7,7 +7,8 @@ use super::ron::Pos;
 /// One problem found while loading, with its location when there is one.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Diagnostic {
-    /// The file name as given.
+    /// The file name as given (empty for a problem of no file, e.g. a cluster source not found
+    /// by [`super::load_cluster_source`]; then it is shown as the message alone).
     pub file: String,
     /// Line and column.
     pub pos: Option<Pos>,
@@ -19,6 +20,7 @@ impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.pos {
             Some(p) => write!(f, "{}:{}:{}: {}", self.file, p.line, p.col, self.message),
+            None if self.file.is_empty() => write!(f, "{}", self.message),
             None => write!(f, "{}: {}", self.file, self.message),
         }
     }

@@ -130,9 +130,14 @@ pub(super) struct Loader<'a> {
 
 impl Loader<'_> {
     pub(super) fn error(&mut self, pos: Pos, message: impl Into<String>) {
+        self.report(Some(pos), message);
+    }
+
+    /// Reports a problem at `pos` of this file (`None`: of no place in it).
+    pub(super) fn report(&mut self, pos: Option<Pos>, message: impl Into<String>) {
         self.diagnostics.push(Diagnostic {
             file: self.file.to_string(),
-            pos: Some(pos),
+            pos,
             message: short_quotes(&message.into()),
         });
     }

@@ -34,6 +34,7 @@ mod load;
 pub mod ron;
 mod save;
 
+pub use clusters::load_cluster_source;
 pub use diagnostics::{Diagnostic, LoadError};
 pub use load::{
     Document, GraphMeta, LoadOptions, load_file, load_file_with, load_str, load_str_with,
