@@ -18,6 +18,7 @@ pub mod polygon_mesh;
 pub mod polyline;
 pub mod quad_grid;
 pub mod simd;
+pub mod surface_fit;
 
 pub use conenet::{
     ConeNet, ConstructInputs, CoplanarInputs, CtubeInputs, construct, construct_coplanar,

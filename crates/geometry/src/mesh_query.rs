@@ -87,6 +87,34 @@ impl MeshQuery {
         })
     }
 
+    /// The closest point of the mesh to `p` and the triangle of the polygons' fans it lies on
+    /// (its three vertex indices: a polygon `[v0, v1, …]` is fanned into `[v0, v_c, v_{c+1}]`).
+    pub fn closest_triangle(&self, p: DVec3) -> Result<(ClosestPoint, [u32; 3]), GeometryError> {
+        crate::curves::check_finite_vec("point", p)?;
+        let (triangle, projection) = CompositeShapeRef(&self.triangles)
+            .project_local_point(to_parry(p), f64::MAX, false)
+            .ok_or_else(|| GeometryError::Degenerate("no closest point found".into()))?;
+        let point = from_parry(projection.point);
+        let hit = ClosestPoint {
+            point,
+            distance: point.distance(p),
+            face: self.face_of_triangle[triangle as usize] as usize,
+        };
+        Ok((hit, self.triangles.indices()[triangle as usize]))
+    }
+
+    /// [`MeshQuery::closest_triangle`] of many query points, in order (on all threads).
+    pub fn closest_triangles(
+        &self,
+        points: &[DVec3],
+    ) -> Result<Vec<(ClosestPoint, [u32; 3])>, GeometryError> {
+        crate::error::check_finite_points("points", points)?;
+        points
+            .par_iter()
+            .map(|&p| self.closest_triangle(p))
+            .collect()
+    }
+
     /// The closest points of many query points, in order (on all threads).
     pub fn closest_all(&self, points: &[DVec3]) -> Result<Vec<ClosestPoint>, GeometryError> {
         crate::error::check_finite_points("points", points)?;
