@@ -362,8 +362,16 @@ impl NodeContext {
     ///
     /// Every read is recorded (length, modification time, content hash; also a read that failed),
     /// so the evaluator re-runs the node when the file changes (`eval::reads`).
+    ///
+    /// A name outside the allowed folders is refused before anything touches the file system, and
+    /// is not recorded either (its stamp would look at the file, there and at every later
+    /// evaluation): a graph cannot tell a missing file from a present one outside.
     pub fn read_file(&self, name: &str) -> Result<(PathBuf, Vec<u8>), NodeError> {
         let path = self.input_path(name);
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Err(e) = self.read_access().check_name(&path) {
+            return Err(NodeError::new(format!("cannot read '{name}': {e}")));
+        }
         let result = self.read_checked(name, &path);
         lock(&self.reads).push(FileStamp::of(&path, result.as_deref().ok()));
         result.map(|bytes| (path, bytes))
@@ -426,5 +434,34 @@ mod tests {
         assert!(ctx.output_path("/etc/passwd").is_err());
         assert!(ctx.output_path("").is_err());
         assert!(NodeContext::default().output_path("a.obj").is_err());
+    }
+
+    /// Issue 27 §4: a name outside the allowed folders is refused by name, in the same words
+    /// whether the file exists or not, and leaves no stamp (a stamp looks the file up, now and
+    /// at every later evaluation: a probe of what exists outside).
+    #[cfg(not(target_arch = "wasm32"))]
+    #[test]
+    fn reads_outside_are_refused_by_name_and_not_recorded() {
+        let dir = std::env::temp_dir().join(format!("cnets-ctx-read-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("graph")).unwrap();
+        std::fs::write(dir.join("there.csv"), "0,0\n").unwrap();
+        std::fs::write(dir.join("graph/in.csv"), "0,0\n").unwrap();
+        let ctx = NodeContext::new(None, Some(dir.join("graph")));
+        let mut said = Vec::new();
+        for name in ["../there.csv", "../missing.csv"] {
+            let e = ctx.read_file(name).unwrap_err().to_string();
+            assert!(
+                e.contains("outside the folders reads are allowed in"),
+                "{e}"
+            );
+            said.push(e.replace(name, "NAME").replace(&name[3..], "NAME"));
+            assert!(ctx.take_reads().is_empty(), "{name} was recorded");
+        }
+        assert_eq!(said[0], said[1]);
+        // A read inside is recorded, and so is a missing file inside.
+        assert_eq!(ctx.read_file("in.csv").unwrap().1, b"0,0\n");
+        assert!(ctx.read_file("missing.csv").is_err());
+        assert_eq!(ctx.take_reads().len(), 2);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
