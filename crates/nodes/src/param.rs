@@ -3,6 +3,7 @@
 //! Every parameter node has an input `value` and an output `value`, except the list makers
 //! (`param.series`, `param.range`, `param.list`), whose output is `values`.
 
+use cnets_engine::ValueType;
 use cnets_engine::prelude::*;
 
 /// A number as a designer reads it: plain digits for everyday magnitudes, scientific notation for
@@ -275,38 +276,28 @@ node! {
 /// The item types `param.list` accepts.
 const LIST_TYPES: &str = "number, integer, boolean, text, point, vector, any";
 
-/// Converts one leaf of a literal list to `ty`, naming its position on failure.
-fn convert_leaf(v: &Value, ty: &str, at: &str) -> Result<Value, NodeError> {
-    let fail = || NodeError::new(format!("item {at} is {}, expected {ty}", v.type_name()));
-    Ok(match (ty, v) {
-        ("any", _) => v.clone(),
-        ("number", Value::Number(_)) | ("integer", Value::Integer(_)) => v.clone(),
-        ("number", Value::Integer(i)) => Value::Number(*i as f64),
-        ("integer", Value::Number(x)) => {
-            if x.is_finite() && x.fract() == 0.0 && x.abs() < 9.0e15 {
-                Value::Integer(*x as i64)
-            } else {
-                return Err(NodeError::new(format!(
-                    "item {at} is {x}, expected a whole number"
-                )));
-            }
+/// Converts one leaf of a literal list to `ty` by the engine's implicit conversions
+/// ([`cnets_engine::convert::coerce_item`]), naming its position on failure. A point read where
+/// numbers are expected is the file reader's three-number row: it becomes three numbers.
+fn convert_leaf(v: &Value, ty: &ValueType, at: &str) -> Result<Value, NodeError> {
+    if let (ValueType::Number | ValueType::Integer, Value::Point(p) | Value::Vector(p)) = (ty, v) {
+        return p
+            .to_array()
+            .iter()
+            .enumerate()
+            .map(|(k, x)| convert_leaf(&Value::Number(*x), ty, &format!("{at}[{k}]")))
+            .collect::<Result<Vec<_>, _>>()
+            .map(Value::list);
+    }
+    cnets_engine::convert::coerce_item(v, ty).map_err(|e| match e {
+        cnets_engine::convert::ConvertError::NotInteger(x) => {
+            NodeError::new(format!("item {at} is {x}, expected a whole number"))
         }
-        // A literal list of three numbers reads as a point; for number-like types it is a list.
-        ("number" | "integer", Value::Point(p) | Value::Vector(p)) => Value::list(
-            p.to_array()
-                .iter()
-                .enumerate()
-                .map(|(k, x)| convert_leaf(&Value::Number(*x), ty, &format!("{at}[{k}]")))
-                .collect::<Result<Vec<_>, _>>()?,
-        ),
-        ("boolean", Value::Boolean(_)) | ("text", Value::Text(_)) => v.clone(),
-        ("point", Value::Point(p) | Value::Vector(p)) => Value::Point(*p),
-        ("vector", Value::Point(p) | Value::Vector(p)) => Value::Vector(*p),
-        _ => return Err(fail()),
+        _ => NodeError::new(format!("item {at} is {}, expected {ty}", v.type_name())),
     })
 }
 
-fn convert_tree(v: &Value, ty: &str, at: &str) -> Result<Value, NodeError> {
+fn convert_tree(v: &Value, ty: &ValueType, at: &str) -> Result<Value, NodeError> {
     match v {
         Value::List(items) => items
             .iter()
@@ -345,10 +336,15 @@ node! {
         /// The checked list.
         values: k::Tree<k::Any>,
     ) {
-        let ty = item_type.trim().to_ascii_lowercase();
-        if !LIST_TYPES.split(", ").any(|t| t == ty) {
-            return Err(format!("unknown item_type '{item_type}': expected one of {LIST_TYPES}").into());
-        }
+        let name = item_type.trim().to_ascii_lowercase();
+        let ty = match ValueType::parse(&name) {
+            Some(ty) if LIST_TYPES.split(", ").any(|t| t == name) => ty,
+            _ => {
+                return Err(
+                    format!("unknown item_type '{item_type}': expected one of {LIST_TYPES}").into(),
+                );
+            }
+        };
         let converted = convert_tree(&values, &ty, "")?;
         let out = match converted {
             Value::List(_) => converted,
@@ -512,7 +508,14 @@ mod tests {
         let err = evaluate_node(&list(), &ctx, &[mixed, Value::text("integer")])
             .unwrap_err()
             .to_string();
-        assert!(err.contains("item 1"), "{err}");
+        assert!(
+            err.contains("item 1 is 2.5, expected a whole number"),
+            "{err}"
+        );
+        // Points and vectors convert into each other (the engine's implicit conversions).
+        let at = Value::list(vec![Value::Point(DVec3::X)]);
+        let out = evaluate_node(&list(), &ctx, &[at, Value::text("vector")]).unwrap();
+        assert_eq!(out.values[0].as_list().unwrap()[0], Value::Vector(DVec3::X));
         // A row of three numbers parsed as a point is read back as numbers.
         let table = Value::list(vec![Value::Point(DVec3::new(0.1, 0.2, 0.3))]);
         let out = evaluate_node(&list(), &ctx, &[table, Value::text("number")]).unwrap();
