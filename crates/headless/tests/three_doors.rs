@@ -448,17 +448,22 @@ fn value_doors(def: &NodeDef, case: &Case) -> (Outcome, Outcome) {
     (plain, packed)
 }
 
-/// The `cnets eval` answer as the CLI prints it: the outputs object, or the failure.
+/// The `cnets eval` answer as the CLI prints it: the outputs object and the warnings (as stderr
+/// and Python's `CnetsWarning`s say them: `<type>: <warning>`), or the failure.
 fn answer(def: &NodeDef, outcome: &Outcome) -> Json {
     match outcome {
-        Outcome::Ran(values, _) => {
+        Outcome::Ran(values, warnings) => {
             let outputs: Map<String, Json> = def
                 .outputs
                 .iter()
                 .zip(values)
                 .map(|(p, v)| (p.name.to_string(), to_json(v)))
                 .collect();
-            json!({ "outputs": outputs })
+            let warnings: Vec<String> = warnings
+                .iter()
+                .map(|w| format!("{}: {w}", def.id))
+                .collect();
+            json!({ "outputs": outputs, "warnings": warnings })
         }
         Outcome::Failed(m) => json!({ "error": format!("{}: {m}", def.id) }),
         Outcome::Refused(m) => json!({ "refused": m }),
@@ -487,6 +492,14 @@ fn check_cli(def: &NodeDef, inputs: &str, expected: &Json, dir: &std::path::Path
             "{}: {inputs}",
             def.id
         );
+        // The warnings, one `warning: ` line each on stderr.
+        let said: Vec<Json> = stderr
+            .lines()
+            .filter_map(|l| l.strip_prefix("warning: "))
+            .map(Json::from)
+            .collect();
+        let expected = expected.get("warnings").cloned().unwrap_or(json!([]));
+        assert_eq!(Json::from(said), expected, "{}: {inputs}: warnings", def.id);
     } else if let Some(error) = expected.get("error").and_then(Json::as_str) {
         assert_eq!(out.status.code(), Some(1), "{}: {inputs}: {stdout}", def.id);
         assert!(
