@@ -638,7 +638,7 @@ pub fn statuses(
                             .then(|| evaluator.inputs_of(graph, k, ctx).ok())
                             .flatten(),
                     },
-                    Some(NodeResult::Failed(e)) => NodeStatus::Error(e.to_string()),
+                    Some(NodeResult::Failed(e)) => NodeStatus::Error(failure_text(e)),
                     Some(NodeResult::Invalid(m)) => NodeStatus::Error(m.clone()),
                     Some(NodeResult::Blocked(m)) => NodeStatus::Blocked(m.clone()),
                     Some(NodeResult::Disabled) => NodeStatus::Disabled,
@@ -718,10 +718,61 @@ pub fn format_number(x: f64) -> String {
     if s == "-0" { "0".into() } else { s.into() }
 }
 
+/// A failed node's error as the editor shows it. A reader's place in its file comes from the
+/// error's fields ([`NodeError::Located`](cnets_engine::NodeError::Located)), not from its text:
+/// what is wrong first, then the file's name and the line and column, on a line of their own
+/// (the full path stays in the hover's last line).
+pub fn failure_text(e: &cnets_engine::NodeError) -> String {
+    match e {
+        cnets_engine::NodeError::Located {
+            file,
+            line,
+            column,
+            message,
+        } => {
+            let name = std::path::Path::new(file)
+                .file_name()
+                .map_or_else(|| file.clone(), |n| n.to_string_lossy().into_owned());
+            let place = match column {
+                Some(c) => format!("line {line}, column {c}"),
+                None => format!("line {line}"),
+            };
+            format!("{message}\n{name}, {place}\n{file}")
+        }
+        other => other.to_string(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use std::sync::Mutex;
+
+    /// Issue 27 §5: a reader's line and column are shown from the error's fields.
+    #[test]
+    fn a_readers_place_is_shown_from_the_errors_fields() {
+        let e = cnets_engine::NodeError::Located {
+            file: "/work/designs/profile.csv".into(),
+            line: 3,
+            column: Some(7),
+            message: "expected 2 or 3 numbers, got '4,5,q'".into(),
+        };
+        assert_eq!(
+            failure_text(&e),
+            "expected 2 or 3 numbers, got '4,5,q'\nprofile.csv, line 3, column 7\n/work/designs/profile.csv"
+        );
+        let e = cnets_engine::NodeError::Located {
+            file: "a.obj".into(),
+            line: 12,
+            column: None,
+            message: "bad face".into(),
+        };
+        assert_eq!(failure_text(&e), "bad face\na.obj, line 12\na.obj");
+        assert_eq!(
+            failure_text(&cnets_engine::NodeError::new("plain")),
+            "plain"
+        );
+    }
 
     fn graph() -> Graph {
         let registry = Arc::new(cnets_nodes::registry());
