@@ -1,11 +1,14 @@
-//! Graph files: loading with library folders and overrides, and graph files used as node types
-//! (`cluster:<path.ron>`, the graphs of a library folder).
+//! Graph files: loading with library folders and overrides, graph files used as node types
+//! (`cluster:<path.ron>`, the graphs of a library folder), and what an editor's library needs:
+//! load options for a document and its library folders ([`document_options`]), a folder's graphs
+//! with an interface ([`library_entry`]) and the node a `source` of a cluster node loads
+//! ([`source_def`]), resolved exactly as a graph file's cluster nodes are.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use cnets_engine::cluster::{Cluster, ClusterSource};
-use cnets_engine::file::{Document, LoadOptions, load_file_with};
+use cnets_engine::file::{Document, LoadOptions, load_cluster_source, load_file_with};
 use cnets_engine::{Graph, NodeDef, NodeFlag, Registry};
 
 use crate::HostError;
@@ -39,6 +42,100 @@ pub fn options(path: &Path, library: &[PathBuf]) -> LoadOptions {
         .fold(LoadOptions::for_file(path), |o, dir| o.with_library(dir))
 }
 
+/// Load options for a document at `doc` (`None`: an untitled document, with no folder of its own)
+/// whose cluster sources are also looked up in the folders `library`, each followed by its
+/// `library` subfolder ([`library_folders`]), after `CNETS_LIBRARY`'s: the editor's resolution.
+pub fn document_options(doc: Option<&Path>, library: &[PathBuf]) -> LoadOptions {
+    let mut options = options(
+        doc.unwrap_or(Path::new("untitled.ron")),
+        &library_folders(library),
+    );
+    if doc.is_none() {
+        options.base_dir = None;
+    }
+    options
+}
+
+/// The folders a library is searched in: each of `dirs`, then its `library` subfolder when it has
+/// one (the examples folder `graphs/` ships its reusable clusters in `graphs/library/`).
+pub fn library_folders(dirs: &[PathBuf]) -> Vec<PathBuf> {
+    dirs.iter()
+        .flat_map(|d| {
+            let sub = d.join("library");
+            std::iter::once(d.clone()).chain(sub.is_dir().then_some(sub))
+        })
+        .collect()
+}
+
+/// The graph files (`*.ron`) of a folder, sorted by name.
+pub fn graph_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+/// One graph of a library folder, as a palette lists it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LibraryEntry {
+    /// Shown name (the file stem).
+    pub name: String,
+    /// The file.
+    pub path: PathBuf,
+    /// The `source` a cluster node gets: the path relative to its library folder.
+    pub source: String,
+    /// The graph's description (or name).
+    pub doc: String,
+    /// Input and output port names.
+    pub ports: (Vec<String>, Vec<String>),
+}
+
+/// Reads the graph file `path` of a library folder (its cluster sources resolved with `options`)
+/// as a library entry; an error when it does not load or has no interface.
+pub fn library_entry(
+    path: &Path,
+    registry: &Arc<Registry>,
+    options: &LoadOptions,
+) -> Result<LibraryEntry, HostError> {
+    let file_name = |p: &Path| p.file_name().map(|n| n.to_string_lossy().into_owned());
+    let source = file_name(path).unwrap_or_else(|| path.display().to_string());
+    let cluster = interface_cluster(&source, path, registry, options)?;
+    let names = |ports: &[cnets_engine::cluster::InterfacePort]| {
+        ports.iter().map(|p| p.port.name.to_string()).collect()
+    };
+    Ok(LibraryEntry {
+        name: path
+            .file_stem()
+            .map_or_else(|| source.clone(), |s| s.to_string_lossy().into_owned()),
+        path: path.to_path_buf(),
+        doc: cluster
+            .meta
+            .description
+            .clone()
+            .or_else(|| cluster.meta.name.clone())
+            .unwrap_or_else(|| "a graph used as a node".to_string()),
+        ports: (
+            names(&cluster.interface.inputs),
+            names(&cluster.interface.outputs),
+        ),
+        source,
+    })
+}
+
+/// The node definition of a cluster node with `source: "<source>"` in a graph loaded with
+/// `options`: loaded by the graph loader itself (same lookup, read permissions, nesting limit and
+/// diagnostics as in a file; [`cnets_engine::file::load_cluster_source`]).
+pub fn source_def(
+    source: &str,
+    registry: &Arc<Registry>,
+    options: &LoadOptions,
+) -> Result<Arc<NodeDef>, HostError> {
+    let cluster = load_cluster_source(source, registry, options)?;
+    Ok(Arc::new(cluster.node_def()))
+}
+
 /// The node type of a graph file used as a cluster; its id is `cluster:<path>`.
 pub fn cluster_def(
     path: &str,
@@ -49,9 +146,26 @@ pub fn cluster_def(
     let file = Path::new(path);
     let mut options = options(file, library);
     options.allow_read = allow_read.to_vec();
-    let doc = load_file_with(file, registry, &options)?;
+    let cluster = interface_cluster(path, file, registry, &options)?;
+    let mut def = cluster.node_def();
+    def.id = format!("{PREFIX}{path}").into();
+    if writes_files(&cluster.template) {
+        // Run as one node (`cnets eval cluster:…`, Python, Hops), it needs the output folder.
+        def.flags.push(NodeFlag::Export);
+    }
+    Ok(def)
+}
+
+/// The graph file `file` (written as `written`) as a cluster, refused when it has no interface.
+fn interface_cluster(
+    written: &str,
+    file: &Path,
+    registry: &Arc<Registry>,
+    options: &LoadOptions,
+) -> Result<Arc<Cluster>, HostError> {
+    let doc = load_file_with(file, registry, options)?;
     let source = ClusterSource::File {
-        written: path.to_string(),
+        written: written.to_string(),
         resolved: file.to_path_buf(),
     };
     let cluster = Cluster::new(
@@ -60,19 +174,13 @@ pub fn cluster_def(
         doc.meta,
         file.parent().map(Path::to_path_buf),
     )
-    .map_err(|e| HostError::usage(format!("{path}: {e}")))?;
+    .map_err(|e| HostError::usage(format!("{written}: {e}")))?;
     if cluster.interface.is_empty() {
         return Err(HostError::usage(format!(
-            "{path}: the graph has no graph.input or graph.output nodes, so it cannot be used as a node"
+            "{written}: the graph has no graph.input or graph.output nodes, so it cannot be used as a node"
         )));
     }
-    let mut def = cluster.node_def();
-    def.id = format!("{PREFIX}{path}").into();
-    if writes_files(&cluster.template) {
-        // Run as one node (`cnets eval cluster:…`, Python, Hops), it needs the output folder.
-        def.flags.push(NodeFlag::Export);
-    }
-    Ok(def)
+    Ok(cluster)
 }
 
 /// Whether a graph writes files: an export node in it, or in a cluster inside it.
@@ -89,17 +197,12 @@ pub fn folder_defs(
     dir: &Path,
     registry: &Arc<Registry>,
 ) -> Result<(Vec<NodeDef>, Vec<String>), HostError> {
-    let entries = std::fs::read_dir(dir).map_err(|e| {
+    let files = graph_files(dir).map_err(|e| {
         HostError::usage(format!(
             "{}: cannot read the library folder: {e}",
             dir.display()
         ))
     })?;
-    let mut files: Vec<PathBuf> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-        .collect();
-    files.sort();
     let mut defs = Vec::new();
     let mut skipped = Vec::new();
     for file in files {
@@ -121,6 +224,80 @@ mod tests {
             "{}/../../graphs/library/{name}.ron",
             env!("CARGO_MANIFEST_DIR")
         )
+    }
+
+    const TWICE: &str = r#"(
+    version: 1,
+    description: "twice its input",
+    nodes: {
+        "x": (type: "graph.input", inputs: {"name": "x", "type": "number", "default": 2.0}),
+        "n": (type: "param.number", inputs: {"value": 1.0}),
+        "out": (type: "graph.output", inputs: {"name": "y", "type": "number"}),
+    },
+    edges: ["x.value -> out.value"],
+)"#;
+
+    fn dir(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("cnets-host-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    #[test]
+    fn library_graphs_are_entries_and_their_sources_load_as_cluster_nodes() {
+        let registry = Arc::new(cnets_nodes::registry());
+        let d = dir("entries");
+        let sub = d.join("library");
+        std::fs::create_dir_all(&sub).unwrap();
+        std::fs::write(sub.join("twice.ron"), TWICE).unwrap();
+        std::fs::write(
+            d.join("plain.ron"),
+            "(version: 1, nodes: {\"n\": (type: \"param.number\")}, edges: [])",
+        )
+        .unwrap();
+        std::fs::write(d.join("notes.txt"), "not a graph").unwrap();
+        // A folder's `library` subfolder is searched right after it.
+        let folders = library_folders(std::slice::from_ref(&d));
+        assert_eq!(folders, vec![d.clone(), sub.clone()]);
+        assert_eq!(graph_files(&d).unwrap(), vec![d.join("plain.ron")]);
+        let twice = sub.join("twice.ron");
+        let entry = library_entry(
+            &twice,
+            &registry,
+            &document_options(Some(&twice), std::slice::from_ref(&d)),
+        )
+        .unwrap();
+        assert_eq!(
+            entry,
+            LibraryEntry {
+                name: "twice".into(),
+                path: twice.clone(),
+                source: "twice.ron".into(),
+                doc: "twice its input".into(),
+                ports: (vec!["x".into()], vec!["y".into()]),
+            }
+        );
+        let plain = d.join("plain.ron");
+        let e = library_entry(&plain, &registry, &document_options(Some(&plain), &[]))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("no graph.input or graph.output"), "{e}");
+        // From an untitled document elsewhere, the source resolves through the library folders.
+        let untitled = document_options(None, std::slice::from_ref(&d));
+        assert_eq!(untitled.base_dir, None);
+        let def = source_def("twice.ron", &registry, &untitled).unwrap();
+        let c = Cluster::of(&def).unwrap();
+        assert!(matches!(&c.source, ClusterSource::File { written, .. } if written == "twice.ron"));
+        assert_eq!(def.inputs[0].name, "x");
+        let e = source_def("nope.ron", &registry, &untitled)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("cluster source 'nope.ron' not found (looked for: "),
+            "{e}"
+        );
+        std::fs::remove_dir_all(&d).unwrap();
     }
 
     #[test]
