@@ -74,11 +74,6 @@ impl Plane {
         })
     }
 
-    /// The world point at plane coordinates (u, v).
-    pub fn point_at(&self, u: f64, v: f64) -> DVec3 {
-        self.origin + self.x_axis * u + self.y_axis * v
-    }
-
     /// Signed distance of `p` from the plane (positive on the normal side).
     pub fn signed_distance(&self, p: DVec3) -> f64 {
         (p - self.origin).dot(self.normal)

@@ -758,15 +758,6 @@ impl Scene {
         self.add_segment_iter(lines.iter().map(|l| (l.start, l.end)), style)
     }
 
-    /// Adds segments given as `(start, end)` pairs. Returns the number of segments added.
-    pub fn add_segments(
-        &mut self,
-        segments: impl IntoIterator<Item = (DVec3, DVec3)>,
-        style: LineStyle,
-    ) -> usize {
-        self.add_segment_iter(segments.into_iter(), style)
-    }
-
     fn add_segment_iter(
         &mut self,
         it: impl Iterator<Item = (DVec3, DVec3)>,

@@ -165,11 +165,6 @@ impl Cluster {
         f(&state.graph, &mut state.evaluator)
     }
 
-    /// Node runs inside this instance so far (all inner nodes).
-    pub fn inner_runs(&self) -> u64 {
-        self.lock().evaluator.total_runs()
-    }
-
     /// Runs of one inner node so far.
     pub fn inner_node_runs(&self, id: &str) -> u64 {
         let state = self.lock();

@@ -321,24 +321,6 @@ impl Graph {
         Ok(node)
     }
 
-    /// Renames a node, keeping its wires and values.
-    pub fn rename_node(&mut self, id: &str, new_id: &str) -> Result<(), GraphError> {
-        let index = self.index(id)?;
-        if id == new_id {
-            return Ok(());
-        }
-        if !valid_id(new_id) {
-            return Err(GraphError::InvalidId(new_id.to_string()));
-        }
-        if self.ids.contains_key(new_id) {
-            return Err(GraphError::DuplicateId(new_id.to_string()));
-        }
-        self.ids.remove(id);
-        self.ids.insert(new_id.to_string(), index);
-        self.inner[index].id = new_id.to_string();
-        Ok(())
-    }
-
     /// The petgraph index of a node.
     pub fn index(&self, id: &str) -> Result<NodeIndex, GraphError> {
         self.ids

@@ -146,17 +146,6 @@ impl Document {
         }
     }
 
-    /// The number of items, when this is an array.
-    pub fn array_len(&self) -> Option<usize> {
-        match self {
-            Document::Triple(..) => Some(3),
-            Document::Numbers(v, _) => Some(v.len()),
-            Document::Points(v, _) => Some(v.len()),
-            Document::Array(v) => Some(v.len()),
-            _ => None,
-        }
-    }
-
     /// The items of an array, one document each (a packed row yields its numbers or triples,
     /// integers as integers); `None` when this is not an array.
     pub fn into_items(self) -> Option<Box<dyn ExactSizeIterator<Item = Document>>> {
