@@ -52,30 +52,6 @@ impl NodeError {
     pub fn new(message: impl Into<String>) -> Self {
         Self::Message(message.into())
     }
-
-    /// A reader's error about `file`: when `error` starts with `line N:` or `line N, column M:`
-    /// (as the readers write them) the place becomes [`NodeError::Located`]'s fields, else the
-    /// message is `file: error`. The message is cut to a short excerpt.
-    pub fn in_file(file: &str, error: &str) -> Self {
-        let excerpt = |s: &str| crate::files::excerpt(s, 200);
-        let located = error.strip_prefix("line ").and_then(|rest| {
-            let (place, message) = rest.split_once(": ")?;
-            let (line, column) = match place.split_once(", column ") {
-                Some((l, c)) => (l.parse().ok()?, Some(c.parse().ok()?)),
-                None => (place.parse().ok()?, None),
-            };
-            Some((line, column, message))
-        });
-        match located {
-            Some((line, column, message)) => Self::Located {
-                file: file.to_string(),
-                line,
-                column,
-                message: excerpt(message),
-            },
-            None => Self::Message(format!("{file}: {}", excerpt(error))),
-        }
-    }
 }
 
 impl From<String> for NodeError {
@@ -101,33 +77,24 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_readers_place_becomes_fields() {
-        let e = NodeError::in_file("a.csv", "line 3: expected 2 or 3 numbers");
-        assert_eq!(
-            e,
-            NodeError::Located {
-                file: "a.csv".into(),
-                line: 3,
-                column: None,
-                message: "expected 2 or 3 numbers".into()
-            }
-        );
+    fn a_readers_place_displays_from_its_fields() {
+        let e = NodeError::Located {
+            file: "a.csv".into(),
+            line: 3,
+            column: None,
+            message: "expected 2 or 3 numbers".into(),
+        };
         assert_eq!(e.to_string(), "a.csv: line 3: expected 2 or 3 numbers");
-        let e = NodeError::in_file("d.svg", "line 1, column 9: undeclared namespace prefix 'x'");
-        assert!(matches!(
-            e,
-            NodeError::Located {
-                line: 1,
-                column: Some(9),
-                ..
-            }
-        ));
+        let e = NodeError::Located {
+            file: "d.svg".into(),
+            line: 1,
+            column: Some(9),
+            message: "undeclared namespace prefix 'x'".into(),
+        };
         assert_eq!(
             e.to_string(),
             "d.svg: line 1, column 9: undeclared namespace prefix 'x'"
         );
-        let e = NodeError::in_file("m.glb", "buffer 0 holds 3 bytes");
-        assert_eq!(e.to_string(), "m.glb: buffer 0 holds 3 bytes");
     }
 
     #[test]

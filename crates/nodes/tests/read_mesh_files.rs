@@ -158,7 +158,7 @@ fn stl_ascii_and_binary_read_the_same_triangles() {
     lines[11] = "      vertex 1 one 0";
     std::fs::write(dir.join("broken.stl"), lines.join("\n")).unwrap();
     let e = read(&dir, "broken.stl", None).unwrap_err();
-    assert!(e.contains("line 12 (facet 1)"), "{e}");
+    assert!(e.contains("line 12: facet 1: "), "{e}");
 }
 
 #[test]

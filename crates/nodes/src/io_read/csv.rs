@@ -7,18 +7,18 @@
 use cnets_engine::budget::Guard;
 use cnets_engine::prelude::*;
 
-use super::tidy;
+use super::{ReadError, tidy};
 
 /// Points read between two looks at the memory budget.
 const CHECK_EVERY: usize = 1 << 16;
 
 /// Parses CSV text into polylines; errors name the line (1-based).
-pub fn parse(text: &str) -> Result<Vec<Polyline>, String> {
+pub fn parse(text: &str) -> Result<Vec<Polyline>, ReadError> {
     parse_within(text, &mut Guard::unlimited())
 }
 
 /// [`parse`] counting its points against `guard` every 65 536 points.
-pub fn parse_within(text: &str, guard: &mut Guard) -> Result<Vec<Polyline>, String> {
+pub fn parse_within(text: &str, guard: &mut Guard) -> Result<Vec<Polyline>, ReadError> {
     let mut out = Vec::new();
     let mut current: Vec<DVec3> = Vec::new();
     let mut start_line = 0;
@@ -29,8 +29,9 @@ pub fn parse_within(text: &str, guard: &mut Guard) -> Result<Vec<Polyline>, Stri
             return Ok(());
         }
         if points.len() < 2 {
-            return Err(format!(
-                "line {start}: a polyline needs at least 2 points, this one has 1"
+            return Err(ReadError::at(
+                start,
+                "a polyline needs at least 2 points, this one has 1",
             ));
         }
         out.push(tidy(std::mem::take(points), false));
@@ -52,9 +53,12 @@ pub fn parse_within(text: &str, guard: &mut Guard) -> Result<Vec<Polyline>, Stri
             .filter(|f| !f.is_empty());
         let first: Vec<&str> = fields.by_ref().take(4).collect();
         if first.len() > 3 {
-            return Err(format!(
-                "line {line_no}: expected 2 or 3 numbers, got 4 or more fields ('{}')",
-                cnets_engine::files::excerpt(line, 40)
+            return Err(ReadError::at(
+                line_no,
+                format!(
+                    "expected 2 or 3 numbers, got 4 or more fields ('{}')",
+                    cnets_engine::files::excerpt(line, 40)
+                ),
             ));
         }
         let parsed: Vec<Option<f64>> = first.iter().map(|f| f.parse::<f64>().ok()).collect();
@@ -66,9 +70,12 @@ pub fn parse_within(text: &str, guard: &mut Guard) -> Result<Vec<Polyline>, Stri
                 continue;
             }
             None => {
-                return Err(format!(
-                    "line {line_no}: expected 2 or 3 numbers, got '{}'",
-                    cnets_engine::files::excerpt(line, 40)
+                return Err(ReadError::at(
+                    line_no,
+                    format!(
+                        "expected 2 or 3 numbers, got '{}'",
+                        cnets_engine::files::excerpt(line, 40)
+                    ),
                 ));
             }
         };
@@ -77,14 +84,14 @@ pub fn parse_within(text: &str, guard: &mut Guard) -> Result<Vec<Polyline>, Stri
             [x, y] => DVec3::new(*x, *y, 0.0),
             [x, y, z] => DVec3::new(*x, *y, *z),
             _ => {
-                return Err(format!(
-                    "line {line_no}: expected 2 or 3 numbers, got {}",
-                    numbers.len()
+                return Err(ReadError::at(
+                    line_no,
+                    format!("expected 2 or 3 numbers, got {}", numbers.len()),
                 ));
             }
         };
         if !p.is_finite() {
-            return Err(format!("line {line_no}: the point is not finite"));
+            return Err(ReadError::at(line_no, "the point is not finite"));
         }
         if current.is_empty() {
             start_line = line_no;
@@ -94,7 +101,7 @@ pub fn parse_within(text: &str, guard: &mut Guard) -> Result<Vec<Polyline>, Stri
             // A point, its slot as the vector doubles and its tidied copy.
             guard
                 .grow_items(CHECK_EVERY as u64, 72)
-                .map_err(|e| format!("line {line_no}: {e}"))?;
+                .map_err(|e| ReadError::at(line_no, e.to_string()))?;
         }
         current.push(p);
     }
@@ -126,31 +133,76 @@ mod tests {
         assert_eq!(ps[0].points.len(), 3);
     }
 
+    /// Issue 27 §5: the place is a field of the error, not only words.
+    #[test]
+    fn the_line_is_a_field_of_the_error() {
+        let e = parse("x,y\n0,0\n1,a\n").unwrap_err();
+        assert_eq!((e.line, e.column), (Some(3), None));
+        assert_eq!(e.message, "expected 2 or 3 numbers, got '1,a'");
+        let located = e.in_file("p.csv");
+        assert_eq!(
+            located,
+            NodeError::Located {
+                file: "p.csv".into(),
+                line: 3,
+                column: None,
+                message: "expected 2 or 3 numbers, got '1,a'".into()
+            }
+        );
+        assert_eq!(
+            located.to_string(),
+            "p.csv: line 3: expected 2 or 3 numbers, got '1,a'"
+        );
+    }
+
     #[test]
     fn errors_name_the_line() {
-        assert!(parse("0,0\n1,a\n").unwrap_err().starts_with("line 2"));
-        assert!(parse("0,0,0,0\n").unwrap_err().contains("got 4"));
+        assert!(
+            parse("0,0\n1,a\n")
+                .unwrap_err()
+                .to_string()
+                .starts_with("line 2")
+        );
+        assert!(
+            parse("0,0,0,0\n")
+                .unwrap_err()
+                .to_string()
+                .contains("got 4")
+        );
         // A first row that mixes numbers and words is not a header: line 1 is to blame.
-        assert!(parse("1,x,3\n0,0\n").unwrap_err().starts_with("line 1"));
+        assert!(
+            parse("1,x,3\n0,0\n")
+                .unwrap_err()
+                .to_string()
+                .starts_with("line 1")
+        );
         assert!(parse("x,y,z\n0,0\n1,1\n").is_ok());
         // Millions of columns are an error on their line, without a field list of them.
         let wide = "1,".repeat(1_000_000);
         assert!(
             parse(&wide)
                 .unwrap_err()
+                .to_string()
                 .starts_with("line 1: expected 2 or 3 numbers")
         );
         assert!(
             parse("0,0\n\n1,1\n")
                 .unwrap_err()
+                .to_string()
                 .starts_with("line 1: a polyline")
         );
         assert!(
             parse("0,0\n1,1\n\n2,2\n")
                 .unwrap_err()
+                .to_string()
                 .starts_with("line 4")
         );
-        assert!(parse("0,0\nnan,1\n").unwrap_err().contains("not finite"));
+        assert!(
+            parse("0,0\nnan,1\n")
+                .unwrap_err()
+                .to_string()
+                .contains("not finite")
+        );
         assert!(parse("").unwrap().is_empty());
     }
 }

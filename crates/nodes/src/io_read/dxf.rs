@@ -12,7 +12,7 @@ use cnets_engine::prelude::*;
 use cnets_geometry::curves::Nurbs;
 use dxf::entities::EntityType;
 
-use super::tidy;
+use super::{ReadError, tidy};
 
 /// The bits of the integer a group code holds (DXF reference: 60–79 and 270–289 16-bit, 90–99 32-bit,
 /// 170–179, 370–389, 400–409 16-bit, 420–429, 440–459, 1071 32-bit), `None` for other codes.
@@ -27,7 +27,7 @@ fn integer_bits(code: i32) -> Option<u32> {
 /// Reads the group codes of an ascii DXF before the `dxf` crate does: an integer value that does
 /// not fit its code's width (a count over 32 bits) is named with its line, where the crate would
 /// say that the *next* code pair was not expected.
-fn check_integer_values(bytes: &[u8]) -> Result<(), String> {
+fn check_integer_values(bytes: &[u8]) -> Result<(), ReadError> {
     if bytes.starts_with(b"AutoCAD Binary DXF") {
         return Ok(());
     }
@@ -43,11 +43,13 @@ fn check_integer_values(bytes: &[u8]) -> Result<(), String> {
             _ => value.parse::<i32>().is_ok(),
         };
         if !fits {
-            return Err(format!(
-                "line {}: group code {} holds '{}', not a {bits}-bit integer",
+            return Err(ReadError::at(
                 k + 1,
-                code.trim(),
-                cnets_engine::files::excerpt(value, 30)
+                format!(
+                    "group code {} holds '{}', not a {bits}-bit integer",
+                    code.trim(),
+                    cnets_engine::files::excerpt(value, 30)
+                ),
             ));
         }
     }
@@ -162,7 +164,7 @@ fn sampled_points(entity: &EntityType, segments: usize) -> u64 {
 }
 
 /// Parses DXF bytes (ascii or binary) into polylines and warnings.
-pub fn parse(bytes: &[u8], segments: usize) -> Result<(Vec<Polyline>, Vec<String>), String> {
+pub fn parse(bytes: &[u8], segments: usize) -> Result<(Vec<Polyline>, Vec<String>), ReadError> {
     parse_within(bytes, segments, &mut Guard::unlimited())
 }
 
@@ -172,7 +174,7 @@ pub fn parse_within(
     bytes: &[u8],
     segments: usize,
     guard: &mut Guard,
-) -> Result<(Vec<Polyline>, Vec<String>), String> {
+) -> Result<(Vec<Polyline>, Vec<String>), ReadError> {
     check_integer_values(bytes)?;
     let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(bytes)).map_err(dxf_error)?;
     let mut curves = Vec::new();
@@ -283,7 +285,7 @@ pub fn parse_within(
         .iter()
         .position(|c| c.points.iter().any(|p| !p.is_finite()))
     {
-        return Err(format!("curve {k} has a coordinate that is not finite"));
+        return Err(format!("curve {k} has a coordinate that is not finite").into());
     }
     let curves: Vec<Polyline> = curves.into_iter().filter(|c| c.points.len() >= 2).collect();
     let warnings = if skipped > 0 {
@@ -323,8 +325,9 @@ mod tests {
     fn a_count_over_32_bits_is_named_on_its_line() {
         let text = "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\n0\n90\n99999999999\n70\n0\n0\nENDSEC\n0\nEOF\n";
         let e = parse(text.as_bytes(), 16).unwrap_err();
+        assert_eq!((e.line, e.column), (Some(10), None));
         assert_eq!(
-            e,
+            e.to_string(),
             "line 10: group code 90 holds '99999999999', not a 32-bit integer"
         );
     }

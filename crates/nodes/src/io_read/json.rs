@@ -6,6 +6,8 @@ use cnets_engine::ValueType;
 use cnets_engine::prelude::*;
 use cnets_engine::value::json::{Document, from_document};
 
+use super::ReadError;
+
 fn collect(v: &Value, out: &mut Vec<Polyline>) -> Result<(), String> {
     match v {
         Value::Polyline(p) => {
@@ -18,15 +20,26 @@ fn collect(v: &Value, out: &mut Vec<Polyline>) -> Result<(), String> {
     }
 }
 
-/// Parses JSON text into polylines.
-pub fn parse(text: &str) -> Result<Vec<Polyline>, String> {
-    let doc: Document = serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
+/// Parses JSON text into polylines; a syntax error has its line and column as fields.
+pub fn parse(text: &str) -> Result<Vec<Polyline>, ReadError> {
+    let doc: Document = serde_json::from_str(text).map_err(|e| {
+        // serde_json's message ends with " at line L column C": the place is kept as fields.
+        let message = e.to_string();
+        let message = message
+            .rsplit_once(" at line ")
+            .map_or(message.as_str(), |(m, _)| m);
+        match (e.line(), e.column()) {
+            (0, _) => ReadError::from(format!("invalid JSON: {message}")),
+            (l, 0) => ReadError::at(l, format!("invalid JSON: {message}")),
+            (l, c) => ReadError::at_column(l, c, format!("invalid JSON: {message}")),
+        }
+    })?;
     let value = from_document(doc, &ValueType::Polyline).map_err(|e| e.to_string())?;
     let mut out = Vec::new();
     collect(&value, &mut out)?;
     for (k, p) in out.iter().enumerate() {
         if let Some(i) = p.points.iter().position(|q| !q.is_finite()) {
-            return Err(format!("polyline {k}, point {i} is not finite"));
+            return Err(format!("polyline {k}, point {i} is not finite").into());
         }
     }
     Ok(out)
@@ -55,9 +68,18 @@ mod tests {
 
     #[test]
     fn bad_json_is_explained() {
-        assert!(parse("{").unwrap_err().contains("invalid JSON"));
+        assert!(parse("{").unwrap_err().to_string().contains("invalid JSON"));
         assert!(parse("[1, 2]").is_err());
-        assert!(parse(r#"{"closed": true}"#).unwrap_err().contains("points"));
+        // A syntax error's place is a field.
+        let e = parse("[\n  [0, 0, 0],\n  [1, 0 0]\n]").unwrap_err();
+        assert_eq!(e.line, Some(3), "{e}");
+        assert!(e.column.is_some(), "{e}");
+        assert!(
+            parse(r#"{"closed": true}"#)
+                .unwrap_err()
+                .to_string()
+                .contains("points")
+        );
         assert!(parse(r#"[{"points": [[0,0,0],[1,0]]}]"#).is_err());
     }
 }

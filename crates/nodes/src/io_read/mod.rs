@@ -17,6 +17,80 @@ use cnets_engine::budget::Guard;
 use cnets_engine::files;
 use cnets_engine::prelude::*;
 
+/// A reader's error: what is wrong and, when the reader knows it, where in the file — the line
+/// and column (from 1) as fields, which the node turns into [`NodeError::Located`] and a front end
+/// shows or jumps to. Displays as `line 3, column 7: message` (`message` alone when unplaced), the
+/// words the readers always used.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{}{message}", place(*.line, *.column))]
+pub struct ReadError {
+    /// The line, from 1, when known.
+    pub line: Option<usize>,
+    /// The column, from 1, when known (only with a line).
+    pub column: Option<usize>,
+    /// What is wrong there.
+    pub message: String,
+}
+
+fn place(line: Option<usize>, column: Option<usize>) -> String {
+    match (line, column) {
+        (Some(l), Some(c)) => format!("line {l}, column {c}: "),
+        (Some(l), None) => format!("line {l}: "),
+        _ => String::new(),
+    }
+}
+
+impl ReadError {
+    /// An error on `line` (from 1).
+    pub fn at(line: usize, message: impl Into<String>) -> Self {
+        Self {
+            line: Some(line),
+            column: None,
+            message: message.into(),
+        }
+    }
+
+    /// An error at `line`, `column` (from 1).
+    pub fn at_column(line: usize, column: usize, message: impl Into<String>) -> Self {
+        Self {
+            line: Some(line),
+            column: Some(column),
+            message: message.into(),
+        }
+    }
+
+    /// The node's error about `file`: placed errors become [`NodeError::Located`] from these
+    /// fields (the message cut to a short excerpt), others `file: message`.
+    pub fn in_file(self, file: &str) -> NodeError {
+        let message = files::excerpt(&self.message, 200);
+        match self.line {
+            Some(line) => NodeError::Located {
+                file: file.to_string(),
+                line,
+                column: self.column,
+                message,
+            },
+            None => NodeError::new(format!("{file}: {message}")),
+        }
+    }
+}
+
+impl From<String> for ReadError {
+    fn from(message: String) -> Self {
+        Self {
+            line: None,
+            column: None,
+            message,
+        }
+    }
+}
+
+impl From<&str> for ReadError {
+    fn from(message: &str) -> Self {
+        message.to_string().into()
+    }
+}
+
 /// A format input, lower-cased, and the key to match: the name itself, or for `auto` (or empty)
 /// the file's extension.
 pub(crate) fn format_key(name: &str, path: &str) -> (String, String) {
@@ -98,7 +172,7 @@ pub fn parse(
     bytes: &[u8],
     format: Format,
     segments: usize,
-) -> Result<(Vec<Polyline>, Vec<String>), String> {
+) -> Result<(Vec<Polyline>, Vec<String>), ReadError> {
     parse_within(bytes, format, segments, &mut Guard::unlimited())
 }
 
@@ -108,7 +182,7 @@ pub fn parse_within(
     format: Format,
     segments: usize,
     guard: &mut Guard,
-) -> Result<(Vec<Polyline>, Vec<String>), String> {
+) -> Result<(Vec<Polyline>, Vec<String>), ReadError> {
     let text = || {
         std::str::from_utf8(bytes).map_err(|e| {
             format!(
@@ -160,7 +234,7 @@ node! {
         let mut guard = ctx.guard(format!("reading '{}'", files::excerpt(&path, 60)));
         // The reader's place (line, column) becomes fields of the error.
         let (curves, warnings) = parse_within(&bytes, format, segments, &mut guard)
-            .map_err(|e| NodeError::in_file(&file.display().to_string(), &e))?;
+            .map_err(|e| e.in_file(&file.display().to_string()))?;
         if curves.is_empty() {
             return Err(format!("{}: no polylines found", file.display()).into());
         }

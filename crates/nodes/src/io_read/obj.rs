@@ -5,19 +5,20 @@
 
 use cnets_engine::prelude::*;
 
-use super::tidy;
+use super::{ReadError, tidy};
 
 /// A 1-based (or negative, relative) OBJ vertex reference (`i`, `i/t`, `i/t/n`) as a 0-based index.
-pub(crate) fn index(token: &str, vertices: usize, line_no: usize) -> Result<usize, String> {
+pub(crate) fn index(token: &str, vertices: usize, line_no: usize) -> Result<usize, ReadError> {
     let head = token.split('/').next().unwrap_or("");
     let i: i64 = head
         .parse()
-        .map_err(|_| format!("line {line_no}: '{token}' is not a vertex index"))?;
+        .map_err(|_| ReadError::at(line_no, format!("'{token}' is not a vertex index")))?;
     let n = vertices as i64;
     let resolved = if i > 0 { i - 1 } else { n + i };
     if i == 0 || !(0..n).contains(&resolved) {
-        return Err(format!(
-            "line {line_no}: vertex index {i} is out of range ({vertices} vertices so far)"
+        return Err(ReadError::at(
+            line_no,
+            format!("vertex index {i} is out of range ({vertices} vertices so far)"),
         ));
     }
     Ok(resolved as usize)
@@ -27,20 +28,21 @@ pub(crate) fn index(token: &str, vertices: usize, line_no: usize) -> Result<usiz
 pub(crate) fn vertex<'a>(
     tokens: impl Iterator<Item = &'a str>,
     line_no: usize,
-) -> Result<DVec3, String> {
+) -> Result<DVec3, ReadError> {
     let coords: Result<Vec<f64>, _> = tokens.take(3).map(str::parse::<f64>).collect();
     match coords.as_deref() {
         Ok([x, y, z]) if x.is_finite() && y.is_finite() && z.is_finite() => {
             Ok(DVec3::new(*x, *y, *z))
         }
-        _ => Err(format!(
-            "line {line_no}: expected 'v x y z' with finite numbers"
+        _ => Err(ReadError::at(
+            line_no,
+            "expected 'v x y z' with finite numbers",
         )),
     }
 }
 
 /// Parses OBJ text into polylines (and a warning when faces were skipped).
-pub fn parse(text: &str) -> Result<(Vec<Polyline>, Vec<String>), String> {
+pub fn parse(text: &str) -> Result<(Vec<Polyline>, Vec<String>), ReadError> {
     let mut vertices: Vec<DVec3> = Vec::new();
     let mut chains: Vec<Vec<usize>> = Vec::new();
     let mut faces = 0usize;
@@ -54,8 +56,9 @@ pub fn parse(text: &str) -> Result<(Vec<Polyline>, Vec<String>), String> {
                     .map(|t| index(t, vertices.len(), line_no))
                     .collect::<Result<Vec<_>, _>>()?;
                 if ids.len() < 2 {
-                    return Err(format!(
-                        "line {line_no}: an 'l' record needs at least 2 vertices"
+                    return Err(ReadError::at(
+                        line_no,
+                        "an 'l' record needs at least 2 vertices",
                     ));
                 }
                 match chains.last_mut() {
@@ -100,14 +103,32 @@ mod tests {
 
     #[test]
     fn errors_name_the_line() {
-        assert!(parse("v 0 0\n").unwrap_err().starts_with("line 1"));
+        assert!(
+            parse("v 0 0\n")
+                .unwrap_err()
+                .to_string()
+                .starts_with("line 1")
+        );
+        // The place is a field of the error, not only words.
+        assert_eq!(parse("v 0 0 0\n\nl 1 9\n").unwrap_err().line, Some(3));
         assert!(
             parse("v 0 0 0\nl 1 2\n")
                 .unwrap_err()
+                .to_string()
                 .contains("out of range")
         );
-        assert!(parse("v 0 0 0\nl 1\n").unwrap_err().contains("at least 2"));
+        assert!(
+            parse("v 0 0 0\nl 1\n")
+                .unwrap_err()
+                .to_string()
+                .contains("at least 2")
+        );
         assert!(parse("v 0 0 0\nl 0 1\n").is_err());
-        assert!(parse("v 0 0 0\nl a 1\n").unwrap_err().contains("'a'"));
+        assert!(
+            parse("v 0 0 0\nl a 1\n")
+                .unwrap_err()
+                .to_string()
+                .contains("'a'")
+        );
     }
 }

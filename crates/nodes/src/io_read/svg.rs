@@ -14,7 +14,7 @@ use cnets_engine::prelude::*;
 use cnets_geometry::curves::flatten::{elliptical_arc, flatten_cubic, flatten_quadratic};
 use glam::DVec2;
 
-use super::tidy;
+use super::{ReadError, tidy};
 
 /// The most undeclared namespace prefixes the reader declares on the fly (see [`declare`]).
 const MAX_PREFIXES: usize = 16;
@@ -79,14 +79,17 @@ fn declare(text: &str, prefix: &str) -> Option<String> {
 }
 
 /// The reader's message for an XML error: its line (and column), what is wrong.
-fn xml_error(text: &str, e: &roxmltree::Error) -> String {
+fn xml_error(text: &str, e: &roxmltree::Error) -> ReadError {
     match e {
         roxmltree::Error::UnexpectedEndOfStream => {
             let line = text.bytes().filter(|&b| b == b'\n').count() + 1;
-            format!("line {line}: the document ends early (an unterminated tag, value or element)")
+            ReadError::at(
+                line,
+                "the document ends early (an unterminated tag, value or element)",
+            )
         }
         roxmltree::Error::NodesLimitReached => {
-            format!("the document has more than {MAX_NODES} XML nodes")
+            format!("the document has more than {MAX_NODES} XML nodes").into()
         }
         roxmltree::Error::InvalidString(end @ ("-->" | "]]>" | "?>"), p) => {
             let what = match *end {
@@ -94,7 +97,7 @@ fn xml_error(text: &str, e: &roxmltree::Error) -> String {
                 "]]>" => "CDATA section",
                 _ => "processing instruction",
             };
-            format!("line {}: unterminated {what}", p.row)
+            ReadError::at(p.row as usize, format!("unterminated {what}"))
         }
         e => {
             let p = e.pos();
@@ -102,7 +105,11 @@ fn xml_error(text: &str, e: &roxmltree::Error) -> String {
             let message = e.to_string();
             let suffix = format!(" at {}:{}", p.row, p.col);
             let message = message.strip_suffix(&suffix).unwrap_or(&message);
-            format!("line {}, column {}: malformed XML: {message}", p.row, p.col)
+            ReadError::at_column(
+                p.row as usize,
+                p.col as usize,
+                format!("malformed XML: {message}"),
+            )
         }
     }
 }
@@ -440,7 +447,7 @@ fn expanded_bound(text: &str) -> u64 {
 
 /// Parses SVG text into polylines (and warnings). The XML is parsed by `roxmltree`; undeclared
 /// namespace prefixes are tolerated (at most [`MAX_PREFIXES`]).
-pub fn parse(text: &str, segments: usize) -> Result<(Vec<Polyline>, Vec<String>), String> {
+pub fn parse(text: &str, segments: usize) -> Result<(Vec<Polyline>, Vec<String>), ReadError> {
     parse_within(text, segments, &mut Guard::unlimited())
 }
 
@@ -450,7 +457,7 @@ pub fn parse_within(
     text: &str,
     segments: usize,
     guard: &mut Guard,
-) -> Result<(Vec<Polyline>, Vec<String>), String> {
+) -> Result<(Vec<Polyline>, Vec<String>), ReadError> {
     // The parser keeps the text and its expansions (about twice the expanded text).
     guard
         .grow(expanded_bound(text).saturating_mul(2))
@@ -462,18 +469,17 @@ pub fn parse_within(
             Ok(doc) => return shapes(&doc, segments, guard),
             Err(roxmltree::Error::UnknownNamespace(prefix, pos)) => declare(src, &prefix)
                 .ok_or_else(|| {
-                    format!(
-                        "line {}, column {}: undeclared namespace prefix '{prefix}'",
-                        pos.row, pos.col
+                    ReadError::at_column(
+                        pos.row as usize,
+                        pos.col as usize,
+                        format!("undeclared namespace prefix '{prefix}'"),
                     )
                 })?,
             Err(e) => return Err(xml_error(src, &e)),
         };
         patched = Some(next);
     }
-    Err(format!(
-        "more than {MAX_PREFIXES} undeclared namespace prefixes"
-    ))
+    Err(format!("more than {MAX_PREFIXES} undeclared namespace prefixes").into())
 }
 
 /// The polylines of a parsed document, in document order (and warnings).
@@ -481,7 +487,7 @@ fn shapes(
     doc: &roxmltree::Document,
     segments: usize,
     guard: &mut Guard,
-) -> Result<(Vec<Polyline>, Vec<String>), String> {
+) -> Result<(Vec<Polyline>, Vec<String>), ReadError> {
     let mut out = Vec::new();
     let mut transforms = 0;
     let mut skipped = 0;
@@ -493,7 +499,7 @@ fn shapes(
         // The line only for an error: finding it scans the text from the start.
         let at = |e: String| {
             let line = doc.text_pos_at(node.range().start).row;
-            format!("line {line}: <{name}>: {e}")
+            ReadError::at(line as usize, format!("<{name}>: {e}"))
         };
         let shapes: Vec<(Vec<DVec2>, bool)> = match name {
             "polyline" | "polygon" => {
@@ -622,26 +628,32 @@ mod tests {
             4,
         )
         .unwrap_err();
+        assert_eq!((e.line, e.column), (Some(2), None), "{e}");
+        let e = e.to_string();
         assert!(e.starts_with("line 2: <path>"), "{e}");
         assert!(
             parse(r#"<path d="0 0 L1 1"/>"#, 4)
                 .unwrap_err()
+                .to_string()
                 .contains("start with a command")
         );
         assert!(
             parse(r#"<polyline points="0 0 1"/>"#, 4)
                 .unwrap_err()
+                .to_string()
                 .contains("odd")
         );
         assert!(
             parse(r#"<path d="M0 0 X1 1"/>"#, 4)
                 .unwrap_err()
+                .to_string()
                 .contains("unknown path command")
         );
         assert!(parse(r#"<path d="M0 0 L1 1"#, 4).is_err());
         assert!(
             parse("<!-- open", 4)
                 .unwrap_err()
+                .to_string()
                 .contains("unterminated comment")
         );
         let (ps, w) = parse(
@@ -672,7 +684,7 @@ mod tests {
         }
         lol.push_str(&format!("]><svg><polyline points=\"&{prev};\"/></svg>"));
         let t = std::time::Instant::now();
-        let e = parse(&lol, 4).unwrap_err();
+        let e = parse(&lol, 4).unwrap_err().to_string();
         assert!(e.contains("malformed XML") && e.contains("line 1"), "{e}");
         assert!(t.elapsed().as_secs_f64() < 1.0);
         // An external entity is not fetched.
@@ -694,10 +706,14 @@ mod tests {
         // Undeclared prefixes: a few are declared on the fly (line numbers kept), too many are an error.
         let (ps, _) = parse("<svg>\n<a:path d=\"M0 0 L1 1\" b:x=\"1\"/></svg>", 4).unwrap();
         assert_eq!(ps.len(), 1);
-        let e = parse("<svg>\n<a:path d=\"M0 0 L1\"/></svg>", 4).unwrap_err();
+        let e = parse("<svg>\n<a:path d=\"M0 0 L1\"/></svg>", 4)
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("line 2: <path>"), "{e}");
         let many: String = (0..20).map(|k| format!("<p{k}:g/>")).collect();
-        let e = parse(&format!("<svg>{many}</svg>"), 4).unwrap_err();
+        let e = parse(&format!("<svg>{many}</svg>"), 4)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("undeclared namespace prefixes"), "{e}");
         // Not XML at all, mismatched tags, duplicate attributes: the line and what is wrong.
         for (text, says) in [
@@ -707,7 +723,7 @@ mod tests {
             ("", "root node"),
             ("<svg><![CDATA[ open", "unterminated CDATA"),
         ] {
-            let e = parse(text, 4).unwrap_err();
+            let e = parse(text, 4).unwrap_err().to_string();
             assert!(e.starts_with("line 1") && e.contains(says), "{text:?}: {e}");
         }
     }

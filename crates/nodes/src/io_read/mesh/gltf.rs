@@ -12,6 +12,7 @@ use glam::DMat4;
 use gltf::mesh::Mode;
 
 use super::MeshObject;
+use crate::io_read::ReadError;
 
 /// Reads a buffer the file refers to by a relative name.
 pub type ExternalReader<'a> = dyn Fn(&str) -> Result<Vec<u8>, String> + 'a;
@@ -239,7 +240,7 @@ const MAX_NODE_VISITS: usize = 100_000;
 pub fn parse(
     bytes: &[u8],
     external: &ExternalReader<'_>,
-) -> Result<(Vec<MeshObject>, Vec<String>), String> {
+) -> Result<(Vec<MeshObject>, Vec<String>), ReadError> {
     parse_within(bytes, external, &mut Guard::unlimited())
 }
 
@@ -248,9 +249,28 @@ pub fn parse_within(
     bytes: &[u8],
     external: &ExternalReader<'_>,
     guard: &mut Guard,
+) -> Result<(Vec<MeshObject>, Vec<String>), ReadError> {
+    let doc = gltf::Gltf::from_slice(bytes).map_err(|e| match e {
+        // A JSON error of a `.gltf` (or of a GLB's JSON chunk) has its line and column.
+        gltf::Error::Deserialize(j) if j.line() > 0 => {
+            let message = j.to_string();
+            let message = message
+                .rsplit_once(" at line ")
+                .map_or(message.as_str(), |(m, _)| m);
+            ReadError::at_column(j.line(), j.column().max(1), message.to_string())
+        }
+        other => ReadError::from(other.to_string()),
+    })?;
+    primitives(&doc, external, guard).map_err(ReadError::from)
+}
+
+/// The objects of a parsed document (see [`parse`]).
+fn primitives(
+    doc: &gltf::Gltf,
+    external: &ExternalReader<'_>,
+    guard: &mut Guard,
 ) -> Result<(Vec<MeshObject>, Vec<String>), String> {
-    let doc = gltf::Gltf::from_slice(bytes).map_err(|e| e.to_string())?;
-    let data = buffers(&doc, external, guard)?;
+    let data = buffers(doc, external, guard)?;
     let mut out = Vec::new();
     let mut warnings = Vec::new();
     let scene = doc.default_scene().or_else(|| doc.scenes().next());
@@ -319,8 +339,16 @@ mod tests {
         )
     }
 
-    fn read(text: &str) -> Result<Vec<MeshObject>, String> {
+    fn read(text: &str) -> Result<Vec<MeshObject>, ReadError> {
         parse(text.as_bytes(), &|_| Err("no files".into())).map(|(o, _)| o)
+    }
+
+    #[test]
+    fn a_json_error_has_its_place_as_fields() {
+        let e = read("{\n  \"asset\": {\"version\": \"2.0\"},\n  \"buffers\": [,]\n}").unwrap_err();
+        assert_eq!(e.line, Some(3), "{e}");
+        assert!(e.column.is_some(), "{e}");
+        assert!(!e.message.contains(" at line "), "{e}");
     }
 
     #[test]
@@ -361,7 +389,7 @@ mod tests {
             ),
         ];
         for (accessor, view, expected) in cases {
-            let e = read(&document(accessor, view)).unwrap_err();
+            let e = read(&document(accessor, view)).unwrap_err().to_string();
             assert!(e.contains(expected), "{e}");
             assert!(!e.contains("no faces"), "{e}");
         }

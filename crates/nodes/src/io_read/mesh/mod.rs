@@ -11,6 +11,7 @@ pub mod stl;
 
 use std::path::Path;
 
+use super::ReadError;
 use cnets_engine::prelude::*;
 use cnets_geometry::mesh_weld::weld;
 
@@ -112,12 +113,15 @@ node! {
         // Permission, file kind, size limit and memory budget are checked by the context.
         let (file, bytes) = ctx.read_file(&path)?;
         // The reader's place (line, column) becomes fields of the error.
-        let named = |e: String| NodeError::in_file(&file.display().to_string(), &e);
+        let named = |e: ReadError| e.in_file(&file.display().to_string());
         let mut guard = ctx.guard(format!("reading '{}'", cnets_engine::files::excerpt(&path, 60)));
         let file_mesh = match format {
             MeshFormat::Obj => {
                 let text = std::str::from_utf8(&bytes).map_err(|e| {
-                    named(format!("not UTF-8 text (invalid byte at offset {})", e.valid_up_to()))
+                    named(
+                        format!("not UTF-8 text (invalid byte at offset {})", e.valid_up_to())
+                            .into(),
+                    )
                 })?;
                 obj::parse_within(text, &mut guard).map_err(named)?
             }

@@ -6,6 +6,7 @@ use cnets_engine::budget::Guard;
 use cnets_engine::prelude::*;
 
 use super::{MeshFile, MeshObject};
+use crate::io_read::ReadError;
 use crate::io_read::obj::{index, vertex};
 
 /// Records read between two looks at the memory budget.
@@ -27,13 +28,13 @@ struct Object {
 
 /// Parses OBJ text into its objects (errors name the line); objects share the file's vertices in
 /// the joined mesh.
-pub fn parse(text: &str) -> Result<MeshFile, String> {
+pub fn parse(text: &str) -> Result<MeshFile, ReadError> {
     parse_within(text, &mut Guard::unlimited())
 }
 
 /// [`parse`] counting what it builds against `guard` every 65 536 records: a 240 MB file of
 /// faces stops at the memory budget, not at the machine's end.
-pub fn parse_within(text: &str, guard: &mut Guard) -> Result<MeshFile, String> {
+pub fn parse_within(text: &str, guard: &mut Guard) -> Result<MeshFile, ReadError> {
     let mut vertices: Vec<DVec3> = Vec::new();
     let mut objects: Vec<Object> = vec![Object::default()];
     let mut corners = 0u64;
@@ -46,7 +47,7 @@ pub fn parse_within(text: &str, guard: &mut Guard) -> Result<MeshFile, String> {
                     (vertices.len() as u64 * VERTEX_BYTES + corners * CORNER_BYTES)
                         .saturating_sub(guard.grown()),
                 )
-                .map_err(|e| format!("line {line_no}: {e}"))?;
+                .map_err(|e| ReadError::at(line_no, e.to_string()))?;
         }
         let mut tokens = raw.split_whitespace();
         match tokens.next() {
@@ -57,9 +58,9 @@ pub fn parse_within(text: &str, guard: &mut Guard) -> Result<MeshFile, String> {
                     face.push(index(t, vertices.len(), line_no)? as u32);
                 }
                 if face.len() < 3 {
-                    return Err(format!(
-                        "line {line_no}: a face needs at least 3 vertices, got {}",
-                        face.len()
+                    return Err(ReadError::at(
+                        line_no,
+                        format!("a face needs at least 3 vertices, got {}", face.len()),
                     ));
                 }
                 if let Some(last) = objects.last_mut() {
@@ -88,7 +89,7 @@ pub fn parse_within(text: &str, guard: &mut Guard) -> Result<MeshFile, String> {
     let meshes = 2 * (corners * 4 + faces * 4 + vertices.len() as u64 * 24);
     guard
         .grow(meshes + vertices.len() as u64 * 4)
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| ReadError::from(e.to_string()))?;
     // One table of the used vertices' new indices, reused object by object (no copy of the file's
     // vertices per object).
     let mut slot = vec![u32::MAX; vertices.len()];
@@ -179,13 +180,11 @@ mod tests {
 
     #[test]
     fn errors_name_the_line() {
-        assert!(
-            parse("v 0 0 0\nv 1 0 0\nf 1 2\n")
-                .unwrap_err()
-                .starts_with("line 3")
-        );
-        assert!(parse("v 0 0 0\nf 1 2 7\n").unwrap_err().contains("line 2"));
-        assert!(parse("v 0 x 0\n").unwrap_err().starts_with("line 1"));
+        let e = parse("v 0 0 0\nv 1 0 0\nf 1 2\n").unwrap_err();
+        assert_eq!(e.line, Some(3), "{e}");
+        assert!(e.to_string().starts_with("line 3: a face needs"), "{e}");
+        assert_eq!(parse("v 0 0 0\nf 1 2 7\n").unwrap_err().line, Some(2));
+        assert_eq!(parse("v 0 x 0\n").unwrap_err().line, Some(1));
         assert!(parse("# nothing\n").unwrap().objects.is_empty());
     }
 }

@@ -8,6 +8,7 @@ use ply_rs::parser::Parser;
 use ply_rs::ply::{DefaultElement, Property};
 
 use super::MeshObject;
+use crate::io_read::ReadError;
 
 fn number(p: &Property) -> Option<f64> {
     Some(match *p {
@@ -55,7 +56,7 @@ const PROPERTY_BYTES: u64 = 64;
 /// `ply-rs` will build for them is declared to `guard`. A 242-byte file declaring 10⁹ items is an
 /// error naming its line, not 3.8 GB of reservations; a count beyond 64 bits is an error, not a
 /// panic inside `ply-rs`.
-fn check_header(bytes: &[u8], guard: &mut Guard) -> Result<(), String> {
+fn check_header(bytes: &[u8], guard: &mut Guard) -> Result<(), ReadError> {
     let end = bytes
         .windows(10)
         .position(|w| w == b"end_header")
@@ -70,11 +71,13 @@ fn check_header(bytes: &[u8], guard: &mut Guard) -> Result<(), String> {
         match words.as_slice() {
             ["element", name, count] => {
                 let count: u64 = count.parse().map_err(|_| {
-                    format!(
-                        "line {}: element '{}' has the count '{}', not a whole number of at most 20 digits",
+                    ReadError::at(
                         k + 1,
-                        files::excerpt(name, 40),
-                        files::excerpt(count, 40)
+                        format!(
+                            "element '{}' has the count '{}', not a whole number of at most 20 digits",
+                            files::excerpt(name, 40),
+                            files::excerpt(count, 40)
+                        ),
                     )
                 })?;
                 elements.push((k + 1, name.to_string(), count, 0));
@@ -101,52 +104,59 @@ fn check_header(bytes: &[u8], guard: &mut Guard) -> Result<(), String> {
         let needs = count.saturating_mul((*item).max(1));
         least = least.saturating_add(needs);
         if least > data {
-            return Err(format!(
-                "line {line}: element '{}' declares {count} items, more than the file's {data} bytes of data can hold",
-                files::excerpt(name, 40)
+            return Err(ReadError::at(
+                *line,
+                format!(
+                    "element '{}' declares {count} items, more than the file's {data} bytes of data can hold",
+                    files::excerpt(name, 40)
+                ),
             ));
         }
         let properties = (*item).max(1);
         guard
             .grow(count.saturating_mul(ITEM_BYTES + PROPERTY_BYTES * properties))
-            .map_err(|e| format!("line {line}: {e}"))?;
+            .map_err(|e| ReadError::at(*line, e.to_string()))?;
     }
     Ok(())
 }
 
+/// `ply-rs`'s error as a [`ReadError`]: it writes "Line N: …" with the offending text on the
+/// following lines; the line becomes the field, the rest a short excerpt.
+fn ply_error(message: &str) -> ReadError {
+    let mut lines = message.lines();
+    let first = lines.next().unwrap_or("unreadable PLY");
+    let rest: String = lines
+        .map(|l| format!(" {}", l.trim()))
+        .collect::<String>()
+        .chars()
+        .take(120)
+        .collect();
+    let placed = first
+        .strip_prefix("Line ")
+        .and_then(|r| r.split_once(": "))
+        .and_then(|(n, m)| Some((n.trim().parse::<usize>().ok()?, m)));
+    match placed {
+        Some((line, m)) => ReadError::at(line, format!("{m}{rest}")),
+        None => ReadError::from(format!("{first}{rest}")),
+    }
+}
+
 /// Parses PLY bytes into one mesh object (header and ascii errors name the line).
-pub fn parse(bytes: &[u8]) -> Result<Vec<MeshObject>, String> {
+pub fn parse(bytes: &[u8]) -> Result<Vec<MeshObject>, ReadError> {
     parse_within(bytes, &mut Guard::unlimited())
 }
 
 /// [`parse`] with the header checked against the file's size and `guard` first.
-pub fn parse_within(bytes: &[u8], guard: &mut Guard) -> Result<Vec<MeshObject>, String> {
+pub fn parse_within(bytes: &[u8], guard: &mut Guard) -> Result<Vec<MeshObject>, ReadError> {
     check_header(bytes, guard)?;
     let mut reader = bytes;
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut reader)
-        .map_err(|e| {
-            let message = e.to_string();
-            // ply-rs writes "Line N: …" with the offending text on the following lines.
-            message
-                .lines()
-                .next()
-                .unwrap_or("unreadable PLY")
-                .replace("Line", "line")
-                .to_string()
-                + &message
-                    .lines()
-                    .skip(1)
-                    .map(|l| format!(" {}", l.trim()))
-                    .collect::<String>()
-                    .chars()
-                    .take(120)
-                    .collect::<String>()
-        })?;
+        .map_err(|e| ply_error(&e.to_string()))?;
     let vertices = ply
         .payload
         .get("vertex")
-        .ok_or("the PLY file has no 'vertex' element")?;
+        .ok_or_else(|| ReadError::from("the PLY file has no 'vertex' element"))?;
     let mut mesh = PolygonMesh::new();
     for (k, v) in vertices.iter().enumerate() {
         let coord = |name: &str| v.get(name).and_then(number);
@@ -154,7 +164,7 @@ pub fn parse_within(bytes: &[u8], guard: &mut Guard) -> Result<Vec<MeshObject>, 
             (Some(x), Some(y), Some(z)) if x.is_finite() && y.is_finite() && z.is_finite() => {
                 mesh.push_vertex(DVec3::new(x, y, z));
             }
-            _ => return Err(format!("vertex {k} has no finite x, y and z")),
+            _ => return Err(format!("vertex {k} has no finite x, y and z").into()),
         }
     }
     let n = mesh.vertices.len();
@@ -163,17 +173,22 @@ pub fn parse_within(bytes: &[u8], guard: &mut Guard) -> Result<Vec<MeshObject>, 
             .get("vertex_indices")
             .or_else(|| f.get("vertex_index"))
             .and_then(indices)
-            .ok_or_else(|| format!("face {k} has no vertex_indices list"))?;
+            .ok_or_else(|| ReadError::from(format!("face {k} has no vertex_indices list")))?;
         let face = list
             .iter()
             .map(|&i| {
                 u32::try_from(i)
                     .ok()
                     .filter(|&i| (i as usize) < n)
-                    .ok_or_else(|| format!("face {k}: vertex {i} does not exist ({n} vertices)"))
+                    .ok_or_else(|| {
+                        ReadError::from(format!(
+                            "face {k}: vertex {i} does not exist ({n} vertices)"
+                        ))
+                    })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        mesh.push_face(&face).map_err(|e| e.to_string())?;
+        mesh.push_face(&face)
+            .map_err(|e| ReadError::from(e.to_string()))?;
     }
     Ok(vec![MeshObject {
         name: String::new(),
@@ -192,11 +207,13 @@ mod tests {
         assert_eq!(objects[0].mesh.face(0), &[0, 1, 2, 3]);
         let bad = text.replace("1 1 0\n", "1 one 0\n");
         let e = parse(bad.as_bytes()).unwrap_err();
-        assert!(e.starts_with("line"), "{e}");
+        assert_eq!(e.line, Some(12), "{e}");
+        assert!(e.to_string().starts_with("line 12: "), "{e}");
         let out_of_range = text.replace("4 0 1 2 3", "4 0 1 2 9");
         assert!(
             parse(out_of_range.as_bytes())
                 .unwrap_err()
+                .to_string()
                 .contains("vertex 9")
         );
     }
@@ -208,13 +225,15 @@ mod tests {
         let mut bytes = text.as_bytes().to_vec();
         bytes.extend_from_slice(&[0u8; 36]);
         let e = parse(&bytes).unwrap_err();
+        assert_eq!(e.line, Some(7));
         assert!(
-            e.starts_with("line 7: element 'junk' declares 1000000000 items"),
+            e.to_string()
+                .starts_with("line 7: element 'junk' declares 1000000000 items"),
             "{e}"
         );
         // A count beyond 64 bits is an error, not ply-rs's panic.
         let huge = text.replace("1000000000", "99999999999999999999999");
-        let e = parse(huge.as_bytes()).unwrap_err();
+        let e = parse(huge.as_bytes()).unwrap_err().to_string();
         assert!(e.contains("not a whole number"), "{e}");
         // A count the file holds but the budget does not.
         let ok = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
@@ -222,6 +241,7 @@ mod tests {
         assert!(
             parse_within(ok.as_bytes(), &mut small)
                 .unwrap_err()
+                .to_string()
                 .contains("the limit is 100 bytes")
         );
     }

@@ -6,6 +6,7 @@ use std::io::Cursor;
 use cnets_engine::prelude::*;
 
 use super::MeshObject;
+use crate::io_read::ReadError;
 
 /// Size of a binary STL header plus its triangle count, and of one triangle record.
 const BINARY_HEADER: usize = 84;
@@ -65,14 +66,15 @@ fn facet_line(text: &str, k: usize) -> usize {
 }
 
 /// Parses STL bytes (ascii or binary) into one mesh object.
-pub fn parse(bytes: &[u8]) -> Result<Vec<MeshObject>, String> {
+pub fn parse(bytes: &[u8]) -> Result<Vec<MeshObject>, ReadError> {
     let ascii = is_ascii(bytes);
     if !ascii {
         if bytes.len() < BINARY_HEADER {
             return Err(format!(
                 "not an STL file: {} bytes, shorter than a binary STL header (84 bytes) and not ascii",
                 bytes.len()
-            ));
+            )
+            .into());
         }
         let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
         let needed = BINARY_HEADER as u128 + count as u128 * BINARY_TRIANGLE as u128;
@@ -80,30 +82,32 @@ pub fn parse(bytes: &[u8]) -> Result<Vec<MeshObject>, String> {
             return Err(format!(
                 "binary STL: the header at byte 80 declares {count} triangles ({needed} bytes), but the file has {} bytes",
                 bytes.len()
-            ));
+            )
+            .into());
         }
     }
     let mut cursor = Cursor::new(bytes);
-    let reader = stl_io::create_stl_reader(&mut cursor).map_err(|e| format!("line 1: {e}"))?;
+    let reader =
+        stl_io::create_stl_reader(&mut cursor).map_err(|e| ReadError::at(1, e.to_string()))?;
     let mut mesh = PolygonMesh::new();
     let mut shared: std::collections::HashMap<[u32; 3], u32> = std::collections::HashMap::new();
     for (k, triangle) in reader.enumerate() {
         let triangle = triangle.map_err(|e| {
             if ascii {
                 let text = String::from_utf8_lossy(bytes);
-                format!("line {} (facet {k}): {e}", facet_line(&text, k))
+                ReadError::at(facet_line(&text, k), format!("facet {k}: {e}"))
             } else {
-                format!(
+                ReadError::from(format!(
                     "byte {} (triangle {k}): {e}",
                     BINARY_HEADER + k * BINARY_TRIANGLE
-                )
+                ))
             }
         })?;
         let mut corners = [0u32; 3];
         for (c, v) in triangle.vertices.iter().enumerate() {
             let p = [v[0], v[1], v[2]];
             if !p.iter().all(|x| x.is_finite()) {
-                return Err(format!("triangle {k}: corner {c} is not finite"));
+                return Err(format!("triangle {k}: corner {c} is not finite").into());
             }
             let key = p.map(f32::to_bits);
             corners[c] = *shared.entry(key).or_insert_with(|| {
@@ -115,7 +119,8 @@ pub fn parse(bytes: &[u8]) -> Result<Vec<MeshObject>, String> {
             });
         }
         if corners[0] != corners[1] && corners[1] != corners[2] && corners[2] != corners[0] {
-            mesh.push_face(&corners).map_err(|e| e.to_string())?;
+            mesh.push_face(&corners)
+                .map_err(|e| ReadError::from(e.to_string()))?;
         }
     }
     Ok(vec![MeshObject {
@@ -135,11 +140,17 @@ mod tests {
         assert_eq!(objects[0].mesh.face_count(), 1);
         let bad = good.replace("vertex 1 0 0", "vertex 1 zero 0");
         let e = parse(bad.as_bytes()).unwrap_err();
-        assert!(e.starts_with("line 5 (facet 0)"), "{e}");
+        assert_eq!((e.line, e.column), (Some(5), None), "{e}");
+        assert!(e.to_string().starts_with("line 5: facet 0: "), "{e}");
         let mut binary = vec![0u8; 84];
         binary[80] = 200;
-        let e = parse(&binary).unwrap_err();
+        let e = parse(&binary).unwrap_err().to_string();
         assert!(e.contains("declares 200 triangles"), "{e}");
-        assert!(parse(b"abc").unwrap_err().contains("not an STL"));
+        assert!(
+            parse(b"abc")
+                .unwrap_err()
+                .to_string()
+                .contains("not an STL")
+        );
     }
 }
