@@ -3,6 +3,7 @@
 //! gradient for the optimizer (`crate::derivatives::measure`).
 
 use cnets_engine::prelude::*;
+use cnets_geometry::surface_fit::{Directions, MAX_SAMPLES, SurfaceDistances, surface_distances};
 use cnets_geometry::{measure, objectives};
 
 /// The points of a list of points, polylines and/or meshes (their vertices in order), in order.
@@ -81,22 +82,80 @@ node! {
 }
 
 node! {
-    /// The mean squared distance from the vertices of a mesh to the surface of a reference mesh (its
-    /// polygons fanned into triangles), e.g. to fit a cone-net to a target hull.
+    /// The distance between a mesh and a reference surface (its polygons fanned into triangles),
+    /// e.g. to fit a cone-net to a target hull. `value` and `max` measure from the mesh's vertices
+    /// to the reference only; the other outputs measure both directions on points sampled over the
+    /// faces (each fan triangle split `samples` times along each edge, sampled at the centroids of
+    /// its samples² sub-triangles, area-weighted): from the mesh to the reference and from the
+    /// reference to the mesh, so a fit cannot pull away from parts of the reference unseen.
+    /// `symmetric` is the measure to minimize when fitting. Every output has an exact gradient in
+    /// the mesh's vertices.
     #[node(id = "measure.surface_distance", category = "Measure")]
-    pub fn surface_distance(
+    pub fn surface_distance[ctx](
         /// The mesh whose vertices are measured (quad or polygon mesh).
         mesh: k::Mesh,
         /// The reference surface.
         reference: k::Mesh,
+        /// Sub-triangles per triangle edge for the sampled (two-way) outputs: samples² points per
+        /// triangle (1 to 64).
+        samples: k::Integer = 2,
     ) -> (
-        /// Mean of the squared vertex distances.
+        /// Mean of the squared vertex distances (mesh vertices → reference).
         value: k::Number,
         /// The largest vertex distance.
         max: k::Number,
+        /// The symmetric measure: ½ (to_reference + from_reference), a mean squared distance.
+        symmetric: k::Number,
+        /// The sampled Hausdorff distance: the larger of to_reference_max and from_reference_max.
+        hausdorff: k::Number,
+        /// Area-weighted mean of the squared distances from the mesh's faces to the reference.
+        to_reference: k::Number,
+        /// The largest distance from the mesh (face samples and vertices) to the reference.
+        to_reference_max: k::Number,
+        /// Area-weighted mean of the squared distances from the reference's faces to the mesh.
+        from_reference: k::Number,
+        /// The largest distance from the reference (face samples and vertices) to the mesh.
+        from_reference_max: k::Number,
     ) {
-        Ok(measure::surface_distance(&mesh.vertices, &reference)?)
+        let samples = sample_count(samples)?;
+        let (value, max) = if ctx.wants("value") || ctx.wants("max") {
+            measure::surface_distance(&mesh.vertices, &reference)?
+        } else {
+            (0.0, 0.0)
+        };
+        let both = ["symmetric", "hausdorff"].iter().any(|o| ctx.wants(o));
+        let directions = Directions {
+            to_reference: both || ctx.wants("to_reference") || ctx.wants("to_reference_max"),
+            from_reference: both || ctx.wants("from_reference") || ctx.wants("from_reference_max"),
+        };
+        let d = if directions.to_reference || directions.from_reference {
+            surface_distances(&mesh, &reference, samples, directions)?
+        } else {
+            SurfaceDistances::default()
+        };
+        Ok((
+            value,
+            max,
+            d.symmetric(),
+            d.hausdorff(),
+            d.to_reference,
+            d.to_reference_max,
+            d.from_reference,
+            d.from_reference_max,
+        ))
     }
+}
+
+/// The `samples` input of `measure.surface_distance`, checked.
+pub(crate) fn sample_count(samples: i64) -> Result<usize, NodeError> {
+    usize::try_from(samples)
+        .ok()
+        .filter(|n| (1..=MAX_SAMPLES).contains(n))
+        .ok_or_else(|| {
+            NodeError::new(format!(
+                "samples must be a whole number from 1 to {MAX_SAMPLES}, got {samples}"
+            ))
+        })
 }
 
 /// One target direction per face of `mesh`: the given direction, or the normal of the reference

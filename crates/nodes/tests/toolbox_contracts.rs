@@ -186,6 +186,26 @@ fn toolbox_nodes_have_their_contract_ports() {
             ("faces", "list<integer>"),
         ],
     );
+    // Issue 32 added `samples` and the two-way outputs after `value` and `max`, which keep their
+    // meaning (mesh vertices → reference).
+    check(
+        "measure.surface_distance",
+        &[
+            ("mesh", "mesh", None),
+            ("reference", "mesh", None),
+            ("samples", "integer", Some("2")),
+        ],
+        &[
+            ("value", "number"),
+            ("max", "number"),
+            ("symmetric", "number"),
+            ("hausdorff", "number"),
+            ("to_reference", "number"),
+            ("to_reference_max", "number"),
+            ("from_reference", "number"),
+            ("from_reference_max", "number"),
+        ],
+    );
     check(
         "mesh.deconstruct",
         &[("mesh", "mesh", None)],

@@ -4,9 +4,12 @@ use cnets_engine::optimize::vjp::{VjpArgs, VjpResult};
 use cnets_engine::prelude::*;
 use cnets_geometry::mesh_query::MeshQuery;
 use cnets_geometry::objectives;
+use cnets_geometry::surface_fit::{
+    Directions, DistanceCotangents, surface_distances, surface_distances_gradient,
+};
 
 use super::flat;
-use crate::measure::{alignment_targets, points_of, table_rows};
+use crate::measure::{alignment_targets, points_of, sample_count, table_rows};
 
 type Product = fn(&VjpArgs<'_>) -> VjpResult;
 
@@ -77,27 +80,56 @@ fn surface_distance(args: &VjpArgs<'_>) -> VjpResult {
             "the distance's derivative in the reference mesh is not implemented",
         ));
     }
-    let query = MeshQuery::new(reference)
-        .map_err(|e| NodeError::new(format!("the reference mesh: {e}")))?;
-    let hits = query.closest_all(&mesh.vertices)?;
-    let n = mesh.vertices.len().max(1) as f64;
+    let samples = sample_count(match &args.inputs[2] {
+        Value::Integer(n) => *n,
+        _ => 2,
+    })?;
     let (c0, c1) = (c(args, 0), c(args, 1));
-    let mut g: Vec<DVec3> = mesh
-        .vertices
-        .iter()
-        .zip(&hits)
-        .map(|(v, h)| (*v - h.point) * (2.0 * c0 / n))
-        .collect();
-    if c1 != 0.0
-        && let Some((k, h)) = hits
-            .iter()
-            .enumerate()
-            .max_by(|a, b| a.1.distance.total_cmp(&b.1.distance))
-        && h.distance > 0.0
-    {
-        g[k] += (mesh.vertices[k] - h.point) * (c1 / h.distance);
+    let mut g = vec![DVec3::ZERO; mesh.vertices.len()];
+    if c0 != 0.0 || c1 != 0.0 {
+        let query = MeshQuery::new(reference)
+            .map_err(|e| NodeError::new(format!("the reference mesh: {e}")))?;
+        let hits = query.closest_all(&mesh.vertices)?;
+        let n = mesh.vertices.len().max(1) as f64;
+        for ((g, v), h) in g.iter_mut().zip(&mesh.vertices).zip(&hits) {
+            *g = (*v - h.point) * (2.0 * c0 / n);
+        }
+        if c1 != 0.0
+            && let Some((k, h)) = hits
+                .iter()
+                .enumerate()
+                .max_by(|a, b| a.1.distance.total_cmp(&b.1.distance))
+            && h.distance > 0.0
+        {
+            g[k] += (mesh.vertices[k] - h.point) * (c1 / h.distance);
+        }
     }
-    Ok(vec![Some(flat(&g)), None])
+    // The two-way outputs: symmetric = ½ (to + from); the Hausdorff distance is the larger of the
+    // two largest distances (to_reference_max on a tie).
+    let (symmetric, hausdorff) = (c(args, 2), c(args, 3));
+    let mut two_way = DistanceCotangents {
+        to_reference: c(args, 4) + 0.5 * symmetric,
+        to_reference_max: c(args, 5),
+        from_reference: c(args, 6) + 0.5 * symmetric,
+        from_reference_max: c(args, 7),
+    };
+    if hausdorff != 0.0 {
+        // Recomputed: the outputs not asked for in the run are placeholders.
+        let d = surface_distances(mesh, reference, samples, Directions::BOTH)?;
+        let (to_max, from_max) = (d.to_reference_max, d.from_reference_max);
+        if to_max >= from_max {
+            two_way.to_reference_max += hausdorff;
+        } else {
+            two_way.from_reference_max += hausdorff;
+        }
+    }
+    if two_way != DistanceCotangents::default() {
+        let g2 = surface_distances_gradient(mesh, reference, samples, two_way)?;
+        for (a, b) in g.iter_mut().zip(g2) {
+            *a += b;
+        }
+    }
+    Ok(vec![Some(flat(&g)), None, None])
 }
 
 fn normal_alignment(args: &VjpArgs<'_>) -> VjpResult {

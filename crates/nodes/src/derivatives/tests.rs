@@ -46,10 +46,12 @@ fn compare(id: &str, named: &[(&str, Value)], wanted: &[&str]) -> f64 {
         .map(|(o, v)| {
             let n = leaves::count(v);
             // The alignment's largest term has no product: only its mean is weighted.
-            let outputs = if id == "measure.normal_alignment" {
-                1
-            } else {
-                3
+            // The surface distance's eight outputs (one-sided, symmetric, each direction) all
+            // weighted.
+            let outputs = match id {
+                "measure.normal_alignment" => 1,
+                "measure.surface_distance" => 8,
+                _ => 3,
             };
             (n > 0 && !leaves::opaque(v) && o < outputs).then(|| {
                 (0..n)
@@ -237,4 +239,26 @@ fn measure_products_match_differences() {
         &["mesh"],
     );
     assert!(rel < 1e-6, "surface_distance: {rel}");
+    // A curved reference of polygons, partly beside the mesh (the reference → mesh direction
+    // meets the mesh's boundary), sampled 3 times per edge.
+    let mut v = Vec::new();
+    for i in 0..4 {
+        for j in 0..4 {
+            let (x, y) = (j as f64 * 1.7 - 0.8, i as f64 * 1.1 - 0.6);
+            v.push(DVec3::new(x, y, 0.3 * (0.9 * x).sin() - 0.2 - 0.05 * y * y));
+        }
+    }
+    let curved = Value::Mesh(Arc::new(PolygonMesh::from(
+        &QuadGrid::new(4, 4, v).unwrap(),
+    )));
+    let rel = compare(
+        "measure.surface_distance",
+        &[
+            ("mesh", grid()),
+            ("reference", curved),
+            ("samples", Value::Integer(3)),
+        ],
+        &["mesh"],
+    );
+    assert!(rel < 1e-6, "surface_distance (curved, 3 samples): {rel}");
 }
