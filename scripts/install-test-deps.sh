@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs what the tests need, when it is missing: lavapipe, xvfb and Chromium (apt), the wasm32
+# Installs what the tests need, when it is missing: lavapipe, xvfb, Chromium and wasm-opt (apt), the wasm32
 # target (rustup), gltf-validator and playwright-core (npm, into ./node_modules), ezdxf (pip, user
 # site) and the Python package tests' virtual environment (target/pyenv, its requirements from
 # scripts/requirements-python.txt). Uses sudo when not root; says what to install otherwise.
@@ -29,6 +29,13 @@ if [ ! -x /usr/bin/chromium ]; then
   echo "== installing Chromium for the browser test (apt)"
   as_root apt-get update -qq
   DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq chromium >/dev/null
+fi
+
+if ! command -v wasm-opt >/dev/null 2>&1; then
+  # The site is tested as it ships: shrunk by wasm-opt (docs/web.md).
+  echo "== installing wasm-opt for the web build (apt: binaryen)"
+  as_root apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq binaryen >/dev/null
 fi
 
 if ! rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown; then

@@ -32,22 +32,26 @@ cargo build -p cnets-web --target wasm32-unknown-unknown --profile web
 wasm="${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/web/cnets_web.wasm"
 
 mkdir -p "$OUT"
-echo "== wasm-bindgen → $OUT"
-wasm-bindgen "$wasm" --out-dir "$OUT" --target web --no-typescript
 bytes() { stat -c %s "$1"; }
-bindgen_size=$(bytes "$OUT/cnets_web_bg.wasm")
+# wasm-opt runs on rustc's output, before wasm-bindgen: binaryen 108 (Debian 12) rewrites the
+# externref table wasm-bindgen adds into one the browser refuses at start-up ("function-typed
+# object must be null"), even with no passes; before wasm-bindgen there is no such table.
 if command -v wasm-opt >/dev/null 2>&1; then
-  # The features rustc's wasm32 target turns on (binaryen 108, Debian 12, needs them named).
+  # The features rustc's wasm32 target turns on (binaryen 108 needs them named).
   echo "== wasm-opt -Os ($(wasm-opt --version))"
   started=$(date +%s)
+  optimized="$(dirname "$wasm")/opt"
+  mkdir -p "$optimized"
   wasm-opt -Os --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
     --enable-mutable-globals --enable-reference-types --enable-multivalue \
-    "$OUT/cnets_web_bg.wasm" -o "$OUT/cnets_web_bg.wasm.opt"
-  mv "$OUT/cnets_web_bg.wasm.opt" "$OUT/cnets_web_bg.wasm"
-  echo "wasm-opt: $bindgen_size → $(bytes "$OUT/cnets_web_bg.wasm") bytes in $(( $(date +%s) - started )) s"
+    "$wasm" -o "$optimized/cnets_web.wasm"
+  echo "wasm-opt: $(bytes "$wasm") → $(bytes "$optimized/cnets_web.wasm") bytes in $(( $(date +%s) - started )) s"
+  wasm="$optimized/cnets_web.wasm"
 else
   echo "web.sh: wasm-opt not installed (Debian: apt-get install binaryen): the wasm is not shrunk"
 fi
+echo "== wasm-bindgen → $OUT"
+wasm-bindgen "$wasm" --out-dir "$OUT" --target web --no-typescript
 cp crates/web/static/index.html crates/web/static/worker.js "$OUT/"
 
 # Compressed copies beside each file (docs/web.md: how to serve them).
@@ -70,5 +74,5 @@ done
 wasm_file="$OUT/cnets_web_bg.wasm"
 br="no brotli copy"
 [ -f "$wasm_file.br" ] && br="$(bytes "$wasm_file.br") brotli"
-echo "web.sh: $OUT ready: cnets_web_bg.wasm $(bytes "$wasm_file") bytes" \
-  "($bindgen_size before wasm-opt), $(bytes "$wasm_file.gz") gzipped, $br"
+echo "web.sh: $OUT ready: cnets_web_bg.wasm $(bytes "$wasm_file") bytes," \
+  "$(bytes "$wasm_file.gz") gzipped, $br"

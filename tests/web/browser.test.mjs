@@ -218,6 +218,10 @@ const vsFacade = difference(f1.px, s1.px);
 console.log(`the link (${link.length} characters) opens a picture that differs from the facade in ${(vsFacade * 100).toFixed(2)} %`);
 assert.ok(vsFacade < 0.01, "the link opens the same graph");
 assert.match(shared.state.message, /link/, "the page says it opened a link");
+assert.equal(shared.state.title, "shared design", "a link's graph is titled 'shared design'");
+assert.equal(shared.state.tab_title, "shared design — cnets", "the tab's title follows");
+const said = (await state(facade.page)).message;
+assert.ok(said.includes(`(${link.length} characters)`), `the link's length is said right: "${said}" vs ${link.length}`);
 noProblems("share link");
 await facade.page.close();
 await shared.page.close();
@@ -251,6 +255,170 @@ await shot(hundred.page, "5-torus-monge-100x100", view);
 figures.change_to_picture_100_ms = latencies;
 console.log(`100 × 100: ${hundred.state.vertices} vertices, change-to-picture ${latencies.join(", ")} ms`);
 noProblems("100 × 100");
+
+
+// 6. The first visit at 1400 × 860, every gallery graph: the parameter panel docked, the
+//    first-visit hint shown, the construction node on the canvas (or the canvas's overview
+//    shown), the tab titled after the document. Then the hint is dismissed, and stays so.
+const gallery = fs.readdirSync(new URL("../../graphs/", import.meta.url))
+  .filter((f) => f.endsWith(".ron"))
+  .map((f) => f.slice(0, -4))
+  .sort();
+assert.ok(gallery.length >= 10, `the gallery: ${gallery}`);
+/** Opens `url` on a fresh storage and waits for the first picture (any geometry). */
+async function openAny(url, page = null) {
+  page = page ?? watch(await context.newPage());
+  await page.goto(`${base}/cnets_web.js`);
+  await page.evaluate(() => localStorage.clear());
+  await page.goto(url);
+  await until(page, `the first picture of ${url}`, (s) => s.first_picture_ms !== null || s.load_failure, 60_000);
+  return { page, state: await settled(page) };
+}
+const constructions = (ron) =>
+  [...ron.matchAll(/"([^"]+)": \(\s*type: "cnets\.construct(?:_coplanar)?"/g)].map((m) => m[1]);
+figures.gallery = {};
+for (const name of gallery) {
+  const ron = fs.readFileSync(new URL(`../../graphs/${name}.ron`, import.meta.url), "utf8");
+  const { page, state: s } = await openAny(`${base}/index.html?example=${name}`);
+  await page.screenshot({ path: path.join(out, `6-first-visit-${name}.png`) });
+  assert.ok(s.parameters && s.parameters[2] - s.parameters[0] > 150, `${name}: the parameter panel is docked: ${s.parameters}`);
+  assert.ok(s.welcome, `${name}: the first-visit hint is shown`);
+  const [vx0, vy0, vx1, vy1] = s.view;
+  const [wx0, wy0, wx1, wy1] = s.welcome;
+  assert.ok(wx0 >= vx0 && wx1 <= vx1 && wy0 >= vy0 && wy1 <= vy1, `${name}: the hint sits in the 3D view: ${s.welcome} in ${s.view}`);
+  const hiddenConstructions = constructions(ron).filter((id) => s.hidden.includes(id));
+  assert.ok(hiddenConstructions.length === 0 || s.overview,
+    `${name}: construction nodes ${hiddenConstructions} are off the canvas and there is no overview`);
+  assert.equal(s.title, `untitled (copy of example ${name}.ron)`);
+  assert.equal(s.tab_title, `${s.title} — cnets`, `${name}: the tab's title`);
+  for (const failed of s.failed) {
+    assert.ok(failed.in_view || s.view_errors.some((e) => e.startsWith(`${failed.id}:`)),
+      `${name}: the error of ${failed.id} is neither on the canvas nor in the 3D view`);
+  }
+  figures.gallery[name] = { hidden: s.hidden.length, overview: s.overview, failed: s.failed.length };
+  console.log(`${name}: ${s.hidden.length} nodes off the canvas${s.overview ? " (overview shown)" : ""}, ` +
+    `constructions ${constructions(ron).join(", ") || "none"} in view, ${s.failed.length} failed`);
+  if (name !== gallery[gallery.length - 1]) await page.close();
+  else {
+    // Escape dismisses the hint (after a click in the 3D view gives the page the keyboard); it
+    // stays dismissed on the next visit.
+    await page.mouse.click((vx0 + vx1) / 2, (vy0 + vy1) / 2);
+    await page.keyboard.press("Escape");
+    await until(page, "the hint to go", (t) => t.welcome === null, 10_000);
+    assert.equal(await page.evaluate(() => localStorage.getItem("cnets.welcomed")), "1");
+    await page.reload();
+    const again = await until(page, "the page again", (t) => t.first_picture_ms !== null, 60_000);
+    assert.equal(again.welcome, null, "the hint is not shown again");
+    await page.close();
+  }
+  noProblems(`first visit of ${name}`);
+}
+
+// 7. Input during a drag with the facade open: the page's frames (requestAnimationFrame) and
+//    the editor's frames keep coming while the worker evaluates.
+{
+  const { page } = await openAny(`${base}/index.html?example=facade`);
+  const s = await state(page);
+  const [x0, y0, x1, y1] = s.slider;
+  const y = (y0 + y1) / 2;
+  await page.evaluate(() => {
+    window.cnets_raf = [];
+    const tick = (t) => { window.cnets_raf.push(t); if (window.cnets_raf.length < 100000) requestAnimationFrame(tick); };
+    requestAnimationFrame(tick);
+  });
+  const framesBefore = (await state(page)).frames;
+  const sentBefore = (await state(page)).worker_sent;
+  const t0 = await page.evaluate(() => performance.now());
+  await page.mouse.move(x0 + (x1 - x0) * 0.2, y);
+  await page.mouse.down();
+  const steps = 40;
+  for (let k = 1; k <= steps; k++) {
+    await page.mouse.move(x0 + (x1 - x0) * (0.2 + (0.7 * k) / steps), y);
+    await page.waitForTimeout(20);
+  }
+  await page.mouse.up();
+  const t1 = await page.evaluate(() => performance.now());
+  const after = await state(page);
+  const raf = (await page.evaluate(() => window.cnets_raf)).filter((t) => t >= t0 && t <= t1);
+  let gap = 0;
+  for (let k = 1; k < raf.length; k++) gap = Math.max(gap, raf[k] - raf[k - 1]);
+  const seconds = (t1 - t0) / 1000;
+  const rafHz = (raf.length - 1) / seconds;
+  const editorHz = (after.frames - framesBefore) / seconds;
+  await settled(page);
+  const done = await state(page);
+  await page.screenshot({ path: path.join(out, "7-facade-dragged.png") });
+  figures.drag_facade = {
+    seconds: +seconds.toFixed(2), raf_hz: +rafHz.toFixed(1), editor_hz: +editorHz.toFixed(1),
+    longest_gap_ms: Math.round(gap), requests: done.worker_sent - sentBefore,
+    answers: done.worker_answers, change_to_picture_ms: Math.round(done.latency_ms),
+  };
+  console.log(`facade drag: ${JSON.stringify(figures.drag_facade)}`);
+  assert.ok(rafHz >= 30, `the page draws at ≥ 30 Hz during the drag: ${rafHz.toFixed(1)} Hz`);
+  assert.ok(editorHz >= 30, `the editor handles input at ≥ 30 Hz during the drag: ${editorHz.toFixed(1)} Hz`);
+  assert.ok(done.worker_sent > sentBefore, "the drag sent evaluations to the worker");
+  noProblems("facade drag");
+  await page.close();
+}
+
+// 8. A phone (390 × 844): the 3D view on top, the parameters below it, nothing overlapping.
+{
+  const page = watch(await context.newPage());
+  await page.setViewportSize({ width: 390, height: 844 });
+  const { state: s } = await openAny(`${base}/index.html?example=facade`, page);
+  await page.screenshot({ path: path.join(out, "8-phone-facade.png") });
+  assert.ok(s.narrow, "the narrow layout is used");
+  const [vx0, vy0, vx1, vy1] = s.view;
+  assert.ok(vx1 - vx0 > 300 && vy1 - vy0 > 200 && vx1 <= 390 && vy1 <= 844, `the 3D view is shown: ${s.view}`);
+  assert.ok(s.parameters, "the parameters are shown");
+  const [px0, py0, px1, py1] = s.parameters;
+  assert.ok(py0 >= vy1 - 1 && py1 - py0 > 100 && px1 <= 390, `the parameters sit below the view: ${s.parameters} / ${s.view}`);
+  noProblems("phone");
+  await page.close();
+}
+
+// 9. Bad links: a truncated one and a garbage one each say what is wrong in a dialog, with no
+//    other graph standing in; the title says so.
+{
+  const cut = link.slice(0, link.indexOf("#graph=") + 7 + Math.floor((link.length - link.indexOf("#graph=") - 7) / 2));
+  for (const [what, url, says] of [
+    ["truncated", cut, /truncated/],
+    ["garbage", `${base}/index.html#graph=*not*a*link*`, /corrupted/],
+  ]) {
+    const { page, state: s } = await openAny(url);
+    await page.screenshot({ path: path.join(out, `9-${what}-link.png`) });
+    assert.match(s.load_failure ?? "", says, `the ${what} link's dialog: ${s.load_failure}`);
+    assert.equal(s.title, "shared design (not opened)", `the ${what} link's title`);
+    assert.equal(s.tab_title, "shared design (not opened) — cnets");
+    assert.equal(s.vertices, 0, "no other graph stands in for the link's");
+    noProblems(`${what} link`);
+    await page.close();
+  }
+}
+
+// 10. An oversized construction (100 000 × 100 000): its error is in view.
+{
+  const huge = setValue(setValue(torusRon, "columns", 100000), "rows", 100000);
+  const url = `${base}/index.html#graph=${zlib.deflateRawSync(Buffer.from(huge), { level: 9 }).toString("base64url")}`;
+  const { page, state: s0 } = await openAny(url);
+  const s = await until(page, "the construction's error", (t) => t.failed.length > 0, 60_000);
+  await page.screenshot({ path: path.join(out, "10-oversized.png") });
+  for (const failed of s.failed) {
+    assert.ok(failed.in_view || s.view_errors.some((e) => e.startsWith(`${failed.id}:`)),
+      `the error of ${failed.id} is in view (canvas or 3D view): ${JSON.stringify(s.failed)} ${s.view_errors}`);
+  }
+  // Scrolled off the canvas, the error moves into the 3D view.
+  const [cx0, cy0, cx1, cy1] = s.canvas;
+  await page.mouse.move((cx0 + cx1) / 2, (cy0 + cy1) / 2);
+  for (let k = 0; k < 30; k++) await page.mouse.wheel(0, -400);
+  const off = await until(page, "the error in the 3D view",
+    (t) => t.failed.some((f) => !f.in_view) && t.view_errors.length > 0, 20_000).catch(() => null);
+  await page.screenshot({ path: path.join(out, "10-oversized-scrolled.png") });
+  figures.oversized = { failed: s.failed.map((f) => f.message.slice(0, 120)), error_in_3d_view_when_scrolled: off !== null };
+  console.log(`oversized: ${JSON.stringify(figures.oversized)}`);
+  noProblems("oversized construction");
+  await page.close();
+}
 
 await context.close();
 fs.rmSync(userData, { recursive: true, force: true });

@@ -137,6 +137,11 @@ pub struct EditorApp {
     pub optimization: OptimizationPanel,
     /// Whether the parameter panel (View › Parameters) is shown.
     pub parameters_open: bool,
+    /// The failed nodes' errors the 3D view listed in the last frame (`id: message`): those off
+    /// the canvas's view (crate::view_errors).
+    pub view_errors_shown: Vec<String>,
+    /// Where the parameter panel was drawn in the last frame (`None`: not shown), in points.
+    pub parameters_rect: Option<egui::Rect>,
     /// The open table windows of literal lists (a node's **Edit…**).
     pub list_editors: ListEditors,
     /// The pointer's last position seen by [`EditorApp::raw_input`].
@@ -232,6 +237,8 @@ impl EditorApp {
             last_watch: Instant::now(),
             optimization: OptimizationPanel::new(options.wake),
             parameters_open: false,
+            parameters_rect: None,
+            view_errors_shown: Vec::new(),
             list_editors: ListEditors::default(),
             pointer: None,
             canvas_view: Vec::new(),
@@ -308,7 +315,11 @@ impl EditorApp {
                     d.origin = r.origin.clone();
                     d.mark_dirty();
                     self.replace_doc(d);
-                    self.message = "restored unsaved work from the last session".into();
+                    self.message = if self.page.is_some() {
+                        "restored the unsaved work this browser kept".into()
+                    } else {
+                        "restored unsaved work from the last session".into()
+                    };
                 }
                 Err(e) => self.message = format!("cannot restore: {e}"),
             }
@@ -713,6 +724,14 @@ impl EditorApp {
                 false
             }
         }
+    }
+
+    /// Replaces the document by an empty one shown as `name` (the web page, when a link gives no
+    /// graph: its dialog says why, and no unrelated graph stands in for the link's).
+    pub fn open_empty(&mut self, name: &str) {
+        let mut doc = GraphDocument::new(self.registry.clone());
+        doc.name = Some(name.to_string());
+        self.replace_doc(doc);
     }
 
     /// Sets the graphs File ▸ Open example lists (the web page: the bundled gallery, opened
@@ -1285,6 +1304,7 @@ impl EditorApp {
         // Below a width threshold (a phone, a narrow window): the 3D view over the parameters,
         // the canvas behind a tab (crate::narrow).
         let narrow = crate::narrow::is_narrow(&ctx);
+        self.parameters_rect = None;
         egui::Panel::bottom("cnets-status").show(ui, |ui| {
             if narrow {
                 crate::narrow::status_bar(ui, &self.doc.title(), &self.message);
@@ -1470,6 +1490,7 @@ impl EditorApp {
 
     /// The parameter panel's contents; returns the edits made in it.
     pub(crate) fn parameters_contents(&mut self, ui: &mut Ui) -> Vec<CanvasAction> {
+        self.parameters_rect = Some(ui.clip_rect().intersect(ui.max_rect()));
         ui.heading("Parameters");
         crate::parameters::show(ui, &self.doc.graph, &self.statuses)
     }
@@ -1525,6 +1546,11 @@ impl EditorApp {
             self.apply_view(a);
         }
         let on_canvas = |id: &str| canvas_shown && crate::view_errors::in_view(&self.canvas, id);
+        self.view_errors_shown =
+            crate::view_errors::hidden_failures(&self.doc.graph, &self.statuses, &on_canvas)
+                .into_iter()
+                .map(|(id, message)| format!("{id}: {message}"))
+                .collect();
         if let Some(id) = crate::view_errors::show(
             ui,
             self.viewport.rect,
@@ -1676,11 +1702,21 @@ impl EditorApp {
             |p| p.display().to_string(),
         );
         let mut choice = None;
+        let in_browser = self.page.is_some();
         egui::Modal::new(egui::Id::new("cnets-restore")).show(ctx, |ui| {
             ui.heading("Restore unsaved work?");
-            ui.label(format!(
-                "The last session ended without saving {what}. Restore it from the recovery file?"
-            ));
+            // In the browser there are no sessions to speak of: the page was closed or reloaded.
+            ui.label(if in_browser {
+                format!(
+                    "This page was closed or reloaded without saving {what}. Restore it from \
+                     this browser's storage?"
+                )
+            } else {
+                format!(
+                    "The last session ended without saving {what}. Restore it from the recovery \
+                     file?"
+                )
+            });
             ui.horizontal(|ui| {
                 if ui.button("Restore").clicked() {
                     choice = Some(true);

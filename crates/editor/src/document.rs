@@ -156,6 +156,9 @@ pub struct GraphDocument {
     /// The shipped example an untitled copy was opened from (File › Open example, the start-up
     /// graph): file paths in the graph resolve next to it, but a save never writes there.
     pub origin: Option<PathBuf>,
+    /// The name an unsaved document is shown by when it is not an example's copy: the file's
+    /// name for a file opened in the browser, "shared design" for a share link.
+    pub name: Option<String>,
     /// Undo / redo.
     pub history: History<Snapshot>,
     /// Clusters opened in place, outermost first; `graph` is the innermost one's subgraph.
@@ -189,6 +192,7 @@ impl GraphDocument {
             meta,
             path,
             origin: None,
+            name: None,
             history: History::default(),
             stack: Vec::new(),
             live: None,
@@ -515,8 +519,8 @@ impl GraphDocument {
         self.version
     }
 
-    /// The title shown in the window: file name (or "untitled", naming the example an untitled
-    /// copy came from) and a `*` when dirty.
+    /// The title shown in the window: file name (else the document's [`GraphDocument::name`],
+    /// else "untitled", naming the example an untitled copy came from) and a `*` when dirty.
     pub fn title(&self) -> String {
         let file_name = |p: &Path| {
             p.file_name()
@@ -525,6 +529,7 @@ impl GraphDocument {
         };
         let name = match (&self.path, &self.origin) {
             (Some(p), _) => file_name(p),
+            (None, _) if self.name.is_some() => self.name.clone().unwrap_or_default(),
             (None, Some(o)) => format!("untitled (copy of example {})", file_name(o)),
             (None, None) => "untitled".to_string(),
         };
@@ -659,6 +664,18 @@ mod tests {
 
     fn registry() -> Arc<Registry> {
         Arc::new(cnets_nodes::registry())
+    }
+
+    #[test]
+    fn the_title_names_the_file_then_the_given_name_then_the_example() {
+        let mut doc = GraphDocument::new(registry());
+        assert_eq!(doc.title(), "untitled");
+        doc.origin = Some(PathBuf::from("graphs/facade.ron"));
+        assert_eq!(doc.title(), "untitled (copy of example facade.ron)");
+        doc.name = Some("shared design".into());
+        assert_eq!(doc.title(), "shared design");
+        doc.path = Some(PathBuf::from("/work/mine.ron"));
+        assert_eq!(doc.title(), "mine.ron");
     }
 
     #[test]

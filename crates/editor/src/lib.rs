@@ -14,6 +14,7 @@
 //!   the node, a window to edit them).
 //! - [`viewport`]: the 3D view (a wgpu paint callback through `cnets-render`) and its camera;
 //!   [`view_errors`]: failed nodes that are off the canvas, listed in the 3D view.
+//! - [`welcome`]: the first visit's hint (the web page).
 //! - [`narrow`]: the stacked layout of phones and narrow windows; [`overview`]: the canvas's
 //!   minimap when the graph does not fit.
 //! - [`menus`], [`file_dialog`]: the menu bar and a built-in path dialog; [`export`]: exports
@@ -60,6 +61,7 @@ pub mod settings;
 pub mod unsaved;
 pub mod view_errors;
 pub mod viewport;
+pub mod welcome;
 pub mod widgets;
 pub mod worker;
 

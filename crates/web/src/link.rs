@@ -12,17 +12,24 @@ pub const KEY: &str = "graph=";
 /// hostile link from inflating into gigabytes).
 pub const MAX_GRAPH_BYTES: usize = 16 << 20;
 
-/// Why a link did not give a graph.
+/// Why a link did not give a graph (each message says what is wrong with the link, for the
+/// dialog the page shows).
 #[derive(Debug, thiserror::Error, PartialEq, Eq)]
 pub enum LinkError {
+    /// The graph's text ends early: the link was cut short (copied in part, or shortened).
+    #[error("the link is truncated: its graph ends early (was the whole link copied?)")]
+    Truncated,
     /// The fragment is not base64url.
-    #[error("the link's graph is not base64url text")]
+    #[error("the link is corrupted: its graph is not base64url text")]
     Base64,
-    /// The bytes are not DEFLATE data, or inflate past [`MAX_GRAPH_BYTES`].
-    #[error("the link's graph is not deflate data (or is over {} MB)", MAX_GRAPH_BYTES >> 20)]
+    /// The bytes are not DEFLATE data.
+    #[error("the link is corrupted: its graph is not deflate data")]
     Deflate,
+    /// The graph inflates past [`MAX_GRAPH_BYTES`].
+    #[error("the link's graph unpacks to over {} MB", MAX_GRAPH_BYTES >> 20)]
+    TooLarge,
     /// The graph is not UTF-8 text.
-    #[error("the link's graph is not UTF-8 text")]
+    #[error("the link is corrupted: its graph is not UTF-8 text")]
     Utf8,
 }
 
@@ -42,10 +49,23 @@ pub fn decode(payload: &str) -> Result<String, LinkError> {
     let payload = payload.trim();
     let bytes = URL_SAFE_NO_PAD
         .decode(payload)
-        .or_else(|_| URL_SAFE.decode(payload))
-        .map_err(|_| LinkError::Base64)?;
+        .or_else(|unpadded| URL_SAFE.decode(payload).map_err(|_| unpadded))
+        .map_err(|e| match e {
+            // A length no base64 text has: the link was cut.
+            base64::DecodeError::InvalidLength(_) | base64::DecodeError::InvalidLastSymbol(..) => {
+                LinkError::Truncated
+            }
+            _ => LinkError::Base64,
+        })?;
+    use miniz_oxide::inflate::TINFLStatus;
     let text = miniz_oxide::inflate::decompress_to_vec_with_limit(&bytes, MAX_GRAPH_BYTES)
-        .map_err(|_| LinkError::Deflate)?;
+        .map_err(|e| match e.status {
+            TINFLStatus::FailedCannotMakeProgress | TINFLStatus::NeedsMoreInput => {
+                LinkError::Truncated
+            }
+            TINFLStatus::HasMoreOutput => LinkError::TooLarge,
+            _ => LinkError::Deflate,
+        })?;
     String::from_utf8(text).map_err(|_| LinkError::Utf8)
 }
 
@@ -94,19 +114,38 @@ mod tests {
     #[test]
     fn hostile_links_are_refused_not_panicked_on() {
         assert_eq!(decode("***"), Err(LinkError::Base64));
-        assert_eq!(decode("AAAA"), Err(LinkError::Deflate));
+        // Three zero bytes: a stored block's header and nothing after it.
+        assert_eq!(decode("AAAA"), Err(LinkError::Truncated));
+        // 0xff...: a reserved block type.
+        assert_eq!(decode("____"), Err(LinkError::Deflate));
         // A bomb: 64 MB of zeros deflate into a few kilobytes.
         let bomb = miniz_oxide::deflate::compress_to_vec(&vec![0u8; 64 << 20], 10);
         assert!(bomb.len() < 200_000);
         assert_eq!(
             decode(&URL_SAFE_NO_PAD.encode(bomb)),
-            Err(LinkError::Deflate)
+            Err(LinkError::TooLarge)
         );
         let not_text = miniz_oxide::deflate::compress_to_vec(&[0xff, 0xfe], 10);
         assert_eq!(
             decode(&URL_SAFE_NO_PAD.encode(not_text)),
             Err(LinkError::Utf8)
         );
+    }
+
+    #[test]
+    fn a_link_cut_anywhere_says_it_is_truncated() {
+        let ron = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../graphs/facade.ron"
+        ))
+        .expect("the gallery's facade");
+        let payload = encode(&ron);
+        assert_eq!(decode(&payload).as_deref(), Ok(ron.as_str()));
+        for keep in [payload.len() / 10, payload.len() / 2, payload.len() - 7] {
+            let cut = &payload[..keep];
+            assert_eq!(decode(cut), Err(LinkError::Truncated), "cut at {keep}");
+            assert!(LinkError::Truncated.to_string().contains("truncated"));
+        }
     }
 
     #[test]

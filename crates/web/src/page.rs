@@ -11,6 +11,7 @@ use std::rc::Rc;
 use std::sync::Arc;
 
 use cnets_editor::app::{AppOptions, EditorApp};
+use cnets_editor::load_failure::LoadFailure;
 use cnets_editor::page::{Page, PageRequest};
 use cnets_editor::recovery::{Recovery, RecoveryStore};
 use cnets_editor::viewport::GpuTarget;
@@ -89,7 +90,19 @@ struct WebApp {
     last_view: egui::Rect,
     framed_scene: u64,
     touched: bool,
+    /// The first visit's hint is shown (until dismissed; remembered in local storage).
+    welcome: bool,
+    /// Where the hint was drawn in the last frame.
+    welcome_rect: Option<egui::Rect>,
+    /// The browser tab's title as last set.
+    tab_title: String,
 }
+
+/// The local-storage key that remembers the first visit's hint was dismissed.
+const WELCOMED: &str = "welcomed";
+
+/// The name of a document opened from a share link.
+const SHARED: &str = "shared design";
 
 fn now_ms() -> f64 {
     web_sys::window()
@@ -115,6 +128,9 @@ impl WebApp {
             wake,
         });
         app.page = Some(Page::default());
+        // The parameter panel docked at the start: a visitor finds the graph's sliders, toggles,
+        // value lists and mappers in one place (narrow windows show it under the 3D view).
+        app.parameters_open = true;
         // Evaluation in a Web Worker: the page answers input while a graph evaluates.
         let remote = WebWorker::start(ctx.clone());
         app.set_worker(Worker::remote(Box::new(remote.clone())));
@@ -140,6 +156,9 @@ impl WebApp {
             last_view: egui::Rect::NOTHING,
             framed_scene: 0,
             touched: false,
+            welcome: LocalStore.read(WELCOMED).is_none(),
+            welcome_rect: None,
+            tab_title: String::new(),
         };
         me.open_from_url();
         me
@@ -156,10 +175,21 @@ impl WebApp {
             match shared {
                 Ok(ron) => {
                     if self.app.open_text(&ron, Path::new("shared-link.ron")) {
-                        self.app.message = "opened the graph of the link".into();
+                        self.app.doc.name = Some(SHARED.into());
+                        self.app.message = "opened the shared design of the link".into();
+                    } else {
+                        // The dialog lists the graph's problems; no other graph stands in.
+                        self.app.open_empty(&format!("{SHARED} (not opened)"));
                     }
                 }
-                Err(e) => self.app.message = format!("cannot open the link: {e}"),
+                Err(e) => {
+                    self.app.open_empty(&format!("{SHARED} (not opened)"));
+                    self.app.load_failure = Some(LoadFailure::new(
+                        Path::new("the shared link"),
+                        &format!("{e}."),
+                    ));
+                    self.app.message = format!("cannot open the link: {e}");
+                }
             }
             return;
         }
@@ -184,6 +214,7 @@ impl WebApp {
             if name.ends_with(".ron") {
                 let text = String::from_utf8_lossy(&bytes).into_owned();
                 if self.app.open_text(&text, Path::new(&name)) {
+                    self.app.doc.name = Some(name.clone());
                     self.app.message = format!("opened {name}");
                 }
             } else {
@@ -205,14 +236,13 @@ impl WebApp {
             PageRequest::Download { name, bytes } => download(&name, &bytes),
             PageRequest::CopyLink { ron } => {
                 let fragment = crate::link::fragment(&ron);
-                let r = copy_link(&fragment);
-                if r.is_ok() {
+                copy_link(&fragment).map(|url| {
+                    // The whole link's length, as the address bar shows it.
                     self.app.message = format!(
                         "link copied ({} characters): it is in the address bar too",
-                        fragment.len()
+                        url.chars().count()
                     );
-                }
-                r
+                })
             }
         };
         if let Err(e) = done {
@@ -262,6 +292,67 @@ impl WebApp {
         set("view", rect(self.app.viewport.rect));
         set("title", self.app.doc.title().into());
         set(
+            "tab_title",
+            document().map_or(String::new(), |d| d.title()).into(),
+        );
+        set("welcome", self.welcome_rect.map_or(JsValue::NULL, rect));
+        set(
+            "parameters",
+            self.app.parameters_rect.map_or(JsValue::NULL, rect),
+        );
+        let canvas = self.app.canvas.screen_rect();
+        set("canvas", rect(canvas));
+        set(
+            "overview",
+            JsValue::from_bool(
+                cnets_editor::overview::placement(&self.app.canvas, &self.app.doc.graph).is_some(),
+            ),
+        );
+        // Nodes not wholly on the canvas: (id, type) pairs.
+        let hidden = js_sys::Array::new();
+        for (_, n) in self.app.doc.graph.nodes() {
+            if !cnets_editor::view_errors::in_view(&self.app.canvas, &n.id) {
+                hidden.push(&JsValue::from(n.id.as_str()));
+            }
+        }
+        set("hidden", hidden.into());
+        // Failed nodes: {id, message, in_view} (in view: the node's badge is on the canvas).
+        let failed = js_sys::Array::new();
+        for (_, n) in self.app.doc.graph.nodes() {
+            let Some(message) = self.app.statuses.get(&n.id).and_then(|s| s.error()) else {
+                continue;
+            };
+            let f = js_sys::Object::new();
+            let _ = js_sys::Reflect::set(&f, &"id".into(), &n.id.as_str().into());
+            let _ = js_sys::Reflect::set(&f, &"message".into(), &message.into());
+            let in_view = !cnets_editor::narrow::is_narrow(&self.ctx)
+                && cnets_editor::view_errors::in_view(&self.app.canvas, &n.id);
+            let _ = js_sys::Reflect::set(&f, &"in_view".into(), &in_view.into());
+            failed.push(&f);
+        }
+        set("failed", failed.into());
+        let errors = js_sys::Array::new();
+        for e in &self.app.view_errors_shown {
+            errors.push(&JsValue::from(e.as_str()));
+        }
+        set("view_errors", errors.into());
+        set(
+            "load_failure",
+            self.app
+                .load_failure
+                .as_ref()
+                .map_or(JsValue::NULL, |f| f.diagnostics.join("\n").into()),
+        );
+        let worker = self.remote.figures();
+        set("worker_sent", JsValue::from_f64(worker.sent as f64));
+        set("worker_answers", JsValue::from_f64(worker.answers as f64));
+        set("worker_decode_ms", JsValue::from_f64(worker.decode_ms));
+        set("worker_started", JsValue::from_f64(worker.started as f64));
+        set(
+            "narrow",
+            JsValue::from_bool(cnets_editor::narrow::is_narrow(&self.ctx)),
+        );
+        set(
             "restore_offered",
             JsValue::from_bool(self.app.restore_offered()),
         );
@@ -270,13 +361,20 @@ impl WebApp {
             "vertices",
             JsValue::from_f64(self.app.viewport.stats.vertices as f64),
         );
-        let slider = self
+        // The first slider on the canvas (in view), else the first of the graph.
+        let sliders: Vec<String> = self
             .app
             .doc
             .graph
             .nodes()
-            .find(|(_, n)| n.def.id == "param.number")
-            .map(|(_, n)| n.id.clone());
+            .filter(|(_, n)| n.def.id == "param.number")
+            .map(|(_, n)| n.id.clone())
+            .collect();
+        let slider = sliders
+            .iter()
+            .find(|id| cnets_editor::view_errors::in_view(&self.app.canvas, id))
+            .or(sliders.first())
+            .cloned();
         if let Some(id) = slider {
             if let Some(r) = self.app.canvas.editor_screen_rect(&id, "value") {
                 // The rail is the left part of the editor; the value box follows it.
@@ -302,6 +400,17 @@ impl WebApp {
 }
 
 impl WebApp {
+    /// The browser tab's title follows the document's ("facade.ron * — cnets").
+    fn mirror_title(&mut self) {
+        let title = format!("{} — cnets", self.app.doc.title());
+        if title != self.tab_title
+            && let Some(d) = document()
+        {
+            d.set_title(&title);
+            self.tab_title = title;
+        }
+    }
+
     /// `window.cnets_request = "copy_link"`: the browser test runs File ▸ Copy link (egui menus
     /// have no DOM to click).
     fn test_request(&mut self) {
@@ -366,6 +475,20 @@ impl eframe::App for WebApp {
             ui.ctx().request_repaint();
         }
         self.app.ui(ui);
+        self.welcome_rect = None;
+        if self.welcome {
+            let shown = cnets_editor::welcome::show(
+                ui.ctx(),
+                self.app.viewport.rect,
+                self.app.viewport.labels_bottom,
+            );
+            self.welcome_rect = Some(shown.rect);
+            if shown.dismissed {
+                self.welcome = false;
+                let _ = LocalStore.write(WELCOMED, "1");
+            }
+        }
+        self.mirror_title();
         let requests = self.app.page.as_mut().map(Page::take).unwrap_or_default();
         for r in requests {
             self.carry_out(r);
@@ -470,8 +593,8 @@ fn download(name: &str, bytes: &[u8]) -> Result<(), JsValue> {
 }
 
 /// Puts the share link into the address bar (without reloading) and, where the browser allows
-/// it, on the clipboard.
-fn copy_link(fragment: &str) -> Result<(), JsValue> {
+/// it, on the clipboard; returns the link.
+fn copy_link(fragment: &str) -> Result<String, JsValue> {
     let window = web_sys::window().ok_or("no window")?;
     let location = window.location();
     let base = format!(
@@ -489,5 +612,5 @@ fn copy_link(fragment: &str) -> Result<(), JsValue> {
     wasm_bindgen_futures::spawn_local(async move {
         let _ = wasm_bindgen_futures::JsFuture::from(promise).await;
     });
-    Ok(())
+    Ok(url)
 }

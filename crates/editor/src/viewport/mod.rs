@@ -96,6 +96,9 @@ pub struct ViewportInput<'a> {
 pub const INTERACTIVE_SCALE: f32 = 0.5;
 /// Seconds without changes after which the view is rendered at full resolution again.
 const SETTLE_SECONDS: f64 = 0.3;
+/// The height (points) of the label rows along the 3D view's top and bottom edges, kept clear
+/// of the geometry when the view frames it.
+pub const LABEL_BAND: f32 = 40.0;
 /// Screen distance (points) within which a measured point snaps to a drawn vertex.
 pub const SNAP_RADIUS: f32 = 10.0;
 
@@ -113,6 +116,9 @@ pub struct Viewport {
     /// The box of the drawn surfaces and curves (markers such as apices left out).
     bounds: Option<Bounds>,
     fit_pending: bool,
+    /// The lower edge of the labels in the view's top corners (statistics, legend) in the last
+    /// frame: what sits below is free (the web page's first-visit hint goes there).
+    pub labels_bottom: f32,
     fitted_once: bool,
     aspect: f32,
     /// Scene versions handed to the GPU (one per frame at most): the app reads it to know when a
@@ -167,6 +173,7 @@ impl Default for Viewport {
             picks: Arc::new(Picks::default()),
             bounds: None,
             fit_pending: false,
+            labels_bottom: 0.0,
             fitted_once: false,
             aspect: 1.0,
             drawn_version: 0,
@@ -323,6 +330,17 @@ impl Viewport {
             points.extend(b.corners());
         }
         self.camera.fit_points(&points, self.aspect);
+        self.clear_labels();
+    }
+
+    /// Zooms out after a fit so the geometry clears the labels along the view's top (the
+    /// statistics) and bottom (grid, axes, W × D × H): [`LABEL_BAND`] points each.
+    fn clear_labels(&mut self) {
+        let height = self.rect.height();
+        let bands = 2.0 * LABEL_BAND;
+        if height.is_finite() && height > 3.0 * bands {
+            self.camera.zoom(height / (height - bands));
+        }
     }
 
     /// Frames the geometry of the nodes `ids` (their previewed meshes and curves, their handles)
@@ -345,6 +363,7 @@ impl Viewport {
             self.fit();
         } else {
             self.camera.fit_points(&points, self.aspect);
+            self.clear_labels();
         }
     }
 
@@ -615,11 +634,12 @@ impl Viewport {
             Tool::Measure(m) => m.paint(&painter, &map, self.tool_point),
             Tool::Select => {}
         }
-        overlay::paint_stats(ui, rect, &self.stats);
+        let stats = overlay::paint_stats(ui, rect, &self.stats);
         let folds = self.picks.folded_faces().len();
-        let (clicked, entry) = overlay::legend(ui, rect, &self.stats, folds);
-        self.fold_entry = entry;
-        if clicked {
+        let legend = overlay::legend(ui, rect, stats, &self.stats, folds);
+        self.fold_entry = legend.fold_entry;
+        self.labels_bottom = legend.bottom.max(stats.bottom());
+        if legend.clicked {
             self.show_folds();
             actions.push(ViewportAction::Message(format!(
                 "{folds} faces are not (++)(++): framed and outlined (Esc clears)"

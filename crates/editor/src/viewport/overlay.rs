@@ -15,7 +15,8 @@ fn font() -> egui::FontId {
 }
 
 /// Paints the counts and the max planarity in the top-left corner.
-pub fn paint_stats(ui: &Ui, rect: Rect, s: &PreviewStats) {
+/// Returns the rectangle the text covers.
+pub fn paint_stats(ui: &Ui, rect: Rect, s: &PreviewStats) -> Rect {
     let painter = ui.painter_at(rect);
     let mut lines = vec![format!("{} vertices · {} faces", s.vertices, s.faces)];
     if let Some(p) = s.max_planarity {
@@ -27,15 +28,32 @@ pub fn paint_stats(ui: &Ui, rect: Rect, s: &PreviewStats) {
         };
         lines.push(format!("max planarity {shown}"));
     }
+    let mut covered = Rect::NOTHING;
     for (k, line) in lines.iter().enumerate() {
-        painter.text(
+        covered = covered.union(painter.text(
             rect.left_top() + vec2(8.0, 6.0 + 16.0 * k as f32),
             egui::Align2::LEFT_TOP,
             line,
             font(),
             INK,
-        );
+        ));
     }
+    covered
+}
+
+/// The legend's width from the view's right edge (points).
+const LEGEND_WIDTH: f32 = 170.0;
+
+/// The legend as painted: whether its fold entry was clicked, that entry's rectangle, and the
+/// legend's lower edge (the view's top when there is no legend).
+#[derive(Clone, Copy, Debug)]
+pub struct LegendShown {
+    /// The fold entry was clicked.
+    pub clicked: bool,
+    /// Where the fold entry is.
+    pub fold_entry: Option<Rect>,
+    /// The legend's lower edge.
+    pub bottom: f32,
 }
 
 /// The legend's fold entry: how many faces are not (++)(++).
@@ -43,14 +61,14 @@ pub fn fold_label(folds: usize) -> String {
     format!("⚠ {folds} faces not (++)(++): show")
 }
 
-/// Paints the legend in the top-right corner; with `folds` faces that are not (++)(++), an entry
-/// counting them that the designer clicks to frame and outline them. Returns whether it was
-/// clicked, and its rectangle.
-pub fn legend(ui: &mut Ui, rect: Rect, s: &PreviewStats, folds: usize) -> (bool, Option<Rect>) {
+/// Paints the legend in the top-right corner — below the statistics (`stats`, their rectangle)
+/// when the view is too narrow for both side by side; with `folds` faces that are not
+/// (++)(++), an entry counting them that the designer clicks to frame and outline them.
+pub fn legend(ui: &mut Ui, rect: Rect, stats: Rect, s: &PreviewStats, folds: usize) -> LegendShown {
     let painter = ui.painter_at(rect);
     let swatch = |y: f32, color: cnets_render::Color, label: String| {
         let [r, g, b, _] = color.0;
-        let x = rect.right() - 170.0;
+        let x = rect.right() - LEGEND_WIDTH;
         painter.rect_filled(
             Rect::from_min_size(egui::pos2(x, y), vec2(14.0, 12.0)),
             2.0,
@@ -64,10 +82,15 @@ pub fn legend(ui: &mut Ui, rect: Rect, s: &PreviewStats, folds: usize) -> (bool,
             INK,
         );
     };
-    let top = rect.top() + 8.0;
+    let beside = !stats.is_positive() || stats.right() + 12.0 < rect.right() - LEGEND_WIDTH;
+    let top = if beside {
+        rect.top() + 8.0
+    } else {
+        stats.bottom() + 10.0
+    };
     let title = |text: &str| {
         painter.text(
-            egui::pos2(rect.right() - 170.0, top),
+            egui::pos2(rect.right() - LEGEND_WIDTH, top),
             egui::Align2::LEFT_TOP,
             text,
             font(),
@@ -101,8 +124,17 @@ pub fn legend(ui: &mut Ui, rect: Rect, s: &PreviewStats, folds: usize) -> (bool,
             legend.stops.len()
         }
     };
+    let bottom = if rows == 0 {
+        rect.top()
+    } else {
+        top + 18.0 + 16.0 * rows as f32
+    };
     if folds == 0 {
-        return (false, None);
+        return LegendShown {
+            clicked: false,
+            fold_entry: None,
+            bottom,
+        };
     }
     let y = top + 22.0 + 16.0 * rows as f32;
     let galley = painter.layout_no_wrap(
@@ -110,7 +142,8 @@ pub fn legend(ui: &mut Ui, rect: Rect, s: &PreviewStats, folds: usize) -> (bool,
         font(),
         Color32::from_rgb(0xb0, 0x3a, 0x0a),
     );
-    let entry = Rect::from_min_size(egui::pos2(rect.right() - 170.0, y), galley.size()).expand(2.0);
+    let entry =
+        Rect::from_min_size(egui::pos2(rect.right() - LEGEND_WIDTH, y), galley.size()).expand(2.0);
     let response = ui
         .interact(entry, ui.id().with("fold-entry"), Sense::click())
         .on_hover_text("frame the folded faces and outline them (Esc clears)");
@@ -122,7 +155,11 @@ pub fn legend(ui: &mut Ui, rect: Rect, s: &PreviewStats, folds: usize) -> (bool,
         );
     }
     painter.galley(entry.min + vec2(2.0, 2.0), galley, Color32::PLACEHOLDER);
-    (response.clicked(), Some(entry))
+    LegendShown {
+        clicked: response.clicked(),
+        fold_entry: Some(entry),
+        bottom: entry.bottom(),
+    }
 }
 
 /// `W × D × H` of a box in metres to the millimetre, as the corner shows it.
