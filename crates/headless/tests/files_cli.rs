@@ -200,6 +200,37 @@ fn a_cluster_file_outside_the_allowed_folders_is_refused() {
     assert!(o.status.success(), "{}", stderr(&o));
 }
 
+/// Issue 27 §4: a cluster source outside the allowed folders is refused by its name, in the same
+/// words whether the file is there or not (it used to say "not found" for a missing one).
+#[test]
+fn a_cluster_source_outside_says_the_same_whether_or_not_it_exists() {
+    let d = folder("cluster-probe");
+    let lib = folder("cluster-probe-elsewhere");
+    std::fs::write(lib.join("there.ron"), "(version: 1, nodes: {}, edges: [])").unwrap();
+    let mut said = Vec::new();
+    for name in ["there.ron", "gone.ron"] {
+        let g = d.join("top.ron");
+        std::fs::write(
+            &g,
+            format!(
+                r#"(version: 1, nodes: {{ "c": (type: "cluster", source: "{}") }}, edges: [])"#,
+                lib.join(name).display()
+            ),
+        )
+        .unwrap();
+        let o = cnets(&["check", g.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let err = stderr(&o);
+        assert!(
+            err.contains("outside the folders reads are allowed in"),
+            "{err}"
+        );
+        assert!(!err.contains("not found"), "{err}");
+        said.push(err.replace(name, "NAME"));
+    }
+    assert_eq!(said[0], said[1]);
+}
+
 #[test]
 fn a_closed_stdout_ends_quietly_and_a_full_disk_is_one_line() {
     let mut child = Command::new(env!("CARGO_BIN_EXE_cnets"))

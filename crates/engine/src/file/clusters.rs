@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::diagnostics::LoadError;
-use super::load::{LoadOptions, Loader, load_file_with, load_root};
+use super::load::{LoadOptions, Loader, Unresolved, load_file_with, load_root};
 use super::ron::{Node, Pos};
 use crate::cluster::{Cluster, ClusterSource};
 use crate::registry::Registry;
@@ -108,7 +108,11 @@ fn load_source(
 ) -> Option<Arc<Cluster>> {
     let resolved = match loader.options.resolve(written) {
         Ok(p) => p,
-        Err(looked) => {
+        Err(Unresolved::Outside(e)) => {
+            loader.report(pos, format!("{prefix}cluster source '{written}': {e}"));
+            return None;
+        }
+        Err(Unresolved::NotFound(looked)) => {
             let looked: Vec<String> = looked.iter().map(|p| p.display().to_string()).collect();
             loader.report(
                 pos,

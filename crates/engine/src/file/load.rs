@@ -94,10 +94,14 @@ impl LoadOptions {
     }
 
     /// Finds a cluster source: relative to the base folder, then in each library folder (with or
-    /// without the `.ron` extension).
-    pub(super) fn resolve(&self, written: &str) -> Result<PathBuf, Vec<PathBuf>> {
+    /// without the `.ron` extension). A candidate outside the folders cluster files may be read
+    /// from is skipped by its name, before anything looks at the file system: a graph cannot
+    /// tell a missing file from a present one outside (issue 27 §4).
+    pub(super) fn resolve(&self, written: &str) -> Result<PathBuf, Unresolved> {
         let rel = Path::new(written);
         let mut looked = Vec::new();
+        let mut outside = None;
+        let access = self.read_access();
         let dirs = self.base_dir.iter().chain(&self.library);
         let candidates: Vec<PathBuf> = if rel.is_absolute() {
             vec![rel.to_path_buf()]
@@ -108,14 +112,30 @@ impl LoadOptions {
         };
         for c in candidates {
             for path in [c.clone(), c.with_extension("ron")] {
+                if let Err(e) = access.check_name(&path) {
+                    outside.get_or_insert(e);
+                    continue;
+                }
                 if path.is_file() {
                     return Ok(path);
                 }
                 looked.push(path);
             }
         }
-        Err(looked)
+        match outside {
+            Some(e) if looked.is_empty() => Err(Unresolved::Outside(e)),
+            _ => Err(Unresolved::NotFound(looked)),
+        }
     }
+}
+
+/// Why a cluster source was not found.
+#[derive(Debug)]
+pub(super) enum Unresolved {
+    /// Not at any of these paths (inside the allowed folders).
+    NotFound(Vec<PathBuf>),
+    /// Every candidate lies outside the allowed folders (refused by name).
+    Outside(crate::files::FileError),
 }
 
 /// The state of one file's loading: where it is, what went wrong so far, the cluster files read.
