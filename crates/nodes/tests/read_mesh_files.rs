@@ -299,3 +299,44 @@ fn gltf_with_external_and_embedded_buffers_and_glb_apply_node_transforms() {
     let e = read(&dir, "bad.gltf", None).unwrap_err();
     assert!(e.contains("line 2"), "{e}");
 }
+
+/// Issue 27 §3: a weld of 1e-300 or coordinates near 1e25 saturated the weld's cell index (every
+/// vertex in one cell: quadratic, and in a debug build an overflow panic). Now each reads with its
+/// vertices welded exactly where they coincide; the weld's cost per vertex is tested in
+/// `cnets_geometry::mesh_weld` (distance tests counted).
+#[test]
+fn welds_of_tiny_tolerances_and_huge_coordinates_read() {
+    let dir = scratch();
+    // A strip of 2 000 triangles over 1 002 distinct corners, each triangle stored apart (STL).
+    let n = 2_000u32;
+    for (name, scale, offset, weld) in [
+        ("tiny-weld.stl", 1.0, 0.0, 1e-300),
+        ("huge-zero.stl", 1e24, 1e25, 0.0),
+        ("huge-weld.stl", 1e24, 1e25, 1e-3),
+    ] {
+        let corner = |k: u32| {
+            let x = f64::from(k / 2) * 1e-3;
+            let y = f64::from(k % 2) * 1e-3;
+            [
+                (x * scale + offset) as f32,
+                (y * scale + offset) as f32,
+                offset as f32,
+            ]
+        };
+        let mut binary = vec![0u8; 80];
+        binary.extend_from_slice(&n.to_le_bytes());
+        for t in 0..n {
+            binary.extend(std::iter::repeat_n(0u8, 12));
+            for k in [t, t + 1, t + 2] {
+                corner(k)
+                    .iter()
+                    .for_each(|x| binary.extend_from_slice(&x.to_le_bytes()));
+            }
+            binary.extend_from_slice(&[0, 0]);
+        }
+        std::fs::write(dir.join(name), &binary).unwrap();
+        let (mesh, _) = read(&dir, name, Some(weld)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(mesh.face_count(), n as usize, "{name}");
+        assert_eq!(mesh.vertices.len(), n as usize + 2, "{name}");
+    }
+}
