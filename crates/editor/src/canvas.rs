@@ -360,11 +360,6 @@ impl Canvas {
         }
     }
 
-    /// The snarl node showing graph node `id`.
-    pub fn snarl_id(&self, id: &str) -> Option<NodeId> {
-        self.ids.get(id).copied()
-    }
-
     /// Number of nodes and wires on the canvas.
     pub fn counts(&self) -> (usize, usize) {
         (self.snarl.nodes().count(), self.snarl.wires().count())

@@ -15,9 +15,17 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::SystemTime;
 
-use cnets_engine::cluster::{Cluster, ClusterSource, Interface};
-use cnets_engine::file::{self, LoadOptions};
-use cnets_engine::{Graph, NodeDef, Registry};
+use cnets_engine::cluster::{Cluster, ClusterSource};
+use cnets_engine::{Graph, Registry};
+
+/// One graph of the library (the host's: [`cnets_host::LibraryEntry`]).
+pub use cnets_host::LibraryEntry;
+/// Load options for a document at a path (its folder first; none for an untitled one) with the
+/// library folders after `CNETS_LIBRARY`'s ([`cnets_host::document_options`]).
+pub use cnets_host::document_options as load_options;
+/// The node definition of a cluster node with `source: "<source>"` in a graph loaded with the
+/// given options, built by the graph loader itself ([`cnets_host::source_def`]).
+pub use cnets_host::source_def as cluster_def;
 
 /// The default user library folder: `$XDG_DATA_HOME/cnets/library`, else
 /// `~/.local/share/cnets/library`.
@@ -27,44 +35,6 @@ pub fn default_library_dir() -> PathBuf {
     }
     let home = std::env::var_os("HOME").map_or_else(|| PathBuf::from("."), PathBuf::from);
     home.join(".local/share/cnets/library")
-}
-
-/// Load options for a document at `doc_path` (its folder first; none for an untitled one) with
-/// the library folders `library` after `CNETS_LIBRARY`'s — the command line's resolution.
-pub fn load_options(doc_path: Option<&Path>, library: &[PathBuf]) -> LoadOptions {
-    let mut options = LoadOptions::for_file(doc_path.unwrap_or(Path::new("untitled.ron")));
-    if doc_path.is_none() {
-        options.base_dir = None;
-    }
-    for dir in with_subfolders(library) {
-        options = options.with_library(dir);
-    }
-    options
-}
-
-/// The folders with each one's `library` subfolder (when it has one) right after it.
-fn with_subfolders(dirs: &[PathBuf]) -> Vec<PathBuf> {
-    dirs.iter()
-        .flat_map(|d| {
-            let sub = d.join("library");
-            std::iter::once(d.clone()).chain(sub.is_dir().then_some(sub))
-        })
-        .collect()
-}
-
-/// One graph of the library.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LibraryEntry {
-    /// Shown name (the file stem).
-    pub name: String,
-    /// The file.
-    pub path: PathBuf,
-    /// The `source` a cluster node gets: the path relative to its library folder.
-    pub source: String,
-    /// The graph's description (or name).
-    pub doc: String,
-    /// Input and output port names.
-    pub ports: (Vec<String>, Vec<String>),
 }
 
 /// The graphs with an interface in the library folders, scanned on demand and cached by file
@@ -96,12 +66,12 @@ impl Library {
     pub fn scan(&mut self, registry: &Arc<Registry>) -> &[LibraryEntry] {
         let mut entries = Vec::new();
         let mut seen = std::collections::HashSet::new();
-        for dir in with_subfolders(&self.dirs) {
-            for path in crate::menus::examples_in(&dir) {
+        for dir in cnets_host::library_folders(&self.dirs) {
+            for path in cnets_host::graph_files(&dir).unwrap_or_default() {
                 let Some(name) = path.file_stem().map(|s| s.to_string_lossy().into_owned()) else {
                     continue;
                 };
-                if !seen.insert(name.clone()) {
+                if !seen.insert(name) {
                     continue; // an earlier folder has a graph of that name: it wins, as on load
                 }
                 let modified = std::fs::metadata(&path).and_then(|m| m.modified()).ok();
@@ -113,7 +83,8 @@ impl Library {
                 let entry = match cached {
                     Some(e) => e,
                     None => {
-                        let e = read_entry(&path, &name, registry, &self.dirs);
+                        let options = load_options(Some(&path), &self.dirs);
+                        let e = cnets_host::library_entry(&path, registry, &options).ok();
                         self.cache.insert(path.clone(), (modified, e.clone()));
                         e
                     }
@@ -124,67 +95,6 @@ impl Library {
         self.entries = entries;
         &self.entries
     }
-}
-
-fn read_entry(
-    path: &Path,
-    name: &str,
-    registry: &Arc<Registry>,
-    library: &[PathBuf],
-) -> Option<LibraryEntry> {
-    let doc = file::load_file_with(path, registry, &load_options(Some(path), library)).ok()?;
-    let interface = Interface::of(&doc.graph).ok()?;
-    if interface.is_empty() {
-        return None;
-    }
-    let names = |ports: &[cnets_engine::cluster::InterfacePort]| {
-        ports.iter().map(|p| p.port.name.to_string()).collect()
-    };
-    Some(LibraryEntry {
-        name: name.to_string(),
-        path: path.to_path_buf(),
-        source: path
-            .file_name()
-            .map_or_else(|| name.to_string(), |n| n.to_string_lossy().into_owned()),
-        doc: doc
-            .meta
-            .description
-            .or(doc.meta.name)
-            .unwrap_or_else(|| "a graph used as a node".to_string()),
-        ports: (names(&interface.inputs), names(&interface.outputs)),
-    })
-}
-
-/// The node definition of a cluster node with `source: "<source>"` in a graph loaded with
-/// `options`, built by the graph loader itself (same resolution, recursion check and
-/// diagnostics as a file load).
-pub fn cluster_def(
-    source: &str,
-    registry: &Arc<Registry>,
-    options: &LoadOptions,
-) -> Result<Arc<NodeDef>, String> {
-    let mut quoted = String::new();
-    file::literal::quote(&mut quoted, source);
-    let text = format!(
-        "(version: 1, nodes: {{ \"c\": (type: \"cluster\", source: {quoted}) }}, edges: [])"
-    );
-    let doc = file::load_str_with(&text, "library", registry, options).map_err(|e| {
-        e.diagnostics
-            .iter()
-            .map(|d| {
-                if d.file == "library" {
-                    d.message.clone()
-                } else {
-                    d.to_string()
-                }
-            })
-            .collect::<Vec<_>>()
-            .join("\n")
-    })?;
-    doc.graph
-        .node("c")
-        .map(|n| n.def.clone())
-        .ok_or_else(|| "the cluster did not load".to_string())
 }
 
 /// The cluster nodes of `graph` loaded from files: (node id, source as written, file).
@@ -262,7 +172,7 @@ mod tests {
     }
 
     #[test]
-    fn graphs_with_an_interface_are_listed_and_insert_as_file_clusters() {
+    fn graphs_with_an_interface_are_listed() {
         let registry = Arc::new(cnets_nodes::registry());
         let d = dir("scan");
         std::fs::write(d.join("twice.ron"), SUB).unwrap();
@@ -276,24 +186,20 @@ mod tests {
         let entries = lib.scan(&registry).to_vec();
         assert_eq!(entries.len(), 1, "{entries:?}");
         assert_eq!(entries[0].name, "twice");
-        assert_eq!(entries[0].doc, "twice its input");
         assert_eq!(entries[0].ports, (vec!["x".into()], vec!["y".into()]));
-        // Resolved through the library folder, from an untitled document elsewhere.
-        let def = cluster_def(
-            "twice.ron",
-            &registry,
-            &load_options(None, std::slice::from_ref(&d)),
+        // A changed file is read again (the cache is keyed by modification time).
+        std::fs::write(
+            d.join("twice.ron"),
+            SUB.replace("twice its input", "doubled"),
         )
         .unwrap();
-        let c = Cluster::of(&def).unwrap();
-        assert!(matches!(&c.source, ClusterSource::File { written, .. } if written == "twice.ron"));
-        let e = cluster_def(
-            "nope.ron",
-            &registry,
-            &load_options(None, std::slice::from_ref(&d)),
-        )
-        .unwrap_err();
-        assert!(e.contains("not found"), "{e}");
+        let later = std::time::SystemTime::now() + std::time::Duration::from_secs(5);
+        std::fs::File::options()
+            .write(true)
+            .open(d.join("twice.ron"))
+            .and_then(|f| f.set_modified(later))
+            .unwrap();
+        assert_eq!(lib.scan(&registry)[0].doc, "doubled");
         std::fs::remove_dir_all(&d).unwrap();
     }
 

@@ -358,16 +358,8 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
         .or(action)
 }
 
-/// Graph files of a folder (the examples menu), sorted.
+/// Graph files of a folder (the examples menu), sorted ([`cnets_host::graph_files`]; none when
+/// the folder cannot be read).
 pub fn examples_in(dir: &Path) -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map(|d| {
-            d.filter_map(Result::ok)
-                .map(|e| e.path())
-                .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-                .collect()
-        })
-        .unwrap_or_default();
-    v.sort();
-    v
+    cnets_host::graph_files(dir).unwrap_or_default()
 }

@@ -28,11 +28,6 @@ pub fn is_narrow(ctx: &egui::Context) -> bool {
     ctx.content_rect().width() < NARROW_WIDTH
 }
 
-/// Whether the narrow layout shows the node canvas (its tab is chosen).
-pub fn canvas_tab(ctx: &egui::Context) -> bool {
-    ctx.data(|d| d.get_temp::<Tab>(tab_id())) == Some(Tab::Graph)
-}
-
 /// Shows the node canvas's tab (a node picked in the 3D view's list of errors).
 pub fn show_canvas(ctx: &egui::Context) {
     ctx.data_mut(|d| d.insert_temp(tab_id(), Tab::Graph));

@@ -48,9 +48,6 @@ pub fn choice_options(node: &NodeInstance) -> Option<Vec<String>> {
         .collect()
 }
 
-/// `x` rounded to a thousandth of `range` (the engine's rule: [`cnets_engine::numbers`]).
-pub use cnets_engine::numbers::snap_to_range;
-
 /// Whether an input gets an inline editor (an item of a simple type, a list / tree port whose
 /// current value is a single number, or a `param.choice`'s options: one a line). An item port
 /// holding a literal list has none: it shows the list's summary instead
@@ -151,7 +148,7 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
                     x = if step > 0.0 {
                         cnets_engine::numbers::snap(x, min, step)
                     } else {
-                        snap_to_range(x, max - min)
+                        cnets_engine::numbers::snap_to_range(x, max - min)
                     };
                 }
                 changed
@@ -300,11 +297,6 @@ fn plane_name(p: &Plane) -> &'static str {
 mod tests {
     use super::*;
     use cnets_engine::Graph;
-
-    #[test]
-    fn dragged_values_snap_to_a_sensible_precision() {
-        assert_eq!(crate::mapper::snap(0.40179139375686646), 0.402);
-    }
 
     #[test]
     fn slider_range_comes_from_the_node() {

@@ -343,12 +343,6 @@ impl Worker {
         self.last_complete < self.seq
     }
 
-    /// Whether the newest submission's 3D view is not ready yet (the rest of the graph may still
-    /// be running).
-    pub fn preview_pending(&self) -> bool {
-        self.last_received < self.seq
-    }
-
     /// Blocks until the newest submission is answered completely or `timeout` passes; returns
     /// the last response.
     pub fn wait(&mut self, timeout: Duration) -> Option<EvalResponse> {
