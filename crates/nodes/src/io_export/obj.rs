@@ -13,17 +13,6 @@ fn vertex(out: &mut dyn Write, p: DVec3) -> std::io::Result<()> {
     writeln!(out, "v {} {} {}", p.x, p.y, p.z)
 }
 
-/// Encodes meshes, line sets and polylines as OBJ text (see [`write_obj`]).
-pub fn encode_obj(
-    meshes: &[&PolygonMesh],
-    lines: &[&[Line]],
-    polylines: &[&Polyline],
-) -> Result<String, String> {
-    let mut out = Vec::new();
-    write_obj(&mut out, meshes, lines, polylines)?;
-    String::from_utf8(out).map_err(|e| e.to_string())
-}
-
 /// Writes meshes, line sets and polylines as OBJ text into `out`, item by item (nothing is held
 /// beyond one line). Fails when there is nothing to export, a coordinate is not finite or the
 /// write fails (a cancelled export says "cancelled").

@@ -13,13 +13,6 @@ use cnets_engine::Value;
 use cnets_engine::value::json::JsonOut;
 use cnets_geometry::DVec3;
 
-/// The value as pretty-printed JSON text (runner encoding), with a final newline.
-pub fn encode_json(value: &Value) -> Result<String, String> {
-    let mut out = Vec::new();
-    write_json(&mut out, value)?;
-    String::from_utf8(out).map_err(|e| e.to_string())
-}
-
 /// Writes the value as pretty-printed JSON (runner encoding, streamed from the value: no JSON tree
 /// is built), with a final newline.
 pub fn write_json(out: &mut dyn Write, value: &Value) -> Result<(), String> {
@@ -125,13 +118,6 @@ impl Rows<'_> {
         }
         Ok(())
     }
-}
-
-/// The vertices of `value` as CSV text (see [`write_csv`]).
-pub fn encode_csv(value: &Value) -> Result<String, String> {
-    let mut out = Vec::new();
-    write_csv(&mut out, value)?;
-    String::from_utf8(out).map_err(|e| e.to_string())
 }
 
 /// Writes the vertices of `value` as CSV, row by row: header `item,index,row,col,x,y,z`;
