@@ -290,11 +290,6 @@ impl GraphDocument {
         }
     }
 
-    /// The canonical text of the graph being edited (the opened cluster's subgraph when inside one).
-    pub fn level_ron(&self) -> String {
-        file::to_ron(&self.graph, &self.meta)
-    }
-
     /// The document's own graph with every opened cluster rebuilt from its edited subgraph.
     pub fn compose(&self) -> Result<(Graph, GraphMeta, Rebuilt), String> {
         let (mut graph, mut meta) = (self.graph.clone(), self.meta.clone());
