@@ -2,7 +2,8 @@
 //!
 //! Each module declares its nodes with [`cnets_engine::node!`] and lists them in its `nodes()`
 //! function; [`registry`] collects every module. To add a node: declare it in the module of its
-//! category, add it to that module's `nodes()`, and regenerate `docs/nodes.md`
+//! category, add it to that module's `nodes()`, add its line to the frozen contract
+//! `signatures.txt` (the failing `node_contracts` test prints it) and regenerate `docs/nodes.md`
 //! (`cargo run -p cnets -- nodes --markdown > docs/nodes.md`).
 
 pub mod analysis;
