@@ -59,3 +59,32 @@ fn check_gradient_json_has_both_gradients() {
     assert_eq!(v["finite_differences"].as_array().unwrap().len(), 40);
     assert!(v["largest_relative_difference"].as_f64().unwrap() < 1e-5);
 }
+
+#[test]
+fn check_gradient_through_cut_and_mirror_is_exact() {
+    // The catamaran hull is cut by its symmetry plane and mirrored before it is measured against
+    // the reference (issue 32: before, the cut and the mirror took finite differences over all of
+    // their input coordinates).
+    let out = Command::new(env!("CARGO_BIN_EXE_cnets"))
+        .args(["optimize", "graphs/catamaran-hull.ron", "--check-gradient"])
+        .current_dir(workspace())
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("largest relative difference: "))
+        .unwrap_or_else(|| panic!("no difference line in:\n{text}"));
+    let value: f64 = line["largest relative difference: ".len()..]
+        .parse()
+        .unwrap();
+    assert!(value <= 1e-6, "{value}");
+    for node in ["half", "whole", "fit", "hull"] {
+        assert!(!text.contains(&format!("node '{node}'")), "{text}");
+    }
+}

@@ -31,6 +31,29 @@ pub struct Cut {
     pub mesh: PolygonMesh,
     /// The segments along which faces were cut (on the plane).
     pub section: Vec<Line>,
+    /// Where each vertex of `mesh` came from (for derivatives: the cut is piecewise linear in the
+    /// input vertices, its pieces set by the side of the plane each vertex is on).
+    pub sources: Vec<VertexSource>,
+}
+
+/// Where a vertex of a cut mesh came from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum VertexSource {
+    /// A copy of this input vertex.
+    Copy(u32),
+    /// The point where the edge between input vertices `lo` and `hi` (lo < hi) crosses the
+    /// plane: `p_lo + (p_hi − p_lo) d_lo / (d_lo − d_hi)`, d the signed distances (positive on
+    /// the kept side, non-zero and of opposite signs).
+    Cross {
+        /// The lower vertex index.
+        lo: u32,
+        /// The higher vertex index.
+        hi: u32,
+        /// The signed distance of `lo`.
+        d_lo: f64,
+        /// The signed distance of `hi`.
+        d_hi: f64,
+    },
 }
 
 /// Builds the output vertices: kept originals and shared edge crossings.
@@ -41,6 +64,7 @@ struct Builder<'a> {
     edges: HashMap<(u32, u32), u32>,
     out: Vec<DVec3>,
     on_plane: Vec<bool>,
+    sources: Vec<VertexSource>,
 }
 
 impl Builder<'_> {
@@ -51,6 +75,7 @@ impl Builder<'_> {
         let k = self.out.len() as u32;
         self.out.push(self.src[v as usize]);
         self.on_plane.push(self.d[v as usize] == 0.0);
+        self.sources.push(VertexSource::Copy(v));
         self.map[v as usize] = Some(k);
         k
     }
@@ -66,6 +91,12 @@ impl Builder<'_> {
         let k = self.out.len() as u32;
         self.out.push(p);
         self.on_plane.push(true);
+        self.sources.push(VertexSource::Cross {
+            lo: key.0,
+            hi: key.1,
+            d_lo: self.d[lo],
+            d_hi: self.d[hi],
+        });
         self.edges.insert(key, k);
         k
     }
@@ -105,6 +136,7 @@ pub fn cut_by_plane(
         edges: HashMap::new(),
         out: Vec::new(),
         on_plane: Vec::new(),
+        sources: Vec::new(),
     };
     let mut faces: Vec<Vec<u32>> = Vec::with_capacity(mesh.face_count());
     let mut section = Vec::new();
@@ -137,9 +169,11 @@ pub fn cut_by_plane(
         }
     }
     let mut remap = vec![u32::MAX; b.out.len()];
+    let mut sources = Vec::with_capacity(b.out.len());
     for (k, p) in b.out.iter().enumerate() {
         if used[k] {
             remap[k] = result.push_vertex(*p);
+            sources.push(b.sources[k]);
         }
     }
     for f in kept_faces {
@@ -149,6 +183,7 @@ pub fn cut_by_plane(
     Ok(Cut {
         mesh: result,
         section,
+        sources,
     })
 }
 

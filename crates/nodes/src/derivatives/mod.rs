@@ -5,11 +5,13 @@
 //! - math nodes: hand-written partial derivatives (`math`);
 //! - list nodes and mesh rows/columns, which only move numbers around: one *tagged* run
 //!   (`structural`) tells where every output number came from;
-//! - measure nodes (`measure`) and the construction kernels (`construction`).
+//! - measure nodes (`measure`) and the construction kernels (`construction`);
+//! - mesh cut, mirror, join and the transforms (`mesh_ops`): piecewise affine, with branches.
 
 mod construction;
 mod math;
 mod measure;
+mod mesh_ops;
 mod structural;
 
 use cnets_engine::NodeDef;
@@ -28,6 +30,13 @@ pub fn attach(defs: Vec<NodeDef>) -> Vec<NodeDef> {
             }
             if let Some(d) = measure::product(&id) {
                 return def.with_vjp(d);
+            }
+            if let Some(d) = mesh_ops::product(&id) {
+                let def = def.with_vjp(d);
+                return match mesh_ops::branch(&id) {
+                    Some(branch) => def.with_branch(branch),
+                    None => def,
+                };
             }
             if let Some(d) = construction::product(&id) {
                 let def = def.with_vjp(d);

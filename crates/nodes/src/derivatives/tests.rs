@@ -262,3 +262,132 @@ fn measure_products_match_differences() {
     );
     assert!(rel < 1e-6, "surface_distance (curved, 3 samples): {rel}");
 }
+
+fn plane(origin: [f64; 3], normal: [f64; 3]) -> Value {
+    Value::Plane(Arc::new(
+        Plane::from_normal(DVec3::from_array(origin), DVec3::from_array(normal)).unwrap(),
+    ))
+}
+
+#[test]
+fn mesh_operation_products_match_differences() {
+    // A plane across the grid at a slant: kept vertices and edge crossings, either side.
+    for flip in [false, true] {
+        let rel = compare(
+            "mesh.cut_by_plane",
+            &[
+                ("mesh", grid()),
+                ("plane", plane([1.55, 0.0, 0.0], [1.0, 0.3, 0.1])),
+                ("flip", Value::Boolean(flip)),
+            ],
+            &["mesh"],
+        );
+        assert!(rel < 1e-7, "cut_by_plane (flip {flip}): {rel}");
+    }
+    // Row 0 lies 0.01 from the plane: welded (projected), the rest reflected.
+    let rel = compare(
+        "mesh.mirror",
+        &[
+            ("mesh", grid()),
+            ("plane", plane([0.0, -0.01, 0.0], [0.0, 1.0, 0.0])),
+            ("tolerance", Value::Number(0.05)),
+        ],
+        &["mesh"],
+    );
+    assert!(rel < 1e-7, "mirror: {rel}");
+    let rel = compare(
+        "mesh.mirror",
+        &[
+            ("mesh", grid()),
+            ("plane", plane([-0.5, 0.0, 0.0], [1.0, 0.2, 0.3])),
+        ],
+        &["mesh"],
+    );
+    assert!(rel < 1e-7, "mirror (slanted): {rel}");
+    let other = {
+        let Value::QuadMesh(g) = grid() else {
+            unreachable!()
+        };
+        let mut g = (*g).clone();
+        g.vertices
+            .iter_mut()
+            .for_each(|p| *p += DVec3::new(0.3, 5.0, 0.2));
+        Value::QuadMesh(Arc::new(g))
+    };
+    let rel = compare(
+        "mesh.join",
+        &[("meshes", Value::list(vec![grid(), other]))],
+        &["meshes"],
+    );
+    assert!(rel < 1e-7, "join: {rel}");
+    let transform = [
+        ("translation", Value::Vector(DVec3::new(0.5, -1.0, 2.0))),
+        ("angle", Value::Number(37.0)),
+        ("axis", Value::Vector(DVec3::new(0.2, 0.3, 1.0))),
+        ("centre", Value::Point(DVec3::new(1.0, 0.5, 0.0))),
+        ("scale", Value::Number(1.3)),
+        ("mirror", plane([0.2, 0.0, 0.1], [0.3, 1.0, 0.2])),
+    ];
+    let mut named = vec![("mesh", grid())];
+    named.extend(transform.iter().cloned());
+    let rel = compare("mesh.transform", &named, &["mesh", "translation"]);
+    assert!(rel < 1e-7, "mesh.transform: {rel}");
+    let mut named = vec![(
+        "curve",
+        Value::Polyline(Arc::new(Polyline::open(vec![
+            DVec3::ZERO,
+            DVec3::new(1.0, 0.2, 0.3),
+            DVec3::new(2.0, -0.5, 0.1),
+        ]))),
+    )];
+    named.extend(transform.iter().cloned());
+    let rel = compare("curve.transform", &named, &["curve", "translation"]);
+    assert!(rel < 1e-7, "curve.transform: {rel}");
+}
+
+#[test]
+fn a_cut_reports_its_piece_and_a_vertex_changing_side_changes_it() {
+    let cut = def("mesh.cut_by_plane");
+    let branch = cut.branch.clone().expect("the cut has a branch function");
+    let run = |x: f64| {
+        let ins = inputs(
+            &cut,
+            &[
+                ("mesh", grid()),
+                ("plane", plane([x, 0.0, 0.0], [1.0, 0.0, 0.0])),
+            ],
+        );
+        let Value::QuadMesh(g) = &ins[0] else {
+            unreachable!()
+        };
+        let ins = [
+            vec![Value::Mesh(Arc::new(PolygonMesh::from(&**g)))],
+            ins[1..].to_vec(),
+        ]
+        .concat();
+        branch(&ins, &[]).unwrap()
+    };
+    let (a, b, c) = (run(1.5), run(1.6), run(2.5));
+    assert_eq!(a.key, b.key, "{} / {}", a.summary, b.summary);
+    assert_ne!(a.key, c.key, "{} / {}", a.summary, c.summary);
+    assert_eq!(a.summary, "vertices kept: 12 of 20, edges cut: 4");
+    let mirror = def("mesh.mirror")
+        .branch
+        .expect("the mirror has a branch function");
+    let m = |y: f64| {
+        let Value::QuadMesh(g) = grid() else {
+            unreachable!()
+        };
+        mirror(
+            &[
+                Value::Mesh(Arc::new(PolygonMesh::from(&*g))),
+                plane([0.0, y, 0.0], [0.0, 1.0, 0.0]),
+                Value::Number(0.05),
+            ],
+            &[],
+        )
+        .unwrap()
+    };
+    assert_eq!(m(-0.01).summary, "vertices welded on the plane: 5 of 20");
+    assert_ne!(m(-0.01).key, m(-0.1).key);
+}
