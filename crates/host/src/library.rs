@@ -226,56 +226,43 @@ mod tests {
         )
     }
 
-    const TWICE: &str = r#"(
-    version: 1,
-    description: "twice its input",
-    nodes: {
-        "x": (type: "graph.input", inputs: {"name": "x", "type": "number", "default": 2.0}),
-        "n": (type: "param.number", inputs: {"value": 1.0}),
-        "out": (type: "graph.output", inputs: {"name": "y", "type": "number"}),
-    },
-    edges: ["x.value -> out.value"],
-)"#;
-
-    fn dir(name: &str) -> PathBuf {
-        let d = std::env::temp_dir().join(format!("cnets-host-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&d);
-        std::fs::create_dir_all(&d).unwrap();
-        d
-    }
+    /// A library graph: half its input.
+    const HALF: &str = r#"(version: 1, description: "half its input", nodes: {
+        "x": (type: "graph.input", inputs: {"name": "x", "type": "number", "default": 4.0}),
+        "half": (type: "math.divide", inputs: {"b": 2.0}),
+        "y": (type: "graph.output", inputs: {"name": "half", "type": "number"}),
+    }, edges: ["x.value -> half.a", "half.result -> y.value"])"#;
 
     #[test]
     fn library_graphs_are_entries_and_their_sources_load_as_cluster_nodes() {
         let registry = Arc::new(cnets_nodes::registry());
-        let d = dir("entries");
+        let d = std::env::temp_dir().join(format!("cnets-host-entries-{}", std::process::id()));
         let sub = d.join("library");
+        let _ = std::fs::remove_dir_all(&d);
         std::fs::create_dir_all(&sub).unwrap();
-        std::fs::write(sub.join("twice.ron"), TWICE).unwrap();
-        std::fs::write(
-            d.join("plain.ron"),
-            "(version: 1, nodes: {\"n\": (type: \"param.number\")}, edges: [])",
-        )
-        .unwrap();
+        std::fs::write(sub.join("half.ron"), HALF).unwrap();
+        // A graph without an interface, and a file that is not a graph.
+        std::fs::write(d.join("plain.ron"), "(version: 1, nodes: {}, edges: [])").unwrap();
         std::fs::write(d.join("notes.txt"), "not a graph").unwrap();
         // A folder's `library` subfolder is searched right after it.
         let folders = library_folders(std::slice::from_ref(&d));
         assert_eq!(folders, vec![d.clone(), sub.clone()]);
         assert_eq!(graph_files(&d).unwrap(), vec![d.join("plain.ron")]);
-        let twice = sub.join("twice.ron");
+        let half = sub.join("half.ron");
         let entry = library_entry(
-            &twice,
+            &half,
             &registry,
-            &document_options(Some(&twice), std::slice::from_ref(&d)),
+            &document_options(Some(&half), std::slice::from_ref(&d)),
         )
         .unwrap();
         assert_eq!(
             entry,
             LibraryEntry {
-                name: "twice".into(),
-                path: twice.clone(),
-                source: "twice.ron".into(),
-                doc: "twice its input".into(),
-                ports: (vec!["x".into()], vec!["y".into()]),
+                name: "half".into(),
+                path: half.clone(),
+                source: "half.ron".into(),
+                doc: "half its input".into(),
+                ports: (vec!["x".into()], vec!["half".into()]),
             }
         );
         let plain = d.join("plain.ron");
@@ -286,9 +273,9 @@ mod tests {
         // From an untitled document elsewhere, the source resolves through the library folders.
         let untitled = document_options(None, std::slice::from_ref(&d));
         assert_eq!(untitled.base_dir, None);
-        let def = source_def("twice.ron", &registry, &untitled).unwrap();
+        let def = source_def("half.ron", &registry, &untitled).unwrap();
         let c = Cluster::of(&def).unwrap();
-        assert!(matches!(&c.source, ClusterSource::File { written, .. } if written == "twice.ron"));
+        assert!(matches!(&c.source, ClusterSource::File { written, .. } if written == "half.ron"));
         assert_eq!(def.inputs[0].name, "x");
         let e = source_def("nope.ron", &registry, &untitled)
             .unwrap_err()
