@@ -16,7 +16,7 @@ use crate::document::GraphDocument;
 use crate::edit::{self, Edit};
 use crate::export;
 use crate::file_dialog::{FileDialog, Outcome, Purpose};
-use crate::library::{ClusterWatch, Library, LibraryEntry};
+use crate::library::{ClusterWatch, Library};
 use crate::list_editor::ListEditors;
 use crate::load_failure::LoadFailure;
 use crate::menus::{self, MenuAction, MenuContext};
@@ -28,6 +28,7 @@ use crate::settings::Settings;
 use crate::unsaved::{self, Answer, Replace};
 use crate::viewport::{Viewport, ViewportAction, ViewportInput};
 use crate::worker::{Carry, NodeStatus, Worker};
+use cnets_host::LibraryEntry;
 
 pub use crate::viewport::GpuTarget;
 
@@ -182,7 +183,7 @@ impl EditorApp {
             Some(path) => match GraphDocument::open_with(
                 path,
                 &registry,
-                &crate::library::load_options(Some(path), &library_dirs),
+                &cnets_host::document_options(Some(path), &library_dirs),
             ) {
                 Ok(d) if copy => Some(d.into_untitled_copy()),
                 Ok(d) => Some(d),
@@ -303,7 +304,7 @@ impl EditorApp {
     pub fn restore(&mut self) {
         if let Some(r) = self.offer_restore.take() {
             let resolve = r.path.as_deref().or(r.origin.as_deref());
-            let options = crate::library::load_options(resolve, &self.library.dirs);
+            let options = cnets_host::document_options(resolve, &self.library.dirs);
             match GraphDocument::from_text_with(
                 &r.text,
                 "recovery",
@@ -366,7 +367,7 @@ impl EditorApp {
 
     /// Load options for the document (its folder, then the library folders).
     fn load_options(&self) -> cnets_engine::file::LoadOptions {
-        crate::library::load_options(self.doc.resolve_file(), &self.library.dirs)
+        cnets_host::document_options(self.doc.resolve_file(), &self.library.dirs)
     }
 
     /// The first cluster node among the nodes commands act on (selection, else focus).
@@ -428,11 +429,8 @@ impl EditorApp {
 
     /// Inserts a library graph as a cluster node at a canvas position; returns its id.
     pub fn add_library_cluster(&mut self, entry: &LibraryEntry, at: [f32; 2]) -> Option<String> {
-        let def = match crate::library::cluster_def(
-            &entry.source,
-            &self.registry,
-            &self.load_options(),
-        ) {
+        let def = match cnets_host::source_def(&entry.source, &self.registry, &self.load_options())
+        {
             Ok(d) => d,
             Err(e) => {
                 self.message = format!("cannot insert {}: {e}", entry.name);
@@ -475,7 +473,7 @@ impl EditorApp {
         let mut notes = Vec::new();
         let registry = self.registry.clone();
         for (id, written) in nodes {
-            match crate::library::cluster_def(&written, &registry, &options) {
+            match cnets_host::source_def(&written, &registry, &options) {
                 Ok(def) => {
                     match self
                         .doc
@@ -556,7 +554,7 @@ impl EditorApp {
         if self.is_example(path) {
             return self.open_example(path);
         }
-        let options = crate::library::load_options(Some(path), &self.library.dirs);
+        let options = cnets_host::document_options(Some(path), &self.library.dirs);
         match GraphDocument::open_with(path, &self.registry, &options) {
             Ok(d) => {
                 self.replace_doc(d);
@@ -580,7 +578,7 @@ impl EditorApp {
         {
             return self.open_text(&String::from_utf8_lossy(&bytes), path);
         }
-        let options = crate::library::load_options(Some(path), &self.library.dirs);
+        let options = cnets_host::document_options(Some(path), &self.library.dirs);
         match GraphDocument::open_with(path, &self.registry, &options) {
             Ok(d) => {
                 self.replace_doc(d.into_untitled_copy());
@@ -710,7 +708,7 @@ impl EditorApp {
     /// against its folder). When it does not load, the document stays and the diagnostics are
     /// shown. Returns whether it opened.
     pub fn open_text(&mut self, text: &str, origin: &Path) -> bool {
-        let options = crate::library::load_options(Some(origin), &self.library.dirs);
+        let options = cnets_host::document_options(Some(origin), &self.library.dirs);
         let name = origin.display().to_string();
         match GraphDocument::from_text_with(text, &name, None, &self.registry, &options) {
             Ok(mut d) => {

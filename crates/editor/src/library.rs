@@ -1,11 +1,14 @@
 //! The user library: folders of graph files with an interface (`graph.input` / `graph.output`
 //! nodes), shown in the palette's "Library" category and inserted as `cluster` nodes whose
-//! `source` is the file — resolved exactly as `cnets run --library DIR` resolves it
-//! ([`LoadOptions`]: next to the graph first, then each library folder, then `CNETS_LIBRARY`).
+//! `source` is the file. Reading a library graph, the load options of a document with its library
+//! folders and the cluster node of a `source` come from the host ([`cnets_host::library_entry`],
+//! [`cnets_host::document_options`], [`cnets_host::source_def`]): resolved as a graph file's
+//! cluster nodes are — next to the graph first, then each library folder, then `CNETS_LIBRARY`.
 //! A library folder's `library` subfolder is a library folder too (right after it): the examples
-//! folder `graphs/` ships its reusable clusters in `graphs/library/`.
+//! folder `graphs/` ships its reusable clusters in `graphs/library/`. This module keeps what the
+//! editor adds: the scan cached by modification time and the watch on cluster files.
 //!
-//! Also the watch on cluster files: [`ClusterWatch`] remembers the content of every file a cluster
+//! The watch on cluster files: [`ClusterWatch`] remembers the content of every file a cluster
 //! node of the graph being edited comes from and reports the files that changed, so the editor
 //! reloads those cluster nodes (new definition, wires kept where the ports still exist).
 
@@ -17,15 +20,7 @@ use std::time::SystemTime;
 
 use cnets_engine::cluster::{Cluster, ClusterSource};
 use cnets_engine::{Graph, Registry};
-
-/// One graph of the library (the host's: [`cnets_host::LibraryEntry`]).
-pub use cnets_host::LibraryEntry;
-/// Load options for a document at a path (its folder first; none for an untitled one) with the
-/// library folders after `CNETS_LIBRARY`'s ([`cnets_host::document_options`]).
-pub use cnets_host::document_options as load_options;
-/// The node definition of a cluster node with `source: "<source>"` in a graph loaded with the
-/// given options, built by the graph loader itself ([`cnets_host::source_def`]).
-pub use cnets_host::source_def as cluster_def;
+use cnets_host::LibraryEntry;
 
 /// The default user library folder: `$XDG_DATA_HOME/cnets/library`, else
 /// `~/.local/share/cnets/library`.
@@ -83,7 +78,7 @@ impl Library {
                 let entry = match cached {
                     Some(e) => e,
                     None => {
-                        let options = load_options(Some(&path), &self.dirs);
+                        let options = cnets_host::document_options(Some(&path), &self.dirs);
                         let e = cnets_host::library_entry(&path, registry, &options).ok();
                         self.cache.insert(path.clone(), (modified, e.clone()));
                         e
@@ -209,10 +204,10 @@ mod tests {
         let d = dir("watch");
         std::fs::write(d.join("twice.ron"), SUB).unwrap();
         let mut g = Graph::new(registry.clone());
-        let def = cluster_def(
+        let def = cnets_host::source_def(
             "twice.ron",
             &registry,
-            &load_options(None, std::slice::from_ref(&d)),
+            &cnets_host::document_options(None, std::slice::from_ref(&d)),
         )
         .unwrap();
         g.add_node_with_def("c", def).unwrap();

@@ -354,7 +354,7 @@ fn a_library_graph_appears_in_the_palette_and_inserts_a_working_cluster() {
     // The saved file loads back with the same library folder.
     let saved = lib.join("uses-twice.ron");
     h.state_mut().save_as(&saved);
-    let options = cnets_editor::library::load_options(Some(&saved), std::slice::from_ref(&lib));
+    let options = cnets_host::document_options(Some(&saved), std::slice::from_ref(&lib));
     cnets_engine::file::load_file_with(&saved, &h.state().registry, &options).expect("loads again");
     std::fs::remove_dir_all(&lib).unwrap();
 }

@@ -19,7 +19,7 @@ pub enum Pick {
     /// A registered node type.
     Type(String),
     /// A library graph, inserted as a cluster node.
-    Library(crate::library::LibraryEntry),
+    Library(cnets_host::LibraryEntry),
 }
 
 /// The palette window's state.
@@ -59,7 +59,7 @@ pub fn show(
     ctx: &egui::Context,
     state: &mut PaletteState,
     registry: &Registry,
-    library: &[crate::library::LibraryEntry],
+    library: &[cnets_host::LibraryEntry],
 ) -> Option<Pick> {
     if !state.open {
         return None;

@@ -136,9 +136,9 @@ pub fn search(registry: &Registry, query: &str) -> Vec<(String, Vec<Arc<NodeDef>
 
 /// Library graphs whose name, file or doc match `query` (every word, case-insensitive).
 pub fn search_library<'a>(
-    entries: &'a [crate::library::LibraryEntry],
+    entries: &'a [cnets_host::LibraryEntry],
     query: &str,
-) -> Vec<&'a crate::library::LibraryEntry> {
+) -> Vec<&'a cnets_host::LibraryEntry> {
     let words: Vec<String> = query.split_whitespace().map(str::to_lowercase).collect();
     entries
         .iter()
