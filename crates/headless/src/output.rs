@@ -35,10 +35,16 @@ pub fn json_line<T: serde::Serialize + ?Sized>(value: &T) -> Result<(), Failure>
         .map_err(Failure::from)
 }
 
-/// Writes formatted text and a newline to stderr; a failure to write is ignored.
+/// Writes formatted text and a newline to stderr; a failure to write is ignored. A line that
+/// quotes a long input (a 1 MB input name, a path of a million characters) says a short excerpt
+/// of it (`files::short_quotes`: quoted pieces over 200 characters, the line at most 4 000).
 pub fn error_line(args: std::fmt::Arguments<'_>) {
+    let line = std::fmt::format(args);
+    let line = cnets_engine::files::short_quotes(&line, 200);
     let mut err = io::stderr().lock();
-    let _ = err.write_fmt(args).and_then(|()| err.write_all(b"\n"));
+    let _ = err
+        .write_all(line.as_bytes())
+        .and_then(|()| err.write_all(b"\n"));
 }
 
 /// Flushes stdout (the end of every command), so a late write error is reported too.

@@ -78,3 +78,58 @@ fn a_flat_sum_of_150000_terms_evaluates() {
         r#"{"result":75000.0}"#
     );
 }
+
+/// Every error line of the command quotes long inputs as excerpts: a 1 MB input name, format or
+/// path, a 100 kB output name or `--set` target (issue 27 §3: "every error line that quotes
+/// input").
+#[test]
+fn long_inputs_in_any_error_line_are_quoted_short() {
+    let d = common::Folder::new("messages-lines");
+    let long = "k".repeat(1_000_000);
+    let inputs = [
+        ("param.number", format!(r#"{{"{long}": 1}}"#)),
+        (
+            "io.read_polylines",
+            format!(r#"{{"path": "a.csv", "format": "{long}"}}"#),
+        ),
+        ("io.read_polylines", format!(r#"{{"path": "{long}.csv"}}"#)),
+        ("io.read_polylines", format!(r#"{{"path": "{long}"}}"#)),
+    ];
+    for (node, json) in inputs {
+        std::fs::write(d.join("in.json"), json).unwrap();
+        let o = cnets_in(&d, &["eval", node, "--inputs", "in.json"]);
+        assert!(matches!(o.status.code(), Some(1 | 2)), "{node}");
+        let err = stderr(&o);
+        assert!(
+            err.contains("kkkk"),
+            "{node}: {}",
+            &err[..200.min(err.len())]
+        );
+        assert!(err.len() < 5_000, "{node}: {} bytes of errors", err.len());
+    }
+    std::fs::write(d.join("in.json"), "{}").unwrap();
+    let name = "o".repeat(100_000);
+    let o = cnets_in(
+        &d,
+        &[
+            "eval",
+            "math.add",
+            "--inputs",
+            "in.json",
+            "--outputs",
+            &name,
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).len() < 5_000, "{} bytes", stderr(&o).len());
+    std::fs::write(
+        d.join("g.ron"),
+        r#"(version: 1, nodes: { "n": (type: "param.number") }, edges: [])"#,
+    )
+    .unwrap();
+    for set in [format!("{name}.value=1"), format!("n.value={name}")] {
+        let o = cnets_in(&d, &["run", "g.ron", "--set", &set]);
+        assert_eq!(o.status.code(), Some(2), "{}", &stderr(&o)[..200]);
+        assert!(stderr(&o).len() < 5_000, "{} bytes", stderr(&o).len());
+    }
+}

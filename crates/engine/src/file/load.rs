@@ -416,22 +416,7 @@ fn text_field(loader: &mut Loader<'_>, value: &Node, name: &str) -> Option<Strin
 /// `message` with every quoted piece ('…') longer than 60 characters cut to an excerpt: an error
 /// about a 10 MB edge or a 10⁷-character type name quotes a short excerpt, not all of it.
 fn short_quotes(message: &str) -> String {
-    const MAX: usize = 60;
-    if message.chars().count() <= 4 * MAX {
-        return message.to_string();
-    }
-    let mut out = String::new();
-    for (k, piece) in message.split('\'').enumerate() {
-        if k > 0 {
-            out.push('\'');
-        }
-        if k % 2 == 1 && piece.chars().nth(MAX).is_some() {
-            out.push_str(&crate::files::excerpt(piece, MAX));
-        } else {
-            out.push_str(piece);
-        }
-    }
-    crate::files::excerpt(&out, 20 * MAX)
+    crate::files::short_quotes(message, 60)
 }
 
 fn load_nodes(loader: &mut Loader<'_>, nodes: &Node, graph: &mut Graph, failed: &mut Vec<String>) {

@@ -98,9 +98,52 @@ pub fn excerpt(text: &str, max: usize) -> String {
     out
 }
 
+/// `message` for an error line: when it is longer than `4 × max` characters, every quoted piece
+/// (`'…'`) longer than `max` becomes an excerpt of `max` characters and the whole at most `20 ×
+/// max` characters. An error that quotes a 10 MB edge, a 1 MB input name or a path of a million
+/// characters says a short excerpt, not all of it; short messages stay as they are.
+pub fn short_quotes(message: &str, max: usize) -> String {
+    if message.chars().nth(4 * max).is_none() {
+        return message.to_string();
+    }
+    let mut out = String::new();
+    for (k, piece) in message.split('\'').enumerate() {
+        if k > 0 {
+            out.push('\'');
+        }
+        if k % 2 == 1 && piece.chars().nth(max).is_some() {
+            out.push_str(&excerpt(piece, max));
+        } else {
+            out.push_str(piece);
+        }
+    }
+    if out.chars().nth(20 * max).is_some() {
+        excerpt(&out, 20 * max)
+    } else {
+        out
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_quotes_are_cut_and_short_messages_kept() {
+        let short = "unknown input 'x' for math.add\nvalid: a, b";
+        assert_eq!(short_quotes(short, 60), short);
+        // Lines of a longer message stay lines.
+        let lines = format!("{}\nUsage: cnets run", "a ".repeat(200));
+        assert_eq!(short_quotes(&lines, 60), lines);
+        let long = format!("unknown input '{}' for math.add", "k".repeat(1_000_000));
+        let cut = short_quotes(&long, 60);
+        assert_eq!(
+            cut,
+            format!("unknown input '{}…' for math.add", "k".repeat(60))
+        );
+        let unquoted = "p".repeat(1_000_000) + " is outside";
+        assert_eq!(short_quotes(&unquoted, 60).chars().count(), 1201);
+    }
 
     #[test]
     fn excerpts_are_short_and_escaped() {
