@@ -263,3 +263,53 @@ fn the_setup_round_trips_and_bad_references_are_located() {
     .unwrap_err();
     assert!(e.to_string().contains("the input is connected"), "{e}");
 }
+
+/// GRAPH with 0.5 added (a minimum of 0.5, not 0: a zero objective stops at once).
+fn offset_graph() -> String {
+    GRAPH
+        .replace("objective: \"f.sum\"", "objective: \"g.sum\"")
+        .replace("method: \"lbfgsb\"", "method: \"auto\"")
+        .replace(
+            "\"f\": (type: \"t.add\"),",
+            "\"f\": (type: \"t.add\"),\n        \"g\": (type: \"t.add\", inputs: {\"b\": 0.5}),",
+        )
+        .replace("\"sy.out -> f.b\"]", "\"sy.out -> f.b\", \"f.sum -> g.a\"]")
+}
+
+#[test]
+fn a_rerun_at_the_optimum_stops_there_without_nelder_mead() {
+    // At the optimum up to 1e-9 (as a run leaves it). (The catamaran rerun in the CLI tests is
+    // the case where no descent step exists: `optimize_cli.rs`.)
+    let text = offset_graph()
+        .replace(
+            "\"x\": (type: \"t.num\", inputs: {\"value\": 0.0})",
+            "\"x\": (type: \"t.num\", inputs: {\"value\": 3.000000001})",
+        )
+        .replace(
+            "\"y\": (type: \"t.num\", inputs: {\"value\": 0.0})",
+            "\"y\": (type: \"t.num\", inputs: {\"value\": -1.0})",
+        );
+    let doc = load(&text);
+    let setup = doc.meta.optimization.clone().unwrap();
+    let again = optimize(
+        &doc.graph,
+        &setup,
+        &Options::default(),
+        &NodeContext::default(),
+        &mut |_| {},
+    )
+    .unwrap();
+    assert!(!again.fell_back, "{:?} {:?}", again.stop, again.notes);
+    assert!(again.objective <= again.start, "{again:?}");
+    assert!(again.iterations <= 5, "{} iterations", again.iterations);
+    assert!(
+        matches!(&again.stop, Stop::Converged(_)),
+        "{:?}",
+        again.stop
+    );
+    assert!(
+        !again.notes.iter().any(|n| n.contains("Nelder–Mead")),
+        "{:?}",
+        again.notes
+    );
+}

@@ -88,3 +88,75 @@ fn check_gradient_through_cut_and_mirror_is_exact() {
         assert!(!text.contains(&format!("node '{node}'")), "{text}");
     }
 }
+
+/// A temporary folder with the catamaran hull graph and its reference.
+fn catamaran_copy(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("cnets-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("reference")).unwrap();
+    let graphs = workspace().join("graphs");
+    std::fs::copy(
+        graphs.join("catamaran-hull.ron"),
+        dir.join("catamaran-hull.ron"),
+    )
+    .unwrap();
+    std::fs::copy(
+        graphs.join("reference/catamaran-hull.obj"),
+        dir.join("reference/catamaran-hull.obj"),
+    )
+    .unwrap();
+    dir
+}
+
+fn cnets(dir: &Path, args: &[&str]) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_cnets"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn a_rerun_at_the_optimum_stops_there_and_says_why() {
+    let dir = catamaran_copy("rerun");
+    let (ok, text, err) = cnets(
+        &dir,
+        &["optimize", "catamaran-hull.ron", "--out", "fitted.ron"],
+    );
+    assert!(ok, "{text}\n{err}");
+    // Again from the optimum: before issue 32 `auto` fell back to Nelder–Mead there without a
+    // word and spent its 40 iterations changing nothing.
+    let (ok, text, err) = cnets(&dir, &["optimize", "fitted.ron"]);
+    assert!(ok, "{text}\n{err}");
+    let summary = text.lines().next().unwrap_or_default();
+    assert!(summary.contains("converged (at a minimum"), "{text}");
+    assert!(!text.contains("Nelder–Mead"), "{text}");
+    let iterations: usize = summary
+        .split(" in ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{summary}"));
+    assert!(iterations < 10, "{summary}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_failed_upstream_node_is_named_with_its_own_message() {
+    let dir = catamaran_copy("failed");
+    let graph = std::fs::read_to_string(dir.join("catamaran-hull.ron"))
+        .unwrap()
+        .replace("reference/catamaran-hull.obj", "reference/missing.obj");
+    std::fs::write(dir.join("broken.ron"), graph).unwrap();
+    let (ok, text, err) = cnets(&dir, &["optimize", "broken.ron"]);
+    assert!(!ok, "{text}");
+    assert!(
+        err.contains("comes from 'reference_hull', which failed; 'reference_hull' failed: cannot read 'reference/missing.obj'"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -274,6 +274,14 @@ pub fn optimize(
         stop = s;
         if !smooth && method == Method::Auto && iterations < max_iter {
             fell_back = true;
+            run.notes.push(format!(
+                "L-BFGS stopped after {iterations} iterations ({}) far from a minimum: the \
+                 objective is not smooth there; continued with Nelder–Mead (derivative-free)",
+                match &stop {
+                    Stop::Converged(why) => why.as_str(),
+                    _ => "stopped",
+                }
+            ));
         }
     }
     if method == Method::NelderMead || fell_back {
@@ -422,6 +430,33 @@ fn lbfgs(
             // step exists: that is convergence. Far from it (gradient still large, objective barely
             // reduced), the objective is not smooth: let Nelder–Mead take over.
             let reduced = f <= 1e-8 * run.start.abs();
+            // At a minimum already (a rerun at an optimum: the gradient is small in absolute
+            // terms, not relative to the start's), the first-order decrease the gradient promises
+            // over the whole box (or a unit step per unbounded variable) is below what the
+            // objective can resolve: that is convergence too, not a reason to leave L-BFGS.
+            let promised: f64 = pg
+                .iter()
+                .zip(x.iter().zip(run.lo.iter().zip(&run.hi)))
+                .map(|(g, (xi, (lo, hi)))| {
+                    let width = hi - lo;
+                    g.abs()
+                        * if width.is_finite() {
+                            width
+                        } else {
+                            xi.abs().max(1.0)
+                        }
+                })
+                .sum();
+            if f.is_finite() && promised <= 1e-6 * f.abs() {
+                return (
+                    Stop::Converged(format!(
+                        "at a minimum: no descent step, the gradient promises {promised:.1e}, \
+                         below 1e-6 of the objective"
+                    )),
+                    it - 1,
+                    true,
+                );
+            }
             let smooth = f.is_finite() && (gnorm < 1e-6 * g0 || reduced);
             return (
                 Stop::Converged("no descent step found".into()),

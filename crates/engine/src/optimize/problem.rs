@@ -5,7 +5,7 @@ use petgraph::stable_graph::NodeIndex;
 
 use super::leaves;
 use super::setup::{Setup, Variable};
-use crate::eval::{Evaluator, OutputMask};
+use crate::eval::{Evaluator, NodeResult, OutputMask};
 use crate::graph::Graph;
 use crate::node::NodeContext;
 use crate::value::Value;
@@ -282,19 +282,51 @@ impl Problem {
             .evaluator
             .result(&self.graph, &path.node)
             .ok_or_else(|| format!("{path} was not evaluated"))?;
-        let outputs = result.outputs().ok_or_else(|| {
-            format!(
-                "node '{}': {}",
-                path.node,
-                result.error().as_deref().unwrap_or("failed")
-            )
-        })?;
+        let outputs = result
+            .outputs()
+            .ok_or_else(|| self.failure_message(&path.node, result))?;
         let k = self
             .graph
             .node(&path.node)
             .and_then(|n| n.def.output_index(&path.port))
             .ok_or_else(|| format!("{path}: no such output"))?;
         path.get(&outputs.values[k])
+    }
+
+    /// Why `node` has no outputs: its own error, and when a failed node upstream blocked it, that
+    /// node's own message (the nearest failed nodes on every path, in the order found), so
+    /// "comes from 'reference_hull', which failed" is followed by why it failed.
+    fn failure_message(&self, node: &str, result: &NodeResult) -> String {
+        let mut message = format!(
+            "node '{node}': {}",
+            result.error().as_deref().unwrap_or("failed")
+        );
+        if !matches!(result, NodeResult::Blocked(_)) {
+            return message;
+        }
+        let Ok(start) = self.graph.index(node) else {
+            return message;
+        };
+        let mut seen = vec![false; self.graph.index_bound()];
+        let mut queue = std::collections::VecDeque::from([start]);
+        seen[start.index()] = true;
+        while let Some(k) = queue.pop_front() {
+            for s in self.graph.sources(k) {
+                if std::mem::replace(&mut seen[s.index()], true) {
+                    continue;
+                }
+                match self.evaluator.result_at(&self.graph, s) {
+                    Some(r) if r.is_failure() => {
+                        let id = self.graph.node_at(s).map_or("?", |n| n.id.as_str());
+                        let why = r.error().map(|e| e.into_owned()).unwrap_or_default();
+                        message.push_str(&format!("; '{id}' failed: {why}"));
+                    }
+                    Some(NodeResult::Blocked(_)) => queue.push_back(s),
+                    _ => {}
+                }
+            }
+        }
+        message
     }
 
     /// The graph with the values last applied.
