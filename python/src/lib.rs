@@ -58,9 +58,10 @@ fn registry() -> &'static Arc<Registry> {
 /// Nanoseconds the last node evaluation of [`eval`] took (the node alone: no conversion).
 static LAST_EVAL_NANOS: AtomicU64 = AtomicU64::new(0);
 
-/// A `CnetsError` with this message.
+/// A `CnetsError` with this message; long quoted inputs (a 1 MB input name, a path of a million
+/// characters) are cut to excerpts, as on the command line (`files::short_quotes`).
 pub(crate) fn error(message: impl Into<String>) -> PyErr {
-    CnetsError::new_err(message.into())
+    CnetsError::new_err(cnets_engine::files::short_quotes(&message.into(), 200))
 }
 
 /// Evaluates one node type on inputs (a dict by input name) and returns its outputs by name.

@@ -139,6 +139,10 @@ def test_errors_are_cnets_errors_with_the_engines_message(tmp_path):
         cnets.eval("cnets.constrct", directrix=d)
     with pytest.raises(cnets.CnetsError, match="unknown input 'nope'"):
         cnets.eval("math.add", nope=1)
+    # A long input is quoted as an excerpt (issue 27 §3), not echoed whole.
+    with pytest.raises(cnets.CnetsError, match="unknown input 'kkkk") as caught:
+        cnets.eval("math.add", **{"k" * 1_000_000: 1})
+    assert len(str(caught.value)) < 5_000
     with pytest.raises(cnets.CnetsError, match="missing required input 'directrix'"):
         cnets.eval("cnets.construct", generatrix=g)
     with pytest.raises(cnets.CnetsError, match="unknown output"):
