@@ -264,3 +264,65 @@ fn pictures_carry_their_legend_and_apices_only_when_asked() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn planarity_colours_every_previewed_mesh_and_names_the_mesh_of_its_figure() {
+    // The catamaran hull with its reference (an imported OBJ of non-planar quads) previewed: both
+    // are polygon meshes (the hull cut and mirrored). Before issue 32 they stayed grey in the
+    // planarity mode and the figure was the planar cone-net's.
+    let dir = std::env::temp_dir().join(format!("cnets-render-poly-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("reference")).unwrap();
+    let graphs = workspace().join("graphs");
+    std::fs::copy(
+        graphs.join("reference/catamaran-hull.obj"),
+        dir.join("reference/catamaran-hull.obj"),
+    )
+    .unwrap();
+    let text = std::fs::read_to_string(graphs.join("catamaran-hull.ron")).unwrap();
+    let at = text.find("\"reference_hull\": (").unwrap();
+    let hidden = at + text[at..].find("preview: false,").unwrap();
+    let text = format!(
+        "{}{}",
+        &text[..hidden],
+        &text[hidden + "preview: false,".len()..]
+    );
+    std::fs::write(dir.join("hull.ron"), text).unwrap();
+    let shot = |name: &str, color: &str| {
+        let out = dir.join(name);
+        let o = render(&[
+            dir.join("hull.ron").to_str().unwrap(),
+            "--png",
+            out.to_str().unwrap(),
+            "--size",
+            "800x450",
+            "--color",
+            color,
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        if let Some(keep) = std::env::var_os("CNETS_KEEP_RENDERS") {
+            let _ = std::fs::copy(&out, Path::new(&keep).join(name));
+        }
+        (
+            String::from_utf8_lossy(&o.stdout).into_owned(),
+            read_png(&out),
+        )
+    };
+    // Green to yellow (the not-planar end of the scale): g well above b. The surface's plain grey
+    // blue and the planar purple never are.
+    let greenish = |(w, h, pixels): &(u32, u32, Vec<u8>)| {
+        pixels
+            .chunks_exact(4)
+            .filter(|p| p[1] as i32 > p[2] as i32 + 40)
+            .count() as f64
+            / (w * h) as f64
+    };
+    let (line, planarity) = shot("planarity.png", "planarity");
+    assert!(
+        line.contains("max planarity") && line.contains("(reference_hull.mesh)"),
+        "{line}"
+    );
+    let (_, plain) = shot("plain.png", "plain");
+    assert!(greenish(&planarity) > 0.05, "{}", greenish(&planarity));
+    assert!(greenish(&plain) < 0.001, "{}", greenish(&plain));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -9,7 +9,7 @@ use web_time::Instant;
 
 use cnets_engine::{Evaluator, Graph, Value};
 use cnets_geometry::conenet::quad_planarity;
-use cnets_geometry::fabrication::FaceClass;
+use cnets_geometry::fabrication::{FaceClass, face_planarity};
 use cnets_geometry::{DVec3, QuadGrid};
 use cnets_render::palette::{self, ToleranceMap};
 use cnets_render::{Color, FaceColors, LineStyle, MeshStyle, PointStyle, Scene};
@@ -54,8 +54,12 @@ pub struct PreviewStats {
     pub vertices: usize,
     /// Faces of all previewed meshes.
     pub faces: usize,
-    /// Largest face planarity over all previewed quad meshes (`None` without quad meshes).
+    /// Largest face planarity over all previewed meshes, quad grids and polygon meshes (`None`
+    /// without faces).
     pub max_planarity: Option<f64>,
+    /// The mesh `max_planarity` is for (`node.output`, `[item]` in a list), when more than one
+    /// mesh is previewed (`None` with one: the figure is plainly its own).
+    pub max_planarity_mesh: Option<String>,
     /// Legend of the surface colours.
     pub legend: LegendInfo,
     /// Apex points drawn (the apices layer shown).
@@ -86,6 +90,8 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
         any_classes: false,
         planarity_range: None,
         picks: Picks::default(),
+        planarity_max: None,
+        planarity_meshes: 0,
     };
     // Planarity colours need one range over all meshes: collect meshes first.
     let mut meshes: Vec<PendingGrid> = Vec::new();
@@ -122,15 +128,13 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
         .iter()
         .map(|m| m.grid.quads().map(|(_, q)| quad_planarity(q)).collect())
         .collect();
-    let max = planarities
-        .iter()
-        .flatten()
-        .copied()
-        .filter(|v| v.is_finite())
-        .fold(None, |acc: Option<f64>, v| {
-            Some(acc.map_or(v, |a| a.max(v)))
-        });
-    b.stats.max_planarity = max;
+    for (m, p) in meshes.iter().zip(&planarities) {
+        b.note_planarity(p, &m.origin);
+    }
+    b.stats.max_planarity = b.planarity_max.as_ref().map(|(v, _)| *v);
+    if b.planarity_meshes > 1 {
+        b.stats.max_planarity_mesh = b.planarity_max.take().map(|(_, name)| name);
+    }
     if opts.color_mode == ColorMode::Planarity {
         // Anchored to tolerances, not fitted to the data (rounding noise is not a patchwork).
         b.planarity_range = Some(opts.planarity_map());
@@ -182,6 +186,10 @@ struct Builder {
     any_classes: bool,
     planarity_range: Option<ToleranceMap>,
     picks: Picks,
+    /// The largest face planarity so far and the mesh it is on.
+    planarity_max: Option<(f64, String)>,
+    /// Meshes with faces whose planarity was noted.
+    planarity_meshes: usize,
 }
 
 /// Support layers are drawn translucent so the surface they support stays visible.
@@ -189,7 +197,36 @@ const SUPPORT_COLOR: Color = Color::hex(0xc9a66b).with_alpha(170);
 const AXIS_COLOR: Color = Color::hex(0x2a9d5c);
 const CURVE_COLOR: Color = palette::LINE;
 
+impl Origin {
+    /// `node.output`, with `[item]` for an item of a list.
+    fn name(&self) -> String {
+        match self.item {
+            Some(k) => format!("{}.{}[{k}]", self.node, self.output),
+            None => format!("{}.{}", self.node, self.output),
+        }
+    }
+}
+
 impl Builder {
+    /// Counts a mesh's face planarities in the figure (the largest, and which mesh it is on).
+    fn note_planarity(&mut self, planarity: &[f64], origin: &Origin) {
+        if planarity.is_empty() {
+            return;
+        }
+        self.planarity_meshes += 1;
+        let Some(max) = planarity
+            .iter()
+            .copied()
+            .filter(|v| v.is_finite())
+            .reduce(f64::max)
+        else {
+            return;
+        };
+        if self.planarity_max.as_ref().is_none_or(|(m, _)| max > *m) {
+            self.planarity_max = Some((max, origin.name()));
+        }
+    }
+
     fn edges(&self) -> Option<LineStyle> {
         self.opts.shows(Layer::Edges).then(MeshStyle::default_edges)
     }
@@ -255,13 +292,28 @@ impl Builder {
                 };
                 self.stats.vertices += mesh.vertices.len();
                 self.stats.faces += mesh.face_count();
+                // Every polygon mesh counts in the planarity figure and is coloured by it in that
+                // mode (an imported reference, a cut and mirrored net), not only quad grids.
+                let planarity = face_planarity(mesh).unwrap_or_default();
+                self.note_planarity(&planarity, origin);
                 if show {
                     let color = if layer == Layer::Supports {
                         SUPPORT_COLOR
                     } else {
                         palette::SURFACE
                     };
-                    let style = MeshStyle::new(FaceColors::Uniform(color)).edges(self.edges());
+                    let colors: Option<Vec<Color>> = (self.opts.color_mode == ColorMode::Planarity
+                        && layer != Layer::Supports
+                        && planarity.len() == mesh.face_count())
+                    .then(|| {
+                        let map = self.opts.planarity_map();
+                        planarity.iter().map(|&v| map.color(v)).collect()
+                    });
+                    let faces = match &colors {
+                        Some(c) => FaceColors::PerFace(c),
+                        None => FaceColors::Uniform(color),
+                    };
+                    let style = MeshStyle::new(faces).edges(self.edges());
                     if self.scene.add_polygon_mesh(mesh, style).is_ok() {
                         self.picks.meshes.push(PickMesh {
                             node: origin.node.clone(),

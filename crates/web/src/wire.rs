@@ -475,6 +475,7 @@ fn stats(w: &mut Writer, s: &PreviewStats) {
     w.u64(s.vertices as u64);
     w.u64(s.faces as u64);
     w.opt(s.max_planarity.as_ref(), |w, p| w.f64(*p));
+    w.opt(s.max_planarity_mesh.as_ref(), |w, m| w.str(m));
     match &s.legend {
         LegendInfo::None => w.u8(0),
         LegendInfo::Classes(classes) => {
@@ -506,6 +507,7 @@ fn read_stats(r: &mut Reader) -> Res<PreviewStats> {
     let vertices = r.usize()?;
     let faces = r.usize()?;
     let max_planarity = r.opt(Reader::f64)?;
+    let max_planarity_mesh = r.opt(Reader::string)?;
     let legend = match r.u8()? {
         0 => LegendInfo::None,
         1 => {
@@ -543,6 +545,7 @@ fn read_stats(r: &mut Reader) -> Res<PreviewStats> {
         vertices,
         faces,
         max_planarity,
+        max_planarity_mesh,
         legend,
         apices: r.usize()?,
         build_ms: r.f64()?,
@@ -910,6 +913,7 @@ mod tests {
                 vertices: 6,
                 faces: 2,
                 max_planarity: Some(2e-3),
+                max_planarity_mesh: Some("net.mesh".into()),
                 legend: LegendInfo::Classes(vec![(FaceClass::Convex, 1)]),
                 apices: 0,
                 build_ms: 0.5,

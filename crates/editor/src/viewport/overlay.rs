@@ -14,7 +14,8 @@ fn font() -> egui::FontId {
     egui::FontId::proportional(12.0)
 }
 
-/// Paints the counts and the max planarity in the top-left corner.
+/// Paints the counts and the max planarity (naming its mesh when several are previewed) in the
+/// top-left corner.
 /// Returns the rectangle the text covers.
 pub fn paint_stats(ui: &Ui, rect: Rect, s: &PreviewStats) -> Rect {
     let painter = ui.painter_at(rect);
@@ -26,7 +27,11 @@ pub fn paint_stats(ui: &Ui, rect: Rect, s: &PreviewStats) -> Rect {
         } else {
             format_number(p)
         };
-        lines.push(format!("max planarity {shown}"));
+        // With several meshes previewed, the one the figure is for.
+        match &s.max_planarity_mesh {
+            Some(mesh) => lines.push(format!("max planarity {shown} ({mesh})")),
+            None => lines.push(format!("max planarity {shown}")),
+        }
     }
     let mut covered = Rect::NOTHING;
     for (k, line) in lines.iter().enumerate() {

@@ -189,9 +189,12 @@ pub fn render_png(
     // Atomic, and only over nothing or a regular file (never a FIFO or a device).
     cnets_engine::files::write_file(png, &bytes)
         .map_err(|e| Failure::usage(format!("cannot write the picture: {e}")))?;
-    let planarity = stats
-        .max_planarity
-        .map_or(String::new(), |p| format!(", max planarity {p:.1e}"));
+    // With several meshes previewed, the one the figure is for.
+    let planarity = match (stats.max_planarity, &stats.max_planarity_mesh) {
+        (Some(p), Some(mesh)) => format!(", max planarity {p:.1e} ({mesh})"),
+        (Some(p), None) => format!(", max planarity {p:.1e}"),
+        _ => String::new(),
+    };
     Ok(format!(
         "wrote {} ({width}x{height}, {} view, {} vertices, {} faces{planarity})",
         png.display(),
