@@ -1121,7 +1121,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             let label = ui
                 .add(egui::Label::new(port.name.as_ref()).sense(egui::Sense::click()))
                 .on_hover_text(format!("{} — {}", port.type_name(), port.doc));
-            if port.ty == ValueType::Number {
+            if crate::optimization::minimizable(port) {
                 label.context_menu(|ui| {
                     let path = ValuePath {
                         node: id.clone(),

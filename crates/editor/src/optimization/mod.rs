@@ -34,6 +34,35 @@ fn fmt(x: f64) -> String {
     crate::worker::format_number(x)
 }
 
+/// Whether an output may be the objective or a penalty: a single number (`ratios.table` is a table
+/// of numbers: offered before issue 32, the run then failed with "list<list<number>>, not a
+/// number").
+pub fn minimizable(port: &cnets_engine::PortDef) -> bool {
+    port.ty == cnets_engine::ValueType::Number && port.access == cnets_engine::Access::Item
+}
+
+/// Checks the bounds of the variables as typed: finite, and min ≤ max. A refusal names the
+/// variable; the setup is then left as it was (bounds are never rewritten silently).
+pub fn check_bounds(variables: &[Variable]) -> Result<(), String> {
+    for v in variables {
+        if !(v.min.is_finite() && v.max.is_finite()) {
+            return Err(format!(
+                "the bounds of {} must be numbers, got [{}, {}]",
+                v.input, v.min, v.max
+            ));
+        }
+        if v.min > v.max {
+            return Err(format!(
+                "the bounds of {} were not changed: min {} is above max {}",
+                v.input,
+                fmt(v.min),
+                fmt(v.max)
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// A setup still missing its objective or its variables (not stored in the file yet).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Draft {
@@ -133,6 +162,23 @@ impl OptimizationPanel {
         })
     }
 
+    /// Forgets the figures and the result of a run made for another objective than the stored
+    /// setup's (they would be read as this objective's).
+    pub fn clear_stale(&mut self, doc: &GraphDocument) {
+        if self.running.is_some() {
+            return;
+        }
+        let current = doc.meta.optimization.as_ref().map(|s| &s.objective);
+        let stale = match &self.result {
+            Some(Ok(f)) => current != Some(&f.setup.objective),
+            _ => false,
+        };
+        if stale {
+            self.iterations.clear();
+            self.result = None;
+        }
+    }
+
     /// Makes `path` the objective; returns a status message.
     pub fn set_objective(
         &mut self,
@@ -140,6 +186,17 @@ impl OptimizationPanel {
         path: ValuePath,
     ) -> Result<String, String> {
         let message = format!("optimization objective: minimize {path}");
+        if self.running.is_none()
+            && doc
+                .meta
+                .optimization
+                .as_ref()
+                .is_some_and(|s| s.objective != path)
+        {
+            // The figures shown were for the previous objective.
+            self.iterations.clear();
+            self.result = None;
+        }
         if doc.meta.optimization.is_some() {
             doc.edit(None, |_, meta| {
                 if let Some(s) = meta.optimization.as_mut() {
@@ -250,5 +307,69 @@ pub(crate) mod tests {
         assert!(doc.to_ron().contains("optimization: ("));
         assert!(doc.undo());
         assert!(doc.meta.optimization.is_none());
+    }
+
+    #[test]
+    fn bounds_are_refused_when_min_is_above_max_never_rewritten() {
+        let var = |min: f64, max: f64| Variable {
+            input: ValuePath::parse("n.value").unwrap(),
+            min,
+            max,
+        };
+        assert!(check_bounds(&[var(0.1, 2.0), var(0.5, 0.5)]).is_ok());
+        let e = check_bounds(&[var(0.1, 2.0), var(1.2, 0.95)]).unwrap_err();
+        assert!(e.contains("min 1.2 is above max 0.95"), "{e}");
+        assert!(e.contains("n.value"), "{e}");
+        assert!(check_bounds(&[var(f64::NAN, 1.0)]).is_err());
+        assert!(check_bounds(&[var(0.0, f64::INFINITY)]).is_err());
+    }
+
+    #[test]
+    fn only_single_number_outputs_can_be_minimized() {
+        let registry = cnets_nodes::registry();
+        let port = |id: &str, name: &str| {
+            let def = registry.get(id).unwrap();
+            let k = def.output_index(name).unwrap();
+            minimizable(&def.outputs[k])
+        };
+        assert!(port("measure.surface_distance", "symmetric"));
+        assert!(port("param.number", "value"));
+        assert!(!port("list.table", "table"), "a table of numbers");
+        assert!(!port("param.series", "values"), "a list of numbers");
+        assert!(!port("cnets.construct", "mesh"));
+    }
+
+    #[test]
+    fn a_new_objective_clears_the_previous_runs_figures() {
+        let mut doc = GraphDocument::from_parts(graph(), Default::default(), None);
+        let mut panel = OptimizationPanel::new(Arc::new(|| {}));
+        let var = Variable {
+            input: ValuePath::parse("n.value").unwrap(),
+            min: 0.1,
+            max: 2.0,
+        };
+        panel.add_variable(&mut doc, var, None).unwrap();
+        panel
+            .set_objective(&mut doc, ValuePath::parse("n.value").unwrap())
+            .unwrap();
+        let figure = Iteration {
+            iteration: 3,
+            objective: 0.25,
+            gradient: 1.0,
+            evaluations: 7,
+            node_runs: 9,
+            method: Method::Lbfgsb,
+        };
+        panel.iterations.push(figure.clone());
+        // The same objective again keeps them; another one clears them.
+        panel
+            .set_objective(&mut doc, ValuePath::parse("n.value").unwrap())
+            .unwrap();
+        assert_eq!(panel.iterations, vec![figure]);
+        panel
+            .set_objective(&mut doc, ValuePath::parse("m.y").unwrap())
+            .unwrap();
+        assert!(panel.iterations.is_empty());
+        assert!(panel.result.is_none());
     }
 }

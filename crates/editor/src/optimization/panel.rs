@@ -23,6 +23,7 @@ impl OptimizationPanel {
         base_dir: Option<PathBuf>,
     ) -> Option<String> {
         self.poll();
+        self.clear_stale(doc);
         let mut message = None;
         let mut say = |r: Result<String, String>| match r {
             Ok(m) => message = Some(m),
@@ -383,10 +384,9 @@ fn setup_editor(
     if key.is_none() && !structural {
         return None;
     }
-    for v in &mut edited.variables {
-        if v.min > v.max {
-            std::mem::swap(&mut v.min, &mut v.max);
-        }
+    // Refused where typed, with a message; never swapped or clamped silently.
+    if let Err(e) = super::check_bounds(&edited.variables) {
+        return Some(Err(e));
     }
     let keep = !edited.variables.is_empty();
     let r = doc.edit(if structural { None } else { key }, |_, meta| {
