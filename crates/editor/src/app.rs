@@ -143,6 +143,8 @@ pub struct EditorApp {
     pub view_errors_shown: Vec<String>,
     /// Where the parameter panel was drawn in the last frame (`None`: not shown), in points.
     pub parameters_rect: Option<egui::Rect>,
+    /// Where the parameter panel drew each value editor in the last frame: (node id, rectangle).
+    pub parameter_editors: Vec<(String, egui::Rect)>,
     /// The open table windows of literal lists (a node's **Edit…**).
     pub list_editors: ListEditors,
     /// The pointer's last position seen by [`EditorApp::raw_input`].
@@ -239,6 +241,7 @@ impl EditorApp {
             optimization: OptimizationPanel::new(options.wake),
             parameters_open: false,
             parameters_rect: None,
+            parameter_editors: Vec::new(),
             view_errors_shown: Vec::new(),
             list_editors: ListEditors::default(),
             pointer: None,
@@ -1303,6 +1306,7 @@ impl EditorApp {
         // the canvas behind a tab (crate::narrow).
         let narrow = crate::narrow::is_narrow(&ctx);
         self.parameters_rect = None;
+        self.parameter_editors.clear();
         egui::Panel::bottom("cnets-status").show(ui, |ui| {
             if narrow {
                 crate::narrow::status_bar(ui, &self.doc.title(), &self.message);
@@ -1490,7 +1494,10 @@ impl EditorApp {
     pub(crate) fn parameters_contents(&mut self, ui: &mut Ui) -> Vec<CanvasAction> {
         self.parameters_rect = Some(ui.clip_rect().intersect(ui.max_rect()));
         ui.heading("Parameters");
-        crate::parameters::show(ui, &self.doc.graph, &self.statuses)
+        let (actions, rects) =
+            crate::parameters::show_with_rects(ui, &self.doc.graph, &self.statuses);
+        self.parameter_editors = rects;
+        actions
     }
 
     /// The 3D view with its toolbar, and what it asked for carried out. `canvas_shown`: the

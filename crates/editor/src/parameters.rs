@@ -57,7 +57,18 @@ pub fn show(
     graph: &Graph,
     statuses: &std::collections::HashMap<String, crate::worker::NodeStatus>,
 ) -> Vec<CanvasAction> {
+    show_with_rects(ui, graph, statuses).0
+}
+
+/// [`show`], and where each parameter's value editor (slider, toggle, value list) was drawn:
+/// (node id, rectangle in points), for scripts and tests that drive the panel.
+pub fn show_with_rects(
+    ui: &mut egui::Ui,
+    graph: &Graph,
+    statuses: &std::collections::HashMap<String, crate::worker::NodeStatus>,
+) -> (Vec<CanvasAction>, Vec<(String, egui::Rect)>) {
     let mut actions = Vec::new();
+    let mut rects = Vec::new();
     let params = parameters(graph);
     let groups = cluster_groups(graph);
     egui::ScrollArea::vertical()
@@ -91,7 +102,10 @@ pub fn show(
                                     && let Some(k) = node.def.input_index(input)
                                 {
                                     ui.spacing_mut().slider_width = 160.0;
-                                    if let Some(value) = crate::widgets::input_editor(ui, node, k) {
+                                    let (changed, rect) =
+                                        crate::widgets::input_editor_with_rect(ui, node, k);
+                                    rects.push((id.clone(), rect));
+                                    if let Some(value) = changed {
                                         actions.push(CanvasAction::Edit(Edit::SetValue {
                                             node: id.clone(),
                                             input: input.to_string(),
@@ -124,7 +138,7 @@ pub fn show(
                     });
             }
         });
-    actions
+    (actions, rects)
 }
 
 #[cfg(test)]
