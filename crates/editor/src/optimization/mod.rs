@@ -28,7 +28,7 @@ pub use candidates::{
     Candidate, MAX_CANDIDATES, default_bounds, variable_candidates, variable_menu, whole_input,
 };
 pub use panel::{current_value, value_label};
-pub use run::{Finished, isolated};
+pub use run::{Finished, fold_warnings, isolated};
 
 fn fmt(x: f64) -> String {
     crate::worker::format_number(x)
@@ -337,6 +337,51 @@ pub(crate) mod tests {
         assert!(!port("list.table", "table"), "a table of numbers");
         assert!(!port("param.series", "values"), "a list of numbers");
         assert!(!port("cnets.construct", "mesh"));
+    }
+
+    #[test]
+    fn faces_left_not_plus_plus_are_a_warning() {
+        // The correction gallery graph: the same folding inputs uncorrected and repaired.
+        let registry = Arc::new(cnets_nodes::registry());
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../graphs/correction.ron");
+        let doc = cnets_engine::file::load_file(&path, &registry).unwrap();
+        let warnings = fold_warnings(&doc.graph, &cnets_engine::NodeContext::default());
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        assert!(warnings[0].starts_with("'nets': "), "{warnings:?}");
+        assert!(
+            warnings[0].contains("faces are not (++)(++)"),
+            "{warnings:?}"
+        );
+        // The editor's default net (every face (++)(++)): no warning.
+        let mut g = graph();
+        g.add_node("net", "cnets.construct").unwrap();
+        g.add_node("d", "curve.arc").unwrap();
+        g.add_node("gen", "curve.arc").unwrap();
+        for (node, input, value) in [
+            ("d", "radius", Value::Number(6.0)),
+            ("d", "end", Value::Number(150.0)),
+            ("d", "count", Value::Integer(19)),
+            (
+                "gen",
+                "centre",
+                Value::Point(glam::DVec3::new(8.0, 0.0, 0.0)),
+            ),
+            ("gen", "radius", Value::Number(2.0)),
+            ("gen", "start", Value::Number(100.0)),
+            ("gen", "end", Value::Number(260.0)),
+            ("gen", "count", Value::Integer(11)),
+            (
+                "gen",
+                "plane",
+                Value::Plane(Arc::new(cnets_geometry::Plane::ZX)),
+            ),
+        ] {
+            g.set_value(node, input, value).unwrap();
+        }
+        g.connect("d", "curve", "net", "directrix").unwrap();
+        g.connect("gen", "curve", "net", "generatrix").unwrap();
+        assert!(fold_warnings(&g, &cnets_engine::NodeContext::default()).is_empty());
     }
 
     #[test]

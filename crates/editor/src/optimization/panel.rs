@@ -178,6 +178,9 @@ impl OptimizationPanel {
                     o.evaluations,
                     o.node_runs,
                 ));
+                for w in &f.warnings {
+                    ui.colored_label(Color32::from_rgb(0xd9, 0x8c, 0x1a), format!("warning: {w}"));
+                }
                 ui.horizontal(|ui| {
                     if ui
                         .button("Accept")

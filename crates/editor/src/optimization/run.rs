@@ -9,8 +9,10 @@ use std::thread::JoinHandle;
 use web_time::{Duration, Instant};
 
 use cnets_engine::cluster::Cluster;
+use cnets_engine::eval::OutputMask;
 use cnets_engine::optimize::{self, Iteration, Outcome, Setup};
-use cnets_engine::{Graph, NodeContext};
+use cnets_engine::{Evaluator, Graph, NodeContext, Value};
+use cnets_geometry::fabrication::FaceClass;
 
 use super::{OptimizationPanel, fmt};
 use crate::document::GraphDocument;
@@ -25,11 +27,13 @@ pub struct Finished {
     pub view: Vec<String>,
     /// Wall time.
     pub seconds: f64,
+    /// Warnings about the fitted design (faces left not (++)(++)), shown with the result.
+    pub warnings: Vec<String>,
 }
 
 enum Message {
     Iteration(Iteration),
-    Done(Box<Result<Outcome, String>>),
+    Done(Box<Result<(Outcome, Vec<String>), String>>),
 }
 
 /// A run in progress (dropping it stops it and joins its thread).
@@ -86,7 +90,15 @@ impl OptimizationPanel {
                     let _ = tx.send(Message::Iteration(it.clone()));
                     wake();
                 });
-                let _ = tx.send(Message::Done(Box::new(result.map_err(|e| e.to_string()))));
+                // What the fit left: faces that are not (++)(++) (issue 32: a table fit left 55
+                // concave faces without a word).
+                let result = result
+                    .map(|outcome| {
+                        let warnings = fold_warnings(&outcome.graph, &ctx);
+                        (outcome, warnings)
+                    })
+                    .map_err(|e| e.to_string());
+                let _ = tx.send(Message::Done(Box::new(result)));
                 wake();
             })
             .map_err(|e| format!("cannot start the optimizer: {e}"))?;
@@ -130,9 +142,10 @@ impl OptimizationPanel {
                 if let Some(t) = run.thread.take() {
                     let _ = t.join();
                 }
-                self.result = Some(r.map(|outcome| Finished {
+                self.result = Some(r.map(|(outcome, warnings)| Finished {
                     setup: run.setup.clone(),
                     outcome,
+                    warnings,
                     view: run.view.clone(),
                     seconds: run.started.elapsed().as_secs_f64(),
                 }));
@@ -206,4 +219,69 @@ pub fn isolated(graph: &Graph) -> Graph {
         let _ = g.replace_def(&id, Arc::new(c.duplicate().node_def()));
     }
     g
+}
+
+/// Warnings about a fitted design: every construction (a node with `mesh` and `configurations`
+/// outputs) whose net has faces that are not (++)(++) — folded or concave, which a fit to a
+/// distance alone may leave — with their count.
+pub fn fold_warnings(graph: &Graph, ctx: &NodeContext) -> Vec<String> {
+    let mut request = Vec::new();
+    for (index, node) in graph.nodes() {
+        if !node.enabled {
+            continue;
+        }
+        if let (Some(m), Some(c)) = (
+            node.def.output_index("mesh"),
+            node.def.output_index("configurations"),
+        ) {
+            let mut mask = OutputMask::one(m);
+            mask.insert(c);
+            request.push((index, m, c, mask));
+        }
+    }
+    if request.is_empty() {
+        return Vec::new();
+    }
+    let mut eval = Evaluator::new();
+    let asked: Vec<_> = request.iter().map(|r| (r.0, r.3)).collect();
+    eval.evaluate_outputs(graph, &asked, ctx, &mut |_, _| {});
+    let mut warnings = Vec::new();
+    for (index, m, c, _) in request {
+        let Some(node) = graph.node_at(index) else {
+            continue;
+        };
+        let Some(outputs) = eval.result_at(graph, index).and_then(|r| r.outputs()) else {
+            continue;
+        };
+        let (Some(mesh), Some(confs)) = (outputs.computed(m), outputs.computed(c)) else {
+            continue;
+        };
+        // A construction mapped over a list gives lists of nets and of their tables.
+        let pairs: Vec<(&Value, &Value)> = match (mesh, confs) {
+            (Value::List(meshes), Value::List(tables)) if meshes.len() == tables.len() => {
+                meshes.iter().zip(tables.iter()).collect()
+            }
+            _ => vec![(mesh, confs)],
+        };
+        let (mut bad, mut faces) = (0, 0);
+        for (mesh, confs) in pairs {
+            if let Value::QuadMesh(grid) = mesh
+                && let Some(classes) = crate::preview::face_classes(grid, confs)
+            {
+                faces += classes.len();
+                bad += classes
+                    .iter()
+                    .filter(|c| !matches!(c, FaceClass::Convex | FaceClass::Unclassified))
+                    .count();
+            }
+        }
+        if bad > 0 {
+            warnings.push(format!(
+                "'{}': {bad} of {faces} faces are not (++)(++) after the fit (folded or concave): \
+                 check them before fabrication; tighter bounds or a penalty can keep them convex",
+                node.id
+            ));
+        }
+    }
+    warnings
 }
