@@ -9,6 +9,7 @@ use std::time::Duration;
 use cnets_editor::app::EditorApp;
 use cnets_engine::optimize::{Method, Stop};
 use common::{graphs_dir, harness, harness_with, settle, temp_config};
+use egui::accesskit::Role;
 use egui::{Modifiers, Pos2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -291,4 +292,53 @@ fn stop_cancels_a_run_and_revert_leaves_the_document_alone() {
         "Revert does not change the document"
     );
     assert_eq!(app.doc.history.undo_len(), steps);
+}
+
+#[test]
+fn a_typed_min_above_max_is_refused_with_a_message_and_not_stored() {
+    let mut h = tube("opt-bounds");
+    let before = h.state().doc.meta.optimization.clone().unwrap();
+    let (min, max) = (before.variables[0].min, before.variables[0].max);
+    assert!(max < 1.2, "{max}");
+    // The first spin button of the variables table is the first variable's min.
+    h.get_all_by_role(Role::SpinButton).next().unwrap().click();
+    h.run_steps(2);
+    h.get_all_by_role(Role::SpinButton).next().unwrap().focus();
+    h.run_steps(1);
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::A);
+    h.get_all_by_role(Role::SpinButton)
+        .next()
+        .unwrap()
+        .type_text("1.2");
+    h.run_steps(1);
+    h.key_press(egui::Key::Enter);
+    h.run_steps(3);
+    let app = h.state();
+    let after = app.doc.meta.optimization.clone().unwrap();
+    assert_eq!(
+        (after.variables[0].min, after.variables[0].max),
+        (min, max),
+        "the stored bounds are unchanged"
+    );
+    assert!(
+        app.message.contains("refused") && app.message.contains("is above max"),
+        "{}",
+        app.message
+    );
+    // A bound within range is stored as typed.
+    h.get_all_by_role(Role::SpinButton).next().unwrap().click();
+    h.run_steps(2);
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::A);
+    h.get_all_by_role(Role::SpinButton)
+        .next()
+        .unwrap()
+        .type_text("0.05");
+    h.run_steps(1);
+    h.key_press(egui::Key::Enter);
+    h.run_steps(3);
+    let after = h.state().doc.meta.optimization.clone().unwrap();
+    assert_eq!(
+        (after.variables[0].min, after.variables[0].max),
+        (0.05, max)
+    );
 }

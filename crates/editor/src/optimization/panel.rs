@@ -277,7 +277,10 @@ fn setup_editor(
                     .add(
                         egui::DragValue::new(&mut v.min)
                             .speed(speed)
-                            .max_decimals(6),
+                            .max_decimals(6)
+                            // A typed bound is checked when it is complete (Enter or focus
+                            // lost), not at every keystroke ("1" of "1.2").
+                            .update_while_editing(false),
                     )
                     .changed()
                 {
@@ -287,7 +290,10 @@ fn setup_editor(
                     .add(
                         egui::DragValue::new(&mut v.max)
                             .speed(speed)
-                            .max_decimals(6),
+                            .max_decimals(6)
+                            // A typed bound is checked when it is complete (Enter or focus
+                            // lost), not at every keystroke ("1" of "1.2").
+                            .update_while_editing(false),
                     )
                     .changed()
                 {
