@@ -36,7 +36,8 @@ bytes() { stat -c %s "$1"; }
 # wasm-opt runs on rustc's output, before wasm-bindgen: binaryen 108 (Debian 12) rewrites the
 # externref table wasm-bindgen adds into one the browser refuses at start-up ("function-typed
 # object must be null"), even with no passes; before wasm-bindgen there is no such table.
-if command -v wasm-opt >/dev/null 2>&1; then
+# CNETS_WASM_OPT=0 skips it (a quicker build while working on the page).
+if [ "${CNETS_WASM_OPT:-1}" != 0 ] && command -v wasm-opt >/dev/null 2>&1; then
   # The features rustc's wasm32 target turns on (binaryen 108 needs them named).
   echo "== wasm-opt -Os ($(wasm-opt --version))"
   started=$(date +%s)

@@ -19,6 +19,14 @@ pub fn effective_value(node: &NodeInstance, k: usize) -> Option<Value> {
 
 /// Slider range of a `param.number` node: its `min`, `max` and `step` values (defaults 0, 1, 0).
 pub fn slider_range(node: &NodeInstance) -> (f64, f64, f64) {
+    slider_range_or(node, 0.0, 1.0)
+}
+
+/// The integer slider's node type (its `value` is dragged within its `min`..`max`).
+pub const INTEGER_TYPE: &str = "param.integer";
+
+/// A node's `min`, `max` (ordered) and `step` values, with the defaults given.
+fn slider_range_or(node: &NodeInstance, min_default: f64, max_default: f64) -> (f64, f64, f64) {
     let get = |name: &str, fallback: f64| {
         node.def
             .input_index(name)
@@ -27,7 +35,7 @@ pub fn slider_range(node: &NodeInstance) -> (f64, f64, f64) {
             .filter(|v| v.is_finite())
             .unwrap_or(fallback)
     };
-    let (min, max) = (get("min", 0.0), get("max", 1.0));
+    let (min, max) = (get("min", min_default), get("max", max_default));
     let (min, max) = if min <= max { (min, max) } else { (max, min) };
     (min, max, get("step", 0.0).max(0.0))
 }
@@ -165,9 +173,14 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
                 Some(v) => v.as_f64().map_or(0, |x| x as i64),
                 None => 0,
             };
-            ui.add(egui::DragValue::new(&mut i).speed(0.1))
-                .changed()
-                .then_some(Value::Integer(i))
+            let mut drag = egui::DragValue::new(&mut i).speed(0.1);
+            // An integer slider's value stays in its own `min`..`max` (Grasshopper's integer
+            // slider); the node would clamp it anyway, with a warning.
+            if node.def.id == INTEGER_TYPE && port.name == "value" {
+                let (min, max, _) = slider_range_or(node, 0.0, 10.0);
+                drag = drag.range(min as i64..=max as i64);
+            }
+            ui.add(drag).changed().then_some(Value::Integer(i))
         }
         ValueType::Boolean => {
             let mut b = matches!(current, Some(Value::Boolean(true)));

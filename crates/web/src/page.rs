@@ -361,20 +361,48 @@ impl WebApp {
             "vertices",
             JsValue::from_f64(self.app.viewport.stats.vertices as f64),
         );
-        // The first slider on the canvas (in view), else the first of the graph.
-        let sliders: Vec<String> = self
-            .app
-            .doc
-            .graph
-            .nodes()
-            .filter(|(_, n)| n.def.id == "param.number")
-            .map(|(_, n)| n.id.clone())
-            .collect();
-        let slider = sliders
+        // The first number slider on the canvas (in view), else the first integer one there,
+        // else the first number slider of the graph.
+        let of_type = |t: &str| -> Vec<String> {
+            self.app
+                .doc
+                .graph
+                .nodes()
+                .filter(|(_, n)| n.def.id == t)
+                .map(|(_, n)| n.id.clone())
+                .collect()
+        };
+        let (numbers, integers) = (of_type("param.number"), of_type("param.integer"));
+        let in_view = |id: &&String| cnets_editor::view_errors::in_view(&self.app.canvas, id);
+        let drawn = |id: &&String| self.app.canvas.editor_screen_rect(id, "value").is_some();
+        let slider = numbers
             .iter()
-            .find(|id| cnets_editor::view_errors::in_view(&self.app.canvas, id))
-            .or(sliders.first())
+            .filter(in_view)
+            .chain(integers.iter().filter(in_view))
+            .find(drawn)
+            .or_else(|| numbers.iter().chain(integers.iter()).find(drawn))
+            .or(numbers.first())
             .cloned();
+        // The parameter panel's value editors: {id, type, rect, value}.
+        let panel = js_sys::Array::new();
+        for (id, r) in &self.app.parameter_editors {
+            let Some(node) = self.app.doc.graph.node(id) else {
+                continue;
+            };
+            let e = js_sys::Object::new();
+            let put = |k: &str, v: JsValue| {
+                let _ = js_sys::Reflect::set(&e, &k.into(), &v);
+            };
+            put("id", id.as_str().into());
+            put("type", node.def.id.as_ref().into());
+            put("rect", rect(*r));
+            let value = cnets_editor::parameters::edited_input(&node.def.id)
+                .and_then(|input| node.value_of(input))
+                .and_then(cnets_engine::Value::as_f64);
+            put("value", value.map_or(JsValue::NULL, JsValue::from_f64));
+            panel.push(&e);
+        }
+        set("panel", panel.into());
         if let Some(id) = slider {
             if let Some(r) = self.app.canvas.editor_screen_rect(&id, "value") {
                 // The rail is the left part of the editor; the value box follows it.
