@@ -15,6 +15,9 @@ pub struct LoadFailure {
     pub text: Option<String>,
     /// Scroll the text to the first problem in the next frame.
     scroll_pending: bool,
+    /// What the dialog says of the document: kept (a file failed over an open document), or
+    /// none opened in its place (the web page's link at start).
+    pub kept_document: bool,
 }
 
 impl LoadFailure {
@@ -25,6 +28,7 @@ impl LoadFailure {
             diagnostics: error.lines().map(str::to_string).collect(),
             text: None,
             scroll_pending: false,
+            kept_document: true,
         }
     }
 
@@ -48,7 +52,11 @@ impl LoadFailure {
         egui::Modal::new(egui::Id::new("cnets-load-failure")).show(ctx, |ui| {
             ui.set_max_width(760.0);
             ui.heading(format!("Cannot open {name}"));
-            ui.label("The graph was not loaded; the document you had open is unchanged.");
+            ui.label(if self.kept_document {
+                "The graph was not loaded; the document you had open is unchanged."
+            } else {
+                "The graph was not loaded; nothing was opened in its place."
+            });
             ui.add_space(4.0);
             egui::ScrollArea::vertical()
                 .id_salt("diagnostics")

@@ -180,14 +180,17 @@ impl WebApp {
                     } else {
                         // The dialog lists the graph's problems; no other graph stands in.
                         self.app.open_empty(&format!("{SHARED} (not opened)"));
+                        if let Some(f) = &mut self.app.load_failure {
+                            f.kept_document = false;
+                        }
                     }
                 }
                 Err(e) => {
                     self.app.open_empty(&format!("{SHARED} (not opened)"));
-                    self.app.load_failure = Some(LoadFailure::new(
-                        Path::new("the shared link"),
-                        &format!("{e}."),
-                    ));
+                    let mut failure =
+                        LoadFailure::new(Path::new("the shared link"), &format!("{e}."));
+                    failure.kept_document = false;
+                    self.app.load_failure = Some(failure);
                     self.app.message = format!("cannot open the link: {e}");
                 }
             }
