@@ -735,7 +735,19 @@ pub struct RecordingPin {
     sink: Rc<RefCell<HashMap<PinKey, Pos2>>>,
 }
 
+/// How much wider and taller a pin's hit area is than its drawn size: 16 points for the 9-point
+/// pins, so the whole of a triangle (which reaches 5.8 points from its centre) starts a wire, not
+/// a drag of the node, and the content beside a pin (12 points from its centre) stays clear.
+const PIN_HIT: f32 = 16.0 / 9.0;
+
 impl SnarlPin for RecordingPin {
+    fn pin_rect(&self, x: f32, y0: f32, y1: f32, size: f32) -> Rect {
+        Rect::from_center_size(
+            egui::pos2(x, (y0 + y1) * 0.5),
+            egui::vec2(size, size) * PIN_HIT,
+        )
+    }
+
     fn draw(
         self,
         snarl_style: &SnarlStyle,
@@ -744,7 +756,9 @@ impl SnarlPin for RecordingPin {
         painter: &egui::Painter,
     ) -> PinWireInfo {
         self.sink.borrow_mut().insert(self.key, rect.center());
-        self.info.draw(snarl_style, style, rect, painter)
+        // Drawn at its own size inside the larger hit area.
+        let drawn = rect.scale_from_center(1.0 / PIN_HIT);
+        self.info.draw(snarl_style, style, drawn, painter)
     }
 }
 

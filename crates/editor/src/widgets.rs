@@ -161,9 +161,7 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
                 }
                 changed
             } else {
-                let speed = (x.abs() * 0.01).max(0.01);
-                ui.add(egui::DragValue::new(&mut x).speed(speed).max_decimals(6))
-                    .changed()
+                ui.add(number_drag(&mut x)).changed()
             };
             (changed && x.is_finite()).then_some(Value::Number(x))
         }
@@ -306,6 +304,45 @@ fn plane_name(p: &Plane) -> &'static str {
     "custom"
 }
 
+/// A number's drag value: shown with all its significant digits ([`exact_number`]: `1e-6`,
+/// `1.124e-16`, `0.01`, `12.5`, `1.5e9`, never rounded to `0.00`), typed in any form Rust reads
+/// (`1e-6`, `0.000001`, `−2`), dragged by a hundredth of its size a point (0.01 at zero) so a
+/// small tolerance stays small.
+pub fn number_drag(x: &mut f64) -> egui::DragValue<'_> {
+    let speed = if *x == 0.0 || !x.is_finite() {
+        0.01
+    } else {
+        x.abs() * 0.01
+    };
+    egui::DragValue::new(x)
+        .speed(speed)
+        .custom_formatter(|x, _| exact_number(x))
+        .custom_parser(parse_number)
+}
+
+/// `x` as the shortest text that reads back as the same number: decimal from 0.001 to a million
+/// (`0.01`, `12.5`), scientific outside (`1e-6`, `1.124e-16`, `1.5e9`). Committing a field
+/// without typing never changes its value.
+pub fn exact_number(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    if !x.is_finite() || (1e-3..1e6).contains(&x.abs()) {
+        return x.to_string();
+    }
+    format!("{x:e}")
+}
+
+/// A typed number: whitespace ignored, the minus sign (U+2212) read as `-`, `1e-6` and `1E-6`.
+fn parse_number(text: &str) -> Option<f64> {
+    let text: String = text
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .map(|c| if c == '\u{2212}' { '-' } else { c })
+        .collect();
+    text.parse().ok()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -337,5 +374,23 @@ mod tests {
             "a list port holding one number gets a number field"
         );
         assert!(has_editor(n, k("normalized")));
+    }
+
+    #[test]
+    fn numbers_keep_their_significant_digits() {
+        for (x, text) in [
+            (1e-6, "1e-6"),
+            (1.124e-16, "1.124e-16"),
+            (0.01, "0.01"),
+            (12.5, "12.5"),
+            (1.5e9, "1.5e9"),
+            (0.0, "0"),
+            (-0.25, "-0.25"),
+        ] {
+            assert_eq!(exact_number(x), text);
+            assert_eq!(parse_number(text), Some(x), "{text} reads back");
+        }
+        assert_eq!(parse_number(" \u{2212}2 "), Some(-2.0));
+        assert_eq!(parse_number("1E-6"), Some(1e-6));
     }
 }

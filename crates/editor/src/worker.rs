@@ -699,13 +699,18 @@ pub fn format_ms(ms: f64) -> String {
     }
 }
 
-/// A number with at most 4 significant decimals, no trailing zeros.
+/// A number with at most 4 significant decimals, no trailing zeros; below 0.001 and from a
+/// million on in scientific notation with up to 4 significant digits (`1e-6`, `1.124e-16`,
+/// `1.5e9`), so a small number never reads as `0`.
 pub fn format_number(x: f64) -> String {
     if !x.is_finite() {
         return x.to_string();
     }
     if x != 0.0 && (x.abs() < 1e-3 || x.abs() >= 1e6) {
-        return format!("{x:.3e}");
+        let s = format!("{x:.3e}");
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        return format!("{mantissa}e{exponent}");
     }
     let s = format!("{x:.4}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
@@ -940,5 +945,11 @@ mod tests {
         assert_eq!(format_number(2.0), "2");
         assert_eq!(format_number(1.0 / 3.0), "0.3333");
         assert_eq!(format_number(-0.0), "0");
+        assert_eq!(format_number(1e-6), "1e-6");
+        assert_eq!(format_number(1.124e-16), "1.124e-16");
+        assert_eq!(format_number(0.01), "0.01");
+        assert_eq!(format_number(12.5), "12.5");
+        assert_eq!(format_number(1.5e9), "1.5e9");
+        assert_eq!(format_number(-2.5e-4), "-2.5e-4");
     }
 }

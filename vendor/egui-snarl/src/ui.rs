@@ -1709,9 +1709,12 @@ where
         outputs_ui.scope_builder(builder, |pin_ui| {
             // Allocate space for pin shape.
             if let Some(output_spacing) = output_spacing {
-                let min = pin_ui.next_widget_position();
+                // cnets: the layout runs right to left, so the pin's space ends at the cursor
+                // (upstream placed it right of the cursor, which reserved nothing and let the
+                // last characters of an output's text run under the pin).
+                let max = pin_ui.next_widget_position();
                 pin_ui.advance_cursor_after_rect(Rect::from_min_size(
-                    min,
+                    pos2(max.x - output_spacing, max.y),
                     vec2(output_spacing, pin_size),
                 ));
             }

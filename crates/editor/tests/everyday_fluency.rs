@@ -1,0 +1,193 @@
+//! Everyday fluency on the canvas (issue 26, point 5): numbers shown with their significant
+//! digits and never clipped, labels ellipsised with the full text in a tooltip, the first click
+//! after a wire drag, and the hit area of a triangle pin.
+
+mod common;
+
+use cnets_editor::EditorApp;
+use cnets_editor::worker::NodeStatus;
+use common::{harness, settle};
+use egui::accesskit::Role;
+use egui::{Pos2, Rect};
+use egui_kittest::Harness;
+use egui_kittest::kittest::{NodeT, Queryable};
+
+type H = Harness<'static, EditorApp>;
+
+fn set_number(h: &mut H, node: &str, input: &str, x: f64) {
+    h.state_mut()
+        .doc
+        .edit(None, |g, _| {
+            g.set_value(node, input, cnets_engine::Value::Number(x))
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        })
+        .unwrap();
+}
+
+fn show_node(h: &mut H, id: &str) {
+    h.run_steps(2);
+    let centre = h.state().canvas.node_rect(id).expect("drawn").center();
+    h.state_mut().canvas.zoom_to(1.0, Some(centre));
+    h.run_steps(4);
+}
+
+/// A widget's rectangle on the screen (widgets on the canvas have canvas coordinates).
+fn on_screen(h: &H, canvas: Rect) -> Rect {
+    let c = &h.state().canvas;
+    Rect::from_min_max(c.to_screen(canvas.min), c.to_screen(canvas.max))
+}
+
+fn output_summary(h: &H, node: &str, k: usize) -> String {
+    match &h.state().statuses[node] {
+        NodeStatus::Ok { outputs, .. } => outputs[k].clone(),
+        other => panic!("{other:?}"),
+    }
+}
+
+/// A click of the primary button, a frame for each step.
+fn click(h: &mut H, at: Pos2) {
+    h.hover_at(at);
+    h.run_steps(1);
+    h.drag_at(at);
+    h.run_steps(1);
+    h.drop_at(at);
+    h.run_steps(2);
+}
+
+#[test]
+fn numbers_show_their_significant_digits_unclipped() {
+    let mut h = harness("numbers");
+    // Multiply: the output is the product, the inputs are number drag values.
+    let id = h
+        .state_mut()
+        .add_node("math.multiply", [0.0, 720.0])
+        .unwrap();
+    set_number(&mut h, &id, "a", 1.124e-16);
+    set_number(&mut h, &id, "b", 1e-6);
+    settle(&mut h);
+    show_node(&mut h, &id);
+    let node = h.state().canvas.node_screen_rect(&id).unwrap();
+    // The output's summary, whole and inside the node.
+    let product = output_summary(&h, &id, 0);
+    assert_eq!(product, "1.124e-22");
+    let label = h.get_by_label(product.as_str());
+    let r = on_screen(&h, label.rect());
+    assert!(
+        node.contains_rect(r.shrink(0.5)),
+        "the summary {r:?} lies in the node {node:?}"
+    );
+    // Each input's drag value shows the number's digits (not "0.00"), whole.
+    for text in ["1.124e-16", "1e-6"] {
+        let field = h
+            .get_all_by_role(Role::SpinButton)
+            .find(|n| n.value().as_deref() == Some(text))
+            .unwrap_or_else(|| panic!("a drag value showing {text}"));
+        let r = on_screen(&h, field.rect());
+        assert!(
+            node.contains_rect(r.shrink(0.5)),
+            "{text}: {r:?} in {node:?}"
+        );
+    }
+    h.snapshot("fluency_small_numbers");
+
+    // The other cases, each a drag value and the summary of its product with 1.
+    for (x, text) in [(0.01, "0.01"), (12.5, "12.5"), (1.5e9, "1.5e9")] {
+        set_number(&mut h, &id, "a", x);
+        set_number(&mut h, &id, "b", 1.0);
+        settle(&mut h);
+        h.run_steps(2);
+        assert_eq!(output_summary(&h, &id, 0), text);
+        assert!(
+            h.get_all_by_role(Role::SpinButton)
+                .any(|n| n.value().as_deref() == Some(text)),
+            "a drag value showing {text}"
+        );
+        let node = h.state().canvas.node_screen_rect(&id).unwrap();
+        let label = h
+            .query_all_by_label(text)
+            .find(|n| n.accesskit_node().role() != Role::SpinButton)
+            .unwrap_or_else(|| panic!("the summary {text}"));
+        let r = on_screen(&h, label.rect());
+        assert!(
+            node.contains_rect(r.shrink(0.5)),
+            "{text}: {r:?} in {node:?}"
+        );
+    }
+
+    // Typing a number in scientific notation sets it.
+    let field = h
+        .get_all_by_role(Role::SpinButton)
+        .find(|n| n.value().as_deref() == Some("12.5"))
+        .is_none();
+    assert!(field, "a is 1.5e9 now");
+    let at = {
+        let f = h
+            .get_all_by_role(Role::SpinButton)
+            .find(|n| n.value().as_deref() == Some("1.5e9"))
+            .unwrap();
+        on_screen(&h, f.rect()).center()
+    };
+    click(&mut h, at);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    // The drag value being edited as text keeps its role.
+    h.get_by(|n| n.role() == Role::SpinButton && n.is_focused())
+        .type_text("2.5e-7");
+    h.run_steps(1);
+    h.key_press(egui::Key::Enter);
+    h.run_steps(2);
+    settle(&mut h);
+    let a = h.state().doc.graph.node(&id).unwrap().value(0).cloned();
+    assert_eq!(a, Some(cnets_engine::Value::Number(2.5e-7)));
+    assert_eq!(output_summary(&h, &id, 0), "2.5e-7");
+}
+
+/// Drags with the primary button from `a` to `b` in a few moves, a frame or two each.
+fn drag(h: &mut H, a: Pos2, b: Pos2) {
+    h.hover_at(a);
+    h.run_steps(2);
+    h.drag_at(a);
+    h.run_steps(2);
+    for t in [0.25, 0.5, 0.75, 1.0] {
+        h.hover_at(a + (b - a) * t);
+        h.run_steps(2);
+    }
+    h.drop_at(b);
+    h.run_steps(3);
+}
+
+#[test]
+fn a_triangle_pin_starts_a_wire_from_any_of_its_points() {
+    let mut h = harness("triangle-pin");
+    show_node(&mut h, "construct");
+    let def = h.state().doc.graph.node("construct").unwrap().def.clone();
+    let planes = def.output_index("planes").unwrap();
+    let flip = def.input_index("ratios").unwrap();
+    // The 9-point triangle reaches 5.7 points above its centre and 5.8 to each side at its foot
+    // (4.4 below): grab it at its tip and at a foot corner, outside a 9 × 9 square.
+    for offset in [egui::vec2(0.0, -5.0), egui::vec2(5.0, 4.0)] {
+        let from = h
+            .state()
+            .canvas
+            .pin_screen_pos("construct", false, planes)
+            .expect("the planes pin is drawn");
+        let position = h.state().doc.graph.node("construct").unwrap().position;
+        let wires = h.state().doc.graph.wires().len();
+        // Onto the construct's own ratios input: a cycle, refused, so nothing changes in the
+        // graph if a wire was dragged; the node would follow the pointer if it was grabbed.
+        let to = h
+            .state()
+            .canvas
+            .pin_screen_pos("construct", true, flip)
+            .unwrap();
+        drag(&mut h, from + offset, to);
+        h.key_press(egui::Key::Escape);
+        h.run_steps(3);
+        assert_eq!(
+            h.state().doc.graph.node("construct").unwrap().position,
+            position,
+            "grabbing the triangle at {offset:?} does not move the node"
+        );
+        assert_eq!(h.state().doc.graph.wires().len(), wires);
+    }
+}
