@@ -728,6 +728,42 @@ fn pin_info(port: &PortDef) -> PinInfo {
         .with_fill(type_color(&port.ty))
 }
 
+/// The widest a port's name is drawn on a node, in points: longer names (a cluster's port can be
+/// named anything) end in "…" and the hover gives the whole name. Every name of the node library
+/// fits (the longest, `from_reference_max`, is about 115 points).
+pub const PORT_NAME_WIDTH: f32 = 140.0;
+
+/// A port's name as drawn on its node, cut to [`PORT_NAME_WIDTH`] at a character with "…", and
+/// the hover's first line: the whole name when it was cut, else nothing.
+fn fitted_port_name(ui: &Ui, name: &str) -> (String, String) {
+    let width = |text: &str| {
+        egui::WidgetText::from(text)
+            .into_galley(
+                ui,
+                Some(egui::TextWrapMode::Extend),
+                f32::INFINITY,
+                egui::TextStyle::Body,
+            )
+            .size()
+            .x
+    };
+    if width(name) <= PORT_NAME_WIDTH {
+        return (name.to_string(), String::new());
+    }
+    let chars: Vec<char> = name.chars().collect();
+    let mut n = chars.len();
+    let mut shown = String::from("…");
+    while n > 1 {
+        n -= 1;
+        let candidate: String = chars[..n].iter().chain(['…'].iter()).collect();
+        if width(&candidate) <= PORT_NAME_WIDTH {
+            shown = candidate;
+            break;
+        }
+    }
+    (shown, format!("{name}\n"))
+}
+
 /// A pin that records where it was drawn (for tests that drag wires between pins).
 pub struct RecordingPin {
     info: PinInfo,
@@ -1007,7 +1043,8 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         let wired = !pin.remotes.is_empty();
         let missing = !wired && port.required() && instance.value(pin.id.input).is_none();
         ui.horizontal(|ui| {
-            let mut text = egui::RichText::new(port.name.as_ref());
+            let (shown, full) = fitted_port_name(ui, &port.name);
+            let mut text = egui::RichText::new(shown);
             if missing {
                 text = text.color(ERROR_COLOR);
             }
@@ -1015,7 +1052,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             let label = ui
                 .add(egui::Label::new(text).sense(egui::Sense::click()))
                 .on_hover_text(format!(
-                    "{} — {}{}",
+                    "{full}{} — {}{}",
                     port.type_name(),
                     port.doc,
                     if missing {
@@ -1132,9 +1169,10 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             if let Some(s) = summary {
                 ui.weak(s);
             }
+            let (shown, full) = fitted_port_name(ui, &port.name);
             let label = ui
-                .add(egui::Label::new(port.name.as_ref()).sense(egui::Sense::click()))
-                .on_hover_text(format!("{} — {}", port.type_name(), port.doc));
+                .add(egui::Label::new(shown).sense(egui::Sense::click()))
+                .on_hover_text(format!("{full}{} — {}", port.type_name(), port.doc));
             if crate::optimization::minimizable(port) {
                 label.context_menu(|ui| {
                     let path = ValuePath {

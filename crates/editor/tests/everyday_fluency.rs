@@ -191,3 +191,127 @@ fn a_triangle_pin_starts_a_wire_from_any_of_its_points() {
         assert_eq!(h.state().doc.graph.wires().len(), wires);
     }
 }
+
+/// The issue's "the first click on a field right after a wire drag does nothing": here a wire
+/// connected out → in and one dropped on the background, each followed at once by a click on a
+/// field. The first click edits the field in the harness, as it did in the variants tried while
+/// writing this (in → out, dropped on a field, the release in the frame of the last move, the
+/// click's press and release in one frame); the report from a real window is not reproduced, so
+/// this guards the behaviour and nothing was changed for it.
+#[test]
+fn the_first_click_on_a_field_after_a_wire_drag_edits_it() {
+    let mut h = harness("click-after-wire");
+    let id = h
+        .state_mut()
+        .add_node("math.multiply", [0.0, 720.0])
+        .unwrap();
+    settle(&mut h);
+    show_node(&mut h, &id);
+    let def = h.state().doc.graph.node(&id).unwrap().def.clone();
+    let a = def.input_index("a").unwrap();
+    let result = def.output_index("result").unwrap();
+    // A wire from the apex slider's value into `a`.
+    let from = h.state().canvas.pin_screen_pos("apex", false, 0).unwrap();
+    let to = h.state().canvas.pin_screen_pos(&id, true, a).unwrap();
+    let wires = h.state().doc.graph.wires().len();
+    drag(&mut h, from, to);
+    assert_eq!(h.state().doc.graph.wires().len(), wires + 1, "connected");
+    // The first click on `b`'s field, at once (the evaluation still running), edits it.
+    let field = h.state().canvas.editor_screen_rect(&id, "b").unwrap();
+    click(&mut h, field.center());
+    assert!(
+        h.query_by(|n| n.role() == Role::SpinButton && n.is_focused())
+            .is_some(),
+        "the first click after connecting edits the field"
+    );
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    // A wire dragged out of `result` and dropped on the background, then a click on `b`.
+    let from = h.state().canvas.pin_screen_pos(&id, false, result).unwrap();
+    drag(&mut h, from, from + egui::vec2(80.0, 120.0));
+    h.run_steps(2);
+    let field = h.state().canvas.editor_screen_rect(&id, "b").unwrap();
+    click(&mut h, field.center());
+    assert!(
+        h.query_by(|n| n.role() == Role::SpinButton && n.is_focused())
+            .is_some(),
+        "the first click after a dropped wire edits the field"
+    );
+}
+
+/// A node's text: its label, else its value (a label's text).
+fn text(n: &egui_kittest::Node<'_>) -> Option<String> {
+    let a = n.accesskit_node();
+    a.label().or_else(|| a.value())
+}
+
+const LONG: &str = r#"(
+    version: 1,
+    name: "long",
+    nodes: {
+        "x": (type: "graph.input", position: (0.0, 0.0), inputs: {"name": "the_spacing_between_neighbouring_strips", "type": "number", "default": 1.0}),
+        "times": (type: "math.multiply", position: (200.0, 0.0), inputs: {"b": 2.0}),
+        "y": (type: "graph.output", position: (400.0, 0.0), inputs: {"name": "label_points_of_every_unrolled_strip", "type": "number"}),
+    },
+    edges: ["x.value -> times.a", "times.result -> y.value"],
+)"#;
+
+const MAIN: &str = r#"(
+    version: 1,
+    nodes: {
+        "t": (type: "cluster", source: "long.ron", position: (0.0, 0.0)),
+    },
+    edges: [],
+)"#;
+
+#[test]
+fn long_port_names_end_in_an_ellipsis_with_the_whole_name_on_hover() {
+    let dir = std::env::temp_dir().join(format!("cnets-editor-long-names-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("long.ron"), LONG).unwrap();
+    let main = dir.join("main.ron");
+    std::fs::write(&main, MAIN).unwrap();
+    let mut h = common::harness_with("long-names", Some(main), common::temp_config("long-names"));
+    settle(&mut h);
+    show_node(&mut h, "t");
+    let node = h.state().canvas.node_screen_rect("t").unwrap();
+    for full in [
+        "the_spacing_between_neighbouring_strips",
+        "label_points_of_every_unrolled_strip",
+    ] {
+        assert!(
+            h.query_by_label(full).is_none(),
+            "{full} is not drawn whole"
+        );
+        let label = h
+            .query_all_by_label_contains(&full[..8])
+            .find(|n| text(n).is_some_and(|l| l.ends_with('…')))
+            .unwrap_or_else(|| panic!("{full} ends in an ellipsis"));
+        let shown = text(&label).unwrap();
+        let shown = shown.as_str();
+        assert!(full.starts_with(shown.trim_end_matches('…')), "{shown}");
+        let r = on_screen(&h, label.rect());
+        assert!(
+            r.width() <= cnets_editor::canvas::PORT_NAME_WIDTH + 1.0,
+            "{shown}: {r:?}"
+        );
+        assert!(
+            node.contains_rect(r.shrink(0.5)),
+            "{shown}: {r:?} in {node:?}"
+        );
+        // The hover gives the whole name, then the type and doc.
+        h.hover_at(r.center());
+        h.run_steps(90);
+        assert!(
+            h.query_all_by_label_contains(full)
+                .any(|n| text(&n).is_some_and(|l| l.starts_with(full))),
+            "the hover over {shown} names {full}"
+        );
+        if full.starts_with("label") {
+            h.snapshot("fluency_long_port_name");
+        }
+        h.hover_at(node.left_top() - egui::vec2(20.0, 20.0));
+        h.run_steps(10);
+    }
+}
