@@ -160,14 +160,19 @@ node! {
     /// each quad sharing its rung with the previous one), turned so its minimum-area rectangle is
     /// axis-aligned and stacked along +y without overlap, labelled `D<i>` / `G<j>`. Quads less planar
     /// than `tolerance` are an error naming the strip and quad; `max_length_error` reports the largest
-    /// relative edge-length change (≤ 1e-9 for a planar mesh).
+    /// relative edge-length change (≤ 1e-9 for a planar mesh). A polygon mesh — a cone-net cut by a
+    /// plane, mirrored or joined — is unrolled by its strips found from the faces (trimmed panels
+    /// included; strips end at the cut and at a mirror seam), and the mirrored half's strips are
+    /// labelled `D9 (mirror of D2)` (docs/fabrication.md).
     #[node(id = "pq.unroll_strips", category = "PQ")]
     pub fn unroll_strips(
-        /// The quad grid (a cone-net, a support layer, or one extracted strip).
-        mesh: k::QuadMesh,
+        /// The quad grid (a cone-net, a support layer, or one extracted strip), or a polygon mesh
+        /// made from one (cut, mirrored, joined).
+        mesh: k::Mesh,
         /// `"directrix"` or `"generatrix"`.
         direction: k::Text = "directrix",
-        /// Largest accepted quad planarity (libigl measure); raise it to unroll nearly planar meshes.
+        /// Largest accepted face planarity (libigl measure for quads); raise it to unroll nearly
+        /// planar meshes.
         tolerance: k::Number = 1e-6,
         /// Gap between strips in model units; empty: a tenth of the tallest strip.
         spacing: Option<k::Number>,
@@ -182,7 +187,16 @@ node! {
         label_points: k::List<k::Point>,
     ) {
         let options = UnrollOptions { tolerance, spacing };
-        let u = fab::unroll_strips(&mesh, parse_direction(&direction)?, options).map_err(fab_err)?;
+        let direction = parse_direction(&direction)?;
+        // A quad grid arrives converted to a polygon mesh: unrolled as the grid it still is.
+        if let Some(grid) = fab::grid_of(&mesh) {
+            let u = fab::unroll_strips(&grid, direction, options).map_err(fab_err)?;
+            let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
+            let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
+            let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();
+            return Ok((outlines, u.max_length_error, labels, points));
+        }
+        let u = fab::unroll_mesh_strips(&mesh, direction, options).map_err(fab_err)?;
         let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
         let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
         let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();

@@ -257,6 +257,47 @@ fn strips_and_unrolling_nodes() {
 }
 
 #[test]
+fn a_cut_and_mirrored_net_unrolls_through_the_node_with_mirror_marks() {
+    use cnets_geometry::fabrication::{cut_by_plane, mirror};
+    use cnets_geometry::{Plane, PolygonMesh};
+    let net = cone_net(6, 9, false);
+    let plane = Plane::from_normal(DVec3::new(4.3, 0.0, 0.0), DVec3::new(1.0, 0.3, 0.1)).unwrap();
+    let half = cut_by_plane(&PolygonMesh::from(&net.mesh), &plane, false)
+        .unwrap()
+        .mesh;
+    let whole = mirror(&half, &plane, 1e-9).unwrap();
+    let ctx = NodeContext::default();
+    for (mesh, mirrored) in [(half, false), (whole, true)] {
+        let faces = mesh.face_count();
+        let out = run(
+            &ctx,
+            "pq.unroll_strips",
+            &[("mesh", Value::Mesh(std::sync::Arc::new(mesh)))],
+        )
+        .unwrap();
+        let err = get(&out, "max_length_error").as_f64().unwrap();
+        assert!(err <= 1e-9, "{err}");
+        let labels: Vec<String> = get(&out, "labels")
+            .as_list()
+            .unwrap()
+            .iter()
+            .map(|l| match l {
+                Value::Text(t) => t.to_string(),
+                other => panic!("a label, got {}", other.type_name()),
+            })
+            .collect();
+        assert!(faces > 0 && labels[0] == "D0", "{labels:?}");
+        let marks = labels.iter().filter(|l| l.contains("(mirror of D")).count();
+        if mirrored {
+            assert_eq!(2 * marks, labels.len(), "{labels:?}");
+        } else {
+            assert_eq!(marks, 0, "{labels:?}");
+        }
+        assert_eq!(get(&out, "outlines").as_list().unwrap().len(), labels.len());
+    }
+}
+
+#[test]
 fn graph_to_apex_node() {
     let ctx = NodeContext::default();
     let widths = Value::list([2.0, 1.0, 1.5, 1.5].map(Value::Number).to_vec());

@@ -141,6 +141,20 @@ pub enum FabricationError {
         /// The tolerance it exceeds.
         tolerance: f64,
     },
+    /// A face of a polygon-mesh strip to unroll is not planar within the tolerance.
+    #[error(
+        "strip {strip}, mesh face {face} is not planar: planarity {planarity:.3e} > tolerance {tolerance:.3e}; unrolling would distort it (raise `tolerance` to unroll anyway and read max_length_error)"
+    )]
+    NonPlanarPolygon {
+        /// Strip number.
+        strip: usize,
+        /// Mesh face index.
+        face: usize,
+        /// Its planarity (`polygon_planarity`).
+        planarity: f64,
+        /// The tolerance it exceeds.
+        tolerance: f64,
+    },
     /// A face is degenerate (no area, no normal) where the operation needs one.
     #[error("{what}: face {face} is degenerate ({reason})")]
     DegenerateFace {

@@ -16,6 +16,7 @@ pub mod face_attributes;
 pub mod join;
 pub mod layout;
 pub mod lines;
+pub mod mesh_strips;
 pub mod mirror;
 pub mod nest;
 pub mod parallel_support;
@@ -34,6 +35,7 @@ pub use face_attributes::{
     FaceClass, face_classes, face_planarity, planarity_colour, polygon_planarity,
 };
 pub use join::{join, weld};
+pub use mesh_strips::{MeshStrip, UnrolledMesh, UnrolledMeshStrip, grid_of, mesh_strips, unroll_mesh_strips};
 pub use mirror::mirror;
 pub use nest::{Nested, nest, nest_until, stack_sheets};
 pub use parallel_support::parallel_support;

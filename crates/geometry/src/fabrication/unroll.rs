@@ -182,12 +182,8 @@ fn flatten(
     })
 }
 
-/// Unrolls every strip of `mesh` in `direction` and lays the strips out side by side.
-pub fn unroll_strips(
-    mesh: &QuadGrid,
-    direction: StripDirection,
-    options: UnrollOptions,
-) -> Result<Unrolled, FabricationError> {
+/// Checks the tolerance and spacing of unroll options.
+pub(crate) fn check_options(options: &UnrollOptions) -> Result<(), FabricationError> {
     if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
         return Err(FabricationError::BadParameter {
             what: "tolerance",
@@ -204,6 +200,16 @@ pub fn unroll_strips(
             expected: "a finite number ≥ 0",
         });
     }
+    Ok(())
+}
+
+/// Unrolls every strip of `mesh` in `direction` and lays the strips out side by side.
+pub fn unroll_strips(
+    mesh: &QuadGrid,
+    direction: StripDirection,
+    options: UnrollOptions,
+) -> Result<Unrolled, FabricationError> {
+    check_options(&options)?;
     let list = strips(mesh, direction)?;
     if list.is_empty() {
         return Err(FabricationError::Empty("the strip list"));

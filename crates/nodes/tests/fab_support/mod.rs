@@ -69,6 +69,9 @@ pub fn run_full(
                 .or_else(|| p.default.clone())
                 .unwrap_or(Value::Null)
         })
+        .zip(&d.inputs)
+        // As the evaluator does: a quad mesh given to a mesh port arrives as a polygon mesh.
+        .map(|(v, p)| cnets_engine::convert::coerce_for_port(&v, &p.ty, p.access).unwrap_or(v))
         .collect();
     let out = evaluate_node(&d, ctx, &inputs).map_err(|e| e.to_string())?;
     let named = d
