@@ -27,10 +27,10 @@ pub enum RenderError {
     /// The geometry handed to the scene is inconsistent (bad indices, wrong vertex count).
     #[error("invalid geometry: {0}")]
     Geometry(#[from] cnets_geometry::GeometryError),
-    /// A per-face colour list does not have one colour per face.
-    #[error("{got} face colours given for {expected} faces")]
+    /// A per-face (per-vertex) colour list does not have one colour per face (vertex).
+    #[error("{got} colours given for {expected} faces (or vertices, for per-vertex colours)")]
     ColorCount {
-        /// Number of faces of the mesh.
+        /// Number of faces (vertices) of the mesh.
         expected: usize,
         /// Number of colours given.
         got: usize,

@@ -184,7 +184,8 @@ impl SceneRenderer {
             immediate_size: 0,
         });
 
-        let face_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Unorm8x4];
+        let face_attrs =
+            wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Unorm8x4, 3 => Uint32];
         let face_layout = wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<FaceVertex>() as u64,
             step_mode: wgpu::VertexStepMode::Vertex,

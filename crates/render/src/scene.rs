@@ -32,6 +32,9 @@ pub struct FaceVertex {
     pub normal: [f32; 3],
     /// Face colour.
     pub color: Color,
+    /// Depth layer of the mesh the face belongs to ([`MeshStyle::depth_layer`]): a surface of a
+    /// higher layer wins where it coincides with one of a lower layer (no z-fighting).
+    pub depth_layer: u32,
 }
 
 /// One line segment, drawn as a screen-space quad of `width` pixels.
@@ -163,6 +166,9 @@ pub enum FaceColors<'a> {
     Uniform(Color),
     /// One colour per face, in face order ([`QuadGrid::quads`] order for grids).
     PerFace(&'a [Color]),
+    /// One colour per mesh vertex, blended across each face (a value measured at the vertices,
+    /// such as the distance to a reference surface).
+    PerVertex(&'a [Color]),
 }
 
 impl Default for FaceColors<'_> {
@@ -278,13 +284,26 @@ impl Default for PointStyle {
     }
 }
 
-/// How a mesh is drawn: face colours and optional polygon edges.
+/// The highest depth layer: layers above it are drawn as this one. Layer k moves faces towards the
+/// eye by `k ×` [`FACE_LAYER_BIAS`], which stays below the bias of lines (so edges still show).
+pub const MAX_DEPTH_LAYER: u32 = 40;
+
+/// Relative depth bias of one depth layer of faces (towards the eye): at 20 m from the camera a
+/// layer is 0.4 mm nearer than the one below, far above the depth buffer's resolution and far below
+/// what is seen.
+pub const FACE_LAYER_BIAS: f32 = 2e-5;
+
+/// How a mesh is drawn: face colours, optional polygon edges and its depth layer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshStyle<'a> {
     /// Face colours.
     pub faces: FaceColors<'a>,
     /// Polygon outlines (not the triangle diagonals); `None` draws no edges.
     pub edges: Option<LineStyle>,
+    /// Where coincident surfaces meet, the one of the higher layer is drawn (0 … [`MAX_DEPTH_LAYER`];
+    /// the preview gives each previewed node its own layer, so a net fitted onto its reference or
+    /// the layers of a facade do not flicker).
+    pub depth_layer: u32,
 }
 
 impl<'a> MeshStyle<'a> {
@@ -293,7 +312,14 @@ impl<'a> MeshStyle<'a> {
         Self {
             faces,
             edges: Some(Self::default_edges()),
+            depth_layer: 0,
         }
+    }
+
+    /// The same style on another depth layer (clamped to [`MAX_DEPTH_LAYER`]).
+    pub fn depth_layer(mut self, layer: u32) -> Self {
+        self.depth_layer = layer.min(MAX_DEPTH_LAYER);
+        self
     }
 
     /// The default edge style: 1 px, [`palette::EDGE`].
@@ -532,7 +558,7 @@ impl Scene {
         grid.validate()?;
         let (qr, qc) = (grid.quad_rows(), grid.quad_cols());
         let quad_count = qr * qc;
-        check_colors(&style.faces, quad_count)?;
+        check_colors(&style.faces, quad_count, grid.vertices.len())?;
 
         let mut verts = std::mem::take(&mut self.scratch);
         verts.clear();
@@ -550,10 +576,6 @@ impl Scene {
             for j in 0..qc {
                 let idx = grid.quad_indices(i, j);
                 let c = idx.map(|k| verts[k]);
-                let color = match style.faces {
-                    FaceColors::Uniform(c) => c,
-                    FaceColors::PerFace(cs) => cs[i * qc + j],
-                };
                 if !c.iter().all(|p| p.is_finite()) {
                     info.skipped_faces += 1;
                     continue;
@@ -565,13 +587,14 @@ impl Scene {
                     .normalize_or_zero()
                     .as_vec3();
                 let base = self.face_vertices.len() as u32;
-                for q in c {
+                for (q, &k) in c.into_iter().zip(&idx) {
                     lo = lo.min(q);
                     hi = hi.max(q);
                     self.face_vertices.push(FaceVertex {
                         position: q.to_array(),
                         normal: n.to_array(),
-                        color,
+                        color: corner_color(&style.faces, i * qc + j, k),
+                        depth_layer: style.depth_layer.min(MAX_DEPTH_LAYER),
                     });
                 }
                 self.face_indices.extend_from_slice(&[
@@ -653,7 +676,7 @@ impl Scene {
     ) -> Result<MeshInfo, RenderError> {
         let style = style.into();
         mesh.validate()?;
-        check_colors(&style.faces, mesh.face_count())?;
+        check_colors(&style.faces, mesh.face_count(), mesh.vertices.len())?;
 
         let mut verts = std::mem::take(&mut self.scratch);
         verts.clear();
@@ -673,10 +696,6 @@ impl Scene {
                 info.skipped_faces += 1;
                 continue;
             }
-            let color = match style.faces {
-                FaceColors::Uniform(c) => c,
-                FaceColors::PerFace(cs) => cs[k],
-            };
             // Newell normal relative to the first corner (f64).
             let p0 = mesh.vertices[face[0] as usize];
             let mut n = DVec3::ZERO;
@@ -694,7 +713,8 @@ impl Scene {
                 self.face_vertices.push(FaceVertex {
                     position: q.to_array(),
                     normal: n,
-                    color,
+                    color: corner_color(&style.faces, k, v as usize),
+                    depth_layer: style.depth_layer.min(MAX_DEPTH_LAYER),
                 });
             }
             for w in 1..face.len() as u32 - 1 {
@@ -823,12 +843,26 @@ impl Scene {
     }
 }
 
-fn check_colors(colors: &FaceColors<'_>, faces: usize) -> Result<(), RenderError> {
+fn check_colors(colors: &FaceColors<'_>, faces: usize, vertices: usize) -> Result<(), RenderError> {
     match colors {
         FaceColors::PerFace(cs) if cs.len() != faces => Err(RenderError::ColorCount {
             expected: faces,
             got: cs.len(),
         }),
+        FaceColors::PerVertex(cs) if cs.len() != vertices => Err(RenderError::ColorCount {
+            expected: vertices,
+            got: cs.len(),
+        }),
         _ => Ok(()),
+    }
+}
+
+/// The colour of corner `vertex` of face `face`.
+#[inline]
+fn corner_color(colors: &FaceColors<'_>, face: usize, vertex: usize) -> Color {
+    match *colors {
+        FaceColors::Uniform(c) => c,
+        FaceColors::PerFace(cs) => cs[face],
+        FaceColors::PerVertex(cs) => cs[vertex],
     }
 }

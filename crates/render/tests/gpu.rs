@@ -554,3 +554,84 @@ fn scene_changes_are_uploaded_and_buffers_grow_and_shrink_correctly() {
         );
     });
 }
+
+/// A tilted plane as a 7 × 7 grid and the same surface as a polygon mesh whose faces start one
+/// corner later (the other diagonal): coincident surfaces whose depths differ by rounding, which
+/// z-fight.
+fn coincident_surfaces() -> (QuadGrid, cnets_geometry::PolygonMesh) {
+    let n = 7;
+    let v = (0..n)
+        .flat_map(|i| {
+            (0..n).map(move |j| {
+                let (x, y) = (j as f64 - 3.0, i as f64 - 3.0);
+                DVec3::new(x, y, 0.3 * x + 0.2 * y)
+            })
+        })
+        .collect();
+    let grid = QuadGrid::new(n, n, v).unwrap();
+    let mut mesh = cnets_geometry::PolygonMesh::from(&grid);
+    for f in 0..mesh.face_count() {
+        let start = mesh.face_starts[f] as usize;
+        mesh.indices[start..start + 4].rotate_left(1);
+    }
+    (grid, mesh)
+}
+
+/// Pixels of the image whose red (`red`) or blue channel clearly dominates, however lit.
+fn count_dominant(image: &Image, red: bool) -> usize {
+    image
+        .pixels
+        .chunks_exact(4)
+        .filter(|p| {
+            let (r, b) = (i32::from(p[0]), i32::from(p[2]));
+            if red { r > b + 40 } else { b > r + 40 }
+        })
+        .count()
+}
+
+#[test]
+fn coincident_surfaces_on_depth_layers_do_not_z_fight() {
+    with_gpu(|gpu| {
+        let (blue, red) = (Color::hex(0x1f4fd8), Color::hex(0xd62f2f));
+        let (grid, mesh) = coincident_surfaces();
+        let render = |layers: (u32, u32), gpu: &mut Offscreen| {
+            let mut scene = Scene::new();
+            // The upper layer first: drawing order alone would let the later surface win.
+            scene
+                .add_quad_grid(
+                    &grid,
+                    MeshStyle::new(FaceColors::Uniform(blue))
+                        .edges(None)
+                        .depth_layer(layers.0),
+                )
+                .unwrap();
+            scene
+                .add_polygon_mesh(
+                    &mesh,
+                    MeshStyle::new(FaceColors::Uniform(red))
+                        .edges(None)
+                        .depth_layer(layers.1),
+                )
+                .unwrap();
+            let mut camera = Camera::new(View::Iso);
+            camera.pitch = 0.35;
+            camera.fit(scene.bounds(), W as f32 / H as f32);
+            gpu.render(&scene, &camera, W, H).unwrap()
+        };
+        let layered = render((1, 0), gpu);
+        let (b, r) = (
+            count_dominant(&layered, false),
+            count_dominant(&layered, true),
+        );
+        assert!(b > 2000, "the surface covers the picture: {b} blue pixels");
+        assert_eq!(r, 0, "{r} red pixels through the upper layer ({b} blue)");
+        // The control: on one layer the same surfaces fight (the red one shows through).
+        let flat = render((0, 0), gpu);
+        let r0 = count_dominant(&flat, true);
+        eprintln!("layered: {b} blue, {r} red; one layer: {r0} red");
+        assert!(
+            r0 > 100,
+            "without layers {r0} red pixels: the test would not see z-fighting"
+        );
+    });
+}

@@ -4,8 +4,8 @@ use std::collections::HashSet;
 
 use cnets_geometry::{DVec3, Line, PolygonMesh, Polyline, QuadGrid};
 use cnets_render::{
-    Bounds, Color, FaceColors, LineStyle, MeshStyle, PointShape, PointStyle, RenderError, Scene,
-    palette,
+    Bounds, Color, FaceColors, LineStyle, MAX_DEPTH_LAYER, MeshStyle, PointShape, PointStyle,
+    RenderError, Scene, palette,
 };
 use glam::Vec3;
 
@@ -342,4 +342,43 @@ fn gpu_types_can_live_in_egui_callback_resources() {
     send_sync::<cnets_render::Offscreen>();
     send_sync::<Scene>();
     send_sync::<cnets_render::Camera>();
+}
+
+#[test]
+fn per_vertex_colours_go_to_each_corner_and_depth_layers_to_each_face() {
+    let v = (0..2)
+        .flat_map(|i| (0..3).map(move |j| DVec3::new(j as f64, i as f64, 0.0)))
+        .collect();
+    let grid = QuadGrid::new(2, 3, v).unwrap();
+    let colors: Vec<Color> = (0..6).map(|k| Color::rgb(10 * k as u8, 0, 0)).collect();
+    let mut scene = Scene::new();
+    scene
+        .add_quad_grid(
+            &grid,
+            MeshStyle::new(FaceColors::PerVertex(&colors)).depth_layer(3),
+        )
+        .unwrap();
+    let mesh = cnets_geometry::PolygonMesh::from(&grid);
+    scene
+        .add_polygon_mesh(
+            &mesh,
+            MeshStyle::new(FaceColors::PerVertex(&colors)).depth_layer(1000),
+        )
+        .unwrap();
+    let fv = scene.face_vertices();
+    assert_eq!(fv.len(), 16);
+    // Quad (0, 0) has corners 0, 1, 4, 3 in both meshes.
+    for half in [&fv[..8], &fv[8..]] {
+        let red: Vec<u8> = half[..4].iter().map(|c| c.color.0[0]).collect();
+        assert_eq!(red, vec![0, 10, 40, 30]);
+    }
+    assert!(fv[..8].iter().all(|c| c.depth_layer == 3));
+    assert!(
+        fv[8..].iter().all(|c| c.depth_layer == MAX_DEPTH_LAYER),
+        "clamped"
+    );
+    let err = scene
+        .add_quad_grid(&grid, FaceColors::PerVertex(&colors[..5]))
+        .unwrap_err();
+    assert!(err.to_string().contains("5 colours"), "{err}");
 }

@@ -39,10 +39,19 @@ struct FaceOut {
     @location(2) color: vec4<f32>,
 };
 
+// Relative depth bias of one depth layer of faces (scene.rs: FACE_LAYER_BIAS).
+const FACE_LAYER_BIAS: f32 = 2e-5;
+
 @vertex
-fn vs_face(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) color: vec4<f32>) -> FaceOut {
+fn vs_face(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec4<f32>,
+    @location(3) depth_layer: u32,
+) -> FaceOut {
     var out: FaceOut;
-    out.clip = g.view_proj * vec4<f32>(position, 1.0);
+    // Coincident surfaces of different layers: the higher layer is nudged towards the eye.
+    out.clip = apply_depth(g.view_proj * vec4<f32>(position, 1.0), 0u, f32(depth_layer) * FACE_LAYER_BIAS);
     out.world = position;
     out.normal = normal;
     out.color = color;
