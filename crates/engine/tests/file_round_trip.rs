@@ -5,7 +5,7 @@ mod common;
 use cnets_engine::file::{GraphMeta, load_str, save_file, to_ron};
 use cnets_engine::{Evaluator, NodeContext, Value};
 
-const SAMPLE: &str = r#"(
+const SAMPLE: &str = r##"(
     version: 1,
     name: "sample",
     description: "A small graph with every kind of literal.",
@@ -28,6 +28,7 @@ const SAMPLE: &str = r#"(
         "sum": (
             type: "t.sum",
             position: (200.0, 100.0),
+            color: "#d62f2f",
         ),
         "add": (
             type: "t.add",
@@ -57,12 +58,41 @@ const SAMPLE: &str = r#"(
         "series.out -> sum.xs",
     ],
 )
-"#;
+"##;
 
 #[test]
 fn canonical_files_save_byte_for_byte() {
     let doc = load_str(SAMPLE, "sample.ron", &common::registry()).unwrap();
     assert_eq!(to_ron(&doc.graph, &doc.meta), SAMPLE);
+}
+
+#[test]
+fn a_node_colour_is_kept_optional_and_checked() {
+    let doc = load_str(SAMPLE, "sample.ron", &common::registry()).unwrap();
+    assert_eq!(
+        doc.graph.node("sum").unwrap().color,
+        Some([0xd6, 0x2f, 0x2f])
+    );
+    // Files without a colour load as before: no colour, none written.
+    assert_eq!(doc.graph.node("x").unwrap().color, None);
+    let plain = SAMPLE.replace("            color: \"#d62f2f\",\n", "");
+    let doc = load_str(&plain, "plain.ron", &common::registry()).unwrap();
+    assert!(doc.graph.nodes().all(|(_, n)| n.color.is_none()));
+    assert_eq!(to_ron(&doc.graph, &doc.meta), plain);
+    // A bad colour is a diagnostic at its place.
+    let bad = SAMPLE.replace("#d62f2f", "red");
+    let err = load_str(&bad, "bad.ron", &common::registry()).unwrap_err();
+    let text = err.to_string();
+    assert!(
+        text.contains("'color' must be a colour") && text.contains("bad.ron:"),
+        "{text}"
+    );
+    assert_eq!(
+        cnets_engine::file::parse_color("#0A0b0c"),
+        Some([10, 11, 12])
+    );
+    assert_eq!(cnets_engine::file::format_color([10, 11, 12]), "#0a0b0c");
+    assert_eq!(cnets_engine::file::parse_color("#0a0b0"), None);
 }
 
 #[test]

@@ -404,6 +404,7 @@ pub(crate) mod tests {
             evaluations: 7,
             node_runs: 9,
             method: Method::Lbfgsb,
+            best: vec![0.5],
         };
         panel.iterations.push(figure.clone());
         // The same objective again keeps them; another one clears them.

@@ -46,6 +46,7 @@ fn copy_node(
     }
     to.set_position(new_id, node.position)?;
     to.set_preview(new_id, node.preview)?;
+    to.set_color(new_id, node.color)?;
     to.set_enabled(new_id, node.enabled)?;
     Ok(())
 }

@@ -459,11 +459,12 @@ fn load_node(loader: &mut Loader<'_>, id: &str, body: &Node, graph: &mut Graph) 
     let get = |name: &str| fields.iter().find(|(f, _)| f.name == name).map(|(_, v)| v);
     let is_cluster = get("type").and_then(Node::as_str) == Some(CLUSTER_TYPE);
     for (f, _) in fields {
-        let known = ["type", "position", "inputs", "preview", "enabled"].contains(&f.name.as_str())
+        let known = ["type", "position", "inputs", "preview", "enabled", "color"]
+            .contains(&f.name.as_str())
             || (is_cluster && ["source", "graph"].contains(&f.name.as_str()));
         if !known {
             let extra = if is_cluster { ", source, graph" } else { "" };
-            loader.error(f.pos, format!("node '{id}': unknown field '{}'; expected type, position, inputs, preview, enabled{extra}", f.name));
+            loader.error(f.pos, format!("node '{id}': unknown field '{}'; expected type, position, inputs, preview, enabled, color{extra}", f.name));
         }
     }
     let Some(type_node) = get("type") else {
@@ -530,10 +531,36 @@ fn load_node(loader: &mut Loader<'_>, id: &str, body: &Node, graph: &mut Graph) 
             ),
         }
     }
+    if let Some(c) = get("color") {
+        match c.as_str().and_then(parse_color) {
+            Some(rgb) => {
+                let _ = graph.set_color(id, Some(rgb));
+            }
+            None => loader.error(
+                c.pos,
+                format!("node '{id}': 'color' must be a colour \"#rrggbb\""),
+            ),
+        }
+    }
     if let Some(inputs) = get("inputs") {
         load_inputs(loader, id, inputs, graph);
     }
     true
+}
+
+/// A node's preview colour as written in graph files: `"#rrggbb"` (hexadecimal sRGB).
+pub fn parse_color(text: &str) -> Option<[u8; 3]> {
+    let hex = text.trim().strip_prefix('#')?;
+    if hex.len() != 6 || !hex.bytes().all(|b| b.is_ascii_hexdigit()) {
+        return None;
+    }
+    let byte = |k: usize| u8::from_str_radix(&hex[k..k + 2], 16).ok();
+    Some([byte(0)?, byte(2)?, byte(4)?])
+}
+
+/// A node's preview colour in the form graph files use: `#rrggbb`.
+pub fn format_color([r, g, b]: [u8; 3]) -> String {
+    format!("#{r:02x}{g:02x}{b:02x}")
 }
 
 fn load_inputs(loader: &mut Loader<'_>, id: &str, inputs: &Node, graph: &mut Graph) {

@@ -19,7 +19,8 @@
 //! )
 //! ```
 //!
-//! Nodes are keyed by id and keep file order; `preview` and `enabled` are written only when false.
+//! Nodes are keyed by id and keep file order; `preview` and `enabled` are written only when false,
+//! a node's preview `color: "#rrggbb"` only when one was picked (files without it load unchanged).
 //! Loading reports every problem with file, line and column; saving is atomic.
 
 //!
@@ -37,8 +38,8 @@ mod save;
 pub use clusters::load_cluster_source;
 pub use diagnostics::{Diagnostic, LoadError};
 pub use load::{
-    Document, GraphMeta, LoadOptions, load_file, load_file_with, load_str, load_str_with,
-    parse_edge,
+    Document, GraphMeta, LoadOptions, format_color, load_file, load_file_with, load_str,
+    load_str_with, parse_color, parse_edge,
 };
 pub use save::{save_file, to_ron};
 

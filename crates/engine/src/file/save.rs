@@ -79,6 +79,10 @@ pub fn to_ron(graph: &Graph, meta: &GraphMeta) -> String {
             push_indent(&mut out, 3);
             out.push_str("enabled: false,\n");
         }
+        if let Some(rgb) = node.color {
+            push_indent(&mut out, 3);
+            out.push_str(&format!("color: \"{}\",\n", super::load::format_color(rgb)));
+        }
         let values: Vec<_> = node
             .def
             .inputs

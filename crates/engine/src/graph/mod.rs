@@ -36,6 +36,8 @@ pub struct NodeInstance {
     pub position: [f32; 2],
     /// Whether the editor previews the node's geometry.
     pub preview: bool,
+    /// The colour its geometry is previewed in (sRGB), picked on the node; `None`: the default.
+    pub color: Option<[u8; 3]>,
     /// Disabled nodes do not run; their dependents are blocked.
     pub enabled: bool,
     uid: u64,
@@ -292,6 +294,7 @@ impl Graph {
             def,
             position: [0.0, 0.0],
             preview: true,
+            color: None,
             enabled: true,
             uid: self.next_uid,
             edited_at: self.revision,
@@ -628,6 +631,14 @@ impl Graph {
     pub fn set_preview(&mut self, id: &str, preview: bool) -> Result<(), GraphError> {
         let index = self.index(id)?;
         self.inner[index].preview = preview;
+        Ok(())
+    }
+
+    /// Sets the colour a node's geometry is previewed in (`None`: the default; not an edit for
+    /// evaluation).
+    pub fn set_color(&mut self, id: &str, color: Option<[u8; 3]>) -> Result<(), GraphError> {
+        let index = self.index(id)?;
+        self.inner[index].color = color;
         Ok(())
     }
 

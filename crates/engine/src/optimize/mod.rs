@@ -72,6 +72,8 @@ pub struct Iteration {
     pub node_runs: u64,
     /// The method that made the step.
     pub method: Method,
+    /// The best point so far (the variables' values, in setup order): what a live view shows.
+    pub best: Vec<f64>,
 }
 
 /// Why the run stopped.
@@ -246,6 +248,7 @@ impl<'a> Run<'a> {
             evaluations: self.problem.evaluations,
             node_runs: self.problem.node_runs,
             method,
+            best: self.best.0.clone(),
         }
     }
 }
