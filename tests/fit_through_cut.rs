@@ -128,7 +128,7 @@ fn the_gradient_through_cut_and_mirror_is_exact() {
 }
 
 #[test]
-fn a_fit_with_the_cut_takes_at_most_twice_the_time_of_the_same_fit_without() {
+fn a_fit_with_the_cut_costs_at_most_twice_the_node_runs_of_the_same_fit_without() {
     // The least of three runs each, alternating (the machine is shared).
     let (mut with, mut without) = (Duration::MAX, Duration::MAX);
     let (mut last_with, mut last_without) = (None, None);
@@ -174,8 +174,22 @@ fn a_fit_with_the_cut_takes_at_most_twice_the_time_of_the_same_fit_without() {
             out.notes
         );
     }
+    // The speed is a figure (issue 30: the time ratio measured 0.8–1.1 under load, and a 2× bound
+    // on it failed on a busy machine). What is asserted is the work, node runs with any finite
+    // differences included (3 411 with the cut, 3 236 without), and a time ratio of 10, ≥ 9× the
+    // measured one, that only a fallback to finite differences (60× slower) reaches.
+    eprintln!(
+        "time with / without the cut: {:.2}",
+        with.as_secs_f64() / without.as_secs_f64()
+    );
     assert!(
-        with <= without * 2,
+        a.node_runs <= 2 * b.node_runs,
+        "node runs with the cut {}, without {}",
+        a.node_runs,
+        b.node_runs
+    );
+    assert!(
+        with <= without * 10,
         "with the cut {:.3} s, without {:.3} s",
         with.as_secs_f64(),
         without.as_secs_f64()

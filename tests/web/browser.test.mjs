@@ -281,7 +281,8 @@ async function openAny(url, page = null) {
   await page.goto(`${base}/cnets_web.js`);
   await page.evaluate(() => localStorage.clear());
   await page.goto(url);
-  await until(page, `the first picture of ${url}`, (s) => s.first_picture_ms !== null || s.load_failure, 60_000);
+  // (180 s: ≥ 50× the first picture's 1.6–3.4 s under load, issue 30.)
+  await until(page, `the first picture of ${url}`, (s) => s.first_picture_ms !== null || s.load_failure, 180_000);
   return { page, state: await settled(page) };
 }
 const constructions = (ron) =>
@@ -317,7 +318,7 @@ for (const name of gallery) {
     await until(page, "the hint to go", (t) => t.welcome === null, 10_000);
     assert.equal(await page.evaluate(() => localStorage.getItem("cnets.welcomed")), "1");
     await page.reload();
-    const again = await until(page, "the page again", (t) => t.first_picture_ms !== null, 60_000);
+    const again = await until(page, "the page again", (t) => t.first_picture_ms !== null, 180_000);
     assert.equal(again.welcome, null, "the hint is not shown again");
     await page.close();
   }
@@ -380,7 +381,10 @@ for (const name of gallery) {
   console.log(`facade drag: ${JSON.stringify(figures.drag_facade)}`);
   assert.notEqual(slider.valueOf(after), slider.valueOf(before), "the drag moved the slider");
   assert.ok(after.worker_sent > before.worker_sent, "the drag sent evaluations to the worker");
-  assert.ok(inputHz >= 30, `the page handles pointer input at ≥ 30 Hz during the drag: ${inputHz.toFixed(1)} Hz`);
+  // Measured 53–59 Hz under load; an evaluation on the page's thread gave about 4 Hz. The bound is
+  // 5× under the measured rate, so a busy machine cannot reach it and that regression still does
+  // (issue 30).
+  assert.ok(inputHz >= 10, `the page handles pointer input at ≥ 10 Hz during the drag: ${inputHz.toFixed(1)} Hz`);
   noProblems("facade drag");
   await page.close();
 }

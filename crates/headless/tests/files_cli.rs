@@ -160,6 +160,7 @@ fn reads_outside_the_graph_folder_devices_and_fifos_are_refused() {
     let o = cnets(&["run", g.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("not a regular file"), "{}", stderr(&o));
+    eprintln!("four refused reads: {:?}", start.elapsed());
     assert!(start.elapsed() < Duration::from_secs(30));
 }
 
@@ -292,6 +293,7 @@ fn sigint_cancels_a_run_within_a_second_and_leaves_no_partial_file() {
     );
     let o = child.wait_with_output().unwrap();
     let waited = sent.elapsed();
+    eprintln!("SIGINT to exit: {waited:?}");
     // The run takes seconds (3 million mapped items, then a 60 MB JSON export): it is cancelled.
     assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
     assert!(stderr(&o).contains("cancelled"), "{}", stderr(&o));

@@ -139,6 +139,7 @@ fn sigterm_while_an_export_is_written_stops_it_and_leaves_nothing() {
             );
             std::thread::sleep(Duration::from_millis(2));
         }
+        eprintln!("{signal}: the export started after {:?}", started.elapsed());
         let sent = Instant::now();
         assert!(
             Command::new("kill")
@@ -149,6 +150,7 @@ fn sigterm_while_an_export_is_written_stops_it_and_leaves_nothing() {
         );
         let o = child.wait_with_output().unwrap();
         let waited = sent.elapsed();
+        eprintln!("{signal}: signal to exit {waited:?}");
         assert_eq!(o.status.code(), Some(130), "{signal}: {}", stderr(&o));
         assert!(stderr(&o).contains("cancelled"), "{}", stderr(&o));
         assert!(!out.join("big.obj").exists(), "{signal}: a partial export");
