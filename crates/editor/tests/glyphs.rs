@@ -70,7 +70,13 @@ fn every_number_glyph_quad_is_at_least_a_pixel_tall_at_the_smallest_zoom() {
 #[test]
 fn every_character_of_the_ui_strings_has_a_glyph() {
     let sources = [
-        include_str!("../src/app.rs"),
+        include_str!("../src/app/mod.rs"),
+        include_str!("../src/app/clusters.rs"),
+        include_str!("../src/app/commands.rs"),
+        include_str!("../src/app/dialogs.rs"),
+        include_str!("../src/app/files.rs"),
+        include_str!("../src/app/layout.rs"),
+        include_str!("../src/app/worker.rs"),
         include_str!("../src/canvas.rs"),
         include_str!("../src/menus.rs"),
         include_str!("../src/palette/mod.rs"),

@@ -1,0 +1,334 @@
+//! The editor: state and one frame of UI, the same in the window (`main.rs`) and in tests.
+//!
+//! One handler a file, as Graphite splits a message from its handler: `files` (open, save,
+//! recovery), `commands` (menu actions, shortcuts, edits, UI requests), `clusters`, `worker` (the
+//! evaluation glue), `layout` (one frame's panels) and `dialogs`; this file holds the state.
+
+mod clusters;
+mod commands;
+mod dialogs;
+mod files;
+mod layout;
+mod worker;
+
+pub use files::is_example;
+
+use crate::canvas::Canvas;
+use crate::clipboard::Clipboard;
+use crate::document::GraphDocument;
+use crate::file_dialog::FileDialog;
+use crate::library::ClusterWatch;
+use crate::library::Library;
+use crate::list_editor::ListEditors;
+use crate::load_failure::LoadFailure;
+use crate::menus;
+use crate::optimization::OptimizationPanel;
+use crate::palette::PaletteState;
+use crate::recovery::Recovered;
+use crate::recovery::Recovery;
+use crate::settings::Settings;
+use crate::unsaved::Replace;
+use crate::viewport::Viewport;
+use crate::worker::NodeStatus;
+use crate::worker::Worker;
+use cnets_engine::Graph;
+use cnets_engine::Registry;
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::Arc;
+use web_time::Duration;
+use web_time::Instant;
+
+pub use crate::viewport::GpuTarget;
+
+/// The graph the editor starts on when no file is given and `graphs/torus-monge.ron` is absent.
+pub const DEFAULT_GRAPH: &str = include_str!("../../../../graphs/editor-default.ron");
+
+/// How the editor starts.
+pub struct AppOptions {
+    /// GPU formats of the window (`None`: no 3D view).
+    pub gpu: Option<GpuTarget>,
+    /// Settings folder (recent files, recovery file).
+    pub config_dir: PathBuf,
+    /// A graph file to open instead of the default.
+    pub file: Option<PathBuf>,
+    /// The examples folder (`graphs/`).
+    pub examples_dir: PathBuf,
+    /// Called by the worker when a result is ready (request a repaint).
+    pub wake: Arc<dyn Fn() + Send + Sync>,
+}
+
+/// Change-to-picture latency figures: from a graph edit to the frame that hands the resulting
+/// scene to the GPU.
+#[derive(Clone, Debug, Default)]
+pub struct Latency {
+    /// The last measurement, in milliseconds.
+    pub last_ms: f64,
+    /// All measurements (capped at 10 000).
+    pub samples: Vec<f64>,
+    /// The last evaluation time (nodes only), in milliseconds.
+    pub eval_ms: f64,
+    /// The last scene build time, in milliseconds.
+    pub scene_ms: f64,
+    /// Nodes that ran in the last evaluation (the evaluation counter: an edit re-runs its
+    /// downstream cone, a reopened file nothing).
+    pub ran: usize,
+}
+
+/// The status bar's hint when a document's nodes overlap (shown while they do).
+pub const OVERLAP_HINT: &str = "nodes overlap: View › Arrange graph (Ctrl+L) lays them out";
+
+/// The editor.
+pub struct EditorApp {
+    /// Node types.
+    pub registry: Arc<Registry>,
+    /// The document being edited.
+    pub doc: GraphDocument,
+    /// The node canvas.
+    pub canvas: Canvas,
+    /// The 3D viewport.
+    pub viewport: Viewport,
+    /// The node palette.
+    pub palette: PaletteState,
+    /// Status of every node after the last finished evaluation.
+    pub statuses: HashMap<String, NodeStatus>,
+    /// The opened clusters `statuses` belong to.
+    statuses_view: Vec<String>,
+    /// The message in the status bar (e.g. why a wire was refused).
+    pub message: String,
+    /// Recent files.
+    pub settings: Settings,
+    /// Latency figures.
+    pub latency: Latency,
+    /// Whether the window should close (set by File › Quit and after the unsaved-changes
+    /// question; the window closes when it sees it).
+    pub quit: bool,
+    /// The unsaved-changes question being asked: what replaces or closes the document once the
+    /// designer answers (see [`crate::unsaved`]).
+    pub unsaved_question: Option<Replace>,
+    /// Carried out once the Save As dialog opened by the question's "Save" has saved.
+    after_save: Option<Replace>,
+    /// The designer answered the question: closing is allowed now.
+    close_confirmed: bool,
+    /// A graph file that failed to load, shown with its diagnostics.
+    pub load_failure: Option<LoadFailure>,
+    /// Graph files sent by `cnets-editor FILE` started while this window is open.
+    inbox: Option<std::sync::mpsc::Receiver<PathBuf>>,
+    last_title: String,
+    /// Check once the new document's nodes are measured whether they overlap (hint: Arrange).
+    check_overlaps: bool,
+    /// The status bar shows [`OVERLAP_HINT`]: the document opened with overlapping nodes and they
+    /// still overlap.
+    pub overlap_hint: bool,
+    /// Show timings and the busy spinner in the status bar (snapshot tests turn them off: they
+    /// vary from run to run).
+    pub show_timings: bool,
+    worker: Worker,
+    submitted: Option<(u64, u64, crate::preview::PreviewOptions)>,
+    /// The last graph sent to the worker, its generation and folder: a graph of a new
+    /// generation takes over from it (the evaluator is kept).
+    last_evaluated: Option<(u64, Graph, Option<PathBuf>)>,
+    pending_change: Option<Instant>,
+    awaiting_picture: Option<(u64, Instant)>,
+    recovery: Recovery,
+    offer_restore: Option<Recovered>,
+    dialog: Option<FileDialog>,
+    clipboard: Clipboard,
+    gpu: Option<GpuTarget>,
+    examples: Vec<PathBuf>,
+    examples_dir: PathBuf,
+    /// The user library (and the examples folder), listed in the palette.
+    pub library: Library,
+    /// Cluster files of the graph being edited, checked about once a second.
+    import_watch: crate::import_watch::ImportWatch,
+    watch: ClusterWatch,
+    last_watch: Instant,
+    /// The optimization panel.
+    pub optimization: OptimizationPanel,
+    /// Whether the parameter panel (View › Parameters) is shown.
+    pub parameters_open: bool,
+    /// The failed nodes' errors the 3D view listed in the last frame (`id: message`): those off
+    /// the canvas's view (crate::view_errors).
+    pub view_errors_shown: Vec<String>,
+    /// Where the parameter panel was drawn in the last frame (`None`: not shown), in points.
+    pub parameters_rect: Option<egui::Rect>,
+    /// Where the parameter panel drew each value editor in the last frame: (node id, rectangle).
+    pub parameter_editors: Vec<(String, egui::Rect)>,
+    /// The open table windows of literal lists (a node's **Edit…**).
+    pub list_editors: ListEditors,
+    /// The pointer's last position seen by [`EditorApp::raw_input`].
+    pointer: Option<egui::Pos2>,
+    /// The opened clusters the canvas was showing in the last frame.
+    canvas_view: Vec<String>,
+    /// Counts the canvases made for graph levels (each gets its own view state).
+    canvas_serial: u64,
+    palette_was_open: bool,
+    /// Frame the canvas again once the first results of a new document are drawn (nodes grow
+    /// when their outputs get summaries).
+    refit_on_results: bool,
+    /// In a web page: the requests for the page (see [`crate::page`]); `None` on the desktop.
+    pub page: Option<crate::page::Page>,
+}
+
+/// How often cluster files are checked for changes.
+pub const WATCH_INTERVAL: Duration = Duration::from_secs(1);
+
+impl EditorApp {
+    /// The editor on the given file, the gallery's `torus-monge.ron`, or the built-in default.
+    pub fn new(options: AppOptions) -> Self {
+        let registry = Arc::new(cnets_nodes::registry());
+        let settings = Settings::load(&options.config_dir);
+        let recovery = Recovery::new(&options.config_dir);
+        let offer_restore = recovery.find();
+        let message = String::new();
+        let library_dirs = vec![settings.library_dir(), options.examples_dir.clone()];
+        let torus = options.examples_dir.join("torus-monge.ron");
+        let mut load_failure = None;
+        // The start-up graph: the file given (an untitled copy when it is a shipped example), else
+        // an untitled copy of the gallery's torus-monge.ron, else the built-in default.
+        let (start, copy) = match &options.file {
+            Some(f) => (Some(f.as_path()), is_example(&options.examples_dir, f)),
+            None => (torus.is_file().then_some(torus.as_path()), true),
+        };
+        let doc = match start {
+            Some(path) => match GraphDocument::open_with(
+                path,
+                &registry,
+                &cnets_host::document_options(Some(path), &library_dirs),
+            ) {
+                Ok(d) if copy => Some(d.into_untitled_copy()),
+                Ok(d) => Some(d),
+                Err(e) => {
+                    // Not the default graph in its place: that would look like the file.
+                    load_failure = Some(LoadFailure::new(path, &e));
+                    Some(GraphDocument::new(registry.clone()))
+                }
+            },
+            None => None,
+        };
+        let doc = doc.unwrap_or_else(|| {
+            GraphDocument::from_text(DEFAULT_GRAPH, "editor-default.ron", None, &registry)
+                .unwrap_or_else(|_| GraphDocument::new(registry.clone()))
+        });
+        let mut app = Self {
+            registry,
+            doc,
+            canvas: Canvas::new(),
+            viewport: Viewport::default(),
+            palette: PaletteState::default(),
+            statuses: HashMap::new(),
+            statuses_view: Vec::new(),
+            message,
+            settings,
+            latency: Latency::default(),
+            quit: false,
+            unsaved_question: None,
+            after_save: None,
+            close_confirmed: false,
+            load_failure,
+            inbox: None,
+            last_title: String::new(),
+            check_overlaps: true,
+            overlap_hint: false,
+            show_timings: true,
+            worker: Worker::spawn(options.wake.clone()),
+            submitted: None,
+            last_evaluated: None,
+            pending_change: Some(Instant::now()),
+            awaiting_picture: None,
+            recovery,
+            offer_restore,
+            dialog: None,
+            clipboard: Clipboard::default(),
+            gpu: options.gpu,
+            examples: menus::examples_in(&options.examples_dir),
+            examples_dir: options.examples_dir,
+            library: Library::new(library_dirs),
+            import_watch: crate::import_watch::ImportWatch::default(),
+            watch: ClusterWatch::default(),
+            last_watch: Instant::now(),
+            optimization: OptimizationPanel::new(options.wake),
+            parameters_open: false,
+            parameters_rect: None,
+            parameter_editors: Vec::new(),
+            view_errors_shown: Vec::new(),
+            list_editors: ListEditors::default(),
+            pointer: None,
+            canvas_view: Vec::new(),
+            canvas_serial: 0,
+            palette_was_open: false,
+            refit_on_results: true,
+            page: None,
+        };
+        if let Some(limit) = app.settings.planarity_limit() {
+            app.viewport.options.set_planarity_limit(limit);
+        }
+        app.watch.changed(&app.doc.graph);
+        app.submit_if_changed();
+        app
+    }
+
+    /// The GPU target of the 3D view (`None`: no wgpu renderer).
+    pub fn gpu(&self) -> Option<&GpuTarget> {
+        self.gpu.as_ref()
+    }
+
+    /// Before a frame, on the raw input (the window calls it from eframe's `raw_input_hook`,
+    /// tests directly): over the canvas, the mouse wheel zooms — as in Grasshopper and as in
+    /// the 3D view — instead of scrolling (Shift+wheel still pans; dragging the background
+    /// pans too).
+    pub fn raw_input(&mut self, raw: &mut egui::RawInput) {
+        let canvas = self.canvas.screen_rect();
+        for e in &mut raw.events {
+            match e {
+                egui::Event::PointerMoved(p) => self.pointer = Some(*p),
+                egui::Event::PointerGone => self.pointer = None,
+                egui::Event::MouseWheel {
+                    unit,
+                    delta,
+                    modifiers,
+                    ..
+                } if modifiers.is_none() && self.pointer.is_some_and(|p| canvas.contains(p)) => {
+                    let points = match unit {
+                        egui::MouseWheelUnit::Point => delta.y,
+                        egui::MouseWheelUnit::Line => delta.y * 40.0,
+                        egui::MouseWheelUnit::Page => delta.y * 400.0,
+                    };
+                    // Wheel up (away from you) zooms in.
+                    *e = egui::Event::Zoom((points / 200.0).exp());
+                }
+                _ => {}
+            }
+        }
+    }
+
+    fn replace_doc(&mut self, doc: GraphDocument) {
+        let previous = self.doc.generation();
+        self.doc = doc;
+        // A new document is a new evaluation generation (fresh evaluator).
+        self.doc.start_after(previous);
+        self.canvas = Canvas::new();
+        self.canvas_view.clear();
+        self.check_overlaps = true;
+        self.overlap_hint = false;
+        self.refit_on_results = true;
+        self.statuses.clear();
+        self.viewport.reset();
+        self.pending_change = Some(Instant::now());
+        self.optimization.reset();
+        self.list_editors.close_all();
+        self.watch.clear();
+        self.import_watch.clear();
+        self.watch.changed(&self.doc.graph);
+    }
+
+    /// The folders library graphs come from: the user library, then the examples folder.
+    pub fn library_dirs(&self) -> Vec<PathBuf> {
+        self.library.dirs.clone()
+    }
+
+    /// Load options for the document (its folder, then the library folders).
+    fn load_options(&self) -> cnets_engine::file::LoadOptions {
+        cnets_host::document_options(self.doc.resolve_file(), &self.library.dirs)
+    }
+}

@@ -1,0 +1,118 @@
+//! The worker glue: submitting the graph when it changed and taking the evaluation's answers (one
+//! response path for the frame's poll and the tests' wait).
+
+use crate::worker::Carry;
+use crate::worker::Worker;
+use std::sync::Arc;
+use web_time::Duration;
+use web_time::Instant;
+
+use super::EditorApp;
+
+impl EditorApp {
+    pub(super) fn poll_worker(&mut self) {
+        if let Some(r) = self.worker.poll() {
+            self.take_response(r);
+        }
+    }
+
+    /// Takes an evaluation's results: node statuses, the scene and its figures.
+    pub(super) fn take_response(&mut self, r: crate::worker::EvalResponse) {
+        self.statuses = r.statuses;
+        if r.view != self.statuses_view || std::mem::take(&mut self.refit_on_results) {
+            // The first results of a document or of another graph level: frame it once they are
+            // drawn.
+            self.canvas.fit_later();
+        }
+        self.statuses_view = r.view;
+        self.latency.eval_ms = r.eval_ms;
+        self.latency.scene_ms = r.stats.build_ms;
+        self.latency.ran = r.ran;
+        // The rest of the graph finished after the preview: the same scene, nothing to upload.
+        if !Arc::ptr_eq(&r.scene, self.viewport.scene()) {
+            self.viewport.set_scene(r.scene, r.stats, r.picks);
+            self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
+        }
+    }
+
+    /// Sends the graph to the worker when it (or the display options) changed since the last
+    /// submission.
+    pub fn submit_if_changed(&mut self) {
+        let key = (
+            self.doc.generation(),
+            self.doc.version(),
+            self.viewport.options,
+        );
+        if self.submitted == Some(key) {
+            return;
+        }
+        let changed_at = self.pending_change.take().unwrap_or_else(Instant::now);
+        let base = self.doc.base_dir();
+        let generation = self.doc.generation();
+        if let Some((from, previous, previous_base)) = self
+            .last_evaluated
+            .take()
+            .filter(|(g, ..)| *g != generation)
+        {
+            // Another document (or this one replaced wholesale): it continues the graph the
+            // worker evaluated last, which keeps its evaluator and the results of shared nodes.
+            let continued = self.doc.take_over(&previous);
+            self.worker.set_carry(Some(Carry {
+                from_generation: from,
+                continued: Arc::new(continued),
+                same_folder: previous_base == base,
+            }));
+        }
+        let graph = self.doc.eval_graph();
+        self.last_evaluated = Some((generation, graph.clone(), base.clone()));
+        self.worker.submit_view(
+            graph,
+            self.doc.view_path(),
+            generation,
+            self.viewport.options,
+            base,
+            changed_at,
+        );
+        self.submitted = Some(key);
+    }
+
+    /// Evaluates with `worker` from now on (the web page: its Web Worker, [`Worker::remote`]);
+    /// the graph is submitted to it at the next frame.
+    pub fn set_worker(&mut self, worker: Worker) {
+        self.worker = worker;
+        self.submitted = None;
+        self.last_evaluated = None;
+    }
+
+    /// Whether an evaluation is in progress.
+    pub fn busy(&self) -> bool {
+        self.worker.busy()
+    }
+
+    /// Waits (up to `timeout`) for the worker to answer the latest submission and takes the
+    /// result, as the next frame would. For tests and the screenshot mode.
+    pub fn wait_for_worker(&mut self, timeout: Duration) {
+        self.submit_if_changed();
+        if let Some(r) = self.worker.wait(timeout) {
+            self.take_response(r);
+        }
+    }
+
+    /// Evaluates the graph again at the next frame (the web page: after a file was opened that a
+    /// node imports).
+    pub fn reevaluate(&mut self) {
+        self.submitted = None;
+    }
+
+    /// Checks the files the graph's importing nodes read; when one changed, submits the graph
+    /// again so the worker re-runs the nodes that read it (and only what depends on them).
+    /// Returns whether a file changed.
+    pub fn check_imported_files(&mut self) -> bool {
+        let base = self.doc.base_dir();
+        let changed = self.import_watch.changed(&self.doc.graph, base.as_deref());
+        if changed {
+            self.submitted = None;
+        }
+        changed
+    }
+}
