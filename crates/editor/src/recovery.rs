@@ -171,7 +171,7 @@ impl Recovery {
         if let Some(t) = self.last_write
             && t.elapsed() < wait
         {
-            return Autosave::Due(wait - t.elapsed());
+            return Autosave::Due(wait.saturating_sub(t.elapsed()));
         }
         match self.write(&text(), paths.0, paths.1, version) {
             Ok(()) => Autosave::Wrote,
