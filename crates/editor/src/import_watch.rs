@@ -8,15 +8,20 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
-use cnets_engine::{Graph, NodeFlag, Value};
+use cnets_engine::{Graph, NodeFlag, Value, Widget};
 
-/// The files the graph's importing nodes name (literal `path` inputs, resolved against `base`).
+/// The files the graph's importing nodes name (their literal file-path inputs, resolved against
+/// `base`).
 pub fn imported_files(graph: &Graph, base: Option<&Path>) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = graph
         .nodes()
         .filter(|(_, n)| n.def.flags.contains(&NodeFlag::Import))
         .filter_map(|(_, n)| {
-            let k = n.def.input_index("path")?;
+            let k = n
+                .def
+                .inputs
+                .iter()
+                .position(|p| p.hint.widget == Widget::FilePath)?;
             match n.value(k) {
                 Some(Value::Text(t)) if !t.trim().is_empty() => {
                     let p = Path::new(t.as_ref());

@@ -10,6 +10,7 @@ use cnets_geometry::{Line, Plane as GeoPlane, PolygonMesh, Polyline as GeoPolyli
 use glam::DVec3;
 
 use crate::error::NodeError;
+use crate::node::hint::Choices;
 use crate::value::{Access, Record as RecordValue, Value, ValueType};
 
 /// A port kind: its item type, access, optionality, and how the node body receives its value.
@@ -28,6 +29,63 @@ pub trait PortKind: 'static {
     }
     /// Takes the prepared value apart (it already has the port's type; `Null` means empty).
     fn extract(v: &Value, name: &str) -> Result<Self::In, NodeError>;
+    /// The fixed words of a choice port ([`Choice`]); `None` for every other kind.
+    fn choices() -> Option<Choices> {
+        None
+    }
+}
+
+/// The words of a choice port and the parser that reads them: a Rust enum behind a text port, so
+/// `end_planes` is checked when a graph is loaded (`valid: perpendicular, mirror`) and an editor
+/// shows a drop-down. Implemented on a marker type by the node library, for the enum it parses to.
+pub trait ChoiceEnum: 'static {
+    /// What the node body receives.
+    type Value;
+    /// The canonical words, in the order a drop-down lists them.
+    const OPTIONS: &'static [&'static str];
+    /// Reads a text (aliases, case and surrounding spaces as the node accepts them).
+    fn parse(text: &str) -> Option<Self::Value>;
+    /// Whether a text is accepted ([`Choices::accepts`]).
+    fn accepts(text: &str) -> bool {
+        Self::parse(text).is_some()
+    }
+}
+
+/// A text port whose value is one of the words of `E` (see [`ChoiceEnum`]); the node body
+/// receives `E::Value`.
+#[derive(Debug, Clone, Copy)]
+pub struct Choice<E>(PhantomData<E>);
+
+impl<E: ChoiceEnum> PortKind for Choice<E> {
+    type In = E::Value;
+    fn item_type() -> ValueType {
+        ValueType::Text
+    }
+    fn extract(v: &Value, name: &str) -> Result<E::Value, NodeError> {
+        match v {
+            Value::Text(t) => E::parse(t).ok_or_else(|| {
+                NodeError::new(format!(
+                    "input '{name}': '{}' is not one of its choices; valid: {}",
+                    crate::files::excerpt(t, 60),
+                    E::OPTIONS.join(", ")
+                ))
+            }),
+            Value::Null => Err(missing(name)),
+            other => Err(mismatch(name, "Text", other)),
+        }
+    }
+    fn choices() -> Option<Choices> {
+        Some(Choices {
+            options: E::OPTIONS,
+            accepts: E::accepts,
+        })
+    }
+}
+
+impl<E: ChoiceEnum> IntoPort<Choice<E>> for &str {
+    fn into_port(self) -> Value {
+        Value::text(self)
+    }
 }
 
 /// Conversion of what a node body returns into the value on an output port of kind `K`.
@@ -156,6 +214,9 @@ impl<K: PortKind> PortKind for List<K> {
     fn access() -> Access {
         Access::List
     }
+    fn choices() -> Option<Choices> {
+        K::choices()
+    }
     fn extract(v: &Value, name: &str) -> Result<Self::In, NodeError> {
         match v {
             Value::List(items) => items
@@ -223,6 +284,9 @@ impl<K: PortKind> PortKind for Option<K> {
     }
     fn optional() -> bool {
         true
+    }
+    fn choices() -> Option<Choices> {
+        K::choices()
     }
     fn extract(v: &Value, name: &str) -> Result<Self::In, NodeError> {
         match v {

@@ -28,8 +28,10 @@ pub use budget::MemoryBudget;
 pub use error::NodeError;
 pub use eval::{EvalSummary, Evaluator, NodeOutputs, NodeResult};
 pub use graph::{Continued, Graph, GraphError, NodeInstance, Revision, WireRef};
-pub use kinds::{IntoPort, PortKind};
-pub use node::{MAX_CLUSTER_DEPTH, NodeContext, NodeDef, NodeFlag, PortDef};
+pub use kinds::{ChoiceEnum, IntoPort, PortKind};
+pub use node::{
+    Choices, Layer, MAX_CLUSTER_DEPTH, NodeContext, NodeDef, NodeFlag, PortDef, PortHint, Widget,
+};
 pub use registry::Registry;
 pub use value::{Access, Items, Record, Value, ValueType};
 
@@ -37,6 +39,6 @@ pub use value::{Access, Items, Record, Value, ValueType};
 pub mod prelude {
     pub use crate::kinds as k;
     pub use crate::node;
-    pub use crate::{Items, NodeContext, NodeDef, NodeError, Record, Value};
+    pub use crate::{ChoiceEnum, Items, NodeContext, NodeDef, NodeError, Record, Value};
     pub use cnets_geometry::{DVec3, Line, Plane, PolygonMesh, Polyline, QuadGrid};
 }

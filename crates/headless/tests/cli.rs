@@ -74,6 +74,45 @@ fn nodes_json_lists_every_type_with_ports() {
     assert_eq!(radius["default"], 1.0);
     assert_eq!(arc["outputs"][0]["name"], "curve");
     assert_eq!(arc["outputs"][0]["type"], "polyline");
+    assert_eq!(radius["hint"]["widget"], "auto");
+    // The hints and choices of issue 26: a slider, a choice port's words, a layer, a name.
+    let find = |id: &str| {
+        all.as_array()
+            .unwrap()
+            .iter()
+            .find(|n| n["id"] == id)
+            .unwrap()
+            .clone()
+    };
+    let port = |node: &serde_json::Value, side: &str, name: &str| {
+        node[side]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["name"] == name)
+            .unwrap()
+            .clone()
+    };
+    let slider = find("param.number");
+    assert_eq!(slider["name"], "Number slider");
+    assert_eq!(port(&slider, "inputs", "value")["hint"]["widget"], "slider");
+    let construct = find("cnets.construct");
+    let end_planes = port(&construct, "inputs", "end_planes");
+    assert_eq!(end_planes["hint"]["widget"], "choice");
+    assert_eq!(
+        end_planes["choices"],
+        serde_json::json!(["perpendicular", "mirror"])
+    );
+    assert_eq!(
+        port(&construct, "outputs", "apices")["hint"]["layer"],
+        "apices"
+    );
+    let mapper = find("mapper.graph");
+    assert_eq!(
+        port(&mapper, "inputs", "handles")["hint"]["range"],
+        serde_json::json!([0.0, 1.0])
+    );
+    assert_eq!(port(&mapper, "inputs", "kind")["choices"][1], "bezier");
 }
 
 #[test]

@@ -247,10 +247,43 @@ fn any_item() -> BoxedStrategy<Value> {
     .boxed()
 }
 
+/// A word of a choice port, as a designer may type it (case and surrounding spaces vary). A word
+/// that is none of the choices is refused where it is set — by the graph loader, by the node for
+/// a wired or JSON value — which `tests/port_hints.rs` of cnets-nodes tests; here every door gets
+/// a word it accepts.
+fn choice(words: &'static [&'static str]) -> BoxedStrategy<Value> {
+    (prop::sample::select(words.to_vec()), 0..3usize)
+        .prop_map(|(w, form)| match form {
+            0 => Value::text(w),
+            1 => Value::text(w.to_uppercase()),
+            _ => Value::text(format!(" {w} ")),
+        })
+        .boxed()
+}
+
 /// One item of type `ty`, the port's default among the choices.
-fn item(ty: &ValueType, default: Option<&Value>) -> BoxedStrategy<Value> {
+fn item(
+    ty: &ValueType,
+    default: Option<&Value>,
+    words: Option<&'static [&'static str]>,
+) -> BoxedStrategy<Value> {
     use ValueType as T;
-    let fresh = match ty {
+    let fresh = match (ty, words) {
+        (T::Text, Some(words)) => choice(words),
+        _ => fresh_item(ty),
+    };
+    match default {
+        Some(d) if !matches!(d, Value::List(_) | Value::Null) => {
+            prop_oneof![1 => Just(d.clone()), 2 => fresh].boxed()
+        }
+        _ => fresh,
+    }
+}
+
+/// One item of type `ty`.
+fn fresh_item(ty: &ValueType) -> BoxedStrategy<Value> {
+    use ValueType as T;
+    match ty {
         T::Any | T::List(_) => any_item(),
         T::Number => number().prop_map(Value::Number).boxed(),
         T::Integer => integer().prop_map(Value::Integer).boxed(),
@@ -264,12 +297,6 @@ fn item(ty: &ValueType, default: Option<&Value>) -> BoxedStrategy<Value> {
         T::QuadMesh => quad_mesh(),
         T::Mesh => prop_oneof![quad_mesh(), polygon_mesh()].boxed(),
         T::Record => record(),
-    };
-    match default {
-        Some(d) if !matches!(d, Value::List(_) | Value::Null) => {
-            prop_oneof![1 => Just(d.clone()), 2 => fresh].boxed()
-        }
-        _ => fresh,
     }
 }
 
@@ -292,8 +319,13 @@ fn nested(item: BoxedStrategy<Value>, depth: usize, ragged: bool) -> BoxedStrate
 
 /// A value for a port: its item type nested as deep as the port takes it and one or two levels
 /// more (which maps the node over the extra levels).
-fn port_value(ty: &ValueType, access: Access, default: Option<&Value>) -> BoxedStrategy<Value> {
-    let item = item(ty, default);
+fn port_value(
+    ty: &ValueType,
+    access: Access,
+    default: Option<&Value>,
+    words: Option<&'static [&'static str]>,
+) -> BoxedStrategy<Value> {
+    let item = item(ty, default, words);
     let deepest = match access {
         Access::Item => 2,
         Access::List => 3,
@@ -316,7 +348,8 @@ fn case(def: &NodeDef) -> BoxedStrategy<Case> {
         .iter()
         .enumerate()
         .map(|(k, port)| {
-            let value = port_value(&port.ty, port.access, port.default.as_ref())
+            let words = port.choices.map(|c| c.options);
+            let value = port_value(&port.ty, port.access, port.default.as_ref(), words)
                 .prop_map(move |v| Some((k, v)));
             if port.optional || port.default.is_some() {
                 prop_oneof![1 => Just(None), 3 => value].boxed()

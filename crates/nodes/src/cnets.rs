@@ -267,7 +267,7 @@ node! {
     /// The base C-tube construction (paper Sec. 3.2): sweeps the generatrix along the directrix; each
     /// vertex G_ij is where the line towards the cone apex meets the construction plane through X_j.
     /// Planes are given by their normals, or default to the bisecting (Monge) planes.
-    #[node(id = "ctube.construct", category = "Cone-nets")]
+    #[node(id = "ctube.construct", category = "Cone-nets", name = "C-tube Construct")]
     pub fn ctube_construct[ctx](
         /// Directrix X (open, or closed: swept once around).
         directrix: k::Polyline,
@@ -283,13 +283,14 @@ node! {
         scale: Option<k::Number>,
         /// The plane at an open directrix's last vertex: "perpendicular" to the last edge, or "mirror"
         /// (the plane at X_{M−2} reflected in the last edge's bisector plane: the meridian on an arc).
-        end_planes: k::Text = "perpendicular",
+        end_planes: k::Choice<crate::choices::EndPlanes> = "perpendicular",
     ) -> (
         /// The cone-net, N rows × M columns.
         mesh: k::QuadMesh,
         /// The apex values a_j used (M−1), after normalization.
         apex: k::List<k::Number>,
         /// Cone apices C_j (M−1), null at infinity.
+        #[ui(layer = Apices)]
         apices: k::List<Option<k::Point>>,
         /// Plane normals P_ij: N lists of M−1 vectors.
         planes: k::Tree<k::Vector>,
@@ -306,7 +307,7 @@ node! {
             generatrix: unwrap_arc(generatrix),
             apex: apex_input(apex, normalized, scale),
             normals: normals_input(normals)?,
-            end_planes: parse_end_planes(&end_planes)?,
+            end_planes,
         };
         // Only the mesh asked for: the sweep alone, no apices, quality pass or output tables.
         let others = ["apex", "apices", "planes", "configurations", "corrections", "quality"];
@@ -327,7 +328,7 @@ node! {
     /// between: the apex values move the fraction α of the way to the apex-only ones and the planes
     /// repair the rest, never changing the apex more than α = 1 nor turning the planes more than
     /// α = 0) and every correction is reported.
-    #[node(id = "cnets.construct", category = "Cone-nets")]
+    #[node(id = "cnets.construct", category = "Cone-nets", name = "CNets Construct")]
     pub fn construct[ctx](
         /// Directrix X (open, or closed: swept once around).
         directrix: k::Polyline,
@@ -347,13 +348,14 @@ node! {
         epsilon: k::Number = 0.01,
         /// The plane at an open directrix's last vertex: "perpendicular" to the last edge, or "mirror"
         /// (the plane at X_{M−2} reflected in the last edge's bisector plane: the meridian on an arc).
-        end_planes: k::Text = "perpendicular",
+        end_planes: k::Choice<crate::choices::EndPlanes> = "perpendicular",
     ) -> (
         /// The cone-net, N rows × M columns.
         mesh: k::QuadMesh,
         /// The apex values a_j used (M−1), after normalization and correction.
         apex: k::List<k::Number>,
         /// Cone apices C_j (M−1), null at infinity.
+        #[ui(layer = Apices)]
         apices: k::List<Option<k::Point>>,
         /// Plane normals P_ij: N lists of M−1 vectors.
         planes: k::Tree<k::Vector>,
@@ -370,7 +372,7 @@ node! {
         inputs.ratios = grid_values(&ratios, "ratios")?;
         inputs.assistance.alpha = assistance;
         inputs.assistance.epsilon = epsilon;
-        inputs.end_planes = parse_end_planes(&end_planes)?;
+        inputs.end_planes = end_planes;
         Ok(outputs(ctx, conenet::construct_with(&inputs, reports(ctx))?))
     }
 }
@@ -379,7 +381,7 @@ node! {
     /// CNets Construct Coplanar: one plane per directrix vertex, shared by all rows, so every
     /// generatrix-aligned polyline is planar. `ruling_ratios` pick the ruling of the first support
     /// strip; `plane_ratios` turn the plane about it (½ and ½: the bisecting plane).
-    #[node(id = "cnets.construct_coplanar", category = "Cone-nets")]
+    #[node(id = "cnets.construct_coplanar", category = "Cone-nets", name = "CNets Construct Coplanar")]
     pub fn construct_coplanar[ctx](
         /// Directrix X (open, or closed: swept once around).
         directrix: k::Polyline,
@@ -401,13 +403,14 @@ node! {
         epsilon: k::Number = 0.01,
         /// The plane at an open directrix's last vertex: "perpendicular" to the last edge, or "mirror"
         /// (the plane at X_{M−2} reflected in the last edge's bisector plane: the meridian on an arc).
-        end_planes: k::Text = "perpendicular",
+        end_planes: k::Choice<crate::choices::EndPlanes> = "perpendicular",
     ) -> (
         /// The cone-net, N rows × M columns; every column is planar.
         mesh: k::QuadMesh,
         /// The apex values a_j used (M−1), after normalization and correction.
         apex: k::List<k::Number>,
         /// Cone apices C_j (M−1), null at infinity.
+        #[ui(layer = Apices)]
         apices: k::List<Option<k::Point>>,
         /// Plane normals P_ij: N lists of M−1 vectors (equal along each column).
         planes: k::Tree<k::Vector>,
@@ -429,7 +432,7 @@ node! {
         inputs.plane_ratios = column(plane_ratios);
         inputs.assistance.alpha = assistance;
         inputs.assistance.epsilon = epsilon;
-        inputs.end_planes = parse_end_planes(&end_planes)?;
+        inputs.end_planes = end_planes;
         Ok(outputs(ctx, conenet::construct_coplanar_with(&inputs, reports(ctx))?))
     }
 }
@@ -438,7 +441,7 @@ node! {
     /// Encodes any cone-net as C-tube construction inputs (paper Sec. 4.1, Proposition 1): a
     /// directrix, the first generatrix, a positive apex function and per-vertex plane normals that
     /// reproduce the mesh with `ctube.construct`.
-    #[node(id = "cnets.encode", category = "Cone-nets")]
+    #[node(id = "cnets.encode", category = "Cone-nets", name = "CNets Encode")]
     pub fn encode(
         /// A cone-net (a quad mesh whose directrix-direction strips lie on cones).
         mesh: k::QuadMesh,

@@ -76,6 +76,7 @@ node! {
     #[node(id = "io.export_gltf", category = "Export", flags(Export))]
     pub fn export_gltf[ctx](
         /// File name inside the output directory (`.glb` is added when missing).
+        #[ui(widget = OutputName)]
         name: k::Text = "model.glb",
         /// Meshes (quad grids convert).
         meshes: Option<k::List<k::Mesh>>,
@@ -112,6 +113,7 @@ node! {
     #[node(id = "io.export_obj", category = "Export", flags(Export))]
     pub fn export_obj[ctx](
         /// File name inside the output directory (`.obj` is added when missing).
+        #[ui(widget = OutputName)]
         name: k::Text = "model.obj",
         /// Meshes (quad grids convert).
         meshes: Option<k::List<k::Mesh>>,
@@ -150,6 +152,7 @@ node! {
     #[node(id = "io.export_svg", category = "Export", flags(Export))]
     pub fn export_svg[ctx](
         /// File name inside the output directory (`.svg` is added when missing).
+        #[ui(widget = OutputName)]
         name: k::Text = "strips.svg",
         /// The outlines (their x and y are used).
         outlines: k::List<k::Polyline>,
@@ -181,6 +184,7 @@ node! {
     #[node(id = "io.export_dxf", category = "Export", flags(Export))]
     pub fn export_dxf[ctx](
         /// File name inside the output directory (`.dxf` is added when missing).
+        #[ui(widget = OutputName)]
         name: k::Text = "strips.dxf",
         /// The outlines (their x and y are used).
         outlines: k::List<k::Polyline>,
@@ -210,6 +214,7 @@ node! {
     #[node(id = "io.export_json", category = "Export", flags(Export))]
     pub fn export_json[ctx](
         /// File name inside the output directory (`.json` is added when missing).
+        #[ui(widget = OutputName)]
         name: k::Text = "data.json",
         /// The value to write (passed whole, lists included).
         value: k::Tree<k::Any>,
@@ -228,6 +233,7 @@ node! {
     #[node(id = "io.export_csv", category = "Export", flags(Export))]
     pub fn export_csv[ctx](
         /// File name inside the output directory (`.csv` is added when missing).
+        #[ui(widget = OutputName)]
         name: k::Text = "vertices.csv",
         /// The geometry whose vertices are listed (passed whole, lists included).
         value: k::Tree<k::Any>,

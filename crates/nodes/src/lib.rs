@@ -7,6 +7,7 @@
 //! (`cargo run -p cnets -- nodes --markdown > docs/nodes.md`).
 
 pub mod analysis;
+pub mod choices;
 pub mod cnets;
 pub mod curve;
 pub mod derivatives;

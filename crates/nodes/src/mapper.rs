@@ -6,8 +6,8 @@
 //! [`cnets_geometry::curves::MapperKind`].
 
 use cnets_engine::prelude::*;
+use cnets_geometry::curves::GraphMapper;
 use cnets_geometry::curves::mapper::Domains;
-use cnets_geometry::curves::{GraphMapper, MapperKind};
 use glam::DVec2;
 
 node! {
@@ -20,11 +20,12 @@ node! {
     /// conic (P0, control P1, P2, shoulder S), piecewise (2+ points), spline (2+ points, smooth and
     /// monotone where the points are). No handles (or an empty list): the kind's default handles.
     /// Count 0 gives empty lists; count 1 samples x_start; an empty x domain is an error.
-    #[node(id = "mapper.graph", category = "Mappers")]
+    #[node(id = "mapper.graph", category = "Mappers", name = "Graph mapper")]
     pub fn graph(
         /// Curve type: linear, bezier, parabola, power, sine, gaussian, sqrt, conic, piecewise or spline.
-        kind: k::Text = "linear",
+        kind: k::Choice<crate::choices::MapperCurve> = "linear",
         /// Handles (u, v, ignored z) in the unit square of the graph; empty: the kind's defaults.
+        #[ui(widget = MapperHandles, range = 0.0..=1.0)]
         handles: Option<k::List<k::Point>>,
         /// x mapped to u = 0.
         x_start: k::Number = 0.0,
@@ -44,7 +45,6 @@ node! {
         /// The x of each sample (the values themselves when `values` is given).
         x: k::List<k::Number>,
     ) {
-        let kind = MapperKind::parse(&kind)?;
         let handles: Vec<DVec2> = match handles {
             Some(h) if !h.is_empty() => h.iter().map(|p| p.truncate()).collect(),
             _ => kind.default_handles(),

@@ -7,7 +7,7 @@ use cnets_geometry::mesh_query::MeshQuery;
 node! {
     /// The vertices and faces of a mesh (a quad mesh converts: one quad a grid cell). Each face is a
     /// list of vertex indices, in order around the face.
-    #[node(id = "mesh.deconstruct", category = "Mesh")]
+    #[node(id = "mesh.deconstruct", category = "Mesh", name = "Deconstruct mesh")]
     pub fn deconstruct(
         /// The mesh.
         mesh: k::Mesh,
@@ -65,7 +65,7 @@ fn face_indices(k: usize, face: &Value, vertex_count: usize) -> Result<Vec<u32>,
 node! {
     /// A mesh from vertices and faces (each face a list of at least three vertex indices, in order
     /// around it). Every index is checked: a bad one is an error naming its face.
-    #[node(id = "mesh.construct", category = "Mesh")]
+    #[node(id = "mesh.construct", category = "Mesh", name = "Construct mesh")]
     pub fn construct(
         /// The vertices.
         vertices: k::List<k::Point>,

@@ -19,15 +19,17 @@ fn readable(x: f64) -> String {
 node! {
     /// A number set by the designer; the editor shows it as a slider from `min` to `max`. The value
     /// is clamped to that range and snapped to multiples of `step` from `min` (`step` 0: no snapping).
-    #[node(id = "param.number", category = "Params", flags(Parameter))]
+    #[node(id = "param.number", category = "Params", name = "Number slider", flags(Parameter))]
     pub fn number[ctx](
         /// The value.
+        #[ui(widget = Slider)]
         value: k::Number = 0.5,
         /// Slider minimum.
         min: k::Number = 0.0,
         /// Slider maximum.
         max: k::Number = 1.0,
         /// Slider step (0 = continuous).
+        #[ui(widget = DragValue, hard = 0.0..=f64::MAX)]
         step: k::Number = 0.0,
     ) -> (
         /// The value, clamped and snapped.
@@ -59,9 +61,10 @@ node! {
 node! {
     /// A whole number set by the designer; the editor shows it as a slider from `min` to `max`
     /// (the value is clamped to that range, with a warning).
-    #[node(id = "param.integer", category = "Params", flags(Parameter))]
+    #[node(id = "param.integer", category = "Params", name = "Integer slider", flags(Parameter))]
     pub fn integer[ctx](
         /// The value.
+        #[ui(widget = Slider)]
         value: k::Integer = 1,
         /// Slider minimum.
         min: k::Integer = 0,
@@ -84,9 +87,10 @@ node! {
 
 node! {
     /// A true/false toggle set by the designer.
-    #[node(id = "param.boolean", category = "Params", flags(Parameter))]
+    #[node(id = "param.boolean", category = "Params", name = "Boolean toggle", flags(Parameter))]
     pub fn boolean(
         /// The value.
+        #[ui(widget = Toggle)]
         value: k::Boolean = false,
     ) -> (
         /// The value.
@@ -98,9 +102,10 @@ node! {
 
 node! {
     /// A point set by the designer (x, y, z).
-    #[node(id = "param.point", category = "Params", flags(Parameter))]
+    #[node(id = "param.point", category = "Params", name = "Point", flags(Parameter))]
     pub fn point(
         /// The point.
+        #[ui(widget = PointHandles)]
         value: k::Point = DVec3::ZERO,
     ) -> (
         /// The point.
@@ -117,9 +122,10 @@ node! {
     /// Points set by the designer (Grasshopper's "Set multiple points"): a literal list the editor
     /// shows as handles in the 3D view — drawn with the Draw curve tool, dragged, nudged or typed.
     /// Every point must be finite.
-    #[node(id = "param.points", category = "Params", flags(Parameter))]
+    #[node(id = "param.points", category = "Params", name = "Points", flags(Parameter))]
     pub fn points(
         /// The points.
+        #[ui(widget = PointHandles)]
         points: k::List<k::Point> = Value::list(vec![]),
     ) -> (
         /// The points.
@@ -134,7 +140,7 @@ node! {
 
 node! {
     /// A vector set by the designer (x, y, z).
-    #[node(id = "param.vector", category = "Params", flags(Parameter))]
+    #[node(id = "param.vector", category = "Params", name = "Vector", flags(Parameter))]
     pub fn vector(
         /// The vector.
         value: k::Vector = DVec3::Z,
@@ -151,7 +157,7 @@ node! {
 
 node! {
     /// A piece of text set by the designer (a file name, a graph type, a method name…).
-    #[node(id = "param.text", category = "Params", flags(Parameter))]
+    #[node(id = "param.text", category = "Params", name = "Text", flags(Parameter))]
     pub fn text(
         /// The text.
         value: k::Text = "",
@@ -167,11 +173,13 @@ node! {
     /// One of a list of options, picked by the designer (Grasshopper's Value List): the editor shows
     /// a drop-down of `options`. Outputs the chosen text and its index; an index outside the
     /// options is an error naming the options.
-    #[node(id = "param.choice", category = "Params", flags(Parameter))]
+    #[node(id = "param.choice", category = "Params", name = "Value list", flags(Parameter))]
     pub fn choice(
         /// The options offered, in order.
+        #[ui(widget = MultilineText)]
         options: k::List<k::Text>,
         /// Index of the chosen option (0 = first).
+        #[ui(widget = Choice)]
         index: k::Integer = 0,
     ) -> (
         /// The chosen option.
@@ -212,7 +220,7 @@ fn check_list_count(count: i64) -> Result<usize, NodeError> {
 node! {
     /// An arithmetic series: `count` numbers start, start + step, start + 2·step, … (count 0 gives
     /// an empty list).
-    #[node(id = "param.series", category = "Params", flags(Parameter))]
+    #[node(id = "param.series", category = "Params", name = "Series", flags(Parameter))]
     pub fn series[ctx](
         /// First number.
         start: k::Number = 0.0,
@@ -241,7 +249,7 @@ node! {
     /// `count` evenly spaced numbers from `start` to `end`, both included (the domain is given by
     /// its two ends; `end` may be smaller than `start`). Count 1 gives `[start]`, count 0 an empty
     /// list.
-    #[node(id = "param.range", category = "Params", flags(Parameter))]
+    #[node(id = "param.range", category = "Params", name = "Range", flags(Parameter))]
     pub fn range[ctx](
         /// Start of the domain (the first number).
         start: k::Number = 0.0,
@@ -326,19 +334,18 @@ node! {
     /// numbers, points ↔ vectors) or the node fails naming the first bad item. Nested lists (tables)
     /// are kept as they are. A single value becomes a one-element list. For number and integer lists
     /// a three-number row that the file reader took for a point is read back as three numbers.
-    #[node(id = "param.list", category = "Params", flags(Parameter))]
+    #[node(id = "param.list", category = "Params", name = "List of numbers", flags(Parameter))]
     pub fn list(
         /// The items (a list, possibly nested).
         values: k::Tree<k::Any> = Value::list(vec![]),
         /// The item type: number, integer, boolean, text, point, vector or any.
-        item_type: k::Text = "number",
+        item_type: k::Choice<crate::choices::ListItemType> = "number",
     ) -> (
         /// The checked list.
         values: k::Tree<k::Any>,
     ) {
-        let name = item_type.trim().to_ascii_lowercase();
-        let ty = match ValueType::parse(&name) {
-            Some(ty) if LIST_TYPES.split(", ").any(|t| t == name) => ty,
+        let ty = match ValueType::parse(item_type) {
+            Some(ty) => ty,
             _ => {
                 return Err(
                     format!("unknown item_type '{item_type}': expected one of {LIST_TYPES}").into(),

@@ -19,7 +19,39 @@ pub fn listed(registry: &Registry) -> Vec<Arc<NodeDef>> {
     defs
 }
 
-/// The reference: every node type by category with its doc, inputs (type, default) and outputs.
+/// How an input is shown (its hint): the widget, a choice port's words, ranges and step; empty
+/// for an input shown by its type.
+fn shown_as(p: &cnets_engine::PortDef) -> String {
+    let h = &p.hint;
+    let mut parts = Vec::new();
+    match &p.choices {
+        Some(c) => parts.push(format!("choice: {}", c.options.join(", "))),
+        None if p.widget() != cnets_engine::Widget::Auto => {
+            parts.push(p.widget().as_str().replace('_', " "))
+        }
+        None => {}
+    }
+    if let Some((a, b)) = h.soft_range {
+        parts.push(format!("range {a} … {b}"));
+    }
+    if let Some((a, b)) = h.hard_range {
+        parts.push(if b == f64::MAX {
+            format!("at least {a}")
+        } else {
+            format!("from {a} to {b}")
+        });
+    }
+    if let Some(step) = h.step {
+        parts.push(format!("step {step}"));
+    }
+    if let Some(name) = &h.display_name {
+        parts.push(format!("named “{name}”"));
+    }
+    parts.join("; ")
+}
+
+/// The reference: every node type by category with its display name, doc, inputs (type, default,
+/// how an editor shows it) and outputs (type, preview layer).
 pub fn markdown(registry: &Registry) -> String {
     let mut out = String::from(
         "# Node reference\n\nGenerated from the node registry by `cargo run -p cnets -- nodes --markdown > docs/nodes.md`;\na test fails when this file is stale.\n",
@@ -30,9 +62,15 @@ pub fn markdown(registry: &Registry) -> String {
             category = def.category.to_string();
             let _ = write!(out, "\n## {category}\n");
         }
-        let _ = write!(out, "\n### `{}`\n\n{}\n\n", def.id, def.doc);
+        let _ = write!(
+            out,
+            "\n### `{}` — {}\n\n{}\n\n",
+            def.id,
+            def.name(),
+            def.doc
+        );
         if !def.inputs.is_empty() {
-            out.push_str("| input | type | default | |\n|---|---|---|---|\n");
+            out.push_str("| input | type | default | shown as | |\n|---|---|---|---|---|\n");
             for p in &def.inputs {
                 let default = match &p.default {
                     Some(v) => format!("`{}`", to_json(v)),
@@ -41,23 +79,28 @@ pub fn markdown(registry: &Registry) -> String {
                 };
                 let _ = writeln!(
                     out,
-                    "| `{}` | {} | {} | {} |",
+                    "| `{}` | {} | {} | {} | {} |",
                     p.name,
                     p.type_name(),
                     default,
+                    shown_as(p),
                     p.doc.replace('|', "\\|")
                 );
             }
             out.push('\n');
         }
         if !def.outputs.is_empty() {
-            out.push_str("| output | type | |\n|---|---|---|\n");
+            out.push_str("| output | type | layer | |\n|---|---|---|---|\n");
             for p in &def.outputs {
                 let _ = writeln!(
                     out,
-                    "| `{}` | {} | {} |",
+                    "| `{}` | {} | {} | {} |",
                     p.name,
                     p.type_name(),
+                    match p.hint.layer {
+                        cnets_engine::Layer::Auto => String::new(),
+                        layer => layer.as_str().to_string(),
+                    },
                     p.doc.replace('|', "\\|")
                 );
             }

@@ -51,7 +51,7 @@ node! {
 
 node! {
     /// The x, y and z coordinates of a point or vector.
-    #[node(id = "vector.deconstruct", category = "Vectors")]
+    #[node(id = "vector.deconstruct", category = "Vectors", name = "Deconstruct vector")]
     pub fn deconstruct(
         /// A point or vector.
         point: k::Point,

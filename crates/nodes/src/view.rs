@@ -184,7 +184,7 @@ node! {
     /// as a branch `{0}` with one indexed item a line, nested lists as one branch per innermost list
     /// headed by its path (`{0;1}`), records field by field. Numbers in full precision. The editor
     /// shows the text inside the node; at most 10 000 lines are written.
-    #[node(id = "view.panel", category = "Display")]
+    #[node(id = "view.panel", category = "Display", name = "Panel")]
     pub fn panel(
         /// What to show (anything: an item, a list, a table, a record…).
         value: k::Tree<k::Any>,

@@ -399,8 +399,8 @@ impl WebApp {
             put("id", id.as_str().into());
             put("type", node.def.id.as_ref().into());
             put("rect", rect(*r));
-            let value = cnets_editor::parameters::edited_input(&node.def.id)
-                .and_then(|input| node.value_of(input))
+            let value = cnets_editor::parameters::edited_input(&node.def)
+                .and_then(|k| node.value_of(&node.def.inputs[k].name))
                 .and_then(cnets_engine::Value::as_f64);
             put("value", value.map_or(JsValue::NULL, JsValue::from_f64));
             panel.push(&e);

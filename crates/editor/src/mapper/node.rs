@@ -1,32 +1,34 @@
 //! A graph-mapper node's data as the editor reads it: which inputs hold the handles and the
-//! curve kind (found from the node's ports, not hard-coded), and what the widget shows — the kind
+//! curve kind (the ports that declare the mapper-handles widget and a choice; nothing matched by
+//! name), and what the widget shows — the kind
 //! and the handles the node really runs on (a wired input's value comes from the last evaluation),
 //! row by row when the handles are a tree — and the one way an edit writes a handle back without
 //! changing the nesting or the number of items of the stored value.
 
-use cnets_engine::{Access, Graph, NodeInstance, Value, ValueType};
+use cnets_engine::{Graph, NodeInstance, Value, Widget};
 use cnets_geometry::DVec3;
 use cnets_geometry::curves::MapperKind;
 use glam::DVec2;
 
 use crate::widgets::effective_value;
 
-/// Whether a node gets the graph-mapper widget.
+/// Whether a node gets the graph-mapper widget: it has a handles input and a curve-kind input.
 pub fn is_mapper(node: &NodeInstance) -> bool {
-    node.def.id.starts_with("mapper.") && handles_port(node).is_some() && kind_port(node).is_some()
+    handles_port(node).is_some() && kind_port(node).is_some()
 }
 
-/// Index of the handles input: the first list of points.
+/// Index of the handles input: the input whose declared widget is the mapper's handles.
 pub fn handles_port(node: &NodeInstance) -> Option<usize> {
     node.def
         .inputs
         .iter()
-        .position(|p| p.ty == ValueType::Point && p.access != Access::Item)
+        .position(|p| p.hint.widget == Widget::MapperHandles)
 }
 
-/// Index of the curve-kind input: the first text input.
+/// Index of the curve-kind input: the first choice input of a node with mapper handles.
 pub fn kind_port(node: &NodeInstance) -> Option<usize> {
-    node.def.inputs.iter().position(|p| p.ty == ValueType::Text)
+    handles_port(node)?;
+    node.def.inputs.iter().position(|p| p.choices.is_some())
 }
 
 /// The kind set on the node (`None` when it is not a known kind; the first one of a list).

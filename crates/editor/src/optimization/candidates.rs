@@ -94,7 +94,7 @@ pub fn variable_candidates(node: &NodeInstance, k: usize) -> Vec<Candidate> {
     };
     let mut found = Vec::new();
     leaves(&value, &mut Vec::new(), &mut found);
-    let slider = node.def.id == "param.number" && port.name == "value";
+    let slider = port.widget() == cnets_engine::Widget::Slider;
     found
         .into_iter()
         .filter(|(indices, _)| !is_handles || indices.last() != Some(&2))

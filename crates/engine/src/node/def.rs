@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use super::context::NodeContext;
 use super::derivative::{Branch, BranchFn, VjpArgs, VjpFn, VjpResult};
+use super::hint::{Choices, PortHint};
 use crate::error::NodeError;
 use crate::kinds::PortKind;
 use crate::value::{Access, Value, ValueType};
@@ -31,6 +32,10 @@ pub struct PortDef {
     pub optional: bool,
     /// One line for tooltips.
     pub doc: Cow<'static, str>,
+    /// How an editor shows and edits the port ([`PortHint`]).
+    pub hint: PortHint,
+    /// The fixed words of a choice port (checked when a value is set; a drop-down in an editor).
+    pub choices: Option<Choices>,
 }
 
 impl PortDef {
@@ -46,6 +51,8 @@ impl PortDef {
             default: None,
             optional: K::optional(),
             doc: doc.into(),
+            hint: PortHint::default(),
+            choices: K::choices(),
         }
     }
 
@@ -58,6 +65,8 @@ impl PortDef {
             default: None,
             optional: false,
             doc: Cow::Borrowed(""),
+            hint: PortHint::default(),
+            choices: None,
         }
     }
 
@@ -77,6 +86,39 @@ impl PortDef {
     pub fn with_doc(mut self, doc: impl Into<Cow<'static, str>>) -> Self {
         self.doc = doc.into();
         self
+    }
+
+    /// Sets how the port is shown (builder style).
+    pub fn with_hint(mut self, hint: PortHint) -> Self {
+        self.hint = hint;
+        self
+    }
+
+    /// The name shown to designers: the hint's display name, else the port name.
+    pub fn display_name(&self) -> &str {
+        self.hint.display_name.as_deref().unwrap_or(&self.name)
+    }
+
+    /// The widget for the port's value: the hint's, or [`Widget::Choice`] for a choice port.
+    pub fn widget(&self) -> super::hint::Widget {
+        use super::hint::Widget;
+        match self.hint.widget {
+            Widget::Auto if self.choices.is_some() => Widget::Choice,
+            w => w,
+        }
+    }
+
+    /// Checks a text set on a choice port: `Err("valid: perpendicular, mirror")` when the port
+    /// has choices and the text is none of them; every other port and value passes.
+    pub fn check_choice(&self, text: &str) -> Result<(), String> {
+        match &self.choices {
+            Some(c) if !(c.accepts)(text) => Err(format!(
+                "'{}' is not one of its choices; {}",
+                crate::files::excerpt(text, 60),
+                c.valid_list()
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// True when the port must be connected or given a value.
@@ -108,6 +150,9 @@ pub struct NodeDef {
     pub id: Cow<'static, str>,
     /// Palette category, e.g. `Curves`.
     pub category: Cow<'static, str>,
+    /// The name shown to designers, e.g. `Number slider` (Grasshopper's names); `None`: derived
+    /// from the id.
+    pub display_name: Option<Cow<'static, str>>,
     /// One paragraph: the tooltip and the `cnets nodes` description.
     pub doc: Cow<'static, str>,
     /// Input ports in order.
@@ -160,6 +205,7 @@ impl NodeDef {
         Self {
             id: id.into(),
             category: category.into(),
+            display_name: None,
             doc: doc.into(),
             inputs: Vec::new(),
             outputs: Vec::new(),
@@ -170,6 +216,12 @@ impl NodeDef {
             branch: None,
             derivative_outputs: &[],
         }
+    }
+
+    /// Sets the display name (builder style).
+    pub fn with_display_name(mut self, name: impl Into<Cow<'static, str>>) -> Self {
+        self.display_name = Some(name.into());
+        self
     }
 
     /// Adds an input port.
@@ -256,6 +308,25 @@ impl NodeDef {
             .map(|p| p.name.as_ref())
             .collect::<Vec<_>>()
             .join(", ")
+    }
+
+    /// The name a designer reads: the declared display name, else the id's last part with spaces
+    /// and a capital (`curve.closest_point` → "Closest point").
+    pub fn name(&self) -> Cow<'_, str> {
+        if let Some(name) = &self.display_name {
+            return Cow::Borrowed(name);
+        }
+        let last = self
+            .id
+            .rsplit('.')
+            .next()
+            .unwrap_or(&self.id)
+            .replace('_', " ");
+        let mut chars = last.chars();
+        match chars.next() {
+            Some(c) => Cow::Owned(c.to_uppercase().chain(chars).collect()),
+            None => Cow::Borrowed(&self.id),
+        }
     }
 
     /// The first line of the doc paragraph (a short summary).

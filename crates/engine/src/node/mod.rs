@@ -7,12 +7,14 @@
 //! - [`def`]: [`NodeDef`], [`PortDef`], [`NodeFlag`], [`RunFn`].
 //! - [`context`]: [`NodeContext`], what a running node may see and report.
 //! - [`derivative`]: the vector–Jacobian product and branch function a node may carry.
+//! - [`hint`]: [`PortHint`], [`Widget`], [`Layer`], [`Choices`]: how a port is shown and edited.
 //! - [`mask`]: [`OutputMask`], which outputs a node is asked for.
 //! - [`stamp`]: [`FileStamp`], what a node saw of a file it read.
 
 pub mod context;
 pub mod def;
 pub mod derivative;
+pub mod hint;
 pub mod mask;
 pub mod stamp;
 
@@ -20,5 +22,6 @@ pub use crate::error::NodeError;
 pub use context::{MAX_CLUSTER_DEPTH, NodeContext};
 pub use def::{NodeDef, NodeFlag, PortDef, RunFn, doc_text, port_name};
 pub use derivative::{Branch, BranchFn, Cotangents, VjpArgs, VjpFn, VjpResult};
+pub use hint::{Choices, HintBuilder, Layer, PortHint, Widget};
 pub use mask::OutputMask;
 pub use stamp::FileStamp;

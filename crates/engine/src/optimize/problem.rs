@@ -7,7 +7,7 @@ use super::leaves;
 use super::setup::{Setup, Variable};
 use crate::eval::{Evaluator, NodeResult, OutputMask};
 use crate::graph::Graph;
-use crate::node::NodeContext;
+use crate::node::{NodeContext, PortDef, Widget};
 use crate::value::Value;
 
 /// Why a setup does not fit its graph.
@@ -52,9 +52,10 @@ pub struct Problem {
 }
 
 /// The paths of every number of a literal input, for a whole-input variable (`node.input` naming
-/// a list, a table or a point). Graph-mapper handles contribute their v only (u orders the handles
-/// along the curve, z is unused).
-fn expand(variable: &Variable, base: &Value, node_type: &str) -> Vec<Variable> {
+/// a list, a table or a point). Graph-mapper handles (a port whose widget is
+/// [`Widget::MapperHandles`]) contribute their v only (u orders the handles along the curve, z is
+/// unused).
+fn expand(variable: &Variable, base: &Value, port: &PortDef) -> Vec<Variable> {
     fn walk(v: &Value, at: &mut Vec<usize>, handles: bool, out: &mut Vec<Vec<usize>>) {
         match v {
             Value::Number(_) | Value::Integer(_) => out.push(at.clone()),
@@ -76,7 +77,7 @@ fn expand(variable: &Variable, base: &Value, node_type: &str) -> Vec<Variable> {
             _ => {}
         }
     }
-    let handles = node_type == "mapper.graph" && variable.input.port == "handles";
+    let handles = port.widget() == Widget::MapperHandles;
     let mut paths = Vec::new();
     let mut at = variable.input.indices.clone();
     let mut inner = base;
@@ -136,7 +137,7 @@ impl Problem {
             let expanded = if v.input.get(&base).is_ok() {
                 vec![v.clone()]
             } else {
-                let all = expand(v, &base, &node.def.id);
+                let all = expand(v, &base, &node.def.inputs[k]);
                 if all.is_empty() {
                     return Err(SetupMismatch(format!(
                         "variable {}: the input holds no numbers",

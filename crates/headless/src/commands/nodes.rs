@@ -27,8 +27,33 @@ pub struct Args {
     library: Option<PathBuf>,
 }
 
+/// How a port is shown: its display name, widget, ranges, step and preview layer (only what is
+/// set), and for a choice port its words.
+fn hint_json(p: &PortDef) -> Json {
+    let h = &p.hint;
+    let mut o = json!({ "display_name": p.display_name(), "widget": p.widget().as_str() });
+    let range = |r: Option<(f64, f64)>| r.map(|(a, b)| json!([a, b]));
+    if let Some(r) = range(h.soft_range) {
+        o["range"] = r;
+    }
+    if let Some(r) = range(h.hard_range) {
+        o["hard_range"] = r;
+    }
+    if let Some(step) = h.step {
+        o["step"] = json!(step);
+    }
+    if h.layer != cnets_engine::Layer::Auto {
+        o["layer"] = json!(h.layer.as_str());
+    }
+    o
+}
+
 fn port_json(p: &PortDef, with_default: bool) -> Json {
     let mut o = json!({ "name": p.name, "type": p.type_name(), "doc": p.doc });
+    o["hint"] = hint_json(p);
+    if let Some(c) = &p.choices {
+        o["choices"] = json!(c.options);
+    }
     if with_default {
         o["default"] = p.default.as_ref().map_or(Json::Null, to_json);
         o["optional"] = json!(p.optional);
@@ -41,6 +66,7 @@ fn port_json(p: &PortDef, with_default: bool) -> Json {
 pub fn node_json(def: &NodeDef) -> Json {
     json!({
         "id": def.id,
+        "name": def.name(),
         "category": def.category,
         "doc": def.doc,
         "flags": def.flags.iter().map(|f| format!("{f:?}").to_lowercase()).collect::<Vec<_>>(),

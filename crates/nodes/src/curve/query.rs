@@ -20,7 +20,7 @@ node! {
 node! {
     /// The points of a polyline (each point once: a closed polyline does not repeat its first
     /// point), whether it is closed, and how many points it has.
-    #[node(id = "curve.points", category = "Curves")]
+    #[node(id = "curve.points", category = "Curves", name = "Curve points")]
     pub fn points(
         /// The curve.
         curve: k::Polyline,

@@ -1,7 +1,7 @@
 //! Sampling curves: interpolating splines, resampling, subdivision.
 
 use cnets_engine::prelude::*;
-use cnets_geometry::curves::{self, Spline, SplineKind, SubdivisionScheme};
+use cnets_geometry::curves::{self, Spline};
 
 use super::count_input;
 
@@ -21,12 +21,12 @@ node! {
         /// Number of sampled points (≥ 2; ≥ 3 when closed).
         count: k::Integer = 32,
         /// `catmull-rom` or `natural`.
-        method: k::Text = "catmull-rom",
+        method: k::Choice<crate::choices::SplineMethod> = "catmull-rom",
     ) -> (
         /// The sampled curve.
         curve: k::Polyline,
     ) {
-        let kind = SplineKind::parse(&method)?;
+        let kind = method;
         let n = count_input("count", count)?;
         let spline = Spline::new(kind, &points, closed)?;
         Ok((spline.sample_even(n)?,))
@@ -81,12 +81,11 @@ node! {
         /// Number of subdivision levels (≥ 0).
         levels: k::Integer = 1,
         /// `linear`, `four-point` or `chaikin`.
-        scheme: k::Text = "linear",
+        scheme: k::Choice<crate::choices::Subdivision> = "linear",
     ) -> (
         /// The subdivided curve.
         curve: k::Polyline,
     ) {
-        let scheme = SubdivisionScheme::parse(&scheme)?;
         let levels = count_input("levels", levels)?;
         Ok((curves::subdivide(&curve, levels, scheme)?,))
     }

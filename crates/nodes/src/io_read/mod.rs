@@ -213,9 +213,10 @@ node! {
     #[node(id = "io.read_polylines", category = "Import", flags(Import))]
     pub fn read_polylines[ctx](
         /// The file (relative to the graph file's folder, or absolute).
+        #[ui(widget = FilePath)]
         path: k::Text,
         /// auto (from the extension), csv, json, obj, svg or dxf.
-        format: k::Text = "auto",
+        format: k::Choice<crate::choices::PolylineFormat> = "auto",
         /// SVG and DXF: points per flattened curve, arc or spline span (≥ 1).
         segments: k::Integer = 16,
     ) -> (
@@ -225,7 +226,7 @@ node! {
         if path.trim().is_empty() {
             return Err("no file given: set path".into());
         }
-        let format = Format::resolve(&format, &path)?;
+        let format = Format::resolve(format, &path)?;
         let segments = usize::try_from(segments)
             .ok()
             .filter(|s| (1..=10_000).contains(s))

@@ -246,15 +246,14 @@ node! {
         /// One number per column (M).
         columns: k::List<k::Number>,
         /// `sum`, `product` or `mean`.
-        rule: k::Text = "sum",
+        rule: k::Choice<crate::choices::TableRule> = "sum",
         /// The neutral value of the `sum` rule (0.5: the Monge ratio).
         centre: k::Number = 0.5,
     ) -> (
         /// N lists of M numbers.
         table: k::Tree<k::Number>,
     ) {
-        let rule = rule.trim().to_ascii_lowercase();
-        let combine: fn(f64, f64, f64) -> f64 = match rule.as_str() {
+        let combine: fn(f64, f64, f64) -> f64 = match rule {
             "sum" => |r, c, m| r + c - m,
             "product" => |r, c, _| r * c,
             "mean" => |r, c, _| 0.5 * (r + c),

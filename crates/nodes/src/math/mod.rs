@@ -290,7 +290,7 @@ node! {
     /// `e`. Division is real (`1/2` is 0.5). A syntax error names its column, an unknown name is
     /// named, and a result that is not a finite number (`sqrt(-1)`, `1/0`) is an error. Lists on x,
     /// y or z evaluate the expression per item.
-    #[node(id = "math.expression", category = "Math")]
+    #[node(id = "math.expression", category = "Math", name = "Expression")]
     pub fn expression(
         /// The expression, e.g. `sin(pi*x)^2 + y/4`.
         expression: k::Text,

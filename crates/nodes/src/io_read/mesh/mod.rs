@@ -90,9 +90,10 @@ node! {
     #[node(id = "io.read_mesh", category = "Import", flags(Import))]
     pub fn read_mesh[ctx](
         /// The file (relative to the graph file's folder, or absolute).
+        #[ui(widget = FilePath)]
         path: k::Text,
         /// auto (from the extension), obj, stl, ply, gltf or glb.
-        format: k::Text = "auto",
+        format: k::Choice<crate::choices::MeshFormat> = "auto",
         /// Merge vertices closer than this (optional; ≥ 0).
         weld: Option<k::Number>,
     ) -> (
@@ -104,7 +105,7 @@ node! {
         if path.trim().is_empty() {
             return Err("no file given: set path".into());
         }
-        let format = MeshFormat::resolve(&format, &path)?;
+        let format = MeshFormat::resolve(format, &path)?;
         if let Some(w) = weld
             && !(w.is_finite() && w >= 0.0)
         {
