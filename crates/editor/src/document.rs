@@ -94,9 +94,12 @@ pub fn differs(after: &Graph, before: &Graph) -> bool {
         return true;
     }
     after.nodes().any(|(_, n)| {
-        before
-            .node(&n.id)
-            .is_none_or(|b| b.position != n.position || b.preview != n.preview)
+        before.node(&n.id).is_none_or(|b| {
+            b.position != n.position
+                || b.preview != n.preview
+                || b.color != n.color
+                || b.name != n.name
+        })
     })
 }
 
@@ -159,6 +162,10 @@ pub struct GraphDocument {
     /// The name an unsaved document is shown by when it is not an example's copy: the file's
     /// name for a file opened in the browser, "shared design" for a share link.
     pub name: Option<String>,
+    /// Files and folders the document's nodes may read besides its own folder (a file picked with
+    /// Browse…, a folder allowed at a prompt): the editor's per-document settings
+    /// ([`crate::settings::Settings::allowed_reads`]), never written into the graph file.
+    pub allowed_reads: Vec<PathBuf>,
     /// Undo / redo.
     pub history: History<Snapshot>,
     /// Clusters opened in place, outermost first; `graph` is the innermost one's subgraph.
@@ -193,6 +200,7 @@ impl GraphDocument {
             path,
             origin: None,
             name: None,
+            allowed_reads: Vec::new(),
             history: History::default(),
             stack: Vec::new(),
             live: None,

@@ -1,7 +1,12 @@
-//! File › Export: writes the previewed cone-net as glTF binary, OBJ, SVG or DXF through the
-//! export nodes of the library (flag `Export`), so the editor and `cnets run` write the same files.
+//! File › Export: runs the graph's own export nodes (every enabled node whose type is flagged
+//! `Export`: `io.export_*`, the fabrication exporters), as `cnets run` does, and lists the files
+//! they wrote ([`run_exports`]); or, as a quick export of the preview, writes the previewed
+//! cone-net as glTF binary, OBJ, SVG or DXF under a name the designer gives, through the
+//! library's export node for that format ([`export`]), so the editor and `cnets run` write the
+//! same files.
 //!
-//! The export node's ports are read from the registry: its first input that accepts the mesh is
+//! For the quick export
+//! the export node's ports are read from the registry: its first input that accepts the mesh is
 //! wired to the first previewed quad mesh (else polygon mesh) of the graph, and a text input named
 //! like `file`, `name` or `path` gets the document's name. The graph is evaluated on a copy with
 //! the chosen folder as output directory.
@@ -85,7 +90,9 @@ pub fn unroller(registry: &Registry) -> Option<Arc<NodeDef>> {
         .iter()
         .find(|d| {
             !d.has_flag(NodeFlag::Export)
-                && d.inputs.iter().any(|p| p.ty == ValueType::QuadMesh)
+                && d.inputs
+                    .iter()
+                    .any(|p| p.ty != ValueType::Any && ValueType::QuadMesh.converts_to(&p.ty))
                 && d.outputs
                     .iter()
                     .any(|p| p.name == "outlines" && p.ty == ValueType::Polyline)
@@ -131,7 +138,7 @@ fn wire_export(g: &mut Graph, id: &str, def: &NodeDef) -> Result<(), String> {
             let mesh_in = unroll
                 .inputs
                 .iter()
-                .find(|p| p.ty == ValueType::QuadMesh)
+                .find(|p| p.ty != ValueType::Any && ValueType::QuadMesh.converts_to(&p.ty))
                 .map(|p| p.name.to_string())
                 .unwrap_or_default();
             g.connect(&source, &output, &flat, &mesh_in).map_err(err)?;
@@ -153,11 +160,159 @@ fn wire_export(g: &mut Graph, id: &str, def: &NodeDef) -> Result<(), String> {
     Ok(())
 }
 
-/// Exports the graph's geometry into `folder` through the format's export node; returns the files
-/// written.
+/// The graph's own export nodes, in file order: enabled nodes whose type is flagged `Export`.
+pub fn export_nodes(graph: &Graph) -> Vec<String> {
+    graph
+        .nodes()
+        .filter(|(_, n)| n.enabled && n.def.has_flag(NodeFlag::Export))
+        .map(|(_, n)| n.id.clone())
+        .collect()
+}
+
+/// What one export node did when File › Export ran it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExportRun {
+    /// The node's id.
+    pub node: String,
+    /// What the designer calls it (its name, else its id).
+    pub label: String,
+    /// The files it wrote, or why it wrote nothing.
+    pub result: Result<Vec<PathBuf>, String>,
+}
+
+/// What File › Export wrote: listed in a dialog until it is closed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExportReport {
+    /// The folder written into.
+    pub folder: PathBuf,
+    /// One entry per export node run (a quick export: one, for the preview).
+    pub runs: Vec<ExportRun>,
+}
+
+impl ExportReport {
+    /// Every file written, in order.
+    pub fn files(&self) -> Vec<PathBuf> {
+        self.runs
+            .iter()
+            .filter_map(|r| r.result.as_ref().ok())
+            .flatten()
+            .cloned()
+            .collect()
+    }
+
+    /// The status bar's line: how many files, and how many exports failed.
+    pub fn summary(&self) -> String {
+        let failed = self.runs.iter().filter(|r| r.result.is_err()).count();
+        let files = self.files().len();
+        match failed {
+            0 => format!("exported {files} file(s) into {}", self.folder.display()),
+            n => format!(
+                "exported {files} file(s) into {}; {n} export(s) failed",
+                self.folder.display()
+            ),
+        }
+    }
+
+    /// The dialog: each export with the files it wrote (selectable, to copy) or why it failed.
+    /// Returns false once it is closed.
+    pub fn show(&self, ctx: &egui::Context) -> bool {
+        let mut open = true;
+        let mut close = false;
+        egui::Window::new("Exported")
+            .id(egui::Id::new("cnets-export-report"))
+            .open(&mut open)
+            .collapsible(false)
+            .default_width(460.0)
+            .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
+            .show(ctx, |ui| {
+                ui.weak(format!("into {}", self.folder.display()));
+                for run in &self.runs {
+                    ui.strong(&run.label);
+                    match &run.result {
+                        Ok(files) if files.is_empty() => {
+                            ui.weak("wrote nothing");
+                        }
+                        Ok(files) => {
+                            for f in files {
+                                ui.add(
+                                    egui::Label::new(f.display().to_string())
+                                        .selectable(true)
+                                        .wrap(),
+                                );
+                            }
+                        }
+                        Err(e) => {
+                            ui.colored_label(egui::Color32::from_rgb(0xd6, 0x2f, 0x2f), e);
+                        }
+                    }
+                }
+                let ok = ui.button("Close");
+                crate::probe::record(ui.ctx(), "Close export list", ok.rect);
+                close = ok.clicked();
+            });
+        open && !close
+    }
+}
+
+/// Runs the graph's own export nodes ([`export_nodes`]) with `folder` as the output folder, as
+/// `cnets run --out FOLDER` does: each writes the file its own inputs name, with the graph's
+/// settings. `allow_read`: the document's allowed reads (as `--allow-read`). Returns one
+/// [`ExportRun`] per export node; an error when the graph has none or the folder cannot be made.
+pub fn run_exports(
+    graph: &Graph,
+    base_dir: Option<PathBuf>,
+    allow_read: &[PathBuf],
+    folder: &Path,
+) -> Result<Vec<ExportRun>, String> {
+    let ids = export_nodes(graph);
+    if ids.is_empty() {
+        return Err(
+            "this graph has no export nodes (add one from the palette's Export \
+                    category, or use a quick export of the preview)"
+                .into(),
+        );
+    }
+    // (In the browser the export node's files are kept in memory: no folder to make.)
+    #[cfg(not(target_arch = "wasm32"))]
+    std::fs::create_dir_all(folder)
+        .map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
+    let mut ctx = NodeContext::new(Some(folder.to_path_buf()), base_dir);
+    ctx.allow_read = allow_read.to_vec();
+    let mut eval = Evaluator::new();
+    let indices = ids
+        .iter()
+        .map(|id| graph.index(id).map_err(|e| e.to_string()))
+        .collect::<Result<Vec<_>, _>>()?;
+    eval.evaluate(graph, &indices, &ctx, &mut |_, _| {});
+    Ok(ids
+        .into_iter()
+        .map(|id| {
+            let result = match eval.result(graph, &id) {
+                Some(NodeResult::Ok(out)) => Ok(out.files.clone()),
+                Some(other) => Err(other
+                    .error()
+                    .map_or("export failed".into(), |e| e.into_owned())),
+                None => Err("did not run".into()),
+            };
+            let label = graph
+                .node(&id)
+                .map_or_else(|| id.clone(), |n| n.label().to_string());
+            ExportRun {
+                node: id,
+                label,
+                result,
+            }
+        })
+        .collect())
+}
+
+/// Exports the graph's geometry as `folder/name.<extension>` through the format's export node
+/// (a quick export of the preview); returns the files written. `allow_read`: the document's
+/// allowed reads.
 pub fn export(
     graph: &Graph,
     base_dir: Option<PathBuf>,
+    allow_read: &[PathBuf],
     format: ExportFormat,
     folder: &Path,
     name: &str,
@@ -184,7 +339,8 @@ pub fn export(
     #[cfg(not(target_arch = "wasm32"))]
     std::fs::create_dir_all(folder)
         .map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
-    let ctx = NodeContext::new(Some(folder.to_path_buf()), base_dir);
+    let mut ctx = NodeContext::new(Some(folder.to_path_buf()), base_dir);
+    ctx.allow_read = allow_read.to_vec();
     let mut eval = Evaluator::new();
     let index = g.index(&id).map_err(|e| e.to_string())?;
     eval.evaluate(&g, &[index], &ctx, &mut |_, _| {});
@@ -202,6 +358,14 @@ mod tests {
     use super::*;
     use cnets_engine::{Access, PortDef, Value};
 
+    /// The hint of an export node's file-name input.
+    fn output_name() -> cnets_engine::PortHint {
+        cnets_engine::PortHint {
+            widget: cnets_engine::Widget::OutputName,
+            ..Default::default()
+        }
+    }
+
     /// A stand-in export node (the real ones are written in parallel): writes the mesh's vertex
     /// count into the named file.
     fn stand_in() -> NodeDef {
@@ -209,7 +373,8 @@ mod tests {
             .input(PortDef::new("mesh", ValueType::Mesh, Access::Item))
             .input(
                 PortDef::new("file", ValueType::Text, Access::Item)
-                    .with_default(Value::text("out.obj")),
+                    .with_default(Value::text("out.obj"))
+                    .with_hint(output_name()),
             )
             .output(PortDef::new("path", ValueType::Text, Access::Item))
             .flag(NodeFlag::Export)
@@ -233,7 +398,8 @@ mod tests {
         NodeDef::new("io.export_svg", "Export", "Test SVG export.")
             .input(
                 PortDef::new("name", ValueType::Text, Access::Item)
-                    .with_default(Value::text("strips.svg")),
+                    .with_default(Value::text("strips.svg"))
+                    .with_hint(output_name()),
             )
             .input(PortDef::new("outlines", ValueType::Polyline, Access::List))
             .input(PortDef::new("labels", ValueType::Text, Access::List).optional())
@@ -285,7 +451,7 @@ mod tests {
         let text = include_str!("../../../graphs/editor-default.ron");
         let doc = cnets_engine::file::load_str(text, "default", &registry).unwrap();
         let dir = std::env::temp_dir().join(format!("cnets-export-svg-{}", std::process::id()));
-        let files = export(&doc.graph, None, ExportFormat::Svg, &dir, "net").unwrap();
+        let files = export(&doc.graph, None, &[], ExportFormat::Svg, &dir, "net").unwrap();
         assert_eq!(files, vec![dir.join("net.svg")]);
         // The default net has 10 quad rows along the directrix: 10 strips, each labelled.
         assert_eq!(std::fs::read_to_string(&files[0]).unwrap(), "10 10");
@@ -306,8 +472,8 @@ mod tests {
                 eprintln!("{f:?}: no export node registered yet, skipped");
                 continue;
             }
-            let files =
-                export(&doc.graph, None, f, &dir, "net").unwrap_or_else(|e| panic!("{f:?}: {e}"));
+            let files = export(&doc.graph, None, &[], f, &dir, "net")
+                .unwrap_or_else(|e| panic!("{f:?}: {e}"));
             assert!(!files.is_empty(), "{f:?} wrote nothing");
             for file in files {
                 assert!(
@@ -329,12 +495,12 @@ mod tests {
         let doc = cnets_engine::file::load_str(text, "default", &registry).unwrap();
         assert_eq!(export_source(&doc.graph).unwrap().0, "construct");
         let dir = std::env::temp_dir().join(format!("cnets-export-{}", std::process::id()));
-        let files = export(&doc.graph, None, ExportFormat::Obj, &dir, "net").unwrap();
+        let files = export(&doc.graph, None, &[], ExportFormat::Obj, &dir, "net").unwrap();
         assert_eq!(files, vec![dir.join("net.obj")]);
         let count: usize = std::fs::read_to_string(&files[0]).unwrap().parse().unwrap();
         assert_eq!(count, 11 * 19);
         assert!(
-            export(&doc.graph, None, ExportFormat::Dxf, &dir, "net").is_err()
+            export(&doc.graph, None, &[], ExportFormat::Dxf, &dir, "net").is_err()
                 || export_node(&registry, ExportFormat::Dxf).is_some()
         );
         std::fs::remove_dir_all(&dir).unwrap();

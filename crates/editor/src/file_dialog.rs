@@ -1,5 +1,6 @@
 //! A built-in path dialog: a path field plus the listing of its folder (folders first, then graph
-//! files). It needs no desktop portal or GTK, so it works the same under Xvfb and in tests.
+//! files — every file for a path input's Browse…). It needs no desktop portal or GTK, so it works
+//! the same under Xvfb and in tests.
 
 use std::path::{Path, PathBuf};
 
@@ -10,8 +11,12 @@ pub enum Purpose {
     Open,
     /// Pick where to save the graph.
     SaveAs,
-    /// Pick the folder exports are written into.
-    ExportFolder(crate::export::ExportFormat),
+    /// Name the file a quick export of the preview writes (folder and name).
+    ExportFile(crate::export::ExportFormat),
+    /// Pick the folder the graph's own export nodes write into (File › Export › Graph's exports).
+    RunExports,
+    /// Pick the file a path input reads (its Browse… button).
+    BrowseInput,
     /// Pick the user library folder.
     LibraryFolder,
 }
@@ -21,13 +26,20 @@ impl Purpose {
         match self {
             Purpose::Open => "Open graph",
             Purpose::SaveAs => "Save graph as",
-            Purpose::ExportFolder(_) => "Export into folder",
+            Purpose::ExportFile(_) => "Export the preview as",
+            Purpose::RunExports => "Run the graph's exports into folder",
+            Purpose::BrowseInput => "Pick the file to read",
             Purpose::LibraryFolder => "Library folder",
         }
     }
 
     fn wants_folder(self) -> bool {
-        matches!(self, Purpose::ExportFolder(_) | Purpose::LibraryFolder)
+        matches!(self, Purpose::RunExports | Purpose::LibraryFolder)
+    }
+
+    /// Whether the listing shows every file (a path input reads any kind), not only graphs.
+    fn lists_every_file(self) -> bool {
+        matches!(self, Purpose::BrowseInput | Purpose::ExportFile(_))
     }
 }
 
@@ -55,6 +67,12 @@ pub struct FileDialog {
 
 /// Entries of a folder: sub-folders, then `.ron` files (or only folders), sorted by name.
 pub fn list_dir(dir: &Path, folders_only: bool) -> Vec<(String, bool)> {
+    list_entries(dir, folders_only, false)
+}
+
+/// Entries of a folder: sub-folders, then files (`.ron` only unless `every_file`; none when
+/// `folders_only`), sorted by name; hidden entries left out.
+pub fn list_entries(dir: &Path, folders_only: bool, every_file: bool) -> Vec<(String, bool)> {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return Vec::new();
     };
@@ -63,8 +81,8 @@ pub fn list_dir(dir: &Path, folders_only: bool) -> Vec<(String, bool)> {
         .filter_map(|e| {
             let name = e.file_name().to_string_lossy().into_owned();
             let is_dir = e.file_type().ok()?.is_dir();
-            let keep =
-                !name.starts_with('.') && (is_dir || (!folders_only && name.ends_with(".ron")));
+            let keep = !name.starts_with('.')
+                && (is_dir || (!folders_only && (every_file || name.ends_with(".ron"))));
             keep.then_some((name, is_dir))
         })
         .collect();
@@ -112,8 +130,24 @@ impl FileDialog {
                     _ => Err(format!("the folder of {} does not exist", p.display())),
                 }
             }
-            Purpose::ExportFolder(_) if p.is_dir() || p.parent().is_some_and(Path::is_dir) => Ok(p),
-            Purpose::ExportFolder(_) => Err(format!("{} is not a folder", p.display())),
+            Purpose::ExportFile(_) if p.is_dir() || p.file_name().is_none() => {
+                Err("type the file's name".into())
+            }
+            Purpose::ExportFile(format) => {
+                let p = if p.extension().is_none() {
+                    p.with_extension(format.extension())
+                } else {
+                    p
+                };
+                match p.parent() {
+                    Some(d) if d.as_os_str().is_empty() || d.is_dir() => Ok(p),
+                    _ => Err(format!("the folder of {} does not exist", p.display())),
+                }
+            }
+            Purpose::BrowseInput if p.is_file() => Ok(p),
+            Purpose::BrowseInput => Err(format!("{} is not a file", p.display())),
+            Purpose::RunExports if p.is_dir() || p.parent().is_some_and(Path::is_dir) => Ok(p),
+            Purpose::RunExports => Err(format!("{} is not a folder", p.display())),
             Purpose::LibraryFolder if p.is_dir() || p.parent().is_some_and(Path::is_dir) => Ok(p),
             Purpose::LibraryFolder => Err(format!("{} is not a folder", p.display())),
         }
@@ -146,7 +180,11 @@ impl FileDialog {
                 egui::ScrollArea::vertical()
                     .max_height(240.0)
                     .show(ui, |ui| {
-                        for (name, is_dir) in list_dir(&folder, self.purpose.wants_folder()) {
+                        for (name, is_dir) in list_entries(
+                            &folder,
+                            self.purpose.wants_folder(),
+                            self.purpose.lists_every_file(),
+                        ) {
                             let label = if is_dir {
                                 format!("📁 {name}")
                             } else {
@@ -168,7 +206,9 @@ impl FileDialog {
                     let ok = match self.purpose {
                         Purpose::Open => "Open",
                         Purpose::SaveAs => "Save",
-                        Purpose::ExportFolder(_) => "Export here",
+                        Purpose::ExportFile(_) => "Export file",
+                        Purpose::RunExports => "Export here",
+                        Purpose::BrowseInput => "Pick",
                         Purpose::LibraryFolder => "Use this folder",
                     };
                     let ok_button = ui.button(ok);
@@ -214,6 +254,16 @@ mod tests {
         assert_eq!(s.validate().unwrap(), dir.join("new.ron"));
         s.path = dir.join("missing/new.ron").display().to_string();
         assert!(s.validate().is_err());
+        // A path input's Browse… lists and picks any file; a quick export names its file.
+        assert_eq!(list_entries(&dir, false, true).len(), 3);
+        let mut b = FileDialog::new(Purpose::BrowseInput, &dir);
+        assert!(b.validate().is_err(), "a folder is not a file to read");
+        b.path = dir.join("a.txt").display().to_string();
+        assert_eq!(b.validate().unwrap(), dir.join("a.txt"));
+        let mut e = FileDialog::new(Purpose::ExportFile(crate::export::ExportFormat::Svg), &dir);
+        assert!(e.validate().is_err(), "a folder is not a name");
+        e.path = dir.join("sheet").display().to_string();
+        assert_eq!(e.validate().unwrap(), dir.join("sheet.svg"));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -23,8 +23,10 @@ pub enum MenuAction {
     Save,
     /// Show the save-as dialog.
     SaveAs,
-    /// Export in a format into a folder chosen next.
+    /// A quick export of the preview in a format, under a name asked next.
     Export(ExportFormat),
+    /// Run the graph's own export nodes into a folder chosen next, and list what they wrote.
+    RunExports,
     /// Undo.
     Undo,
     /// Redo.
@@ -107,6 +109,8 @@ pub struct MenuContext<'a> {
     pub web: bool,
     /// The 3D view's state: named view, grid snap, grid, size shown, Perspective plane.
     pub view: ViewMenuState,
+    /// How many export nodes the graph has (File › Export › Graph's exports runs them).
+    pub exports: usize,
 }
 
 /// What the View menu shows of the 3D view.
@@ -183,6 +187,16 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
             pick(ui, "Save", "Ctrl+S", MenuAction::Save, true);
             pick(ui, "Save as…", "Ctrl+Shift+S", MenuAction::SaveAs, true);
             let export = ui.menu_button("Export", |ui| {
+                // The graph's own export nodes, with their names and settings (as `cnets run`).
+                pick(
+                    ui,
+                    "Graph's exports…",
+                    "",
+                    MenuAction::RunExports,
+                    mc.exports > 0,
+                );
+                ui.separator();
+                ui.weak("the preview, named next:");
                 for f in ExportFormat::ALL {
                     pick(
                         ui,

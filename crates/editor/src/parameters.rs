@@ -85,10 +85,15 @@ pub fn show_with_rects(
                         for (id, type_id) in &params {
                             let Some(node) = graph.node(id) else { continue };
                             ui.push_id(("cnets-parameter", id), |ui| {
-                                ui.strong(id).on_hover_text(format!(
+                                // The node's name when it was given one (its id in the hover).
+                                let what = format!(
                                     "{type_id} — {}",
                                     crate::palette::display_name(&node.def)
-                                ));
+                                );
+                                ui.strong(node.label()).on_hover_text(match &node.name {
+                                    Some(_) => format!("id: {id}\n{what}"),
+                                    None => what,
+                                });
                                 if crate::mapper::is_mapper(node) {
                                     let ran_on = statuses.get(id).and_then(|s| s.ran_on());
                                     let r = crate::mapper::show(ui, graph, node, ran_on);
@@ -119,12 +124,18 @@ pub fn show_with_rects(
                     });
             }
             for (cluster, inner) in &groups {
-                egui::CollapsingHeader::new(format!("cluster {cluster}"))
+                let cluster_node = graph.node(cluster);
+                let template = cluster_node
+                    .and_then(|n| Cluster::of(&n.def))
+                    .map(|c| &c.template);
+                let title = cluster_node.map_or(cluster.as_str(), |n| n.label());
+                egui::CollapsingHeader::new(format!("cluster {title}"))
                     .id_salt(("cnets-parameters-cluster", cluster))
                     .default_open(false)
                     .show(ui, |ui| {
                         for id in inner {
-                            ui.label(id);
+                            let inner_node = template.and_then(|t| t.node(id));
+                            ui.label(inner_node.map_or(id.as_str(), |n| n.label()));
                         }
                         if ui
                             .button("Open the cluster to edit them")

@@ -1,7 +1,9 @@
 //! Where named controls were drawn, for scripts that drive the real window with pointer events
 //! (`cnets-editor --drive-script`): menus, dialog buttons and palette entries record their screen
 //! rectangles under their label — only while a script has switched recording on (a flag in
-//! egui's memory), so a designer's editor records nothing.
+//! egui's memory), so a designer's editor records nothing. Behind the `probes` cargo feature (on
+//! by default, for the binary's scripts and the window tests; the web build turns it off, and
+//! then recording does nothing and no rectangle is found).
 
 use egui::{Context, Id, Rect};
 
@@ -19,6 +21,11 @@ pub fn enable(ctx: &Context) {
 }
 
 /// Records where the control `label` was drawn this frame (when recording is on).
+#[cfg(not(feature = "probes"))]
+pub fn record(_ctx: &Context, _label: &str, _rect: Rect) {}
+
+/// Records where the control `label` was drawn this frame (when recording is on).
+#[cfg(feature = "probes")]
 pub fn record(ctx: &Context, label: &str, rect: Rect) {
     if ctx.data(|d| d.get_temp::<bool>(flag())).unwrap_or(false) {
         let pass = ctx.cumulative_pass_nr();

@@ -1,4 +1,6 @@
-//! Persistent settings: the editor's own folder, the recent-files list and the library folder.
+//! Persistent settings: the editor's own folder, the recent-files list, the library folder and
+//! per-document settings (the files and folders a document may read besides its own folder: a file
+//! picked with Browse…, a folder allowed at a prompt — kept here, never in the graph file).
 //!
 //! The folder is `$CNETS_EDITOR_HOME` when set (tests use a temporary one), else
 //! `$XDG_CONFIG_HOME/cnets-editor`, else `~/.config/cnets-editor`. Files in it are small text
@@ -36,6 +38,14 @@ pub struct Settings {
     /// The top of the planarity colour scale set in the viewport (`viewport.txt`), as `f64`
     /// bits (see [`Settings::planarity_limit`]).
     planarity_limit: Option<u64>,
+    /// Per document (its canonical path): files and folders its nodes may read besides its own
+    /// folder (`allowed-reads.txt`, a `document<TAB>path` line each).
+    allowed_reads: Vec<(PathBuf, PathBuf)>,
+}
+
+/// A document's key in the per-document settings: its canonical path (as given when it has none).
+fn document_key(doc: &Path) -> PathBuf {
+    std::fs::canonicalize(doc).unwrap_or_else(|_| doc.to_path_buf())
 }
 
 impl Settings {
@@ -62,12 +72,45 @@ impl Settings {
             })
             .filter(|v| v.is_finite() && *v > 0.0)
             .map(f64::to_bits);
+        let allowed_reads = std::fs::read_to_string(dir.join("allowed-reads.txt"))
+            .unwrap_or_default()
+            .lines()
+            .filter_map(|l| {
+                let (doc, path) = l.split_once('\t')?;
+                (!doc.is_empty() && !path.is_empty())
+                    .then(|| (PathBuf::from(doc), PathBuf::from(path)))
+            })
+            .collect();
         Self {
             dir: dir.to_path_buf(),
             recent,
             library,
             planarity_limit,
+            allowed_reads,
         }
+    }
+
+    /// The files and folders the document saved at `doc` may read besides its own folder (in the
+    /// order they were allowed).
+    pub fn allowed_reads(&self, doc: &Path) -> Vec<PathBuf> {
+        let key = document_key(doc);
+        self.allowed_reads
+            .iter()
+            .filter(|(d, _)| *d == key)
+            .map(|(_, p)| p.clone())
+            .collect()
+    }
+
+    /// Lets the document saved at `doc` read `path` (a file or a folder) from now on, in this and
+    /// later sessions, and saves the settings. Returns whether it was new.
+    pub fn allow_read(&mut self, doc: &Path, path: &Path) -> bool {
+        let entry = (document_key(doc), path.to_path_buf());
+        if self.allowed_reads.contains(&entry) {
+            return false;
+        }
+        self.allowed_reads.push(entry);
+        let _ = self.save();
+        true
     }
 
     /// The top of the planarity colour scale the designer set in the viewport, if any.
@@ -118,6 +161,14 @@ impl Settings {
                 format!("planarity_limit = {limit:e}\n").as_bytes(),
             )?;
         }
+        if !self.allowed_reads.is_empty() {
+            let text: String = self
+                .allowed_reads
+                .iter()
+                .map(|(d, p)| format!("{}\t{}\n", d.display(), p.display()))
+                .collect();
+            write_atomic(&self.dir.join("allowed-reads.txt"), text.as_bytes())?;
+        }
         if let Some(lib) = &self.library {
             write_atomic(
                 &self.dir.join("library.txt"),
@@ -154,6 +205,35 @@ mod tests {
                 .count(),
             1
         );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn allowed_reads_are_kept_per_document_across_sessions() {
+        let dir = std::env::temp_dir().join(format!("cnets-settings-ar-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let mut s = Settings::load(&dir);
+        let (a, b) = (
+            Path::new("/tmp/a/design.ron"),
+            Path::new("/tmp/b/design.ron"),
+        );
+        assert!(s.allowed_reads(a).is_empty());
+        assert!(s.allow_read(a, Path::new("/data/scans")));
+        assert!(s.allow_read(a, Path::new("/data/site.svg")));
+        assert!(
+            !s.allow_read(a, Path::new("/data/scans")),
+            "already allowed"
+        );
+        assert!(s.allow_read(b, Path::new("/elsewhere")));
+        let again = Settings::load(&dir);
+        assert_eq!(
+            again.allowed_reads(a),
+            vec![
+                PathBuf::from("/data/scans"),
+                PathBuf::from("/data/site.svg")
+            ]
+        );
+        assert_eq!(again.allowed_reads(b), vec![PathBuf::from("/elsewhere")]);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

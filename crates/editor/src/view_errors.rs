@@ -75,7 +75,9 @@ pub fn show(
                             .chars()
                             .take(MAX_CHARS)
                             .collect();
-                        let text = egui::RichText::new(format!("⚠ {id}: {short}")).color(ink);
+                        // The node's name when it was given one.
+                        let label = graph.node(id).map_or(*id, |n| n.label());
+                        let text = egui::RichText::new(format!("⚠ {label}: {short}")).color(ink);
                         if ui
                             .add(egui::Label::new(text).wrap().sense(egui::Sense::click()))
                             .on_hover_text(format!(

@@ -106,6 +106,20 @@ pub fn initial_value(ty: &ValueType) -> Option<Value> {
     })
 }
 
+fn browse_key() -> egui::Id {
+    egui::Id::new("cnets-browse-request")
+}
+
+/// Asks for the file dialog of a path input (node id, input name): its Browse… button was clicked.
+pub fn request_browse(ctx: &egui::Context, node: &str, input: &str) {
+    ctx.data_mut(|d| d.insert_temp(browse_key(), (node.to_string(), input.to_string())));
+}
+
+/// The path input whose Browse… button was clicked since the last call (node id, input name).
+pub fn take_browse_request(ctx: &egui::Context) -> Option<(String, String)> {
+    ctx.data_mut(|d| d.remove_temp::<(String, String)>(browse_key()))
+}
+
 /// Shows the editor of input `k`; returns the new value when it changed.
 pub fn input_editor(ui: &mut egui::Ui, node: &NodeInstance, k: usize) -> Option<Value> {
     input_editor_with_rect(ui, node, k).0
@@ -191,6 +205,28 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
                 Some(Value::Text(t)) => t.to_string(),
                 _ => String::new(),
             };
+            if port.widget() == Widget::FilePath {
+                // A path the node reads: typed, or picked with Browse… (the app opens the file
+                // dialog; a file picked there stays readable for the document).
+                return ui
+                    .horizontal(|ui| {
+                        let changed = ui
+                            .add(egui::TextEdit::singleline(&mut s).desired_width(110.0))
+                            .changed();
+                        if ui
+                            .small_button("Browse…")
+                            .on_hover_text(
+                                "pick the file; a file outside the graph's folder stays \
+                                 readable for this document",
+                            )
+                            .clicked()
+                        {
+                            request_browse(ui.ctx(), &node.id, &port.name);
+                        }
+                        changed.then(|| Value::text(&s))
+                    })
+                    .inner;
+            }
             ui.add(egui::TextEdit::singleline(&mut s).desired_width(110.0))
                 .changed()
                 .then(|| Value::text(&s))

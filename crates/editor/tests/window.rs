@@ -491,3 +491,43 @@ fn the_canopy_brief_played_with_pointer_events_only() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A slider and a multiply node, unwired, for the first click after a wire drag.
+const WIRE_CLICK_GRAPH: &str = r#"(
+    version: 1,
+    nodes: {
+        "apex": (type: "param.number", position: (0.0, 0.0), inputs: {"value": 1.5, "min": 0.0, "max": 3.0}),
+        "times": (type: "math.multiply", position: (360.0, 0.0), inputs: {"b": 2.0}),
+    },
+    edges: [],
+)"#;
+
+/// Issue 26, point 5: "the first click on a field right after a wire drag does nothing" (the
+/// kittest harness could not reproduce it, tests/everyday_fluency.rs). In the real window: a wire
+/// connected, then at once one click on another input's field and a number typed; a wire dragged
+/// out and dropped on the background, then the same. Both first clicks edit the field.
+#[test]
+fn the_first_click_on_a_field_after_a_wire_drag_edits_it_in_the_real_window() {
+    if skip() {
+        return;
+    }
+    let (lines, _) = run_script(
+        "wire-click",
+        Some(("wire-click.ron", WIRE_CLICK_GRAPH)),
+        None,
+    );
+    assert_eq!(lines["b before"], "2.0");
+    assert_eq!(lines["wires after connect"], "1", "{lines:?}");
+    assert_eq!(
+        lines["b after connect"], "7.0",
+        "the first click after connecting: {lines:?}"
+    );
+    assert_eq!(
+        lines["wires after drop"], "1",
+        "a dropped wire connects nothing"
+    );
+    assert_eq!(
+        lines["b after drop"], "5.0",
+        "the first click after a dropped wire: {lines:?}"
+    );
+}

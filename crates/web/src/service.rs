@@ -87,6 +87,7 @@ impl Service {
             graph,
             options: job.options,
             base_dir,
+            allow_read: Vec::new(),
             view: job.view,
             cancel: Arc::new(AtomicBool::new(false)),
             changed_at: Instant::now(),

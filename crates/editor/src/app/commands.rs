@@ -66,10 +66,24 @@ impl EditorApp {
             MenuAction::CopyLink => crate::page::PageRequest::CopyLink {
                 ron: self.doc.to_ron(),
             },
-            MenuAction::Export(format) => {
+            MenuAction::Export(_) | MenuAction::RunExports => {
                 let base = self.doc.base_dir();
                 let folder = Path::new("/downloads");
-                match export::export(&self.doc.graph, base, *format, folder, &name) {
+                let written = match action {
+                    MenuAction::Export(format) => {
+                        export::export(&self.doc.graph, base, &[], *format, folder, &name)
+                    }
+                    _ => {
+                        export::run_exports(&self.doc.eval_graph(), base, &[], folder).map(|runs| {
+                            export::ExportReport {
+                                folder: folder.to_path_buf(),
+                                runs,
+                            }
+                            .files()
+                        })
+                    }
+                };
+                match written {
                     Ok(files) => {
                         let mut written = cnets_engine::files::memory::take_written();
                         written.retain(|(p, _)| files.contains(p));
@@ -361,11 +375,23 @@ impl EditorApp {
                         format.extension()
                     );
                 } else {
-                    let start = self.doc.path.as_deref().and_then(Path::parent).map_or_else(
-                        || std::env::current_dir().unwrap_or_default(),
-                        Path::to_path_buf,
-                    );
-                    self.dialog = Some(FileDialog::new(Purpose::ExportFolder(format), &start));
+                    // Asks for the name, starting with the document's (no fixed names).
+                    self.export_report = None;
+                    let start = self.export_folder().join(format!(
+                        "{}.{}",
+                        self.export_name(),
+                        format.extension()
+                    ));
+                    self.dialog = Some(FileDialog::new(Purpose::ExportFile(format), &start));
+                }
+            }
+            MenuAction::RunExports => {
+                if export::export_nodes(&self.doc.eval_graph()).is_empty() {
+                    self.message = "this graph has no export nodes".into();
+                } else {
+                    let start = self.export_folder();
+                    self.export_report = None;
+                    self.dialog = Some(FileDialog::new(Purpose::RunExports, &start));
                 }
             }
             MenuAction::Undo => {

@@ -1,14 +1,12 @@
 //! The dialogs the editor shows over everything: the file dialog's outcome, the unsaved-changes
 //! question and the restore offer.
 
-use crate::export;
 use crate::file_dialog::Outcome;
 use crate::file_dialog::Purpose;
 use crate::menus::MenuAction;
 use crate::unsaved;
 use crate::unsaved::Answer;
 use crate::unsaved::Replace;
-use std::path::Path;
 
 use super::EditorApp;
 
@@ -43,29 +41,9 @@ impl EditorApp {
                         );
                     }
                     Purpose::SaveAs => self.save_as(&path),
-                    Purpose::ExportFolder(format) => {
-                        let name = self
-                            .doc
-                            .resolve_file()
-                            .and_then(Path::file_stem)
-                            .map_or_else(
-                                || "cone-net".to_string(),
-                                |s| s.to_string_lossy().into_owned(),
-                            );
-                        let base = self.doc.base_dir();
-                        self.message =
-                            match export::export(&self.doc.graph, base, format, &path, &name) {
-                                Ok(files) => format!(
-                                    "exported {}",
-                                    files
-                                        .iter()
-                                        .map(|f| f.display().to_string())
-                                        .collect::<Vec<_>>()
-                                        .join(", ")
-                                ),
-                                Err(e) => format!("export failed: {e}"),
-                            };
-                    }
+                    Purpose::ExportFile(format) => self.export_preview(format, &path),
+                    Purpose::RunExports => self.run_exports(&path),
+                    Purpose::BrowseInput => self.browsed(&path),
                 }
             }
         }

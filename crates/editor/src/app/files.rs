@@ -104,7 +104,9 @@ impl EditorApp {
         if self.is_example(path) {
             return self.open_example(path);
         }
-        let options = cnets_host::document_options(Some(path), &self.library.dirs);
+        let mut options = cnets_host::document_options(Some(path), &self.library.dirs);
+        // Cluster files the document was allowed to read (its per-document settings).
+        options.allow_read.extend(self.settings.allowed_reads(path));
         match GraphDocument::open_with(path, &self.registry, &options) {
             Ok(d) => {
                 self.replace_doc(d);
@@ -161,6 +163,10 @@ impl EditorApp {
         match self.doc.save_as(path) {
             Ok(()) => {
                 self.settings.add_recent(path);
+                // The reads allowed for the document go with it to its (new) file.
+                for allowed in &self.doc.allowed_reads {
+                    self.settings.allow_read(path, allowed);
+                }
                 self.recovery.clear();
                 self.message = format!("saved {}", path.display());
             }

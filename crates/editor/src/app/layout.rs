@@ -54,6 +54,12 @@ impl EditorApp {
                     dimensions: self.viewport.show_dimensions,
                     perspective_plane: self.viewport.perspective_plane,
                 },
+                exports: self
+                    .doc
+                    .graph
+                    .nodes()
+                    .filter(|(_, n)| n.enabled && n.def.has_flag(cnets_engine::NodeFlag::Export))
+                    .count(),
             };
             if let Some(a) = menus::menu_bar(ui, &mc) {
                 self.run(a);
@@ -158,8 +164,18 @@ impl EditorApp {
             // The hint goes once the nodes no longer overlap (arranged, or moved apart).
             self.overlap_hint = false;
         }
+        // A path input's Browse… clicked this frame (on the canvas or in the parameter panel).
+        if let Some((node, input)) = crate::widgets::take_browse_request(&ctx) {
+            self.browse(&node, &input);
+        }
         self.show_dialog(&ctx);
         self.show_restore(&ctx);
+        self.show_read_prompt(&ctx);
+        if let Some(report) = &self.export_report
+            && !report.show(&ctx)
+        {
+            self.export_report = None;
+        }
 
         // A gesture ends when the pointer is released and no text field is being typed in (so a
         // drag, or typing a name, is one undo step).

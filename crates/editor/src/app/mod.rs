@@ -7,9 +7,13 @@
 mod clusters;
 mod commands;
 mod dialogs;
+mod exports;
 mod files;
 mod layout;
+mod reads;
 mod worker;
+
+pub use reads::ReadPrompt;
 
 pub use files::is_example;
 
@@ -168,6 +172,14 @@ pub struct EditorApp {
     refit_on_results: bool,
     /// In a web page: the requests for the page (see [`crate::page`]); `None` on the desktop.
     pub page: Option<crate::page::Page>,
+    /// The path input whose Browse… dialog is open (node id, input name).
+    browse_target: Option<(String, String)>,
+    /// A read refused as outside the graph's folder, asked about ("Allow reading this folder").
+    pub read_prompt: Option<ReadPrompt>,
+    /// Files whose prompt the designer declined (not asked again for this document).
+    declined_reads: Vec<PathBuf>,
+    /// What the last File › Export wrote, shown in a dialog until it is closed.
+    pub export_report: Option<crate::export::ExportReport>,
 }
 
 /// How often cluster files are checked for changes.
@@ -191,11 +203,12 @@ impl EditorApp {
             None => (torus.is_file().then_some(torus.as_path()), true),
         };
         let doc = match start {
-            Some(path) => match GraphDocument::open_with(
-                path,
-                &registry,
-                &cnets_host::document_options(Some(path), &library_dirs),
-            ) {
+            Some(path) => match GraphDocument::open_with(path, &registry, &{
+                let mut options = cnets_host::document_options(Some(path), &library_dirs);
+                // Cluster files the document was allowed to read (its per-document settings).
+                options.allow_read.extend(settings.allowed_reads(path));
+                options
+            }) {
                 Ok(d) if copy => Some(d.into_untitled_copy()),
                 Ok(d) => Some(d),
                 Err(e) => {
@@ -259,7 +272,14 @@ impl EditorApp {
             palette_was_open: false,
             refit_on_results: true,
             page: None,
+            browse_target: None,
+            read_prompt: None,
+            declined_reads: Vec::new(),
+            export_report: None,
         };
+        if let Some(p) = app.doc.path.clone() {
+            app.doc.allowed_reads = app.settings.allowed_reads(&p);
+        }
         if let Some(limit) = app.settings.planarity_limit() {
             app.viewport.options.set_planarity_limit(limit);
         }
@@ -305,6 +325,12 @@ impl EditorApp {
     fn replace_doc(&mut self, doc: GraphDocument) {
         let previous = self.doc.generation();
         self.doc = doc;
+        // What this document may read besides its folder (the editor's per-document settings).
+        if let Some(p) = self.doc.path.clone() {
+            self.doc.allowed_reads = self.settings.allowed_reads(&p);
+        }
+        self.read_prompt = None;
+        self.declined_reads.clear();
         // A new document is a new evaluation generation (fresh evaluator).
         self.doc.start_after(previous);
         self.canvas = Canvas::new();
@@ -329,6 +355,10 @@ impl EditorApp {
 
     /// Load options for the document (its folder, then the library folders).
     fn load_options(&self) -> cnets_engine::file::LoadOptions {
-        cnets_host::document_options(self.doc.resolve_file(), &self.library.dirs)
+        let mut options = cnets_host::document_options(self.doc.resolve_file(), &self.library.dirs);
+        options
+            .allow_read
+            .extend(self.doc.allowed_reads.iter().cloned());
+        options
     }
 }

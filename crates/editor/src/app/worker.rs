@@ -33,11 +33,24 @@ impl EditorApp {
             self.viewport.set_scene(r.scene, r.stats, r.picks);
             self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
         }
+        self.check_refused_reads();
     }
 
     /// Sends the graph to the worker when it (or the display options) changed since the last
     /// submission.
     pub fn submit_if_changed(&mut self) {
+        // An optimization shows its best point live (≤ 10 pictures a second), then its result
+        // until Accept or Revert; the document is submitted again afterwards.
+        if self.optimization.shows_live_view() {
+            if let Some(graph) = self.optimization.live_graph(self.viewport.options) {
+                let (view, generation) = (self.doc.view_path(), self.doc.generation());
+                let (options, base) = (self.viewport.options, self.doc.base_dir());
+                self.worker
+                    .submit_view(graph, view, generation, options, base, Instant::now());
+                self.submitted = None;
+            }
+            return;
+        }
         let key = (
             self.doc.generation(),
             self.doc.version(),
@@ -65,6 +78,7 @@ impl EditorApp {
         }
         let graph = self.doc.eval_graph();
         self.last_evaluated = Some((generation, graph.clone(), base.clone()));
+        self.worker.set_allow_read(self.doc.allowed_reads.clone());
         self.worker.submit_view(
             graph,
             self.doc.view_path(),

@@ -47,6 +47,7 @@ fn copy_node(
     to.set_position(new_id, node.position)?;
     to.set_preview(new_id, node.preview)?;
     to.set_color(new_id, node.color)?;
+    to.set_name(new_id, node.name.clone())?;
     to.set_enabled(new_id, node.enabled)?;
     Ok(())
 }

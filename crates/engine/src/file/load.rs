@@ -459,12 +459,14 @@ fn load_node(loader: &mut Loader<'_>, id: &str, body: &Node, graph: &mut Graph) 
     let get = |name: &str| fields.iter().find(|(f, _)| f.name == name).map(|(_, v)| v);
     let is_cluster = get("type").and_then(Node::as_str) == Some(CLUSTER_TYPE);
     for (f, _) in fields {
-        let known = ["type", "position", "inputs", "preview", "enabled", "color"]
-            .contains(&f.name.as_str())
+        let known = [
+            "type", "name", "position", "inputs", "preview", "enabled", "color",
+        ]
+        .contains(&f.name.as_str())
             || (is_cluster && ["source", "graph"].contains(&f.name.as_str()));
         if !known {
             let extra = if is_cluster { ", source, graph" } else { "" };
-            loader.error(f.pos, format!("node '{id}': unknown field '{}'; expected type, position, inputs, preview, enabled, color{extra}", f.name));
+            loader.error(f.pos, format!("node '{id}': unknown field '{}'; expected type, name, position, inputs, preview, enabled, color{extra}", f.name));
         }
     }
     let Some(type_node) = get("type") else {
@@ -540,6 +542,14 @@ fn load_node(loader: &mut Loader<'_>, id: &str, body: &Node, graph: &mut Graph) 
                 c.pos,
                 format!("node '{id}': 'color' must be a colour \"#rrggbb\""),
             ),
+        }
+    }
+    if let Some(n) = get("name") {
+        match n.as_str() {
+            Some(name) => {
+                let _ = graph.set_name(id, Some(name.to_string()));
+            }
+            None => loader.error(n.pos, format!("node '{id}': 'name' must be a string")),
         }
     }
     if let Some(inputs) = get("inputs") {

@@ -66,6 +66,12 @@ pub fn to_ron(graph: &Graph, meta: &GraphMeta) -> String {
                 }
             }
         }
+        if let Some(name) = &node.name {
+            push_indent(&mut out, 3);
+            out.push_str("name: ");
+            quote(&mut out, name);
+            out.push_str(",\n");
+        }
         push_indent(&mut out, 3);
         out.push_str(&format!(
             "position: ({:?}, {:?}),\n",

@@ -32,6 +32,23 @@ pub use write::{
 
 use std::path::PathBuf;
 
+/// What a refused read's message says after the file's path (see [`FileError::NotAllowed`] and
+/// [`refused_read`]).
+pub const NOT_ALLOWED_MARK: &str = " is outside the folders reads are allowed in (";
+
+/// The file a node was refused to read because it lies outside the allowed folders, from the
+/// node's error message (`cannot read 'NAME': PATH is outside the folders …`); `None` for any
+/// other message. Front ends offer to allow the file's folder (the editor's "Allow reading this
+/// folder").
+pub fn refused_read(message: &str) -> Option<PathBuf> {
+    let head = &message[..message.find(NOT_ALLOWED_MARK)?];
+    let path = match head.rfind("': ") {
+        Some(k) => &head[k + 3..],
+        None => head,
+    };
+    (!path.is_empty()).then(|| PathBuf::from(path))
+}
+
 /// A file that may not be read or written, or could not be.
 #[derive(Debug, thiserror::Error)]
 pub enum FileError {
@@ -153,5 +170,23 @@ mod tests {
         );
         assert_eq!(excerpt("a\nb\0", 10), "a\\nb\\u{0}");
         assert_eq!(excerpt("short", 10), "short");
+    }
+
+    #[test]
+    fn a_refused_read_names_its_file() {
+        let e = FileError::NotAllowed {
+            path: PathBuf::from("/data/site plan.svg"),
+            allowed: "/work/graphs".into(),
+        };
+        let message = format!("cannot read '../site plan.svg': {e}");
+        assert_eq!(
+            refused_read(&message),
+            Some(PathBuf::from("/data/site plan.svg"))
+        );
+        assert_eq!(
+            refused_read(&e.to_string()),
+            Some(PathBuf::from("/data/site plan.svg"))
+        );
+        assert_eq!(refused_read("cannot read 'x.svg': no such file"), None);
     }
 }

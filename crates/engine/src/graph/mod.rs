@@ -38,6 +38,9 @@ pub struct NodeInstance {
     pub preview: bool,
     /// The colour its geometry is previewed in (sRGB), picked on the node; `None`: the default.
     pub color: Option<[u8; 3]>,
+    /// The name the designer gave the node (the canvas title, the parameter panel, the 3D view's
+    /// labels); `None`: its id. Not an edit for evaluation; wires and `--set` still use the id.
+    pub name: Option<String>,
     /// Disabled nodes do not run; their dependents are blocked.
     pub enabled: bool,
     uid: u64,
@@ -53,6 +56,11 @@ impl NodeInstance {
     /// The literal value set on the named input, if any.
     pub fn value_of(&self, input: &str) -> Option<&Value> {
         self.def.input_index(input).and_then(|k| self.value(k))
+    }
+
+    /// The name shown to designers: the name given to the node, else its id.
+    pub fn label(&self) -> &str {
+        self.name.as_deref().unwrap_or(&self.id)
     }
 
     /// Unique id of this instance across the life of the graph (never reused).
@@ -295,6 +303,7 @@ impl Graph {
             position: [0.0, 0.0],
             preview: true,
             color: None,
+            name: None,
             enabled: true,
             uid: self.next_uid,
             edited_at: self.revision,
@@ -639,6 +648,14 @@ impl Graph {
     pub fn set_color(&mut self, id: &str, color: Option<[u8; 3]>) -> Result<(), GraphError> {
         let index = self.index(id)?;
         self.inner[index].color = color;
+        Ok(())
+    }
+
+    /// Names a node for designers (`None` or a blank name: shown by its id again; surrounding
+    /// white space is dropped). Not an edit for evaluation: wires and `--set` keep using the id.
+    pub fn set_name(&mut self, id: &str, name: Option<String>) -> Result<(), GraphError> {
+        let index = self.index(id)?;
+        self.inner[index].name = name.map(|n| n.trim().to_string()).filter(|n| !n.is_empty());
         Ok(())
     }
 

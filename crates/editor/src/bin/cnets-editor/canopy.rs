@@ -112,7 +112,8 @@ fn draw(points: impl IntoIterator<Item = DVec3>) -> Vec<Step> {
     steps
 }
 
-/// Exports through File ▸ Export ▸ `entry` into the document's folder.
+/// Exports through File ▸ Export ▸ `entry` into the document's folder, under the name the
+/// dialog offers (the document's), and closes the list of what was written.
 fn export(entry: &'static str) -> Vec<Step> {
     vec![
         click(control("File")),
@@ -121,9 +122,11 @@ fn export(entry: &'static str) -> Vec<Step> {
         Step::Wait(3),
         click(control(entry)),
         Step::Wait(3),
-        click(control("Export here")),
+        click(control("Export file")),
         Step::Wait(3),
         print("exported", |app| app.message.clone()),
+        click(control("Close export list")),
+        Step::Wait(3),
     ]
 }
 

@@ -107,6 +107,87 @@ fn handles() -> Vec<Step> {
     steps
 }
 
+/// Where the canvas draws pin `k` of node `node` (an input pin when `input`).
+fn pin(node: &'static str, input: bool, k: usize) -> Target {
+    Box::new(move |app: &EditorApp, _: &egui::Context| app.canvas.pin_screen_pos(node, input, k))
+}
+
+/// The middle of the value editor of `node.input` on the canvas.
+fn field(node: &'static str, input: &'static str) -> Target {
+    Box::new(move |app: &EditorApp, _: &egui::Context| {
+        app.canvas
+            .editor_screen_rect(node, input)
+            .map(|r| r.center())
+    })
+}
+
+/// The literal value of `times.b`, as the file would write it (`none` when unset).
+fn times_b(app: &EditorApp) -> String {
+    app.doc
+        .graph
+        .node("times")
+        .and_then(|n| n.value_of("b"))
+        .and_then(Value::as_f64)
+        .map_or_else(|| "none".to_string(), |x| format!("{x:?}"))
+}
+
+/// `wire-click` (issue 26: "the first click on a field right after a wire drag does nothing"):
+/// on a graph of a slider `apex` and a `math.multiply` `times`, a wire dragged from the slider
+/// into `times.a`, then at once one click on `times.b`'s field, `7` typed and Enter; then a wire
+/// dragged out of `times.result` and dropped on the background, one click on the field, `5` and
+/// Enter. The wires and `b` are printed after each: a first click that did nothing leaves `b`.
+fn wire_click() -> Vec<Step> {
+    let settle_type = |text: &str| {
+        vec![
+            Step::Wait(2),
+            Step::Key(Key::A, Modifiers::COMMAND),
+            Step::Text(text.to_string()),
+            key(Key::Enter),
+            Step::Settle,
+        ]
+    };
+    let mut steps = vec![
+        Step::Settle,
+        // The canvas framed (its first framing after the results moves the pins).
+        key(Key::Home),
+        Step::Wait(6),
+        print("b before", times_b),
+        Step::Drag(
+            pin("apex", false, 0),
+            pin("times", true, 0),
+            PointerButton::Primary,
+            Modifiers::NONE,
+        ),
+        click(field("times", "b")),
+    ];
+    steps.extend(settle_type("7"));
+    steps.extend([
+        print("wires after connect", |app| {
+            app.doc.graph.wires().len().to_string()
+        }),
+        print("b after connect", times_b),
+        Step::Drag(
+            pin("times", false, 0),
+            Box::new(|app: &EditorApp, ctx: &egui::Context| {
+                Some(pin("times", false, 0)(app, ctx)? + vec2(90.0, 140.0))
+            }),
+            PointerButton::Primary,
+            Modifiers::NONE,
+        ),
+        click(field("times", "b")),
+    ]);
+    steps.extend(settle_type("5"));
+    steps.extend([
+        print("wires after drop", |app| {
+            app.doc.graph.wires().len().to_string()
+        }),
+        print("b after drop", times_b),
+        Step::Shot("wire-click"),
+        Step::Quit,
+    ]);
+    steps
+}
+
 /// The nodes added since the script started that have type `type_id`.
 fn nodes_of(app: &EditorApp, type_id: &str) -> Vec<String> {
     let mut ids: Vec<String> = app
@@ -254,9 +335,10 @@ pub fn script(name: &str) -> Option<Vec<Step>> {
         "pick" => pick(),
         "folds" => folds(),
         "canopy" => crate::canopy::canopy(),
+        "wire-click" => wire_click(),
         _ => return None,
     })
 }
 
 /// The names of the scripts.
-pub const NAMES: &str = "handles, draw, pick, folds, canopy";
+pub const NAMES: &str = "handles, draw, pick, folds, canopy, wire-click";
