@@ -326,3 +326,74 @@ fn planarity_colours_every_previewed_mesh_and_names_the_mesh_of_its_figure() {
     assert!(greenish(&plain) < 0.001, "{}", greenish(&plain));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn distance_colours_the_net_by_its_distance_to_the_reference() {
+    // The catamaran hull fitted to its reference (not previewed): `--color distance:NODE`.
+    let dir = std::env::temp_dir().join(format!("cnets-render-dist-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let graph = workspace().join("graphs/catamaran-hull.ron");
+    let shot = |name: &str, color: &str| {
+        let out = dir.join(name);
+        let o = render(&[
+            graph.to_str().unwrap(),
+            "--png",
+            out.to_str().unwrap(),
+            "--size",
+            "800x450",
+            "--color",
+            color,
+        ]);
+        (o, out)
+    };
+    let (o, out) = shot("distance.png", "distance:reference_hull");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let line = String::from_utf8_lossy(&o.stdout).into_owned();
+    // "…, distance to reference_hull: max 0.0441 m rms 0.00290 m over 1234 vertices"
+    let figure = |key: &str| -> f64 {
+        let at = line.find(key).unwrap_or_else(|| panic!("{key} in {line}")) + key.len();
+        line[at..]
+            .split(" m")
+            .next()
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap()
+    };
+    assert!(line.contains("distance to reference_hull"), "{line}");
+    let (max, rms) = (figure(": max "), figure(" rms "));
+    assert!(0.0 < rms && rms < max && max < 1.0, "{line}");
+    if let Some(keep) = std::env::var_os("CNETS_KEEP_RENDERS") {
+        let _ = std::fs::copy(&out, Path::new(&keep).join("distance.png"));
+    }
+    // Viridis from purple (near) to yellow (far): both ends show; the plain picture has neither.
+    let share = |(w, h, pixels): &(u32, u32, Vec<u8>), f: &dyn Fn(&[u8]) -> bool| {
+        pixels.chunks_exact(4).filter(|p| f(p)).count() as f64 / (w * h) as f64
+    };
+    let greenish = |p: &[u8]| p[1] as i32 > p[2] as i32 + 40;
+    let purple = |p: &[u8]| p[2] as i32 > p[1] as i32 + 40 && p[0] as i32 > p[1] as i32 + 20;
+    let picture = read_png(&out);
+    assert!(
+        share(&picture, &greenish) > 0.002,
+        "{}",
+        share(&picture, &greenish)
+    );
+    assert!(
+        share(&picture, &purple) > 0.01,
+        "{}",
+        share(&picture, &purple)
+    );
+    let (o, plain) = shot("plain.png", "plain");
+    assert!(o.status.success());
+    let plain = read_png(&plain);
+    assert!(share(&plain, &greenish) < 0.001 && share(&plain, &purple) < 0.001);
+    // A reference that is not in the graph is a usage error naming it.
+    let (o, _) = shot("none.png", "distance:no_such_node");
+    assert!(!o.status.success());
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("no node 'no_such_node'"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

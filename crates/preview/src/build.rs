@@ -10,9 +10,11 @@ use web_time::Instant;
 use cnets_engine::{Evaluator, Graph, Value};
 use cnets_geometry::conenet::quad_planarity;
 use cnets_geometry::fabrication::{FaceClass, face_planarity};
-use cnets_geometry::{DVec3, QuadGrid};
-use cnets_render::palette::{self, ToleranceMap};
+use cnets_geometry::mesh_query::MeshQuery;
+use cnets_geometry::{DVec3, PolygonMesh, QuadGrid};
+use cnets_render::palette::{self, SequentialMap, ToleranceMap};
 use cnets_render::{Color, FaceColors, LineStyle, MeshStyle, PointStyle, Scene};
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use crate::classes::{class_color, face_classes};
@@ -45,6 +47,15 @@ struct PendingGrid {
     configurations: Option<Value>,
     layer: Layer,
     origin: Origin,
+    /// The node's preview colour and depth layer.
+    look: Look,
+}
+
+/// How one node's geometry is drawn: its picked colour (if any) and its depth layer.
+#[derive(Clone, Copy, Default)]
+struct Look {
+    color: Option<Color>,
+    depth_layer: u32,
 }
 
 /// Figures about the previewed geometry.
@@ -64,8 +75,106 @@ pub struct PreviewStats {
     pub legend: LegendInfo,
     /// Apex points drawn (the apices layer shown).
     pub apices: usize,
+    /// In [`ColorMode::Distance`]: the reference (`node.output`) and the largest and root mean
+    /// square distance of the other previewed meshes' vertices to it (`None` in other modes, or
+    /// without a reference mesh or other meshes).
+    pub distance: Option<DistanceFigures>,
     /// Time spent building the scene, in milliseconds.
     pub build_ms: f64,
+}
+
+/// The figures of [`ColorMode::Distance`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct DistanceFigures {
+    /// The reference node.
+    pub reference: String,
+    /// Largest vertex distance to it, in model units (metres).
+    pub max: f64,
+    /// Root mean square of the vertex distances.
+    pub rms: f64,
+    /// Vertices measured.
+    pub vertices: usize,
+}
+
+/// The reference of the distance mode: its node and the closest-point hierarchy of its mesh.
+struct DistanceReference {
+    node: String,
+    query: MeshQuery,
+}
+
+/// Calls `f` on every quad grid and polygon mesh in a value (lists walked).
+fn each_mesh(value: &Value, f: &mut dyn FnMut(MeshRef<'_>)) {
+    match value {
+        Value::List(items) => items.iter().for_each(|v| each_mesh(v, f)),
+        Value::QuadMesh(g) => f(MeshRef::Grid(g)),
+        Value::Mesh(m) => f(MeshRef::Mesh(m)),
+        _ => {}
+    }
+}
+
+/// A mesh found in an output.
+enum MeshRef<'a> {
+    Grid(&'a Arc<QuadGrid>),
+    Mesh(&'a Arc<PolygonMesh>),
+}
+
+impl MeshRef<'_> {
+    fn vertices(&self) -> &[DVec3] {
+        match self {
+            MeshRef::Grid(g) => &g.vertices,
+            MeshRef::Mesh(m) => &m.vertices,
+        }
+    }
+
+    /// The address of the shared payload: the key of its distances.
+    fn key(&self) -> usize {
+        match self {
+            MeshRef::Grid(g) => Arc::as_ptr(g) as usize,
+            MeshRef::Mesh(m) => Arc::as_ptr(m) as usize,
+        }
+    }
+}
+
+/// The reference mesh of the distance mode: the first mesh output of the node with uid `uid`.
+fn distance_reference(graph: &Graph, eval: &Evaluator, uid: u64) -> Option<DistanceReference> {
+    let (index, node) = graph.nodes().find(|(_, n)| n.uid() == uid)?;
+    let outputs = eval.result_at(graph, index)?.outputs()?;
+    let mut mesh: Option<PolygonMesh> = None;
+    for value in &outputs.values {
+        each_mesh(value, &mut |m| {
+            if mesh.is_none() {
+                mesh = Some(match m {
+                    MeshRef::Grid(g) => PolygonMesh::from(g.as_ref()),
+                    MeshRef::Mesh(m) => m.as_ref().clone(),
+                });
+            }
+        });
+    }
+    let query = MeshQuery::new(&mesh?).ok()?;
+    Some(DistanceReference {
+        node: node.id.clone(),
+        query,
+    })
+}
+
+/// A length in metres for legends, to three significant digits (`0 m`, `0.0450 m`, `1.25 m`).
+pub fn format_metres(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v} m");
+    }
+    let digits = (2 - v.abs().log10().floor() as i32).clamp(0, 12) as usize;
+    format!("{v:.digits$} m")
+}
+
+/// The legend of the distance mode: 0 … `max` in metres, six stops.
+pub fn distance_legend(reference: &str, max: f64) -> cnets_render::Legend {
+    let mut legend = SequentialMap::new(0.0, max).legend(&format!("distance to {reference}"), 6);
+    legend.labels = legend
+        .stops
+        .iter()
+        .map(|(v, _)| format_metres(*v))
+        .collect();
+    legend
 }
 
 /// Builds the preview scene from the evaluator's results for `graph`.
@@ -92,9 +201,22 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
         picks: Picks::default(),
         planarity_max: None,
         planarity_meshes: 0,
+        look: Look::default(),
+        distances: HashMap::new(),
+        distance_map: None,
     };
+    // The distance mode measures every other previewed mesh against the reference first: one
+    // scale over all of them.
+    if opts.color_mode == ColorMode::Distance
+        && let Some(reference) = opts
+            .distance_to
+            .and_then(|uid| distance_reference(graph, eval, uid))
+    {
+        b.measure_distances(graph, eval, &reference);
+    }
     // Planarity colours need one range over all meshes: collect meshes first.
     let mut meshes: Vec<PendingGrid> = Vec::new();
+    let mut next_layer = 0u32;
     for (index, node) in graph.nodes() {
         if !node.preview || !node.enabled {
             continue;
@@ -102,6 +224,13 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
         let Some(outputs) = eval.result_at(graph, index).and_then(|r| r.outputs()) else {
             continue;
         };
+        // Each previewed node draws its surfaces on its own depth layer (coincident surfaces of
+        // two nodes do not flicker: the later node wins), in its picked colour.
+        b.look = Look {
+            color: node.color.map(|[r, g, bl]| Color::rgb(r, g, bl)),
+            depth_layer: next_layer,
+        };
+        next_layer += 1;
         let configurations = node
             .def
             .output_index("configurations")
@@ -109,8 +238,11 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
             .cloned();
         // Support-layer nodes (e.g. `cnets.conical_support`) name their output just `mesh`.
         let support_node = node.def.id.contains("support");
+        let flat = unrolled_node(&node.def.id);
         for (port, value) in node.def.outputs.iter().zip(&outputs.values) {
-            let layer = if support_node {
+            let layer = if flat {
+                Layer::Unrolled
+            } else if support_node {
                 Layer::Supports
             } else {
                 layer_of(&port.name)
@@ -154,6 +286,10 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
         ColorMode::Planarity => b
             .planarity_range
             .map_or(LegendInfo::None, |m| LegendInfo::Planarity(m.legend())),
+        ColorMode::Distance => match &b.stats.distance {
+            Some(d) => LegendInfo::Distance(distance_legend(&d.reference, d.max)),
+            None => LegendInfo::None,
+        },
         _ => LegendInfo::None,
     };
     b.stats.build_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -162,6 +298,12 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
         stats: b.stats,
         picks: b.picks,
     }
+}
+
+/// Whether a node type lays strips out flat for the cutter (its outlines and label points go to
+/// [`Layer::Unrolled`], off unless asked).
+pub fn unrolled_node(type_id: &str) -> bool {
+    matches!(type_id, "pq.unroll_strips" | "fab.nest")
 }
 
 /// The layer an output belongs to, by its port name.
@@ -190,6 +332,12 @@ struct Builder {
     planarity_max: Option<(f64, String)>,
     /// Meshes with faces whose planarity was noted.
     planarity_meshes: usize,
+    /// The colour and depth layer of the node being collected.
+    look: Look,
+    /// Distance mode: each measured mesh's vertex distances, by payload address.
+    distances: HashMap<usize, Vec<f64>>,
+    /// Distance mode: the colour scale (0 … the largest distance).
+    distance_map: Option<SequentialMap>,
 }
 
 /// Support layers are drawn translucent so the surface they support stays visible.
@@ -208,6 +356,57 @@ impl Origin {
 }
 
 impl Builder {
+    /// Distance mode: the vertex distances of every previewed mesh but the reference's own, their
+    /// figures and the colour scale.
+    fn measure_distances(
+        &mut self,
+        graph: &Graph,
+        eval: &Evaluator,
+        reference: &DistanceReference,
+    ) {
+        let (mut max, mut sum2, mut count) = (0.0f64, 0.0f64, 0usize);
+        for (index, node) in graph.nodes() {
+            if !node.preview || !node.enabled || node.id == reference.node {
+                continue;
+            }
+            let Some(outputs) = eval.result_at(graph, index).and_then(|r| r.outputs()) else {
+                continue;
+            };
+            if node.def.id.contains("support") || unrolled_node(&node.def.id) {
+                continue;
+            }
+            for (port, value) in node.def.outputs.iter().zip(&outputs.values) {
+                if !matches!(layer_of(&port.name), Layer::Surfaces) {
+                    continue;
+                }
+                each_mesh(value, &mut |m| {
+                    if self.distances.contains_key(&m.key()) {
+                        return;
+                    }
+                    let Ok(closest) = reference.query.closest_all(m.vertices()) else {
+                        return;
+                    };
+                    let d: Vec<f64> = closest.iter().map(|c| c.distance).collect();
+                    for &v in &d {
+                        max = max.max(v);
+                        sum2 += v * v;
+                    }
+                    count += d.len();
+                    self.distances.insert(m.key(), d);
+                });
+            }
+        }
+        if count > 0 {
+            self.distance_map = Some(SequentialMap::new(0.0, max));
+            self.stats.distance = Some(DistanceFigures {
+                reference: reference.node.clone(),
+                max,
+                rms: (sum2 / count as f64).sqrt(),
+                vertices: count,
+            });
+        }
+    }
+
     /// Counts a mesh's face planarities in the figure (the largest, and which mesh it is on).
     fn note_planarity(&mut self, planarity: &[f64], origin: &Origin) {
         if planarity.is_empty() {
@@ -282,6 +481,7 @@ impl Builder {
                     configurations: configurations.clone(),
                     layer,
                     origin: origin.clone(),
+                    look: self.look,
                 });
             }
             Value::Mesh(mesh) => {
@@ -297,11 +497,7 @@ impl Builder {
                 let planarity = face_planarity(mesh).unwrap_or_default();
                 self.note_planarity(&planarity, origin);
                 if show {
-                    let color = if layer == Layer::Supports {
-                        SUPPORT_COLOR
-                    } else {
-                        palette::SURFACE
-                    };
+                    let color = self.uniform_color(layer);
                     let colors: Option<Vec<Color>> = (self.opts.color_mode == ColorMode::Planarity
                         && layer != Layer::Supports
                         && planarity.len() == mesh.face_count())
@@ -309,11 +505,18 @@ impl Builder {
                         let map = self.opts.planarity_map();
                         planarity.iter().map(|&v| map.color(v)).collect()
                     });
-                    let faces = match &colors {
-                        Some(c) => FaceColors::PerFace(c),
-                        None => FaceColors::Uniform(color),
+                    let by_distance = match layer {
+                        Layer::Supports => None,
+                        _ => self.vertex_distance_colors(Arc::as_ptr(mesh) as usize),
                     };
-                    let style = MeshStyle::new(faces).edges(self.edges());
+                    let faces = match (&colors, &by_distance) {
+                        (_, Some(c)) => FaceColors::PerVertex(c),
+                        (Some(c), None) => FaceColors::PerFace(c),
+                        (None, None) => FaceColors::Uniform(color),
+                    };
+                    let style = MeshStyle::new(faces)
+                        .edges(self.edges())
+                        .depth_layer(self.look.depth_layer);
                     if self.scene.add_polygon_mesh(mesh, style).is_ok() {
                         self.picks.meshes.push(PickMesh {
                             node: origin.node.clone(),
@@ -328,6 +531,7 @@ impl Builder {
             }
             Value::Polyline(p) => {
                 let (layer, color) = self.line_layer(layer);
+                let color = self.curve_color(layer, color);
                 if self.opts.shows(layer) {
                     self.scene.add_polyline(p, LineStyle::new(color, 2.5));
                     self.picks.curves.push(PickCurve {
@@ -339,6 +543,7 @@ impl Builder {
             }
             Value::Lines(lines) => {
                 let (layer, color) = self.line_layer(layer);
+                let color = self.curve_color(layer, color);
                 if self.opts.shows(layer) {
                     self.scene.add_lines(lines, LineStyle::new(color, 1.5));
                 }
@@ -352,13 +557,41 @@ impl Builder {
         match layer {
             Layer::Axes => (Layer::Axes, AXIS_COLOR),
             Layer::Supports => (Layer::Supports, SUPPORT_COLOR),
+            Layer::Unrolled => (Layer::Unrolled, CURVE_COLOR),
             _ => (Layer::Curves, CURVE_COLOR),
         }
+    }
+
+    /// A curve's colour: the node's picked colour for curves and unrolled outlines.
+    fn curve_color(&self, layer: Layer, color: Color) -> Color {
+        match (layer, self.look.color) {
+            (Layer::Curves | Layer::Unrolled, Some(c)) => c,
+            _ => color,
+        }
+    }
+
+    /// The colour of a surface drawn in one colour: support layers translucent, else the node's
+    /// picked colour or the default grey.
+    fn uniform_color(&self, layer: Layer) -> Color {
+        if layer == Layer::Supports {
+            SUPPORT_COLOR
+        } else {
+            self.look.color.unwrap_or(palette::SURFACE)
+        }
+    }
+
+    /// Distance mode: the vertex colours of a measured mesh (`None`: not measured — the reference
+    /// itself — or another mode).
+    fn vertex_distance_colors(&self, key: usize) -> Option<Vec<Color>> {
+        let map = self.distance_map?;
+        let d = self.distances.get(&key)?;
+        Some(d.iter().map(|&v| map.color(v)).collect())
     }
 
     fn add_points(&mut self, points: &[DVec3], layer: Layer) {
         let layer = match layer {
             Layer::Apices => Layer::Apices,
+            Layer::Unrolled => Layer::Unrolled,
             _ => Layer::Points,
         };
         if !self.opts.shows(layer) {
@@ -369,6 +602,7 @@ impl Builder {
         }
         let style = match layer {
             Layer::Apices => PointStyle::new(APEX_COLOR, 7.0),
+            Layer::Unrolled => PointStyle::new(self.look.color.unwrap_or(CURVE_COLOR), 5.0),
             _ => PointStyle::new(Color::hex(0x333333), 5.0),
         };
         self.scene.add_points(points, style);
@@ -380,7 +614,9 @@ impl Builder {
             configurations,
             layer,
             origin,
+            look,
         } = pending;
+        self.look = look;
         self.stats.vertices += grid.vertices.len();
         self.stats.faces += grid.quad_count();
         if !self.opts.shows(layer) {
@@ -403,22 +639,22 @@ impl Builder {
                 let map = self.planarity_range.unwrap_or(self.opts.planarity_map());
                 Some(planarity.iter().map(|&v| map.color(v)).collect())
             }
-            (ColorMode::Plain, _) => None,
+            (ColorMode::Plain | ColorMode::Distance, _) => None,
         };
-        let uniform = if layer == Layer::Supports {
-            SUPPORT_COLOR
-        } else {
-            palette::SURFACE
+        let uniform = self.uniform_color(layer);
+        let by_distance = match layer {
+            Layer::Supports => None,
+            _ => self.vertex_distance_colors(Arc::as_ptr(&grid) as usize),
         };
-        let faces = match &colors {
-            Some(c) => FaceColors::PerFace(c),
-            None => FaceColors::Uniform(uniform),
+        let faces = match (&colors, &by_distance) {
+            (_, Some(c)) => FaceColors::PerVertex(c),
+            (Some(c), None) => FaceColors::PerFace(c),
+            (None, None) => FaceColors::Uniform(uniform),
         };
-        if self
-            .scene
-            .add_quad_grid(&grid, MeshStyle::new(faces).edges(self.edges()))
-            .is_ok()
-        {
+        let style = MeshStyle::new(faces)
+            .edges(self.edges())
+            .depth_layer(look.depth_layer);
+        if self.scene.add_quad_grid(&grid, style).is_ok() {
             self.picks.meshes.push(PickMesh {
                 node: origin.node,
                 output: origin.output,

@@ -17,6 +17,8 @@ pub enum LegendInfo {
     Classes(Vec<(FaceClass, usize)>),
     /// A planarity colour scale.
     Planarity(cnets_render::Legend),
+    /// The distance colour scale (`distance to <node>`, labels in metres).
+    Distance(cnets_render::Legend),
 }
 
 /// The configuration class of a face in the paper's notation: the (±±) configurations of its two
@@ -55,7 +57,7 @@ pub fn legend_rows(legend: &LegendInfo) -> Option<(String, Vec<(Color, String)>)
                 })
                 .collect(),
         )),
-        LegendInfo::Planarity(l) => Some((
+        LegendInfo::Planarity(l) | LegendInfo::Distance(l) => Some((
             l.title.clone(),
             l.stops
                 .iter()

@@ -15,7 +15,10 @@ mod legend;
 mod options;
 mod picks;
 
-pub use build::{Preview, PreviewStats, build_preview, build_scene, layer_of};
+pub use build::{
+    DistanceFigures, Preview, PreviewStats, build_preview, build_scene, distance_legend,
+    format_metres, layer_of, unrolled_node,
+};
 pub use classes::{class_color, face_classes};
 pub use legend::{APEX_COLOR, APEX_LEGEND, LegendInfo, legend_rows, paper_class};
 pub use options::{ColorMode, Layer, PLANARITY_LIMIT_RANGE, PreviewOptions};
@@ -115,9 +118,42 @@ mod tests {
         assert_eq!(layer_of("node_axes"), Layer::Axes);
         assert_eq!(layer_of("support_layers"), Layer::Supports);
         assert_eq!(layer_of("mesh"), Layer::Surfaces);
+        assert!(unrolled_node("pq.unroll_strips") && unrolled_node("fab.nest"));
+        assert!(!unrolled_node("cnets.ctube"));
+        // Apex dots and unrolled strips are off until asked for; every other layer is on.
         let mut o = PreviewOptions::default();
-        assert!(Layer::ALL.iter().all(|&l| o.shows(l)));
+        assert!(
+            Layer::ALL
+                .iter()
+                .all(|&l| o.shows(l) != Layer::OFF_BY_DEFAULT.contains(&l))
+        );
+        o.set(Layer::Apices, true);
+        assert!(o.shows(Layer::Apices) && o.shows(Layer::Axes));
         o.set(Layer::Apices, false);
-        assert!(!o.shows(Layer::Apices) && o.shows(Layer::Axes));
+        assert!(!o.shows(Layer::Apices) && !o.shows(Layer::Unrolled));
+    }
+
+    #[test]
+    fn the_distance_legend_reads_in_metres() {
+        assert_eq!(format_metres(0.0), "0 m");
+        assert_eq!(format_metres(0.0441), "0.0441 m");
+        assert_eq!(format_metres(1.25), "1.25 m");
+        assert_eq!(format_metres(17.9), "17.9 m");
+        let (title, rows) =
+            legend_rows(&LegendInfo::Distance(distance_legend("hull", 0.179))).unwrap();
+        assert_eq!(title, "distance to hull");
+        assert_eq!(rows.len(), 6);
+        assert_eq!(rows[0].1, "0.179 m", "largest on top: {rows:?}");
+        assert_eq!(rows[5].1, "0 m");
+        assert_ne!(rows[0].0, rows[5].0);
+        assert_eq!(
+            ColorMode::ALL
+                .iter()
+                .filter(|m| **m == ColorMode::Distance)
+                .count(),
+            1
+        );
+        assert_eq!(PreviewOptions::default().distance_to, None);
     }
 }
+

@@ -12,15 +12,19 @@ pub enum ColorMode {
     /// By per-face planarity (viridis on a log scale anchored to tolerances: planar below 1e-9
     /// relative, not planar from 1e-3; `ToleranceMap`).
     Planarity,
-    /// One colour.
+    /// By each vertex's distance to a reference mesh ([`PreviewOptions::distance_to`]): every
+    /// other previewed mesh blends viridis from 0 to the largest distance, the legend in metres.
+    Distance,
+    /// One colour (each node's own preview colour, when it has one).
     Plain,
 }
 
 impl ColorMode {
     /// All modes, for menus.
-    pub const ALL: [ColorMode; 3] = [
+    pub const ALL: [ColorMode; 4] = [
         ColorMode::Configuration,
         ColorMode::Planarity,
+        ColorMode::Distance,
         ColorMode::Plain,
     ];
 
@@ -29,6 +33,7 @@ impl ColorMode {
         match self {
             ColorMode::Configuration => "Configuration class",
             ColorMode::Planarity => "Planarity",
+            ColorMode::Distance => "Distance to a reference",
             ColorMode::Plain => "Plain",
         }
     }
@@ -51,11 +56,14 @@ pub enum Layer {
     Supports,
     /// Other points.
     Points,
+    /// Unrolled strips laid flat for the cutter (`pq.unroll_strips`, `fab.nest`: outlines and
+    /// label points), drawn in the XY plane far from the design: off unless asked.
+    Unrolled,
 }
 
 impl Layer {
     /// All layers, for menus.
-    pub const ALL: [Layer; 7] = [
+    pub const ALL: [Layer; 8] = [
         Layer::Surfaces,
         Layer::Edges,
         Layer::Curves,
@@ -63,7 +71,12 @@ impl Layer {
         Layer::Axes,
         Layer::Supports,
         Layer::Points,
+        Layer::Unrolled,
     ];
+
+    /// Layers off until asked for: apex dots (far from the surface, they clutter the view) and
+    /// unrolled strips (flat on the XY plane, away from the design).
+    pub const OFF_BY_DEFAULT: [Layer; 2] = [Layer::Apices, Layer::Unrolled];
 
     /// Menu label.
     pub fn label(self) -> &'static str {
@@ -75,10 +88,12 @@ impl Layer {
             Layer::Axes => "Torsion-free axes",
             Layer::Supports => "Support layers",
             Layer::Points => "Points",
+            Layer::Unrolled => "Unrolled strips (flat)",
         }
     }
 
-    /// Short name for command lines: surfaces, edges, curves, apices, axes, supports, points.
+    /// Short name for command lines: surfaces, edges, curves, apices, axes, supports, points,
+    /// unrolled.
     pub fn name(self) -> &'static str {
         match self {
             Layer::Surfaces => "surfaces",
@@ -88,6 +103,7 @@ impl Layer {
             Layer::Axes => "axes",
             Layer::Supports => "supports",
             Layer::Points => "points",
+            Layer::Unrolled => "unrolled",
         }
     }
 
@@ -108,6 +124,10 @@ impl Layer {
 pub struct PreviewOptions {
     /// Surface colouring.
     pub color_mode: ColorMode,
+    /// The reference of [`ColorMode::Distance`]: the [`uid`](cnets_engine::NodeInstance::uid) of
+    /// the node whose first mesh output the other meshes are measured against (`None`: not picked
+    /// yet; the meshes are then drawn plainly).
+    pub distance_to: Option<u64>,
     layers: u8,
     /// The top of the planarity scale (see [`PreviewOptions::planarity_limit`]), as `f64` bits
     /// so the options stay `Eq`.
@@ -118,7 +138,11 @@ impl Default for PreviewOptions {
     fn default() -> Self {
         Self {
             color_mode: ColorMode::default(),
-            layers: Layer::ALL.iter().fold(0, |acc, l| acc | l.bit()),
+            distance_to: None,
+            layers: Layer::ALL
+                .iter()
+                .filter(|l| !Layer::OFF_BY_DEFAULT.contains(l))
+                .fold(0, |acc, l| acc | l.bit()),
             planarity_limit: ToleranceMap::DEFAULT.limit.to_bits(),
         }
     }

@@ -256,7 +256,9 @@ fn options(w: &mut Writer, o: &PreviewOptions) {
         ColorMode::Configuration => 0,
         ColorMode::Planarity => 1,
         ColorMode::Plain => 2,
+        ColorMode::Distance => 3,
     });
+    w.opt(o.distance_to.as_ref(), |w, uid| w.u64(*uid));
     let layers = Layer::ALL
         .iter()
         .enumerate()
@@ -271,8 +273,10 @@ fn read_options(r: &mut Reader) -> Res<PreviewOptions> {
         0 => ColorMode::Configuration,
         1 => ColorMode::Planarity,
         2 => ColorMode::Plain,
+        3 => ColorMode::Distance,
         _ => return Err(WireError("unknown colour mode")),
     };
+    o.distance_to = r.opt(Reader::u64)?;
     let layers = r.u32()?;
     for (k, l) in Layer::ALL.iter().enumerate() {
         o.set(*l, layers & (1 << k) != 0);
@@ -486,8 +490,12 @@ fn stats(w: &mut Writer, s: &PreviewStats) {
                 w.u64(*n as u64);
             }
         }
-        LegendInfo::Planarity(l) => {
-            w.u8(2);
+        LegendInfo::Planarity(l) | LegendInfo::Distance(l) => {
+            w.u8(if matches!(s.legend, LegendInfo::Distance(_)) {
+                3
+            } else {
+                2
+            });
             w.str(&l.title);
             w.f64(l.min);
             w.f64(l.max);
@@ -500,6 +508,12 @@ fn stats(w: &mut Writer, s: &PreviewStats) {
         }
     }
     w.u64(s.apices as u64);
+    w.opt(s.distance.as_ref(), |w, d| {
+        w.str(&d.reference);
+        w.f64(d.max);
+        w.f64(d.rms);
+        w.u64(d.vertices as u64);
+    });
     w.f64(s.build_ms);
 }
 
@@ -518,7 +532,7 @@ fn read_stats(r: &mut Reader) -> Res<PreviewStats> {
                     .collect::<Res<_>>()?,
             )
         }
-        2 => {
+        kind @ (2 | 3) => {
             let title = r.string()?;
             let min = r.f64()?;
             let max = r.f64()?;
@@ -531,13 +545,18 @@ fn read_stats(r: &mut Reader) -> Res<PreviewStats> {
                     Ok((x, Color(c)))
                 })
                 .collect::<Res<_>>()?;
-            LegendInfo::Planarity(Legend {
+            let legend = Legend {
                 title,
                 min,
                 max,
                 stops,
                 labels: r.strings()?,
-            })
+            };
+            if kind == 3 {
+                LegendInfo::Distance(legend)
+            } else {
+                LegendInfo::Planarity(legend)
+            }
         }
         _ => return Err(WireError("unknown legend")),
     };
@@ -548,6 +567,14 @@ fn read_stats(r: &mut Reader) -> Res<PreviewStats> {
         max_planarity_mesh,
         legend,
         apices: r.usize()?,
+        distance: r.opt(|r| {
+            Ok(cnets_editor::preview::DistanceFigures {
+                reference: r.string()?,
+                max: r.f64()?,
+                rms: r.f64()?,
+                vertices: r.usize()?,
+            })
+        })?,
         build_ms: r.f64()?,
     })
 }
@@ -916,6 +943,12 @@ mod tests {
                 max_planarity_mesh: Some("net.mesh".into()),
                 legend: LegendInfo::Classes(vec![(FaceClass::Convex, 1)]),
                 apices: 0,
+                distance: Some(cnets_editor::preview::DistanceFigures {
+                    reference: "hull".into(),
+                    max: 0.179,
+                    rms: 0.025,
+                    vertices: 560,
+                }),
                 build_ms: 0.5,
             },
             picks: Arc::new(picks),

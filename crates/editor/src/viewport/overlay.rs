@@ -115,7 +115,7 @@ pub fn legend(ui: &mut Ui, rect: Rect, stats: Rect, s: &PreviewStats, folds: usi
             }
             classes.len()
         }
-        LegendInfo::Planarity(legend) => {
+        LegendInfo::Planarity(legend) | LegendInfo::Distance(legend) => {
             title(&legend.title);
             for (k, (value, color)) in legend.stops.iter().enumerate().rev() {
                 let row = legend.stops.len() - 1 - k;

@@ -29,7 +29,8 @@ pub struct Args {
     /// Camera direction: iso, top, front or side.
     #[arg(long, default_value = "iso")]
     view: String,
-    /// Face colours: config (face class from the construction's configurations), planarity or plain.
+    /// Face colours: config (face class from the construction's configurations), planarity, plain,
+    /// or distance:NODE (each vertex's distance to NODE's mesh, legend in metres).
     #[arg(long, default_value = "config")]
     color: String,
     /// Hide a layer: surfaces, edges, curves, apices, axes, supports or points (repeatable).
@@ -69,14 +70,21 @@ fn parse_size(text: &str) -> Result<(u32, u32), Failure> {
     Ok((w, h))
 }
 
-fn parse_color(text: &str) -> Result<ColorMode, Failure> {
+/// The colour mode, and for `distance:NODE` the reference node's id.
+fn parse_color(text: &str) -> Result<(ColorMode, Option<String>), Failure> {
     match text {
-        "config" | "configuration" | "class" => Ok(ColorMode::Configuration),
-        "planarity" => Ok(ColorMode::Planarity),
-        "plain" | "none" => Ok(ColorMode::Plain),
-        other => Err(Failure::usage(format!(
-            "--color '{other}': use config, planarity or plain"
-        ))),
+        "config" | "configuration" | "class" => Ok((ColorMode::Configuration, None)),
+        "planarity" => Ok((ColorMode::Planarity, None)),
+        "plain" | "none" => Ok((ColorMode::Plain, None)),
+        other => match other.split_once(':') {
+            Some(("distance", node)) if !node.trim().is_empty() => {
+                Ok((ColorMode::Distance, Some(node.trim().to_string())))
+            }
+            _ => Err(Failure::usage(format!(
+                "--color '{other}': use config, planarity, plain or distance:NODE (the node whose \
+                 mesh the others are measured against)"
+            ))),
+        },
     }
 }
 
@@ -88,6 +96,8 @@ pub struct Look {
     pub view: View,
     /// Colours and visible layers.
     pub options: PreviewOptions,
+    /// `--color distance:NODE`: the reference node's id, until [`Look::resolve`] finds it.
+    pub distance_to: Option<String>,
 }
 
 impl Look {
@@ -98,7 +108,8 @@ impl Look {
             .parse()
             .map_err(|_| Failure::usage(format!("--view '{view}': use iso, top, front or side")))?;
         let mut options = PreviewOptions::default();
-        options.color_mode = parse_color(color)?;
+        let (mode, distance_to) = parse_color(color)?;
+        options.color_mode = mode;
         // Apices are far from the surface and clutter a picture: shown only when asked.
         options.set(Layer::Apices, false);
         for name in hide {
@@ -112,7 +123,22 @@ impl Look {
             size,
             view,
             options,
+            distance_to,
         })
+    }
+
+    /// Finds the reference node of `--color distance:NODE` in the graph.
+    pub fn resolve(&mut self, graph: &Graph) -> Result<(), Failure> {
+        let Some(id) = &self.distance_to else {
+            return Ok(());
+        };
+        let node = graph.node(id).ok_or_else(|| {
+            Failure::usage(format!(
+                "--color distance:{id}: the graph has no node '{id}'"
+            ))
+        })?;
+        self.options.distance_to = Some(node.uid());
+        Ok(())
     }
 }
 
@@ -195,8 +221,21 @@ pub fn render_png(
         (Some(p), None) => format!(", max planarity {p:.1e}"),
         _ => String::new(),
     };
+    let distance = match (&stats.distance, look.options.color_mode) {
+        (Some(d), _) => format!(
+            ", distance to {}: max {} rms {} over {} vertices",
+            d.reference,
+            cnets_preview::format_metres(d.max),
+            cnets_preview::format_metres(d.rms),
+            d.vertices
+        ),
+        (None, ColorMode::Distance) => ", no mesh measured (the reference has no mesh, or \
+                                        nothing else is previewed)"
+            .to_string(),
+        _ => String::new(),
+    };
     Ok(format!(
-        "wrote {} ({width}x{height}, {} view, {} vertices, {} faces{planarity})",
+        "wrote {} ({width}x{height}, {} view, {} vertices, {} faces{planarity}{distance})",
         png.display(),
         look.view,
         stats.vertices,
@@ -221,11 +260,18 @@ pub fn run(args: Args) -> CommandResult {
     check_target(&args.png)?;
     let doc = library::load_graph(&args.graph, &args.library, &args.sets)?;
     let graph = doc.graph;
-    // Pull only what is previewed (exports are not run by a render).
+    look.resolve(&graph)?;
+    // The reference is evaluated even when it is not previewed.
+    let reference = look
+        .distance_to
+        .as_deref()
+        .and_then(|id| graph.index(id).ok());
+    // Pull only what is previewed (exports are not run by a render), and the distance reference.
     let request: Vec<_> = graph
         .nodes()
         .filter(|(_, n)| n.preview && n.enabled && !n.def.has_flag(NodeFlag::Export))
         .map(|(k, _)| k)
+        .chain(reference)
         .collect();
     let ctx = NodeContext::new(None, args.graph.parent().map(Path::to_path_buf));
     let mut evaluator = Evaluator::new();
