@@ -85,6 +85,8 @@ pub struct OptimizationPanel {
     /// The last finished run, until accepted or reverted; or why it could not run.
     pub result: Option<Result<Finished, String>>,
     running: Option<run::Running>,
+    /// The live view of the run: the document's graph with the best point so far applied.
+    live: Option<run::Live>,
     wake: Arc<dyn Fn() + Send + Sync>,
 }
 
@@ -97,6 +99,7 @@ impl OptimizationPanel {
             iterations: Vec::new(),
             result: None,
             running: None,
+            live: None,
             wake,
         }
     }
@@ -109,6 +112,7 @@ impl OptimizationPanel {
     /// Forgets the draft and any result (another document was opened).
     pub fn reset(&mut self) {
         self.running = None;
+        self.live = None;
         self.draft = Draft::default();
         self.iterations.clear();
         self.result = None;
@@ -307,6 +311,59 @@ pub(crate) mod tests {
         assert!(doc.to_ron().contains("optimization: ("));
         assert!(doc.undo());
         assert!(doc.meta.optimization.is_none());
+    }
+
+    #[test]
+    fn the_live_view_gives_the_best_point_once_per_point_and_ends_with_revert() {
+        let mut doc = GraphDocument::from_parts(graph(), Default::default(), None);
+        let mut panel = OptimizationPanel::new(Arc::new(|| {}));
+        let var = Variable {
+            input: ValuePath::parse("n.value").unwrap(),
+            min: 0.1,
+            max: 2.0,
+        };
+        panel.add_variable(&mut doc, var, None).unwrap();
+        panel
+            .set_objective(&mut doc, ValuePath::parse("n.value").unwrap())
+            .unwrap();
+        assert!(!panel.shows_live_view());
+        panel.start(&doc, None, Some(20)).unwrap();
+        assert!(panel.wait(std::time::Duration::from_secs(60)));
+        assert!(
+            panel.shows_live_view(),
+            "the result is shown until Accept or Revert"
+        );
+        let options = crate::preview::PreviewOptions::default();
+        let g = panel.live_graph(options).expect("the result's picture");
+        let best = match &panel.result {
+            Some(Ok(f)) => f.outcome.x[0],
+            _ => panic!("a finished run"),
+        };
+        assert_eq!(
+            g.node("n").unwrap().value_of("value"),
+            Some(&Value::Number(best))
+        );
+        assert!(
+            (best - 0.1).abs() < 1e-6,
+            "minimized to the lower bound: {best}"
+        );
+        assert_eq!(
+            doc.graph.node("n").unwrap().value_of("value"),
+            Some(&Value::Number(0.3)),
+            "the document keeps its value"
+        );
+        assert!(
+            panel.live_graph(options).is_none(),
+            "the same point is not sent twice"
+        );
+        let mut other = options;
+        other.color_mode = crate::preview::ColorMode::Planarity;
+        assert!(
+            panel.live_graph(other).is_some(),
+            "new display options: sent again"
+        );
+        panel.revert();
+        assert!(!panel.shows_live_view() && panel.live_graph(options).is_none());
     }
 
     #[test]

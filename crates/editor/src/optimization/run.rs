@@ -1,5 +1,11 @@
 //! Optimization runs: the engine's optimizer on a worker thread over a copy of the graph,
 //! reporting each iteration; stopping, and accepting or reverting the result.
+//!
+//! The 3D view follows the run: each iteration reports the best point so far, and
+//! [`OptimizationPanel::live_graph`] gives the document's graph with that point applied — at most
+//! [`LIVE_PER_SECOND`] times a second — for the app to evaluate and draw in place of the document.
+//! After the run (stopped or finished) the view shows its result until *Accept* (which writes it)
+//! or *Revert* (the document's own values again).
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -34,6 +40,19 @@ pub struct Finished {
 enum Message {
     Iteration(Iteration),
     Done(Box<Result<(Outcome, Vec<String>), String>>),
+}
+
+/// Pictures a second the live view of a run is updated at most.
+pub const LIVE_PER_SECOND: f64 = 10.0;
+
+/// The live view of a run: the document's graph with the variables of the run's setup, to which
+/// each best point is applied.
+pub(super) struct Live {
+    problem: optimize::Problem,
+    /// The point last handed out, and when.
+    sent: Option<(Vec<f64>, Instant)>,
+    /// The display options it was handed out with (other options: sent again).
+    options: Option<crate::preview::PreviewOptions>,
 }
 
 /// A run in progress (dropping it stops it and joins its thread).
@@ -75,6 +94,19 @@ impl OptimizationPanel {
             setup.max_iter = n;
         }
         let graph = isolated(&doc.graph);
+        // The live view applies the best points to the graph the editor evaluates (at the top
+        // level; inside a cluster the view keeps the document until the result is accepted).
+        self.live = if doc.view_path().is_empty() {
+            optimize::Problem::new(doc.eval_graph(), setup.clone(), false)
+                .ok()
+                .map(|problem| Live {
+                    problem,
+                    sent: None,
+                    options: None,
+                })
+        } else {
+            None
+        };
         let (tx, rx) = channel();
         let cancel = Arc::new(AtomicBool::new(false));
         let flag = cancel.clone();
@@ -198,12 +230,51 @@ impl OptimizationPanel {
             fmt(finished.outcome.objective)
         );
         self.result = None;
+        self.live = None;
         Ok(message)
     }
 
-    /// Discards the finished run's values.
+    /// Discards the finished run's values (the view shows the document's own again).
     pub fn revert(&mut self) {
         self.result = None;
+        self.live = None;
+    }
+
+    /// Whether the 3D view shows the run (running, or finished and not yet accepted or reverted)
+    /// rather than the document.
+    pub fn shows_live_view(&self) -> bool {
+        self.live.is_some() && (self.running.is_some() || matches!(self.result, Some(Ok(_))))
+    }
+
+    /// The document's graph at the run's best point so far, when the view is due a new picture:
+    /// the point moved (or the display options changed) and the last one went out at least
+    /// 1/[`LIVE_PER_SECOND`] s ago. A point held back by that limit asks for another frame.
+    pub fn live_graph(&mut self, options: crate::preview::PreviewOptions) -> Option<Graph> {
+        if !self.shows_live_view() {
+            return None;
+        }
+        let best: Vec<f64> = match &self.result {
+            Some(Ok(finished)) => finished.outcome.x.clone(),
+            _ => self.iterations.last()?.best.clone(),
+        };
+        let live = self.live.as_mut()?;
+        let same_point = live.sent.as_ref().is_some_and(|(x, _)| *x == best);
+        if same_point && live.options == Some(options) {
+            return None;
+        }
+        let due = live
+            .sent
+            .as_ref()
+            .is_none_or(|(_, at)| at.elapsed() >= Duration::from_secs_f64(1.0 / LIVE_PER_SECOND));
+        // The final point of a finished run goes out at once.
+        if !due && self.running.is_some() {
+            (self.wake)();
+            return None;
+        }
+        live.problem.apply(&best).ok()?;
+        live.sent = Some((best, Instant::now()));
+        live.options = Some(options);
+        Some(live.problem.graph().clone())
     }
 }
 

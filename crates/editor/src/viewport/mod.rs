@@ -15,6 +15,8 @@
 //! previewed geometry. The same code runs in the web build. Keys and mouse: docs/editor.md,
 //! "Drawing and editing in the 3D view".
 
+pub mod colors;
+pub mod distance;
 pub mod draw;
 pub mod gpu;
 pub mod grid;
@@ -639,6 +641,11 @@ impl Viewport {
         let legend = overlay::legend(ui, rect, stats, &self.stats, folds);
         self.fold_entry = legend.fold_entry;
         self.labels_bottom = legend.bottom.max(stats.bottom());
+        // Colour by distance: which mesh the others are measured against.
+        distance::ensure_reference(&mut self.options, input.graph);
+        let picker_bottom =
+            distance::picker(ui, rect, legend.bottom, &mut self.options, input.graph);
+        self.labels_bottom = self.labels_bottom.max(picker_bottom);
         if legend.clicked {
             self.show_folds();
             actions.push(ViewportAction::Message(format!(
