@@ -874,6 +874,46 @@ impl Viewer<'_> {
             ui.data_mut(|d| d.insert_temp(key, name));
         }
     }
+
+    /// "Name" in a node's context menu: a field with the node's name (its id when it has none)
+    /// and a "Rename node" button (Enter too): one undo step, saved with the graph; an empty name shows
+    /// the id again. The id itself never changes (wires, `--set` and scripts use it).
+    fn rename_node_menu(&mut self, ui: &mut Ui, id: &str) {
+        let Some(node) = self.graph.node(id) else {
+            return;
+        };
+        let current = node.label().to_string();
+        let key = egui::Id::new(("rename-node", id));
+        let mut name: String = ui.data_mut(|d| d.get_temp(key)).unwrap_or(current.clone());
+        ui.horizontal(|ui| {
+            ui.label("Name");
+            let field = ui.add(
+                egui::TextEdit::singleline(&mut name)
+                    .desired_width(140.0)
+                    .hint_text(id)
+                    .id(key.with("field")),
+            );
+            let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            let changed = name.trim() != current;
+            let clicked = ui
+                .add_enabled(changed, egui::Button::new("Rename node"))
+                .on_hover_text(
+                    "the name shown on the canvas, in the parameter panel and the 3D view (the \
+                     id stays: wires and --set use it)",
+                )
+                .clicked();
+            if changed && (clicked || enter) {
+                let name = name.trim();
+                let name = (!name.is_empty() && name != id).then(|| name.to_string());
+                self.actions
+                    .push(CanvasAction::Edit(Edit::Rename(id.to_string(), name)));
+                ui.data_mut(|d| d.remove::<String>(key));
+                ui.close();
+            } else {
+                ui.data_mut(|d| d.insert_temp(key, name));
+            }
+        });
+    }
 }
 
 const ERROR_COLOR: Color32 = Color32::from_rgb(0xd6, 0x2f, 0x2f);
@@ -881,7 +921,9 @@ const WARNING_COLOR: Color32 = Color32::from_rgb(0xe0, 0x9a, 0x2b);
 
 impl SnarlViewer<CanvasNode> for Viewer<'_> {
     fn title(&mut self, node: &CanvasNode) -> String {
-        node.id.clone()
+        self.graph
+            .node(&node.id)
+            .map_or_else(|| node.id.clone(), |n| n.label().to_string())
     }
 
     fn node_frame(
@@ -934,10 +976,15 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             ui.style_mut().interaction.selectable_labels = false;
             let title = ui
                 .add(
-                    egui::Label::new(egui::RichText::new(&id).strong()).sense(egui::Sense::hover()),
+                    egui::Label::new(egui::RichText::new(instance.label()).strong())
+                        .sense(egui::Sense::hover()),
                 )
                 .on_hover_ui(|ui| {
                     ui.set_max_width(360.0);
+                    if instance.name.is_some() {
+                        // A named node: its id is what wires, `--set` and scripts use.
+                        ui.label(format!("id: {id}"));
+                    }
                     ui.strong(instance.def.id.as_ref());
                     ui.label(instance.def.doc.as_ref());
                     if cluster.is_some() {
@@ -1319,6 +1366,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 .push(CanvasAction::Edit(Edit::Remove(vec![id.clone()])));
             ui.close();
         }
+        self.rename_node_menu(ui, &id);
         if self
             .graph
             .node(&id)

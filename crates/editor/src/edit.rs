@@ -86,6 +86,8 @@ pub enum Edit {
     SetPreview(String, bool),
     /// Set (or clear) the colour a node's geometry is previewed in.
     SetColor(String, Option<[u8; 3]>),
+    /// Name a node for designers (`None` or blank: shown by its id again); saved with the graph.
+    Rename(String, Option<String>),
     /// Enable or disable a node.
     SetEnabled(String, bool),
     /// Move nodes to new canvas positions.
@@ -182,6 +184,9 @@ pub fn apply(doc: &mut GraphDocument, edit: Edit) -> Result<Vec<String>, String>
         }
         Edit::SetColor(node, color) => {
             none(doc.edit(None, |g, _| g.set_color(&node, color).map_err(err)))
+        }
+        Edit::Rename(node, name) => {
+            none(doc.edit(None, |g, _| g.set_name(&node, name).map_err(err)))
         }
         Edit::SetEnabled(node, on) => {
             none(doc.edit(None, |g, _| g.set_enabled(&node, on).map_err(err)))
@@ -400,6 +405,7 @@ pub(crate) mod tests {
                 output: "curve".into(),
             },
             Edit::SetPreview("arc".into(), false),
+            Edit::Rename("arc".into(), Some("Directrix".into())),
             Edit::SetEnabled("len".into(), false),
             Edit::Duplicate(vec!["n".into()]),
             Edit::MakeCluster {

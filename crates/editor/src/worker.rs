@@ -115,6 +115,9 @@ pub struct EvalRequest {
     pub options: PreviewOptions,
     /// Folder relative import paths resolve against.
     pub base_dir: Option<PathBuf>,
+    /// Folders (and single files) besides `base_dir` that nodes may read: the document's allowed
+    /// reads (a file picked with Browse…, a folder allowed at a prompt), as `--allow-read`.
+    pub allow_read: Vec<PathBuf>,
     /// Cluster nodes opened in place, outermost first: statuses and the preview are those of the
     /// innermost cluster's subgraph, as its instance evaluated it inside `graph`.
     pub view: Vec<String>,
@@ -165,6 +168,7 @@ pub struct Worker {
     last_complete: u64,
     running_cancel: Option<Arc<AtomicBool>>,
     carry: Option<Carry>,
+    allow_read: Vec<PathBuf>,
     thread: Option<JoinHandle<()>>,
     /// The inline worker's state (no thread): the requests and the evaluator.
     inline: Option<Inline>,
@@ -203,6 +207,7 @@ impl Worker {
             last_complete: 0,
             running_cancel: None,
             carry: None,
+            allow_read: Vec::new(),
             thread,
             inline: None,
             remote: None,
@@ -230,6 +235,7 @@ impl Worker {
             last_complete: 0,
             running_cancel: None,
             carry: None,
+            allow_read: Vec::new(),
             thread: None,
             inline: Some(Inline {
                 requests,
@@ -279,6 +285,12 @@ impl Worker {
         self.carry = carry;
     }
 
+    /// Lets the following submissions' nodes read under `allow_read` too (the document's allowed
+    /// reads, as `--allow-read`).
+    pub fn set_allow_read(&mut self, allow_read: Vec<PathBuf>) {
+        self.allow_read = allow_read;
+    }
+
     /// Like [`Worker::submit`], showing the subgraph of the cluster at `view` (node ids from the
     /// outermost cluster in).
     pub fn submit_view(
@@ -303,6 +315,7 @@ impl Worker {
             graph,
             options,
             base_dir,
+            allow_read: self.allow_read.clone(),
             view,
             cancel,
             changed_at,
@@ -451,6 +464,7 @@ pub fn evaluate(
 ) {
     let graph = &request.graph;
     let mut ctx = NodeContext::new(None, request.base_dir.clone());
+    ctx.allow_read = request.allow_read.clone();
     ctx.cancel = request.cancel.clone();
     let cancelled = || request.cancel.load(Ordering::Relaxed);
     // Previewed nodes and panels are asked for all their outputs, the others only for what is
@@ -536,6 +550,8 @@ pub fn evaluate(
                     .collect();
                 // Relative paths inside resolve against the cluster's own folder, as when it runs.
                 let mut inner = NodeContext::new(None, cluster.base_dir.clone());
+                inner.allow_read = request.allow_read.clone();
+                inner.allow_read.extend(request.base_dir.clone());
                 inner.cancel = request.cancel.clone();
                 ev.evaluate(g, &wanted, &inner, &mut |_, _| {});
                 statuses(g, ev, &inner)
@@ -844,6 +860,7 @@ mod tests {
             graph: g,
             options: PreviewOptions::default(),
             base_dir: None,
+            allow_read: Vec::new(),
             view: Vec::new(),
             cancel,
             changed_at: Instant::now(),
@@ -866,6 +883,7 @@ mod tests {
             graph: g.clone(),
             options: PreviewOptions::default(),
             base_dir: None,
+            allow_read: Vec::new(),
             view: Vec::new(),
             cancel: Arc::new(AtomicBool::new(false)),
             changed_at: Instant::now(),
@@ -929,6 +947,7 @@ mod tests {
             graph: g,
             options: PreviewOptions::default(),
             base_dir: None,
+            allow_read: Vec::new(),
             view: Vec::new(),
             cancel: Arc::new(AtomicBool::new(false)),
             changed_at: Instant::now(),
