@@ -35,7 +35,9 @@ pub use face_attributes::{
     FaceClass, face_classes, face_planarity, planarity_colour, polygon_planarity,
 };
 pub use join::{join, weld};
-pub use mesh_strips::{MeshStrip, UnrolledMesh, UnrolledMeshStrip, grid_of, mesh_strips, unroll_mesh_strips};
+pub use mesh_strips::{
+    MeshStrip, UnrolledMesh, UnrolledMeshStrip, grid_of, mesh_strips, unroll_mesh_strips,
+};
 pub use mirror::mirror;
 pub use nest::{Nested, nest, nest_until, stack_sheets};
 pub use parallel_support::parallel_support;
