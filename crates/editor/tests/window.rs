@@ -498,6 +498,7 @@ const WIRE_CLICK_GRAPH: &str = r#"(
     nodes: {
         "apex": (type: "param.number", position: (0.0, 0.0), inputs: {"value": 1.5, "min": 0.0, "max": 3.0}),
         "times": (type: "math.multiply", position: (360.0, 0.0), inputs: {"b": 2.0}),
+        "site": (type: "io.read_polylines", position: (0.0, 260.0)),
     },
     edges: [],
 )"#;
@@ -530,4 +531,7 @@ fn the_first_click_on_a_field_after_a_wire_drag_edits_it_in_the_real_window() {
         lines["b after drop"], "5.0",
         "the first click after a dropped wire: {lines:?}"
     );
+    // A path input's Browse… button opens the file dialog (in the real window; a click on it
+    // inside the kittest canvas does not register).
+    assert_eq!(lines["browse dialog"], "BrowseInput", "{lines:?}");
 }

@@ -17,6 +17,11 @@ impl EditorApp {
         self.dialog.as_mut()
     }
 
+    /// The file dialog being shown, if any.
+    pub fn dialog(&self) -> Option<&FileDialog> {
+        self.dialog.as_ref()
+    }
+
     /// Whether a restore from a previous session's recovery file is being offered.
     pub fn restore_offered(&self) -> bool {
         self.offer_restore.is_some()

@@ -136,6 +136,8 @@ fn times_b(app: &EditorApp) -> String {
 /// into `times.a`, then at once one click on `times.b`'s field, `7` typed and Enter; then a wire
 /// dragged out of `times.result` and dropped on the background, one click on the field, `5` and
 /// Enter. The wires and `b` are printed after each: a first click that did nothing leaves `b`.
+/// Then the Browse… button of `site`'s path (an `io.read_polylines`) is clicked: the file dialog
+/// it opens is printed.
 fn wire_click() -> Vec<Step> {
     let settle_type = |text: &str| {
         vec![
@@ -182,6 +184,16 @@ fn wire_click() -> Vec<Step> {
             app.doc.graph.wires().len().to_string()
         }),
         print("b after drop", times_b),
+        // A path input's Browse… (the right end of its editor), clicked on the canvas.
+        click(Box::new(|app: &EditorApp, _: &egui::Context| {
+            let r = app.canvas.editor_screen_rect("site", "path")?;
+            Some(egui::pos2(r.right() - 8.0, r.center().y))
+        })),
+        Step::Wait(3),
+        print("browse dialog", |app| {
+            app.dialog()
+                .map_or_else(|| "none".to_string(), |d| format!("{:?}", d.purpose))
+        }),
         Step::Shot("wire-click"),
         Step::Quit,
     ]);
