@@ -205,7 +205,7 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
                 Some(Value::Text(t)) => t.to_string(),
                 _ => String::new(),
             };
-            if port.widget() == Widget::FilePath {
+            if port.widget() == cnets_engine::Widget::FilePath {
                 // A path the node reads: typed, or picked with Browse… (the app opens the file
                 // dialog; a file picked there stays readable for the document).
                 return ui
