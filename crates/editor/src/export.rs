@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use cnets_engine::{
-    Evaluator, Graph, NodeContext, NodeDef, NodeFlag, NodeResult, Registry, ValueType,
+    Evaluator, Graph, Layer, NodeContext, NodeDef, NodeFlag, NodeResult, Registry, ValueType,
 };
 
 /// An export format of the File menu.
@@ -84,7 +84,7 @@ pub fn export_source(graph: &Graph) -> Option<(String, String, ValueType)> {
 }
 
 /// A registered node that lays a quad mesh flat as outlines (e.g. `pq.unroll_strips`): an input
-/// accepting a quad mesh and a polyline output named `outlines`.
+/// accepting a quad mesh and a polyline output in the fabrication layer.
 pub fn unroller(registry: &Registry) -> Option<Arc<NodeDef>> {
     registry
         .iter()
@@ -95,7 +95,7 @@ pub fn unroller(registry: &Registry) -> Option<Arc<NodeDef>> {
                     .any(|p| p.ty != ValueType::Any && ValueType::QuadMesh.converts_to(&p.ty))
                 && d.outputs
                     .iter()
-                    .any(|p| p.name == "outlines" && p.ty == ValueType::Polyline)
+                    .any(|p| p.hint.layer == Layer::Fabrication && p.ty == ValueType::Polyline)
         })
         .cloned()
 }
@@ -328,9 +328,11 @@ pub fn export(
     g.add_node_with_def(&id, def.clone())
         .map_err(|e| e.to_string())?;
     wire_export(&mut g, &id, &def)?;
-    if let Some(file_port) = def.inputs.iter().find(|p| {
-        p.ty == ValueType::Text && ["file", "name", "path"].iter().any(|w| p.name.contains(w))
-    }) {
+    if let Some(file_port) = def
+        .inputs
+        .iter()
+        .find(|p| p.hint.widget == cnets_engine::Widget::OutputName)
+    {
         let file = format!("{name}.{}", format.extension());
         g.set_value(&id, &file_port.name, cnets_engine::Value::text(file))
             .map_err(|e| e.to_string())?;

@@ -3,35 +3,25 @@
 //! (undo, autosave). Grouped by where they sit: the graph being edited first, then one group per
 //! cluster node holding parameters (listed, with a button that opens the cluster to edit them).
 
-use cnets_engine::Graph;
 use cnets_engine::cluster::Cluster;
+use cnets_engine::{Graph, NodeDef};
 
 use crate::canvas::CanvasAction;
 use crate::edit::Edit;
 use crate::request::UiRequest;
 
-/// Node types the panel lists, with the input it edits.
-pub const PARAMETERS: &[(&str, &str)] = &[
-    ("param.number", "value"),
-    ("param.integer", "value"),
-    ("param.boolean", "value"),
-    ("param.choice", "index"),
-    ("mapper.graph", "handles"),
-];
-
-/// The input the panel edits on a node of type `type_id`, when it lists that type.
-pub fn edited_input(type_id: &str) -> Option<&'static str> {
-    PARAMETERS
-        .iter()
-        .find(|(t, _)| *t == type_id)
-        .map(|(_, input)| *input)
+/// The input the panel edits on a node of this type: its first input whose declared widget is a
+/// designer-facing parameter's — a slider, a toggle, a value list, a graph mapper's handles
+/// ([`cnets_engine::Widget::is_parameter`]); `None`: the panel does not list the node.
+pub fn edited_input(def: &NodeDef) -> Option<usize> {
+    def.inputs.iter().position(|p| p.hint.widget.is_parameter())
 }
 
 /// The parameter nodes of `graph` in file order: (id, type id).
 pub fn parameters(graph: &Graph) -> Vec<(String, String)> {
     graph
         .nodes()
-        .filter(|(_, n)| edited_input(&n.def.id).is_some())
+        .filter(|(_, n)| edited_input(&n.def).is_some())
         .map(|(_, n)| (n.id.clone(), n.def.id.to_string()))
         .collect()
 }
@@ -103,9 +93,7 @@ pub fn show_with_rects(
                                             values,
                                         }));
                                     }
-                                } else if let Some(input) = edited_input(type_id)
-                                    && let Some(k) = node.def.input_index(input)
-                                {
+                                } else if let Some(k) = edited_input(&node.def) {
                                     ui.spacing_mut().slider_width = 160.0;
                                     let (changed, rect) =
                                         crate::widgets::input_editor_with_rect(ui, node, k);
@@ -113,7 +101,7 @@ pub fn show_with_rects(
                                     if let Some(value) = changed {
                                         actions.push(CanvasAction::Edit(Edit::SetValue {
                                             node: id.clone(),
-                                            input: input.to_string(),
+                                            input: node.def.inputs[k].name.to_string(),
                                             value,
                                         }));
                                     }
@@ -167,7 +155,17 @@ mod tests {
         cnets_engine::cluster::make_cluster(&mut g, &["ratio"], "c").unwrap();
         let groups = cluster_groups(&g);
         assert_eq!(groups, vec![("c".to_string(), vec!["ratio".to_string()])]);
-        assert_eq!(edited_input("param.choice"), Some("index"));
-        assert_eq!(edited_input("curve.arc"), None);
+        let edited = |id: &str| {
+            let def = registry.get(id).unwrap();
+            edited_input(def).map(|k| def.inputs[k].name.to_string())
+        };
+        assert_eq!(edited("param.choice").as_deref(), Some("index"));
+        assert_eq!(edited("param.number").as_deref(), Some("value"));
+        assert_eq!(edited("param.integer").as_deref(), Some("value"));
+        assert_eq!(edited("param.boolean").as_deref(), Some("value"));
+        assert_eq!(edited("mapper.graph").as_deref(), Some("handles"));
+        // A construction's choice port (end_planes) is a drop-down on the node, not a parameter.
+        assert_eq!(edited("cnets.construct"), None);
+        assert_eq!(edited("curve.arc"), None);
     }
 }

@@ -7,7 +7,7 @@
 
 use std::sync::Arc;
 
-use cnets_engine::{Access, NodeInstance, PortDef, Value, ValueType};
+use cnets_engine::{Access, NodeInstance, PortDef, Value, ValueType, Widget};
 use cnets_geometry::{DVec3, Plane};
 
 /// The value an input has when nothing is wired: its literal, else its default.
@@ -21,9 +21,6 @@ pub fn effective_value(node: &NodeInstance, k: usize) -> Option<Value> {
 pub fn slider_range(node: &NodeInstance) -> (f64, f64, f64) {
     slider_range_or(node, 0.0, 1.0)
 }
-
-/// The integer slider's node type (its `value` is dragged within its `min`..`max`).
-pub const INTEGER_TYPE: &str = "param.integer";
 
 /// A node's `min`, `max` (ordered) and `step` values, with the defaults given.
 fn slider_range_or(node: &NodeInstance, min_default: f64, max_default: f64) -> (f64, f64, f64) {
@@ -39,9 +36,6 @@ fn slider_range_or(node: &NodeInstance, min_default: f64, max_default: f64) -> (
     let (min, max) = if min <= max { (min, max) } else { (max, min) };
     (min, max, get("step", 0.0).max(0.0))
 }
-
-/// The node type shown as a drop-down of its options (Grasshopper's Value List).
-pub const CHOICE_TYPE: &str = "param.choice";
 
 /// The options of a `param.choice` node, when its `options` input holds a literal list of texts.
 pub fn choice_options(node: &NodeInstance) -> Option<Vec<String>> {
@@ -64,7 +58,7 @@ pub fn has_editor(node: &NodeInstance, k: usize) -> bool {
     let Some(port) = node.def.inputs.get(k) else {
         return false;
     };
-    if node.def.id == CHOICE_TYPE && port.name == "options" {
+    if port.widget() == Widget::MultilineText {
         return true;
     }
     let simple = matches!(
@@ -142,20 +136,24 @@ pub fn input_editor_with_rect(
 
 fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef) -> Option<Value> {
     let current = effective_value(node, k);
-    if node.def.id == CHOICE_TYPE {
-        if port.name == "index"
-            && let Some(options) = choice_options(node).filter(|o| !o.is_empty())
-        {
-            return choice_editor(ui, &options, current.as_ref());
+    match port.widget() {
+        Widget::Choice if port.ty == ValueType::Integer => {
+            if let Some(options) = choice_options(node).filter(|o| !o.is_empty()) {
+                return choice_editor(ui, &options, current.as_ref());
+            }
         }
-        if port.name == "options" {
-            return options_editor(ui, node);
-        }
+        Widget::MultilineText => return options_editor(ui, node),
+        _ => {}
+    }
+    if let Some(choices) = &port.choices
+        && port.access == Access::Item
+    {
+        return word_choice_editor(ui, choices.options, current.as_ref());
     }
     match port.ty {
         ValueType::Number => {
             let mut x = current.as_ref().and_then(Value::as_f64).unwrap_or(0.0);
-            let changed = if node.def.id == "param.number" && port.name == "value" {
+            let changed = if port.widget() == Widget::Slider {
                 let (min, max, step) = slider_range(node);
                 let mut slider =
                     egui::Slider::new(&mut x, min..=max).clamping(egui::SliderClamping::Never);
@@ -185,13 +183,15 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
                 Some(v) => v.as_f64().map_or(0, |x| x as i64),
                 None => 0,
             };
-            let mut drag = egui::DragValue::new(&mut i).speed(0.1);
-            // An integer slider's value stays in its own `min`..`max` (Grasshopper's integer
-            // slider); the node would clamp it anyway, with a warning.
-            if node.def.id == INTEGER_TYPE && port.name == "value" {
+            if port.widget() == Widget::Slider {
+                // An integer slider (Grasshopper's): its value stays in its own `min`..`max`
+                // (the node would clamp it anyway, with a warning), whole numbers only.
                 let (min, max, _) = slider_range_or(node, 0.0, 10.0);
-                drag = drag.range(min as i64..=max as i64);
+                let slider = egui::Slider::new(&mut i, min as i64..=max as i64)
+                    .clamping(egui::SliderClamping::Always);
+                return ui.add(slider).changed().then_some(Value::Integer(i));
             }
+            let drag = egui::DragValue::new(&mut i).speed(0.1);
             ui.add(drag).changed().then_some(Value::Integer(i))
         }
         ValueType::Boolean => {
@@ -272,6 +272,34 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
         }
         _ => None,
     }
+}
+
+/// A drop-down of a choice port's words (`end_planes`, a mapper's `kind`, …). The stored text is
+/// shown as it is (an alias such as `line` stays until another word is picked); a pick stores
+/// the word.
+fn word_choice_editor(
+    ui: &mut egui::Ui,
+    options: &[&'static str],
+    current: Option<&Value>,
+) -> Option<Value> {
+    let shown = match current {
+        Some(Value::Text(t)) => t.to_string(),
+        Some(other) => other.type_name(),
+        None => String::new(),
+    };
+    let mut picked = None;
+    egui::ComboBox::from_id_salt("word choice")
+        .selected_text(shown.as_str())
+        .width(110.0)
+        .show_ui(ui, |ui| {
+            for option in options {
+                let selected = shown.trim().eq_ignore_ascii_case(option);
+                if ui.selectable_label(selected, *option).clicked() && !selected {
+                    picked = Some(Value::text(*option));
+                }
+            }
+        });
+    picked
 }
 
 /// A drop-down of `options` picking the index (an index outside them shows as such).

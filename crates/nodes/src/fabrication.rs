@@ -16,7 +16,7 @@ node! {
     /// `a_j = y_j / y_{j−1}` (M−1 values). With `normalized` the output is the normalized function
     /// `ā_j = 1 − (1 − a_j) L / l_j` for the given directrix (to feed a construction with its
     /// `normalized` input on).
-    #[node(id = "cnets.graph_to_apex", category = "CNets")]
+    #[node(id = "cnets.graph_to_apex", category = "CNets", name = "Graph to apex function")]
     pub fn graph_to_apex(
         /// Widths y_0 … y_{M−1} (finite, > 0): one per directrix point.
         widths: k::List<k::Number>,
@@ -46,7 +46,7 @@ node! {
     /// CNet Get Torsion-Free Axes (paper Sec. 4.4.2): the node axis of every mesh vertex, the segment
     /// from the directrix point X_j to G_{i,j} (row-major, `i * M + j`). Axes of neighbouring vertices
     /// are coplanar, so they carry support beams and second layers.
-    #[node(id = "cnets.torsion_free_axes", category = "CNets")]
+    #[node(id = "cnets.torsion_free_axes", category = "CNets", name = "Torsion-free node axes")]
     pub fn torsion_free_axes(
         /// The directrix the mesh was built from (one point per mesh column, as swept).
         directrix: k::Polyline,
@@ -54,6 +54,7 @@ node! {
         mesh: k::QuadMesh,
     ) -> (
         /// One segment X_j → G_{i,j} per vertex.
+        #[ui(layer = Axes)]
         axes: k::Lines,
     ) {
         Ok((fab::torsion_free_axes(&directrix, &mesh).map_err(fab_err)?,))
@@ -65,7 +66,7 @@ node! {
     /// the same cone apices. The construction is rerun with the same apex values from
     /// `G'_{i,0} = X_0 + λ (G_{i,0} − X_0)`; every new vertex lies on its node axis X_j G_{i,j} (the
     /// construction plane meets the support plane in that axis) and every quad is planar.
-    #[node(id = "cnets.conical_support", category = "CNets")]
+    #[node(id = "cnets.conical_support", category = "CNets", name = "Conical support layer")]
     pub fn conical_support(
         /// The directrix the mesh was built from.
         directrix: k::Polyline,
@@ -77,6 +78,7 @@ node! {
         factor: k::Number = 0.8,
     ) -> (
         /// The conical support layer (same size and wrap as the mesh).
+        #[ui(layer = Support)]
         mesh: k::QuadMesh,
     ) {
         Ok((fab::conical_support(&directrix, &mesh, &apex, factor).map_err(fab_err)?,))
@@ -87,7 +89,7 @@ node! {
     /// PQ Mesh Construct Support (paper Sec. 4.4.2): a second layer with every edge parallel to the
     /// mesh, traced along the torsion-free node axes from H_{0,0} = G_{0,0} moved by `distance` along
     /// its axis (positive: away from the directrix). Faces are planar.
-    #[node(id = "pq.parallel_support", category = "PQ")]
+    #[node(id = "pq.parallel_support", category = "PQ", name = "Parallel support layer")]
     pub fn parallel_support(
         /// The directrix the mesh was built from (its points define the node axes).
         directrix: k::Polyline,
@@ -97,6 +99,7 @@ node! {
         distance: k::Number = 0.1,
     ) -> (
         /// The parallel support layer.
+        #[ui(layer = Support)]
         mesh: k::QuadMesh,
     ) {
         Ok((fab::parallel_support(&directrix, &mesh, distance).map_err(fab_err)?,))
@@ -109,7 +112,7 @@ node! {
     /// is where the two edge lines through its placed neighbours meet, so every edge stays parallel
     /// to its counterpart. Unless all μ are equal the result is in general not a cone-net. A wrapped
     /// mesh keeps its wrap only when the transform closes (otherwise a warning says so).
-    #[node(id = "pq.parallel_transform", category = "PQ")]
+    #[node(id = "pq.parallel_transform", category = "PQ", name = "Parallel transform")]
     pub fn parallel_transform[ctx](
         /// Any PQ quad grid.
         mesh: k::QuadMesh,
@@ -132,26 +135,21 @@ node! {
     }
 }
 
-/// Parses the `direction` input.
-fn parse_direction(text: &str) -> Result<StripDirection, NodeError> {
-    text.parse().map_err(fab_err)
-}
-
 node! {
     /// PQ Mesh Extract Strips (paper Sec. 4.4.2): the strips of a quad grid as meshes. `directrix`:
     /// strip i is the quads between rows i and i+1 (a 2 × M grid); `generatrix`: strip j is the quads
     /// between columns j and j+1 (an N × 2 grid). Corner order and wrapping follow the mesh.
-    #[node(id = "pq.extract_strips", category = "PQ")]
+    #[node(id = "pq.extract_strips", category = "PQ", name = "Extract strips")]
     pub fn extract_strips(
         /// The quad grid.
         mesh: k::QuadMesh,
         /// `"directrix"` or `"generatrix"`.
-        direction: k::Text = "directrix",
+        direction: k::Choice<crate::choices::Direction> = "directrix",
     ) -> (
         /// The strips, in order.
         strips: k::List<k::QuadMesh>,
     ) {
-        Ok((fab::extract_strips(&mesh, parse_direction(&direction)?).map_err(fab_err)?,))
+        Ok((fab::extract_strips(&mesh, direction).map_err(fab_err)?,))
     }
 }
 
@@ -164,13 +162,13 @@ node! {
     /// plane, mirrored or joined — is unrolled by its strips found from the faces (trimmed panels
     /// included; strips end at the cut and at a mirror seam), and the mirrored half's strips are
     /// labelled `D9 (mirror of D2)` (docs/fabrication.md).
-    #[node(id = "pq.unroll_strips", category = "PQ")]
+    #[node(id = "pq.unroll_strips", category = "PQ", name = "Unroll strips")]
     pub fn unroll_strips(
         /// The quad grid (a cone-net, a support layer, or one extracted strip), or a polygon mesh
         /// made from one (cut, mirrored, joined).
         mesh: k::Mesh,
         /// `"directrix"` or `"generatrix"`.
-        direction: k::Text = "directrix",
+        direction: k::Choice<crate::choices::Direction> = "directrix",
         /// Largest accepted face planarity (libigl measure for quads); raise it to unroll nearly
         /// planar meshes.
         tolerance: k::Number = 1e-6,
@@ -178,16 +176,17 @@ node! {
         spacing: Option<k::Number>,
     ) -> (
         /// One closed outline per strip, in the XY plane.
+        #[ui(layer = Fabrication)]
         outlines: k::List<k::Polyline>,
         /// Largest relative edge-length change over all quads.
         max_length_error: k::Number,
         /// The strip labels (`D0`, `D1`, … or `G0`, …).
         labels: k::List<k::Text>,
         /// Label positions (the midpoint of each strip's middle rung).
+        #[ui(layer = Fabrication)]
         label_points: k::List<k::Point>,
     ) {
         let options = UnrollOptions { tolerance, spacing };
-        let direction = parse_direction(&direction)?;
         // A quad grid arrives converted to a polygon mesh: unrolled as the grid it still is.
         if let Some(grid) = fab::grid_of(&mesh) {
             let u = fab::unroll_strips(&grid, direction, options).map_err(fab_err)?;
@@ -220,12 +219,13 @@ node! {
         /// A second layer of the same size (gives the beams between the layers).
         layer: Option<k::QuadMesh>,
         /// The beams' polylines: `"directrix"` or `"generatrix"` (support strips: `"directrix"`).
-        direction: k::Text = "directrix",
+        direction: k::Choice<crate::choices::Direction> = "directrix",
     ) -> (
         /// One strip per polyline (2 × M or 2 × N quad grids).
+        #[ui(layer = Support)]
         strips: k::List<k::QuadMesh>,
     ) {
-        let direction = parse_direction(&direction)?;
+        let direction = direction;
         let strips = match (directrix, layer) {
             (Some(_), Some(_)) => {
                 return Err(NodeError::new(
@@ -274,6 +274,7 @@ node! {
         labels: Option<k::List<k::Text>>,
     ) -> (
         /// The placed outlines, in input order.
+        #[ui(layer = Fabrication)]
         outlines: k::List<k::Polyline>,
         /// The sheet of each outline (0, 1, …).
         sheets: k::List<k::Integer>,
@@ -282,6 +283,7 @@ node! {
         /// The labels, in input order.
         labels: k::List<k::Text>,
         /// A point inside each placed outline.
+        #[ui(layer = Fabrication)]
         label_points: k::List<k::Point>,
     ) {
         if let Some(l) = &labels

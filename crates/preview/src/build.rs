@@ -7,7 +7,7 @@ use std::time::Instant;
 #[cfg(target_arch = "wasm32")]
 use web_time::Instant;
 
-use cnets_engine::{Evaluator, Graph, Value};
+use cnets_engine::{Evaluator, Graph, Layer as HintLayer, PortDef, Value};
 use cnets_geometry::conenet::quad_planarity;
 use cnets_geometry::fabrication::{FaceClass, face_planarity};
 use cnets_geometry::mesh_query::MeshQuery;
@@ -236,17 +236,8 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
             .output_index("configurations")
             .and_then(|k| outputs.values.get(k))
             .cloned();
-        // Support-layer nodes (e.g. `cnets.conical_support`) name their output just `mesh`.
-        let support_node = node.def.id.contains("support");
-        let flat = unrolled_node(&node.def.id);
         for (port, value) in node.def.outputs.iter().zip(&outputs.values) {
-            let layer = if flat {
-                Layer::Unrolled
-            } else if support_node {
-                Layer::Supports
-            } else {
-                layer_of(&port.name)
-            };
+            let layer = layer_of(port);
             let origin = Origin {
                 node: node.id.clone(),
                 output: port.name.to_string(),
@@ -300,23 +291,16 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
     }
 }
 
-/// Whether a node type lays strips out flat for the cutter (its outlines and label points go to
-/// [`Layer::Unrolled`], off unless asked).
-pub fn unrolled_node(type_id: &str) -> bool {
-    matches!(type_id, "pq.unroll_strips" | "fab.nest")
-}
-
-/// The layer an output belongs to, by its port name.
-pub fn layer_of(name: &str) -> Layer {
-    let n = name.to_ascii_lowercase();
-    if n.contains("support") {
-        Layer::Supports
-    } else if n.contains("axes") || n.contains("axis") {
-        Layer::Axes
-    } else if n.contains("apex") || n.contains("apices") {
-        Layer::Apices
-    } else {
-        Layer::Surfaces
+/// The layer an output is drawn in, from the port's declared preview layer
+/// ([`cnets_engine::PortHint::layer`]); geometry without one is a surface (curves and points
+/// find their own layers by type).
+pub fn layer_of(port: &PortDef) -> Layer {
+    match port.hint.layer {
+        HintLayer::Support => Layer::Supports,
+        HintLayer::Axes => Layer::Axes,
+        HintLayer::Apices => Layer::Apices,
+        HintLayer::Fabrication => Layer::Unrolled,
+        HintLayer::Auto => Layer::Surfaces,
     }
 }
 
@@ -372,11 +356,8 @@ impl Builder {
             let Some(outputs) = eval.result_at(graph, index).and_then(|r| r.outputs()) else {
                 continue;
             };
-            if node.def.id.contains("support") || unrolled_node(&node.def.id) {
-                continue;
-            }
             for (port, value) in node.def.outputs.iter().zip(&outputs.values) {
-                if !matches!(layer_of(&port.name), Layer::Surfaces) {
+                if !matches!(layer_of(port), Layer::Surfaces) {
                     continue;
                 }
                 each_mesh(value, &mut |m| {

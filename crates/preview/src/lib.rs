@@ -17,7 +17,7 @@ mod picks;
 
 pub use build::{
     DistanceFigures, Preview, PreviewStats, build_preview, build_scene, distance_legend,
-    format_metres, layer_of, unrolled_node,
+    format_metres, layer_of,
 };
 pub use classes::{class_color, face_classes};
 pub use legend::{APEX_COLOR, APEX_LEGEND, LegendInfo, legend_rows, paper_class};
@@ -113,13 +113,25 @@ mod tests {
     }
 
     #[test]
-    fn layers_by_port_name_and_toggles() {
-        assert_eq!(layer_of("apices"), Layer::Apices);
-        assert_eq!(layer_of("node_axes"), Layer::Axes);
-        assert_eq!(layer_of("support_layers"), Layer::Supports);
-        assert_eq!(layer_of("mesh"), Layer::Surfaces);
-        assert!(unrolled_node("pq.unroll_strips") && unrolled_node("fab.nest"));
-        assert!(!unrolled_node("cnets.ctube"));
+    fn layers_by_the_ports_declared_layer_and_toggles() {
+        use cnets_engine::value::{Access, ValueType};
+        use cnets_engine::{Layer as HintLayer, PortDef, PortHint};
+        let port = |name: &'static str, layer| {
+            PortDef::new(name, ValueType::Point, Access::List).with_hint(PortHint {
+                layer,
+                ..PortHint::default()
+            })
+        };
+        assert_eq!(layer_of(&port("p", HintLayer::Apices)), Layer::Apices);
+        assert_eq!(layer_of(&port("p", HintLayer::Axes)), Layer::Axes);
+        assert_eq!(layer_of(&port("mesh", HintLayer::Support)), Layer::Supports);
+        assert_eq!(
+            layer_of(&port("o", HintLayer::Fabrication)),
+            Layer::Unrolled
+        );
+        // A name alone says nothing: no guessing from "apices" or "support".
+        assert_eq!(layer_of(&port("apices", HintLayer::Auto)), Layer::Surfaces);
+        assert_eq!(layer_of(&port("support", HintLayer::Auto)), Layer::Surfaces);
         // Apex dots and unrolled strips are off until asked for; every other layer is on.
         let mut o = PreviewOptions::default();
         assert!(
@@ -156,4 +168,3 @@ mod tests {
         assert_eq!(PreviewOptions::default().distance_to, None);
     }
 }
-

@@ -11,17 +11,13 @@
 
 use std::collections::BTreeSet;
 
-use cnets_engine::{Graph, NodeInstance, Value};
+use cnets_engine::{Graph, NodeInstance, Value, Widget};
 use cnets_geometry::DVec3;
 use egui::{Color32, Painter, Pos2, Rect, Stroke, vec2};
 
 use super::screen::{CPlane, ScreenMap, WorldPlane, snap_along};
 use crate::edit::Edit;
 use crate::widgets::effective_value;
-
-/// Node types whose points are handles, with the input that holds them (a point, or a list of
-/// points).
-pub const POINT_PARAMS: &[(&str, &str)] = &[("param.point", "value"), ("param.points", "points")];
 
 /// Screen distance (points) within which the pointer grabs a handle.
 pub const GRAB_RADIUS: f32 = 8.0;
@@ -40,18 +36,19 @@ pub struct HandleKey {
 pub struct Handle {
     /// Which point.
     pub key: HandleKey,
-    /// The input holding it.
-    pub input: &'static str,
+    /// The index of the input holding it.
+    pub input: usize,
     /// Its position.
     pub position: DVec3,
 }
 
-/// The input of `node` whose points are handles, when its type has one.
-pub fn point_input(node: &NodeInstance) -> Option<&'static str> {
-    POINT_PARAMS
+/// The input of `node` whose points are handles (a point, or a list of points): the one that
+/// declares the point-handles widget (`param.point`'s `value`, `param.points`' `points`).
+pub fn point_input(node: &NodeInstance) -> Option<usize> {
+    node.def
+        .inputs
         .iter()
-        .find(|(t, _)| *t == node.def.id)
-        .map(|(_, input)| *input)
+        .position(|p| p.hint.widget == Widget::PointHandles)
 }
 
 /// The handles of `graph`'s point nodes for which `shown` says yes (wired inputs have none: their
@@ -59,10 +56,7 @@ pub fn point_input(node: &NodeInstance) -> Option<&'static str> {
 pub fn collect(graph: &Graph, shown: impl Fn(&NodeInstance) -> bool) -> Vec<Handle> {
     let mut handles = Vec::new();
     for (_, node) in graph.nodes() {
-        let Some(input) = point_input(node) else {
-            continue;
-        };
-        let Some(k) = node.def.input_index(input) else {
+        let Some(k) = point_input(node) else {
             continue;
         };
         if !shown(node) || crate::mapper::node::is_wired(graph, &node.id, k) {
@@ -82,7 +76,7 @@ pub fn collect(graph: &Graph, shown: impl Fn(&NodeInstance) -> bool) -> Vec<Hand
                         node: node.id.clone(),
                         index,
                     },
-                    input,
+                    input: k,
                     position,
                 }),
         );
@@ -98,10 +92,7 @@ pub fn move_edit(graph: &Graph, moves: &[(HandleKey, DVec3)]) -> Option<Edit> {
     let nodes: BTreeSet<&str> = moves.iter().map(|(k, _)| k.node.as_str()).collect();
     for id in nodes {
         let Some(node) = graph.node(id) else { continue };
-        let Some(input) = point_input(node) else {
-            continue;
-        };
-        let Some(k) = node.def.input_index(input) else {
+        let Some(k) = point_input(node) else {
             continue;
         };
         let moved = |old: &Value, to: DVec3| match old {
@@ -131,7 +122,7 @@ pub fn move_edit(graph: &Graph, moves: &[(HandleKey, DVec3)]) -> Option<Edit> {
             }
             _ => continue,
         };
-        values.push((id.to_string(), input.to_string(), value));
+        values.push((id.to_string(), node.def.inputs[k].name.to_string(), value));
     }
     (!values.is_empty()).then_some(Edit::SetPoints(values))
 }

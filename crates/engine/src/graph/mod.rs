@@ -16,7 +16,7 @@ use petgraph::stable_graph::{EdgeIndex, NodeIndex, StableDiGraph};
 use petgraph::visit::{EdgeRef, IntoEdgeReferences, NodeIndexable};
 
 use crate::convert::coerce_tree;
-use crate::node::NodeDef;
+use crate::node::{NodeDef, PortDef};
 use crate::registry::Registry;
 use crate::value::Value;
 
@@ -464,6 +464,11 @@ impl Graph {
             port: input.to_string(),
             message: e.to_string(),
         })?;
+        check_choices(port, &value).map_err(|message| GraphError::BadValue {
+            node: id.to_string(),
+            port: input.to_string(),
+            message,
+        })?;
         if self.inner[index].values[k]
             .as_ref()
             .is_some_and(|old| old.same_as(&value))
@@ -744,5 +749,18 @@ impl Graph {
     pub fn topological_order(&self) -> Vec<NodeIndex> {
         petgraph::algo::toposort(&self.inner, None)
             .unwrap_or_else(|_| self.inner.node_indices().collect())
+    }
+}
+
+/// Checks every text of a value set on a choice port against the port's words (a list of choices
+/// item by item); other ports and values pass.
+fn check_choices(port: &PortDef, value: &Value) -> Result<(), String> {
+    if port.choices.is_none() {
+        return Ok(());
+    }
+    match value {
+        Value::Text(t) => port.check_choice(t),
+        Value::List(items) => items.iter().try_for_each(|v| check_choices(port, v)),
+        _ => Ok(()),
     }
 }
