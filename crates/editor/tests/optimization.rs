@@ -342,3 +342,46 @@ fn a_typed_min_above_max_is_refused_with_a_message_and_not_stored() {
         (0.05, max)
     );
 }
+
+#[test]
+fn the_view_follows_the_best_point_live_and_revert_restores_it() {
+    let mut h = tube("opt-live");
+    // Nelder–Mead with a huge limit: the run lasts until Stop.
+    set_run(&mut h, 1_000_000, Method::NelderMead);
+    h.state_mut().wait_for_worker(Duration::from_secs(60));
+    h.run_steps(2);
+    let before = h.state().viewport.scene().face_vertices().to_vec();
+    assert!(!before.is_empty());
+    h.get_by_label("▶ Run").click();
+    // While it runs, the picture moves with the optimizer's best point.
+    let mut pictures = 0;
+    let mut last = before.clone();
+    for _ in 0..600 {
+        h.run_steps(1);
+        h.state_mut().wait_for_worker(Duration::from_millis(500));
+        let now = h.state().viewport.scene().face_vertices().to_vec();
+        if now != last {
+            pictures += 1;
+            last = now;
+        }
+        if pictures >= 2 {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert!(h.state().optimization.running(), "the run was still going");
+    assert!(pictures >= 2, "{pictures} new pictures during the run");
+    assert_ne!(last, before);
+    h.get_by_label("■ Stop").click();
+    assert!(h.state_mut().optimization.wait(Duration::from_secs(30)));
+    h.run_steps(2);
+    h.get_by_label("Revert").click();
+    h.run_steps(1);
+    h.state_mut().wait_for_worker(Duration::from_secs(60));
+    h.run_steps(2);
+    assert_eq!(
+        h.state().viewport.scene().face_vertices(),
+        &before[..],
+        "Revert shows the document's own values again"
+    );
+}

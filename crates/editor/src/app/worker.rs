@@ -43,7 +43,9 @@ impl EditorApp {
         // until Accept or Revert; the document is submitted again afterwards.
         if self.optimization.shows_live_view() {
             if let Some(graph) = self.optimization.live_graph(self.viewport.options) {
-                let (view, generation) = (self.doc.view_path(), self.doc.generation());
+                // Its own generation: the worker starts a fresh evaluator for the run's graphs
+                // and again for the document's afterwards (whose stamps are older than the run's).
+                let (view, generation) = (self.doc.view_path(), self.doc.generation() ^ (1 << 63));
                 let (options, base) = (self.viewport.options, self.doc.base_dir());
                 self.worker
                     .submit_view(graph, view, generation, options, base, Instant::now());
