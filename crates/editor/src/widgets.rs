@@ -58,8 +58,11 @@ pub fn has_editor(node: &NodeInstance, k: usize) -> bool {
     let Some(port) = node.def.inputs.get(k) else {
         return false;
     };
-    if port.widget() == Widget::MultilineText {
-        return true;
+    match port.widget() {
+        Widget::MultilineText => return true,
+        // Edited by the node's own widget (a mapper's kind in the mapper widget).
+        Widget::Hidden => return false,
+        _ => {}
     }
     let simple = matches!(
         port.ty,

@@ -23,6 +23,7 @@ node! {
     #[node(id = "mapper.graph", category = "Mappers", name = "Graph mapper")]
     pub fn graph(
         /// Curve type: linear, bezier, parabola, power, sine, gaussian, sqrt, conic, piecewise or spline.
+        #[ui(widget = Hidden)]
         kind: k::Choice<crate::choices::MapperCurve> = "linear",
         /// Handles (u, v, ignored z) in the unit square of the graph; empty: the kind's defaults.
         #[ui(widget = MapperHandles, range = 0.0..=1.0)]

@@ -115,7 +115,13 @@ fn every_choice_ports_default_is_one_of_its_words() {
             let Some(c) = &p.choices else { continue };
             choice_ports += 1;
             assert!(!c.options.is_empty(), "{}.{}", def.id, p.name);
-            assert_eq!(p.widget(), Widget::Choice, "{}.{}", def.id, p.name);
+            // A drop-down on the node, or the node's own widget (a mapper's kind).
+            assert!(
+                matches!(p.widget(), Widget::Choice | Widget::Hidden),
+                "{}.{}",
+                def.id,
+                p.name
+            );
             if let Some(Value::Text(t)) = &p.default {
                 assert!((c.accepts)(t), "{}.{}: default {t:?}", def.id, p.name);
             }
@@ -142,7 +148,8 @@ fn designer_facing_ports_declare_their_widgets_and_layers() {
     assert_eq!(widget("param.point", "value"), Widget::PointHandles);
     assert_eq!(widget("param.points", "points"), Widget::PointHandles);
     assert_eq!(widget("mapper.graph", "handles"), Widget::MapperHandles);
-    assert_eq!(widget("mapper.graph", "kind"), Widget::Choice);
+    // Picked in the mapper widget, not a second drop-down on the node.
+    assert_eq!(widget("mapper.graph", "kind"), Widget::Hidden);
     assert_eq!(widget("io.read_mesh", "path"), Widget::FilePath);
     assert_eq!(widget("io.read_polylines", "path"), Widget::FilePath);
     assert_eq!(widget("io.export_svg", "name"), Widget::OutputName);

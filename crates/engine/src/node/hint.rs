@@ -33,7 +33,8 @@ pub enum Widget {
     OutputName,
     /// Multi-line text.
     MultilineText,
-    /// Not shown as an editable field (set by wires or by the node's own widget).
+    /// Not shown as an editable field on the node (set by wires or by the node's own widget, e.g.
+    /// a graph mapper's `kind`, picked in the mapper widget).
     Hidden,
 }
 
