@@ -313,8 +313,8 @@ pub(crate) mod tests {
         assert!(doc.meta.optimization.is_none());
     }
 
-    #[test]
-    fn the_live_view_gives_the_best_point_once_per_point_and_ends_with_revert() {
+    /// A document of [`graph`] and a panel minimizing `n.value` over `n.value` in [0.1, 2].
+    fn panel_minimizing_n() -> (GraphDocument, OptimizationPanel) {
         let mut doc = GraphDocument::from_parts(graph(), Default::default(), None);
         let mut panel = OptimizationPanel::new(Arc::new(|| {}));
         let var = Variable {
@@ -326,6 +326,12 @@ pub(crate) mod tests {
         panel
             .set_objective(&mut doc, ValuePath::parse("n.value").unwrap())
             .unwrap();
+        (doc, panel)
+    }
+
+    #[test]
+    fn the_live_view_gives_the_best_point_once_per_point_and_ends_with_revert() {
+        let (doc, mut panel) = panel_minimizing_n();
         assert!(!panel.shows_live_view());
         panel.start(&doc, None, Some(20)).unwrap();
         assert!(panel.wait(std::time::Duration::from_secs(60)));
@@ -443,17 +449,7 @@ pub(crate) mod tests {
 
     #[test]
     fn a_new_objective_clears_the_previous_runs_figures() {
-        let mut doc = GraphDocument::from_parts(graph(), Default::default(), None);
-        let mut panel = OptimizationPanel::new(Arc::new(|| {}));
-        let var = Variable {
-            input: ValuePath::parse("n.value").unwrap(),
-            min: 0.1,
-            max: 2.0,
-        };
-        panel.add_variable(&mut doc, var, None).unwrap();
-        panel
-            .set_objective(&mut doc, ValuePath::parse("n.value").unwrap())
-            .unwrap();
+        let (mut doc, mut panel) = panel_minimizing_n();
         let figure = Iteration {
             iteration: 3,
             objective: 0.25,

@@ -88,6 +88,20 @@ pub fn bounds(points: &[DVec2]) -> Option<(DVec2, DVec2)> {
     )
 }
 
+/// The gap between stacked outlines when none is given: a tenth of the tallest outline, each
+/// measured turned to its minimum-area rectangle (as [`stack`] lays it).
+pub fn default_gap(shapes: &[Vec<DVec2>]) -> f64 {
+    let tallest = shapes
+        .iter()
+        .map(|s| {
+            let angle = min_area_angle(s);
+            let r: Vec<DVec2> = s.iter().map(|p| rotate(*p, angle)).collect();
+            bounds(&r).map_or(0.0, |(lo, hi)| hi.y - lo.y)
+        })
+        .fold(0.0, f64::max);
+    0.1 * tallest
+}
+
 /// Lays the shapes out in place: turned by [`min_area_angle`], then stacked along +y from the origin
 /// with `gap` between consecutive bounding boxes. Returns the rigid map applied to each shape as
 /// (angle, translation after rotation).

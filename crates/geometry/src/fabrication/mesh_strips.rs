@@ -578,17 +578,9 @@ pub fn unroll_mesh_strips(
         }
     }
     let mut shapes: Vec<Vec<DVec2>> = flats.iter().map(|f| f.outline.clone()).collect();
-    let gap = options.spacing.unwrap_or_else(|| {
-        let tallest = shapes
-            .iter()
-            .map(|s| {
-                let angle = layout::min_area_angle(s);
-                let r: Vec<DVec2> = s.iter().map(|p| layout::rotate(*p, angle)).collect();
-                layout::bounds(&r).map_or(0.0, |(lo, hi)| hi.y - lo.y)
-            })
-            .fold(0.0, f64::max);
-        0.1 * tallest
-    });
+    let gap = options
+        .spacing
+        .unwrap_or_else(|| layout::default_gap(&shapes));
     let maps = layout::stack(&mut shapes, gap);
     let to3 = |p: DVec2| DVec3::new(p.x, p.y, 0.0);
     let prefix = direction.prefix();
