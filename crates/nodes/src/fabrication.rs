@@ -225,7 +225,6 @@ node! {
         #[ui(layer = Support)]
         strips: k::List<k::QuadMesh>,
     ) {
-        let direction = direction;
         let strips = match (directrix, layer) {
             (Some(_), Some(_)) => {
                 return Err(NodeError::new(
