@@ -40,9 +40,9 @@ fn construct_graph(end_planes: &str) -> String {
 #[test]
 fn a_word_that_is_not_a_choice_fails_to_load_with_its_place_and_the_valid_words() {
     let text = construct_graph(r#""mirrored""#);
-    let err = file::load_str(&text, "bad.ron", &registry())
-        .err()
-        .expect("a bad choice must not load");
+    let Err(err) = file::load_str(&text, "bad.ron", &registry()) else {
+        panic!("a bad choice must not load");
+    };
     let d = &err.diagnostics[0];
     let pos = d.pos.expect("the error has a line and column");
     let line = text.lines().nth(pos.line as usize - 1).unwrap();
