@@ -42,7 +42,7 @@ fn every_semantic_problem_is_reported_with_its_position() {
         "g.ron:4:21: node 'a': unknown node type 't.nmu' (did you mean 't.num'?)",
         "g.ron:5:39: node 'b' (t.add) has no input 'c'; its inputs are: a, b",
         "g.ron:5:54: input 'b.a' (number): expected a number, found a string",
-        "g.ron:6:31: node 'c': unknown field 'colour'; expected type, position, inputs, preview, enabled",
+        "g.ron:6:31: node 'c': unknown field 'colour'; expected type, name, position, inputs, preview, enabled, color",
         "g.ron:11:9: edge 'c.out -> d.x': type mismatch: c.out gives text but d.x takes number",
         "g.ron:12:9: dangling edge 'b.sum -> ghost.x': no node 'ghost'",
         "g.ron:13:9: malformed edge 'nonsense'; expected \"from.output -> to.input\"",
