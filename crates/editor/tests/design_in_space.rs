@@ -229,9 +229,16 @@ fn picking_a_face_names_its_node_and_row_and_column_and_a_click_selects_the_node
     };
     // The topmost face under the pointer: the one chosen, or one drawn over it at that point.
     let (i, j) = picks.meshes[hm].geometry.face_row_col(face).unwrap();
-    let text = cnets_editor::viewport::pick::describe(&picks, &hit);
+    let graph = &h.state().doc.graph;
+    let text = cnets_editor::viewport::pick::describe(&picks, &hit, graph);
     assert!(text.contains(&format!("face (i {i}, j {j})")), "{text}");
     assert!(text.contains(&picks.meshes[hm].node), "{text}");
+    // A named node is called by its name.
+    let node = picks.meshes[hm].node.clone();
+    let mut named = graph.clone();
+    named.set_name(&node, Some("Roof panels".into())).unwrap();
+    let text = cnets_editor::viewport::pick::describe(&picks, &hit, &named);
+    assert!(text.starts_with("Roof panels · "), "{text}");
     if hm == m {
         assert_eq!(face, target.0, "the face under its centre");
     }

@@ -295,3 +295,58 @@ fn a_larger_graph_taking_over_from_a_small_one_evaluates() {
     assert_eq!(s.ran, 11, "only the new nodes run: {s:?}");
     assert_eq!(ev.output(&big, "n11", "sum"), Some(&Value::Number(12.0)));
 }
+
+/// A node whose run is cut short by cancellation (the editor's worker cancels a stale evaluation
+/// while a slow node runs) leaves no result: it runs again next time, and its last complete run
+/// time stays (the editor defers a node by that time, issue 26).
+#[test]
+fn a_run_cut_short_by_cancellation_is_not_stored() {
+    use cnets_engine::{Access, NodeDef, PortDef, ValueType};
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    // Cancels the evaluation from inside its run when its input is negative (as a newer edit
+    // would while it runs).
+    let slow = NodeDef::new(
+        "t.slow",
+        "Test",
+        "Sleeps 30 ms; cancels on a negative input.",
+    )
+    .input(PortDef::new("x", ValueType::Number, Access::Item))
+    .output(PortDef::new("y", ValueType::Number, Access::Item))
+    .run(|ctx, inputs| {
+        std::thread::sleep(std::time::Duration::from_millis(30));
+        let x = inputs[0].as_f64().unwrap_or(0.0);
+        if x < 0.0 {
+            ctx.cancel.store(true, Ordering::Relaxed);
+        }
+        Ok(vec![Value::Number(2.0 * x)])
+    });
+    let mut g = common::chain(1);
+    g.add_node_with_def("slow", Arc::new(slow)).unwrap();
+    g.connect("n0", "sum", "slow", "x").unwrap();
+    let mut ev = Evaluator::new();
+    assert!(!ev.evaluate_all(&g, &NodeContext::default()).cancelled);
+    let complete = ev.time(&g, "slow").expect("ran");
+    assert!(complete.as_millis() >= 30);
+    let before = ev.output(&g, "slow", "y").cloned();
+
+    g.set_value("n0", "b", Value::Number(-100.0)).unwrap();
+    let mut ctx = NodeContext::default();
+    ctx.cancel = Arc::new(AtomicBool::new(false));
+    assert!(ev.evaluate_all(&g, &ctx).cancelled);
+    assert_eq!(
+        ev.time(&g, "slow"),
+        Some(complete),
+        "the last complete run's time"
+    );
+    assert_eq!(
+        ev.output(&g, "slow", "y").cloned(),
+        before,
+        "no result of the cut run"
+    );
+    // Another edit, not cancelled: it runs on the new input.
+    g.set_value("n0", "b", Value::Number(5.0)).unwrap();
+    let s = ev.evaluate_all(&g, &NodeContext::default());
+    assert!(!s.cancelled);
+    assert_ne!(ev.output(&g, "slow", "y").cloned(), before);
+}

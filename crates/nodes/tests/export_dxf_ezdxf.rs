@@ -253,3 +253,107 @@ fn writing_is_linear_in_the_outlines() {
     assert!(took.as_secs_f64() < 15.0, "80 000 outlines took {took:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The whole hull to the cutter (issue 32): a cone-net cut by an oblique plane (trimmed panels,
+/// pentagons, triangles) and mirrored in it, its strips unrolled by `pq.unroll_strips` and written
+/// by `io.export_dxf`; ezdxf audits the file clean and reads every strip of both halves, the
+/// mirrored copies marked in their labels and layers.
+#[test]
+fn the_strips_of_a_cut_and_mirrored_net_pass_the_ezdxf_audit() {
+    use cnets_geometry::{DVec3, Plane};
+    let ctx = NodeContext::default();
+    let net = cone_net(9, 12, false);
+    let plane = Plane::from_normal(DVec3::new(6.3, 0.0, 0.0), DVec3::new(1.0, 0.45, 0.2)).unwrap();
+    let plane = Value::from(plane);
+    let cut = run(
+        &ctx,
+        "mesh.cut_by_plane",
+        &[("mesh", net.mesh.into()), ("plane", plane.clone())],
+    )
+    .unwrap();
+    let whole = run(
+        &ctx,
+        "mesh.mirror",
+        &[
+            ("mesh", get(&cut, "mesh").clone()),
+            ("plane", plane),
+            ("tolerance", Value::Number(1e-9)),
+        ],
+    )
+    .unwrap();
+    let strips = run(
+        &ctx,
+        "pq.unroll_strips",
+        &[
+            ("mesh", get(&whole, "mesh").clone()),
+            ("direction", Value::text("directrix")),
+        ],
+    )
+    .unwrap();
+    let error = get(&strips, "max_length_error").as_f64().unwrap();
+    assert!(error <= 1e-9, "unroll error {error:e}");
+    let labels: Vec<String> = get(&strips, "labels")
+        .as_list()
+        .unwrap()
+        .iter()
+        .map(|l| match l {
+            Value::Text(t) => t.to_string(),
+            _ => panic!("text"),
+        })
+        .collect();
+    let mirrored = labels.iter().filter(|l| l.contains("(mirror of ")).count();
+    assert_eq!((labels.len(), mirrored), (16, 8), "{labels:?}");
+
+    let dir = scratch("dxf-mirrored");
+    let out = run(
+        &ctx_in(&dir),
+        "io.export_dxf",
+        &[
+            ("name", Value::text("hull-strips")),
+            ("outlines", get(&strips, "outlines").clone()),
+            ("labels", get(&strips, "labels").clone()),
+            ("label_points", get(&strips, "label_points").clone()),
+        ],
+    )
+    .unwrap();
+    let Value::Text(path) = get(&out, "path") else {
+        panic!("path")
+    };
+    let report = run_checker(
+        "python3",
+        "scripts/read-dxf.py",
+        std::path::Path::new(path.as_ref()),
+    );
+    let r: serde_json::Value = serde_json::from_str(&report).expect("ezdxf report is JSON");
+    assert_eq!(r["audit_errors"], 0, "ezdxf audit found errors");
+    assert_eq!(
+        r["audit_fixes"], 0,
+        "ezdxf audit repaired something: {}",
+        r["audit_messages"]
+    );
+    let written = polylines(get(&strips, "outlines"));
+    let polys = r["lwpolylines"].as_array().unwrap();
+    assert_eq!(polys.len(), written.len());
+    for (poly, outline) in polys.iter().zip(&written) {
+        assert_eq!(poly["closed"], true);
+        assert_eq!(
+            poly["points"].as_array().unwrap().len(),
+            outline.points.len()
+        );
+    }
+    let texts: Vec<&str> = r["texts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["text"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        texts, labels,
+        "every strip labelled, the mirror images marked"
+    );
+    // One layer a strip, distinct for the mirrored copies.
+    let layers: std::collections::HashSet<&str> =
+        polys.iter().map(|p| p["layer"].as_str().unwrap()).collect();
+    assert_eq!(layers.len(), 16, "{layers:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -77,6 +77,9 @@ pub struct Latency {
     /// Nodes that ran in the last evaluation (the evaluation counter: an edit re-runs its
     /// downstream cone, a reopened file nothing).
     pub ran: usize,
+    /// Pictures the 3D view took before the rest of the graph (nodes not previewed, or slow)
+    /// had finished: how often a slow node did not hold the view back.
+    pub early_pictures: usize,
 }
 
 /// The status bar's hint when a document's nodes overlap (shown while they do).

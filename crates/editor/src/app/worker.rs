@@ -31,6 +31,9 @@ impl EditorApp {
         // The rest of the graph finished after the preview: the same scene, nothing to upload.
         if !Arc::ptr_eq(&r.scene, self.viewport.scene()) {
             self.viewport.set_scene(r.scene, r.stats, r.picks);
+            if !r.complete {
+                self.latency.early_pictures += 1;
+            }
             self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
         }
         self.check_refused_reads();

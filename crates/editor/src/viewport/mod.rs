@@ -661,7 +661,7 @@ impl Viewport {
         if let (Tool::Select, Some(hit), Some(at)) = (&self.tool, &self.hover, pointer)
             && !self.handles.dragging()
         {
-            let text = pick::describe(&self.picks, hit);
+            let text = pick::describe(&self.picks, hit, input.graph);
             egui::Tooltip::always_open(
                 ui.ctx().clone(),
                 ui.layer_id(),

@@ -174,12 +174,16 @@ pub fn coordinates(p: DVec3) -> String {
     )
 }
 
-/// The tooltip of a hit: the node and output that made it, the row and column (i, j) (or the
-/// index), the coordinates, and for a face its class and planarity.
-pub fn describe(picks: &Picks, hit: &Hit) -> String {
+/// The tooltip of a hit: the node (by its name in `graph`, when it has one) and output that made
+/// it, the row and column (i, j) (or the index), the coordinates, and for a face its class and
+/// planarity.
+pub fn describe(picks: &Picks, hit: &Hit, graph: &cnets_engine::Graph) -> String {
     let mesh = &picks.meshes[hit.mesh()];
     let item = mesh.item.map_or(String::new(), |k| format!(" [{k}]"));
-    let mut lines = vec![format!("{} · {}{item}", mesh.node, mesh.output)];
+    let node = graph
+        .node(&mesh.node)
+        .map_or(mesh.node.as_str(), |n| n.label());
+    let mut lines = vec![format!("{node} · {}{item}", mesh.output)];
     match *hit {
         Hit::Vertex { vertex, point, .. } => {
             lines.push(match mesh.geometry.vertex_row_col(vertex) {
@@ -244,12 +248,14 @@ mod tests {
         let at = map.to_screen(DVec3::new(2.5, 1.5, 0.0)).unwrap();
         let hit = pick(&picks, &map, at).expect("a face");
         assert!(matches!(hit, Hit::Face { face: 5, .. }), "{hit:?}");
-        assert!(describe(&picks, &hit).contains("face (i 1, j 2)"));
+        let graph = cnets_engine::Graph::new(std::sync::Arc::new(cnets_engine::Registry::new()));
+        let text = describe(&picks, &hit, &graph);
+        assert!(text.starts_with("net · mesh\n") && text.contains("face (i 1, j 2)"));
         // On a corner: the vertex (i 2, j 3).
         let at = map.to_screen(DVec3::new(3.0, 2.0, 0.0)).unwrap();
         let hit = pick(&picks, &map, at + egui::vec2(-2.0, 2.0)).expect("a vertex");
         assert!(matches!(hit, Hit::Vertex { vertex: 11, .. }), "{hit:?}");
-        assert!(describe(&picks, &hit).contains("vertex (i 2, j 3)"));
+        assert!(describe(&picks, &hit, &graph).contains("vertex (i 2, j 3)"));
         assert!(pick(&picks, &map, Pos2::new(5.0, 5.0)).is_none(), "outside");
     }
 }

@@ -101,6 +101,12 @@ impl Evaluator {
             ctx.set_in_use(held);
             let start = Instant::now();
             let (result, executed) = self.run_node(graph, node, instance, ctx, mask);
+            if ctx.cancelled() {
+                // A run cut short is not a result: the memo keeps the last complete run (whose
+                // time tells the editor that the node is slow), and the node runs again next time.
+                summary.cancelled = true;
+                break;
+            }
             let (result, fill) = if fill {
                 self.fill_in(node, result)
             } else {

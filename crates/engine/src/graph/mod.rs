@@ -124,7 +124,7 @@ pub struct Continued {
 #[derive(Debug, Clone)]
 pub struct Graph {
     inner: StableDiGraph<NodeInstance, Wire>,
-    ids: HashMap<String, NodeIndex>,
+    ids: rustc_hash::FxHashMap<String, NodeIndex>,
     registry: Arc<Registry>,
     revision: Revision,
     next_uid: u64,
@@ -144,7 +144,7 @@ impl Graph {
     pub fn new(registry: Arc<Registry>) -> Self {
         Self {
             inner: StableDiGraph::default(),
-            ids: HashMap::new(),
+            ids: rustc_hash::FxHashMap::default(),
             registry,
             revision: 1,
             next_uid: 1,

@@ -1,14 +1,31 @@
 //! `--bench-drag N`: the editor's latency benchmark — a slider moved every frame, then the
-//! change-to-picture latency and frame times printed.
+//! change-to-picture latency and frame times printed. `--bench-pan N`: the canvas panned and
+//! zoomed every frame instead (a large graph's frame rate). Both print the time from launch to the
+//! first frame showing the evaluated graph.
 
 use cnets_editor::app::EditorApp;
 
 use crate::drive::first_slider;
 
+/// What the benchmark changes every frame.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Motion {
+    /// The first `param.number` slider (`--bench-drag`).
+    Slider,
+    /// The canvas's pan and zoom, around the graph's middle (`--bench-pan`).
+    PanZoom,
+}
+
 /// `--bench-drag N`: moves the first `param.number` slider every frame for N frames (as a drag
-/// would, one undo step), then prints change-to-picture latency and frame intervals.
+/// would, one undo step), then prints change-to-picture latency and frame intervals;
+/// `--bench-pan N` pans and zooms the canvas instead.
 pub struct Bench {
     frames: u32,
+    motion: Motion,
+    /// When the process started (for the time to open).
+    launched: std::time::Instant,
+    /// Launch to the first benchmark frame (the evaluated graph shown), in milliseconds.
+    opened_ms: Option<f64>,
     /// Frames done.
     pub done: u32,
     /// When the last frame started.
@@ -38,10 +55,13 @@ fn stats(v: &mut [f64]) -> String {
 }
 
 impl Bench {
-    /// A benchmark of `frames` frames.
-    pub fn new(frames: u32) -> Self {
+    /// A benchmark of `frames` frames changing `motion`, timed from `launched`.
+    pub fn new(frames: u32, motion: Motion, launched: std::time::Instant) -> Self {
         Bench {
             frames,
+            motion,
+            launched,
+            opened_ms: None,
             done: 0,
             last_frame: None,
             intervals: Vec::new(),
@@ -53,8 +73,12 @@ impl Bench {
         }
     }
 
+    /// Records the frame that just ran and makes the next frame's change (or prints the figures
+    /// and quits after the last).
     pub fn step(&mut self, app: &mut EditorApp, ctx: &egui::Context) {
         let now = std::time::Instant::now();
+        self.opened_ms
+            .get_or_insert_with(|| (now - self.launched).as_secs_f64() * 1e3);
         if let Some(t) = self.last_frame {
             self.intervals.push((now - t).as_secs_f64() * 1e3);
         }
@@ -69,7 +93,22 @@ impl Bench {
                 return;
             }
             let mut lat = app.latency.samples.clone();
-            println!("bench-drag: {} frames, {} pictures", self.frames, lat.len());
+            println!(
+                "opened: {:.0} ms from launch to the first frame with the evaluated graph \
+                 ({} nodes)",
+                self.opened_ms.unwrap_or(0.0),
+                app.doc.graph.node_count()
+            );
+            println!(
+                "bench-{}: {} frames, {} pictures ({} before the rest of the graph finished)",
+                match self.motion {
+                    Motion::Slider => "drag",
+                    Motion::PanZoom => "pan",
+                },
+                self.frames,
+                lat.len(),
+                app.latency.early_pictures
+            );
             println!(
                 "  change-to-picture (CPU side, up to the frame handing the scene to wgpu): {}",
                 stats(&mut lat)
@@ -96,12 +135,16 @@ impl Bench {
             // Baseline: frames without changes (nothing re-evaluated, the 3D view not re-rendered).
             return;
         }
+        let t = f64::from(self.done - 1) / 60.0;
+        if self.motion == Motion::PanZoom {
+            pan_and_zoom(app, t);
+            return;
+        }
         let Some(id) = first_slider(app) else {
             return;
         };
         let node = app.doc.graph.node(&id).expect("the node");
         let (min, max, _) = cnets_editor::widgets::slider_range(node);
-        let t = f64::from(self.done - 1) / 60.0;
         let value = min + (max - min) * (0.5 + 0.4 * (t * std::f64::consts::TAU).sin());
         let _ = cnets_editor::edit::apply(
             &mut app.doc,
@@ -112,4 +155,27 @@ impl Bench {
             },
         );
     }
+}
+
+/// Pans the canvas around the middle of the graph's nodes (a circle of a third of their extent,
+/// once every two seconds) while zooming between 0.5 and 1, at time `t` seconds of 60 frames a
+/// second.
+fn pan_and_zoom(app: &mut EditorApp, t: f64) {
+    let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
+    for (_, n) in app.doc.graph.nodes() {
+        for k in 0..2 {
+            lo[k] = lo[k].min(n.position[k]);
+            hi[k] = hi[k].max(n.position[k]);
+        }
+    }
+    if lo[0] > hi[0] {
+        return;
+    }
+    let angle = (t * std::f64::consts::PI) as f32;
+    let around = egui::pos2(
+        0.5 * (lo[0] + hi[0]) + (hi[0] - lo[0]) / 3.0 * angle.cos(),
+        0.5 * (lo[1] + hi[1]) + (hi[1] - lo[1]) / 3.0 * angle.sin(),
+    );
+    let zoom = 0.75 + 0.25 * (t * 1.3 * std::f64::consts::TAU).sin() as f32;
+    app.canvas.zoom_to(zoom, Some(around));
 }

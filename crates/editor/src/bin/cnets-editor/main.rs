@@ -29,7 +29,7 @@ mod drive;
 mod scenarios;
 mod script;
 
-use bench::Bench;
+use bench::{Bench, Motion};
 use drive::{Drive, slider_values};
 use script::Script;
 
@@ -42,6 +42,7 @@ static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 struct Args {
     file: Option<PathBuf>,
     bench_drag: Option<u32>,
+    bench_pan: Option<u32>,
     screenshot: Option<PathBuf>,
     quit_after: u32,
     size: [f32; 2],
@@ -55,6 +56,7 @@ fn parse_args() -> anyhow::Result<Args> {
     let mut args = Args {
         file: None,
         bench_drag: None,
+        bench_pan: None,
         screenshot: None,
         quit_after: 10,
         size: [1400.0, 860.0],
@@ -73,6 +75,13 @@ fn parse_args() -> anyhow::Result<Args> {
                 args.bench_drag = Some(
                     it.next()
                         .context("--bench-drag needs a frame count")?
+                        .parse()?,
+                )
+            }
+            "--bench-pan" => {
+                args.bench_pan = Some(
+                    it.next()
+                        .context("--bench-pan needs a frame count")?
                         .parse()?,
                 )
             }
@@ -101,7 +110,8 @@ fn parse_args() -> anyhow::Result<Args> {
             "--restore-and-print" => args.restore_and_print = true,
             "-h" | "--help" => {
                 println!(
-                    "cnets-editor [FILE] [--screenshot OUT.png] [--quit-after-frames N] [--size WxH]"
+                    "cnets-editor [FILE] [--screenshot OUT.png] [--quit-after-frames N] [--size WxH] \
+                     [--bench-drag N] [--bench-pan N]"
                 );
                 std::process::exit(0);
             }
@@ -265,10 +275,12 @@ fn check_not_blank(image: &cnets_render::Image) -> anyhow::Result<()> {
 }
 
 fn main() -> anyhow::Result<()> {
+    let launched = std::time::Instant::now();
     let args = parse_args()?;
     let config_dir = cnets_editor::settings::config_dir();
     let test_mode = args.screenshot.is_some()
         || args.bench_drag.is_some()
+        || args.bench_pan.is_some()
         || args.drive_drag
         || args.drive_script.is_some()
         || args.restore_and_print;
@@ -319,7 +331,11 @@ fn main() -> anyhow::Result<()> {
                 frames: 0,
                 requested: false,
                 result: result2,
-                bench: args.bench_drag.map(Bench::new),
+                bench: match (args.bench_drag, args.bench_pan) {
+                    (Some(frames), _) => Some(Bench::new(frames, Motion::Slider, launched)),
+                    (None, Some(frames)) => Some(Bench::new(frames, Motion::PanZoom, launched)),
+                    (None, None) => None,
+                },
                 drive: args.drive_drag.then(Drive::new),
                 script: args
                     .drive_script

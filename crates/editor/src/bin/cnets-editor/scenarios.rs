@@ -296,7 +296,7 @@ fn pick() -> Vec<Step> {
                 .hover
                 .as_ref()
                 .map(|h| {
-                    cnets_editor::viewport::pick::describe(app.viewport.picks(), h)
+                    cnets_editor::viewport::pick::describe(app.viewport.picks(), h, &app.doc.graph)
                         .replace('\n', " | ")
                 })
                 .unwrap_or_default()
