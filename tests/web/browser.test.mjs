@@ -350,17 +350,24 @@ for (const name of gallery) {
     };
     const handled = [];
     const steps = 60;
-    // The editor must see the press in a frame of its own before the moves, and the last move
-    // before the release (on a busy machine a frame of the software rasterizer takes 100 ms or
-    // more, and a press, moves and release in one frame are a click, not a drag).
-    const frames = (n) => new Promise((r) => {
-      const step = () => (n-- <= 0 ? r() : requestAnimationFrame(step));
-      requestAnimationFrame(step);
-    });
+    // The editor must see the press before the moves, and the last move before the release (on
+    // a busy machine a frame of the software rasterizer takes 100 ms or more, and a press, moves
+    // and release in one frame are a click, not a drag): it waits for the editor's own frames
+    // (its test state: `frames`, and `dragging` once the slider holds the pointer), not for a
+    // time or the page's animation frames.
+    const editor = () => window.cnets_test ?? {};
+    const editorFrames = async (n, ok = () => true) => {
+      const start = editor().frames ?? 0;
+      for (let k = 0; k < 600; k++) {
+        if ((editor().frames ?? 0) >= start + n && ok(editor())) return true;
+        await new Promise((r) => setTimeout(r, 10));
+      }
+      return false;
+    };
     fire("mousemove", x0 + 4, 0);
-    await frames(2);
+    await editorFrames(1);
     fire("pointerdown", x0 + 4, 1);
-    await frames(2);
+    const held = await editorFrames(1, (t) => t.dragging);
     const t0 = performance.now();
     for (let k = 1; k <= steps; k++) {
       await new Promise((r) => setTimeout(r, 16));
@@ -368,12 +375,12 @@ for (const name of gallery) {
       handled.push(performance.now());
     }
     const t1 = performance.now();
-    await frames(2);
+    await editorFrames(1);
     fire("pointerup", x1 - 4, 0);
     go = false;
     let gap = 0;
     for (let k = 1; k < handled.length; k++) gap = Math.max(gap, handled[k] - handled[k - 1]);
-    return { seconds: (t1 - t0) / 1000, events: handled.length, gap,
+    return { seconds: (t1 - t0) / 1000, events: handled.length, gap, held,
       raf: raf.filter((t) => t >= t0 && t <= t1).length };
   }, slider.rail);
   const after = await settled(page);
@@ -381,7 +388,7 @@ for (const name of gallery) {
   const inputHz = drag.events / drag.seconds;
   figures.drag_facade = {
     seconds: +drag.seconds.toFixed(2), input_hz: +inputHz.toFixed(1),
-    longest_input_gap_ms: Math.round(drag.gap), raf_hz: +(drag.raf / drag.seconds).toFixed(1),
+    longest_input_gap_ms: Math.round(drag.gap), held: drag.held, raf_hz: +(drag.raf / drag.seconds).toFixed(1),
     editor_frames: after.frames - before.frames, requests: after.worker_sent - before.worker_sent,
     answers: after.worker_answers - before.worker_answers,
     value: [slider.valueOf(before), slider.valueOf(after)],

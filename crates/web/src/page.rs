@@ -277,6 +277,11 @@ impl WebApp {
             JsValue::from(a)
         };
         set("frames", JsValue::from_f64(self.frames as f64));
+        // A widget held by the pointer (the browser test waits for its press to be seen).
+        set(
+            "dragging",
+            JsValue::from_bool(self.ctx.dragged_id().is_some()),
+        );
         set("pictures", JsValue::from_f64(drawn as f64));
         set(
             "first_picture_ms",
