@@ -38,6 +38,18 @@ fn polylines(v: &Value) -> Vec<Polyline> {
         .collect()
 }
 
+/// The texts of a list of texts (the strips' labels).
+fn texts(v: &Value) -> Vec<String> {
+    v.as_list()
+        .unwrap()
+        .iter()
+        .map(|l| match l {
+            Value::Text(t) => t.to_string(),
+            _ => panic!("text"),
+        })
+        .collect()
+}
+
 #[test]
 fn ezdxf_reads_layers_polylines_and_labels() {
     let (outlines, labels, points) = unrolled();
@@ -60,15 +72,7 @@ fn ezdxf_reads_layers_polylines_and_labels() {
     assert!(path.ends_with("strips.dxf"));
     let path = std::path::PathBuf::from(path.as_ref());
     let written = polylines(&outlines);
-    let names: Vec<String> = labels
-        .as_list()
-        .unwrap()
-        .iter()
-        .map(|l| match l {
-            Value::Text(t) => t.to_string(),
-            _ => panic!("text"),
-        })
-        .collect();
+    let names = texts(&labels);
 
     let report = run_checker("python3", "scripts/read-dxf.py", &path);
     let r: serde_json::Value = serde_json::from_str(&report).expect("ezdxf report is JSON");
@@ -292,15 +296,7 @@ fn the_strips_of_a_cut_and_mirrored_net_pass_the_ezdxf_audit() {
     .unwrap();
     let error = get(&strips, "max_length_error").as_f64().unwrap();
     assert!(error <= 1e-9, "unroll error {error:e}");
-    let labels: Vec<String> = get(&strips, "labels")
-        .as_list()
-        .unwrap()
-        .iter()
-        .map(|l| match l {
-            Value::Text(t) => t.to_string(),
-            _ => panic!("text"),
-        })
-        .collect();
+    let labels = texts(get(&strips, "labels"));
     let mirrored = labels.iter().filter(|l| l.contains("(mirror of ")).count();
     assert_eq!((labels.len(), mirrored), (16, 8), "{labels:?}");
 
