@@ -38,6 +38,19 @@ fn polylines(v: &Value) -> Vec<Polyline> {
         .collect()
 }
 
+/// What ezdxf (scripts/read-dxf.py) reads from the file an `io.export_dxf` run wrote.
+fn ezdxf_report(out: &[(String, Value)]) -> serde_json::Value {
+    let Value::Text(path) = get(out, "path") else {
+        panic!("path")
+    };
+    let report = run_checker(
+        "python3",
+        "scripts/read-dxf.py",
+        std::path::Path::new(path.as_ref()),
+    );
+    serde_json::from_str(&report).expect("ezdxf report is JSON")
+}
+
 /// The texts of a list of texts (the strips' labels).
 fn texts(v: &Value) -> Vec<String> {
     v.as_list()
@@ -156,15 +169,7 @@ fn without_labels_layers_are_numbered_and_scale_applies() {
         ],
     )
     .unwrap();
-    let Value::Text(path) = get(&out, "path") else {
-        panic!("path")
-    };
-    let report = run_checker(
-        "python3",
-        "scripts/read-dxf.py",
-        std::path::Path::new(path.as_ref()),
-    );
-    let r: serde_json::Value = serde_json::from_str(&report).unwrap();
+    let r = ezdxf_report(&out);
     assert_eq!(r["lwpolylines"][1]["layer"], "STRIP_1");
     assert!(r["texts"].as_array().unwrap().is_empty());
     let first = &polylines(&outlines)[0].points[2];
@@ -312,15 +317,7 @@ fn the_strips_of_a_cut_and_mirrored_net_pass_the_ezdxf_audit() {
         ],
     )
     .unwrap();
-    let Value::Text(path) = get(&out, "path") else {
-        panic!("path")
-    };
-    let report = run_checker(
-        "python3",
-        "scripts/read-dxf.py",
-        std::path::Path::new(path.as_ref()),
-    );
-    let r: serde_json::Value = serde_json::from_str(&report).expect("ezdxf report is JSON");
+    let r = ezdxf_report(&out);
     assert_eq!(r["audit_errors"], 0, "ezdxf audit found errors");
     assert_eq!(
         r["audit_fixes"], 0,
