@@ -40,14 +40,14 @@ export PATH="$PWD/node_modules/.bin:$PATH"
 
 echo "== cargo fmt --check"
 cargo fmt --all -- --check
+rustfmt --check --edition 2024 crates/web/bindgen/src/main.rs  # a workspace of its own
 
-# The site's wasm build (with wasm-bindgen-cli's install on a fresh machine) starts as soon as the
-# installs are done (it needs the wasm32 target and wasm-opt), in its own target folder, at the
-# lowest priority: it takes the processor time the test build, the tests and the Python step leave
-# (a test binary's link holds one core, a window test waits on the software GPU), which cut about
-# 10 minutes of waiting for it at the end. The tests' timed assertions keep their margins beside
-# it (issue 30: the suite passes beside another build). (Not linted: wasm-bindgen-cli's install
-# would be linted as a workspace of its own.)
+# The site's wasm build (and its glue writer, crates/web/bindgen) starts as soon as the installs
+# are done (it needs the wasm32 target and wasm-opt), in its own target folder, at the lowest
+# priority: it takes the processor time the test build, the tests and the Python step leave (a
+# test binary's link holds one core, a window test waits on the software GPU), which cut about 10
+# minutes of waiting for it at the end. The tests' timed assertions keep their margins beside it
+# (issue 30: the suite passes beside another build). The site is tested as it ships (wasm-opt -Os).
 # It runs in a process group of its own (setsid), stopped with the script if a step fails first.
 CARGO_TARGET_DIR="$PWD/target/web-build" setsid bash -c '
   while [ ! -e target/install-test-deps.status ]; do sleep 2; done

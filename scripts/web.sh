@@ -5,9 +5,10 @@
 # and a brotli (.br) copy of each file beside it for servers that send them. Serve the folder
 # statically, e.g.
 #   python3 -m http.server -d target/web 8000   → http://localhost:8000/?example=torus-monge
-# Needs: rustup target add wasm32-unknown-unknown; installs wasm-bindgen-cli at the version of the
-# wasm-bindgen crate in Cargo.lock when missing (cargo install, without --locked: its own lock file
-# pins a webpki-roots the registry does not serve). Brotli: the `brotli` command, else Node's zlib.
+# Needs: the wasm32-unknown-unknown target (added when missing). The glue is written by
+# crates/web/bindgen, wasm-bindgen's library at the version Cargo.lock pins (no `cargo install
+# wasm-bindgen-cli`). CNETS_WASM_OPT=0 skips wasm-opt (a quicker build while working on the page;
+# the test command tests the site as it ships, shrunk). Brotli: the `brotli` command, else Node's zlib.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT="${1:-target/web}"
@@ -17,15 +18,23 @@ if ! rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknow
   rustup target add wasm32-unknown-unknown
 fi
 
-version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/version = |"/, ""); print; exit }' Cargo.lock)
-if [ -z "$version" ]; then
-  echo "web.sh: no wasm-bindgen in Cargo.lock" >&2
+# The glue writer (crates/web/bindgen, a workspace of its own) must run wasm-bindgen's library at
+# the version of the wasm-bindgen crate the page is compiled with.
+lock_version() {
+  awk -v name="$1" '$0 == "name = \"" name "\"" { getline; gsub(/version = |"/, ""); print; exit }' "$2"
+}
+page_version=$(lock_version wasm-bindgen Cargo.lock)
+glue_version=$(lock_version wasm-bindgen-cli-support crates/web/bindgen/Cargo.lock)
+if [ -z "$page_version" ] || [ "$page_version" != "$glue_version" ]; then
+  echo "web.sh: wasm-bindgen ${page_version:-missing} in Cargo.lock, but crates/web/bindgen" \
+    "locks wasm-bindgen-cli-support ${glue_version:-missing}: update its Cargo.toml and lock" >&2
   exit 1
 fi
-if [ "$(wasm-bindgen --version 2>/dev/null | awk '{print $2}')" != "$version" ]; then
-  echo "== installing wasm-bindgen-cli $version"
-  cargo install wasm-bindgen-cli --version "$version"
-fi
+echo "== cargo build (the glue writer, crates/web/bindgen; linted by clippy as it compiles)"
+RUSTC_WORKSPACE_WRAPPER="$(rustc --print sysroot)/bin/clippy-driver" \
+  CLIPPY_ARGS="-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__" \
+  cargo build -q --locked --manifest-path crates/web/bindgen/Cargo.toml
+bindgen="${CARGO_TARGET_DIR:-crates/web/bindgen/target}/debug/cnets-web-bindgen"
 
 echo "== cargo build (wasm32, profile web)"
 cargo build -p cnets-web --target wasm32-unknown-unknown --profile web
@@ -36,7 +45,6 @@ bytes() { stat -c %s "$1"; }
 # wasm-opt runs on rustc's output, before wasm-bindgen: binaryen 108 (Debian 12) rewrites the
 # externref table wasm-bindgen adds into one the browser refuses at start-up ("function-typed
 # object must be null"), even with no passes; before wasm-bindgen there is no such table.
-# CNETS_WASM_OPT=0 skips it (a quicker build while working on the page).
 if [ "${CNETS_WASM_OPT:-1}" != 0 ] && command -v wasm-opt >/dev/null 2>&1; then
   # The features rustc's wasm32 target turns on (binaryen 108 needs them named).
   echo "== wasm-opt -Os ($(wasm-opt --version))"
@@ -48,11 +56,13 @@ if [ "${CNETS_WASM_OPT:-1}" != 0 ] && command -v wasm-opt >/dev/null 2>&1; then
     "$wasm" -o "$optimized/cnets_web.wasm"
   echo "wasm-opt: $(bytes "$wasm") → $(bytes "$optimized/cnets_web.wasm") bytes in $(( $(date +%s) - started )) s"
   wasm="$optimized/cnets_web.wasm"
+elif [ "${CNETS_WASM_OPT:-1}" = 0 ]; then
+  echo "web.sh: CNETS_WASM_OPT=0: the wasm is not shrunk"
 else
   echo "web.sh: wasm-opt not installed (Debian: apt-get install binaryen): the wasm is not shrunk"
 fi
 echo "== wasm-bindgen → $OUT"
-wasm-bindgen "$wasm" --out-dir "$OUT" --target web --no-typescript
+"$bindgen" "$wasm" "$OUT"
 cp crates/web/static/index.html crates/web/static/worker.js "$OUT/"
 
 # Compressed copies beside each file (docs/web.md: how to serve them).

@@ -1092,9 +1092,11 @@ where
     // to them are still drawn. A graph of a thousand nodes lays out only the few dozen in view.
     let cull_area = viewport.expand(CULL_MARGIN);
     let pin_cache_id = snarl_id.with("cnets-pin-cache");
+    // Moved out of the context's data and back at the end of the frame: a clone would copy
+    // every node's pins each frame.
     let mut pin_cache: PinCache = ui
         .ctx()
-        .data(|d| d.get_temp::<PinCache>(pin_cache_id))
+        .data_mut(|d| d.remove_temp::<PinCache>(pin_cache_id))
         .unwrap_or_default();
     let mut culled = std::collections::HashSet::new();
 
