@@ -11,7 +11,7 @@
 //! commands (Delete, duplicate, copy) use when nothing is selected.
 
 use std::cell::RefCell;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::rc::Rc;
 
 use cnets_engine::cluster::Cluster;
@@ -23,6 +23,7 @@ use egui_snarl::ui::{
     PinInfo, PinShape, PinWireInfo, SnarlPin, SnarlStyle, SnarlViewer, SnarlWidget,
 };
 use egui_snarl::{InPin, InPinId, NodeId, OutPin, OutPinId, Snarl};
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::edit::Edit;
 use crate::request::UiRequest;
@@ -63,16 +64,19 @@ pub type PinKey = (String, bool, usize);
 /// The canvas: the snarl mirror of the graph and what the last frame learned about it.
 pub struct Canvas {
     snarl: Snarl<CanvasNode>,
-    ids: HashMap<String, NodeId>,
+    ids: FxHashMap<String, NodeId>,
+    /// A fingerprint of the graph's wires when the snarl's wires were last made to match them
+    /// ([`Canvas::sync`] diffs the wires only when it changed).
+    wires_synced: Option<u64>,
     /// Graph-to-screen transform of the last frame.
     to_global: TSTransform,
-    /// Pin centres in canvas coordinates, recorded while drawing.
-    pins: Rc<RefCell<HashMap<PinKey, Pos2>>>,
+    /// Pin centres in canvas coordinates, recorded while drawing (nodes out of view keep theirs).
+    pins: Rc<RefCell<FxHashMap<PinKey, Pos2>>>,
     /// Node rectangles in canvas coordinates.
-    rects: HashMap<String, Rect>,
+    rects: FxHashMap<String, Rect>,
     /// Each node's position when its rectangle was measured (nodes out of view are not laid out:
     /// their rectangle moves with them).
-    drawn_at: HashMap<String, [f32; 2]>,
+    drawn_at: FxHashMap<String, [f32; 2]>,
     /// Nodes laid out in the last frame (those in or near the view).
     laid_out: usize,
     /// The node last clicked.
@@ -172,11 +176,12 @@ impl Canvas {
     pub fn with_id(id: egui::Id) -> Self {
         Self {
             snarl: Snarl::new(),
-            ids: HashMap::new(),
+            ids: FxHashMap::default(),
+            wires_synced: None,
             to_global: TSTransform::IDENTITY,
             pins: Rc::default(),
-            rects: HashMap::new(),
-            drawn_at: HashMap::new(),
+            rects: FxHashMap::default(),
+            drawn_at: FxHashMap::default(),
             laid_out: 0,
             focused: None,
             selected: Vec::new(),
@@ -300,23 +305,16 @@ impl Canvas {
     }
 
     /// Makes the snarl mirror `graph`: adds and removes nodes, copies positions, diffs wires.
+    /// Called every frame: without allocating when no node came or went and the wires are the
+    /// same (a fingerprint of them), so a graph of thousands of nodes pays a lookup a node.
     pub fn sync(&mut self, graph: &Graph) {
-        let alive: HashSet<&str> = graph.nodes().map(|(_, n)| n.id.as_str()).collect();
-        let gone: Vec<String> = self
-            .ids
-            .keys()
-            .filter(|id| !alive.contains(id.as_str()))
-            .cloned()
-            .collect();
-        for id in gone {
-            if let Some(nid) = self.ids.remove(&id) {
-                self.snarl.remove_node(nid);
-            }
-        }
+        let (mut known, mut added) = (0, 0);
+        let mut nodes_changed = false;
         for (_, node) in graph.nodes() {
             let pos = Pos2::new(node.position[0], node.position[1]);
             match self.ids.get(&node.id) {
                 Some(&nid) => {
+                    known += 1;
                     if let Some(info) = self.snarl.get_node_info_mut(nid) {
                         info.pos = pos;
                     }
@@ -329,25 +327,48 @@ impl Canvas {
                         },
                     );
                     self.ids.insert(node.id.clone(), nid);
+                    added += 1;
+                    nodes_changed = true;
                 }
             }
         }
-        let mut wanted: HashSet<(OutPinId, InPinId)> = HashSet::new();
-        for w in graph.wires() {
-            let (Some(&a), Some(&b)) = (self.ids.get(&w.from), self.ids.get(&w.to)) else {
+        // Every id the canvas knows is either found above or gone from the graph.
+        if self.ids.len() > known + added {
+            let gone: Vec<String> = self
+                .ids
+                .keys()
+                .filter(|id| graph.node(id).is_none())
+                .cloned()
+                .collect();
+            for id in gone {
+                if let Some(nid) = self.ids.remove(&id) {
+                    self.snarl.remove_node(nid);
+                }
+            }
+            nodes_changed = true;
+        }
+        let fingerprint = {
+            use std::hash::{Hash, Hasher};
+            // Order-independent: the sum of each wire's hash.
+            graph
+                .wire_ports()
+                .map(|wire| {
+                    let mut h = rustc_hash::FxHasher::default();
+                    wire.hash(&mut h);
+                    h.finish()
+                })
+                .fold(graph.wire_count() as u64, u64::wrapping_add)
+        };
+        if !nodes_changed && self.wires_synced == Some(fingerprint) {
+            return;
+        }
+        self.wires_synced = Some(fingerprint);
+        let mut wanted: FxHashSet<(OutPinId, InPinId)> = FxHashSet::default();
+        for (from, output, to, input) in graph.wire_ports() {
+            let (Some(&a), Some(&b)) = (self.ids.get(from), self.ids.get(to)) else {
                 continue;
             };
-            let (Some(fa), Some(fb)) = (graph.node(&w.from), graph.node(&w.to)) else {
-                continue;
-            };
-            let (Some(o), Some(i)) = (fa.def.output_index(&w.output), fb.def.input_index(&w.input))
-            else {
-                continue;
-            };
-            wanted.insert((
-                OutPinId { node: a, output: o },
-                InPinId { node: b, input: i },
-            ));
+            wanted.insert((OutPinId { node: a, output }, InPinId { node: b, input }));
         }
         let existing: Vec<(OutPinId, InPinId)> = self.snarl.wires().collect();
         for (o, i) in &existing {
@@ -459,32 +480,12 @@ impl Canvas {
 
     /// Takes the rectangles of the nodes laid out this frame; the nodes out of view (not laid out:
     /// vendor/egui-snarl culls them) keep their rectangle and pins from the frame they were last
-    /// drawn in, moved by as much as the node moved since. Allocation-free for nodes that did not
-    /// move: a graph of thousands of nodes pays a lookup a node, not a copy.
-    fn carry_over(
-        &mut self,
-        graph: &Graph,
-        drawn: HashMap<String, Rect>,
-        old_pins: HashMap<PinKey, Pos2>,
-    ) {
+    /// drawn in, moved by as much as the node moved since. The pins of the drawn nodes were
+    /// written over their old entries while drawing; the others are left where they are, so a
+    /// graph of thousands of nodes pays a lookup a node, not a copy.
+    fn carry_over(&mut self, graph: &Graph, drawn: HashMap<String, Rect>) {
         self.laid_out = drawn.len();
-        let moved = |drawn_at: Option<&[f32; 2]>, position: [f32; 2]| {
-            drawn_at.map_or(egui::Vec2::ZERO, |at| {
-                egui::vec2(position[0] - at[0], position[1] - at[1])
-            })
-        };
-        {
-            let mut pins = self.pins.borrow_mut();
-            for ((id, input, port), p) in old_pins {
-                if drawn.contains_key(&id) {
-                    continue;
-                }
-                if let Some(node) = graph.node(&id) {
-                    let d = moved(self.drawn_at.get(&id), node.position);
-                    pins.entry((id, input, port)).or_insert(p + d);
-                }
-            }
-        }
+        let mut moved: Vec<(&str, egui::Vec2)> = Vec::new();
         for (id, r) in self.rects.iter_mut() {
             if drawn.contains_key(id) {
                 continue;
@@ -493,11 +494,19 @@ impl Canvas {
                 && let Some(at) = self.drawn_at.get_mut(id)
                 && *at != node.position
             {
-                *r = r.translate(egui::vec2(
-                    node.position[0] - at[0],
-                    node.position[1] - at[1],
-                ));
+                let d = egui::vec2(node.position[0] - at[0], node.position[1] - at[1]);
+                *r = r.translate(d);
                 *at = node.position;
+                moved.push((id.as_str(), d));
+            }
+        }
+        if !moved.is_empty() {
+            // Nodes moved while out of view (undo, Arrange): their pins move with them.
+            let moved: FxHashMap<&str, egui::Vec2> = moved.into_iter().collect();
+            for ((id, _, _), p) in self.pins.borrow_mut().iter_mut() {
+                if let Some(d) = moved.get(id.as_str()) {
+                    *p += *d;
+                }
             }
         }
         for (id, r) in drawn {
@@ -517,6 +526,9 @@ impl Canvas {
         if self.rects.len() > graph.node_count() {
             self.rects.retain(|id, _| graph.node(id).is_some());
             self.drawn_at.retain(|id, _| graph.node(id).is_some());
+            self.pins
+                .borrow_mut()
+                .retain(|(id, _, _), _| graph.node(id).is_some());
         }
     }
 
@@ -544,8 +556,6 @@ impl Canvas {
         statuses: &HashMap<String, NodeStatus>,
     ) -> Vec<CanvasAction> {
         self.sync(graph);
-        // Pins are recorded while nodes are drawn; those of nodes out of view are carried over.
-        let old_pins = std::mem::take(&mut *self.pins.borrow_mut());
         self.ui_rect = ui.available_rect_before_wrap();
         // Frame the graph once every node has been measured in an earlier frame.
         let mut fit = None;
@@ -603,7 +613,7 @@ impl Canvas {
         self.to_global = viewer.to_global;
         // Nodes out of view are not laid out (vendor/egui-snarl culls them): they keep the size
         // they had when last drawn, at their position now.
-        self.carry_over(graph, viewer.rects, old_pins);
+        self.carry_over(graph, viewer.rects);
         self.plots = viewer.plots;
         self.mapper_views = viewer.mapper_views;
         self.editors = viewer.editors;
@@ -768,7 +778,7 @@ fn fitted_port_name(ui: &Ui, name: &str) -> (String, String) {
 pub struct RecordingPin {
     info: PinInfo,
     key: PinKey,
-    sink: Rc<RefCell<HashMap<PinKey, Pos2>>>,
+    sink: Rc<RefCell<FxHashMap<PinKey, Pos2>>>,
 }
 
 /// How much wider and taller a pin's hit area is than its drawn size: 16 points for the 9-point
@@ -804,7 +814,7 @@ struct Viewer<'a> {
     statuses: &'a HashMap<String, NodeStatus>,
     actions: Vec<CanvasAction>,
     shift: bool,
-    pins: Rc<RefCell<HashMap<PinKey, Pos2>>>,
+    pins: Rc<RefCell<FxHashMap<PinKey, Pos2>>>,
     to_global: TSTransform,
     rects: HashMap<String, Rect>,
     focused: Option<String>,
@@ -1526,5 +1536,43 @@ mod tests {
         g.remove_node("len").unwrap();
         c.sync(&g);
         assert_eq!(c.counts(), (2, 1));
+    }
+
+    /// The wires are diffed only when their fingerprint changes: a wire moved to another input
+    /// (same counts of nodes and wires) is still followed, and syncing again changes nothing.
+    #[test]
+    fn a_rewired_input_with_the_same_counts_is_followed() {
+        let d = doc();
+        let mut c = Canvas::new();
+        c.sync(&d.graph);
+        let input_of_wire = |c: &Canvas| {
+            let arc = c.ids["arc"];
+            c.snarl
+                .wires()
+                .filter(|(_, i)| i.node == arc)
+                .map(|(_, i)| i.input)
+                .collect::<Vec<_>>()
+        };
+        let arc = d.graph.node("arc").unwrap();
+        let radius = arc.def.input_index("radius").unwrap();
+        assert_eq!(input_of_wire(&c), vec![radius]);
+        let other = arc
+            .def
+            .inputs
+            .iter()
+            .position(|p| p.name != "radius" && p.ty == ValueType::Number)
+            .expect("curve.arc has a second number input");
+        let mut g = d.graph.clone();
+        g.disconnect("n", "value", "arc", "radius").unwrap();
+        g.connect("n", "value", "arc", &arc.def.inputs[other].name)
+            .unwrap();
+        c.sync(&g);
+        assert_eq!(c.counts(), (3, 2));
+        assert_eq!(input_of_wire(&c), vec![other]);
+        c.sync(&g);
+        assert_eq!(input_of_wire(&c), vec![other]);
+        // Back to the first graph (an undo): the first wiring again.
+        c.sync(&d.graph);
+        assert_eq!(input_of_wire(&c), vec![radius]);
     }
 }

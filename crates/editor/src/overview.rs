@@ -17,17 +17,18 @@ pub const MAX_SIZE: Vec2 = vec2(220.0, 140.0);
 /// A node that was never drawn is counted this big (canvas points).
 const UNMEASURED: Vec2 = vec2(220.0, 120.0);
 
-/// Every node's rectangle in canvas coordinates: as drawn, else at its position.
-pub fn node_rects(canvas: &Canvas, graph: &Graph) -> Vec<(String, Rect)> {
-    graph
-        .nodes()
-        .map(|(_, n)| {
-            let r = canvas.node_rect(&n.id).unwrap_or_else(|| {
-                Rect::from_min_size(pos2(n.position[0], n.position[1]), UNMEASURED)
-            });
-            (n.id.clone(), r)
-        })
-        .collect()
+/// Every node's rectangle in canvas coordinates: as drawn, else at its position (borrowed ids:
+/// called twice a frame over every node of the graph).
+pub fn node_rects<'a>(
+    canvas: &'a Canvas,
+    graph: &'a Graph,
+) -> impl Iterator<Item = (&'a str, Rect)> + 'a {
+    graph.nodes().map(|(_, n)| {
+        let r = canvas
+            .node_rect(&n.id)
+            .unwrap_or_else(|| Rect::from_min_size(pos2(n.position[0], n.position[1]), UNMEASURED));
+        (n.id.as_str(), r)
+    })
 }
 
 /// Where the overview goes and how canvas points map into it, when the graph does not fit in
@@ -39,7 +40,6 @@ pub fn placement(canvas: &Canvas, graph: &Graph) -> Option<(Rect, Rect)> {
     }
     let view = Rect::from_two_pos(canvas.to_canvas(screen.min), canvas.to_canvas(screen.max));
     let all = node_rects(canvas, graph)
-        .into_iter()
         .map(|(_, r)| r)
         .reduce(|a, b| a.union(b))?;
     if view.contains_rect(all) {
@@ -83,19 +83,26 @@ pub fn show(
             );
             let mut hovered = None;
             let pointer = response.hover_pos();
+            // One mesh of plain boxes (two triangles each, no rounding or feathering): a graph of
+            // thousands of nodes is drawn in every frame.
+            let mut boxes = egui::Mesh::default();
             for (id, r) in node_rects(canvas, graph) {
+                // At least a point each way, so a node of a tall graph still shows.
                 let boxed = Rect::from_min_max(to_map(r.min), to_map(r.max));
-                let shown = graph.node(&id).is_some_and(|n| n.preview && n.enabled);
-                let fill = match statuses.get(&id) {
+                let boxed =
+                    Rect::from_center_size(boxed.center(), boxed.size().max(vec2(1.0, 1.0)));
+                let shown = graph.node(id).is_some_and(|n| n.preview && n.enabled);
+                let fill = match statuses.get(id) {
                     Some(NodeStatus::Error(_)) => Color32::from_rgb(0xd6, 0x2f, 0x2f),
                     _ if shown => visuals.selection.bg_fill,
                     _ => visuals.widgets.inactive.bg_fill,
                 };
-                painter.rect_filled(boxed, 1.0, fill);
+                boxes.add_colored_rect(boxed.intersect(rect), fill);
                 if pointer.is_some_and(|p| boxed.expand(2.0).contains(p)) {
-                    hovered = Some(id);
+                    hovered = Some(id.to_string());
                 }
             }
+            painter.add(boxes);
             let screen = canvas.screen_rect();
             let view = Rect::from_min_max(
                 to_map(canvas.to_canvas(screen.min)),

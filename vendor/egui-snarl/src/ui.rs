@@ -1,6 +1,7 @@
 //! This module provides functionality for showing [`Snarl`] graph in [`Ui`].
 
-use std::collections::HashMap;
+// cnets: FxHash for the per-frame pin maps (vendor/README.md).
+use rustc_hash::FxHashMap as HashMap;
 
 use egui::{
     Align, Color32, CornerRadius, Frame, Id, LayerId, Layout, Margin, Modifiers, PointerButton,
@@ -831,7 +832,7 @@ struct NodePins {
 }
 
 /// cnets: the pins of every node, for the frames it is not laid out in.
-type PinCache = HashMap<NodeId, NodePins>;
+type PinCache = rustc_hash::FxHashMap<NodeId, NodePins>;
 
 /// Widget to display [`Snarl`] graph in [`Ui`].
 #[derive(Clone, Copy, Debug)]
@@ -1076,8 +1077,9 @@ where
         WireLayer::AboveNodes => None,
     };
 
-    let mut input_info = HashMap::new();
-    let mut output_info = HashMap::new();
+    // cnets: FxHash maps, filled for every node each frame (thousands in a large graph).
+    let mut input_info = HashMap::default();
+    let mut output_info = HashMap::default();
 
     let mut pin_hovered = None;
 
@@ -1098,7 +1100,7 @@ where
         .ctx()
         .data_mut(|d| d.remove_temp::<PinCache>(pin_cache_id))
         .unwrap_or_default();
-    let mut culled = std::collections::HashSet::new();
+    let mut culled = rustc_hash::FxHashSet::default();
 
     for node_idx in draw_order {
         if !snarl.nodes.contains(node_idx.0) {
@@ -1108,8 +1110,10 @@ where
         let node = &snarl.nodes[node_idx.0];
         let node_pos = node.pos.round_ui();
         let node_state_id = snarl_id.with(("snarl-node", node_idx));
-        let openness = ui.ctx().animate_bool(node_state_id, node.open);
-        if let Some(rect) = NodeState::stored_rect(ui.ctx(), node_state_id, node_pos, openness)
+        // The open/closed animation is asked for only by nodes that are laid out (a node out of
+        // view cannot be toggled): the culling test uses the state it animates to.
+        let settled = if node.open { 1.0 } else { 0.0 };
+        if let Some(rect) = NodeState::stored_rect(ui.ctx(), node_state_id, node_pos, settled)
             && !cull_area.intersects(rect)
         {
             if let Some(pins) = pin_cache.get(&node_idx) {

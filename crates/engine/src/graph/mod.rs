@@ -405,6 +405,20 @@ impl Graph {
         self.inner.neighbors_directed(node, Direction::Outgoing)
     }
 
+    /// Every wire as (source id, output index, target id, input index), in no particular order
+    /// and without allocating (the canvas mirrors them each frame; [`Graph::wires`] has names).
+    pub fn wire_ports(&self) -> impl Iterator<Item = (&str, usize, &str, usize)> + '_ {
+        self.inner.edge_references().map(|e| {
+            let w = e.weight();
+            (
+                self.inner[e.source()].id.as_str(),
+                w.from_output,
+                self.inner[e.target()].id.as_str(),
+                w.to_input,
+            )
+        })
+    }
+
     /// All wires by ids and port names, ordered by creation.
     pub fn wires(&self) -> Vec<WireRef> {
         let mut wires: Vec<(u64, WireRef)> = self
