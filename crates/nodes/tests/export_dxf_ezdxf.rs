@@ -256,10 +256,11 @@ fn writing_is_linear_in_the_outlines() {
     };
     let text = std::fs::read_to_string(path.as_ref()).unwrap();
     assert_eq!(text.matches("\nLWPOLYLINE\n").count(), 80_000);
-    // 0.6–0.95 s in the test build on the 2-core machine under load; a quadratic writer would take
-    // minutes (80 000² steps). The bound is ≥ 16× the measured time, out of reach of a busy
-    // machine (issue 30).
-    assert!(took.as_secs_f64() < 15.0, "80 000 outlines took {took:?}");
+    // 0.71 s idle and 0.6–0.95 s under load (6–9) in the test build on the 2-core machine, but
+    // 15.8 s once at `nice 5` beside three clean-clone builds (load 14); a writer copying its
+    // output per outline would take minutes (80 000² bytes moved). The bound is 60 s: 63× the
+    // loaded figure and 3.8× the starved one (issue 30).
+    assert!(took.as_secs_f64() < 60.0, "80 000 outlines took {took:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
