@@ -20,8 +20,13 @@ pip=("$venv/bin/python" -m pip --disable-pip-version-check -q)
 # took 19 min on the shared 2-core machine (docs/python.md). A user's plain `pip install ./python`
 # builds in release.
 profile="${CNETS_PYTHON_PROFILE:-dev}"
+started=$SECONDS
 "${pip[@]}" install --force-reinstall --no-deps \
   --config-settings=build-args="--profile $profile" "./python[rhino]"
+# After the test build, every dependency is reused (python/Cargo.toml turns on the features the
+# workspace unifies; scripts/feature-drift.sh checks it): only the PyO3 crates and the package
+# itself are compiled here.
+echo "test-python.sh: the package built and installed in $((SECONDS - started)) s (profile $profile)"
 # The library's command-line tests and the docs' `cnets` lines run the cnets binary: the one
 # `cargo test --workspace` built (scripts/test.sh), else it is built here (CNETS_BIN names another).
 if [ -z "${CNETS_BIN:-}" ]; then

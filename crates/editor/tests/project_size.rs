@@ -86,3 +86,33 @@ fn only_the_nodes_in_view_are_laid_out_and_every_node_keeps_its_place() {
         Some(cnets_editor::worker::NodeStatus::Ok { .. })
     ));
 }
+
+/// Panning and zooming the canvas changes nothing in the 3D view: its picture is blitted again,
+/// not rendered again (on a software rasterizer a render of the 3D view is most of a frame).
+/// Turning the camera renders it.
+#[test]
+fn panning_the_canvas_blits_the_3d_view_without_rendering_it_again() {
+    let mut h = common::harness("project-size-pan");
+    h.render().expect("a first picture");
+    let first = h.state().viewport.pictures_rendered();
+    assert!(first >= 1, "the 3D view was rendered ({first})");
+    for k in 0..12 {
+        let zoom = 0.6 + 0.03 * k as f32;
+        let around = egui::pos2(40.0 * k as f32, -25.0 * k as f32);
+        h.state_mut().canvas.zoom_to(zoom, Some(around));
+        h.run_steps(1);
+        h.render().expect("a picture");
+    }
+    assert_eq!(
+        h.state().viewport.pictures_rendered(),
+        first,
+        "12 frames of canvas pan and zoom rendered the 3D view again"
+    );
+    h.state_mut().viewport.camera.orbit(0.3, 0.1);
+    h.run_steps(1);
+    h.render().expect("a picture");
+    assert!(
+        h.state().viewport.pictures_rendered() > first,
+        "turning the camera renders the 3D view"
+    );
+}

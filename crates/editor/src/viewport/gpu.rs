@@ -1,8 +1,10 @@
 //! The 3D view on the GPU: the preview [`Scene`] and the view's guides (grid, axes, highlights)
 //! drawn with wgpu through an egui-wgpu paint callback (`cnets-render`'s [`SceneRenderer`] renders
-//! into its own texture in `prepare`, the [`Blitter`] copies it into egui's pass in `paint`).
+//! into its own texture in `prepare` when the scene, guides, camera or size changed, the
+//! [`Blitter`] copies it into egui's pass in `paint` every frame).
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use cnets_render::{
     BlitSource, Blitter, Camera, PointInstance, RendererOptions, Scene, SceneRenderer, Segment,
@@ -62,6 +64,9 @@ struct ViewportGpu {
     source: Option<BlitSource>,
     version: u64,
     guides_version: u64,
+    /// The camera and size of the picture in the view's texture: while they, the scene and the
+    /// guides stay the same (panning the canvas, typing in a field) the texture is only blitted.
+    rendered: Option<(Camera, [u32; 2])>,
 }
 
 /// The paint callback of one frame.
@@ -78,6 +83,9 @@ pub struct ViewportCallback {
     pub size_px: [u32; 2],
     /// The target formats.
     pub target: GpuTarget,
+    /// Counts the pictures rendered into the view's texture (the blit of an unchanged one is not
+    /// counted).
+    pub pictures: Arc<AtomicU64>,
 }
 
 impl CallbackTrait for ViewportCallback {
@@ -98,15 +106,22 @@ impl CallbackTrait for ViewportCallback {
                 source: None,
                 version: u64::MAX,
                 guides_version: u64::MAX,
+                rendered: None,
             });
         if gpu.version != self.version {
             gpu.renderer.set_scene(device, queue, &self.scene);
             gpu.version = self.version;
+            gpu.rendered = None;
         }
         if gpu.guides_version != self.guides.version {
             gpu.renderer
                 .set_guides(device, queue, &self.guides.segments, &self.guides.points);
             gpu.guides_version = self.guides.version;
+            gpu.rendered = None;
+        }
+        let picture = (self.camera, self.size_px);
+        if gpu.source.is_some() && gpu.rendered == Some(picture) {
+            return Vec::new();
         }
         let [w, h] = self.size_px;
         if gpu
@@ -116,6 +131,10 @@ impl CallbackTrait for ViewportCallback {
         {
             gpu.blitter
                 .update_source(device, &gpu.renderer, &mut gpu.source);
+            gpu.rendered = Some(picture);
+            self.pictures.fetch_add(1, Ordering::Relaxed);
+        } else {
+            gpu.rendered = None;
         }
         Vec::new()
     }

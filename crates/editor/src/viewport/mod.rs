@@ -28,6 +28,7 @@ pub mod pick;
 pub mod screen;
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use cnets_engine::{Graph, NodeInstance};
 use cnets_geometry::DVec3;
@@ -126,6 +127,8 @@ pub struct Viewport {
     /// Scene versions handed to the GPU (one per frame at most): the app reads it to know when a
     /// change reached the picture.
     pub drawn_version: u64,
+    /// Pictures rendered by the GPU (see [`Viewport::pictures_rendered`]).
+    pictures: Arc<AtomicU64>,
     /// egui time of the last change of scene or camera.
     last_change: f64,
     /// Resolution factor of the last frame (1 or [`INTERACTIVE_SCALE`]).
@@ -179,6 +182,7 @@ impl Default for Viewport {
             fitted_once: false,
             aspect: 1.0,
             drawn_version: 0,
+            pictures: Arc::default(),
             last_change: f64::NEG_INFINITY,
             render_scale: 1.0,
             rect: egui::Rect::NOTHING,
@@ -253,6 +257,13 @@ impl Viewport {
         self.highlight = Arc::new(Vec::new());
         self.handles = HandleTool::default();
         self.tool = Tool::Select;
+    }
+
+    /// How many pictures the GPU has rendered into the view's texture so far. A frame in which
+    /// the scene, guides, camera and size are unchanged only blits the last one and is not
+    /// counted (panning the canvas, typing in a field).
+    pub fn pictures_rendered(&self) -> u64 {
+        self.pictures.load(Ordering::Relaxed)
     }
 
     /// The scene shown.
@@ -919,6 +930,7 @@ impl Viewport {
                         camera: self.camera,
                         size_px,
                         target: *target,
+                        pictures: self.pictures.clone(),
                     },
                 ));
                 self.drawn_version = self.scene_version;
