@@ -51,11 +51,14 @@ pub fn decode(node: &Node, ty: &ValueType) -> Res<Value> {
         return Ok(v);
     }
     match &node.kind {
-        Kind::List(items) => items
-            .iter()
-            .map(|n| decode(n, ty))
-            .collect::<Res<Vec<_>>>()
-            .map(Value::list),
+        Kind::List(items) => {
+            // Sized once: collecting through `Result` would grow the list by doubling.
+            let mut values = Vec::with_capacity(items.len());
+            for item in items {
+                values.push(decode(item, ty)?);
+            }
+            Ok(Value::list(values))
+        }
         _ => expected(node, &ty.base().to_string()),
     }
 }
