@@ -20,6 +20,7 @@ use smallvec::SmallVec;
 use crate::{InPin, InPinId, Node, NodeId, OutPin, OutPinId, Snarl, ui::wire::WireId};
 
 mod background_pattern;
+mod coverage;
 mod pin;
 mod scale;
 mod state;
@@ -34,6 +35,7 @@ use self::{
 
 pub use self::{
     background_pattern::{BackgroundPattern, Grid},
+    coverage::WireCoverage,
     pin::{AnyPins, PinInfo, PinShape, PinWireInfo, SnarlPin},
     state::get_selected_nodes,
     viewer::SnarlViewer,
@@ -1204,6 +1206,9 @@ where
     let mut hovered_wire = None;
     let mut hovered_wire_disconnect = false;
     let mut wire_shapes = Vec::new();
+    // cnets: wires over wires already drawn the same way are skipped (`coverage.rs`).
+    let mut coverage =
+        coverage::WireCoverage::new(ui.clip_rect().expand(wire_width + 2.0), wire_width);
 
     // Draw and interact with wires
     for wire in snarl.wires.iter() {
@@ -1277,6 +1282,7 @@ where
             Stroke::new(draw_width, color),
             wire_threshold,
             pick_wire_style(from_r.wire_style, to_r.wire_style),
+            Some(&mut coverage),
         );
     }
 
@@ -1439,6 +1445,7 @@ where
                     Stroke::new(wire_width, to_r.wire_color),
                     wire_threshold,
                     to_r.wire_style,
+                    None,
                 );
             }
         }
@@ -1459,6 +1466,7 @@ where
                     Stroke::new(wire_width, from_r.wire_color),
                     wire_threshold,
                     from_r.wire_style,
+                    None,
                 );
             }
         }

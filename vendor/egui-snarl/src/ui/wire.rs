@@ -3,6 +3,7 @@ use core::f32;
 use ahash::HashMap;
 use egui::{Context, Id, Pos2, Rect, Shape, Stroke, Ui, cache::CacheTrait, pos2};
 
+use super::coverage::WireCoverage;
 use crate::{InPinId, OutPinId};
 
 const MAX_CURVE_SAMPLES: usize = 100;
@@ -242,6 +243,7 @@ pub fn draw_wire(
     mut stroke: Stroke,
     threshold: f32,
     style: WireStyle,
+    coverage: Option<&mut WireCoverage>,
 ) {
     if !ui.is_visible() {
         return;
@@ -269,11 +271,11 @@ pub fn draw_wire(
             }
         }
         WireStyle::Bezier3 => {
-            draw_bezier_3(ui, wire, args, stroke, threshold, shapes);
+            draw_bezier_3(ui, wire, args, stroke, threshold, shapes, coverage);
         }
 
         WireStyle::Bezier5 => {
-            draw_bezier_5(ui, wire, args, stroke, threshold, shapes);
+            draw_bezier_5(ui, wire, args, stroke, threshold, shapes, coverage);
         }
 
         WireStyle::AxisAligned { corner_radius } => {
@@ -750,6 +752,7 @@ fn draw_bezier_3(
     stroke: Stroke,
     threshold: f32,
     shapes: &mut Vec<Shape>,
+    coverage: Option<&mut WireCoverage>,
 ) {
     debug_assert!(ui.is_visible(), "Must be checked earlier");
 
@@ -761,7 +764,7 @@ fn draw_bezier_3(
         if cached.aabb.intersects(clip_rect) {
             // cnets: only the runs of the wire within the view (a wire to a node far away is
             // thousands of points, most of them off screen).
-            push_visible(shapes, &cached.line(threshold), clip_rect, stroke);
+            push_visible(shapes, &cached.line(threshold), clip_rect, stroke, coverage);
         }
     });
 
@@ -793,6 +796,7 @@ fn draw_bezier_5(
     stroke: Stroke,
     threshold: f32,
     shapes: &mut Vec<Shape>,
+    coverage: Option<&mut WireCoverage>,
 ) {
     debug_assert!(ui.is_visible(), "Must be checked earlier");
 
@@ -804,7 +808,7 @@ fn draw_bezier_5(
         if cached.aabb.intersects(clip_rect) {
             // cnets: only the runs of the wire within the view (a wire to a node far away is
             // thousands of points, most of them off screen).
-            push_visible(shapes, &cached.line(threshold), clip_rect, stroke);
+            push_visible(shapes, &cached.line(threshold), clip_rect, stroke, coverage);
         }
     });
 
@@ -830,8 +834,23 @@ fn draw_bezier_5(
 }
 
 /// cnets: pushes the runs of `line` whose segments touch `clip` (widened by the stroke) as lines.
-fn push_visible(shapes: &mut Vec<Shape>, line: &[Pos2], clip: Rect, stroke: Stroke) {
+/// Runs over wires already drawn the same way are skipped (`coverage`).
+fn push_visible(
+    shapes: &mut Vec<Shape>,
+    line: &[Pos2],
+    clip: Rect,
+    stroke: Stroke,
+    mut coverage: Option<&mut WireCoverage>,
+) {
     let clip = clip.expand(stroke.width + 2.0);
+    let mut push = |run: Vec<Pos2>| {
+        let covered = coverage
+            .as_deref_mut()
+            .is_some_and(|c| c.covered_else_mark(&run, stroke));
+        if !covered {
+            shapes.push(Shape::line(run, stroke));
+        }
+    };
     let mut run: Vec<Pos2> = Vec::new();
     for pair in line.windows(2) {
         if Rect::from_two_pos(pair[0], pair[1]).intersects(clip) {
@@ -840,11 +859,11 @@ fn push_visible(shapes: &mut Vec<Shape>, line: &[Pos2], clip: Rect, stroke: Stro
             }
             run.push(pair[1]);
         } else if !run.is_empty() {
-            shapes.push(Shape::line(std::mem::take(&mut run), stroke));
+            push(std::mem::take(&mut run));
         }
     }
     if run.len() >= 2 {
-        shapes.push(Shape::line(run, stroke));
+        push(run);
     }
 }
 
