@@ -104,6 +104,8 @@ pub struct Canvas {
     mapper_views: HashMap<String, (mapper::Shown, usize)>,
     /// Rectangles of the inline value editors, by (node, input) (canvas coordinates).
     editors: HashMap<(String, String), Rect>,
+    /// What literal lists show on their nodes, kept while the lists stay the same.
+    list_views: list_editor::OnNodeCache,
     /// Readout rectangles of `view.panel` nodes (canvas coordinates).
     panels: HashMap<String, Rect>,
     /// A zoom asked for with [`Canvas::zoom_to`], applied on the next frame.
@@ -195,6 +197,7 @@ impl Canvas {
             plots: HashMap::new(),
             mapper_views: HashMap::new(),
             editors: HashMap::new(),
+            list_views: list_editor::OnNodeCache::default(),
             panels: HashMap::new(),
             zoom_pending: None,
         }
@@ -591,9 +594,11 @@ impl Canvas {
             };
             fit = Some(TSTransform::new(translation, z));
         }
+        self.list_views.next_frame();
         let mut viewer = Viewer {
             graph,
             statuses,
+            list_views: std::mem::take(&mut self.list_views),
             actions: Vec::new(),
             shift: ui.input(|i| i.modifiers.shift),
             pins: self.pins.clone(),
@@ -611,6 +616,7 @@ impl Canvas {
         };
         let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
         self.to_global = viewer.to_global;
+        self.list_views = viewer.list_views;
         // Nodes out of view are not laid out (vendor/egui-snarl culls them): they keep the size
         // they had when last drawn, at their position now.
         self.carry_over(graph, viewer.rects);
@@ -812,6 +818,8 @@ impl SnarlPin for RecordingPin {
 struct Viewer<'a> {
     graph: &'a Graph,
     statuses: &'a HashMap<String, NodeStatus>,
+    /// The canvas's, lent for the frame.
+    list_views: list_editor::OnNodeCache,
     actions: Vec<CanvasAction>,
     shift: bool,
     pins: Rc<RefCell<FxHashMap<PinKey, Pos2>>>,
@@ -1179,7 +1187,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                         input: port.name.to_string(),
                     }));
                 }
-            } else if !wired && let Some(list) = list_editor::on_node(instance, k) {
+            } else if !wired && let Some(list) = self.list_views.on_node(instance, k) {
                 // A literal list: its summary, and a button opening it as a table.
                 ui.weak(&list.summary);
                 if list.editable {

@@ -11,9 +11,10 @@
 //! on the model of [`table`], which keeps everything the designer did not touch bit for bit.
 //!
 //! - [`table`]: the list as rows of cells and its edits; [`tsv`]: delimited text; [`summary`]:
-//!   the text on the node; `grid`: the cells of a window; `window`: one window.
+//!   the text on the node; [`OnNodeCache`]: that text kept while a list stays the same; `grid`: the cells of a window; `window`: one window.
 
 mod grid;
+mod on_node_cache;
 pub mod summary;
 pub mod table;
 pub mod tsv;
@@ -25,6 +26,7 @@ use crate::document::GraphDocument;
 use crate::edit::Edit;
 use crate::{mapper, widgets};
 
+pub use on_node_cache::OnNodeCache;
 pub use table::{ItemType, Layout, Table};
 pub use window::PasteMode;
 use window::{EditorWindow, Request};
@@ -56,6 +58,12 @@ pub struct OnNode {
 /// (or its default is one) or a polyline: `None` for inputs with an inline editor of their own
 /// (a number field, a `param.choice`'s options, a graph mapper's handles) and for other values.
 pub fn on_node(node: &NodeInstance, k: usize) -> Option<OnNode> {
+    let (value, items) = shown_value(node, k)?;
+    Some(describe(&value, &items))
+}
+
+/// The value [`on_node`] describes and its item type (cheap: a list is shared, not copied).
+fn shown_value(node: &NodeInstance, k: usize) -> Option<(Value, ItemType)> {
     let port = node.def.inputs.get(k)?;
     if widgets::has_editor(node, k)
         || (mapper::is_mapper(node) && mapper::handles_port(node) == Some(k))
@@ -69,10 +77,15 @@ pub fn on_node(node: &NodeInstance, k: usize) -> Option<OnNode> {
         _ => return None,
     }
     let items = item_type(node, k);
-    Some(OnNode {
-        summary: summary::summary(&value),
-        editable: Table::new(Some(&value), &items).is_ok() || parts(&value, &items).is_some(),
-    })
+    Some((value, items))
+}
+
+/// The summary and whether the table editor takes `value` (both walk every item).
+fn describe(value: &Value, items: &ItemType) -> OnNode {
+    OnNode {
+        summary: summary::summary(value),
+        editable: Table::new(Some(value), items).is_ok() || parts(value, items).is_some(),
+    }
 }
 
 /// The item type of a part ([`parts`]): points.

@@ -52,6 +52,9 @@ fn leaves(value: &Value, indices: &mut Vec<usize>, out: &mut Vec<(Vec<usize>, f6
         }
         Value::List(items) => {
             for (i, item) in items.iter().enumerate() {
+                if out.len() >= MAX_CANDIDATES {
+                    break; // (a list of millions of numbers offers its first ones)
+                }
                 indices.push(i);
                 leaves(item, indices, out);
                 indices.pop();
