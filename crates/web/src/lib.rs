@@ -4,6 +4,8 @@
 //! - [`bundle`]: every file of `graphs/`, compiled in: the gallery graphs and the files they
 //!   import, readable by nodes through the engine's in-memory files.
 //! - [`link`]: share links, the graph in the URL fragment (`#graph=…`), and `?example=<name>`.
+//! - [`opening`]: files read by the browser wait here; a large graph is announced before the page
+//!   parses it.
 //! - [`wire`]: the messages between the page and its evaluation worker; [`service`]: the
 //!   worker's side (the engine's evaluator answering the page's requests).
 //! - wasm32 only: `page` (the entry point, the WebGL2 set-up, and the browser's side of the
@@ -16,6 +18,7 @@
 
 pub mod bundle;
 pub mod link;
+pub mod opening;
 pub mod service;
 pub mod wire;
 

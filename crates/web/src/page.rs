@@ -20,6 +20,7 @@ use eframe::egui_wgpu::{self, wgpu};
 use wasm_bindgen::JsCast as _;
 use wasm_bindgen::prelude::*;
 
+use crate::opening::{LargeOpen, Notice, Opening, size_text};
 use crate::remote::WebWorker;
 
 /// Files picked in the browser's file picker, waiting for the next frame: (name, bytes).
@@ -96,6 +97,8 @@ struct WebApp {
     welcome_rect: Option<egui::Rect>,
     /// The browser tab's title as last set.
     tab_title: String,
+    /// Files read by the browser, waiting to be opened (a large graph after a notice).
+    opening: Opening,
 }
 
 /// The local-storage key that remembers the first visit's hint was dismissed.
@@ -158,6 +161,7 @@ impl WebApp {
             touched: false,
             welcome: LocalStore.read(WELCOMED).is_none(),
             welcome_rect: None,
+            opening: Opening::default(),
             tab_title: String::new(),
         };
         me.open_from_url();
@@ -431,8 +435,67 @@ impl WebApp {
                 value.map_or(JsValue::NULL, JsValue::from_f64),
             );
         }
+        set(
+            "opening_notice",
+            self.opening
+                .notice()
+                .map_or(JsValue::NULL, |n| n.sentence().into()),
+        );
+        set(
+            "large_open",
+            self.opening
+                .last_large
+                .as_ref()
+                .map_or(JsValue::NULL, large_open_object),
+        );
         let _ = js_sys::Reflect::set(&window, &"cnets_test".into(), &o);
     }
+}
+
+/// Whether the browser test has set `window.<name>` to a true value.
+fn test_flag(name: &str) -> bool {
+    web_sys::window()
+        .and_then(|w| js_sys::Reflect::get(&w, &name.into()).ok())
+        .is_some_and(|v| v.is_truthy())
+}
+
+/// `window.cnets_test.large_open`: how the last large graph was opened.
+fn large_open_object(large: &LargeOpen) -> JsValue {
+    let o = js_sys::Object::new();
+    let set = |k: &str, v: JsValue| {
+        let _ = js_sys::Reflect::set(&o, &k.into(), &v);
+    };
+    set("name", large.name.as_str().into());
+    set("bytes", JsValue::from_f64(large.bytes as f64));
+    set(
+        "notice_frames",
+        JsValue::from_f64(f64::from(large.notice_frames)),
+    );
+    set(
+        "open_ms",
+        large.open_ms.map_or(JsValue::NULL, JsValue::from_f64),
+    );
+    o.into()
+}
+
+/// The notice over the middle of the page while a large graph waits to be parsed.
+fn show_opening_notice(ctx: &egui::Context, notice: &Notice) {
+    egui::Area::new(egui::Id::new("cnets-opening"))
+        .order(egui::Order::Foreground)
+        .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
+        .interactable(false)
+        // Drawn whole in its first frame: the page parses two frames later (no time to fade in).
+        .fade_in(false)
+        .show(ctx, |ui| {
+            egui::Frame::popup(ui.style()).show(ui, |ui| {
+                ui.set_max_width(360.0);
+                ui.horizontal(|ui| {
+                    ui.spinner();
+                    ui.strong(&notice.title);
+                });
+                ui.label(&notice.detail);
+            });
+        });
 }
 
 impl WebApp {
@@ -468,7 +531,22 @@ impl eframe::App for WebApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         let picked = std::mem::take(&mut *self.inbox.borrow_mut());
         if !picked.is_empty() {
-            self.receive(picked);
+            self.opening.arrive(picked);
+        }
+        // (`window.cnets_hold_opening = true`: the browser test keeps the notice up to picture it.)
+        let due = if test_flag("cnets_hold_opening") {
+            Vec::new()
+        } else {
+            self.opening.due()
+        };
+        if !due.is_empty() {
+            let started = now_ms();
+            self.receive(due);
+            if let Some(large) = self.opening.last_large.as_mut()
+                && large.open_ms.is_none()
+            {
+                large.open_ms = Some(now_ms() - started);
+            }
         }
         // Files dropped on the page are read like picked ones (the browser reads asynchronously).
         let dropped: Vec<web_sys::File> = ui.ctx().input(|i| {
@@ -479,6 +557,11 @@ impl eframe::App for WebApp {
                 .collect()
         });
         for file in dropped {
+            self.app.message = format!(
+                "reading {} ({})…",
+                file.name(),
+                size_text(file.size() as usize)
+            );
             read_into(file, self.inbox.clone(), self.ctx.clone());
         }
         self.test_request();
@@ -511,6 +594,13 @@ impl eframe::App for WebApp {
             ui.ctx().request_repaint();
         }
         self.app.ui(ui);
+        if let Some(notice) = self.opening.notice() {
+            show_opening_notice(ui.ctx(), &notice);
+            self.app.message = notice.sentence();
+        }
+        if self.opening.pending() {
+            ui.ctx().request_repaint();
+        }
         self.welcome_rect = None;
         if self.welcome {
             let shown = cnets_editor::welcome::show(

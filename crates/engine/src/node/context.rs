@@ -388,7 +388,7 @@ impl NodeContext {
                 ))
             })?;
             self.reserve(bytes.len() as u64, &format!("reading '{name}'"))?;
-            return Ok(bytes.to_vec());
+            Ok(bytes.to_vec())
         }
         #[cfg(not(target_arch = "wasm32"))]
         self.read_checked_on_disk(name, path)
