@@ -24,6 +24,14 @@ pub const AUTOSAVE_WITHIN: Duration = Duration::from_secs(1);
 /// Committed edits in quick succession (keys held on a value) are written at most this often.
 pub const AUTOSAVE_GAP: Duration = Duration::from_millis(250);
 
+/// After a failed write, autosave tries again after this long, twice as long after each further
+/// failure, up to [`AUTOSAVE_RETRY_MAX`]: a store that refuses (a full disk, the page's local
+/// storage over its quota) is not asked again every frame, nor the document written out for it.
+pub const AUTOSAVE_RETRY: Duration = Duration::from_secs(5);
+
+/// The longest wait between autosave attempts after failures.
+pub const AUTOSAVE_RETRY_MAX: Duration = Duration::from_secs(300);
+
 /// A recovery file found at start.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Recovered {
@@ -44,8 +52,8 @@ pub enum Autosave {
     Wrote,
     /// A write is due after this long (a gesture is in progress): ask for a frame then.
     Due(Duration),
-    /// Writing failed.
-    Failed,
+    /// Writing failed ([`Recovery::last_error`] says why); the next try is after this long.
+    Failed(Duration),
 }
 
 /// Where the recovery texts are kept, by name (`recovery.ron`, `recovery.path`).
@@ -77,12 +85,46 @@ impl RecoveryStore for FolderStore {
     }
 }
 
+/// A store that refuses graph texts over a size (the page's local storage holds 5–10 MB per
+/// site): the refusal says how large the design is, and nothing is half written.
+pub struct LimitedStore {
+    /// The store written to.
+    pub inner: Box<dyn RecoveryStore>,
+    /// The longest text written, in bytes.
+    pub max_bytes: usize,
+}
+
+impl RecoveryStore for LimitedStore {
+    fn read(&self, name: &str) -> Option<String> {
+        self.inner.read(name)
+    }
+
+    fn write(&mut self, name: &str, text: &str) -> std::io::Result<()> {
+        if text.len() > self.max_bytes {
+            return Err(std::io::Error::other(format!(
+                "the design is {:.1} MB, more than the {:.1} MB autosave keeps here",
+                text.len() as f64 / 1e6,
+                self.max_bytes as f64 / 1e6
+            )));
+        }
+        self.inner.write(name, text)
+    }
+
+    fn remove(&mut self, name: &str) {
+        self.inner.remove(name);
+    }
+}
+
 /// Autosaves into one folder (or another [`RecoveryStore`]).
 pub struct Recovery {
     dir: PathBuf,
     store: Box<dyn RecoveryStore>,
     saved_version: Option<u64>,
     last_write: Option<Instant>,
+    /// Failed writes in a row, the last one's time and error.
+    failures: u32,
+    failed_at: Option<Instant>,
+    last_error: Option<String>,
 }
 
 impl std::fmt::Debug for Recovery {
@@ -114,7 +156,23 @@ impl Recovery {
             store,
             saved_version: None,
             last_write: None,
+            failures: 0,
+            failed_at: None,
+            last_error: None,
         }
+    }
+
+    /// Why the last autosave failed, while the writes fail.
+    pub fn last_error(&self) -> Option<&str> {
+        self.last_error.as_deref()
+    }
+
+    /// The wait before the next try after `failures` failed writes in a row.
+    fn retry_after(failures: u32) -> Duration {
+        let doublings = failures.saturating_sub(1).min(16);
+        AUTOSAVE_RETRY
+            .saturating_mul(1 << doublings)
+            .min(AUTOSAVE_RETRY_MAX)
     }
 
     /// The recovery graph file.
@@ -141,9 +199,10 @@ impl Recovery {
         origin: Option<&Path>,
         version: u64,
     ) -> std::io::Result<()> {
+        // The text first: a store that refuses it (too large, full) keeps the last pair whole.
         let p = format!("{}\n{}\n", opt_line(path), opt_line(origin));
-        self.store.write(PATHS, &p)?;
         self.store.write(TEXT, text)?;
+        self.store.write(PATHS, &p)?;
         self.saved_version = Some(version);
         self.last_write = Some(Instant::now());
         Ok(())
@@ -173,9 +232,25 @@ impl Recovery {
         {
             return Autosave::Due(wait.saturating_sub(t.elapsed()));
         }
+        if let Some(t) = self.failed_at {
+            let retry = Self::retry_after(self.failures);
+            if t.elapsed() < retry {
+                return Autosave::Due(retry.saturating_sub(t.elapsed()));
+            }
+        }
         match self.write(&text(), paths.0, paths.1, version) {
-            Ok(()) => Autosave::Wrote,
-            Err(_) => Autosave::Failed,
+            Ok(()) => {
+                self.failures = 0;
+                self.failed_at = None;
+                self.last_error = None;
+                Autosave::Wrote
+            }
+            Err(e) => {
+                self.failures = self.failures.saturating_add(1);
+                self.failed_at = Some(Instant::now());
+                self.last_error = Some(e.to_string());
+                Autosave::Failed(Self::retry_after(self.failures))
+            }
         }
     }
 
@@ -237,5 +312,101 @@ mod tests {
         r.clear();
         assert!(r.find().is_none());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A store in memory that refuses writes while `refuse` is set.
+    struct FlakyStore {
+        refuse: std::sync::Arc<std::sync::atomic::AtomicBool>,
+        texts: std::collections::HashMap<String, String>,
+    }
+
+    impl RecoveryStore for FlakyStore {
+        fn read(&self, name: &str) -> Option<String> {
+            self.texts.get(name).cloned()
+        }
+        fn write(&mut self, name: &str, text: &str) -> std::io::Result<()> {
+            if self.refuse.load(std::sync::atomic::Ordering::Relaxed) {
+                return Err(std::io::Error::other("quota exceeded"));
+            }
+            self.texts.insert(name.into(), text.into());
+            Ok(())
+        }
+        fn remove(&mut self, name: &str) {
+            self.texts.remove(name);
+        }
+    }
+
+    #[test]
+    fn a_refusing_store_is_tried_again_after_a_growing_wait_not_every_frame() {
+        let refuse = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true));
+        let store = FlakyStore {
+            refuse: refuse.clone(),
+            texts: Default::default(),
+        };
+        let mut r = Recovery::with_store(Path::new("mem"), Box::new(store));
+        let none = (None, None);
+        let written = std::cell::Cell::new(0);
+        let text = || {
+            written.set(written.get() + 1);
+            "graph".to_string()
+        };
+        assert_eq!(
+            r.tick(true, 1, true, none, text),
+            Autosave::Failed(AUTOSAVE_RETRY)
+        );
+        assert_eq!(r.last_error(), Some("quota exceeded"));
+        // The frames after it (a new edit too) neither write the document out nor ask the store.
+        for version in [1, 2, 3] {
+            match r.tick(true, version, true, none, text) {
+                Autosave::Due(d) => assert!(d <= AUTOSAVE_RETRY && d > Duration::ZERO, "{d:?}"),
+                other => panic!("waiting to retry, got {other:?}"),
+            }
+        }
+        assert_eq!(written.get(), 1, "the document was written out once");
+        // The wait passed: tried again, refused again, the next wait twice as long.
+        r.failed_at = Instant::now().checked_sub(AUTOSAVE_RETRY);
+        assert_eq!(
+            r.tick(true, 3, true, none, text),
+            Autosave::Failed(AUTOSAVE_RETRY * 2)
+        );
+        assert_eq!(written.get(), 2);
+        assert_eq!(Recovery::retry_after(7), AUTOSAVE_RETRY_MAX, "capped");
+        // The store takes writes again: written, and the failures forgotten.
+        refuse.store(false, std::sync::atomic::Ordering::Relaxed);
+        r.failed_at = Instant::now().checked_sub(AUTOSAVE_RETRY * 2);
+        assert_eq!(r.tick(true, 3, true, none, text), Autosave::Wrote);
+        assert_eq!(r.last_error(), None);
+        assert_eq!(r.find().map(|f| f.text).as_deref(), Some("graph"));
+        assert_eq!((r.failures, r.failed_at), (0, None));
+    }
+
+    #[test]
+    fn a_limited_store_refuses_large_designs_and_keeps_the_last_one() {
+        let store = FlakyStore {
+            refuse: Default::default(),
+            texts: Default::default(),
+        };
+        let limited = LimitedStore {
+            inner: Box::new(store),
+            max_bytes: 1_000_000,
+        };
+        let mut r = Recovery::with_store(Path::new("mem"), Box::new(limited));
+        let none = (None, None);
+        assert_eq!(
+            r.tick(true, 1, true, none, || "small".into()),
+            Autosave::Wrote
+        );
+        std::thread::sleep(AUTOSAVE_GAP);
+        let failed = r.tick(true, 2, true, none, || "x".repeat(2_500_000));
+        assert_eq!(failed, Autosave::Failed(AUTOSAVE_RETRY));
+        assert_eq!(
+            r.last_error(),
+            Some("the design is 2.5 MB, more than the 1.0 MB autosave keeps here")
+        );
+        assert_eq!(
+            r.find().map(|f| f.text).as_deref(),
+            Some("small"),
+            "the last design that fitted is kept whole"
+        );
     }
 }

@@ -13,7 +13,7 @@ use std::sync::Arc;
 use cnets_editor::app::{AppOptions, EditorApp};
 use cnets_editor::load_failure::LoadFailure;
 use cnets_editor::page::{Page, PageRequest};
-use cnets_editor::recovery::{Recovery, RecoveryStore};
+use cnets_editor::recovery::{LimitedStore, Recovery, RecoveryStore};
 use cnets_editor::viewport::GpuTarget;
 use cnets_editor::worker::Worker;
 use eframe::egui_wgpu::{self, wgpu};
@@ -104,6 +104,10 @@ struct WebApp {
 /// The local-storage key that remembers the first visit's hint was dismissed.
 const WELCOMED: &str = "welcomed";
 
+/// The largest design autosaved in local storage (4 MB: browsers keep 5–10 MB a site, counted in
+/// UTF-16; larger designs say so in the status bar and are not autosaved).
+const AUTOSAVE_MAX_BYTES: usize = 4_000_000;
+
 /// The name of a document opened from a share link.
 const SHARED: &str = "shared design";
 
@@ -140,7 +144,10 @@ impl WebApp {
         // Autosave into the browser's local storage, with the desktop's recovery offer.
         app.set_recovery(Recovery::with_store(
             Path::new("localStorage"),
-            Box::new(LocalStore),
+            Box::new(LimitedStore {
+                inner: Box::new(LocalStore),
+                max_bytes: AUTOSAVE_MAX_BYTES,
+            }),
         ));
         app.set_examples(
             crate::bundle::example_names()

@@ -240,9 +240,13 @@ impl EditorApp {
         );
         match autosave {
             Autosave::Due(after) => ctx.request_repaint_after(after),
-            Autosave::Failed => {
-                self.message = "cannot write the recovery file (autosave)".into();
-                ctx.request_repaint_after(crate::recovery::AUTOSAVE_WITHIN);
+            Autosave::Failed(retry) => {
+                self.message = format!(
+                    "cannot write the recovery file (autosave): {}; next try in {} s",
+                    self.recovery.last_error().unwrap_or("refused"),
+                    retry.as_secs()
+                );
+                ctx.request_repaint_after(retry);
             }
             Autosave::Idle | Autosave::Wrote => {}
         }
