@@ -259,6 +259,10 @@ impl Recovery {
         self.store.remove(TEXT);
         self.store.remove(PATHS);
         self.saved_version = None;
+        // A saved document starts afresh: the next edit is autosaved without a failure's wait.
+        self.failures = 0;
+        self.failed_at = None;
+        self.last_error = None;
     }
 }
 
@@ -408,5 +412,12 @@ mod tests {
             Some("small"),
             "the last design that fitted is kept whole"
         );
+        // Saved (the recovery pair cleared): the next edit is written without the failure's wait.
+        r.clear();
+        assert_eq!(
+            r.tick(true, 3, true, none, || "again".into()),
+            Autosave::Wrote
+        );
+        assert_eq!(r.find().map(|f| f.text).as_deref(), Some("again"));
     }
 }
