@@ -80,11 +80,7 @@ impl Opening {
     /// waits, nothing is handed over until the notice has been drawn in [`NOTICE_FRAMES`]
     /// frames; then every waiting file is, in the order they arrived.
     pub fn due(&mut self) -> Vec<OpenedFile> {
-        let large = self
-            .waiting
-            .iter()
-            .find(|(name, bytes)| is_large_graph(name, bytes.len()));
-        if let Some((name, bytes)) = large {
+        if let Some((name, bytes)) = self.waiting_large() {
             if self.shown < NOTICE_FRAMES {
                 self.shown += 1;
                 return Vec::new();
@@ -102,15 +98,19 @@ impl Opening {
 
     /// The notice to draw this frame, while a large graph waits.
     pub fn notice(&self) -> Option<Notice> {
-        let (name, bytes) = self
-            .waiting
-            .iter()
-            .find(|(name, bytes)| is_large_graph(name, bytes.len()))?;
+        let (name, bytes) = self.waiting_large()?;
         Some(Notice {
             title: format!("Opening {name} ({})", size_text(bytes.len())),
             detail: "The page does not answer until it is read, which can take a few seconds."
                 .to_string(),
         })
+    }
+
+    /// The first large graph among the files waiting.
+    fn waiting_large(&self) -> Option<&OpenedFile> {
+        self.waiting
+            .iter()
+            .find(|(name, bytes)| is_large_graph(name, bytes.len()))
     }
 
     /// Whether files wait (the page asks for another frame).
