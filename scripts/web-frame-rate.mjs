@@ -6,36 +6,13 @@
 // Three rounds of each.
 //   node scripts/web-frame-rate.mjs SITE_DIR [EXAMPLE] [QUERY]   (needs: npm ci; Debian's chromium)
 // QUERY is appended to the page's address (for builds that read more parameters).
-import { chromium } from "playwright-core";
-import fs from "node:fs";
-import http from "node:http";
-import path from "node:path";
+import { openSite } from "./web-site.mjs";
 
 const dir = process.argv[2];
 const example = process.argv[3] ?? "facade";
 const query = process.argv[4] ?? "";
 if (!dir) throw new Error("usage: node scripts/web-frame-rate.mjs SITE_DIR [EXAMPLE] [QUERY]");
-const types = { ".html": "text/html", ".js": "text/javascript", ".wasm": "application/wasm" };
-const server = http.createServer((request, response) => {
-  const file = path.join(dir, path.normalize(decodeURIComponent(request.url.split("?")[0])));
-  fs.readFile(file, (error, body) => {
-    if (error) {
-      response.writeHead(404);
-      response.end();
-      return;
-    }
-    response.writeHead(200, { "content-type": types[path.extname(file)] ?? "application/octet-stream" });
-    response.end(body);
-  });
-});
-await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  headless: true,
-  args: ["--headless", "--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
-});
-const page = await browser.newPage({ viewport: { width: 1400, height: 860 } });
-await page.goto(`http://127.0.0.1:${server.address().port}/index.html?example=${example}${query}`);
+const { page, close } = await openSite(dir, `?example=${example}${query}`);
 const state = () => page.evaluate(() => window.cnets_test ?? null);
 for (let k = 0; k < 600; k++) {
   const s = await state();
@@ -90,5 +67,4 @@ for (let k = 0; k < 3; k++) {
   await page.waitForTimeout(1500);
 }
 console.log(`${example}${query}, 1400 × 860, animation frames a second: ${rounds.join("; ")}`);
-await browser.close();
-server.close();
+await close();

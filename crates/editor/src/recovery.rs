@@ -64,6 +64,71 @@ pub trait RecoveryStore {
     fn write(&mut self, name: &str, text: &str) -> std::io::Result<()>;
     /// Removes what is stored under `name`.
     fn remove(&mut self, name: &str);
+    /// Why a text of at least `len` bytes would be refused, known before it is written out.
+    fn refuses(&self, len: usize) -> Option<std::io::Error> {
+        let _ = len;
+        None
+    }
+    /// Where the texts go, as the status bar names it ("the recovery file", "local storage").
+    fn place(&self) -> &str {
+        "the recovery file"
+    }
+}
+
+/// What autosave writes: the document's text, written out only when it is written, and a cheap
+/// lower bound of its length (a store that cannot keep it refuses before it is written out).
+pub trait DesignText {
+    /// The document's text.
+    fn text(&self) -> String;
+    /// At most the text's length in bytes.
+    fn len_at_least(&self) -> usize {
+        0
+    }
+}
+
+impl<F: Fn() -> String> DesignText for F {
+    fn text(&self) -> String {
+        self()
+    }
+}
+
+/// A graph's text with its lower bound ([`text_len_at_least`]).
+pub struct GraphText<'a, F: Fn() -> String> {
+    /// The graph.
+    pub graph: &'a cnets_engine::Graph,
+    /// Writes the graph's text.
+    pub write: F,
+}
+
+impl<F: Fn() -> String> DesignText for GraphText<'_, F> {
+    fn text(&self) -> String {
+        (self.write)()
+    }
+
+    fn len_at_least(&self) -> usize {
+        text_len_at_least(self.graph)
+    }
+}
+
+/// At most the length of `graph`'s RON text: two bytes for each item of its literal values (a
+/// digit and a separator at least). Large designs are large by their literals.
+pub fn text_len_at_least(graph: &cnets_engine::Graph) -> usize {
+    fn items(v: &cnets_engine::Value) -> usize {
+        match v {
+            cnets_engine::Value::List(list) => match list.as_packed() {
+                Some(packed) => packed.len(),
+                None => v.as_list().unwrap_or(&[]).iter().map(items).sum(),
+            },
+            cnets_engine::Value::Polyline(p) => p.points.len(),
+            cnets_engine::Value::Text(t) => t.len() / 2,
+            _ => 1,
+        }
+    }
+    graph
+        .nodes()
+        .flat_map(|(_, n)| (0..n.def.inputs.len()).filter_map(|k| n.value(k)))
+        .map(|v| 2 * items(v))
+        .sum()
 }
 
 /// The desktop's store: files in a folder, written atomically.
@@ -101,17 +166,31 @@ impl RecoveryStore for LimitedStore {
 
     fn write(&mut self, name: &str, text: &str) -> std::io::Result<()> {
         if text.len() > self.max_bytes {
-            return Err(std::io::Error::other(format!(
-                "the design is {:.1} MB, more than the {:.1} MB autosave keeps here",
-                text.len() as f64 / 1e6,
-                self.max_bytes as f64 / 1e6
-            )));
+            return Err(self.too_large("", text.len()));
         }
         self.inner.write(name, text)
     }
 
     fn remove(&mut self, name: &str) {
         self.inner.remove(name);
+    }
+
+    fn refuses(&self, len: usize) -> Option<std::io::Error> {
+        (len > self.max_bytes).then(|| self.too_large("at least ", len))
+    }
+
+    fn place(&self) -> &str {
+        self.inner.place()
+    }
+}
+
+impl LimitedStore {
+    fn too_large(&self, at_least: &str, len: usize) -> std::io::Error {
+        std::io::Error::other(format!(
+            "the design is {at_least}{:.1} MB, more than the {:.1} MB autosave keeps here",
+            len as f64 / 1e6,
+            self.max_bytes as f64 / 1e6
+        ))
     }
 }
 
@@ -210,14 +289,15 @@ impl Recovery {
 
     /// Autosaves a dirty document whose `version` was not written yet: at once when `committed`
     /// (no gesture in progress), else when the last write is [`AUTOSAVE_WITHIN`] old (otherwise
-    /// it says when a write is due). `text` is only called when writing.
+    /// it says when a write is due). `text` is only written out when writing, and not when the
+    /// store refuses its lower bound.
     pub fn tick(
         &mut self,
         dirty: bool,
         version: u64,
         committed: bool,
         paths: (Option<&Path>, Option<&Path>),
-        text: impl FnOnce() -> String,
+        text: impl DesignText,
     ) -> Autosave {
         if !dirty || self.saved_version == Some(version) {
             return Autosave::Idle;
@@ -238,7 +318,11 @@ impl Recovery {
                 return Autosave::Due(retry.saturating_sub(t.elapsed()));
             }
         }
-        match self.write(&text(), paths.0, paths.1, version) {
+        let written = match self.store.refuses(text.len_at_least()) {
+            Some(refusal) => Err(refusal),
+            None => self.write(&text.text(), paths.0, paths.1, version),
+        };
+        match written {
             Ok(()) => {
                 self.failures = 0;
                 self.failed_at = None;
@@ -252,6 +336,11 @@ impl Recovery {
                 Autosave::Failed(Self::retry_after(self.failures))
             }
         }
+    }
+
+    /// Where autosave writes, as the status bar names it.
+    pub fn place(&self) -> &str {
+        self.store.place()
     }
 
     /// Removes the recovery files (after a save, a clean exit, or a declined restore).
@@ -419,5 +508,49 @@ mod tests {
             Autosave::Wrote
         );
         assert_eq!(r.find().map(|f| f.text).as_deref(), Some("again"));
+    }
+
+    #[test]
+    fn a_design_known_to_be_too_large_is_refused_without_being_written_out() {
+        let limited = LimitedStore {
+            inner: Box::new(FlakyStore {
+                refuse: Default::default(),
+                texts: Default::default(),
+            }),
+            max_bytes: 1_000_000,
+        };
+        let mut r = Recovery::with_store(Path::new("mem"), Box::new(limited));
+        let mut graph = cnets_engine::Graph::new(std::sync::Arc::new(cnets_nodes::registry()));
+        graph.add_node("numbers", "param.list").unwrap();
+        let numbers = (0..600_000).map(|k| cnets_engine::Value::Number(k as f64));
+        graph
+            .set_value(
+                "numbers",
+                "values",
+                cnets_engine::Value::list(numbers.collect()),
+            )
+            .unwrap();
+        assert_eq!(text_len_at_least(&graph), 1_200_000);
+        let written = std::cell::Cell::new(0);
+        let text = GraphText {
+            graph: &graph,
+            write: || {
+                written.set(written.get() + 1);
+                String::new()
+            },
+        };
+        assert_eq!(
+            r.tick(true, 1, true, (None, None), text),
+            Autosave::Failed(AUTOSAVE_RETRY)
+        );
+        assert_eq!(written.get(), 0, "not written out");
+        assert_eq!(r.place(), "the recovery file", "the inner store's place");
+        assert_eq!(
+            r.last_error(),
+            Some("the design is at least 1.2 MB, more than the 1.0 MB autosave keeps here")
+        );
+        // Its real text is longer than the bound.
+        let real = cnets_engine::file::to_ron(&graph, &Default::default());
+        assert!(real.len() >= text_len_at_least(&graph), "{}", real.len());
     }
 }

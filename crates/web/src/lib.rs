@@ -4,10 +4,11 @@
 //! - [`bundle`]: every file of `graphs/`, compiled in: the gallery graphs and the files they
 //!   import, readable by nodes through the engine's in-memory files.
 //! - [`link`]: share links, the graph in the URL fragment (`#graph=…`), and `?example=<name>`.
-//! - [`opening`]: files read by the browser wait here; a large graph is announced before the page
-//!   parses it.
+//! - [`opening`]: files read by the browser wait here; a large graph is read by the evaluation
+//!   worker under a notice while the page keeps answering.
 //! - [`wire`]: the messages between the page and its evaluation worker; [`service`]: the
-//!   worker's side (the engine's evaluator answering the page's requests).
+//!   worker's side (the engine's evaluator answering the page's requests); [`literals`]: large
+//!   literal values sent to the worker once and named by key afterwards.
 //! - wasm32 only: `page` (the entry point, the WebGL2 set-up, and the browser's side of the
 //!   editor: file picker, drag and drop, downloads, the clipboard, autosave in local storage),
 //!   `remote` (the page's end of the evaluation worker) and `worker_main` (the worker's entry
@@ -18,6 +19,7 @@
 
 pub mod bundle;
 pub mod link;
+pub mod literals;
 pub mod opening;
 pub mod service;
 pub mod wire;

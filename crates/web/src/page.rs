@@ -97,7 +97,7 @@ struct WebApp {
     welcome_rect: Option<egui::Rect>,
     /// The browser tab's title as last set.
     tab_title: String,
-    /// Files read by the browser, waiting to be opened (a large graph after a notice).
+    /// Files read by the browser, waiting to be opened, and the large graph the worker reads.
     opening: Opening,
 }
 
@@ -225,8 +225,17 @@ impl WebApp {
     /// the nodes that import them (by file name) and the graph is evaluated again.
     fn receive(&mut self, files: Vec<(String, Vec<u8>)>) {
         for (name, bytes) in files {
-            if name.ends_with(".ron") {
+            if crate::opening::is_large_graph(&name, bytes.len()) {
+                // Read by the worker: the page keeps answering (docs/web.md, "Large files").
+                let library = self.app.library.dirs.iter();
+                let library = library.map(|d| d.to_string_lossy().into_owned()).collect();
+                let len = bytes.len();
+                let token = self.remote.read_file(&name, library, bytes);
+                self.opening.start_reading(token, &name, len, now_ms());
+            } else if name.ends_with(".ron") {
                 let text = String::from_utf8_lossy(&bytes).into_owned();
+                // The latest file wins over a large one still being read.
+                self.opening.cancel_reading();
                 if self.app.open_text(&text, Path::new(&name)) {
                     self.app.doc.name = Some(name.clone());
                     self.app.message = format!("opened {name}");
@@ -240,6 +249,36 @@ impl WebApp {
                 self.app.reevaluate();
                 self.app.message =
                     format!("{name} ({len} bytes) is readable by the nodes that import it");
+            }
+        }
+    }
+
+    /// Opens the large graphs the worker has read (the latest one dropped or picked).
+    fn open_read_files(&mut self) {
+        for (token, result) in self.remote.take_read() {
+            let started = now_ms();
+            let name = self.opening.answered(token, started);
+            let origin = PathBuf::from(name.as_deref().unwrap_or("untitled.ron"));
+            let loaded = result.and_then(|parsed| {
+                let library = &self.app.library.dirs;
+                crate::opening::document_of(parsed, &origin, &self.app.registry, library)
+            });
+            let loaded = loaded.map(|(doc, held)| {
+                // The worker keeps these literals: requests name them.
+                for (key, value) in held {
+                    self.remote.adopt_literal(key, value);
+                }
+                doc
+            });
+            // An answer for a file no longer to open (another was opened meanwhile) is dropped;
+            // its literals, adopted above, are forgotten by the next request.
+            let Some(name) = name else { continue };
+            if self.app.open_loaded(loaded, &origin) {
+                self.app.doc.name = Some(name.clone());
+                self.app.message = format!("opened {name}");
+            }
+            if let Some(large) = self.opening.last_large.as_mut() {
+                large.page_ms = Some(now_ms() - started);
             }
         }
     }
@@ -368,6 +407,16 @@ impl WebApp {
         set("worker_decode_ms", JsValue::from_f64(worker.decode_ms));
         set("worker_started", JsValue::from_f64(worker.started as f64));
         set(
+            "worker_literals_sent",
+            JsValue::from_f64(worker.literals_sent as f64),
+        );
+        set("worker_send_ms", JsValue::from_f64(worker.send_ms.0));
+        set(
+            "worker_read_decode_ms",
+            JsValue::from_f64(worker.read_decode_ms),
+        );
+        set("worker_send_ms_max", JsValue::from_f64(worker.send_ms.1));
+        set(
             "narrow",
             JsValue::from_bool(cnets_editor::narrow::is_narrow(&self.ctx)),
         );
@@ -475,23 +524,22 @@ fn large_open_object(large: &LargeOpen) -> JsValue {
     set("name", large.name.as_str().into());
     set("bytes", JsValue::from_f64(large.bytes as f64));
     set(
-        "notice_frames",
-        JsValue::from_f64(f64::from(large.notice_frames)),
+        "frames_while_reading",
+        JsValue::from_f64(f64::from(large.frames_while_reading)),
     );
-    set(
-        "open_ms",
-        large.open_ms.map_or(JsValue::NULL, JsValue::from_f64),
-    );
+    let ms = |v: Option<f64>| v.map_or(JsValue::NULL, JsValue::from_f64);
+    set("open_ms", ms(large.open_ms));
+    set("page_ms", ms(large.page_ms));
     o.into()
 }
 
-/// The notice over the middle of the page while a large graph waits to be parsed.
+/// The notice over the middle of the page while a large graph is read.
 fn show_opening_notice(ctx: &egui::Context, notice: &Notice) {
     egui::Area::new(egui::Id::new("cnets-opening"))
         .order(egui::Order::Foreground)
         .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
         .interactable(false)
-        // Drawn whole in its first frame: the page parses two frames later (no time to fade in).
+        // Drawn whole in its first frame (a file read quickly leaves no time to fade in).
         .fade_in(false)
         .show(ctx, |ui| {
             egui::Frame::popup(ui.style()).show(ui, |ui| {
@@ -547,14 +595,10 @@ impl eframe::App for WebApp {
             self.opening.due()
         };
         if !due.is_empty() {
-            let started = now_ms();
             self.receive(due);
-            if let Some(large) = self.opening.last_large.as_mut()
-                && large.open_ms.is_none()
-            {
-                large.open_ms = Some(now_ms() - started);
-            }
         }
+        self.open_read_files();
+        self.opening.frame();
         // Files dropped on the page are read like picked ones (the browser reads asynchronously).
         let dropped: Vec<web_sys::File> = ui.ctx().input(|i| {
             i.raw
@@ -652,7 +696,7 @@ impl RecoveryStore for LocalStore {
     }
 
     fn write(&mut self, name: &str, text: &str) -> std::io::Result<()> {
-        let refused = |what: &str| std::io::Error::other(format!("local storage: {what}"));
+        let refused = |what: &str| std::io::Error::other(what.to_string());
         local_storage()
             .ok_or_else(|| refused("not available"))?
             .set_item(&format!("cnets.{name}"), text)
@@ -663,6 +707,10 @@ impl RecoveryStore for LocalStore {
         if let Some(s) = local_storage() {
             let _ = s.remove_item(&format!("cnets.{name}"));
         }
+    }
+
+    fn place(&self) -> &str {
+        "the page's local storage"
     }
 }
 

@@ -21,7 +21,8 @@ use wasm_bindgen::JsCast as _;
 use wasm_bindgen::prelude::*;
 use web_time::Instant;
 
-use crate::wire::{self, FromWorker, Job, ToWorker};
+use crate::literals::LiteralCache;
+use crate::wire::{self, FromWorker, Job, ParseJob, Parsed, ToWorker};
 
 /// Figures about the worker, for the browser test.
 #[derive(Clone, Debug, Default)]
@@ -36,6 +37,13 @@ pub struct Figures {
     pub decode_ms: f64,
     /// Workers started (1 unless one stopped).
     pub started: u64,
+    /// Large literal values sent to the worker (each once while requests name it).
+    pub literals_sent: u64,
+    /// Time spent decoding the last file the worker read, in milliseconds.
+    pub read_decode_ms: f64,
+    /// Time spent preparing requests on the page (the graph written out, new large literals
+    /// encoded), in milliseconds: the last request's and the longest.
+    pub send_ms: (f64, f64),
 }
 
 struct Shared {
@@ -43,6 +51,15 @@ struct Shared {
     ready: bool,
     /// The newest job not yet posted (the worker is starting).
     job: Option<Vec<u8>>,
+    /// Messages not yet posted (the worker is starting): large literal values and files to read,
+    /// posted before `job`.
+    queued: Vec<Vec<u8>>,
+    /// Files the worker reads for the page, not yet answered (their tokens), and the answers.
+    reading: Vec<u64>,
+    read: Vec<(u64, Result<Parsed, String>)>,
+    next_token: u64,
+    /// The large literal values the worker holds.
+    literals: LiteralCache,
     /// Every file opened on the page, in order (sent again to a restarted worker).
     files: Vec<Vec<u8>>,
     /// When each request in flight was made.
@@ -72,6 +89,11 @@ impl WebWorker {
             worker: None,
             ready: false,
             job: None,
+            queued: Vec::new(),
+            reading: Vec::new(),
+            read: Vec::new(),
+            next_token: 0,
+            literals: LiteralCache::default(),
             files: Vec::new(),
             changed_at: HashMap::new(),
             last_seq: 0,
@@ -102,6 +124,34 @@ impl WebWorker {
             post(s.worker.as_ref(), &message);
         }
         s.files.push(message);
+    }
+
+    /// Has the worker read (parse) a graph file for the page, which keeps answering meanwhile:
+    /// the token its answer ([`WebWorker::take_read`]) carries.
+    pub fn read_file(&self, origin: &str, library: Vec<String>, text: Vec<u8>) -> u64 {
+        let mut s = self.0.borrow_mut();
+        s.next_token += 1;
+        let token = s.next_token;
+        let message = wire::encode_to_worker(&ToWorker::Parse(ParseJob {
+            token,
+            origin: origin.to_string(),
+            library,
+            text,
+        }));
+        s.reading.push(token);
+        s.post_or_queue(message);
+        token
+    }
+
+    /// The files the worker has read since the last call, by token.
+    pub fn take_read(&self) -> Vec<(u64, Result<Parsed, String>)> {
+        std::mem::take(&mut self.0.borrow_mut().read)
+    }
+
+    /// The page's graph holds `value` as the large literal the worker keeps under `key` (from a
+    /// file it read): requests name it instead of sending it.
+    pub fn adopt_literal(&self, key: u64, value: cnets_engine::Value) {
+        self.0.borrow_mut().literals.adopt(key, value);
     }
 
     /// A message for the designer, once (the worker stopped, or did not load a graph).
@@ -150,6 +200,10 @@ impl WebWorker {
         s.worker = Some(worker);
         s.ready = false;
         s.figures.started += 1;
+        // A new worker holds no literal values: the next request sends what it names.
+        s.literals.clear();
+        s.queued.clear();
+        s.job = None;
     }
 
     fn received(&self, bytes: &[u8]) {
@@ -161,6 +215,9 @@ impl WebWorker {
                 s.ready = true;
                 for f in &s.files {
                     post(s.worker.as_ref(), f);
+                }
+                for m in std::mem::take(&mut s.queued) {
+                    post(s.worker.as_ref(), &m);
                 }
                 if let Some(job) = s.job.take() {
                     post(s.worker.as_ref(), &job);
@@ -208,6 +265,11 @@ impl WebWorker {
                 let done = s.answer_unchanged(seq);
                 s.responses.push(done);
             }
+            Ok(FromWorker::Parsed { token, result }) => {
+                s.figures.read_decode_ms = start.elapsed().as_secs_f64() * 1e3;
+                s.reading.retain(|&t| t != token);
+                s.read.push((token, result));
+            }
             Ok(FromWorker::Stopped { message }) => {
                 drop(s);
                 self.stopped(&message);
@@ -228,6 +290,10 @@ impl WebWorker {
             s.notice = Some(format!(
                 "the evaluation stopped ({message}); edit the graph to evaluate it again"
             ));
+            for token in std::mem::take(&mut s.reading) {
+                let why = format!("the worker reading it stopped ({message})");
+                s.read.push((token, Err(why)));
+            }
             let seq = s.last_seq;
             let done = s.answer_unchanged(seq);
             s.responses.push(done);
@@ -238,6 +304,15 @@ impl WebWorker {
 }
 
 impl Shared {
+    /// Posts `message` now, or once the worker is ready (before the newest request).
+    fn post_or_queue(&mut self, message: Vec<u8>) {
+        if self.ready {
+            post(self.worker.as_ref(), &message);
+        } else {
+            self.queued.push(message);
+        }
+    }
+
     /// A complete answer for `seq` that changes nothing (the last preview and statuses).
     fn answer_unchanged(&mut self, seq: u64) -> EvalResponse {
         let now = Instant::now();
@@ -259,18 +334,30 @@ impl Shared {
 
 impl Remote for WebWorker {
     fn send(&mut self, request: EvalRequest) {
+        let started = Instant::now();
+        let mut s = self.0.borrow_mut();
+        let split = s.literals.split(&request.graph);
+        let graph = split.skeleton.as_ref().unwrap_or(&request.graph);
+        for (key, value) in split.new {
+            let message = wire::encode_to_worker(&ToWorker::Literal { key, value });
+            s.figures.literals_sent += 1;
+            s.post_or_queue(message);
+        }
         let job = Job {
             seq: request.seq,
-            ron: to_ron(&request.graph, &GraphMeta::default()),
+            ron: to_ron(graph, &GraphMeta::default()),
             base_dir: request
                 .base_dir
                 .as_ref()
                 .map(|d| d.to_string_lossy().into_owned()),
             view: request.view,
             options: request.options,
+            literals: split.refs,
+            forget: split.forget,
         };
         let message = wire::encode_to_worker(&ToWorker::Evaluate(job));
-        let mut s = self.0.borrow_mut();
+        let ms = started.elapsed().as_secs_f64() * 1e3;
+        s.figures.send_ms = (ms, s.figures.send_ms.1.max(ms));
         s.changed_at.insert(request.seq, request.changed_at);
         s.last_seq = request.seq;
         s.figures.sent += 1;

@@ -22,6 +22,8 @@ use cnets_geometry::fabrication::FaceClass;
 use cnets_geometry::{DVec3, PolygonMesh, Polyline, QuadGrid};
 use cnets_render::{Bounds, Color, Legend, Scene, SceneParts};
 
+use crate::literals::LiteralRef;
+
 /// A graph to evaluate: what an `EvalRequest` carries across, the graph as its RON text.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Job {
@@ -35,6 +37,10 @@ pub struct Job {
     pub view: Vec<String>,
     /// Preview options.
     pub options: PreviewOptions,
+    /// Inputs whose large literal values the worker holds: left unset in `ron`, put back there.
+    pub literals: Vec<LiteralRef>,
+    /// Large literals no request refers to any more (the worker drops them on receipt).
+    pub forget: Vec<u64>,
 }
 
 /// A message from the page to the worker.
@@ -49,6 +55,38 @@ pub enum ToWorker {
         /// Its content.
         bytes: Vec<u8>,
     },
+    /// A large literal value, kept by the worker under `key` for the requests that name it
+    /// (`crate::literals`).
+    Literal {
+        /// The key requests name it by.
+        key: u64,
+        /// The value.
+        value: Value,
+    },
+    /// A large graph file to read (parse) for the page, which keeps answering meanwhile.
+    Parse(ParseJob),
+}
+
+/// A graph file the worker reads for the page (`crate::literals`, docs/web.md "Large files").
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParseJob {
+    /// Names the answer.
+    pub token: u64,
+    /// Where the file came from (its name: relative imports resolve against its folder).
+    pub origin: String,
+    /// The library folders cluster files are looked up in.
+    pub library: Vec<String>,
+    /// The file's content.
+    pub text: Vec<u8>,
+}
+
+/// A graph file read by the worker: its RON text without its large literals, and those.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Parsed {
+    /// The graph and its settings as RON, the large literals' inputs left unset.
+    pub skeleton: String,
+    /// Each large literal: where it goes and its value (the worker keeps it under the key).
+    pub literals: Vec<(LiteralRef, Value)>,
 }
 
 /// An evaluation's answer as it arrives on the page.
@@ -82,6 +120,13 @@ pub enum FromWorker {
         /// Why.
         message: String,
     },
+    /// A graph file read for the page: its content, or why it does not load.
+    Parsed {
+        /// The request's token.
+        token: u64,
+        /// The graph, or the load error (as the page's own reading would have said it).
+        result: Result<Parsed, String>,
+    },
     /// The worker stopped (a panic: wasm cannot unwind); the page starts another.
     Stopped {
         /// The panic's message.
@@ -98,10 +143,13 @@ type Res<T> = Result<T, WireError>;
 
 const TO_EVALUATE: u8 = 1;
 const TO_PROVIDE: u8 = 2;
+const TO_LITERAL: u8 = 3;
+const TO_PARSE: u8 = 4;
 const FROM_READY: u8 = 10;
 const FROM_ANSWER: u8 = 11;
 const FROM_FAILED: u8 = 12;
 const FROM_STOPPED: u8 = 13;
+const FROM_PARSED: u8 = 14;
 
 /// The bytes of a message to the worker.
 pub fn encode_to_worker(message: &ToWorker) -> Vec<u8> {
@@ -114,11 +162,31 @@ pub fn encode_to_worker(message: &ToWorker) -> Vec<u8> {
             w.opt(job.base_dir.as_ref(), |w, d| w.str(d));
             w.strs(&job.view);
             options(&mut w, &job.options);
+            w.len(job.literals.len());
+            for r in &job.literals {
+                w.str(&r.node);
+                w.str(&r.input);
+                w.u64(r.key);
+            }
+            w.len(job.forget.len());
+            job.forget.iter().for_each(|&k| w.u64(k));
         }
         ToWorker::Provide { name, bytes } => {
             w.u8(TO_PROVIDE);
             w.str(name);
             w.bytes(bytes);
+        }
+        ToWorker::Literal { key, value: v } => {
+            w.u8(TO_LITERAL);
+            w.u64(*key);
+            value(&mut w, v);
+        }
+        ToWorker::Parse(job) => {
+            w.u8(TO_PARSE);
+            w.u64(job.token);
+            w.str(&job.origin);
+            w.strs(&job.library);
+            w.bytes(&job.text);
         }
     }
     w.0
@@ -134,11 +202,37 @@ pub fn decode_to_worker(bytes: &[u8]) -> Res<ToWorker> {
             base_dir: r.opt(Reader::string)?,
             view: r.strings()?,
             options: read_options(&mut r)?,
+            literals: {
+                let n = r.len(8 + 8 + 8)?;
+                (0..n)
+                    .map(|_| {
+                        Ok(LiteralRef {
+                            node: r.string()?,
+                            input: r.string()?,
+                            key: r.u64()?,
+                        })
+                    })
+                    .collect::<Res<_>>()?
+            },
+            forget: {
+                let n = r.len(8)?;
+                (0..n).map(|_| r.u64()).collect::<Res<_>>()?
+            },
         }),
         TO_PROVIDE => ToWorker::Provide {
             name: r.string()?,
             bytes: r.bytes()?.to_vec(),
         },
+        TO_LITERAL => ToWorker::Literal {
+            key: r.u64()?,
+            value: read_value(&mut r, 0)?,
+        },
+        TO_PARSE => ToWorker::Parse(ParseJob {
+            token: r.u64()?,
+            origin: r.string()?,
+            library: r.strings()?,
+            text: r.bytes()?.to_vec(),
+        }),
         _ => return Err(WireError("unknown message to the worker")),
     };
     r.end()?;
@@ -156,6 +250,31 @@ pub fn encode_failed(seq: u64, message: &str) -> Vec<u8> {
     w.u8(FROM_FAILED);
     w.u64(seq);
     w.str(message);
+    w.0
+}
+
+/// The message answering the file read for `token`.
+pub fn encode_parsed(token: u64, result: &Result<Parsed, String>) -> Vec<u8> {
+    let mut w = Writer::default();
+    w.u8(FROM_PARSED);
+    w.u64(token);
+    match result {
+        Ok(parsed) => {
+            w.bool(true);
+            w.str(&parsed.skeleton);
+            w.len(parsed.literals.len());
+            for (r, v) in &parsed.literals {
+                w.str(&r.node);
+                w.str(&r.input);
+                w.u64(r.key);
+                value(&mut w, v);
+            }
+        }
+        Err(e) => {
+            w.bool(false);
+            w.str(e);
+        }
+    }
     w.0
 }
 
@@ -204,6 +323,26 @@ pub fn decode_from_worker(bytes: &[u8]) -> Res<FromWorker> {
         },
         FROM_STOPPED => FromWorker::Stopped {
             message: r.string()?,
+        },
+        FROM_PARSED => FromWorker::Parsed {
+            token: r.u64()?,
+            result: if r.bool()? {
+                let skeleton = r.string()?;
+                let n = r.len(8 + 8 + 8 + 1)?;
+                let literals = (0..n)
+                    .map(|_| {
+                        let at = LiteralRef {
+                            node: r.string()?,
+                            input: r.string()?,
+                            key: r.u64()?,
+                        };
+                        Ok((at, read_value(&mut r, 0)?))
+                    })
+                    .collect::<Res<_>>()?;
+                Ok(Parsed { skeleton, literals })
+            } else {
+                Err(r.string()?)
+            },
         },
         FROM_ANSWER => {
             let seq = r.u64()?;
@@ -421,11 +560,12 @@ fn read_value(r: &mut Reader, depth: usize) -> Res<Value> {
         }
         8 => {
             let n = r.len(1)?;
-            Value::list(
-                (0..n)
-                    .map(|_| read_value(r, depth + 1))
-                    .collect::<Res<_>>()?,
-            )
+            // Sized once: a list of millions of items is not grown by doubling.
+            let mut items = Vec::with_capacity(n);
+            for _ in 0..n {
+                items.push(read_value(r, depth + 1)?);
+            }
+            Value::list(items)
         }
         _ => return Err(WireError("unknown value")),
     })
@@ -868,8 +1008,32 @@ mod tests {
             base_dir: Some("graphs".into()),
             view: vec!["bay".into(), "inner".into()],
             options,
+            literals: vec![LiteralRef {
+                node: "big".into(),
+                input: "values".into(),
+                key: 7,
+            }],
+            forget: vec![3, 5],
         });
         assert_eq!(round_trip(&job), job);
+        let literal = ToWorker::Literal {
+            key: 7,
+            value: Value::list(vec![
+                Value::list(vec![Value::Number(-0.0), Value::Number(f64::MAX)]),
+                Value::text("row"),
+                Value::Point(DVec3::new(1.0, 2.0, 3.0)),
+                Value::Integer(i64::MIN),
+                Value::Null,
+            ]),
+        };
+        assert_eq!(round_trip(&literal), literal);
+        let parse = ToWorker::Parse(ParseJob {
+            token: 3,
+            origin: "big.ron".into(),
+            library: vec!["graphs".into()],
+            text: b"(nodes: {})".to_vec(),
+        });
+        assert_eq!(round_trip(&parse), parse);
         let file = ToWorker::Provide {
             name: "hull.obj".into(),
             bytes: vec![0, 1, 2, 255],
@@ -979,6 +1143,32 @@ mod tests {
 
     fn grid_vertices(r: &EvalResponse) -> &[DVec3] {
         r.picks.meshes[0].geometry.vertices()
+    }
+
+    #[test]
+    fn read_files_round_trip_with_their_literals_or_their_error() {
+        let parsed = Parsed {
+            skeleton: "(nodes: {})".into(),
+            literals: vec![(
+                LiteralRef {
+                    node: "numbers".into(),
+                    input: "values".into(),
+                    key: 1 << 63,
+                },
+                Value::list(vec![Value::Number(0.5), Value::Number(-2.0)]),
+            )],
+        };
+        for result in [Ok(parsed), Err("big.ron:3:7: expected ')'".to_string())] {
+            match decode_from_worker(&encode_parsed(9, &result)).expect("decodes") {
+                FromWorker::Parsed {
+                    token,
+                    result: back,
+                } => {
+                    assert_eq!((token, back), (9, result));
+                }
+                _ => panic!("not a read file"),
+            }
+        }
     }
 
     #[test]

@@ -58,7 +58,12 @@ pub fn worker_start() {
             Ok(ToWorker::Provide { name, bytes }) => {
                 cnets_engine::files::memory::provide(&name, bytes);
             }
+            Ok(ToWorker::Literal { key, value }) => service.borrow_mut().remember(key, value),
+            Ok(ToWorker::Parse(job)) => post(&service.borrow_mut().parse(job)),
             Ok(ToWorker::Evaluate(job)) => {
+                // Forgotten on receipt: a request still waiting is replaced by this one, and the
+                // one running holds its values already.
+                service.borrow_mut().forget(&job.forget);
                 let start = {
                     let mut inbox = inbox.borrow_mut();
                     inbox.newest = Some(job);

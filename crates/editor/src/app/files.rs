@@ -191,7 +191,16 @@ impl EditorApp {
     pub fn open_text(&mut self, text: &str, origin: &Path) -> bool {
         let options = cnets_host::document_options(Some(origin), &self.library.dirs);
         let name = origin.display().to_string();
-        match GraphDocument::from_text_with(text, &name, None, &self.registry, &options) {
+        let loaded = GraphDocument::from_text_with(text, &name, None, &self.registry, &options);
+        self.open_loaded(loaded, origin)
+    }
+
+    /// Opens a document read elsewhere (the web page: a large file read by its worker) as
+    /// [`EditorApp::open_text`] opens text: untitled, or the diagnostics shown when it did not
+    /// load. Returns whether it opened.
+    pub fn open_loaded(&mut self, loaded: Result<GraphDocument, String>, origin: &Path) -> bool {
+        let name = origin.display().to_string();
+        match loaded {
             Ok(mut d) => {
                 d.origin = Some(origin.to_path_buf());
                 self.replace_doc(d);

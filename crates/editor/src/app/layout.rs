@@ -8,7 +8,7 @@ use crate::menus;
 use crate::menus::MenuContext;
 use crate::palette;
 use crate::palette::Pick;
-use crate::recovery::Autosave;
+use crate::recovery::{Autosave, GraphText};
 use crate::unsaved::Replace;
 use crate::viewport::ViewportInput;
 use egui::Ui;
@@ -236,13 +236,17 @@ impl EditorApp {
             doc.version(),
             committed,
             (doc.path.as_deref(), doc.origin.as_deref()),
-            || doc.to_ron(),
+            GraphText {
+                graph: &doc.graph,
+                write: || doc.to_ron(),
+            },
         );
         match autosave {
             Autosave::Due(after) => ctx.request_repaint_after(after),
             Autosave::Failed(retry) => {
                 self.message = format!(
-                    "cannot write the recovery file (autosave): {}; next try in {} s",
+                    "cannot autosave to {}: {}; next try in {} s",
+                    self.recovery.place(),
                     self.recovery.last_error().unwrap_or("refused"),
                     retry.as_secs()
                 );

@@ -58,12 +58,11 @@ pub struct OnNode {
 /// (or its default is one) or a polyline: `None` for inputs with an inline editor of their own
 /// (a number field, a `param.choice`'s options, a graph mapper's handles) and for other values.
 pub fn on_node(node: &NodeInstance, k: usize) -> Option<OnNode> {
-    let (value, items) = shown_value(node, k)?;
-    Some(describe(&value, &items))
+    shown_value(node, k).map(|value| describe(&value))
 }
 
-/// The value [`on_node`] describes and its item type (cheap: a list is shared, not copied).
-fn shown_value(node: &NodeInstance, k: usize) -> Option<(Value, ItemType)> {
+/// The value [`on_node`] describes (cheap: a list is shared, not copied).
+fn shown_value(node: &NodeInstance, k: usize) -> Option<Value> {
     let port = node.def.inputs.get(k)?;
     if widgets::has_editor(node, k)
         || (mapper::is_mapper(node) && mapper::handles_port(node) == Some(k))
@@ -76,15 +75,14 @@ fn shown_value(node: &NodeInstance, k: usize) -> Option<(Value, ItemType)> {
         Value::Polyline(_) if port.ty == ValueType::Polyline => {}
         _ => return None,
     }
-    let items = item_type(node, k);
-    Some((value, items))
+    Some(value)
 }
 
 /// The summary and whether the table editor takes `value` (both walk every item).
-fn describe(value: &Value, items: &ItemType) -> OnNode {
+fn describe(value: &Value) -> OnNode {
     OnNode {
         summary: summary::summary(value),
-        editable: Table::new(Some(value), items).is_ok() || parts(value, items).is_some(),
+        editable: Table::accepts(Some(value)) || parts(value).is_some(),
     }
 }
 
@@ -97,8 +95,8 @@ pub const PART_ITEMS: ItemType = ItemType {
 /// How many parts the table shows one at a time when `value` is not a table as a whole but a
 /// list of polylines or of lists of points (`facade.ron`'s `profiles`): each part is a table of
 /// points, edited on its own while the other parts stay as they are. `None` for other values.
-pub fn parts(value: &Value, items: &ItemType) -> Option<usize> {
-    if Table::new(Some(value), items).is_ok() {
+pub fn parts(value: &Value) -> Option<usize> {
+    if Table::accepts(Some(value)) {
         return None;
     }
     let list = value.as_list()?;
@@ -385,23 +383,19 @@ mod tests {
 
     #[test]
     fn lists_of_polylines_or_point_lists_are_edited_a_part_at_a_time() {
-        let any = ItemType {
-            item: ValueType::Any,
-            tables: true,
-        };
         let g = graph();
         let profiles = g.node("profiles").unwrap().value_of("values").unwrap();
-        assert_eq!(parts(profiles, &any), Some(1));
+        assert_eq!(parts(profiles), Some(1));
         let point = Value::Point(cnets_geometry::DVec3::ZERO);
         let rows = Value::list(vec![
             Value::list(vec![point.clone(); 2]),
             Value::list(vec![]),
         ]);
-        assert_eq!(parts(&rows, &any), Some(2));
+        assert_eq!(parts(&rows), Some(2));
         let table = g.node("table").unwrap().value_of("values").unwrap();
-        assert_eq!(parts(table, &any), None, "a table is edited whole");
+        assert_eq!(parts(table), None, "a table is edited whole");
         let mixed = Value::list(vec![Value::list(vec![point]), Value::Number(1.0)]);
-        assert_eq!(parts(&mixed, &any), None);
+        assert_eq!(parts(&mixed), None);
     }
 
     #[test]

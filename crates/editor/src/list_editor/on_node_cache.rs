@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use cnets_engine::{Items, NodeInstance, Value};
 
-use super::{ItemType, OnNode, describe, shown_value};
+use super::{OnNode, describe, shown_value};
 
 /// [`on_node`] remembered per input while its value stays the same list: the summary and the
 /// table check walk every item, 150 ms a frame for a `param.list` of 3 million numbers.
@@ -20,7 +20,6 @@ pub struct OnNodeCache {
 
 struct CachedOnNode {
     value: Value,
-    items: ItemType,
     shown: OnNode,
     used: u64,
 }
@@ -36,24 +35,22 @@ impl OnNodeCache {
         self.entries.retain(|_, e| frame - e.used <= KEPT_FRAMES);
     }
 
-    /// [`on_node`], computed again only when the input's value or item type changed.
+    /// [`on_node`], computed again only when the input's value changed.
     pub fn on_node(&mut self, node: &NodeInstance, k: usize) -> Option<OnNode> {
-        let (value, items) = shown_value(node, k)?;
+        let value = shown_value(node, k)?;
         let key = (node.id.clone(), k);
         if let Some(e) = self.entries.get_mut(&key)
-            && e.items == items
             && same_value(&e.value, &value)
         {
             e.used = self.frame;
             return Some(e.shown.clone());
         }
-        let shown = describe(&value, &items);
+        let shown = describe(&value);
         self.described += 1;
         self.entries.insert(
             key,
             CachedOnNode {
                 value,
-                items,
                 shown: shown.clone(),
                 used: self.frame,
             },
@@ -116,16 +113,16 @@ mod tests {
             .unwrap();
         assert_eq!(show(&g, &mut cache, "data"), "4 numbers, all 7");
         assert_eq!(cache.described(), 3, "a new list is walked again");
-        // The item type is part of what is shown.
+        // What is shown depends on the list alone: another item type keeps it.
         g.set_value("data", "item_type", Value::Text("integer".into()))
             .unwrap();
-        show(&g, &mut cache, "data");
-        assert_eq!(cache.described(), 4);
+        assert_eq!(show(&g, &mut cache, "data"), "4 numbers, all 7");
+        assert_eq!(cache.described(), 3);
         // An input not drawn for a while is forgotten (a removed node's list is let go).
         for _ in 0..=KEPT_FRAMES {
             cache.next_frame();
         }
         show(&g, &mut cache, "data");
-        assert_eq!(cache.described(), 5);
+        assert_eq!(cache.described(), 4);
     }
 }

@@ -293,15 +293,27 @@ impl Table {
                     .collect();
             }
             Some(Value::List(items)) => {
-                table.rows = items
-                    .iter()
-                    .enumerate()
-                    .map(|(k, item)| Row::of(item).map_err(|e| format!("item {k}: {e}")))
-                    .collect::<Result<_, _>>()?;
+                // Sized once: a list of millions of items is not grown by doubling.
+                table.rows = Vec::with_capacity(items.len());
+                for (k, item) in items.iter().enumerate() {
+                    table
+                        .rows
+                        .push(Row::of(item).map_err(|e| format!("item {k}: {e}"))?);
+                }
             }
             Some(other) => return Err(format!("a single {} is not a list", other.type_name())),
         }
         Ok(table)
+    }
+
+    /// Whether [`Table::new`] takes `value`, found without building the table (a large list is
+    /// only walked).
+    pub fn accepts(value: Option<&Value>) -> bool {
+        match value {
+            None | Some(Value::Null) | Some(Value::Polyline(_)) => true,
+            Some(Value::List(items)) => items.iter().all(|item| Row::of(item).is_ok()),
+            Some(_) => false,
+        }
     }
 
     /// The value the table holds (untouched items as they were, bit for bit).
@@ -625,6 +637,34 @@ mod tests {
 
     fn lines(text: &str) -> Vec<Vec<String>> {
         tsv::parse(text)
+    }
+
+    #[test]
+    fn accepts_says_what_new_makes_a_table_of() {
+        let values = [
+            None,
+            Some(Value::Null),
+            Some(Value::Number(1.0)),
+            Some(Value::text("a")),
+            Some(points(&[[0.0, 1.0, 2.0]])),
+            Some(Value::list(vec![Value::Number(1.0), Value::Integer(2)])),
+            Some(Value::list(vec![Value::list(vec![Value::Number(1.0)])])),
+            Some(Value::list(vec![Value::list(vec![Value::list(vec![])])])),
+            Some(Value::list(vec![Value::Number(1.0), Value::text("b")])),
+            Some(Value::from(cnets_geometry::Polyline {
+                points: vec![DVec3::ZERO],
+                closed: true,
+            })),
+        ];
+        for value in &values {
+            for ty in [ValueType::Number, ValueType::Point, ValueType::Text] {
+                assert_eq!(
+                    Table::accepts(value.as_ref()),
+                    Table::new(value.as_ref(), &of(ty.clone(), true)).is_ok(),
+                    "{value:?} as {ty:?}"
+                );
+            }
+        }
     }
 
     /// Every item except `changed` is the same value bit for bit.

@@ -121,7 +121,7 @@ impl EditorWindow {
         }
         let current = widgets::effective_value(node, k);
         let items = item_type(node, k);
-        let parts = current.as_ref().and_then(|v| parts(v, &items));
+        let parts = current.as_ref().and_then(parts);
         let table = match (parts, current.as_ref().and_then(Value::as_list)) {
             (Some(n), Some(list)) => {
                 self.part = self.part.min(n - 1);
