@@ -289,11 +289,18 @@ impl GraphDocument {
     /// the cluster rebuilt from the edited subgraph, as a save would write it; when the subgraph
     /// cannot be rebuilt, the graph as it was when the cluster was opened).
     pub fn to_ron(&self) -> String {
+        let (graph, meta) = self.text_parts();
+        file::to_ron(&graph, &meta)
+    }
+
+    /// The graph and settings [`GraphDocument::to_ron`] writes (cheap: the values are shared,
+    /// so the text can be written elsewhere, e.g. on autosave's thread).
+    pub fn text_parts(&self) -> (Graph, GraphMeta) {
         match self.compose() {
-            Ok((graph, meta, _)) => file::to_ron(&graph, &meta),
+            Ok((graph, meta, _)) => (graph, meta),
             Err(_) => {
                 let root = &self.stack[0];
-                file::to_ron(&root.graph, &root.meta)
+                (root.graph.clone(), root.meta.clone())
             }
         }
     }

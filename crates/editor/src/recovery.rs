@@ -18,6 +18,13 @@ use web_time::{Duration, Instant};
 
 use cnets_engine::atomic::write_atomic;
 
+use crate::document::GraphDocument;
+
+mod background;
+
+pub use background::TextJob;
+use background::{Background, Finished};
+
 /// During a gesture, the recovery file is rewritten at least this often.
 pub const AUTOSAVE_WITHIN: Duration = Duration::from_secs(1);
 
@@ -31,6 +38,9 @@ pub const AUTOSAVE_RETRY: Duration = Duration::from_secs(5);
 
 /// The longest wait between autosave attempts after failures.
 pub const AUTOSAVE_RETRY_MAX: Duration = Duration::from_secs(300);
+
+/// While autosave's thread writes, the app looks for its result this often.
+pub const AUTOSAVE_POLL: Duration = Duration::from_millis(100);
 
 /// A recovery file found at start.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -84,6 +94,10 @@ pub trait DesignText {
     fn len_at_least(&self) -> usize {
         0
     }
+    /// The text to be written out elsewhere (autosave's thread), when it can be.
+    fn snapshot(&self) -> Option<TextJob> {
+        None
+    }
 }
 
 impl<F: Fn() -> String> DesignText for F {
@@ -92,21 +106,18 @@ impl<F: Fn() -> String> DesignText for F {
     }
 }
 
-/// A graph's text with its lower bound ([`text_len_at_least`]).
-pub struct GraphText<'a, F: Fn() -> String> {
-    /// The graph.
-    pub graph: &'a cnets_engine::Graph,
-    /// Writes the graph's text.
-    pub write: F,
-}
-
-impl<F: Fn() -> String> DesignText for GraphText<'_, F> {
+impl DesignText for &GraphDocument {
     fn text(&self) -> String {
-        (self.write)()
+        self.to_ron()
     }
 
     fn len_at_least(&self) -> usize {
-        text_len_at_least(self.graph)
+        text_len_at_least(&self.graph)
+    }
+
+    fn snapshot(&self) -> Option<TextJob> {
+        let (graph, meta) = self.text_parts();
+        Some(Box::new(move || cnets_engine::file::to_ron(&graph, &meta)))
     }
 }
 
@@ -204,6 +215,8 @@ pub struct Recovery {
     failures: u32,
     failed_at: Option<Instant>,
     last_error: Option<String>,
+    /// Autosave's thread, when writes go there ([`Recovery::in_background`]).
+    background: Option<Background>,
 }
 
 impl std::fmt::Debug for Recovery {
@@ -222,6 +235,13 @@ fn opt_line(p: Option<&Path>) -> String {
     p.map(|p| p.display().to_string()).unwrap_or_default()
 }
 
+/// Writes the recovery pair: the text first, so a store that refuses it (too large, full) keeps
+/// the last pair whole.
+fn write_pair(store: &mut dyn RecoveryStore, text: &str, paths: &str) -> std::io::Result<()> {
+    store.write(TEXT, text)?;
+    store.write(PATHS, paths)
+}
+
 impl Recovery {
     /// Recovery files in `dir`.
     pub fn new(dir: &Path) -> Self {
@@ -238,7 +258,16 @@ impl Recovery {
             failures: 0,
             failed_at: None,
             last_error: None,
+            background: None,
         }
+    }
+
+    /// Writes recovery files in `dir` on a thread of their own (the desktop editor): a document
+    /// whose text takes long to write out does not stop the window. [`Recovery::tick`] hands the
+    /// write over and reports it in a later call.
+    pub fn in_background(mut self) -> Self {
+        self.background = Background::start(Box::new(FolderStore(self.dir.clone())));
+        self
     }
 
     /// Why the last autosave failed, while the writes fail.
@@ -278,10 +307,8 @@ impl Recovery {
         origin: Option<&Path>,
         version: u64,
     ) -> std::io::Result<()> {
-        // The text first: a store that refuses it (too large, full) keeps the last pair whole.
         let p = format!("{}\n{}\n", opt_line(path), opt_line(origin));
-        self.store.write(TEXT, text)?;
-        self.store.write(PATHS, &p)?;
+        write_pair(self.store.as_mut(), text, &p)?;
         self.saved_version = Some(version);
         self.last_write = Some(Instant::now());
         Ok(())
@@ -299,6 +326,12 @@ impl Recovery {
         paths: (Option<&Path>, Option<&Path>),
         text: impl DesignText,
     ) -> Autosave {
+        if let Some(finished) = self.background.as_mut().and_then(Background::poll) {
+            return self.finished(finished);
+        }
+        if self.background.as_ref().is_some_and(Background::busy) {
+            return Autosave::Due(AUTOSAVE_POLL);
+        }
         if !dirty || self.saved_version == Some(version) {
             return Autosave::Idle;
         }
@@ -318,12 +351,27 @@ impl Recovery {
                 return Autosave::Due(retry.saturating_sub(t.elapsed()));
             }
         }
-        let written = match self.store.refuses(text.len_at_least()) {
-            Some(refusal) => Err(refusal),
-            None => self.write(&text.text(), paths.0, paths.1, version),
-        };
+        if let Some(refusal) = self.store.refuses(text.len_at_least()) {
+            return self.finished((version, Err(refusal.to_string())));
+        }
+        if let Some(background) = &mut self.background
+            && let Some(job) = text.snapshot()
+        {
+            let p = format!("{}\n{}\n", opt_line(paths.0), opt_line(paths.1));
+            if background.send(version, p, job) {
+                return Autosave::Due(AUTOSAVE_POLL);
+            }
+        }
+        let written = self.write(&text.text(), paths.0, paths.1, version);
+        self.finished((version, written.map_err(|e| e.to_string())))
+    }
+
+    /// Records a write of `version` that finished (here or on autosave's thread).
+    fn finished(&mut self, (version, written): Finished) -> Autosave {
         match written {
             Ok(()) => {
+                self.saved_version = Some(version);
+                self.last_write = Some(Instant::now());
                 self.failures = 0;
                 self.failed_at = None;
                 self.last_error = None;
@@ -332,7 +380,7 @@ impl Recovery {
             Err(e) => {
                 self.failures = self.failures.saturating_add(1);
                 self.failed_at = Some(Instant::now());
-                self.last_error = Some(e.to_string());
+                self.last_error = Some(e);
                 Autosave::Failed(Self::retry_after(self.failures))
             }
         }
@@ -345,6 +393,9 @@ impl Recovery {
 
     /// Removes the recovery files (after a save, a clean exit, or a declined restore).
     pub fn clear(&mut self) {
+        if let Some(background) = &mut self.background {
+            background.wait();
+        }
         self.store.remove(TEXT);
         self.store.remove(PATHS);
         self.saved_version = None;
@@ -510,6 +561,69 @@ mod tests {
         assert_eq!(r.find().map(|f| f.text).as_deref(), Some("again"));
     }
 
+    /// A document whose text takes `delay` to write out.
+    struct Slow(&'static str, Duration);
+
+    impl DesignText for Slow {
+        fn text(&self) -> String {
+            std::thread::sleep(self.1);
+            self.0.to_string()
+        }
+
+        fn snapshot(&self) -> Option<TextJob> {
+            let (text, delay) = (self.0, self.1);
+            Some(Box::new(move || {
+                std::thread::sleep(delay);
+                text.to_string()
+            }))
+        }
+    }
+
+    #[test]
+    fn autosave_in_the_background_does_not_wait_for_the_text() {
+        let dir = std::env::temp_dir().join(format!("cnets-recovery-bg-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let mut r = Recovery::new(&dir).in_background();
+        let slow = Duration::from_millis(400);
+        let start = Instant::now();
+        assert_eq!(
+            r.tick(true, 1, true, (None, None), Slow("one", slow)),
+            Autosave::Due(AUTOSAVE_POLL)
+        );
+        // While it writes, later versions wait (not queued behind it).
+        assert_eq!(
+            r.tick(true, 2, true, (None, None), Slow("two", slow)),
+            Autosave::Due(AUTOSAVE_POLL)
+        );
+        assert!(start.elapsed() < slow / 2, "the ticks returned at once");
+        let wrote = loop {
+            match r.tick(true, 2, true, (None, None), Slow("two", slow)) {
+                Autosave::Due(_) => std::thread::sleep(Duration::from_millis(20)),
+                other => break other,
+            }
+            assert!(
+                start.elapsed() < Duration::from_secs(20),
+                "the write finished"
+            );
+        };
+        assert_eq!(wrote, Autosave::Wrote);
+        assert_eq!(r.find().unwrap().text, "one");
+        // Version 2 is written next (after the gap), then nothing is left to do.
+        std::thread::sleep(AUTOSAVE_GAP);
+        assert_eq!(
+            r.tick(true, 2, true, (None, None), Slow("two", slow)),
+            Autosave::Due(AUTOSAVE_POLL)
+        );
+        // A save clears the pair, waiting for the write in flight so it cannot come back.
+        r.clear();
+        assert!(r.find().is_none(), "cleared after the write in flight");
+        assert_eq!(
+            r.tick(false, 2, true, (None, None), Slow("two", slow)),
+            Autosave::Idle
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn a_design_known_to_be_too_large_is_refused_without_being_written_out() {
         let limited = LimitedStore {
@@ -531,20 +645,13 @@ mod tests {
             )
             .unwrap();
         assert_eq!(text_len_at_least(&graph), 1_200_000);
-        let written = std::cell::Cell::new(0);
-        let text = GraphText {
-            graph: &graph,
-            write: || {
-                written.set(written.get() + 1);
-                String::new()
-            },
-        };
+        let doc = GraphDocument::from_parts(graph.clone(), Default::default(), None);
         assert_eq!(
-            r.tick(true, 1, true, (None, None), text),
+            r.tick(true, 1, true, (None, None), &doc),
             Autosave::Failed(AUTOSAVE_RETRY)
         );
-        assert_eq!(written.get(), 0, "not written out");
         assert_eq!(r.place(), "the recovery file", "the inner store's place");
+        // Refused by the bound ("at least"), before the text was written out.
         assert_eq!(
             r.last_error(),
             Some("the design is at least 1.2 MB, more than the 1.0 MB autosave keeps here")

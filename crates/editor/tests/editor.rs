@@ -372,9 +372,19 @@ fn save_is_atomic_recent_files_persist_and_a_crash_offers_restore() {
                 .map_err(|e| e.to_string())
         })
         .unwrap();
-    h.run_steps(2);
+    // (Written on autosave's thread: the frames after the edit pick up its result.)
     let recovery = config.join("recovery.ron");
+    let start = std::time::Instant::now();
+    while !recovery.is_file() && start.elapsed() < Duration::from_secs(30) {
+        h.run_steps(1);
+        std::thread::sleep(Duration::from_millis(20));
+    }
     assert!(recovery.is_file(), "autosaved");
+    assert_eq!(
+        std::fs::read_to_string(&recovery).unwrap(),
+        h.state().doc.to_ron(),
+        "the edited document"
+    );
     let edited = h.state().doc.to_ron();
     // "Crash": drop the editor without on_exit; the next start offers the restore.
     drop(h);

@@ -329,6 +329,19 @@ const SUPPORT_COLOR: Color = Color::hex(0xc9a66b).with_alpha(170);
 const AXIS_COLOR: Color = Color::hex(0x2a9d5c);
 const CURVE_COLOR: Color = palette::LINE;
 
+/// Whether `value` can show anything in the 3D view (what [`Builder::collect`] draws).
+fn may_show(value: &Value) -> bool {
+    matches!(
+        value,
+        Value::List(_)
+            | Value::QuadMesh(_)
+            | Value::Mesh(_)
+            | Value::Polyline(_)
+            | Value::Lines(_)
+            | Value::Point(_)
+    )
+}
+
 impl Origin {
     /// `node.output`, with `[item]` for an item of a list.
     fn name(&self) -> String {
@@ -420,6 +433,9 @@ impl Builder {
         meshes: &mut Vec<PendingGrid>,
     ) {
         match value {
+            // Packed lists hold numbers, vectors or labels: nothing to show (and their items are
+            // not built for it).
+            Value::List(items) if items.as_packed().is_some() => {}
             Value::List(items) => {
                 // A list of points is one point set; other lists are flattened.
                 if items.iter().any(|v| matches!(v, Value::Point(_))) {
@@ -439,6 +455,11 @@ impl Builder {
                         _ => None,
                     };
                     for (k, item) in items.iter().enumerate() {
+                        if !may_show(item) {
+                            // A list of millions of numbers: no origin or configuration copied
+                            // for each.
+                            continue;
+                        }
                         let confs = match paired {
                             Some(c) => Some(c[k].clone()),
                             None => configurations.clone(),

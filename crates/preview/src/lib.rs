@@ -78,6 +78,35 @@ mod tests {
     }
 
     #[test]
+    fn a_list_shows_its_meshes_under_their_own_item_numbers_and_its_numbers_not_at_all() {
+        let mut g = cnets_engine::Graph::new(std::sync::Arc::new(cnets_nodes::registry()));
+        g.add_node("mixed", "param.list").unwrap();
+        g.set_value("mixed", "item_type", Value::text("any"))
+            .unwrap();
+        let mesh = Value::from(grid(2, 3));
+        let mut items = vec![Value::Number(1.0), mesh.clone()];
+        items.extend((0..50_000).map(|k| Value::Number(k as f64)));
+        items.push(mesh);
+        g.set_value("mixed", "values", Value::list(items)).unwrap();
+        let mut eval = cnets_engine::Evaluator::new();
+        let ctx = cnets_engine::NodeContext::new(None, None);
+        eval.evaluate_all(&g, &ctx);
+        let preview = build_preview(&g, &eval, &PreviewOptions::default());
+        let items: Vec<Option<usize>> = preview.picks.meshes.iter().map(|m| m.item).collect();
+        assert_eq!(items, [Some(1), Some(50_002)]);
+        assert_eq!(preview.stats.vertices, 12);
+        // A packed list of numbers (as the JSON reader makes) shows nothing.
+        let packed = Value::List(cnets_engine::Items::numbers(
+            std::sync::Arc::new(vec![0.5; 10]),
+            0..10,
+        ));
+        g.set_value("mixed", "values", packed).unwrap();
+        eval.evaluate_all(&g, &ctx);
+        let preview = build_preview(&g, &eval, &PreviewOptions::default());
+        assert!(preview.picks.meshes.is_empty() && preview.stats.vertices == 0);
+    }
+
+    #[test]
     fn faces_are_classed_by_their_two_support_strip_quads() {
         let g = grid(3, 4); // interior vertex columns 1 and 2
         let classes = face_classes(&g, &table(3, &["++", "--"])).unwrap();

@@ -8,7 +8,7 @@ use crate::menus;
 use crate::menus::MenuContext;
 use crate::palette;
 use crate::palette::Pick;
-use crate::recovery::{Autosave, GraphText};
+use crate::recovery::Autosave;
 use crate::unsaved::Replace;
 use crate::viewport::ViewportInput;
 use egui::Ui;
@@ -236,10 +236,7 @@ impl EditorApp {
             doc.version(),
             committed,
             (doc.path.as_deref(), doc.origin.as_deref()),
-            GraphText {
-                graph: &doc.graph,
-                write: || doc.to_ron(),
-            },
+            doc,
         );
         match autosave {
             Autosave::Due(after) => ctx.request_repaint_after(after),
