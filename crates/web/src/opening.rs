@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use cnets_editor::document::GraphDocument;
-use cnets_engine::{Registry, Value};
+use cnets_engine::Registry;
 
 use crate::wire::Parsed;
 
@@ -160,28 +160,24 @@ impl Opening {
 
 /// The document a file read by the worker makes: its text without the large literals loaded as
 /// the page loads a file (`origin` and the library folders as for [`cnets_host`]'s documents),
-/// the literals put back. With it, the key and value of each literal the page's graph now holds
-/// (the worker keeps them: requests name them).
+/// the literals put back (the graph holds the very values decoded, which the worker keeps under
+/// their keys).
 pub fn document_of(
     parsed: Parsed,
     origin: &Path,
     registry: &Arc<Registry>,
     library: &[PathBuf],
-) -> Result<(GraphDocument, Vec<(u64, Value)>), String> {
+) -> Result<GraphDocument, String> {
     let options = cnets_host::document_options(Some(origin), library);
     let name = origin.display().to_string();
     let mut doc = cnets_engine::file::load_str_with(&parsed.skeleton, &name, registry, &options)
         .map_err(|e| e.to_string())?;
-    let mut held = Vec::with_capacity(parsed.literals.len());
     for (at, value) in parsed.literals {
         doc.graph
             .set_value(&at.node, &at.input, value)
             .map_err(|e| e.to_string())?;
-        if let Some(v) = doc.graph.node(&at.node).and_then(|n| n.value_of(&at.input)) {
-            held.push((at.key, v.clone()));
-        }
     }
-    Ok((GraphDocument::from_parts(doc.graph, doc.meta, None), held))
+    Ok(GraphDocument::from_parts(doc.graph, doc.meta, None))
 }
 
 #[cfg(test)]
@@ -260,7 +256,8 @@ mod tests {
         else {
             panic!("not read");
         };
-        let (doc, held) = document_of(parsed, Path::new("big.ron"), &registry, &[]).unwrap();
+        let literals = parsed.literals.clone();
+        let doc = document_of(parsed, Path::new("big.ron"), &registry, &[]).unwrap();
         let direct = GraphDocument::from_text_with(
             &text,
             "big.ron",
@@ -271,10 +268,11 @@ mod tests {
         .unwrap();
         assert_eq!(doc.to_ron(), direct.to_ron());
         assert!(!doc.is_dirty(), "a freshly opened document");
-        // The page's first request sends no literal: the worker has it.
+        // The page adopts the decoded values: its first request sends no literal, as the graph
+        // holds those very values (the worker has them).
         let mut cache = LiteralCache::default();
-        for (key, value) in held {
-            cache.adopt(key, value);
+        for (at, value) in literals {
+            cache.adopt(at.key, value);
         }
         let split = cache.split(&doc.graph);
         assert!(split.new.is_empty() && split.refs.len() == 1);

@@ -258,21 +258,20 @@ impl WebApp {
         for (token, result) in self.remote.take_read() {
             let started = now_ms();
             let name = self.opening.answered(token, started);
-            let origin = PathBuf::from(name.as_deref().unwrap_or("untitled.ron"));
+            if let Ok(parsed) = &result {
+                // The worker keeps these literals: requests name them (and forget them once no
+                // document holds them: a late answer's, a file that did not load).
+                for (at, value) in &parsed.literals {
+                    self.remote.adopt_literal(at.key, value.clone());
+                }
+            }
+            // An answer for a file no longer to open (another was opened meanwhile) is dropped.
+            let Some(name) = name else { continue };
+            let origin = PathBuf::from(&name);
             let loaded = result.and_then(|parsed| {
                 let library = &self.app.library.dirs;
                 crate::opening::document_of(parsed, &origin, &self.app.registry, library)
             });
-            let loaded = loaded.map(|(doc, held)| {
-                // The worker keeps these literals: requests name them.
-                for (key, value) in held {
-                    self.remote.adopt_literal(key, value);
-                }
-                doc
-            });
-            // An answer for a file no longer to open (another was opened meanwhile) is dropped;
-            // its literals, adopted above, are forgotten by the next request.
-            let Some(name) = name else { continue };
             if self.app.open_loaded(loaded, &origin) {
                 self.app.doc.name = Some(name.clone());
                 self.app.message = format!("opened {name}");
