@@ -401,3 +401,90 @@ fn the_planarity_limit_is_set_in_the_viewport_and_kept_in_the_settings() {
     let h = common::harness_with("planarity-limit-2", None, config);
     assert_eq!(h.state().viewport.options.planarity_limit(), limit);
 }
+
+/// A graph file of `n` numbers (a `param.list`) written to `dir`.
+fn large_graph(dir: &Path, name: &str, n: usize) -> std::path::PathBuf {
+    let numbers: Vec<String> = (0..n)
+        .map(|k| format!("{:.6}", 0.5 + k as f64 * 1e-4))
+        .collect();
+    let text = format!(
+        "(version: 1, nodes: {{\"numbers\": (type: \"param.list\", position: (0.0, 0.0), \
+         inputs: {{\"values\": [{}]}})}})",
+        numbers.join(", ")
+    );
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_large_file_is_read_off_the_ui_thread_and_the_latest_open_wins() {
+    let dir = temp_config("large-open");
+    let big = large_graph(&dir, "big.ron", 500_000);
+    assert!(
+        std::fs::metadata(&big).unwrap().len() >= cnets_editor::app::LARGE_GRAPH_BYTES,
+        "large enough to be read off the UI thread"
+    );
+    let mut h = harness("large-open-window");
+    assert!(h.state_mut().open(&big), "began to be read");
+    assert_eq!(h.state().loading(), Some(big.as_path()));
+    assert_ne!(
+        h.state().doc.path.as_deref(),
+        Some(big.as_path()),
+        "not yet replaced"
+    );
+    assert!(
+        h.state().message.starts_with("opening ") && h.state().message.ends_with(" MB)…"),
+        "the status bar says so: {}",
+        h.state().message
+    );
+    // The window keeps drawing (with the notice) until the file is read, then it opens.
+    h.run_steps(1);
+    if h.state().loading().is_some() {
+        assert!(
+            h.query_by_label_contains("Opening big.ron").is_some(),
+            "a frame drawn while the file is read shows the notice"
+        );
+    }
+    let start = std::time::Instant::now();
+    while h.state().loading().is_some() {
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(60),
+            "read within a minute"
+        );
+        h.run_steps(1);
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    assert_eq!(
+        h.state().doc.path.as_deref(),
+        Some(big.as_path()),
+        "{}",
+        h.state().message
+    );
+    assert!(!h.state().doc.is_dirty());
+    assert_eq!(
+        h.state()
+            .doc
+            .graph
+            .node("numbers")
+            .unwrap()
+            .value_of("values")
+            .and_then(|v| v.as_list())
+            .map(<[_]>::len),
+        Some(500_000)
+    );
+    // Opened meanwhile, another document wins over the file still being read.
+    let big2 = large_graph(&dir, "big2.ron", 500_000);
+    assert!(h.state_mut().open(&big2));
+    let small = graphs_dir().join("editor-default.ron");
+    assert!(h.state_mut().open(&small));
+    assert_eq!(h.state().loading(), None, "the read file no longer opens");
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    h.run_steps(3);
+    assert!(
+        h.state().doc.graph.node("numbers").is_none(),
+        "the document opened last stays: {}",
+        h.state().message
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

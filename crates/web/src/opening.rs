@@ -11,8 +11,8 @@ use cnets_engine::Registry;
 use crate::wire::Parsed;
 
 /// A graph file (`.ron`) of at least this many bytes is read by the worker (4 MiB: about a
-/// quarter of a second of parsing).
-pub const LARGE_GRAPH_BYTES: usize = 4 << 20;
+/// quarter of a second of parsing; the desktop editor's threshold for reading off its UI thread).
+pub const LARGE_GRAPH_BYTES: usize = cnets_editor::app::LARGE_GRAPH_BYTES as usize;
 
 /// A file's name and content, as the browser read it.
 pub type OpenedFile = (String, Vec<u8>);

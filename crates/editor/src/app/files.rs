@@ -104,7 +104,8 @@ impl EditorApp {
 
     /// Opens a graph file without asking (see [`EditorApp::request`]); a shipped example opens
     /// as an untitled copy. When the file does not load, the current document stays and the
-    /// diagnostics are shown. Returns whether it opened.
+    /// diagnostics are shown. Returns whether it opened — or, for a large file, began to be read
+    /// off the UI thread (it opens in a later frame: [`EditorApp::loading`]).
     pub fn open(&mut self, path: &Path) -> bool {
         if self.is_example(path) {
             return self.open_example(path);
@@ -112,6 +113,9 @@ impl EditorApp {
         let mut options = cnets_host::document_options(Some(path), &self.library.dirs);
         // Cluster files the document was allowed to read (its per-document settings).
         options.allow_read.extend(self.settings.allowed_reads(path));
+        if self.reads_in_background(path) && self.open_in_background(path, options.clone()) {
+            return true;
+        }
         match GraphDocument::open_with(path, &self.registry, &options) {
             Ok(d) => {
                 self.replace_doc(d);

@@ -208,6 +208,7 @@ impl EditorApp {
         if let Some(p) = dropped.into_iter().chain(sent).last() {
             self.request(Replace::Open(p));
         }
+        self.poll_loading(&ctx);
         self.show_unsaved_question(&ctx);
         if let Some(f) = &mut self.load_failure
             && !f.show(&ctx)

@@ -10,12 +10,14 @@ mod dialogs;
 mod exports;
 mod files;
 mod layout;
+mod loading;
 mod reads;
 mod worker;
 
 pub use reads::ReadPrompt;
 
 pub use files::is_example;
+pub use loading::LARGE_GRAPH_BYTES;
 
 use crate::canvas::Canvas;
 use crate::clipboard::Clipboard;
@@ -139,6 +141,8 @@ pub struct EditorApp {
     awaiting_picture: Option<(u64, Instant)>,
     recovery: Recovery,
     offer_restore: Option<Recovered>,
+    /// A large file being read off the UI thread (`loading`).
+    loading: Option<loading::Loading>,
     dialog: Option<FileDialog>,
     clipboard: Clipboard,
     gpu: Option<GpuTarget>,
@@ -257,6 +261,7 @@ impl EditorApp {
             awaiting_picture: None,
             recovery,
             offer_restore,
+            loading: None,
             dialog: None,
             clipboard: Clipboard::default(),
             gpu: options.gpu,
@@ -329,6 +334,8 @@ impl EditorApp {
     }
 
     fn replace_doc(&mut self, doc: GraphDocument) {
+        // A file still being read no longer opens: this document came after it.
+        self.loading = None;
         let previous = self.doc.generation();
         self.doc = doc;
         // What this document may read besides its folder (the editor's per-document settings).

@@ -1,0 +1,147 @@
+//! Large graph files opened during a session (File ▸ Open, Open recent, a file dropped or sent
+//! to the window) are read on a thread of their own: parsing 35 MB takes a second or two, and the
+//! window keeps answering meanwhile under a notice. The document is replaced when the file is
+//! read; a document opened meanwhile wins (the late one is dropped). Files are read in the frame
+//! they are opened below [`LARGE_GRAPH_BYTES`], and always in the browser (no threads; its page
+//! has its evaluation worker read large files instead).
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::mpsc::{Receiver, TryRecvError, channel};
+
+use cnets_engine::Registry;
+use cnets_engine::file::LoadOptions;
+use web_time::Instant;
+
+use super::EditorApp;
+use crate::document::GraphDocument;
+
+/// A graph file of at least this many bytes is read off the UI thread (4 MiB: about a quarter
+/// of a second of parsing).
+pub const LARGE_GRAPH_BYTES: u64 = 4 << 20;
+
+/// A large file being read.
+pub(crate) struct Loading {
+    path: PathBuf,
+    bytes: u64,
+    since: Instant,
+    result: Receiver<Result<GraphDocument, String>>,
+}
+
+impl Loading {
+    /// Starts reading `path` on a thread; `None` when no thread can be started.
+    fn start(
+        path: &Path,
+        bytes: u64,
+        registry: Arc<Registry>,
+        options: LoadOptions,
+    ) -> Option<Self> {
+        let (report, result) = channel();
+        let file = path.to_path_buf();
+        std::thread::Builder::new()
+            .name("cnets-open".into())
+            .spawn(move || {
+                let _ = report.send(GraphDocument::open_with(&file, &registry, &options));
+            })
+            .ok()?;
+        Some(Self {
+            path: path.to_path_buf(),
+            bytes,
+            since: Instant::now(),
+            result,
+        })
+    }
+}
+
+/// Bytes as the designer reads them: "35.0 MB".
+fn megabytes(bytes: u64) -> String {
+    format!("{:.1} MB", bytes as f64 / 1e6)
+}
+
+impl EditorApp {
+    /// Whether `path` is read off the UI thread when opened.
+    pub(super) fn reads_in_background(&self, path: &Path) -> bool {
+        self.page.is_none()
+            && !cfg!(target_arch = "wasm32")
+            && std::fs::metadata(path).is_ok_and(|m| m.len() >= LARGE_GRAPH_BYTES)
+    }
+
+    /// Starts reading a large file on a thread; `false` when it could not start (read it now).
+    pub(super) fn open_in_background(&mut self, path: &Path, options: LoadOptions) -> bool {
+        let bytes = std::fs::metadata(path).map_or(0, |m| m.len());
+        match Loading::start(path, bytes, self.registry.clone(), options) {
+            Some(loading) => {
+                self.message = format!("opening {} ({})…", path.display(), megabytes(bytes));
+                self.loading = Some(loading);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The file being read off the UI thread, if any: its path.
+    pub fn loading(&self) -> Option<&Path> {
+        self.loading.as_ref().map(|l| l.path.as_path())
+    }
+
+    /// Called once a frame: opens the file read off the UI thread once it is read, else shows
+    /// the notice and asks for another frame.
+    pub(super) fn poll_loading(&mut self, ctx: &egui::Context) {
+        let Some(loading) = &self.loading else { return };
+        match loading.result.try_recv() {
+            Ok(result) => {
+                let Some(loading) = self.loading.take() else {
+                    return;
+                };
+                let path = loading.path;
+                match result {
+                    Ok(d) => {
+                        self.replace_doc(d);
+                        self.settings.add_recent(&path);
+                        self.message = format!(
+                            "opened {} ({}, read in {:.1} s)",
+                            path.display(),
+                            megabytes(loading.bytes),
+                            loading.since.elapsed().as_secs_f64()
+                        );
+                    }
+                    Err(e) => self.fail_load(&path, &e),
+                }
+            }
+            Err(TryRecvError::Empty) => {
+                show_notice(ctx, &loading.path, loading.bytes);
+                ctx.request_repaint_after(std::time::Duration::from_millis(50));
+            }
+            Err(TryRecvError::Disconnected) => {
+                let path = self.loading.take().map(|l| l.path).unwrap_or_default();
+                self.fail_load(&path, "the file could not be read (its reader stopped)");
+            }
+        }
+    }
+}
+
+/// The notice over the middle of the window while a large file is read.
+fn show_notice(ctx: &egui::Context, path: &Path, bytes: u64) {
+    let name = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into(),
+    );
+    egui::Area::new(egui::Id::new("cnets-loading"))
+        .order(egui::Order::Foreground)
+        .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
+        .interactable(false)
+        // Drawn whole in its first frame (a file read quickly leaves no time to fade in).
+        .fade_in(false)
+        .show(ctx, |ui| {
+            egui::Frame::popup(ui.style()).show(ui, |ui| {
+                ui.set_max_width(360.0);
+                ui.horizontal(|ui| {
+                    ui.spinner();
+                    ui.strong(format!("Opening {name} ({})", megabytes(bytes)));
+                });
+                ui.label(
+                    "It is read in the background; it replaces the document when it is ready.",
+                );
+            });
+        });
+}
