@@ -47,6 +47,7 @@ pub mod load_failure;
 pub mod mapper;
 pub mod menus;
 pub mod narrow;
+pub mod opening_notice;
 pub mod optimization;
 pub mod overview;
 pub mod page;

@@ -146,9 +146,8 @@ impl Opening {
                 .map(|(name, bytes)| (name.as_str(), bytes.len()))?,
         };
         Some(Notice {
-            title: format!("Opening {name} ({})", size_text(bytes)),
-            detail: "It is read in the background; it replaces the document when it is ready."
-                .to_string(),
+            title: cnets_editor::opening_notice::title(name, bytes as u64),
+            detail: cnets_editor::opening_notice::DETAIL.to_string(),
         })
     }
 

@@ -20,7 +20,7 @@ use eframe::egui_wgpu::{self, wgpu};
 use wasm_bindgen::JsCast as _;
 use wasm_bindgen::prelude::*;
 
-use crate::opening::{LargeOpen, Notice, Opening, size_text};
+use crate::opening::{LargeOpen, Opening, size_text};
 use crate::remote::WebWorker;
 
 /// Files picked in the browser's file picker, waiting for the next frame: (name, bytes).
@@ -532,26 +532,6 @@ fn large_open_object(large: &LargeOpen) -> JsValue {
     o.into()
 }
 
-/// The notice over the middle of the page while a large graph is read.
-fn show_opening_notice(ctx: &egui::Context, notice: &Notice) {
-    egui::Area::new(egui::Id::new("cnets-opening"))
-        .order(egui::Order::Foreground)
-        .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
-        .interactable(false)
-        // Drawn whole in its first frame (a file read quickly leaves no time to fade in).
-        .fade_in(false)
-        .show(ctx, |ui| {
-            egui::Frame::popup(ui.style()).show(ui, |ui| {
-                ui.set_max_width(360.0);
-                ui.horizontal(|ui| {
-                    ui.spinner();
-                    ui.strong(&notice.title);
-                });
-                ui.label(&notice.detail);
-            });
-        });
-}
-
 impl WebApp {
     /// The browser tab's title follows the document's ("facade.ron * — cnets").
     fn mirror_title(&mut self) {
@@ -645,7 +625,7 @@ impl eframe::App for WebApp {
         }
         self.app.ui(ui);
         if let Some(notice) = self.opening.notice() {
-            show_opening_notice(ui.ctx(), &notice);
+            cnets_editor::opening_notice::show(ui.ctx(), &notice.title, &notice.detail);
             self.app.message = notice.sentence();
         }
         if self.opening.pending() {

@@ -109,7 +109,13 @@ impl EditorApp {
                 }
             }
             Err(TryRecvError::Empty) => {
-                show_notice(ctx, &loading.path, loading.bytes);
+                let path = &loading.path;
+                let name = path.file_name().map_or_else(
+                    || path.display().to_string(),
+                    |n| n.to_string_lossy().into_owned(),
+                );
+                let title = crate::opening_notice::title(&name, loading.bytes);
+                crate::opening_notice::show(ctx, &title, crate::opening_notice::DETAIL);
                 ctx.request_repaint_after(std::time::Duration::from_millis(50));
             }
             Err(TryRecvError::Disconnected) => {
@@ -118,30 +124,4 @@ impl EditorApp {
             }
         }
     }
-}
-
-/// The notice over the middle of the window while a large file is read.
-fn show_notice(ctx: &egui::Context, path: &Path, bytes: u64) {
-    let name = path.file_name().map_or_else(
-        || path.display().to_string(),
-        |n| n.to_string_lossy().into(),
-    );
-    egui::Area::new(egui::Id::new("cnets-loading"))
-        .order(egui::Order::Foreground)
-        .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
-        .interactable(false)
-        // Drawn whole in its first frame (a file read quickly leaves no time to fade in).
-        .fade_in(false)
-        .show(ctx, |ui| {
-            egui::Frame::popup(ui.style()).show(ui, |ui| {
-                ui.set_max_width(360.0);
-                ui.horizontal(|ui| {
-                    ui.spinner();
-                    ui.strong(format!("Opening {name} ({})", megabytes(bytes)));
-                });
-                ui.label(
-                    "It is read in the background; it replaces the document when it is ready.",
-                );
-            });
-        });
 }
