@@ -1,9 +1,14 @@
 //! The notice over the middle of the window while a large graph file is read in the background
 //! (the desktop's reading thread, `app/loading.rs`; the web page's evaluation worker).
 
+/// A large file's size as the designer reads it: "34.9 MB".
+pub fn megabytes(bytes: u64) -> String {
+    format!("{:.1} MB", bytes as f64 / 1e6)
+}
+
 /// The title of the notice for a file `name` of `bytes` bytes: "Opening big.ron (34.9 MB)".
 pub fn title(name: &str, bytes: u64) -> String {
-    format!("Opening {name} ({:.1} MB)", bytes as f64 / 1e6)
+    format!("Opening {name} ({})", megabytes(bytes))
 }
 
 /// What the designer should expect meanwhile.

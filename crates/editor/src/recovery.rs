@@ -14,6 +14,7 @@
 //! page's local storage instead (a [`RecoveryStore`] of the web page, `crates/web`).
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use web_time::{Duration, Instant};
 
 use cnets_engine::atomic::write_atomic;
@@ -39,9 +40,6 @@ pub const AUTOSAVE_RETRY: Duration = Duration::from_secs(5);
 /// The longest wait between autosave attempts after failures.
 pub const AUTOSAVE_RETRY_MAX: Duration = Duration::from_secs(300);
 
-/// While autosave's thread writes, the app looks for its result this often.
-pub const AUTOSAVE_POLL: Duration = Duration::from_millis(100);
-
 /// A recovery file found at start.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Recovered {
@@ -62,6 +60,9 @@ pub enum Autosave {
     Wrote,
     /// A write is due after this long (a gesture is in progress): ask for a frame then.
     Due(Duration),
+    /// A write is in progress on autosave's thread ([`Recovery::in_background`]), which wakes
+    /// the window when it ends.
+    Writing,
     /// Writing failed ([`Recovery::last_error`] says why); the next try is after this long.
     Failed(Duration),
 }
@@ -231,8 +232,10 @@ impl std::fmt::Debug for Recovery {
 const TEXT: &str = "recovery.ron";
 const PATHS: &str = "recovery.path";
 
-fn opt_line(p: Option<&Path>) -> String {
-    p.map(|p| p.display().to_string()).unwrap_or_default()
+/// The paths line of the recovery pair: the document's own path, then the example it copies.
+fn paths_text(path: Option<&Path>, origin: Option<&Path>) -> String {
+    let line = |p: Option<&Path>| p.map(|p| p.display().to_string()).unwrap_or_default();
+    format!("{}\n{}\n", line(path), line(origin))
 }
 
 /// Writes the recovery pair: the text first, so a store that refuses it (too large, full) keeps
@@ -264,9 +267,10 @@ impl Recovery {
 
     /// Writes recovery files in `dir` on a thread of their own (the desktop editor): a document
     /// whose text takes long to write out does not stop the window. [`Recovery::tick`] hands the
-    /// write over and reports it in a later call.
-    pub fn in_background(mut self) -> Self {
-        self.background = Background::start(Box::new(FolderStore(self.dir.clone())));
+    /// write over and reports it in a later call; the thread calls `wake` when a write ends (ask
+    /// for a frame).
+    pub fn in_background(mut self, wake: Arc<dyn Fn() + Send + Sync>) -> Self {
+        self.background = Background::start(Box::new(FolderStore(self.dir.clone())), wake);
         self
     }
 
@@ -307,8 +311,7 @@ impl Recovery {
         origin: Option<&Path>,
         version: u64,
     ) -> std::io::Result<()> {
-        let p = format!("{}\n{}\n", opt_line(path), opt_line(origin));
-        write_pair(self.store.as_mut(), text, &p)?;
+        write_pair(self.store.as_mut(), text, &paths_text(path, origin))?;
         self.saved_version = Some(version);
         self.last_write = Some(Instant::now());
         Ok(())
@@ -330,7 +333,7 @@ impl Recovery {
             return self.finished(finished);
         }
         if self.background.as_ref().is_some_and(Background::busy) {
-            return Autosave::Due(AUTOSAVE_POLL);
+            return Autosave::Writing;
         }
         if !dirty || self.saved_version == Some(version) {
             return Autosave::Idle;
@@ -356,13 +359,12 @@ impl Recovery {
         }
         if let Some(background) = &mut self.background
             && let Some(job) = text.snapshot()
+            && background.send(version, paths_text(paths.0, paths.1), job)
         {
-            let p = format!("{}\n{}\n", opt_line(paths.0), opt_line(paths.1));
-            if background.send(version, p, job) {
-                return Autosave::Due(AUTOSAVE_POLL);
-            }
+            return Autosave::Writing;
         }
-        let written = self.write(&text.text(), paths.0, paths.1, version);
+        let pair = (text.text(), paths_text(paths.0, paths.1));
+        let written = write_pair(self.store.as_mut(), &pair.0, &pair.1);
         self.finished((version, written.map_err(|e| e.to_string())))
     }
 
@@ -583,22 +585,26 @@ mod tests {
     fn autosave_in_the_background_does_not_wait_for_the_text() {
         let dir = std::env::temp_dir().join(format!("cnets-recovery-bg-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
-        let mut r = Recovery::new(&dir).in_background();
+        let woken = Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let wake = woken.clone();
+        let mut r = Recovery::new(&dir).in_background(Arc::new(move || {
+            wake.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        }));
         let slow = Duration::from_millis(400);
         let start = Instant::now();
         assert_eq!(
             r.tick(true, 1, true, (None, None), Slow("one", slow)),
-            Autosave::Due(AUTOSAVE_POLL)
+            Autosave::Writing
         );
         // While it writes, later versions wait (not queued behind it).
         assert_eq!(
             r.tick(true, 2, true, (None, None), Slow("two", slow)),
-            Autosave::Due(AUTOSAVE_POLL)
+            Autosave::Writing
         );
         assert!(start.elapsed() < slow / 2, "the ticks returned at once");
         let wrote = loop {
             match r.tick(true, 2, true, (None, None), Slow("two", slow)) {
-                Autosave::Due(_) => std::thread::sleep(Duration::from_millis(20)),
+                Autosave::Writing => std::thread::sleep(Duration::from_millis(20)),
                 other => break other,
             }
             assert!(
@@ -607,12 +613,18 @@ mod tests {
             );
         };
         assert_eq!(wrote, Autosave::Wrote);
+        // (It wakes the window right after handing the result over.)
+        let woke = || woken.load(std::sync::atomic::Ordering::Relaxed);
+        while woke() == 0 && start.elapsed() < Duration::from_secs(20) {
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        assert_eq!(woke(), 1, "the thread woke the window when the write ended");
         assert_eq!(r.find().unwrap().text, "one");
         // Version 2 is written next (after the gap), then nothing is left to do.
         std::thread::sleep(AUTOSAVE_GAP);
         assert_eq!(
             r.tick(true, 2, true, (None, None), Slow("two", slow)),
-            Autosave::Due(AUTOSAVE_POLL)
+            Autosave::Writing
         );
         // A save clears the pair, waiting for the write in flight so it cannot come back.
         r.clear();

@@ -4,6 +4,7 @@ mod common;
 
 use std::collections::{HashSet, VecDeque};
 use std::path::Path;
+use std::time::Duration;
 
 use cnets_editor::app::EditorApp;
 use cnets_editor::unsaved::Replace;
@@ -138,7 +139,10 @@ fn mapper_handles_show_their_values_while_hovered_and_dragged() {
         .state_mut()
         .add_node("mapper.graph", [760.0, 0.0])
         .unwrap();
-    h.run_steps(2);
+    h.run_steps(1);
+    // The new node's first result in before the picture (its outputs size the node).
+    h.state_mut().wait_for_worker(Duration::from_secs(60));
+    h.run_steps(3);
     let centre = h.state().canvas.node_rect(&id).expect("drawn").center();
     // At the smallest zoom, where the canvas' own text is smallest.
     h.state_mut()

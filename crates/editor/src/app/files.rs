@@ -113,7 +113,9 @@ impl EditorApp {
         let mut options = cnets_host::document_options(Some(path), &self.library.dirs);
         // Cluster files the document was allowed to read (its per-document settings).
         options.allow_read.extend(self.settings.allowed_reads(path));
-        if self.reads_in_background(path) && self.open_in_background(path, options.clone()) {
+        if let Some(bytes) = self.reads_in_background(path)
+            && self.open_in_background(path, bytes, options.clone())
+        {
             return true;
         }
         match GraphDocument::open_with(path, &self.registry, &options) {

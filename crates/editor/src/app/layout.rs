@@ -250,7 +250,7 @@ impl EditorApp {
                 );
                 ctx.request_repaint_after(retry);
             }
-            Autosave::Idle | Autosave::Wrote => {}
+            Autosave::Idle | Autosave::Wrote | Autosave::Writing => {}
         }
         let title = format!("{} — cnets editor", self.doc.title());
         if title != self.last_title {

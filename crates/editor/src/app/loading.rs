@@ -15,6 +15,7 @@ use web_time::Instant;
 
 use super::EditorApp;
 use crate::document::GraphDocument;
+use crate::opening_notice::megabytes;
 
 /// A graph file of at least this many bytes is read off the UI thread (4 MiB: about a quarter
 /// of a second of parsing).
@@ -53,22 +54,25 @@ impl Loading {
     }
 }
 
-/// Bytes as the designer reads them: "35.0 MB".
-fn megabytes(bytes: u64) -> String {
-    format!("{:.1} MB", bytes as f64 / 1e6)
-}
-
 impl EditorApp {
-    /// Whether `path` is read off the UI thread when opened.
-    pub(super) fn reads_in_background(&self, path: &Path) -> bool {
-        self.page.is_none()
-            && !cfg!(target_arch = "wasm32")
-            && std::fs::metadata(path).is_ok_and(|m| m.len() >= LARGE_GRAPH_BYTES)
+    /// The size of `path` when it is read off the UI thread when opened (a large file on the
+    /// desktop), else `None`.
+    pub(super) fn reads_in_background(&self, path: &Path) -> Option<u64> {
+        if self.page.is_some() || cfg!(target_arch = "wasm32") {
+            return None;
+        }
+        let bytes = std::fs::metadata(path).ok()?.len();
+        (bytes >= LARGE_GRAPH_BYTES).then_some(bytes)
     }
 
-    /// Starts reading a large file on a thread; `false` when it could not start (read it now).
-    pub(super) fn open_in_background(&mut self, path: &Path, options: LoadOptions) -> bool {
-        let bytes = std::fs::metadata(path).map_or(0, |m| m.len());
+    /// Starts reading a large file (`bytes` long) on a thread; `false` when it could not start
+    /// (read it now).
+    pub(super) fn open_in_background(
+        &mut self,
+        path: &Path,
+        bytes: u64,
+        options: LoadOptions,
+    ) -> bool {
         match Loading::start(path, bytes, self.registry.clone(), options) {
             Some(loading) => {
                 self.message = format!("opening {} ({})…", path.display(), megabytes(bytes));

@@ -200,7 +200,7 @@ impl EditorApp {
         let recovery = Recovery::new(&options.config_dir);
         // Written on a thread of its own: a large design's text does not stop the window.
         #[cfg(not(target_arch = "wasm32"))]
-        let recovery = recovery.in_background();
+        let recovery = recovery.in_background(options.wake.clone());
         let offer_restore = recovery.find();
         let message = String::new();
         let library_dirs = vec![settings.library_dir(), options.examples_dir.clone()];

@@ -1,8 +1,9 @@
 //! Autosave's writer thread (the desktop editor): the document's text is written out and stored
 //! off the UI thread, so a large design (a list of millions of numbers: half a second of text)
 //! does not stop the window on every edit. The UI hands over a snapshot of the document (cheap:
-//! its values are shared) and picks the result up in a later frame.
+//! its values are shared) and picks the result up in the frame the thread wakes it for.
 
+use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 
 use super::{RecoveryStore, write_pair};
@@ -28,8 +29,12 @@ pub(super) struct Background {
 }
 
 impl Background {
-    /// Starts the thread writing into `store`; `None` when no thread can be started.
-    pub(super) fn start(mut store: Box<dyn RecoveryStore + Send>) -> Option<Self> {
+    /// Starts the thread writing into `store`, calling `wake` after each write; `None` when no
+    /// thread can be started.
+    pub(super) fn start(
+        mut store: Box<dyn RecoveryStore + Send>,
+        wake: Arc<dyn Fn() + Send + Sync>,
+    ) -> Option<Self> {
         let (jobs, inbox) = channel::<Job>();
         let (report, done) = channel();
         std::thread::Builder::new()
@@ -44,6 +49,7 @@ impl Background {
                     {
                         break;
                     }
+                    wake();
                 }
             })
             .ok()?;
