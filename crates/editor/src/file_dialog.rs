@@ -90,6 +90,9 @@ pub fn list_entries(dir: &Path, folders_only: bool, every_file: bool) -> Vec<(St
     out
 }
 
+/// The height of the dialog's listing of the folder, whatever it holds.
+const LISTING_HEIGHT: f32 = 240.0;
+
 impl FileDialog {
     /// A dialog starting at `start` (a folder, or a file whose folder is listed).
     pub fn new(purpose: Purpose, start: &Path) -> Self {
@@ -177,8 +180,12 @@ impl FileDialog {
                         self.path = parent.display().to_string();
                     }
                 });
+                // A listing of fixed height: the buttons below stay where they are while files
+                // come and go in the folder (a click aimed at Save must not land elsewhere).
                 egui::ScrollArea::vertical()
-                    .max_height(240.0)
+                    .min_scrolled_height(LISTING_HEIGHT)
+                    .max_height(LISTING_HEIGHT)
+                    .auto_shrink([false, false])
                     .show(ui, |ui| {
                         for (name, is_dir) in list_entries(
                             &folder,

@@ -270,6 +270,11 @@ fn examples_open_as_untitled_copies_and_the_first_save_asks_where() {
     let mine = config.join("my-torus.ron");
     dialog.path = mine.display().to_string();
     h.run_steps(1);
+    // Files appear in the listed folder between the frame that placed Save and the click (as
+    // autosave's thread writes recovery.ron there at its own time): Save stays where it was.
+    for i in 0..3 {
+        std::fs::write(config.join(format!("appeared-{i}.ron")), "x").unwrap();
+    }
     h.get_by_label("Save").click();
     h.run_steps(2);
     assert_eq!(
