@@ -14,6 +14,8 @@ pub enum Replace {
     Open(PathBuf),
     /// File › Open example: an untitled copy of a shipped graph.
     Example(PathBuf),
+    /// Open a large graph file read off the UI thread while the document was being edited.
+    Loaded(PathBuf),
     /// Close the editor (File › Quit, Ctrl+Q, the window's close button).
     Quit,
 }
@@ -29,6 +31,7 @@ impl Replace {
             Self::New => "Starting a new graph".into(),
             Self::Open(p) => format!("Opening {}", name(p)),
             Self::Example(p) => format!("Opening the example {}", name(p)),
+            Self::Loaded(p) => format!("Opening {} (now read)", name(p)),
             Self::Quit => "Closing the editor".into(),
         }
     }

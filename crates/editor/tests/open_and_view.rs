@@ -492,3 +492,106 @@ fn a_large_file_is_read_off_the_ui_thread_and_the_latest_open_wins() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_large_start_up_file_is_read_after_the_window_opens_and_an_example_stays_a_copy() {
+    let dir = temp_config("large-start");
+    let big = large_graph(&dir, "big.ron", 500_000);
+    // The window is there before the file is read: the harness's first frames draw the notice
+    // (or the file, once read); the document is the file when read.
+    let mut h = common::harness_on(
+        temp_config("large-start-cfg"),
+        Some(big.clone()),
+        dir.clone(),
+    );
+    let start = std::time::Instant::now();
+    while h.state().loading().is_some() {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "read within a minute"
+        );
+        h.run_steps(1);
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    // In the examples folder the file given is a shipped example: an untitled copy.
+    assert_eq!(h.state().doc.path, None, "{}", h.state().message);
+    assert_eq!(h.state().doc.origin.as_deref(), Some(big.as_path()));
+    assert!(!h.state().doc.is_dirty());
+    assert!(
+        h.state().message.contains("copy of the example"),
+        "{}",
+        h.state().message
+    );
+    let count = |app: &EditorApp| {
+        app.doc
+            .graph
+            .node("numbers")
+            .and_then(|n| n.value_of("values"))
+            .and_then(|v| v.as_list())
+            .map(<[_]>::len)
+    };
+    assert_eq!(count(h.state()), Some(500_000));
+    // Outside the examples folder: the file itself. `EditorApp::new` returns before it is read
+    // (nothing has polled the reader yet), and the screenshot and benchmark modes wait for it.
+    let mut app = EditorApp::new(cnets_editor::app::AppOptions {
+        gpu: None,
+        config_dir: temp_config("large-start-cfg2"),
+        file: Some(big.clone()),
+        examples_dir: std::env::temp_dir().join("cnets-no-examples"),
+        wake: std::sync::Arc::new(|| {}),
+    });
+    assert_eq!(app.loading(), Some(big.as_path()), "read off the UI thread");
+    assert_eq!(count(&app), None, "an empty document meanwhile");
+    assert!(
+        !app.wait_for_loading(Duration::from_secs(60)),
+        "read in time"
+    );
+    assert_eq!(app.loading(), None);
+    assert_eq!(
+        app.doc.path.as_deref(),
+        Some(big.as_path()),
+        "{}",
+        app.message
+    );
+    assert_eq!(count(&app), Some(500_000));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_document_edited_while_a_large_file_is_read_is_not_replaced_without_asking() {
+    let dir = temp_config("large-edited");
+    let big = large_graph(&dir, "big.ron", 500_000);
+    for (answer, opens) in [("Cancel", false), ("Don't save", true)] {
+        let mut h = harness(&format!("large-edited-{opens}"));
+        assert!(h.state_mut().open(&big), "began to be read");
+        // An edit before the read is taken up (frames keep running while a file is read).
+        h.state_mut()
+            .add_node("param.number", [40.0, 40.0])
+            .unwrap();
+        let edited = h.state().doc.to_ron();
+        assert!(!h.state_mut().wait_for_loading(Duration::from_secs(60)));
+        assert_eq!(h.state().doc.to_ron(), edited, "not replaced yet");
+        h.run_steps(2);
+        assert_eq!(
+            h.state().unsaved_question,
+            Some(Replace::Loaded(big.clone())),
+            "the unsaved-changes question is asked"
+        );
+        h.get_by_label(answer).click();
+        h.run_steps(3);
+        assert_eq!(h.state().unsaved_question, None);
+        assert_eq!(h.state().loading(), None, "{answer}: nothing left waiting");
+        if opens {
+            assert_eq!(h.state().doc.path.as_deref(), Some(big.as_path()));
+            assert!(h.state().doc.graph.node("numbers").is_some());
+        } else {
+            assert_eq!(h.state().doc.to_ron(), edited, "the edited document stays");
+            assert!(
+                h.state().message.contains("was not opened"),
+                "{}",
+                h.state().message
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

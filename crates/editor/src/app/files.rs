@@ -90,6 +90,7 @@ impl EditorApp {
             Replace::Example(p) => {
                 self.open_example(&p);
             }
+            Replace::Loaded(p) => self.open_read(&p),
             Replace::Quit => {
                 self.close_confirmed = true;
                 self.quit = true;

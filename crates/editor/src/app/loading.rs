@@ -1,32 +1,44 @@
 //! Large graph files opened during a session (File ▸ Open, Open recent, a file dropped or sent
 //! to the window) are read on a thread of their own: parsing 35 MB takes a second or two, and the
 //! window keeps answering meanwhile under a notice. The document is replaced when the file is
-//! read; a document opened meanwhile wins (the late one is dropped). Files are read in the frame
+//! read; a document opened meanwhile wins (the late one is dropped), and a document edited
+//! meanwhile is not replaced without the unsaved-changes question. The start-up file is read the
+//! same way: the window opens at once. Files are read in the frame
 //! they are opened below [`LARGE_GRAPH_BYTES`], and always in the browser (no threads; its page
 //! has its evaluation worker read large files instead).
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, TryRecvError, channel};
 
 use cnets_engine::Registry;
 use cnets_engine::file::LoadOptions;
-use web_time::Instant;
+use web_time::{Duration, Instant};
 
 use super::EditorApp;
 use crate::document::GraphDocument;
 use crate::opening_notice::megabytes;
+use crate::unsaved::Replace;
 
 /// A graph file of at least this many bytes is read off the UI thread (4 MiB: about a quarter
 /// of a second of parsing).
 pub const LARGE_GRAPH_BYTES: u64 = 4 << 20;
 
-/// A large file being read.
+/// A large file being read, or read and waiting for the designer's answer.
 pub(crate) struct Loading {
     path: PathBuf,
     bytes: u64,
     since: Instant,
     result: Receiver<Result<GraphDocument, String>>,
+    /// The document's [`GraphDocument::version`] when the read began: an edit made while the
+    /// file was read is not dropped without asking.
+    version_at_start: u64,
+    /// Opens as an untitled copy (a shipped example given at start-up).
+    untitled_copy: bool,
+    /// The read document, held while the unsaved-changes question about it is asked.
+    read: Option<GraphDocument>,
+    /// Whether that question was asked (it is asked once no other question is up).
+    asked: bool,
 }
 
 impl Loading {
@@ -36,6 +48,7 @@ impl Loading {
         bytes: u64,
         registry: Arc<Registry>,
         options: LoadOptions,
+        version_at_start: u64,
     ) -> Option<Self> {
         let (report, result) = channel();
         let file = path.to_path_buf();
@@ -50,19 +63,32 @@ impl Loading {
             bytes,
             since: Instant::now(),
             result,
+            version_at_start,
+            untitled_copy: false,
+            read: None,
+            asked: false,
         })
     }
+}
+
+/// The size of `path` when it is large enough to be read off the UI thread on the desktop
+/// ([`LARGE_GRAPH_BYTES`]), else `None` (and always in the browser).
+pub(super) fn large_file(path: &Path) -> Option<u64> {
+    if cfg!(target_arch = "wasm32") {
+        return None;
+    }
+    let bytes = std::fs::metadata(path).ok()?.len();
+    (bytes >= LARGE_GRAPH_BYTES).then_some(bytes)
 }
 
 impl EditorApp {
     /// The size of `path` when it is read off the UI thread when opened (a large file on the
     /// desktop), else `None`.
     pub(super) fn reads_in_background(&self, path: &Path) -> Option<u64> {
-        if self.page.is_some() || cfg!(target_arch = "wasm32") {
+        if self.page.is_some() {
             return None;
         }
-        let bytes = std::fs::metadata(path).ok()?.len();
-        (bytes >= LARGE_GRAPH_BYTES).then_some(bytes)
+        large_file(path)
     }
 
     /// Starts reading a large file (`bytes` long) on a thread; `false` when it could not start
@@ -73,7 +99,8 @@ impl EditorApp {
         bytes: u64,
         options: LoadOptions,
     ) -> bool {
-        match Loading::start(path, bytes, self.registry.clone(), options) {
+        let version = self.doc.version();
+        match Loading::start(path, bytes, self.registry.clone(), options, version) {
             Some(loading) => {
                 self.message = format!("opening {} ({})…", path.display(), megabytes(bytes));
                 self.loading = Some(loading);
@@ -83,35 +110,85 @@ impl EditorApp {
         }
     }
 
-    /// The file being read off the UI thread, if any: its path.
+    /// Like [`EditorApp::open_in_background`] for the start-up file: the window opens at once
+    /// on an empty document, and the file, an untitled copy when `untitled_copy` (a shipped
+    /// example), replaces it when read.
+    pub(super) fn open_at_start_in_background(
+        &mut self,
+        path: &Path,
+        bytes: u64,
+        options: LoadOptions,
+        untitled_copy: bool,
+    ) -> bool {
+        let started = self.open_in_background(path, bytes, options);
+        if let Some(loading) = &mut self.loading {
+            loading.untitled_copy = untitled_copy;
+        }
+        started
+    }
+
+    /// The file being read off the UI thread (or read and waiting for the unsaved-changes
+    /// question's answer), if any: its path.
     pub fn loading(&self) -> Option<&Path> {
         self.loading.as_ref().map(|l| l.path.as_path())
     }
 
-    /// Called once a frame: opens the file read off the UI thread once it is read, else shows
-    /// the notice and asks for another frame.
-    pub(super) fn poll_loading(&mut self, ctx: &egui::Context) {
-        let Some(loading) = &self.loading else { return };
-        match loading.result.try_recv() {
+    /// Waits (up to `timeout`) for the file being read and opens it as the next frame would (the
+    /// screenshot and benchmark modes, tests). Returns whether a file was still being read after
+    /// the timeout.
+    pub fn wait_for_loading(&mut self, timeout: Duration) -> bool {
+        let Some(loading) = &self.loading else {
+            return false;
+        };
+        if loading.read.is_some() {
+            return false;
+        }
+        match loading.result.recv_timeout(timeout) {
             Ok(result) => {
-                let Some(loading) = self.loading.take() else {
-                    return;
-                };
-                let path = loading.path;
-                match result {
-                    Ok(d) => {
-                        self.replace_doc(d);
-                        self.settings.add_recent(&path);
-                        self.message = format!(
-                            "opened {} ({}, read in {:.1} s)",
-                            path.display(),
-                            megabytes(loading.bytes),
-                            loading.since.elapsed().as_secs_f64()
-                        );
-                    }
-                    Err(e) => self.fail_load(&path, &e),
-                }
+                self.file_read(result);
+                false
             }
+            Err(RecvTimeoutError::Timeout) => true,
+            Err(RecvTimeoutError::Disconnected) => {
+                self.reader_stopped();
+                false
+            }
+        }
+    }
+
+    /// Opens the file the unsaved-changes question was about ([`Replace::Loaded`]), when it is
+    /// still the one read.
+    pub(super) fn open_read(&mut self, path: &Path) {
+        let Some(mut loading) = self.loading.take() else {
+            return;
+        };
+        match loading.read.take() {
+            Some(d) if loading.path == path => self.install_read(loading, d),
+            _ => self.loading = Some(loading),
+        }
+    }
+
+    /// Called once a frame: opens the file read off the UI thread once it is read (asking first
+    /// when the document was edited meanwhile), else shows the notice and asks for another frame.
+    pub(super) fn poll_loading(&mut self, ctx: &egui::Context) {
+        let Some(loading) = &mut self.loading else {
+            return;
+        };
+        if loading.read.is_some() {
+            let question_up = self.unsaved_question.is_some() || self.after_save.is_some();
+            if !loading.asked && !question_up {
+                loading.asked = true;
+                self.unsaved_question = Some(Replace::Loaded(loading.path.clone()));
+            } else if loading.asked && !question_up {
+                // Cancelled: the edited document stays, the file read is let go.
+                let path = loading.path.clone();
+                self.loading = None;
+                self.message = format!("{} was not opened: the document stays", path.display());
+            }
+            return;
+        }
+        match loading.result.try_recv() {
+            Ok(result) => self.file_read(result),
             Err(TryRecvError::Empty) => {
                 let path = &loading.path;
                 let name = path.file_name().map_or_else(
@@ -122,10 +199,59 @@ impl EditorApp {
                 crate::opening_notice::show(ctx, &title, crate::opening_notice::DETAIL);
                 ctx.request_repaint_after(std::time::Duration::from_millis(50));
             }
-            Err(TryRecvError::Disconnected) => {
-                let path = self.loading.take().map(|l| l.path).unwrap_or_default();
-                self.fail_load(&path, "the file could not be read (its reader stopped)");
-            }
+            Err(TryRecvError::Disconnected) => self.reader_stopped(),
         }
+    }
+
+    /// The reader's answer: the document opens, or waits for the unsaved-changes question when
+    /// the document was edited while the file was read; a failure shows its diagnostics.
+    fn file_read(&mut self, result: Result<GraphDocument, String>) {
+        let Some(mut loading) = self.loading.take() else {
+            return;
+        };
+        match result {
+            Ok(d) => {
+                let d = if loading.untitled_copy {
+                    d.into_untitled_copy()
+                } else {
+                    d
+                };
+                if self.doc.is_dirty() && self.doc.version() != loading.version_at_start {
+                    loading.read = Some(d);
+                    self.message = format!(
+                        "{} is read: the document was changed meanwhile",
+                        loading.path.display()
+                    );
+                    self.loading = Some(loading);
+                } else {
+                    self.install_read(loading, d);
+                }
+            }
+            Err(e) => self.fail_load(&loading.path, &e),
+        }
+    }
+
+    /// Replaces the document by the file read.
+    fn install_read(&mut self, loading: Loading, d: GraphDocument) {
+        self.replace_doc(d);
+        if loading.untitled_copy {
+            self.message = format!(
+                "opened a copy of the example {}: saving asks where",
+                loading.path.display()
+            );
+            return;
+        }
+        self.settings.add_recent(&loading.path);
+        self.message = format!(
+            "opened {} ({}, read in {:.1} s)",
+            loading.path.display(),
+            megabytes(loading.bytes),
+            loading.since.elapsed().as_secs_f64()
+        );
+    }
+
+    fn reader_stopped(&mut self) {
+        let path = self.loading.take().map(|l| l.path).unwrap_or_default();
+        self.fail_load(&path, "the file could not be read (its reader stopped)");
     }
 }

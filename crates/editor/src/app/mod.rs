@@ -212,13 +212,20 @@ impl EditorApp {
             Some(f) => (Some(f.as_path()), is_example(&options.examples_dir, f)),
             None => (torus.is_file().then_some(torus.as_path()), true),
         };
+        let start_options = |path: &std::path::Path| {
+            let mut options = cnets_host::document_options(Some(path), &library_dirs);
+            // Cluster files the document was allowed to read (its per-document settings).
+            options.allow_read.extend(settings.allowed_reads(path));
+            options
+        };
+        // A large start-up file is read off the UI thread: the window opens at once, on an empty
+        // document the file replaces when it is read.
+        let read_later = start
+            .and_then(|path| Some((path, loading::large_file(path)?)))
+            .map(|(path, bytes)| (path, bytes, start_options(path)));
         let doc = match start {
-            Some(path) => match GraphDocument::open_with(path, &registry, &{
-                let mut options = cnets_host::document_options(Some(path), &library_dirs);
-                // Cluster files the document was allowed to read (its per-document settings).
-                options.allow_read.extend(settings.allowed_reads(path));
-                options
-            }) {
+            Some(_) if read_later.is_some() => Some(GraphDocument::new(registry.clone())),
+            Some(path) => match GraphDocument::open_with(path, &registry, &start_options(path)) {
                 Ok(d) if copy => Some(d.into_untitled_copy()),
                 Ok(d) => Some(d),
                 Err(e) => {
@@ -293,6 +300,17 @@ impl EditorApp {
         }
         if let Some(limit) = app.settings.planarity_limit() {
             app.viewport.options.set_planarity_limit(limit);
+        }
+        if let Some((path, bytes, options)) = read_later
+            && !app.open_at_start_in_background(path, bytes, options.clone(), copy)
+        {
+            // No thread to read it on: read it now.
+            let loaded = GraphDocument::open_with(path, &app.registry, &options);
+            match loaded {
+                Ok(d) if copy => app.replace_doc(d.into_untitled_copy()),
+                Ok(d) => app.replace_doc(d),
+                Err(e) => app.load_failure = Some(LoadFailure::new(path, &e)),
+            }
         }
         app.watch.changed(&app.doc.graph);
         app.submit_if_changed();

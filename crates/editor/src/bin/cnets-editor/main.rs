@@ -324,6 +324,10 @@ fn main() -> anyhow::Result<()> {
             if !test_mode && let Some(inbox) = cnets_editor::instance::listen(&config_dir, wake) {
                 app.set_inbox(inbox);
             }
+            if test_mode {
+                // The screenshot, benchmark and scripted modes start on the file given, read.
+                app.wait_for_loading(Duration::from_secs(600));
+            }
             Ok(Box::new(Window {
                 app,
                 screenshot: args.screenshot.clone(),
