@@ -549,6 +549,37 @@ for (const name of gallery) {
   await page.close();
 }
 
+// 12. A graph dropped on a design with unsaved changes: the unsaved-changes question first
+//     (Escape answers Cancel: the design stays, the dropped graph is let go).
+{
+  const { page } = await openAny(`${base}/index.html?example=torus-monge`);
+  await drag(page);
+  await settled(page);
+  const dirty = await state(page);
+  assert.ok(dirty.title.endsWith("*"), `the design has unsaved changes: ${dirty.title}`);
+  const [x0, y0, x1, y1] = dirty.canvas;
+  await page.evaluate(([text, x, y]) => {
+    const transfer = new DataTransfer();
+    transfer.items.add(new File([text], "other.ron"));
+    document.getElementById("cnets").dispatchEvent(new DragEvent("drop",
+      { dataTransfer: transfer, bubbles: true, cancelable: true, clientX: x, clientY: y }));
+  }, [setValue(torusRon, "columns", 12), (x0 + x1) / 2, (y0 + y1) / 2]);
+  const asked = await until(page, "the unsaved-changes question", (t) => t.question !== null, 20_000);
+  await page.screenshot({ path: path.join(out, "12-drop-on-unsaved.png") });
+  assert.equal(asked.question, "Opening other.ron");
+  assert.equal(asked.title, dirty.title, "not replaced before the answer");
+  await page.keyboard.press("Escape");
+  const kept = await until(page, "the question answered", (t) => t.question === null, 20_000);
+  await settled(page);
+  const after = await state(page);
+  assert.equal(after.title, dirty.title, "Cancel keeps the design");
+  assert.equal(after.vertices, dirty.vertices, "and its mesh");
+  figures.drop_on_unsaved = { question: asked.question, kept: kept.title };
+  console.log(`drop on unsaved work: ${JSON.stringify(figures.drop_on_unsaved)}`);
+  noProblems("drop on unsaved work");
+  await page.close();
+}
+
 await context.close();
 fs.rmSync(userData, { recursive: true, force: true });
 fs.writeFileSync(path.join(out, "figures.json"), JSON.stringify(figures, null, 2) + "\n");

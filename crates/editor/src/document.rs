@@ -507,6 +507,11 @@ impl GraphDocument {
         self.dirty
     }
 
+    /// Marks the document as saved where it has no path (the web page's download of its text).
+    pub fn mark_saved(&mut self) {
+        self.dirty = false;
+    }
+
     /// Marks the document as changed (e.g. after a restore from a recovery file).
     pub fn mark_dirty(&mut self) {
         self.dirty = true;

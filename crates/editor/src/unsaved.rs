@@ -31,7 +31,7 @@ impl Replace {
             Self::New => "Starting a new graph".into(),
             Self::Open(p) => format!("Opening {}", name(p)),
             Self::Example(p) => format!("Opening the example {}", name(p)),
-            Self::Loaded(p) => format!("Opening {} (now read)", name(p)),
+            Self::Loaded(p) => format!("Opening {}", name(p)),
             Self::Quit => "Closing the editor".into(),
         }
     }

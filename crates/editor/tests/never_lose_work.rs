@@ -364,3 +364,98 @@ fn a_file_that_fails_to_load_shows_its_diagnostics_and_keeps_the_document() {
     );
     let _ = ratio(&h);
 }
+
+/// The editor as the web page runs it (its requests queued for the page).
+fn in_page(name: &str) -> H {
+    let mut h = harness(name);
+    h.state_mut().page = Some(cnets_editor::page::Page::default());
+    h
+}
+
+/// The `.ron` downloads the page was asked for: (name, text).
+fn downloads(h: &mut H) -> Vec<(String, String)> {
+    let page = h.state_mut().page.as_mut().expect("in a page");
+    page.take()
+        .into_iter()
+        .filter_map(|r| match r {
+            cnets_editor::page::PageRequest::Download { name, bytes } => {
+                Some((name, String::from_utf8(bytes).unwrap()))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_graph_dropped_on_the_page_asks_before_it_replaces_unsaved_work() {
+    let other = std::fs::read_to_string(common::graphs_dir().join("editor-default.ron"))
+        .unwrap()
+        .replace("0.5", "0.55");
+    // Nothing unsaved: the dropped graph opens at once, named by its file.
+    let mut h = in_page("page-drop-clean");
+    assert!(h.state_mut().receive_text(&other, Path::new("dropped.ron")));
+    assert_eq!(h.state().doc.name.as_deref(), Some("dropped.ron"));
+    assert_eq!(h.state().message, "opened dropped.ron");
+    // Unsaved work: the question first; Cancel keeps the work and lets the dropped graph go.
+    let mut h = in_page("page-drop-cancel");
+    make_dirty(&mut h, 0.31);
+    let mine = h.state().doc.to_ron();
+    assert!(h.state_mut().receive_text(&other, Path::new("dropped.ron")));
+    assert_eq!(h.state().doc.to_ron(), mine, "not replaced yet");
+    h.run_steps(2);
+    assert_eq!(
+        h.state().unsaved_question,
+        Some(Replace::Loaded(PathBuf::from("dropped.ron")))
+    );
+    h.get_by_label("Cancel").click();
+    h.run_steps(3);
+    assert_eq!(h.state().doc.to_ron(), mine, "the work stays");
+    assert_eq!(h.state().waiting(), None, "the dropped graph is let go");
+    assert!(
+        h.state().message.contains("was not opened"),
+        "{}",
+        h.state().message
+    );
+    // Save: the work is downloaded (the page's save), then the dropped graph opens.
+    assert!(h.state_mut().receive_text(&other, Path::new("dropped.ron")));
+    h.run_steps(2);
+    h.get_by_label("Save").click();
+    h.run_steps(3);
+    let saved = downloads(&mut h);
+    assert_eq!(saved.len(), 1, "one download");
+    assert_eq!(saved[0].1, mine, "the work as it was");
+    assert_eq!(h.state().doc.name.as_deref(), Some("dropped.ron"));
+    assert!(!h.state().doc.is_dirty());
+    // A file that does not load: its diagnostics, the document stays (no question).
+    make_dirty(&mut h, 0.32);
+    let mine = h.state().doc.to_ron();
+    assert!(
+        !h.state_mut()
+            .receive_text("(version: 1, nodes: {", Path::new("bad.ron"))
+    );
+    h.run_steps(2);
+    assert_eq!(h.state().unsaved_question, None);
+    assert!(h.state().load_failure.is_some());
+    assert_eq!(h.state().doc.to_ron(), mine);
+}
+
+#[test]
+fn save_in_the_pages_question_downloads_and_goes_on() {
+    // File ▸ New in the page with unsaved work: Save downloads the design, then the new graph.
+    let mut h = in_page("page-new-save");
+    make_dirty(&mut h, 0.29);
+    let mine = h.state().doc.to_ron();
+    h.state_mut().run(MenuAction::New);
+    h.run_steps(2);
+    h.get_by_label("Save").click();
+    h.run_steps(3);
+    assert_eq!(
+        downloads(&mut h)
+            .into_iter()
+            .map(|d| d.1)
+            .collect::<Vec<_>>(),
+        [mine]
+    );
+    assert_eq!(h.state().doc.graph.node_count(), 0, "the new graph");
+    assert!(!h.state().doc.is_dirty());
+}

@@ -580,7 +580,8 @@ fn a_document_edited_while_a_large_file_is_read_is_not_replaced_without_asking()
         h.get_by_label(answer).click();
         h.run_steps(3);
         assert_eq!(h.state().unsaved_question, None);
-        assert_eq!(h.state().loading(), None, "{answer}: nothing left waiting");
+        assert_eq!(h.state().loading(), None, "{answer}: nothing left reading");
+        assert_eq!(h.state().waiting(), None, "{answer}: nothing left waiting");
         if opens {
             assert_eq!(h.state().doc.path.as_deref(), Some(big.as_path()));
             assert!(h.state().doc.graph.node("numbers").is_some());

@@ -234,12 +234,10 @@ impl WebApp {
                 self.opening.start_reading(token, &name, len, now_ms());
             } else if name.ends_with(".ron") {
                 let text = String::from_utf8_lossy(&bytes).into_owned();
-                // The latest file wins over a large one still being read.
+                // The latest file wins over a large one still being read; unsaved changes are
+                // asked about first.
                 self.opening.cancel_reading();
-                if self.app.open_text(&text, Path::new(&name)) {
-                    self.app.doc.name = Some(name.clone());
-                    self.app.message = format!("opened {name}");
-                }
+                self.app.receive_text(&text, Path::new(&name));
             } else {
                 let len = bytes.len();
                 // The nodes that import it read it in the worker (the page keeps a copy for
@@ -272,10 +270,7 @@ impl WebApp {
                 let library = &self.app.library.dirs;
                 crate::opening::document_of(parsed, &origin, &self.app.registry, library)
             });
-            if self.app.open_loaded(loaded, &origin) {
-                self.app.doc.name = Some(name.clone());
-                self.app.message = format!("opened {name}");
-            }
+            self.app.receive_document(loaded, &origin);
             if let Some(large) = self.opening.last_large.as_mut() {
                 large.page_ms = Some(now_ms() - started);
             }
@@ -393,6 +388,14 @@ impl WebApp {
             errors.push(&JsValue::from(e.as_str()));
         }
         set("view_errors", errors.into());
+        // The unsaved-changes question being asked: what it is about ("Opening x.ron"), or null.
+        set(
+            "question",
+            self.app
+                .unsaved_question
+                .as_ref()
+                .map_or(JsValue::NULL, |q| q.describe().into()),
+        );
         set(
             "load_failure",
             self.app

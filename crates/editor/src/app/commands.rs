@@ -58,10 +58,18 @@ impl EditorApp {
                 let ron = self.doc.to_ron();
                 self.recovery.clear();
                 self.message = format!("downloaded {name}.ron");
-                crate::page::PageRequest::Download {
-                    name: format!("{name}.ron"),
-                    bytes: ron.into_bytes(),
+                // Saved (as a download): the unsaved-changes question's "Save" goes on.
+                self.doc.mark_saved();
+                if let Some(page) = &mut self.page {
+                    page.requests.push(crate::page::PageRequest::Download {
+                        name: format!("{name}.ron"),
+                        bytes: ron.into_bytes(),
+                    });
                 }
+                if let Some(r) = self.after_save.take() {
+                    self.perform(r);
+                }
+                return true;
             }
             MenuAction::CopyLink => crate::page::PageRequest::CopyLink {
                 ron: self.doc.to_ron(),

@@ -90,7 +90,7 @@ impl EditorApp {
             Replace::Example(p) => {
                 self.open_example(&p);
             }
-            Replace::Loaded(p) => self.open_read(&p),
+            Replace::Loaded(p) => self.open_waiting(&p),
             Replace::Quit => {
                 self.close_confirmed = true;
                 self.quit = true;
@@ -202,10 +202,9 @@ impl EditorApp {
         self.open_loaded(loaded, origin)
     }
 
-    /// Opens a document read elsewhere (the web page: a large file read by its worker) as
-    /// [`EditorApp::open_text`] opens text: untitled, or the diagnostics shown when it did not
-    /// load. Returns whether it opened.
-    pub fn open_loaded(&mut self, loaded: Result<GraphDocument, String>, origin: &Path) -> bool {
+    /// Opens a loaded document as [`EditorApp::open_text`] opens text: untitled, or the
+    /// diagnostics shown when it did not load. Returns whether it opened.
+    fn open_loaded(&mut self, loaded: Result<GraphDocument, String>, origin: &Path) -> bool {
         let name = origin.display().to_string();
         match loaded {
             Ok(mut d) => {

@@ -209,6 +209,7 @@ impl EditorApp {
             self.request(Replace::Open(p));
         }
         self.poll_loading(&ctx);
+        self.poll_waiting();
         self.show_unsaved_question(&ctx);
         if let Some(f) = &mut self.load_failure
             && !f.show(&ctx)

@@ -2,7 +2,7 @@
 //! to the window) are read on a thread of their own: parsing 35 MB takes a second or two, and the
 //! window keeps answering meanwhile under a notice. The document is replaced when the file is
 //! read; a document opened meanwhile wins (the late one is dropped), and a document edited
-//! meanwhile is not replaced without the unsaved-changes question. The start-up file is read the
+//! meanwhile is not replaced without the unsaved-changes question (`arrivals`). The start-up file is read the
 //! same way: the window opens at once. Files are read in the frame
 //! they are opened below [`LARGE_GRAPH_BYTES`], and always in the browser (no threads; its page
 //! has its evaluation worker read large files instead).
@@ -16,15 +16,15 @@ use cnets_engine::file::LoadOptions;
 use web_time::{Duration, Instant};
 
 use super::EditorApp;
+use super::arrivals::Arrived;
 use crate::document::GraphDocument;
 use crate::opening_notice::megabytes;
-use crate::unsaved::Replace;
 
 /// A graph file of at least this many bytes is read off the UI thread (4 MiB: about a quarter
 /// of a second of parsing).
 pub const LARGE_GRAPH_BYTES: u64 = 4 << 20;
 
-/// A large file being read, or read and waiting for the designer's answer.
+/// A large file being read.
 pub(crate) struct Loading {
     path: PathBuf,
     bytes: u64,
@@ -35,10 +35,6 @@ pub(crate) struct Loading {
     version_at_start: u64,
     /// Opens as an untitled copy (a shipped example given at start-up).
     untitled_copy: bool,
-    /// The read document, held while the unsaved-changes question about it is asked.
-    read: Option<GraphDocument>,
-    /// Whether that question was asked (it is asked once no other question is up).
-    asked: bool,
 }
 
 impl Loading {
@@ -65,8 +61,6 @@ impl Loading {
             result,
             version_at_start,
             untitled_copy: false,
-            read: None,
-            asked: false,
         })
     }
 }
@@ -127,8 +121,7 @@ impl EditorApp {
         started
     }
 
-    /// The file being read off the UI thread (or read and waiting for the unsaved-changes
-    /// question's answer), if any: its path.
+    /// The file being read off the UI thread, if any: its path.
     pub fn loading(&self) -> Option<&Path> {
         self.loading.as_ref().map(|l| l.path.as_path())
     }
@@ -140,9 +133,6 @@ impl EditorApp {
         let Some(loading) = &self.loading else {
             return false;
         };
-        if loading.read.is_some() {
-            return false;
-        }
         match loading.result.recv_timeout(timeout) {
             Ok(result) => {
                 self.file_read(result);
@@ -156,37 +146,12 @@ impl EditorApp {
         }
     }
 
-    /// Opens the file the unsaved-changes question was about ([`Replace::Loaded`]), when it is
-    /// still the one read.
-    pub(super) fn open_read(&mut self, path: &Path) {
-        let Some(mut loading) = self.loading.take() else {
-            return;
-        };
-        match loading.read.take() {
-            Some(d) if loading.path == path => self.install_read(loading, d),
-            _ => self.loading = Some(loading),
-        }
-    }
-
     /// Called once a frame: opens the file read off the UI thread once it is read (asking first
     /// when the document was edited meanwhile), else shows the notice and asks for another frame.
     pub(super) fn poll_loading(&mut self, ctx: &egui::Context) {
-        let Some(loading) = &mut self.loading else {
+        let Some(loading) = &self.loading else {
             return;
         };
-        if loading.read.is_some() {
-            let question_up = self.unsaved_question.is_some() || self.after_save.is_some();
-            if !loading.asked && !question_up {
-                loading.asked = true;
-                self.unsaved_question = Some(Replace::Loaded(loading.path.clone()));
-            } else if loading.asked && !question_up {
-                // Cancelled: the edited document stays, the file read is let go.
-                let path = loading.path.clone();
-                self.loading = None;
-                self.message = format!("{} was not opened: the document stays", path.display());
-            }
-            return;
-        }
         match loading.result.try_recv() {
             Ok(result) => self.file_read(result),
             Err(TryRecvError::Empty) => {
@@ -203,51 +168,43 @@ impl EditorApp {
         }
     }
 
-    /// The reader's answer: the document opens, or waits for the unsaved-changes question when
-    /// the document was edited while the file was read; a failure shows its diagnostics.
+    /// The reader's answer: the document opens (through [`EditorApp::open_arrived`]: asked about
+    /// first when the document was edited while the file was read), or its diagnostics show.
     fn file_read(&mut self, result: Result<GraphDocument, String>) {
-        let Some(mut loading) = self.loading.take() else {
+        let Some(loading) = self.loading.take() else {
             return;
         };
         match result {
-            Ok(d) => {
-                let d = if loading.untitled_copy {
-                    d.into_untitled_copy()
-                } else {
-                    d
+            Ok(doc) if loading.untitled_copy => {
+                let opened = format!(
+                    "opened a copy of the example {}: saving asks where",
+                    loading.path.display()
+                );
+                let arrived = Arrived {
+                    path: loading.path,
+                    doc: doc.into_untitled_copy(),
+                    opened,
+                    recent: false,
                 };
-                if self.doc.is_dirty() && self.doc.version() != loading.version_at_start {
-                    loading.read = Some(d);
-                    self.message = format!(
-                        "{} is read: the document was changed meanwhile",
-                        loading.path.display()
-                    );
-                    self.loading = Some(loading);
-                } else {
-                    self.install_read(loading, d);
-                }
+                self.open_arrived(arrived, Some(loading.version_at_start));
+            }
+            Ok(doc) => {
+                let opened = format!(
+                    "opened {} ({}, read in {:.1} s)",
+                    loading.path.display(),
+                    megabytes(loading.bytes),
+                    loading.since.elapsed().as_secs_f64()
+                );
+                let arrived = Arrived {
+                    path: loading.path,
+                    doc,
+                    opened,
+                    recent: true,
+                };
+                self.open_arrived(arrived, Some(loading.version_at_start));
             }
             Err(e) => self.fail_load(&loading.path, &e),
         }
-    }
-
-    /// Replaces the document by the file read.
-    fn install_read(&mut self, loading: Loading, d: GraphDocument) {
-        self.replace_doc(d);
-        if loading.untitled_copy {
-            self.message = format!(
-                "opened a copy of the example {}: saving asks where",
-                loading.path.display()
-            );
-            return;
-        }
-        self.settings.add_recent(&loading.path);
-        self.message = format!(
-            "opened {} ({}, read in {:.1} s)",
-            loading.path.display(),
-            megabytes(loading.bytes),
-            loading.since.elapsed().as_secs_f64()
-        );
     }
 
     fn reader_stopped(&mut self) {

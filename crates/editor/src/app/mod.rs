@@ -4,6 +4,7 @@
 //! recovery), `commands` (menu actions, shortcuts, edits, UI requests), `clusters`, `worker` (the
 //! evaluation glue), `layout` (one frame's panels) and `dialogs`; this file holds the state.
 
+mod arrivals;
 mod clusters;
 mod commands;
 mod dialogs;
@@ -14,6 +15,7 @@ mod loading;
 mod reads;
 mod worker;
 
+pub use arrivals::Arrived;
 pub use reads::ReadPrompt;
 
 pub use files::is_example;
@@ -143,6 +145,8 @@ pub struct EditorApp {
     offer_restore: Option<Recovered>,
     /// A large file being read off the UI thread (`loading`).
     loading: Option<loading::Loading>,
+    /// A document read elsewhere, waiting for the unsaved-changes question (`arrivals`).
+    waiting: Option<arrivals::Waiting>,
     dialog: Option<FileDialog>,
     clipboard: Clipboard,
     gpu: Option<GpuTarget>,
@@ -269,6 +273,7 @@ impl EditorApp {
             recovery,
             offer_restore,
             loading: None,
+            waiting: None,
             dialog: None,
             clipboard: Clipboard::default(),
             gpu: options.gpu,
@@ -352,8 +357,10 @@ impl EditorApp {
     }
 
     fn replace_doc(&mut self, doc: GraphDocument) {
-        // A file still being read no longer opens: this document came after it.
+        // A file still being read, or one read and waiting, no longer opens: this document came
+        // after it.
         self.loading = None;
+        self.waiting = None;
         let previous = self.doc.generation();
         self.doc = doc;
         // What this document may read besides its folder (the editor's per-document settings).
