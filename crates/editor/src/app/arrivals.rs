@@ -54,9 +54,7 @@ impl EditorApp {
     /// [`EditorApp::open_arrived`] when it loads (untitled, named by the file), else the
     /// diagnostics are shown and the document stays. Returns whether it loaded.
     pub fn receive_text(&mut self, text: &str, origin: &Path) -> bool {
-        let options = cnets_host::document_options(Some(origin), &self.library.dirs);
-        let name = origin.display().to_string();
-        let loaded = GraphDocument::from_text_with(text, &name, None, &self.registry, &options);
+        let loaded = self.read_text(text, origin);
         self.receive_document(loaded, origin)
     }
 

@@ -196,10 +196,16 @@ impl EditorApp {
     /// against its folder). When it does not load, the document stays and the diagnostics are
     /// shown. Returns whether it opened.
     pub fn open_text(&mut self, text: &str, origin: &Path) -> bool {
+        let loaded = self.read_text(text, origin);
+        self.open_loaded(loaded, origin)
+    }
+
+    /// Reads graph text that came from `origin` (its relative imports resolve against its
+    /// folder) with the library's clusters.
+    pub(super) fn read_text(&self, text: &str, origin: &Path) -> Result<GraphDocument, String> {
         let options = cnets_host::document_options(Some(origin), &self.library.dirs);
         let name = origin.display().to_string();
-        let loaded = GraphDocument::from_text_with(text, &name, None, &self.registry, &options);
-        self.open_loaded(loaded, origin)
+        GraphDocument::from_text_with(text, &name, None, &self.registry, &options)
     }
 
     /// Opens a loaded document as [`EditorApp::open_text`] opens text: untitled, or the
