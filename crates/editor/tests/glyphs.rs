@@ -71,6 +71,8 @@ fn every_number_glyph_quad_is_at_least_a_pixel_tall_at_the_smallest_zoom() {
 fn every_character_of_the_ui_strings_has_a_glyph() {
     let sources = [
         include_str!("../src/app/mod.rs"),
+        include_str!("../src/app/arrivals.rs"),
+        include_str!("../src/app/loading.rs"),
         include_str!("../src/app/clusters.rs"),
         include_str!("../src/app/commands.rs"),
         include_str!("../src/app/dialogs.rs"),
@@ -79,7 +81,10 @@ fn every_character_of_the_ui_strings_has_a_glyph() {
         include_str!("../src/app/layout.rs"),
         include_str!("../src/app/reads.rs"),
         include_str!("../src/app/worker.rs"),
-        include_str!("../src/canvas.rs"),
+        include_str!("../src/canvas/mod.rs"),
+        include_str!("../src/canvas/viewer.rs"),
+        include_str!("../src/canvas/pins.rs"),
+        include_str!("../src/canvas/action.rs"),
         include_str!("../src/menus.rs"),
         include_str!("../src/palette/mod.rs"),
         include_str!("../src/palette/names.rs"),
