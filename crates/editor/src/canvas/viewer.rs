@@ -82,7 +82,40 @@ pub(super) struct Viewer<'a> {
     pub(super) chosen: Vec<String>,
 }
 
+/// The graph node id a snarl node shows (empty when the snarl has no such node).
+fn node_id(snarl: &Snarl<CanvasNode>, node: NodeId) -> String {
+    snarl
+        .get_node(node)
+        .map(|n| n.id.clone())
+        .unwrap_or_default()
+}
+
 impl Viewer<'_> {
+    /// A pin that records where it is drawn, under `key`.
+    fn pin(&self, key: PinKey, info: PinInfo) -> RecordingPin {
+        RecordingPin {
+            info,
+            key,
+            sink: self.pins.clone(),
+        }
+    }
+
+    /// The graph node id and port name of a snarl pin (an input pin when `input`), if both
+    /// still exist.
+    fn pin_port(
+        &self,
+        snarl: &Snarl<CanvasNode>,
+        node: NodeId,
+        input: bool,
+        index: usize,
+    ) -> Option<(String, String)> {
+        let id = snarl.get_node(node)?.id.clone();
+        let def = &self.graph.node(&id)?.def;
+        let ports = if input { &def.inputs } else { &def.outputs };
+        let name = ports.get(index)?.name.to_string();
+        Some((id, name))
+    }
+
     fn names(
         &self,
         snarl: &Snarl<CanvasNode>,
@@ -341,24 +374,14 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<CanvasNode>,
     ) -> RecordingPin {
-        let id = snarl
-            .get_node(pin.id.node)
-            .map(|n| n.id.clone())
-            .unwrap_or_default();
+        let id = node_id(snarl, pin.id.node);
         let key = (id.clone(), true, pin.id.input);
-        let Some(instance) = self.graph.node(&id) else {
-            return RecordingPin {
-                info: PinInfo::circle(),
-                key,
-                sink: self.pins.clone(),
-            };
-        };
-        let Some(port) = instance.def.inputs.get(pin.id.input) else {
-            return RecordingPin {
-                info: PinInfo::circle(),
-                key,
-                sink: self.pins.clone(),
-            };
+        let Some((instance, port)) = self
+            .graph
+            .node(&id)
+            .and_then(|n| Some((n, n.def.inputs.get(pin.id.input)?)))
+        else {
+            return self.pin(key, PinInfo::circle());
         };
         let wired = !pin.remotes.is_empty();
         let missing = !wired && port.required() && instance.value(pin.id.input).is_none();
@@ -451,11 +474,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 }
             }
         });
-        RecordingPin {
-            info: pin_info(port),
-            key,
-            sink: self.pins.clone(),
-        }
+        self.pin(key, pin_info(port))
     }
 
     #[allow(refining_impl_trait)]
@@ -465,21 +484,14 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<CanvasNode>,
     ) -> RecordingPin {
-        let id = snarl
-            .get_node(pin.id.node)
-            .map(|n| n.id.clone())
-            .unwrap_or_default();
+        let id = node_id(snarl, pin.id.node);
         let key = (id.clone(), false, pin.id.output);
         let Some(port) = self
             .graph
             .node(&id)
             .and_then(|n| n.def.outputs.get(pin.id.output))
         else {
-            return RecordingPin {
-                info: PinInfo::circle(),
-                key,
-                sink: self.pins.clone(),
-            };
+            return self.pin(key, PinInfo::circle());
         };
         let summary = match self.statuses.get(&id) {
             Some(NodeStatus::Ok { outputs, .. }) => outputs.get(pin.id.output).cloned(),
@@ -523,11 +535,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 });
             }
         });
-        RecordingPin {
-            info: pin_info(port),
-            key,
-            sink: self.pins.clone(),
-        }
+        self.pin(key, pin_info(port))
     }
 
     fn has_body(&mut self, node: &CanvasNode) -> bool {
@@ -735,34 +743,16 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
     }
 
     fn drop_inputs(&mut self, pin: &InPin, snarl: &mut Snarl<CanvasNode>) {
-        let Some(id) = snarl.get_node(pin.id.node).map(|n| n.id.clone()) else {
-            return;
-        };
-        if let Some(port) = self
-            .graph
-            .node(&id)
-            .and_then(|n| n.def.inputs.get(pin.id.input))
-        {
-            self.actions.push(CanvasAction::Edit(Edit::DropInputs {
-                node: id,
-                input: port.name.to_string(),
-            }));
+        if let Some((node, input)) = self.pin_port(snarl, pin.id.node, true, pin.id.input) {
+            self.actions
+                .push(CanvasAction::Edit(Edit::DropInputs { node, input }));
         }
     }
 
     fn drop_outputs(&mut self, pin: &OutPin, snarl: &mut Snarl<CanvasNode>) {
-        let Some(id) = snarl.get_node(pin.id.node).map(|n| n.id.clone()) else {
-            return;
-        };
-        if let Some(port) = self
-            .graph
-            .node(&id)
-            .and_then(|n| n.def.outputs.get(pin.id.output))
-        {
-            self.actions.push(CanvasAction::Edit(Edit::DropOutputs {
-                node: id,
-                output: port.name.to_string(),
-            }));
+        if let Some((node, output)) = self.pin_port(snarl, pin.id.node, false, pin.id.output) {
+            self.actions
+                .push(CanvasAction::Edit(Edit::DropOutputs { node, output }));
         }
     }
 
