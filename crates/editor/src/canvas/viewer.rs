@@ -82,12 +82,9 @@ pub(super) struct Viewer<'a> {
     pub(super) chosen: Vec<String>,
 }
 
-/// The graph node id a snarl node shows (empty when the snarl has no such node).
-fn node_id(snarl: &Snarl<CanvasNode>, node: NodeId) -> String {
-    snarl
-        .get_node(node)
-        .map(|n| n.id.clone())
-        .unwrap_or_default()
+/// The graph node id a snarl node shows, if the snarl has that node.
+fn node_id(snarl: &Snarl<CanvasNode>, node: NodeId) -> Option<String> {
+    snarl.get_node(node).map(|n| n.id.clone())
 }
 
 impl Viewer<'_> {
@@ -109,7 +106,7 @@ impl Viewer<'_> {
         input: bool,
         index: usize,
     ) -> Option<(String, String)> {
-        let id = snarl.get_node(node)?.id.clone();
+        let id = node_id(snarl, node)?;
         let def = &self.graph.node(&id)?.def;
         let ports = if input { &def.inputs } else { &def.outputs };
         let name = ports.get(index)?.name.to_string();
@@ -259,7 +256,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<CanvasNode>,
     ) {
-        let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
+        let Some(id) = node_id(snarl, node) else {
             return;
         };
         let Some(instance) = self.graph.node(&id) else {
@@ -374,7 +371,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<CanvasNode>,
     ) -> RecordingPin {
-        let id = node_id(snarl, pin.id.node);
+        let id = node_id(snarl, pin.id.node).unwrap_or_default();
         let key = (id.clone(), true, pin.id.input);
         let Some((instance, port)) = self
             .graph
@@ -484,7 +481,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<CanvasNode>,
     ) -> RecordingPin {
-        let id = node_id(snarl, pin.id.node);
+        let id = node_id(snarl, pin.id.node).unwrap_or_default();
         let key = (id.clone(), false, pin.id.output);
         let Some(port) = self
             .graph
@@ -552,7 +549,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<CanvasNode>,
     ) {
-        let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
+        let Some(id) = node_id(snarl, node) else {
             return;
         };
         if self.graph.node(&id).is_some_and(|n| n.def.id == PANEL_TYPE) {
@@ -588,7 +585,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<CanvasNode>,
     ) {
-        let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
+        let Some(id) = node_id(snarl, node) else {
             return;
         };
         // The pointer is in screen coordinates, the node rectangle in canvas coordinates.
@@ -624,7 +621,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<CanvasNode>,
     ) {
-        let Some(id) = snarl.get_node(node).map(|n| n.id.clone()) else {
+        let Some(id) = node_id(snarl, node) else {
             return;
         };
         if ui.button("Duplicate").clicked() {
