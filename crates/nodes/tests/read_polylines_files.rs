@@ -7,8 +7,14 @@ use cnets_engine::eval::evaluate_node;
 use cnets_engine::{NodeContext, Value};
 use cnets_geometry::{DVec3, Polyline};
 
-fn scratch_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("cnets-read-polylines-{}", std::process::id()));
+/// A fresh folder of this test's own: tests run in parallel threads of one process, so each names
+/// its folder (one test removing a shared folder took the other's files away in CI).
+fn scratch_dir(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "cnets-read-polylines-{test}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
@@ -34,7 +40,7 @@ fn read(ctx: &NodeContext, path: &str, format: &str) -> Result<Vec<Polyline>, St
 
 #[test]
 fn the_same_square_reads_the_same_from_every_format() {
-    let dir = scratch_dir();
+    let dir = scratch_dir("formats");
     let files = [
         ("square.csv", "x,y,z\n0,0,0\n2,0,0\n2,2,0\n0,2,0\n0,0,0\n"),
         (
@@ -79,8 +85,7 @@ fn the_same_square_reads_the_same_from_every_format() {
 
 #[test]
 fn unreadable_or_empty_files_are_errors_naming_the_file() {
-    let dir = scratch_dir().join("errors");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("errors");
     let ctx = NodeContext::new(None, Some(dir.clone()));
     let e = read(&ctx, "missing.csv", "auto").unwrap_err();
     assert!(
