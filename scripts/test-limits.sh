@@ -41,13 +41,13 @@ run() {
   local line
   line=$(grep -m1 '^error:' "$name.err" | cut -c1-160 || true)
   printf '%-22s exit %3s  %6.2f s  peak %8s MB  %s\n' "$name" "$code" \
-    "$(echo "$end - $start" | bc)" "${peak:-?}" "${line:-(result)}"
+    "$(awk -v a="$end" -v b="$start" 'BEGIN { print a - b }')" "${peak:-?}" "${line:-(result)}"
   if [ "$code" -gt 2 ]; then
     echo "  FAILED: $name ended with exit $code (an abort or a crash); stderr:" >&2
     tail -5 "$name.err" >&2
     failed=1
   elif [ -n "$peak" ] && [ "$memory" = "$budget" ] && \
-       [ "$(echo "$peak > $budget_mb + 256" | bc)" = 1 ]; then
+       [ "$(awk -v p="$peak" -v b="$budget_mb" 'BEGIN { print (p > b + 256) }')" = 1 ]; then
     echo "  FAILED: $name peaked at $peak MB, more than the budget + 256 MB" >&2
     failed=1
   fi

@@ -26,14 +26,28 @@ if [ -z "${CNETS_WEB_BUILT:-}" ]; then
   ./scripts/web.sh "$site"
 fi
 
-port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-python3 -m http.server --bind 127.0.0.1 --directory "$site" "$port" >/dev/null 2>&1 &
+# Port 0: the server takes a free port and names it ("Serving HTTP on 127.0.0.1 port N"), so no
+# other process (the Python step's servers run beside) can take a probed one before it binds.
+mkdir -p target
+python3 -u -m http.server --bind 127.0.0.1 --directory "$site" 0 >target/web-server.log 2>&1 &
 server=$!
 trap 'kill "$server" 2>/dev/null || true' EXIT
-for _ in $(seq 50); do
-  python3 -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/index.html')" 2>/dev/null && break
+port=""
+for _ in $(seq 600); do
+  port=$(sed -n 's/^Serving HTTP on .* port \([0-9]*\) .*/\1/p' target/web-server.log | head -1)
+  if [ -n "$port" ] &&
+     python3 -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/index.html')" 2>/dev/null; then
+    break
+  fi
+  port=""
+  kill -0 "$server" 2>/dev/null || break
   sleep 0.1
 done
+if [ -z "$port" ]; then
+  cat target/web-server.log >&2
+  echo "test-web.sh: the site's server did not start (above)" >&2
+  exit 1
+fi
 
 echo "== browser test (headless Chromium, WebGL2 on SwiftShader)"
 node tests/web/browser.test.mjs "http://127.0.0.1:$port" target/web-test

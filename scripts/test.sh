@@ -37,6 +37,11 @@ export WGPU_BACKEND="${WGPU_BACKEND:-vulkan}"
 # A one-off build gains nothing from incremental caches; they would cost ~2 GB of disk.
 export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
 export PATH="$PWD/node_modules/.bin:$PATH"
+# The property tests draw their random inputs from one fixed seed here, so the test command gives
+# the same answer on every run: a new seed on every CI run once turned a rare input into a red CI
+# that had nothing to do with the change. New inputs are explored by scripts/test-explore.sh
+# (fresh seeds, more cases), run before every stop; what it finds is kept in the tests.
+export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261205}"
 
 echo "== cargo fmt --check"
 cargo fmt --all -- --check

@@ -2,7 +2,7 @@
 and a Hops server started as `python -m cnets.hops` on a free loopback port."""
 
 import os
-import socket
+import re
 import subprocess
 import sys
 import time
@@ -84,33 +84,34 @@ def lifted(n: int, radius: float = 5.0, height: float = 3.0) -> np.ndarray:
     return profile(n, radius, height) + [0.0, 0.0, 0.5]
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 class HopsProcess:
-    """`python -m cnets.hops` on a free loopback port; `log()` is what it printed."""
+    """`python -m cnets.hops` on a loopback port of its own choosing (`--port 0`: no other
+    process can take it between a probe and the bind); `log()` is what it printed."""
 
     def __init__(self, log_path: Path, *args: str) -> None:
-        self.port = free_port()
-        self.url = f"http://127.0.0.1:{self.port}"
         self.log_path = log_path
         self._log = open(log_path, "w+b")
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "cnets.hops", "--port", str(self.port), *args],
+            [sys.executable, "-m", "cnets.hops", "--port", "0", *args],
             stdout=self._log, stderr=subprocess.STDOUT, cwd=str(REPO),
         )
-        deadline = time.monotonic() + 60
+        deadline = time.monotonic() + 120
+        # The port it listens on, from its start line ("... on http://127.0.0.1:PORT/").
+        while (found := re.search(r" on http://127\.0\.0\.1:(\d+)/", self.log())) is None:
+            if self.proc.poll() is not None or time.monotonic() > deadline:
+                self.stop()
+                raise RuntimeError(f"the Hops server did not start: {self.log()}")
+            time.sleep(0.05)
+        self.port = int(found.group(1))
+        self.url = f"http://127.0.0.1:{self.port}"
         while True:
             try:
-                urllib.request.urlopen(self.url + "/", timeout=5).read()
+                urllib.request.urlopen(self.url + "/", timeout=30).read()
                 break
-            except OSError:  # not listening yet (URLError, a refused or timed-out connection)
+            except OSError:  # not answering yet (URLError, a refused or timed-out connection)
                 if self.proc.poll() is not None or time.monotonic() > deadline:
                     self.stop()
-                    raise RuntimeError(f"the Hops server did not start: {self.log()}")
+                    raise RuntimeError(f"the Hops server did not answer: {self.log()}")
                 time.sleep(0.1)
 
     def log(self) -> str:

@@ -29,7 +29,7 @@ import numpy as np
 import pytest
 
 import cnets
-from conftest import REPO, free_port
+from conftest import REPO
 
 import rhino3dm
 
@@ -220,16 +220,23 @@ def _run_sh(line, scratch, cnets_bin):
         assert len(wheels) == 1, list(target.iterdir())
         return
     if words[:3] == ["python", "-m", "cnets.hops"]:
-        port = free_port()
-        args = [str(port) if w == "5000" else w for w in words[3:]]
+        # Port 0: the server picks a free one and names it in its start line (no other process
+        # can take a probed port before it binds).
+        args = ["0" if w == "5000" else w for w in words[3:]]
         log = open(scratch / "hops.log", "w+b")
         proc = subprocess.Popen([sys.executable, "-m", "cnets.hops", *args], cwd=str(scratch),
                                 stdout=log, stderr=subprocess.STDOUT)
         try:
-            deadline = time.monotonic() + 60
+            deadline = time.monotonic() + 120
+            while (found := re.search(r" on http://127\.0\.0\.1:(\d+)/",
+                                      (scratch / "hops.log").read_text())) is None:
+                assert proc.poll() is None and time.monotonic() < deadline, \
+                    (scratch / "hops.log").read_text()
+                time.sleep(0.05)
+            port = int(found.group(1))
             while True:
                 try:
-                    with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=5) as r:
+                    with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=30) as r:
                         listing = json.loads(r.read())
                     break
                 except OSError:

@@ -25,8 +25,14 @@ const context = await chromium.launchPersistentContext(userData, {
     "--headless", "--no-sandbox", "--disable-quic", "--no-first-run",
     "--disable-background-networking", "--disable-component-update", "--disable-sync",
     "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+    // A software GPU process stalled by a busy machine is not a hung one.
+    "--disable-gpu-watchdog",
   ],
 });
+// Playwright's own waits (navigation, screenshots) get the patience of the test's waits: a busy
+// machine's software rendering can take more than its default 30 s.
+context.setDefaultTimeout(180_000);
+context.setDefaultNavigationTimeout(180_000);
 const problems = [];
 function watch(page) {
   page.on("console", (m) => {
@@ -58,13 +64,14 @@ async function until(page, what, ok, timeout = 180_000) {
   }
 }
 
-/** Waits for the view to settle: no evaluation pending and the picture count unchanged for a while. */
+/** Waits for the view to settle: no evaluation in the worker or picture pending, and the picture
+ *  count unchanged for a while (an evaluation may take longer than that while). */
 async function settled(page) {
   let last = -1;
   let still = 0;
   for (let k = 0; k < 600 && still < 8; k++) {
     const s = await state(page);
-    if (s && !s.busy && s.pictures === last) still++;
+    if (s && !s.busy && !s.evaluating && s.pictures === last) still++;
     else still = 0;
     last = s?.pictures ?? -1;
     await page.waitForTimeout(100);
@@ -329,9 +336,10 @@ for (const name of gallery) {
 }
 
 // 7. Input during a drag with the facade open: pointer events are dispatched in the page every
-//    16 ms (a 60 Hz mouse) on the first slider; the page's main thread must handle them at
-//    ≥ 30 Hz while the worker evaluates (an evaluation on the page's thread would hold them
-//    back for its whole time). Playwright's own mouse waits for each frame of the software
+//    16 ms (a 60 Hz mouse) on the first slider; the page's main thread handles them at the
+//    mouse's rate while the worker evaluates (issue 29's target is ≥ 30 Hz; the assertion's
+//    bound is below, with its margin; an evaluation on the page's thread would hold them back
+//    for its whole time). Playwright's own mouse waits for each frame of the software
 //    rasterizer, so it cannot be the clock here. The frame rates are reported.
 {
   const { page } = await openAny(`${base}/index.html?example=facade`);

@@ -274,6 +274,11 @@ impl Recovery {
         self
     }
 
+    /// The document version written last (by this session).
+    pub fn saved_version(&self) -> Option<u64> {
+        self.saved_version
+    }
+
     /// Why the last autosave failed, while the writes fail.
     pub fn last_error(&self) -> Option<&str> {
         self.last_error.as_deref()
@@ -563,19 +568,39 @@ mod tests {
         assert_eq!(r.find().map(|f| f.text).as_deref(), Some("again"));
     }
 
-    /// A document whose text takes `delay` to write out.
-    struct Slow(&'static str, Duration);
+    /// A gate a document's text waits on while it is written out (closed until opened; a test
+    /// that never opens it goes on after 30 s).
+    #[derive(Clone, Default)]
+    struct Gate(Arc<(std::sync::Mutex<bool>, std::sync::Condvar)>);
 
-    impl DesignText for Slow {
+    impl Gate {
+        fn open(&self) {
+            *self.0.0.lock().unwrap() = true;
+            self.0.1.notify_all();
+        }
+
+        fn pass(&self) {
+            let (open, changed) = &*self.0;
+            let guard = open.lock().unwrap();
+            let _ = changed
+                .wait_timeout_while(guard, Duration::from_secs(30), |open| !*open)
+                .unwrap();
+        }
+    }
+
+    /// A document whose text is written out only once its gate opens.
+    struct Gated(&'static str, Gate);
+
+    impl DesignText for Gated {
         fn text(&self) -> String {
-            std::thread::sleep(self.1);
+            self.1.pass();
             self.0.to_string()
         }
 
         fn snapshot(&self) -> Option<TextJob> {
-            let (text, delay) = (self.0, self.1);
+            let (text, gate) = (self.0, self.1.clone());
             Some(Box::new(move || {
-                std::thread::sleep(delay);
+                gate.pass();
                 text.to_string()
             }))
         }
@@ -590,47 +615,61 @@ mod tests {
         let mut r = Recovery::new(&dir).in_background(Arc::new(move || {
             wake.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         }));
-        let slow = Duration::from_millis(400);
+        // The texts are held back until the gate opens: a tick that waited for one would take
+        // the gate's 30 s.
+        let gate = Gate::default();
         let start = Instant::now();
         assert_eq!(
-            r.tick(true, 1, true, (None, None), Slow("one", slow)),
+            r.tick(true, 1, true, (None, None), Gated("one", gate.clone())),
             Autosave::Writing
         );
         // While it writes, later versions wait (not queued behind it).
         assert_eq!(
-            r.tick(true, 2, true, (None, None), Slow("two", slow)),
+            r.tick(true, 2, true, (None, None), Gated("two", gate.clone())),
             Autosave::Writing
         );
-        assert!(start.elapsed() < slow / 2, "the ticks returned at once");
+        assert!(
+            start.elapsed() < Duration::from_secs(15),
+            "the ticks returned at once"
+        );
+        assert_eq!(woken.load(std::sync::atomic::Ordering::Relaxed), 0);
+        gate.open();
         let wrote = loop {
-            match r.tick(true, 2, true, (None, None), Slow("two", slow)) {
+            match r.tick(true, 2, true, (None, None), Gated("two", gate.clone())) {
                 Autosave::Writing => std::thread::sleep(Duration::from_millis(20)),
                 other => break other,
             }
             assert!(
-                start.elapsed() < Duration::from_secs(20),
+                start.elapsed() < Duration::from_secs(60),
                 "the write finished"
             );
         };
         assert_eq!(wrote, Autosave::Wrote);
         // (It wakes the window right after handing the result over.)
         let woke = || woken.load(std::sync::atomic::Ordering::Relaxed);
-        while woke() == 0 && start.elapsed() < Duration::from_secs(20) {
+        while woke() == 0 && start.elapsed() < Duration::from_secs(60) {
             std::thread::sleep(Duration::from_millis(5));
         }
         assert_eq!(woke(), 1, "the thread woke the window when the write ended");
         assert_eq!(r.find().unwrap().text, "one");
-        // Version 2 is written next (after the gap), then nothing is left to do.
+        // Version 2 is written next (after the gap), held back a while, then nothing is left to
+        // do.
         std::thread::sleep(AUTOSAVE_GAP);
+        let second = Gate::default();
         assert_eq!(
-            r.tick(true, 2, true, (None, None), Slow("two", slow)),
+            r.tick(true, 2, true, (None, None), Gated("two", second.clone())),
             Autosave::Writing
         );
+        let opener = second.clone();
+        std::thread::spawn(move || {
+            std::thread::sleep(Duration::from_millis(300));
+            opener.open();
+        });
         // A save clears the pair, waiting for the write in flight so it cannot come back.
         r.clear();
         assert!(r.find().is_none(), "cleared after the write in flight");
         assert_eq!(
-            r.tick(false, 2, true, (None, None), Slow("two", slow)),
+            r.tick(false, 2, true, (None, None), Gated("two", gate.clone())),
             Autosave::Idle
         );
         let _ = std::fs::remove_dir_all(&dir);

@@ -813,13 +813,13 @@ mod tests {
                 .unwrap();
             worker.submit(g.clone(), 0, opts, None, Instant::now());
         }
-        let last = worker.wait(Duration::from_secs(20)).expect("an answer");
+        let last = worker.wait(Duration::from_secs(60)).expect("an answer");
         assert_eq!(last.seq, 20, "the newest submission is answered last");
         assert!(!worker.busy());
         assert!(matches!(last.statuses["arc"], NodeStatus::Ok { .. }));
         assert!(!last.scene.is_empty(), "the arc is previewed");
         // The wake call follows the send: give it a moment.
-        let deadline = Instant::now() + Duration::from_secs(5);
+        let deadline = Instant::now() + Duration::from_secs(30);
         while *woken.lock().unwrap() == 0 && Instant::now() < deadline {
             std::thread::sleep(Duration::from_millis(5));
         }

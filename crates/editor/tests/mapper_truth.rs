@@ -5,6 +5,8 @@
 
 mod common;
 
+use std::time::Duration;
+
 use cnets_editor::app::EditorApp;
 use cnets_editor::mapper::node::{Shape, shape};
 use cnets_editor::mapper::{Shown, handles_port, is_mapper};
@@ -212,6 +214,10 @@ fn every_shipped_mapper_draws_its_nodes_curve_and_a_one_pixel_drag_keeps_the_sha
                         h.state().message
                     );
                     assert!(h.state_mut().doc.undo(), "undo");
+                    // The undone value's results in (they may resize the node) before the next
+                    // handle is located.
+                    h.run_steps(1);
+                    h.state_mut().wait_for_worker(Duration::from_secs(60));
                     h.run_steps(1);
                     assert_eq!(
                         stored_handles(h.state(), id),

@@ -69,7 +69,7 @@ fn ratio(h: &H) -> Option<f64> {
 fn every_path_that_replaces_or_closes_the_document_asks_first() {
     let config = temp_config("guard");
     let other = other_graph(&config);
-    let example = std::env::temp_dir().join(format!("cnets-example-{}.ron", std::process::id()));
+    let example = common::examples_of(&config).join("cnets-example.ron");
     std::fs::write(&example, DEFAULT_GRAPH).unwrap();
     let mut h = harness_with("guard", None, config.clone());
     let (tx, rx) = std::sync::mpsc::channel();

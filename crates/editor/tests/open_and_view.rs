@@ -453,8 +453,8 @@ fn a_large_file_is_read_off_the_ui_thread_and_the_latest_open_wins() {
     let start = std::time::Instant::now();
     while h.state().loading().is_some() {
         assert!(
-            start.elapsed() < std::time::Duration::from_secs(60),
-            "read within a minute"
+            start.elapsed() < std::time::Duration::from_secs(300),
+            "read within five minutes"
         );
         h.run_steps(1);
         std::thread::sleep(std::time::Duration::from_millis(10));
@@ -507,8 +507,8 @@ fn a_large_start_up_file_is_read_after_the_window_opens_and_an_example_stays_a_c
     let start = std::time::Instant::now();
     while h.state().loading().is_some() {
         assert!(
-            start.elapsed() < Duration::from_secs(60),
-            "read within a minute"
+            start.elapsed() < Duration::from_secs(300),
+            "read within five minutes"
         );
         h.run_steps(1);
         std::thread::sleep(Duration::from_millis(10));
@@ -543,7 +543,7 @@ fn a_large_start_up_file_is_read_after_the_window_opens_and_an_example_stays_a_c
     assert_eq!(app.loading(), Some(big.as_path()), "read off the UI thread");
     assert_eq!(count(&app), None, "an empty document meanwhile");
     assert!(
-        !app.wait_for_loading(Duration::from_secs(60)),
+        !app.wait_for_loading(Duration::from_secs(300)),
         "read in time"
     );
     assert_eq!(app.loading(), None);
@@ -569,7 +569,7 @@ fn a_document_edited_while_a_large_file_is_read_is_not_replaced_without_asking()
             .add_node("param.number", [40.0, 40.0])
             .unwrap();
         let edited = h.state().doc.to_ron();
-        assert!(!h.state_mut().wait_for_loading(Duration::from_secs(60)));
+        assert!(!h.state_mut().wait_for_loading(Duration::from_secs(300)));
         assert_eq!(h.state().doc.to_ron(), edited, "not replaced yet");
         h.run_steps(2);
         assert_eq!(

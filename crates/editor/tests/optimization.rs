@@ -211,7 +211,7 @@ fn a_run_plots_the_objective_going_down_and_accept_is_one_undo_step() {
         "{}",
         h.state().message
     );
-    assert!(h.state_mut().optimization.wait(Duration::from_secs(120)));
+    assert!(h.state_mut().optimization.wait(Duration::from_secs(300)));
     h.run_steps(3);
     let app = h.state();
     let its = &app.optimization.iterations;
@@ -376,7 +376,15 @@ fn the_view_follows_the_best_point_live_and_revert_restores_it() {
     assert!(pictures >= 2, "{pictures} new pictures during the run");
     assert_ne!(last, before);
     h.get_by_label("■ Stop").click();
-    assert!(h.state_mut().optimization.wait(Duration::from_secs(30)));
+    // The click reaches the app in the next frame.
+    h.run_steps(1);
+    assert!(
+        h.state_mut().optimization.wait(Duration::from_secs(30)),
+        "Stop ends the run"
+    );
+    let app = h.state();
+    let finished = app.optimization.result.as_ref().unwrap().as_ref().unwrap();
+    assert_eq!(finished.outcome.stop, Stop::Cancelled, "ended by Stop");
     h.run_steps(2);
     h.get_by_label("Revert").click();
     h.run_steps(1);

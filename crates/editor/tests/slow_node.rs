@@ -41,6 +41,17 @@ fn every_slider_step_is_drawn_before_the_slow_nest_below_it_finishes() {
     let mut h = harness_with("slow-node", Some(file), temp_config("slow-node"));
     settle(&mut h);
     let first_nest_ms = nest_ms(&h.state().statuses["nest"]);
+    let mut times: Vec<(String, f64)> = h
+        .state()
+        .statuses
+        .iter()
+        .filter_map(|(id, s)| match s {
+            NodeStatus::Ok { time_ms, .. } if *time_ms >= 1.0 => Some((id.clone(), *time_ms)),
+            _ => None,
+        })
+        .collect();
+    times.sort_by(|a, b| b.1.total_cmp(&a.1));
+    println!("node times after opening (ms): {times:?}");
     let steps = 10;
     let mut running_seen = 0;
     for k in 0..steps {

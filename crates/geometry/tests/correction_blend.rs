@@ -153,7 +153,7 @@ fn check_blend(
     for (k, c) in out.iter().enumerate() {
         let alpha = k as f64 / 8.0;
         prop_assert!(
-            c.apex <= apex_only.apex * (1.0 + 1e-12),
+            c.apex <= apex_only.apex * (1.0 + 1e-12) + 1e-13,
             "α = {}: apex change {} > apex-only {}",
             alpha,
             c.apex,
@@ -167,7 +167,8 @@ fn check_blend(
             planes_only.turn
         );
         prop_assert!(
-            c.generatrix <= apex_only.generatrix * (1.0 + 1e-9) + 1e-15,
+            // Rounding of coordinates far from the origin, over the design's size.
+            c.generatrix <= apex_only.generatrix * (1.0 + 1e-9) + 1e-13,
             "α = {}: generatrix moved {} > apex-only {}",
             alpha,
             c.generatrix,

@@ -5,7 +5,7 @@ mod common;
 
 use cnets_geometry::conenet::{ConstructInputs, cone_check, construct, subdivide_rows};
 use cnets_geometry::{DVec3, Polyline, QuadGrid};
-use common::{design, max_plane_distance};
+use common::{design, face_plane, max_plane_distance};
 use proptest::prelude::*;
 
 /// The checks of one subdivision; returns the largest relative on-face distance.
@@ -52,8 +52,9 @@ fn check(coarse: &QuadGrid, count: usize) -> Result<f64, TestCaseError> {
                         coarse.at(i1, jf + 1),
                         coarse.at(i1, jf),
                     ];
-                    let normal = (q[2] - q[0]).cross(q[3] - q[1]).normalize();
-                    worst = worst.max((v - q[0]).dot(normal).abs() / size);
+                    if let Some((point, normal)) = face_plane(q) {
+                        worst = worst.max((v - point).dot(normal).abs() / size);
+                    }
                 }
             }
         }

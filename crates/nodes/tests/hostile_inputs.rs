@@ -220,8 +220,9 @@ fn non_finite(v: &Value) -> Option<String> {
     }
 }
 
-fn out_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("cnets-hostile-{}", std::process::id()));
+/// A folder for the exports of one test (the tests run side by side in one process).
+fn out_dir(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("cnets-hostile-{test}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temporary folder");
     dir
 }
@@ -286,7 +287,7 @@ proptest! {
         let defs: Vec<_> = registry.iter().collect();
         let mut rng = Rng(seed);
         let def = rng.pick(&defs);
-        let ctx = NodeContext::new(Some(out_dir()), None);
+        let ctx = NodeContext::new(Some(out_dir("random")), None);
         check(def, &mut rng, &ctx)?;
     }
 }
@@ -294,7 +295,7 @@ proptest! {
 #[test]
 fn every_node_survives_its_defaults_and_empty_inputs() {
     let registry = cnets_nodes::registry();
-    let ctx = NodeContext::new(Some(out_dir()), None);
+    let ctx = NodeContext::new(Some(out_dir("defaults")), None);
     for def in registry.iter() {
         let id = &def.id;
         for empty in [false, true] {

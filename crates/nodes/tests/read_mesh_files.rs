@@ -9,8 +9,9 @@ use cnets_engine::eval::evaluate_node;
 use cnets_engine::{NodeContext, Value};
 use cnets_geometry::{DVec3, PolygonMesh};
 
-fn scratch() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("cnets-read-mesh-{}", std::process::id()));
+/// A folder of the test's own (the tests run side by side in one process).
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("cnets-read-mesh-{test}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
@@ -67,7 +68,7 @@ fn assert_same_points(got: &[DVec3], expected: &[DVec3], tolerance: f64) {
 
 #[test]
 fn obj_keeps_polygons_and_objects() {
-    let dir = scratch();
+    let dir = scratch("obj");
     let (v, f) = quads();
     let mut text = String::from("# two objects\n");
     for p in &v {
@@ -112,7 +113,7 @@ fn f32s(p: DVec3) -> [f32; 3] {
 
 #[test]
 fn stl_ascii_and_binary_read_the_same_triangles() {
-    let dir = scratch();
+    let dir = scratch("stl");
     let (v, _) = quads();
     let mut ascii = String::from("solid quads\n");
     let mut binary = vec![0u8; 80];
@@ -163,7 +164,7 @@ fn stl_ascii_and_binary_read_the_same_triangles() {
 
 #[test]
 fn ply_ascii_and_binary_keep_polygons() {
-    let dir = scratch();
+    let dir = scratch("ply");
     let (v, f) = quads();
     let header = |format: &str| {
         format!(
@@ -247,7 +248,7 @@ fn gltf_parts(uri: Option<&str>) -> (String, Vec<u8>) {
 
 #[test]
 fn gltf_with_external_and_embedded_buffers_and_glb_apply_node_transforms() {
-    let dir = scratch();
+    let dir = scratch("gltf");
     let (v, _) = quads();
     let moved: Vec<DVec3> = v.iter().map(|p| *p + DVec3::new(10.0, 0.0, 0.0)).collect();
 
@@ -306,7 +307,7 @@ fn gltf_with_external_and_embedded_buffers_and_glb_apply_node_transforms() {
 /// `cnets_geometry::mesh_weld` (distance tests counted).
 #[test]
 fn welds_of_tiny_tolerances_and_huge_coordinates_read() {
-    let dir = scratch();
+    let dir = scratch("welds");
     // A strip of 2 000 triangles over 1 002 distinct corners, each triangle stored apart (STL).
     let n = 2_000u32;
     for (name, scale, offset, weld) in [

@@ -341,6 +341,8 @@ impl WebApp {
             "busy",
             JsValue::from_bool(self.app.viewport.scene_version() != drawn),
         );
+        // The worker has not answered the newest submission completely yet.
+        set("evaluating", JsValue::from_bool(self.app.busy()));
         set("view", rect(self.app.viewport.rect));
         set("title", self.app.doc.title().into());
         set(

@@ -27,6 +27,11 @@ impl EditorApp {
         self.offer_restore.is_some()
     }
 
+    /// Whether autosave has written the document as it is now (its version) to the recovery file.
+    pub fn autosaved(&self) -> bool {
+        self.recovery.saved_version() == Some(self.doc.version())
+    }
+
     /// Restores the recovery file (the crash-restore dialog's "Restore").
     pub fn restore(&mut self) {
         if let Some(r) = self.offer_restore.take() {

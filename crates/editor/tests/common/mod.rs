@@ -37,8 +37,17 @@ pub fn harness_with(
     config: PathBuf,
 ) -> Harness<'static, EditorApp> {
     let _ = name;
-    // A folder without torus-monge.ron, so the built-in default graph is used.
-    build(config, file, std::env::temp_dir())
+    // An empty examples folder of the test's own: the built-in default graph is used, and no
+    // other file (of another test, another process) is listed as an example or library entry.
+    let examples = examples_of(&config);
+    build(config, file, examples)
+}
+
+/// The (empty, created) examples folder [`harness_with`] gives the editor of settings `config`.
+pub fn examples_of(config: &std::path::Path) -> PathBuf {
+    let dir = config.join("examples");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
 }
 
 fn build(

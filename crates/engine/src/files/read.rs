@@ -403,31 +403,36 @@ mod tests {
             inside.join("file.tmp"),
         );
         std::fs::write(&file, b"inside").unwrap();
-        let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        // The swapper counts its swaps; the reads go on until it has swapped often (a busy
+        // machine may start it late), so the race is always run, never skipped by chance.
+        use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+        let stop = std::sync::Arc::new(AtomicBool::new(false));
+        let swaps = std::sync::Arc::new(AtomicU32::new(0));
         let swapper = {
-            let (file, link, staged, secret, stop) = (
+            let (file, link, staged, secret, stop, swaps) = (
                 file.clone(),
                 link.clone(),
                 staged.clone(),
                 outside.join("secret.csv"),
                 stop.clone(),
+                swaps.clone(),
             );
             std::thread::spawn(move || {
-                let mut swaps = 0u32;
-                while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                while !stop.load(Ordering::Relaxed) {
                     let _ = std::fs::remove_file(&link);
                     let _ = std::os::unix::fs::symlink(&secret, &link);
                     let _ = std::fs::rename(&link, &file);
                     let _ = std::fs::write(&staged, b"inside");
                     let _ = std::fs::rename(&staged, &file);
-                    swaps += 1;
+                    swaps.fetch_add(1, Ordering::Relaxed);
                 }
-                swaps
             })
         };
         let access = ReadAccess::new(vec![inside.clone()]);
-        let (mut inside_reads, mut refusals) = (0, 0);
-        for _ in 0..2000 {
+        let (mut inside_reads, mut refusals) = (0u32, 0u32);
+        let give_up = std::time::Instant::now() + std::time::Duration::from_secs(120);
+        while inside_reads + refusals < 2000 || swaps.load(Ordering::Relaxed) < 200 {
+            assert!(std::time::Instant::now() < give_up, "the swapper never ran");
             match access.read(&file) {
                 Ok(bytes) => {
                     assert_eq!(bytes, b"inside", "read a file outside the allowed folder");
@@ -439,9 +444,8 @@ mod tests {
                 }
             }
         }
-        stop.store(true, std::sync::atomic::Ordering::Relaxed);
-        let swaps = swapper.join().unwrap();
-        assert!(swaps > 0 && inside_reads + refusals == 2000);
+        stop.store(true, Ordering::Relaxed);
+        swapper.join().unwrap();
         std::fs::remove_dir_all(&base).unwrap();
     }
 }

@@ -118,6 +118,20 @@ pub fn plane_distance(q: [DVec3; 4]) -> f64 {
         })
 }
 
+/// The plane of a (nearly planar) quad: through the largest of its four vertex triangles, the
+/// well-conditioned choice (the diagonals' cross product is not, on folded quads). Returns a point
+/// and the unit normal, or `None` for a quad with no area.
+pub fn face_plane(q: [DVec3; 4]) -> Option<(DVec3, DVec3)> {
+    let (area, point, n) = (0..4)
+        .map(|k| {
+            let t: Vec<DVec3> = (0..4).filter(|&m| m != k).map(|m| q[m]).collect();
+            let n = (t[1] - t[0]).cross(t[2] - t[0]);
+            (n.length(), t[0], n)
+        })
+        .max_by(|a, b| a.0.total_cmp(&b.0))?;
+    (area > 0.0).then(|| (point, n / area))
+}
+
 /// The largest [`plane_distance`] over all quads.
 pub fn max_plane_distance(mesh: &QuadGrid) -> f64 {
     mesh.quads()

@@ -33,6 +33,10 @@ pub struct Drive {
     was: Option<f64>,
     /// The values were printed.
     pub reported: bool,
+    /// Frames in a row with the evaluation done and its picture drawn.
+    settled_frames: u32,
+    /// When the release was reported; taken when the autosave of the released values is.
+    released_at: Option<std::time::Instant>,
 }
 
 /// Moves between the press and the release.
@@ -49,16 +53,22 @@ impl Drive {
             node: String::new(),
             was: None,
             reported: false,
+            settled_frames: 0,
+            released_at: None,
         }
     }
 
-    /// Finds the slider once the canvas has been framed (a few frames after the first results).
+    /// Finds the slider once the canvas has been framed: the first results in and drawn for a
+    /// few frames (they resize the nodes and reframe the canvas; a busy machine may take many
+    /// frames to get there).
     pub fn locate(&mut self, app: &EditorApp) {
         if self.from.is_some() {
             return;
         }
         self.frames += 1;
-        if self.frames < 30 {
+        let settled = !app.busy() && app.viewport.drawn_version >= app.viewport.scene_version();
+        self.settled_frames = if settled { self.settled_frames + 1 } else { 0 };
+        if self.frames < 30 || self.settled_frames < 4 {
             return;
         }
         let Some(id) = first_slider(app) else {
@@ -105,12 +115,30 @@ impl Drive {
         self.step += 1;
     }
 
-    /// After the release frame: prints what the window shows (the test kills the process then).
+    /// Whether it still needs frames: until the released values are autosaved.
+    pub fn needs_frames(&self) -> bool {
+        !self.reported || self.released_at.is_some()
+    }
+
+    /// After the release frame: prints what the window shows; then, once autosave has written
+    /// the released values, how long after the release (the test kills the process then).
     pub fn report(&mut self, app: &EditorApp) {
+        if let Some(at) = self.released_at
+            && app.autosaved()
+        {
+            self.released_at = None;
+            println!(
+                "drive-drag: autosaved {} ms after the release",
+                at.elapsed().as_millis()
+            );
+            use std::io::Write as _;
+            let _ = std::io::stdout().flush();
+        }
         if self.reported || self.step <= DRIVE_MOVES + 1 {
             return;
         }
         self.reported = true;
+        self.released_at = Some(std::time::Instant::now());
         println!(
             "drive-drag: released {} pid {}",
             self.node,

@@ -135,6 +135,18 @@ struct Window {
     script: Option<Script>,
     restore_and_print: bool,
     config_dir: PathBuf,
+    /// When the window was made.
+    opened: std::time::Instant,
+}
+
+/// How long the screenshot mode waits for the evaluation to end and its picture to be drawn.
+const SCREENSHOT_PATIENCE: Duration = Duration::from_secs(300);
+
+impl Window {
+    /// The evaluation is done and its picture drawn.
+    fn settled(&self) -> bool {
+        !self.app.busy() && self.app.viewport.drawn_version >= self.app.viewport.scene_version()
+    }
 }
 
 impl eframe::App for Window {
@@ -169,7 +181,7 @@ impl eframe::App for Window {
         if let Some(d) = &mut self.drive {
             d.locate(&self.app);
             d.report(&self.app);
-            if !d.reported {
+            if d.needs_frames() {
                 ctx.request_repaint();
             }
         }
@@ -217,8 +229,10 @@ impl eframe::App for Window {
         } else if self.frames >= self.quit_after
             && !self.requested
             && self.app.viewport.render_scale >= 1.0
+            && (self.settled() || self.opened.elapsed() > SCREENSHOT_PATIENCE)
         {
-            // (On a software rasterizer the view renders at full resolution once it settles.)
+            // (On a software rasterizer the view renders at full resolution once it settles; a
+            // heavy graph on a busy machine may still be evaluating after the first wait.)
             ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(egui::UserData::default()));
             self.requested = true;
         }
@@ -226,6 +240,18 @@ impl eframe::App for Window {
     }
 
     fn raw_input_hook(&mut self, ctx: &egui::Context, raw_input: &mut egui::RawInput) {
+        if self.drive.is_some() || self.script.is_some() {
+            // Only the injected pointer: the X server's own (moved over the window as it maps)
+            // would break a scripted click or drag.
+            raw_input.events.retain(|e| {
+                !matches!(
+                    e,
+                    egui::Event::PointerMoved(_)
+                        | egui::Event::PointerButton { .. }
+                        | egui::Event::PointerGone
+                )
+            });
+        }
         self.app.raw_input(raw_input);
         if let Some(d) = &mut self.drive {
             d.inject(raw_input);
@@ -328,6 +354,12 @@ fn main() -> anyhow::Result<()> {
                 // The screenshot, benchmark and scripted modes start on the file given, read.
                 app.wait_for_loading(Duration::from_secs(600));
             }
+            if args.drive_drag || args.drive_script.is_some() {
+                // A scripted click is a click however long its frame took on a busy machine
+                // (egui's real-window clock would call a press held over 0.8 s a long press).
+                cc.egui_ctx
+                    .options_mut(|o| o.input_options.max_click_duration = f64::INFINITY);
+            }
             Ok(Box::new(Window {
                 app,
                 screenshot: args.screenshot.clone(),
@@ -348,6 +380,7 @@ fn main() -> anyhow::Result<()> {
                     .map(|steps| Script::new(steps, args.drive_out.clone())),
                 restore_and_print: args.restore_and_print,
                 config_dir: config_dir.clone(),
+                opened: std::time::Instant::now(),
             }))
         }),
     )

@@ -47,8 +47,9 @@ pub enum Step {
 
 /// Moves of a scripted drag between press and release.
 const DRAG_MOVES: u32 = 8;
-/// Frames a step may wait for its target or for the evaluation before the script fails.
-const PATIENCE: u32 = 3000;
+/// How long a step may wait for its target or for the evaluation before the script fails (wall
+/// clock: frames come fast in an idle window and slowly on a busy machine).
+const PATIENCE: std::time::Duration = std::time::Duration::from_secs(180);
 
 /// A script being played.
 pub struct Script {
@@ -65,6 +66,8 @@ pub struct Script {
     out: PathBuf,
     shot_requested: bool,
     started: std::time::Instant,
+    /// When the current step began.
+    step_started: std::time::Instant,
     settled_frames: u32,
     /// Frames since a drag-until's check held (its release goes out in the first).
     released: u32,
@@ -89,6 +92,7 @@ impl Script {
             out,
             shot_requested: false,
             started: std::time::Instant::now(),
+            step_started: std::time::Instant::now(),
             settled_frames: 0,
             released: 0,
         }
@@ -98,6 +102,7 @@ impl Script {
         self.at += 1;
         self.phase = 0;
         self.drag = None;
+        self.step_started = std::time::Instant::now();
     }
 
     fn fail(&self, why: &str) -> ! {
@@ -148,15 +153,26 @@ impl Script {
                 0 => {
                     if let Some(p) = target(app, ctx) {
                         self.pointer = p;
+                        self.drag = Some((p, p));
                         raw.events.push(Event::PointerMoved(p));
                     }
                 }
-                1 => raw.events.push(button(
-                    self.pointer,
-                    PointerButton::Primary,
-                    true,
-                    *modifiers,
-                )),
+                1 => {
+                    // The target may have moved in the frame since (a result arrived and the
+                    // layout changed): press where it is now.
+                    if let Some(p) = target(app, ctx)
+                        && p != self.pointer
+                    {
+                        self.pointer = p;
+                        raw.events.push(Event::PointerMoved(p));
+                    }
+                    raw.events.push(button(
+                        self.pointer,
+                        PointerButton::Primary,
+                        true,
+                        *modifiers,
+                    ))
+                }
                 2 => raw.events.push(button(
                     self.pointer,
                     PointerButton::Primary,
@@ -213,6 +229,16 @@ impl Script {
                     raw.events.push(Event::PointerMoved(self.pointer));
                 }
             },
+            Step::WheelUntil(_, _, done) if done(app) => {
+                // Done: end the wheel gesture, so egui drops the turn it still holds back (it
+                // spreads large turns over later frames) instead of zooming on.
+                raw.events.push(Event::MouseWheel {
+                    unit: egui::MouseWheelUnit::Point,
+                    delta: egui::Vec2::ZERO,
+                    phase: egui::TouchPhase::End,
+                    modifiers: Modifiers::NONE,
+                });
+            }
             Step::WheelUntil(target, points, _) => {
                 if let Some(p) = target(app, ctx) {
                     self.pointer = p;
@@ -238,8 +264,8 @@ impl Script {
         };
         self.phase += 1;
         let phase = self.phase;
-        if phase > PATIENCE {
-            self.fail("timed out");
+        if self.step_started.elapsed() > PATIENCE {
+            self.fail(&format!("timed out after {phase} frames"));
         }
         match step {
             Step::Wait(n) => {
@@ -267,9 +293,9 @@ impl Script {
                     self.next();
                 }
             }
-            Step::Click(target, _) => {
-                if phase == 1 && target(app, ctx).is_none() {
-                    self.phase = 0; // wait for the target
+            Step::Click(..) => {
+                if phase == 1 && self.drag.is_none() {
+                    self.phase = 0; // wait for the target (no move was sent)
                 } else if phase >= 4 {
                     self.next();
                 }
@@ -282,8 +308,15 @@ impl Script {
                 }
             }
             Step::WheelUntil(_, _, done) => {
+                // The frame after the check held sent the gesture's end.
                 if done(app) {
-                    self.next();
+                    self.released += 1;
+                    if self.released >= 2 {
+                        self.released = 0;
+                        self.next();
+                    }
+                } else {
+                    self.released = 0;
                 }
             }
             Step::DragUntil(_, _, done) => {
