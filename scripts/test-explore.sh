@@ -12,7 +12,7 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
   export XDG_RUNTIME_DIR="$(mktemp -d)"
   chmod 700 "$XDG_RUNTIME_DIR"
 fi
-packages=(-p cnets-geometry -p cnets-engine -p cnets-nodes -p cnets-headless -p cnets-tests)
+packages=(-p cnets-geometry -p cnets-engine -p cnets-nodes -p cnets -p cnets-tests)
 cargo test "${packages[@]}" --no-run -q
 for round in $(seq 1 "$rounds"); do
   seed="$(od -An -N8 -tu8 /dev/urandom | tr -d ' ')"
