@@ -382,9 +382,6 @@ fn the_view_follows_the_best_point_live_and_revert_restores_it() {
         h.state_mut().optimization.wait(Duration::from_secs(30)),
         "Stop ends the run"
     );
-    let app = h.state();
-    let finished = app.optimization.result.as_ref().unwrap().as_ref().unwrap();
-    assert_eq!(finished.outcome.stop, Stop::Cancelled, "ended by Stop");
     h.run_steps(2);
     h.get_by_label("Revert").click();
     h.run_steps(1);
