@@ -1,0 +1,219 @@
+//! The wire's round trips and its refusals of malformed messages.
+
+use std::sync::Arc;
+
+use cnets_editor::preview::{
+    ColorMode, Layer, LegendInfo, PickCurve, PickGeometry, PickMesh, PreviewOptions, PreviewStats,
+};
+use cnets_geometry::fabrication::FaceClass;
+use cnets_geometry::{DVec3, Polyline, QuadGrid};
+use cnets_render::Color;
+
+use super::*;
+
+fn round_trip(message: &ToWorker) -> ToWorker {
+    decode_to_worker(&encode_to_worker(message)).expect("decodes")
+}
+
+#[test]
+fn requests_round_trip() {
+    let mut options = PreviewOptions::default();
+    options.color_mode = ColorMode::Planarity;
+    options.set(Layer::Apices, false);
+    assert!(options.set_planarity_limit(1e-5));
+    let job = ToWorker::Evaluate(Job {
+        seq: 42,
+        ron: "(nodes: {})".into(),
+        base_dir: Some("graphs".into()),
+        view: vec!["bay".into(), "inner".into()],
+        options,
+        literals: vec![LiteralRef {
+            node: "big".into(),
+            input: "values".into(),
+            key: 7,
+        }],
+        forget: vec![3, 5],
+    });
+    assert_eq!(round_trip(&job), job);
+    let literal = ToWorker::Literal {
+        key: 7,
+        value: Value::list(vec![
+            Value::list(vec![Value::Number(-0.0), Value::Number(f64::MAX)]),
+            Value::text("row"),
+            Value::Point(DVec3::new(1.0, 2.0, 3.0)),
+            Value::Integer(i64::MIN),
+            Value::Null,
+        ]),
+    };
+    assert_eq!(round_trip(&literal), literal);
+    let parse = ToWorker::Parse(ParseJob {
+        token: 3,
+        origin: "big.ron".into(),
+        library: vec!["graphs".into()],
+        text: b"(nodes: {})".to_vec(),
+    });
+    assert_eq!(round_trip(&parse), parse);
+    let file = ToWorker::Provide {
+        name: "hull.obj".into(),
+        bytes: vec![0, 1, 2, 255],
+    };
+    assert_eq!(round_trip(&file), file);
+}
+
+#[test]
+fn answers_round_trip_with_statuses_scene_and_picks() {
+    let mut scene = Scene::new();
+    let grid = QuadGrid::new(
+        2,
+        3,
+        (0..6)
+            .map(|k| DVec3::new(f64::from(k % 3), f64::from(k / 3), 0.5))
+            .collect(),
+    )
+    .unwrap();
+    scene
+        .add_quad_grid(
+            &grid,
+            cnets_render::FaceColors::Uniform(Color([10, 20, 30, 255])),
+        )
+        .unwrap();
+    let picks = Picks {
+        meshes: vec![PickMesh {
+            node: "net".into(),
+            output: "mesh".into(),
+            item: Some(1),
+            geometry: PickGeometry::Grid(Arc::new(grid)),
+            classes: Some(vec![FaceClass::Convex, FaceClass::NegativeApex]),
+            planarity: vec![1e-15, 2e-3],
+        }],
+        curves: vec![PickCurve {
+            node: "arc".into(),
+            output: "curve".into(),
+            polyline: Arc::new(Polyline {
+                points: vec![DVec3::X, DVec3::Y],
+                closed: true,
+            }),
+        }],
+    };
+    let statuses = HashMap::from([
+        (
+            "mapper".to_string(),
+            NodeStatus::Ok {
+                warnings: vec!["careful".into()],
+                outputs: vec!["0.5".into()],
+                time_ms: 1.5,
+                readout: Some("text".into()),
+                ran_on: Some(vec![
+                    Value::Number(0.25),
+                    Value::text("bezier"),
+                    Value::list(vec![Value::Integer(-3), Value::Point(DVec3::Z)]),
+                ]),
+            },
+        ),
+        ("bad".to_string(), NodeStatus::Error("needs 320 GB".into())),
+        ("slow".to_string(), NodeStatus::Running { last_ms: 900.0 }),
+        ("off".to_string(), NodeStatus::Disabled),
+    ]);
+    let response = EvalResponse {
+        seq: 9,
+        view: vec![],
+        statuses: statuses.clone(),
+        scene: Arc::new(scene.clone()),
+        stats: PreviewStats {
+            vertices: 6,
+            faces: 2,
+            max_planarity: Some(2e-3),
+            max_planarity_mesh: Some("net.mesh".into()),
+            legend: LegendInfo::Classes(vec![(FaceClass::Convex, 1)]),
+            apices: 0,
+            distance: Some(cnets_editor::preview::DistanceFigures {
+                reference: "hull".into(),
+                max: 0.179,
+                rms: 0.025,
+                vertices: 560,
+            }),
+            build_ms: 0.5,
+        },
+        picks: Arc::new(picks),
+        eval_ms: 3.0,
+        ran: 4,
+        changed_at: web_time::Instant::now(),
+        finished_at: web_time::Instant::now(),
+        complete: false,
+    };
+    let Ok(FromWorker::Answer(a)) = decode_from_worker(&encode_answer(&response, false)) else {
+        panic!("an answer");
+    };
+    assert_eq!((a.seq, a.eval_ms, a.ran, a.complete), (9, 3.0, 4, false));
+    assert_eq!(a.statuses, statuses);
+    let (s, stats, p) = a.preview.expect("the preview");
+    assert!(same_scene(&s, &scene) && s.bounds() == scene.bounds());
+    assert_eq!(stats.legend, response.stats.legend);
+    assert_eq!(p.meshes[0].classes, response.picks.meshes[0].classes);
+    assert_eq!(p.meshes[0].planarity, response.picks.meshes[0].planarity);
+    assert_eq!(p.meshes[0].geometry.vertices(), grid_vertices(&response));
+    assert_eq!(p.curves[0].polyline, response.picks.curves[0].polyline);
+    // Without the preview: the statuses only.
+    let Ok(FromWorker::Answer(b)) = decode_from_worker(&encode_answer(&response, true)) else {
+        panic!("an answer");
+    };
+    assert!(b.preview.is_none());
+}
+
+fn grid_vertices(r: &EvalResponse) -> &[DVec3] {
+    r.picks.meshes[0].geometry.vertices()
+}
+
+#[test]
+fn read_files_round_trip_with_their_literals_or_their_error() {
+    let parsed = Parsed {
+        skeleton: "(nodes: {})".into(),
+        literals: vec![(
+            LiteralRef {
+                node: "numbers".into(),
+                input: "values".into(),
+                key: 1 << 63,
+            },
+            Value::list(vec![Value::Number(0.5), Value::Number(-2.0)]),
+        )],
+    };
+    for result in [Ok(parsed), Err("big.ron:3:7: expected ')'".to_string())] {
+        match decode_from_worker(&encode_parsed(9, &result)).expect("decodes") {
+            FromWorker::Parsed {
+                token,
+                result: back,
+            } => {
+                assert_eq!((token, back), (9, result));
+            }
+            _ => panic!("not a read file"),
+        }
+    }
+}
+
+#[test]
+fn malformed_messages_are_errors_not_panics() {
+    let job = encode_to_worker(&ToWorker::Provide {
+        name: "a.csv".into(),
+        bytes: vec![1; 100],
+    });
+    for cut in 0..job.len() {
+        assert!(decode_to_worker(&job[..cut]).is_err(), "cut at {cut}");
+    }
+    // A count far past the message is refused before anything is allocated.
+    let mut huge = vec![TO_PROVIDE];
+    huge.extend_from_slice(&u64::MAX.to_le_bytes());
+    assert!(decode_to_worker(&huge).is_err());
+    assert!(decode_from_worker(&[99]).is_err());
+    assert!(decode_from_worker(&[]).is_err());
+    // A triangle index past the vertices.
+    let mut w = Writer::default();
+    w.u8(FROM_ANSWER);
+    w.u64(1);
+    w.strs(&[]);
+    w.len(0);
+    w.bool(true);
+    w.raw(&[0, 0, 0, 255]);
+    w.pods::<cnets_render::FaceVertex>(&[]);
+    w.pods(&[0u32, 1, 2]);
+    assert!(decode_from_worker(&w.0).is_err());
+}
