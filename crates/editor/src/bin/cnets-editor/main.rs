@@ -9,7 +9,8 @@
 //!
 //! Test modes (the real window under Xvfb, `tests/window.rs`): `--drive-drag` drags the first
 //! `param.number` slider with injected pointer events (press, moves, release), prints the values
-//! shown once released and keeps running (the test kills it); `--restore-and-print` accepts the
+//! shown once released, then `drive-drag: autosaved N ms after the release` once autosave has
+//! written them, and keeps running (the test kills it); `--restore-and-print` accepts the
 //! recovery file's restore, prints the values and quits; `--drive-script NAME [--drive-out DIR]`
 //! plays a scripted design session (`scenarios.rs`: handles, draw, pick, folds, canopy) with
 //! injected pointer events and keys, printing `script: key = value` lines and saving screenshots
