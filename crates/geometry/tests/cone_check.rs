@@ -13,6 +13,7 @@ fn check(net: &ConeNet) -> Result<(), TestCaseError> {
     let m = &net.mesh;
     let x = &net.directrix;
     prop_assert_eq!(net.apices.len(), m.cols - 1);
+    let size = m.size().max(f64::MIN_POSITIVE);
     for j in 0..m.cols - 1 {
         let edge = x[j + 1] - x[j];
         match net.apices[j] {
@@ -29,8 +30,17 @@ fn check(net: &ConeNet) -> Result<(), TestCaseError> {
             None => {
                 prop_assert!((net.apex[j] - 1.0).abs() <= 1e-12);
                 for i in 0..m.rows {
-                    let s = sin_angle(m.at(i, j + 1) - m.at(i, j), edge);
-                    prop_assert!(s <= 1e-9, "strip {j}, row {i}: not parallel ({s:e})");
+                    let rung = m.at(i, j + 1) - m.at(i, j);
+                    let s = sin_angle(rung, edge);
+                    // A rung that has nearly collapsed (a strip pinched to a point) has no
+                    // direction to speak of: its end's distance from the parallel through its
+                    // start is then held to rounding of the design's size instead (CI seed
+                    // 13387616969905358863: a 1.6e-7 rung, sin 1.1e-9, off the parallel by 2e-16).
+                    let off = rung.cross(edge).length() / edge.length();
+                    prop_assert!(
+                        s <= 1e-9 || off <= 1e-12 * size,
+                        "strip {j}, row {i}: not parallel (sin {s:e}, off by {off:e})"
+                    );
                 }
             }
         }
