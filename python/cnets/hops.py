@@ -1,7 +1,7 @@
 """cnets in Grasshopper through McNeel's Hops component: ``python -m cnets.hops [--port 5000]
-[--library DIR] [--max-body 64MB] [--max-memory SIZE]`` serves the components below over HTTP on
-127.0.0.1 (werkzeug's threaded server). In Grasshopper: a Hops component, Path
-``http://localhost:5000/cnets_construct``.
+[--library DIR] [--max-body 64MB] [--max-memory SIZE] [--workers N] [--queue 32] [--timeout 60]``
+serves the components below over HTTP on 127.0.0.1 (werkzeug's threaded server). In Grasshopper:
+a Hops component, Path ``http://localhost:5000/cnets_construct``.
 
 Components (inputs → outputs):
 
@@ -24,9 +24,15 @@ Components (inputs → outputs):
 The server parses Hops' requests and encodes its answers itself: numbers are read straight from
 the request, curves decoded with rhino3dm, meshes written in bulk from the engine's arrays with
 double-precision vertices (``cnets._opennurbs``), nothing printed per request. Every failure —
-a body that is not JSON, an input of the wrong kind, a node that fails, a body over ``--max-body``
-(HTTP 413) — is answered with a Hops response whose error is one sentence; the solves run under
-the engine's memory budget (``--max-memory``).
+a body that is not JSON or nested more than ``MAX_JSON_DEPTH`` (100) deep, an input of the wrong
+kind, a node that fails, a body over ``--max-body`` (HTTP 413) — is answered with a Hops response
+whose error is one sentence; the solves run under the engine's memory budget (``--max-memory``).
+
+Solves run in worker processes (``cnets._hops_workers``), so a slow one — rhino3dm's decoder can
+spend a minute on 100 bytes while holding the interpreter lock — delays neither GETs nor other
+solves: at most ``--workers`` solves at once, ``--queue`` more waiting (beyond: 503 with
+``Retry-After``), each stopped after ``--timeout`` seconds (503 naming the limit; its worker is
+killed and replaced). SIGTERM and Ctrl+C kill the workers and stop the server at once.
 
 Curves: a polyline curve gives its vertices; any other Rhino curve (NURBS, arc…) is sampled at
 ``--samples`` points (default 33).
@@ -38,11 +44,13 @@ import argparse
 import json
 import logging
 import math
+import os
+import signal
 import sys
 import unicodedata
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 from urllib.parse import quote, unquote, urlsplit
 
 import numpy as np
@@ -51,10 +59,20 @@ from . import _cnets
 from ._opennurbs import encode_mesh_json
 from ._types import PolygonMesh, Polyline, QuadMesh
 
-__all__ = ["HopsServer", "create_app", "main", "DEFAULT_MAX_BODY"]
+__all__ = ["HopsServer", "create_app", "main", "DEFAULT_MAX_BODY", "DEFAULT_WORKERS",
+           "DEFAULT_QUEUE", "DEFAULT_TIMEOUT", "MAX_JSON_DEPTH"]
 
 #: The default limit of a request body: 64 MB.
 DEFAULT_MAX_BODY = 64_000_000
+#: The default number of worker processes, each solving one request at a time.
+DEFAULT_WORKERS = max(1, min(4, os.cpu_count() or 1))
+#: The default number of requests that may wait for a free worker (more: 503 at once).
+DEFAULT_QUEUE = 32
+#: The default time limit of a solve, in seconds (and of a wait for a free worker).
+DEFAULT_TIMEOUT = 60.0
+#: The deepest nesting of JSON arrays and objects read, in a body or in an item's data (a Hops
+#: request is 6 levels deep); deeper JSON is refused before it is parsed.
+MAX_JSON_DEPTH = 100
 
 _log = logging.getLogger("cnets.hops")
 
@@ -65,9 +83,10 @@ class HopsError(Exception):
     """A request that cannot be answered with a solution: its one-sentence message goes back to
     Grasshopper as the component's error, with an HTTP status."""
 
-    def __init__(self, message: str, status: int = 400) -> None:
+    def __init__(self, message: str, status: int = 400, retry_after: Optional[int] = None) -> None:
         super().__init__(message)
         self.status = status
+        self.retry_after = retry_after
 
 
 def _sentence(message: str) -> str:
@@ -75,6 +94,61 @@ def _sentence(message: str) -> str:
     text = " ".join(part.strip() for part in str(message).splitlines() if part.strip())
     text = text or "unknown error"
     return text if text.endswith((".", "!", "?")) else text + "."
+
+
+# -------------------------------------------------------------------------------------------
+# JSON, its nesting checked before it is parsed
+
+
+class JsonTooDeep(ValueError):
+    """JSON nested deeper than the limit (a ``ValueError``: read as "not JSON" where that is what
+    is caught)."""
+
+
+_SCAN_CHUNK = 1 << 22
+# Every byte but the quote and the four brackets (deleted before the scan).
+_NOT_STRUCTURE = bytes(b for b in range(256) if b not in b'"[]{}')
+
+
+def _nesting_exceeds(data: bytes, limit: int) -> bool:
+    """Whether UTF-8 JSON ``data`` nests arrays and objects more than ``limit`` deep, brackets
+    inside strings not counted: a linear scan (C loops and numpy). Up to the first syntax error
+    it reads the text as the JSON parser does, so JSON that passes cannot make the parser recurse
+    deeper than ``limit``."""
+    if data.count(b"[") + data.count(b"{") <= limit:
+        return False  # the common case: too few brackets to be too deep
+    # Escapes first, left to right as the parser reads them: an escaped backslash, then an
+    # escaped quote; what is left of a string is text between two quotes.
+    structure = data.replace(b"\\\\", b"").replace(b'\\"', b"").translate(None, _NOT_STRUCTURE)
+    codes = np.frombuffer(structure, dtype=np.uint8)
+    depth, inside = 0, 0  # at the end of the previous piece; inside: 1 within a string
+    for start in range(0, len(codes), _SCAN_CHUNK):
+        piece = codes[start:start + _SCAN_CHUNK]
+        in_string = (np.cumsum(piece == 34, dtype=np.int32) + inside) & 1
+        step = (piece == 91).astype(np.int32) + (piece == 123) - (piece == 93) - (piece == 125)
+        level = np.cumsum(step * (in_string == 0), dtype=np.int32) + depth
+        if int(level.max()) > limit:
+            return True
+        depth, inside = int(level[-1]), int(in_string[-1])
+    return False
+
+
+def _json_loads(data: Union[str, bytes], limit: int = MAX_JSON_DEPTH) -> Any:
+    """``json.loads``, with JSON nested deeper than ``limit`` refused (``JsonTooDeep``) before
+    the parser recurses into it."""
+    if isinstance(data, str):
+        scan = data.encode("utf-8", "surrogatepass")
+    else:
+        data = bytes(data)
+        encoding = json.detect_encoding(data)
+        if encoding == "utf-8":
+            scan = data
+        else:  # UTF-16/32 (or a BOM): read as the parser would, scanned as UTF-8
+            data = data.decode(encoding, "surrogatepass")
+            scan = data.encode("utf-8", "surrogatepass")
+    if _nesting_exceeds(scan, limit):
+        raise JsonTooDeep(f"JSON arrays and objects nested more than {limit} levels deep")
+    return json.loads(data)
 
 
 # -------------------------------------------------------------------------------------------
@@ -242,13 +316,14 @@ def _decode_boolean(param: Param, item: Any, where: str) -> bool:
 def _decode_text(param: Param, item: Any, where: str) -> str:
     _, data = _item_parts(param, item, where)
     try:
-        value = json.loads(data)
+        value = _json_loads(data)
     except ValueError:
         return data
     return value if isinstance(value, str) else data
 
 
-def _decode_geometry(param: Param, item: Any, where: str) -> Any:
+def _decode_geometry(param: Param, item: Any, where: str,
+                     decode: Optional[Callable[[Dict[str, Any]], Any]] = None) -> Any:
     import rhino3dm
 
     item_type, data = _item_parts(param, item, where)
@@ -256,8 +331,9 @@ def _decode_geometry(param: Param, item: Any, where: str) -> Any:
     if not item_type.startswith("Rhino.Geometry."):
         raise HopsError(f"{param.name}: item {where} is {_what(item_type)}, expected {expected}")
     try:
-        encoded = json.loads(data)
-        geometry = rhino3dm.CommonObject.Decode(encoded) if isinstance(encoded, dict) else None
+        encoded = _json_loads(data)
+        decode = decode or rhino3dm.CommonObject.Decode
+        geometry = decode(encoded) if isinstance(encoded, dict) else None
     except Exception:  # rhino3dm raises plain exceptions on bad archives
         geometry = None
     if geometry is None:
@@ -273,31 +349,36 @@ def _decode_geometry(param: Param, item: Any, where: str) -> Any:
 def _decode_point(param: Param, item: Any, where: str) -> List[float]:
     item_type, data = _item_parts(param, item, where)
     try:
-        p = json.loads(data)
+        p = _json_loads(data)
         return [float(p["X"]), float(p["Y"]), float(p["Z"])]
     except (ValueError, TypeError, KeyError):
         raise HopsError(f"{param.name}: item {where} is {_what(item_type)}, expected a point with "
                         "X, Y and Z") from None
 
 
-def _decoder(param: Param) -> Callable[[Param, Any, str], Any]:
+def _decoder(param: Param, decode_geometry: Optional[Callable] = None
+             ) -> Callable[[Param, Any, str], Any]:
+    def geometry(p: Param, i: Any, w: str) -> Any:
+        return _decode_geometry(p, i, w, decode_geometry)
+
     return {
         "Number": _decode_number,
         "Integer": lambda p, i, w: _decode_number(p, i, w, integer=True),
         "Boolean": _decode_boolean,
         "Text": _decode_text,
-        "Curve": _decode_geometry,
-        "Line": _decode_geometry,
-        "Mesh": _decode_geometry,
+        "Curve": geometry,
+        "Line": geometry,
+        "Mesh": geometry,
         "Point": _decode_point,
         "Vector": _decode_point,
     }[param.kind]
 
 
-def read_input(param: Param, entry: Any) -> Any:
+def read_input(param: Param, entry: Any, decode_geometry: Optional[Callable] = None) -> Any:
     """One input of a request as Python values: an item (or ``None`` when empty), a list, or a
-    list of branches (a tree), decoded by the parameter's kind."""
-    decode = _decoder(param)
+    list of branches (a tree), decoded by the parameter's kind (Rhino geometry by
+    ``decode_geometry``, default ``rhino3dm.CommonObject.Decode``)."""
+    decode = _decoder(param, decode_geometry)
     branches = _branches(param, entry)
     decoded = []
     for path, items in branches:
@@ -456,14 +537,40 @@ def grid_from_rhino(param_name: str, mesh: Any) -> QuadMesh:
 
 class HopsServer:
     """The cnets components and the WSGI application that serves them to Hops (a werkzeug
-    application: ``make_server(host, port, server, threaded=True)``)."""
+    application: ``make_server(host, port, server, threaded=True)``).
+
+    POSTs are solved in ``workers`` worker processes (``cnets._hops_workers``): at most
+    ``workers`` at once, up to ``queue`` more waiting, each stopped after ``timeout`` seconds
+    (503 naming the limit; the worker is killed and replaced). ``workers=0`` solves in the
+    calling thread, without a time limit. The workers start with the first POST or ``start()``;
+    ``close()`` (or leaving a ``with`` block) kills them. ``decode_geometry`` replaces
+    ``rhino3dm.CommonObject.Decode`` for Rhino geometry items; it runs in the workers, so it must
+    be picklable (a module-level function)."""
 
     def __init__(self, library: Optional[str] = None, samples: int = 33,
-                 max_body: int = DEFAULT_MAX_BODY, max_memory: Any = None) -> None:
+                 max_body: int = DEFAULT_MAX_BODY, max_memory: Any = None, *,
+                 workers: int = DEFAULT_WORKERS, queue: int = DEFAULT_QUEUE,
+                 timeout: float = DEFAULT_TIMEOUT,
+                 decode_geometry: Optional[Callable[[Dict[str, Any]], Any]] = None) -> None:
+        if int(workers) < 0 or int(queue) < 0:
+            raise ValueError("workers and queue must be 0 or more")
+        if not float(timeout) > 0:
+            raise ValueError("timeout must be a positive number of seconds")
         self.samples = int(samples)
         self.max_body = int(max_body)
         self.max_memory = max_memory
+        self.workers = int(workers)
+        self.queue = int(queue)
+        self.timeout = float(timeout)
+        self.decode_geometry = decode_geometry
         self.library = [str(library)] if library else []
+        self._pool: Any = None
+        if self.workers:
+            from ._hops_workers import SolvePool
+
+            options = {"library": library, "samples": self.samples, "max_body": self.max_body,
+                       "max_memory": max_memory, "decode_geometry": decode_geometry}
+            self._pool = SolvePool(options, self.workers, self.queue, self.timeout)
         self.components: Dict[str, Component] = {}
         #: Library files that are not served, with the reason (reported at start-up).
         self.skipped: List[str] = []
@@ -471,6 +578,30 @@ class HopsServer:
             self.components[component.path] = component
         if library:
             self._add_library(Path(library))
+
+    # -- the workers
+
+    def start(self) -> "HopsServer":
+        """Starts the worker processes now (else the first POST does); they get ready in the
+        background."""
+        if self._pool is not None:
+            self._pool.start()
+        return self
+
+    def close(self) -> None:
+        """Kills the worker processes at once; later POSTs are answered 503."""
+        if self._pool is not None:
+            self._pool.close()
+
+    def worker_pids(self) -> List[int]:
+        """The process ids of the live worker processes."""
+        return self._pool.pids() if self._pool is not None else []
+
+    def __enter__(self) -> "HopsServer":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
 
     # -- the engine
 
@@ -531,6 +662,7 @@ class HopsServer:
 
         request = Request(environ)
         request.max_content_length = self.max_body
+        headers: Dict[str, str] = {}
         try:
             status, body = self.handle(request)
         except RequestEntityTooLarge:
@@ -543,15 +675,20 @@ class HopsServer:
                 f"the request could not be read ({e.description})")]}
         except HopsError as e:
             status, body = e.status, {"values": [], "errors": [_sentence(e)]}
+            if e.retry_after is not None:
+                headers["Retry-After"] = str(e.retry_after)
         except Exception as e:  # a bug: one sentence to Grasshopper, the traceback to the log
             _log.exception("internal error on %s %s", request.method, request.path)
             status, body = 500, {"values": [], "errors": [_sentence(
                 f"internal error of the cnets Hops server ({type(e).__name__}: {e})")]}
-        if status >= 400 and isinstance(body, dict):
-            _log.warning("%s %s: %d %s", request.method, request.path, status,
-                         "; ".join(body.get("errors", [])))
-        data = body.encode() if isinstance(body, str) else json.dumps(body).encode()
-        response = Response(data, status=status, mimetype="application/json")
+        if status >= 400 and isinstance(body, (dict, _Answer)):
+            errors = body.errors if isinstance(body, _Answer) else body.get("errors", [])
+            _log.warning("%s %s: %d %s", request.method, request.path, status, "; ".join(errors))
+        if isinstance(body, _Answer):
+            data = body.data
+        else:
+            data = body.encode() if isinstance(body, str) else json.dumps(body).encode()
+        response = Response(data, status=status, mimetype="application/json", headers=headers)
         return response(environ, start_response)
 
     def _too_large(self, request: Any) -> Dict[str, Any]:
@@ -562,7 +699,8 @@ class HopsServer:
             "data (fewer or coarser items) or start the server with a larger --max-body")]}
 
     def handle(self, request: Any) -> Tuple[int, Any]:
-        """Answers one request: ``(status, JSON body)``."""
+        """Answers one request: ``(status, JSON body)`` (a POST's body comes encoded, as an
+        ``_Answer``)."""
         path = request.path  # already percent-decoded by the server ("/my tube")
         if request.method in ("GET", "HEAD"):
             if path == "/":
@@ -581,8 +719,37 @@ class HopsServer:
 
             raise RequestEntityTooLarge()
         raw = request.get_data(cache=False)
+        if self._pool is None:
+            status, errors, data = self.answer_post(path, raw)
+        else:
+            from ._hops_workers import PoolError
+
+            try:
+                status, errors, data = self._pool.run(path, raw)
+            except PoolError as e:
+                raise HopsError(str(e), e.status, e.retry_after) from None
+        return status, _Answer(data, errors)
+
+    def answer_post(self, path: str, raw: bytes) -> Tuple[int, List[str], bytes]:
+        """Answers the body of a POST to ``path`` in this process (what a worker runs): the
+        status, the errors and the JSON answer; never raises."""
         try:
-            payload = json.loads(raw)
+            status, body = 200, self._post(path, raw)
+        except HopsError as e:
+            status, body = e.status, {"values": [], "errors": [_sentence(e)]}
+        except Exception as e:  # a bug: one sentence to Grasshopper, the traceback to the log
+            _log.exception("internal error on POST %s", path)
+            status, body = 500, {"values": [], "errors": [_sentence(
+                f"internal error of the cnets Hops server ({type(e).__name__}: {e})")]}
+        return status, list(body.get("errors", [])), json.dumps(body).encode()
+
+    def _post(self, path: str, raw: bytes) -> Dict[str, Any]:
+        try:
+            payload = _json_loads(raw)
+        except JsonTooDeep:
+            raise HopsError(f"the request body nests JSON arrays and objects more than "
+                            f"{MAX_JSON_DEPTH} levels deep, which this server does not read (a "
+                            "Hops request is 6 levels deep)") from None
         except ValueError as e:
             raise HopsError(f"the request body is not JSON ({e})") from None
         if not isinstance(payload, dict):
@@ -603,7 +770,7 @@ class HopsServer:
             component = self.components.get(path)
             if component is None:
                 raise HopsError(f"no component at {quote(path)}; GET / lists them", 404)
-        return 200, self.solve(component, payload)
+        return self.solve(component, payload)
 
     def solve(self, component: Component, payload: Dict[str, Any]) -> Dict[str, Any]:
         """Decodes the inputs of a request, solves the component and encodes its outputs."""
@@ -621,7 +788,7 @@ class HopsServer:
             if name not in params:
                 raise HopsError(f"{component.name} has no input {name!r} (its inputs: "
                                 f"{', '.join(params)})")
-            by_name[name] = read_input(params[name], entry)
+            by_name[name] = read_input(params[name], entry, self.decode_geometry)
         inputs = {}
         for p in component.inputs:
             value = by_name.get(p.name)
@@ -635,6 +802,14 @@ class HopsServer:
             "errors": [],
             "warnings": [],
         }
+
+
+@dataclass
+class _Answer:
+    """A POST's JSON answer, already encoded (by a worker), and its errors (for the log)."""
+
+    data: bytes
+    errors: List[str]
 
 
 def _unsafe_name(name: str) -> Optional[str]:
@@ -876,10 +1051,40 @@ def _library_component(server: HopsServer, path: Path, url: str) -> Optional[Com
 
 
 def create_app(library: Optional[str] = None, samples: int = 33,
-               max_body: int = DEFAULT_MAX_BODY, max_memory: Any = None) -> HopsServer:
+               max_body: int = DEFAULT_MAX_BODY, max_memory: Any = None, *,
+               workers: int = DEFAULT_WORKERS, queue: int = DEFAULT_QUEUE,
+               timeout: float = DEFAULT_TIMEOUT,
+               decode_geometry: Optional[Callable[[Dict[str, Any]], Any]] = None) -> HopsServer:
     """The Hops application with every cnets component (and the library's graphs): a WSGI
-    application."""
-    return HopsServer(library=library, samples=samples, max_body=max_body, max_memory=max_memory)
+    application. Its POSTs are solved in ``workers`` worker processes, ``queue`` more waiting,
+    ``timeout`` seconds each (see ``HopsServer``); ``close()`` it when done."""
+    return HopsServer(library=library, samples=samples, max_body=max_body, max_memory=max_memory,
+                      workers=workers, queue=queue, timeout=timeout,
+                      decode_geometry=decode_geometry)
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{value} is negative")
+    return value
+
+
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text} is not a positive number of seconds")
+    return value
+
+
+class _Stop(Exception):
+    """SIGTERM: stop serving."""
 
 
 def _size(text: str) -> int:
@@ -904,6 +1109,17 @@ def main(argv: Optional[Sequence[str]] = None) -> None:
                         help="largest request body (default 64MB); larger ones get HTTP 413")
     parser.add_argument("--max-memory", type=_size, default=None, metavar="SIZE",
                         help="memory budget of a solve (default: half the machine's memory)")
+    parser.add_argument("--workers", type=_count, default=DEFAULT_WORKERS, metavar="N",
+                        help="worker processes solving requests, one each at a time (default: "
+                        f"the processor count up to 4, here {DEFAULT_WORKERS}; 0: solve in the "
+                        "server process, without a time limit)")
+    parser.add_argument("--queue", type=_count, default=DEFAULT_QUEUE, metavar="N",
+                        help=f"requests that may wait for a free worker (default {DEFAULT_QUEUE}); "
+                        "more are answered 503 with Retry-After")
+    parser.add_argument("--timeout", type=_seconds, default=DEFAULT_TIMEOUT, metavar="SECONDS",
+                        help=f"time limit of a solve (default {DEFAULT_TIMEOUT:g}): a slower one "
+                        "is answered 503 and its worker killed; also the longest wait for a "
+                        "free worker")
     args = parser.parse_args(argv)
     if args.library and not Path(args.library).is_dir():
         parser.error(f"--library {args.library}: not a folder")
@@ -924,19 +1140,33 @@ def main(argv: Optional[Sequence[str]] = None) -> None:
     logging.basicConfig(level=logging.INFO, format="cnets.hops: %(message)s", stream=sys.stderr)
     logging.getLogger("werkzeug").setLevel(logging.ERROR)
     server = create_app(library=args.library, samples=args.samples, max_body=args.max_body,
-                        max_memory=args.max_memory)
+                        max_memory=args.max_memory, workers=args.workers, queue=args.queue,
+                        timeout=args.timeout)
     for line in server.skipped:
         _log.warning("%s", line)
-    httpd = make_server(args.host, args.port, server, threaded=True, request_handler=Handler)
-    library = sum(1 for c in server.components.values() if c.subcategory == "Library")
-    print(f"cnets.hops: serving {len(server.components)} components ({library} from the library) "
-          f"on http://{args.host}:{httpd.server_port}/", flush=True)
+
+    def stop(signum: int, frame: Any) -> None:
+        raise _Stop()
+
     try:
-        httpd.serve_forever()
-    except KeyboardInterrupt:
+        httpd = make_server(args.host, args.port, server, threaded=True, request_handler=Handler)
+        # SIGTERM stops the server as Ctrl+C does: the workers are killed, the port closed, at
+        # once (requests still running are dropped).
+        signal.signal(signal.SIGTERM, stop)
+        server.start()
+        library = sum(1 for c in server.components.values() if c.subcategory == "Library")
+        print(f"cnets.hops: serving {len(server.components)} components ({library} from the "
+              f"library) on http://{args.host}:{httpd.server_port}/", flush=True)
+        try:
+            httpd.serve_forever()
+        finally:
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            server.close()
+            httpd.server_close()
+    except (KeyboardInterrupt, _Stop):
         pass
     finally:
-        httpd.server_close()
+        server.close()
 
 
 def _missing_dependency() -> Optional[str]:
