@@ -22,6 +22,8 @@ pub mod coplanar;
 pub mod correction;
 pub mod ctube;
 pub mod directrix;
+mod directrix_adjoint;
+mod dual;
 mod eigen;
 pub mod encode;
 pub mod inputs;
