@@ -245,15 +245,20 @@ class SolvePool:
         if not self._admit.acquire(blocking=False):
             raise self._busy_error(waited=False)
         try:
-            try:
-                worker = self._idle.get(timeout=self.timeout)
-            except _queue.Empty:
-                raise self._busy_error(waited=True) from None
-            if worker is None:  # closing, or a worker could not start: pass the news on
-                self._idle.put(None)
-                if self._closed:
-                    raise self._closing()
-                raise PoolError(f"no solve worker could start ({self._failure})", 500)
+            deadline = time.monotonic() + self.timeout
+            while True:
+                try:
+                    worker = self._idle.get(timeout=max(0.0, deadline - time.monotonic()))
+                except _queue.Empty:
+                    raise self._busy_error(waited=True) from None
+                if worker is None:  # closing, or no worker could start: pass the news on
+                    self._idle.put(None)
+                    if self._closed:
+                        raise self._closing()
+                    raise PoolError(f"no solve worker could start ({self._failure})", 500)
+                if worker.process.is_alive():
+                    break
+                self._retire(worker)  # ended while idle (killed from outside): replaced
             return self._solve(worker, path, body)
         finally:
             self._admit.release()
