@@ -565,6 +565,14 @@ class HopsServer:
         self.decode_geometry = decode_geometry
         self.library = [str(library)] if library else []
         self._pool: Any = None
+        if self.workers and decode_geometry is not None:
+            import pickle
+
+            try:
+                pickle.dumps(decode_geometry)
+            except Exception as e:
+                raise ValueError("decode_geometry must be a module-level function the worker "
+                                 f"processes can import ({type(e).__name__}: {e})") from None
         if self.workers:
             from ._hops_workers import SolvePool
 

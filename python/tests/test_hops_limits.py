@@ -351,6 +351,11 @@ def test_create_app_takes_the_limits():
     for bad in ({"workers": -1}, {"queue": -1}, {"timeout": 0}):
         with pytest.raises(ValueError):
             create_app(**bad)
+    # The decoder runs in the workers: one they cannot import is refused at once.
+    with pytest.raises(ValueError, match="module-level function"):
+        create_app(decode_geometry=lambda encoded: None)
+    with create_app(workers=0, decode_geometry=lambda encoded: None):
+        pass  # in the server process, any function does
 
 
 def test_workers_solve_exactly_as_the_server_process(tmp_path):
