@@ -16,6 +16,9 @@ use super::check_count;
 use crate::error::check_finite_points;
 use crate::{GeometryError, Polyline};
 
+/// Samples per span of the arc-length table [`Spline::sample_even`] spaces its samples by.
+pub const ARC_TABLE_PER_SPAN: usize = 64;
+
 /// Which interpolating spline.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SplineKind {
@@ -207,8 +210,17 @@ impl Spline {
         lerp(b1, b2, t1, t2)
     }
 
-    /// A dense table of (parameter, cumulative arc length) with `per_span` samples per span.
-    fn arc_table(&self, per_span: usize) -> Vec<(f64, f64)> {
+    /// The second derivatives of a natural spline at its knots (one per knot; empty for
+    /// Catmull–Rom).
+    pub fn second_derivatives(&self) -> &[DVec3] {
+        &self.second
+    }
+
+    /// A dense table of (parameter, cumulative arc length) with `per_span` samples per span: the
+    /// first entry is (first knot, 0), then span by span the parameters
+    /// `t_i + (t_{i+1} − t_i) k / per_span` (k = 1 … per_span, the last exactly the next knot) and
+    /// the length of the chords through the spline's points there, from the first control point.
+    pub fn arc_table(&self, per_span: usize) -> Vec<(f64, f64)> {
         let mut table = Vec::with_capacity((self.knots.len() - 1) * per_span + 1);
         let mut prev = self.points[0];
         let mut acc = 0.0;
@@ -234,7 +246,7 @@ impl Spline {
     /// the spline; the spacing is even to within the accuracy of a 64-per-span arc-length table.
     pub fn sample_even(&self, count: usize) -> Result<Polyline, GeometryError> {
         check_count("count", count, if self.closed { 3 } else { 2 })?;
-        let table = self.arc_table(64);
+        let table = self.arc_table(ARC_TABLE_PER_SPAN);
         let total = table[table.len() - 1].1;
         let intervals = if self.closed { count } else { count - 1 };
         let mut points = Vec::with_capacity(count);

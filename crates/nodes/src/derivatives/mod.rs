@@ -9,9 +9,12 @@
 //! - mesh cut, mirror, join and the transforms (`mesh_ops`): piecewise affine, with branches.
 
 mod construction;
+mod curves;
+mod dual;
 mod math;
 mod measure;
 mod mesh_ops;
+mod nets;
 mod structural;
 
 use cnets_engine::NodeDef;
@@ -29,6 +32,16 @@ pub fn attach(defs: Vec<NodeDef>) -> Vec<NodeDef> {
                 return def.with_vjp(move |args| structural::product(&run, args));
             }
             if let Some(d) = measure::product(&id) {
+                return def.with_vjp(d);
+            }
+            if let Some(d) = curves::product(&id) {
+                let def = def.with_vjp(d);
+                return match curves::branch(&id, def.inputs.clone()) {
+                    Some(branch) => def.with_branch(branch),
+                    None => def,
+                };
+            }
+            if let Some(d) = nets::product(&id) {
                 return def.with_vjp(d);
             }
             if let Some(d) = mesh_ops::product(&id) {

@@ -391,3 +391,346 @@ fn a_cut_reports_its_piece_and_a_vertex_changing_side_changes_it() {
     assert_eq!(m(-0.01).summary, "vertices welded on the plane: 5 of 20");
     assert_ne!(m(-0.01).key, m(-0.1).key);
 }
+
+fn curve(ps: &[[f64; 3]], closed: bool) -> Value {
+    let points: Vec<DVec3> = ps.iter().map(|p| DVec3::from_array(*p)).collect();
+    Value::Polyline(Arc::new(if closed {
+        Polyline::closed(points)
+    } else {
+        Polyline::open(points)
+    }))
+}
+
+/// Irregular control points in space, no two consecutive ones close.
+const WIGGLE: [[f64; 3]; 6] = [
+    [0.0, 0.1, 0.0],
+    [1.1, 0.7, 0.2],
+    [2.3, -0.4, 0.5],
+    [3.0, 0.9, -0.3],
+    [4.4, 0.2, 0.1],
+    [5.1, 1.3, 0.6],
+];
+
+#[test]
+fn curve_construction_products_match_differences() {
+    let rel = compare("curve.polyline", &[("points", pts(&WIGGLE))], &["points"]);
+    assert!(rel < 1e-8, "polyline (open): {rel}");
+    let rel = compare(
+        "curve.polyline",
+        &[("points", pts(&WIGGLE)), ("closed", Value::Boolean(true))],
+        &["points"],
+    );
+    assert!(rel < 1e-8, "polyline (closed): {rel}");
+    // Closed, the last point repeating the first: dropped, so its cotangent is zero (finite
+    // differences cannot see this piece: moving the repeat keeps it).
+    let mut looped = WIGGLE.to_vec();
+    looped.push(WIGGLE[0]);
+    let d = def("curve.polyline");
+    let ins = inputs(
+        &d,
+        &[("points", pts(&looped)), ("closed", Value::Boolean(true))],
+    );
+    let ctx = NodeContext::default();
+    let outs = evaluate_node(&d, &ctx, &ins).unwrap().values;
+    let cot: Vec<f64> = (0..18).map(|k| k as f64 * 0.5 - 3.0).collect();
+    let g = node_vjp(
+        &d,
+        &ctx,
+        &ins,
+        &outs,
+        &[Some(cot.clone())],
+        &[Wanted::All, Wanted::No],
+    )
+    .unwrap();
+    assert!(g.finite_differences.is_none());
+    let mut expected = cot;
+    expected.extend([0.0; 3]);
+    assert_eq!(g.inputs[0].as_deref(), Some(&expected[..]));
+    let polyline = def("curve.polyline");
+    let piece = polyline
+        .branch
+        .clone()
+        .expect("the polyline has a branch function");
+    let dropped = piece(
+        &inputs(
+            &polyline,
+            &[("points", pts(&looped)), ("closed", Value::Boolean(true))],
+        ),
+        &[],
+    )
+    .unwrap();
+    let kept = piece(
+        &inputs(
+            &polyline,
+            &[("points", pts(&WIGGLE)), ("closed", Value::Boolean(true))],
+        ),
+        &[],
+    )
+    .unwrap();
+    assert_ne!(
+        dropped.key, kept.key,
+        "{} / {}",
+        dropped.summary, kept.summary
+    );
+}
+
+#[test]
+fn curve_transform_products_match_differences_in_every_parameter() {
+    let all = ["curve", "translation", "angle", "axis", "centre", "scale"];
+    for (closed, mirror) in [(false, true), (true, false)] {
+        let mut named = vec![
+            ("curve", curve(&WIGGLE[..4], closed)),
+            ("translation", Value::Vector(DVec3::new(0.5, -1.0, 2.0))),
+            ("angle", Value::Number(37.0)),
+            ("axis", Value::Vector(DVec3::new(0.2, 0.3, 1.0))),
+            ("centre", Value::Point(DVec3::new(1.0, 0.5, -0.2))),
+            ("scale", Value::Number(1.3)),
+        ];
+        if mirror {
+            named.push(("mirror", plane([0.2, 0.0, 0.1], [0.3, 1.0, 0.2])));
+        }
+        let rel = compare("curve.transform", &named, &all);
+        assert!(rel < 1e-7, "curve.transform (mirror {mirror}): {rel}");
+    }
+    // At angle 0 the rotation's derivative in the angle is k̂ × v; the axis has none.
+    let rel = compare(
+        "curve.transform",
+        &[
+            ("curve", curve(&WIGGLE, false)),
+            ("axis", Value::Vector(DVec3::new(0.5, -0.3, 0.8))),
+            ("centre", Value::Point(DVec3::new(1.0, 0.5, -0.2))),
+            ("scale", Value::Number(-0.7)),
+        ],
+        &all,
+    );
+    assert!(rel < 1e-7, "curve.transform (angle 0): {rel}");
+}
+
+#[test]
+fn resample_products_match_differences() {
+    for closed in [false, true] {
+        for (count, length) in [
+            (Value::Integer(13), Value::Null),
+            (Value::Integer(16), Value::Number(0.61)),
+        ] {
+            let rel = compare(
+                "curve.resample",
+                &[
+                    ("curve", curve(&WIGGLE, closed)),
+                    ("count", count.clone()),
+                    ("length", length.clone()),
+                ],
+                &["curve"],
+            );
+            assert!(rel < 1e-6, "resample (closed {closed}, {length:?}): {rel}");
+        }
+        // Counts whose equal division exists on this curve.
+        let counts: &[i64] = if closed { &[6, 9, 18] } else { &[2, 3, 7, 12] };
+        for &count in counts {
+            let rel = compare(
+                "curve.resample",
+                &[
+                    ("curve", curve(&WIGGLE, closed)),
+                    ("count", Value::Integer(count)),
+                    ("chords", Value::Boolean(true)),
+                ],
+                &["curve"],
+            );
+            assert!(
+                rel < 1e-6,
+                "resample in chords (closed {closed}, {count}): {rel}"
+            );
+        }
+    }
+}
+
+#[test]
+fn resample_reports_the_segments_its_points_fall_on() {
+    let resample = def("curve.resample");
+    let branch = resample
+        .branch
+        .clone()
+        .expect("resample has a branch function");
+    let piece = |last: f64, chords: bool| {
+        let mut ps = WIGGLE;
+        ps[5][0] = last;
+        branch(
+            &inputs(
+                &resample,
+                &[
+                    ("curve", curve(&ps, false)),
+                    ("count", Value::Integer(9)),
+                    ("chords", Value::Boolean(chords)),
+                ],
+            ),
+            &[],
+        )
+        .unwrap()
+    };
+    for chords in [false, true] {
+        let (a, b, c) = (
+            piece(5.1, chords),
+            piece(5.1 + 1e-7, chords),
+            piece(12.0, chords),
+        );
+        assert_eq!(a.key, b.key, "{} / {}", a.summary, b.summary);
+        assert_ne!(a.key, c.key, "{} / {}", a.summary, c.summary);
+    }
+    // A list of curves is mapped: one piece for the runs.
+    let both = branch(
+        &inputs(
+            &resample,
+            &[(
+                "curve",
+                Value::list(vec![curve(&WIGGLE, false), curve(&WIGGLE, true)]),
+            )],
+        ),
+        &[],
+    )
+    .unwrap();
+    assert!(both.summary.starts_with("2 runs"), "{}", both.summary);
+}
+
+#[test]
+fn spline_products_match_differences() {
+    for method in ["catmull-rom", "natural"] {
+        for closed in [false, true] {
+            for count in [17, 40] {
+                let rel = compare(
+                    "curve.spline",
+                    &[
+                        ("points", pts(&WIGGLE)),
+                        ("closed", Value::Boolean(closed)),
+                        ("count", Value::Integer(count)),
+                        ("method", Value::text(method)),
+                    ],
+                    &["points"],
+                );
+                assert!(
+                    rel < 1e-6,
+                    "spline ({method}, closed {closed}, {count}): {rel}"
+                );
+            }
+        }
+        // The fewest control points.
+        let rel = compare(
+            "curve.spline",
+            &[
+                ("points", pts(&WIGGLE[..2])),
+                ("count", Value::Integer(9)),
+                ("method", Value::text(method)),
+            ],
+            &["points"],
+        );
+        assert!(rel < 1e-6, "spline ({method}, 2 points): {rel}");
+        let rel = compare(
+            "curve.spline",
+            &[
+                ("points", pts(&WIGGLE[1..4])),
+                ("closed", Value::Boolean(true)),
+                ("count", Value::Integer(10)),
+                ("method", Value::text(method)),
+            ],
+            &["points"],
+        );
+        assert!(rel < 1e-6, "spline ({method}, closed, 3 points): {rel}");
+    }
+}
+
+#[test]
+fn a_spline_reports_the_table_intervals_of_its_samples() {
+    let spline = def("curve.spline");
+    let branch = spline
+        .branch
+        .clone()
+        .expect("the spline has a branch function");
+    let piece = |x: f64| {
+        let mut ps = WIGGLE;
+        ps[2][0] = x;
+        branch(
+            &inputs(
+                &spline,
+                &[("points", pts(&ps)), ("count", Value::Integer(12))],
+            ),
+            &[],
+        )
+        .unwrap()
+    };
+    let (a, b, c) = (piece(2.3), piece(2.3 + 1e-8), piece(4.0));
+    assert_eq!(a.key, b.key, "{} / {}", a.summary, b.summary);
+    assert_ne!(a.key, c.key, "{} / {}", a.summary, c.summary);
+}
+
+#[test]
+fn graph_to_apex_products_match_differences() {
+    let widths = crate::testing::nums(&[1.2, 0.9, 1.4, 1.1, 0.7, 1.0]);
+    let rel = compare(
+        "cnets.graph_to_apex",
+        &[("widths", widths.clone())],
+        &["widths"],
+    );
+    assert!(rel < 1e-7, "graph_to_apex: {rel}");
+    // Normalized on an open directrix with the default scale (length / 5).
+    let rel = compare(
+        "cnets.graph_to_apex",
+        &[
+            ("widths", widths.clone()),
+            ("normalized", Value::Boolean(true)),
+            ("directrix", curve(&WIGGLE, false)),
+        ],
+        &["widths", "directrix"],
+    );
+    assert!(rel < 1e-7, "graph_to_apex (normalized): {rel}");
+    // Normalized on a closed directrix (its closing edge counts) with a given scale: 5 points,
+    // 6 swept.
+    let rel = compare(
+        "cnets.graph_to_apex",
+        &[
+            ("widths", widths),
+            ("normalized", Value::Boolean(true)),
+            ("directrix", curve(&WIGGLE[..5], true)),
+            ("scale", Value::Number(0.8)),
+        ],
+        &["widths", "directrix", "scale"],
+    );
+    assert!(
+        rel < 1e-7,
+        "graph_to_apex (normalized, closed, scale): {rel}"
+    );
+}
+
+#[test]
+fn subdivide_rows_products_match_differences() {
+    // The grid's faces are not planar: the projection's plane turns with the points too.
+    for count in [1, 3] {
+        let rel = compare(
+            "cnets.subdivide_rows",
+            &[("mesh", grid()), ("count", Value::Integer(count))],
+            &["mesh"],
+        );
+        assert!(rel < 1e-6, "subdivide_rows ({count}): {rel}");
+    }
+    // Wrapping rows: a ring of 5 rows around a cone-like surface.
+    let mut v = Vec::new();
+    for i in 0..5 {
+        let a = i as f64 * std::f64::consts::TAU / 5.0 + 0.1 * (i * i) as f64;
+        for j in 0..4 {
+            let r = 1.0 + 0.3 * j as f64 + 0.05 * (i + j) as f64;
+            v.push(DVec3::new(
+                r * a.cos(),
+                r * a.sin(),
+                0.4 * j as f64 + 0.02 * i as f64,
+            ));
+        }
+    }
+    let ring = QuadGrid::new(5, 4, v).unwrap().with_wrap(true, false);
+    let rel = compare(
+        "cnets.subdivide_rows",
+        &[
+            ("mesh", Value::QuadMesh(Arc::new(ring))),
+            ("count", Value::Integer(2)),
+        ],
+        &["mesh"],
+    );
+    assert!(rel < 1e-6, "subdivide_rows (wrapping rows): {rel}");
+}
