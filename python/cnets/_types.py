@@ -174,7 +174,10 @@ class ConeNet(QuadMesh):
 
     def to_3dm(self, path: Any, layers: bool = True, **kwargs: Any) -> None:
         """Writes the net to a Rhino file: the quad mesh, the directrix and generatrix as
-        polylines, on named layers when ``layers`` (see ``cnets.write_3dm``)."""
+        polylines, the node axes and a support layer, on coloured layers when ``layers``.
+        Keywords: ``support`` (factor, or ``None``), ``axes`` (bool), ``version``, ``axes_as``
+        (``"family"``: the axes as one group; ``"lines"``), ``colours`` (see
+        ``cnets.write_3dm``)."""
         from .rhino import write_cone_net
 
         write_cone_net(path, self, layers=layers, **kwargs)
