@@ -336,12 +336,14 @@ def node_types() -> List[Dict[str, Any]]:
     return _cnets.node_types()
 
 
-def write_3dm(path: _Path, objects: Any, layers: bool = True, version: int = 8) -> None:
+def write_3dm(path: _Path, objects: Any, layers: bool = True, version: int = 8, *,
+              axes_as: str = "family", colours: Optional[Dict[str, Any]] = None) -> None:
     """Writes cone-nets, meshes and polylines to a Rhino .3dm file, every coordinate in double
-    precision (needs ``rhino3dm``: ``pip install cnets[rhino]``). See ``cnets.rhino.write_3dm``."""
+    precision (needs ``rhino3dm``: ``pip install cnets[rhino]``), on nested, coloured layers; line
+    sets one object per family (``axes_as="lines"``: one per line). See ``cnets.rhino.write_3dm``."""
     from .rhino import write_3dm as _write
 
-    _write(path, objects, layers=layers, version=version)
+    _write(path, objects, layers=layers, version=version, axes_as=axes_as, colours=colours)
 
 
 def sweep(
