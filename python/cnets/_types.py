@@ -11,7 +11,7 @@ import numpy as np
 
 from . import _cnets
 
-__all__ = ["Polyline", "QuadMesh", "PolygonMesh", "ConeNet"]
+__all__ = ["Polyline", "QuadMesh", "PolygonMesh", "ConeNet", "from_compas"]
 
 
 class Polyline:
@@ -64,6 +64,12 @@ class QuadMesh:
         n, m = self.vertices.shape[:2]
         return _cnets.quad_faces(n, m, self.wrap_rows, self.wrap_cols)
 
+    def to_compas(self) -> Any:
+        """A ``compas.datastructures.Mesh`` of the quads (needs ``pip install cnets[compas]``):
+        vertex ``i * M + j`` is row i, column j, with the very doubles of ``vertices``; faces as
+        ``faces()``, wrapping quads included."""
+        return _to_compas(self.vertices.reshape(-1, 3), self.faces().tolist())
+
     def __repr__(self) -> str:
         n, m = self.vertices.shape[:2]
         return f"{type(self).__name__}({n} × {m} vertices)"
@@ -85,6 +91,11 @@ class PolygonMesh:
             if len(f) < 3 or any(not 0 <= i < count for i in f):
                 raise _cnets.CnetsError(
                     f"faces[{k}]: a face needs 3 or more vertex indices in 0..{count - 1}, got {f}")
+
+    def to_compas(self) -> Any:
+        """A ``compas.datastructures.Mesh`` with these vertices (keys 0…V−1, the same doubles)
+        and faces (needs ``pip install cnets[compas]``)."""
+        return _to_compas(self.vertices, self.faces)
 
     def __repr__(self) -> str:
         return f"PolygonMesh({len(self.vertices)} vertices, {len(self.faces)} faces)"
@@ -181,6 +192,41 @@ class ConeNet(QuadMesh):
         from .rhino import write_cone_net
 
         write_cone_net(path, self, layers=layers, **kwargs)
+
+
+def _compas_mesh_class() -> Any:
+    try:
+        from compas.datastructures import Mesh
+    except ImportError as e:
+        raise ImportError(
+            "cnets' COMPAS bridge needs the compas package (version 2 or later), which is not "
+            "installed: pip install \"cnets[compas]\" (or pip install \"compas>=2\")"
+        ) from e
+    return Mesh
+
+
+def _to_compas(vertices: np.ndarray, faces: List[List[int]]) -> Any:
+    mesh_class = _compas_mesh_class()
+    return mesh_class.from_vertices_and_faces(np.asarray(vertices, dtype=np.float64).tolist(), faces)
+
+
+def from_compas(mesh: Any) -> PolygonMesh:
+    """A ``PolygonMesh`` from a ``compas.datastructures.Mesh`` — e.g. a reference surface for
+    ``measure.surface_distance`` or ``fit.symmetric``: its vertices in the mesh's vertex order
+    (the same doubles), its faces as indices into them (vertex keys need not be 0…V−1). Needs
+    ``pip install cnets[compas]``; anything but a COMPAS mesh raises ``CnetsError``."""
+    mesh_class = _compas_mesh_class()
+    if not isinstance(mesh, mesh_class):
+        raise _cnets.CnetsError(f"mesh: expected a compas.datastructures.Mesh, got {_describe(mesh)}")
+    index = {}
+    coordinates = []
+    for k, key in enumerate(mesh.vertices()):
+        index[key] = k
+        coordinates.append(mesh.vertex_coordinates(key))
+    if not coordinates:
+        raise _cnets.CnetsError("mesh: the COMPAS mesh has no vertices")
+    faces = [[index[v] for v in mesh.face_vertices(f)] for f in mesh.faces()]
+    return PolygonMesh(np.asarray(coordinates, dtype=np.float64).reshape(-1, 3), faces)
 
 
 def _apices(apices: Any, count: int) -> np.ndarray:
