@@ -8,6 +8,7 @@
 - ``eval(node_type, **inputs)``: any node type of ``cnets nodes``.
 - ``Graph``: graph files, edited and evaluated incrementally.
 - ``write_3dm`` / ``ConeNet.to_3dm``: Rhino files (``pip install cnets[rhino]``).
+- ``ConeNet.to_compas()`` / ``from_compas(mesh)``: COMPAS meshes (``pip install cnets[compas]``).
 - ``sweep``: a design-space sweep of a graph on Dask (``pip install cnets[sweep]``).
 - ``python -m cnets.hops``: a Grasshopper Hops server.
 
@@ -25,7 +26,7 @@ import numpy.typing as npt
 
 from . import _cnets
 from ._cnets import CnetsError, CnetsWarning, Graph
-from ._types import ConeNet, PolygonMesh, Polyline, QuadMesh, _describe
+from ._types import ConeNet, PolygonMesh, Polyline, QuadMesh, _describe, from_compas
 
 __all__ = [
     "CnetsError",
@@ -40,6 +41,7 @@ __all__ = [
     "ctube",
     "encode",
     "eval",
+    "from_compas",
     "node_types",
     "sweep",
     "write_3dm",
