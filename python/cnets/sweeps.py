@@ -1,8 +1,10 @@
 """Design-space sweeps of a graph file on Dask (``pip install cnets[sweep]``).
 
 ``cnets.sweep(graph, parameters, outputs, client=None)`` evaluates the graph for every parameter
-set and returns a pandas DataFrame, one row per design: the parameters, the requested outputs and
-``error`` (``None`` when every node ran). With no ``client`` it starts a ``dask.distributed``
+set and returns a pandas DataFrame, one row per design: the parameters, the requested outputs,
+``ok`` (``True`` when every node ran and every requested figure is finite) and ``error``
+(``None``, or why the design is flagged: the failed nodes' messages, the figures that are NaN or
+infinite, an exception in its evaluation, a task lost with its worker). With no ``client`` it starts a ``dask.distributed``
 ``LocalCluster`` on this machine (and closes it afterwards); with a client it runs wherever the
 client points (a SLURM cluster through ``dask-jobqueue``, Kubernetes…; see docs/python.md).
 
@@ -124,8 +126,10 @@ def evaluate_design(
     library: Sequence[str] = (),
 ) -> Dict[str, Any]:
     """Evaluates one design on this process's cached graph and returns its row: the parameters,
-    the outputs, ``error`` and (with ``out``) the design's export folder ``out/design-<index>``.
-    This is what each Dask task runs."""
+    the outputs, ``ok``, ``error`` and (with ``out``) the design's export folder
+    ``out/design-<index>``. This is what each Dask task runs. It does not raise: a design whose
+    evaluation fails, or whose figures are not finite, comes back with ``ok`` False and the
+    reason in ``error``."""
     path = os.path.abspath(graph)
     g, lock, initial = _cached_graph(path, (tuple(allow_read), max_memory, tuple(library)))
     row: Dict[str, Any] = dict(design)
@@ -162,16 +166,48 @@ def evaluate_design(
                         notes.append(f"{target} = {value!r} was changed by its node to {used!r} "
                                      "(the row holds the value used)")
                     row[target] = used
+            reasons = list(errors)
             for name in outputs:
                 row[name] = _output(results, g, name)
-            row["error"] = "\n".join(errors) if errors else None
-        except _cnets.CnetsError as e:
+                # A failed node's outputs are NaN: its message is the reason already.
+                why = _not_finite(row[name]) if name.split(".")[0] in results else None
+                if why:
+                    reasons.append(f"{name} is not finite ({why})")
+            row["error"] = "\n".join(reasons) if reasons else None
+        except Exception as e:  # any failure flags this design, not the sweep
             for name in outputs:
                 row.setdefault(name, np.nan)
-            row["error"] = str(e)
+            row["error"] = str(e) if isinstance(e, _cnets.CnetsError) else \
+                f"the evaluation raised {type(e).__name__}: {e}"
+        row["ok"] = row["error"] is None
         notes.extend(str(w.message) for w in caught if issubclass(w.category, _cnets.CnetsWarning))
     row["__notes__"] = notes
     return row
+
+
+def _not_finite(value: Any) -> Optional[str]:
+    """Why a figure is not finite (``"nan"``, ``"3 of 33 values"``), or ``None``: numbers,
+    numeric arrays, and the numbers inside lists and records. Text, ``None`` and flags are no
+    figures."""
+    if isinstance(value, (bool, np.bool_)) or value is None:
+        return None
+    if isinstance(value, (int, float, np.integer, np.floating)):
+        return None if np.isfinite(value) else repr(float(value))
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind not in "fc" or value.size == 0:
+            return None
+        bad = int(np.count_nonzero(~np.isfinite(value)))
+        if not bad:
+            return None
+        return repr(float(value.reshape(-1)[0])) if value.size == 1 else \
+            f"{bad} of {value.size} values"
+    if isinstance(value, dict):
+        parts = [f"{k}: {r}" for k, r in ((k, _not_finite(v)) for k, v in value.items()) if r]
+        return ", ".join(parts) or None
+    if isinstance(value, (list, tuple)):
+        parts = [f"[{k}]: {r}" for k, r in ((k, _not_finite(v)) for k, v in enumerate(value)) if r]
+        return ", ".join(parts) or None
+    return None
 
 
 def _same(a: Any, b: Any) -> bool:
@@ -195,8 +231,15 @@ def sweep(
     """Evaluates a graph file for every parameter set on Dask; returns a pandas DataFrame with
     one row per design (in the order of ``designs(parameters)``): the parameter columns, one
     column per requested output (``"node.output"``, or ``"node.output.field"`` for a field of a
-    record such as ``"net.quality.max_planarity"``), ``error`` (``None``, or the failed nodes'
-    messages) and, with ``out``, the design's export folder (``out/design-0000`` …).
+    record such as ``"net.quality.max_planarity"``), ``ok`` and ``error`` and, with ``out``, the
+    design's export folder (``out/design-0000`` …).
+
+    A bad design flags its row instead of stopping the sweep: ``ok`` is ``True`` when every node
+    ran and every requested figure (numbers, numeric arrays, the numbers in records) is finite;
+    otherwise ``False``, with ``error`` saying why, one reason a line — the failed nodes'
+    messages (their outputs are NaN), ``"<output> is not finite (…)"`` (the value is kept: a
+    cone apex at infinity is a NaN point), an exception raised while evaluating, or the task
+    failing on its worker. ``df[df.ok]`` keeps the good designs.
 
     ``client``: a ``dask.distributed.Client``; ``None`` starts a ``LocalCluster`` (``n_workers``
     processes, one thread each) for this call. ``allow_read``, ``max_memory``, ``library`` are
@@ -250,7 +293,17 @@ def sweep(
             client.submit(evaluate_design, path, d, index=k, pure=False, **kwargs)
             for k, d in enumerate(sets)
         ]
-        rows = client.gather(futures)
+        rows = []
+        for k, (design, future) in enumerate(zip(sets, futures)):
+            try:
+                rows.append(future.result())
+            except Exception as e:  # the task itself failed: a worker lost, bad data, …
+                row = dict(design)
+                row.update({name: np.nan for name in outputs})
+                row.update(ok=False, error=f"the design's task failed: {type(e).__name__}: {e}")
+                if out is not None:
+                    row["out"] = os.path.join(kwargs["out"], f"design-{k:04d}")
+                rows.append(row)
     finally:
         if own:
             client.close()
@@ -261,7 +314,7 @@ def sweep(
     columns: List[str] = []
     for d in sets:
         columns.extend(c for c in d if c not in columns)
-    columns += [o for o in outputs if o not in columns] + ["error"]
+    columns += [o for o in outputs if o not in columns] + ["ok", "error"]
     if out is not None:
         columns.append("out")
     return pd.DataFrame(rows, columns=columns)

@@ -38,8 +38,9 @@ def test_grid_sweep_rows_equal_direct_runs(design, client):
     df = cnets.sweep(design, parameters, OUTPUTS, client=client)
     assert isinstance(df, pd.DataFrame)
     assert len(df) == 12
-    assert list(df.columns) == ["radius.value", "apex.value", *OUTPUTS, "error"]
+    assert list(df.columns) == ["radius.value", "apex.value", *OUTPUTS, "ok", "error"]
     assert df["error"].isna().all(), df["error"].tolist()
+    assert df["ok"].dtype == bool and df["ok"].all()
     for k, row in df.iterrows():
         design_k = {"radius.value": row["radius.value"], "apex.value": row["apex.value"]}
         assert design_k == {"radius.value": parameters["radius.value"][k // 3],
@@ -64,6 +65,7 @@ def test_list_of_designs_errors_and_exports(design, tmp_path, client):
     assert len(df) == 3
     assert pd.isna(df["error"].iloc[0]) and pd.isna(df["error"].iloc[2])
     assert "gen" in df["error"].iloc[1] or "net" in df["error"].iloc[1]
+    assert df["ok"].tolist() == [True, False, True]
     assert np.isnan(df["net.quality.max_planarity"].iloc[1])
     # A design that does not set an input gets the file's value, not the previous design's.
     assert df["len.length"].iloc[0] == pytest.approx(5.0 * np.radians(120), rel=1e-2)
@@ -118,3 +120,73 @@ def test_bad_sweep_arguments_name_the_argument(design, client):
         assert argument in str(e.value), (argument, str(e.value))
     with pytest.raises(cnets.CnetsError, match="graph"):
         cnets.sweep(None, {"radius.value": [3.0]}, ["len.length"], client=client)
+
+
+def _explode():
+    raise RuntimeError("this value cannot be unpickled")
+
+
+class Unpicklable:
+    """A parameter value that fails on the worker: its task fails, not the sweep."""
+
+    def __reduce__(self):
+        return (_explode, ())
+
+
+def test_bad_designs_are_flagged_with_the_reason(design, client):
+    """A design whose node fails, one whose figures are not finite (apex 1: the cones are
+    cylinders, their apices at infinity: NaN points) and one whose task fails on its worker come
+    back flagged, ok False and the reason in error; the others ok, with no reason."""
+    designs = [
+        {"apex.value": 0.9},
+        {"apex.value": 0.9, "gen.count": 1},     # a one-point generatrix: the construction fails
+        {"apex.value": 1.0},                     # apices at infinity
+        {"apex.value": Unpicklable()},           # the task fails on its worker
+    ]
+    outputs = ["net.quality.max_planarity", "net.apices"]
+    df = cnets.sweep(design, designs, outputs, client=client)
+    assert list(df.columns) == ["apex.value", "gen.count", *outputs, "ok", "error"]
+    assert df["ok"].tolist() == [True, False, False, False]
+    assert pd.isna(df["error"].iloc[0])
+    failed = df["error"].iloc[1]
+    assert failed.startswith("node 'gen' (curve.line): degenerate input: count must be at least 2"), failed
+    assert "node 'net' (cnets.construct): input 'generatrix' comes from 'gen', which failed" in failed
+    assert np.isnan(df["net.quality.max_planarity"].iloc[1])
+    assert "is not finite" not in failed, "a failed node's NaN outputs are not reported twice"
+    assert df["error"].iloc[2] == "net.apices is not finite (33 of 33 values)"
+    assert np.isnan(df["net.apices"].iloc[2]).all(), "the value is kept"
+    assert np.isfinite(df["net.quality.max_planarity"].iloc[2])
+    lost = df["error"].iloc[3]
+    assert lost.startswith("the design's task failed: RuntimeError"), lost
+    assert "deserialization" in lost, lost  # dask: the scheduler could not read the task
+    assert df[df.ok].index.tolist() == [0]
+
+
+def test_an_exception_while_evaluating_flags_the_design(design, monkeypatch):
+    """In the worker's function itself: a Python exception raised while evaluating a design
+    (here from reading an output) is its row's error, not the sweep's."""
+    from cnets import sweeps
+
+    def broken(results, graph, name):
+        raise KeyError(name)
+
+    monkeypatch.setattr(sweeps, "_output", broken)
+    row = sweeps.evaluate_design(str(design), {"apex.value": 0.8}, ["len.length"])
+    assert row["ok"] is False
+    assert row["error"] == "the evaluation raised KeyError: 'len.length'"
+    assert np.isnan(row["len.length"])
+    monkeypatch.undo()
+    row = sweeps.evaluate_design(str(design), {"apex.value": 0.8}, ["len.length"])
+    assert row["ok"] is True and row["error"] is None
+
+
+def test_not_finite_names_what_is_not_finite():
+    from cnets.sweeps import _not_finite
+
+    assert _not_finite(1.0) is None and _not_finite(None) is None and _not_finite("nan") is None
+    assert _not_finite(float("nan")) == "nan"
+    assert _not_finite(np.float64("-inf")) == "-inf"
+    assert _not_finite(np.array([1.0, np.nan, np.inf])) == "2 of 3 values"
+    assert _not_finite(np.arange(3)) is None
+    assert _not_finite({"a": 1.0, "b": {"c": np.nan}}) == "b: c: nan"
+    assert _not_finite([1.0, float("inf")]) == "[1]: inf"
