@@ -65,7 +65,7 @@ def _worker_main(conn: Any, options: Dict[str, Any]) -> None:
         path, body = message
         del message
         answer = server.answer_post(path, body)
-        del body
+        del body, path  # not held while idle (a body may be 64 MB)
         try:
             conn.send(answer)
         except (EOFError, OSError):
@@ -269,7 +269,6 @@ class SolvePool:
         try:
             try:
                 worker.conn.send((path, body))
-                del body
                 if not worker.conn.poll(self.timeout):
                     _log.warning("POST %s: the solve was stopped after %s (its worker was killed "
                                  "and is replaced)", path, f"{time.monotonic() - started:.1f} s")
