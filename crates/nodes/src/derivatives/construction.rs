@@ -3,7 +3,7 @@
 use cnets_engine::optimize::branch::{Branch, key_of};
 use cnets_engine::optimize::vjp::{VjpArgs, VjpResult};
 use cnets_engine::prelude::*;
-use cnets_geometry::conenet::adjoint::construct_adjoint;
+use cnets_geometry::conenet::adjoint::{OutputBars, Wrt, construct_adjoint_for};
 use cnets_geometry::conenet::{ConstructInputs, GridValues};
 
 use super::{flat, points};
@@ -11,34 +11,27 @@ use crate::cnets::{apex_input, grid_values, parse_end_planes};
 
 type Product = fn(&VjpArgs<'_>) -> VjpResult;
 
-/// `cnets.construct`: the backward sweep for the ratios and the generatrix (inputs 3 and 1). The
-/// directrix, the apex function and the other outputs are not differentiated (declined: finite
-/// differences), nor a run in which the assisted correction changed planes (a branch).
+/// `cnets.construct`: the backward sweep (`construct_adjoint_for`) for the directrix, generatrix,
+/// apex function, ratios, scale and ε (inputs 0, 1, 2, 3, 6, 7), from the cotangents of the mesh,
+/// the apex values used and the apices (outputs 0, 1, 2). A run of the assisted correction that only
+/// turned planes is differentiated on its piece; one that changed the apex function or scaled the
+/// generatrix is declined (finite differences), as are the other outputs' cotangents. `assistance`
+/// selects the correction's form: its derivative is 0 when the correction is off or changed
+/// nothing, else declined.
 fn construct(args: &VjpArgs<'_>) -> VjpResult {
-    for (k, name) in [
-        (0, "directrix"),
-        (2, "apex"),
-        (4, "assistance"),
-        (6, "scale"),
-        (7, "epsilon"),
-    ] {
-        if args.wanted.get(k) == Some(&true) {
-            return Err(NodeError::new(format!(
-                "the construction's derivative in '{name}' is not implemented"
-            )));
-        }
-    }
-    if args.cotangents.iter().skip(1).any(Option::is_some) {
+    let wanted = |k: usize| args.wanted.get(k) == Some(&true);
+    let corrected = matches!(args.outputs.get(5), Some(Value::List(c)) if !c.is_empty());
+    let alpha = args.inputs[4].as_f64().unwrap_or(-1.0);
+    if wanted(4) && alpha >= 0.0 && corrected {
         return Err(NodeError::new(
-            "only the mesh output of the construction is differentiated",
+            "the construction's derivative in 'assistance' is not implemented for a corrected run \
+             (α chooses the correction's form)",
         ));
     }
-    if let Some(Value::List(c)) = args.outputs.get(5)
-        && !c.is_empty()
-    {
+    if let Some(k) = (3..args.cotangents.len()).find(|&k| args.cotangents[k].is_some()) {
         return Err(NodeError::new(format!(
-            "the assisted correction changed {} planes (a branch of the construction)",
-            c.len()
+            "only the mesh, apex and apices outputs of the construction are differentiated \
+             (output {k} has a cotangent)"
         )));
     }
     let (Value::Polyline(directrix), Value::Polyline(generatrix), Value::QuadMesh(mesh)) =
@@ -56,21 +49,82 @@ fn construct(args: &VjpArgs<'_>) -> VjpResult {
     let mut inputs = ConstructInputs::new((**directrix).clone(), (**generatrix).clone());
     inputs.apex = apex_input(apex, normalized, scale);
     inputs.ratios = grid_values(&args.inputs[3], "ratios")?;
-    inputs.assistance.alpha = args.inputs[4].as_f64().unwrap_or(-1.0);
+    inputs.assistance.alpha = alpha;
+    if let Some(epsilon) = args.inputs[7].as_f64() {
+        inputs.assistance.epsilon = epsilon;
+    }
     inputs.end_planes = parse_end_planes(match &args.inputs[8] {
         Value::Text(t) => t,
         _ => "perpendicular",
     })?;
-    let bar = points(&args.cotangent(0));
-    let adjoint = construct_adjoint(&inputs, mesh, &bar)?;
+    let mesh_bar = points(&args.cotangent(0));
+    let apex_bar = args
+        .cotangents
+        .get(1)
+        .cloned()
+        .flatten()
+        .unwrap_or_default();
+    let apices_bar = match args.cotangents.get(2).and_then(Option::as_ref) {
+        Some(c) => apices_cotangent(&args.outputs[2], c)?,
+        None => Vec::new(),
+    };
+    let wrt = Wrt {
+        apex: wanted(2) || wanted(6),
+        directrix: wanted(0),
+        epsilon: wanted(7),
+    };
+    let bars = OutputBars {
+        mesh: &mesh_bar,
+        apex: &apex_bar,
+        apices: &apices_bar,
+    };
+    let adjoint = construct_adjoint_for(&inputs, mesh, bars, wrt)?;
     let mut result = vec![None; args.inputs.len()];
-    if args.wanted[1] {
+    if wanted(0) {
+        result[0] = adjoint.directrix.as_deref().map(flat);
+    }
+    if wanted(1) {
         result[1] = Some(flat(&adjoint.generatrix));
     }
-    if args.wanted[3] {
+    if wanted(2) {
+        result[2] = adjoint.apex;
+    }
+    if wanted(3) {
         result[3] = Some(adjoint.ratios);
     }
+    if wanted(4) {
+        result[4] = Some(vec![0.0]);
+    }
+    // A scale that is not given (null) has no numbers.
+    if wanted(6) && scale.is_some() {
+        result[6] = adjoint.scale.map(|s| vec![s]);
+    }
+    if wanted(7) {
+        result[7] = adjoint.epsilon.map(|e| vec![e]);
+    }
     Ok(result)
+}
+
+/// The apices output's cotangent (its leaves: 3 per apex, none for one at infinity) as one vector
+/// per apex (zero at infinity).
+fn apices_cotangent(apices: &Value, leaves: &[f64]) -> Result<Vec<DVec3>, NodeError> {
+    let items = apices.as_list().unwrap_or_default();
+    let mut at = leaves.chunks_exact(3);
+    let out: Vec<DVec3> = items
+        .iter()
+        .map(|v| match v {
+            Value::Point(_) => at
+                .next()
+                .map_or(DVec3::ZERO, |c| DVec3::new(c[0], c[1], c[2])),
+            _ => DVec3::ZERO,
+        })
+        .collect();
+    if at.next().is_some() || !leaves.len().is_multiple_of(3) {
+        return Err(NodeError::new(
+            "internal: the apices' cotangent does not fit",
+        ));
+    }
+    Ok(out)
 }
 
 /// `cnets.construct`'s smooth piece: which side of ½ each ratio is on (the ratio → angle map has

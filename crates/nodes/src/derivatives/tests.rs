@@ -734,3 +734,173 @@ fn subdivide_rows_products_match_differences() {
     );
     assert!(rel < 1e-6, "subdivide_rows (wrapping rows): {rel}");
 }
+
+/// A polyline value for the construction's tests.
+fn construction_curve(points: Vec<DVec3>, closed: bool) -> Value {
+    Value::Polyline(Arc::new(if closed {
+        Polyline::closed(points)
+    } else {
+        Polyline::open(points)
+    }))
+}
+
+/// Asserts that `id`'s exact product gives every wanted input with numbers a cotangent (`compare`
+/// only compares the inputs both sides give).
+fn gives_every_wanted(id: &str, named: &[(&str, Value)], wanted: &[&str]) {
+    let d = def(id);
+    let ctx = NodeContext::default();
+    let ins = inputs(&d, named);
+    let outs = evaluate_node(&d, &ctx, &ins).unwrap().values;
+    // The first output (the mesh of a construction) weighted.
+    let cot: Vec<Option<Vec<f64>>> = (0..outs.len())
+        .map(|o| (o == 0).then(|| vec![1.0; leaves::count(&outs[0])]))
+        .collect();
+    let want: Vec<Wanted> = d
+        .inputs
+        .iter()
+        .map(|p| {
+            if wanted.contains(&p.name.as_ref()) {
+                Wanted::All
+            } else {
+                Wanted::No
+            }
+        })
+        .collect();
+    let g = node_vjp(&d, &ctx, &ins, &outs, &cot, &want).unwrap();
+    assert!(g.finite_differences.is_none(), "{:?}", g.finite_differences);
+    for (k, p) in d.inputs.iter().enumerate() {
+        if wanted.contains(&p.name.as_ref()) && leaves::count(&ins[k]) > 0 {
+            assert!(g.inputs[k].is_some(), "{id}: no cotangent for '{}'", p.name);
+        }
+    }
+}
+
+#[test]
+fn construction_products_match_differences() {
+    let arc = |closed: bool| {
+        let step = if closed {
+            std::f64::consts::PI / 3.0
+        } else {
+            0.4
+        };
+        let points = (0..6)
+            .map(|k| {
+                let t = k as f64 * step;
+                DVec3::new(
+                    3.0 * t.cos() + 0.05 * t,
+                    3.0 * t.sin(),
+                    0.4 * (2.0 * t).sin(),
+                )
+            })
+            .collect();
+        construction_curve(points, closed)
+    };
+    let generatrix = construction_curve(
+        (0..4)
+            .map(|k| DVec3::new(3.4 + 0.4 * k as f64, 0.1, 0.3 * k as f64 - 0.4))
+            .collect(),
+        false,
+    );
+    let n = Value::Number;
+    // Ratios near the kink at ½ on either side (not at it), apex values away from 1 (an apex at
+    // infinity has no point: the apices output would change its size under finite differences).
+    let open_ratios = crate::testing::nums(&[0.47, 0.53, 0.4995, 0.5005, 0.6]);
+    let open_apex = crate::testing::nums(&[0.9, 0.95, 1.08, 0.85, 1.05]);
+    let everything = ["directrix", "generatrix", "apex", "ratios", "scale"];
+    for (what, named) in [
+        (
+            "open",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", open_apex.clone()),
+                ("ratios", open_ratios.clone()),
+            ],
+        ),
+        (
+            "open, mirror end planes, one apex value",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", n(0.93)),
+                ("ratios", open_ratios.clone()),
+                ("end_planes", Value::Text("mirror".into())),
+            ],
+        ),
+        (
+            "open, normalized, scale given",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", open_apex.clone()),
+                ("ratios", open_ratios.clone()),
+                ("normalized", Value::Boolean(true)),
+                ("scale", n(1.7)),
+            ],
+        ),
+        (
+            "closed, normalized, default scale",
+            vec![
+                ("directrix", arc(true)),
+                (
+                    "apex",
+                    crate::testing::nums(&[0.9, 0.95, 1.08, 0.85, 1.05, 0.97]),
+                ),
+                (
+                    "ratios",
+                    crate::testing::nums(&[0.47, 0.53, 0.4995, 0.5005, 0.6, 0.45]),
+                ),
+                ("normalized", Value::Boolean(true)),
+            ],
+        ),
+    ] {
+        let mut named = named;
+        named.push(("generatrix", generatrix.clone()));
+        let rel = compare("cnets.construct", &named, &everything);
+        gives_every_wanted("cnets.construct", &named, &everything);
+        assert!(rel < 1e-6, "cnets.construct ({what}): {rel}");
+    }
+    // Planes only (α = 0) turns the planes of column 2 (a ruling leaning back): the product
+    // follows the plane fixes, ε included.
+    let straight = construction_curve(
+        (0..6)
+            .map(|j| DVec3::new(j as f64, 0.05 * (j as f64).sin(), 0.03 * (j * j) as f64))
+            .collect(),
+        false,
+    );
+    let short = construction_curve(
+        vec![
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.5, 0.5),
+            DVec3::new(0.0, 2.0, 0.2),
+        ],
+        false,
+    );
+    let named = [
+        ("directrix", straight),
+        ("generatrix", short),
+        (
+            "apex",
+            crate::testing::nums(&[0.98, 0.97, 1.02, 0.99, 1.01]),
+        ),
+        ("ratios", crate::testing::nums(&[0.5, 0.9, 0.45, 0.55, 0.5])),
+        ("assistance", n(0.0)),
+    ];
+    let d = def("cnets.construct");
+    let outs = evaluate_node(&d, &NodeContext::default(), &inputs(&d, &named))
+        .unwrap()
+        .values;
+    assert!(
+        matches!(&outs[5], Value::List(c) if !c.is_empty()),
+        "the correction turned planes: {:?}",
+        outs[5]
+    );
+    let rel = compare(
+        "cnets.construct",
+        &named,
+        &["directrix", "generatrix", "apex", "ratios", "epsilon"],
+    );
+    assert!(rel < 1e-6, "cnets.construct (planes only): {rel}");
+    gives_every_wanted(
+        "cnets.construct",
+        &named,
+        &["directrix", "generatrix", "apex", "ratios", "epsilon"],
+    );
+}
