@@ -178,6 +178,8 @@ pub struct ExportRun {
     pub label: String,
     /// The files it wrote, or why it wrote nothing.
     pub result: Result<Vec<PathBuf>, String>,
+    /// What went into them, a line each (a quick export of the preview: per node).
+    pub contents: Vec<String>,
 }
 
 /// What File › Export wrote: listed in a dialog until it is closed.
@@ -204,6 +206,16 @@ impl ExportReport {
     pub fn summary(&self) -> String {
         let failed = self.runs.iter().filter(|r| r.result.is_err()).count();
         let files = self.files().len();
+        if let [run] = self.runs.as_slice()
+            && run.result.is_ok()
+            && !run.contents.is_empty()
+        {
+            return format!(
+                "exported {files} file(s) into {}: {}",
+                self.folder.display(),
+                run.contents.join("; ")
+            );
+        }
         match failed {
             0 => format!("exported {files} file(s) into {}", self.folder.display()),
             n => format!(
@@ -228,6 +240,9 @@ impl ExportReport {
                 ui.weak(format!("into {}", self.folder.display()));
                 for run in &self.runs {
                     ui.strong(&run.label);
+                    for line in &run.contents {
+                        ui.label(line);
+                    }
                     match &run.result {
                         Ok(files) if files.is_empty() => {
                             ui.weak("wrote nothing");
@@ -248,7 +263,8 @@ impl ExportReport {
                 }
                 let ok = ui.button("Close");
                 crate::probe::record(ui.ctx(), "Close export list", ok.rect);
-                close = ok.clicked();
+                // Escape closes it, as every dialog.
+                close = ok.clicked() || ui.input(|i| i.key_pressed(egui::Key::Escape));
             });
         open && !close
     }
@@ -301,6 +317,7 @@ pub fn run_exports(
                 node: id,
                 label,
                 result,
+                contents: Vec::new(),
             }
         })
         .collect())

@@ -36,6 +36,7 @@ pub mod cluster_ports;
 pub mod document;
 pub mod edit;
 pub mod export;
+pub mod export_preview;
 pub mod file_dialog;
 pub mod history;
 pub mod import_watch;

@@ -12,6 +12,7 @@ use cnets_geometry::fabrication::{face_planarity, planarity_colour};
 
 pub mod cad;
 pub mod glb;
+pub mod names;
 pub mod obj;
 pub mod outlines;
 pub mod svg;
@@ -89,6 +90,9 @@ node! {
         polylines: Option<k::List<k::Polyline>>,
         /// Planarity shown fully red when no colours are given.
         planarity_limit: k::Number = 1e-3,
+        /// Names of the items in order — meshes, then line sets, then polylines — for the file's
+        /// nodes and meshes; missing ones are named `mesh 0`, `lines 0`, `polyline 0`.
+        names: Option<k::List<k::Text>>,
     ) -> (
         /// The written file.
         path: k::Text,
@@ -97,10 +101,12 @@ node! {
         let lines = lines.unwrap_or_default();
         let polylines = polylines.unwrap_or_default();
         let colours = mesh_colours(&meshes, colours.as_deref(), planarity_limit)?;
+        let names = names.unwrap_or_default();
         let scene = glb::GlbScene {
             meshes: meshes.iter().map(|m| &**m).zip(colours).collect(),
             lines: lines.iter().map(|l| l.as_slice()).collect(),
             polylines: polylines.iter().map(|p| &**p).collect(),
+            names: names::ItemNames::new(&names, meshes.len(), lines.len()),
         };
         let bytes = glb::encode_glb(&scene)?;
         Ok((write_export(ctx, &name, "glb", &bytes)?,))
@@ -121,6 +127,9 @@ node! {
         lines: Option<k::List<k::Lines>>,
         /// Polylines.
         polylines: Option<k::List<k::Polyline>>,
+        /// Names of the items in order — meshes, then line sets, then polylines — for the `o`
+        /// lines (white space becomes `_`); missing ones are named `mesh_0`, `lines_0`, `polyline_0`.
+        names: Option<k::List<k::Text>>,
     ) -> (
         /// The written file.
         path: k::Text,
@@ -128,11 +137,13 @@ node! {
         let meshes = meshes.unwrap_or_default();
         let lines = lines.unwrap_or_default();
         let polylines = polylines.unwrap_or_default();
+        let names = names.unwrap_or_default();
+        let item_names = names::ItemNames::new(&names, meshes.len(), lines.len());
         let meshes: Vec<_> = meshes.iter().map(|m| &**m).collect();
         let lines: Vec<_> = lines.iter().map(|l| l.as_slice()).collect();
         let polylines: Vec<_> = polylines.iter().map(|p| &**p).collect();
         let path = stream_export(ctx, &name, "obj", |out| {
-            obj::write_obj(out, &meshes, &lines, &polylines)
+            obj::write_obj(out, &meshes, &lines, &polylines, item_names)
         })?;
         Ok((path,))
     }

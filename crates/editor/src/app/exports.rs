@@ -49,18 +49,41 @@ impl EditorApp {
             .file_stem()
             .map_or_else(|| self.export_name(), |s| s.to_string_lossy().into_owned());
         let base = self.doc.base_dir();
-        let result = export::export(
-            &self.doc.graph,
-            base,
-            &self.doc.allowed_reads,
-            format,
-            &folder,
-            &name,
-        );
+        // GLB and OBJ: everything the 3D view draws; SVG and DXF: the flat outlines.
+        let (result, contents) = match format {
+            ExportFormat::Glb | ExportFormat::Obj => {
+                match crate::export_preview::export_preview(
+                    self.viewport.picks(),
+                    &self.doc.graph,
+                    base,
+                    &self.doc.allowed_reads,
+                    format,
+                    &folder,
+                    &name,
+                ) {
+                    Ok((files, counts)) => {
+                        (Ok(files), counts.iter().map(|c| c.describe()).collect())
+                    }
+                    Err(e) => (Err(e), Vec::new()),
+                }
+            }
+            ExportFormat::Svg | ExportFormat::Dxf => (
+                export::export(
+                    &self.doc.graph,
+                    base,
+                    &self.doc.allowed_reads,
+                    format,
+                    &folder,
+                    &name,
+                ),
+                Vec::new(),
+            ),
+        };
         let run = ExportRun {
             node: String::new(),
             label: format!("the preview as {}", format.extension().to_uppercase()),
             result,
+            contents,
         };
         self.report(&folder, vec![run]);
     }

@@ -8,11 +8,13 @@ use cnets_geometry::fabrication::polygon::newell;
 use cnets_geometry::fabrication::triangulate;
 use cnets_geometry::{DVec3, Line, PolygonMesh, Polyline};
 use gltf_json as json;
+
+use super::names::ItemNames;
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 
 /// What goes into one .glb file.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct GlbScene<'a> {
     /// Meshes with one RGB colour (components in [0, 1]) per face.
     pub meshes: Vec<(&'a PolygonMesh, Vec<DVec3>)>,
@@ -20,6 +22,8 @@ pub struct GlbScene<'a> {
     pub lines: Vec<&'a [Line]>,
     /// Polylines (open: line strip; closed: line loop).
     pub polylines: Vec<&'a Polyline>,
+    /// The items' names (the file's nodes and meshes).
+    pub names: ItemNames<'a>,
 }
 
 /// Accumulates the binary buffer and the document.
@@ -248,7 +252,7 @@ pub fn encode_glb(scene: &GlbScene<'_>) -> Result<Vec<u8>, String> {
             faces,
             json::mesh::Mode::Triangles,
         );
-        children.push(b.node(format!("mesh {k}"), prim));
+        children.push(b.node(scene.names.mesh(k), prim));
     }
     for (k, lines) in scene.lines.iter().enumerate() {
         if lines.is_empty() {
@@ -269,7 +273,7 @@ pub fn encode_glb(scene: &GlbScene<'_>) -> Result<Vec<u8>, String> {
             ink,
             json::mesh::Mode::Lines,
         );
-        children.push(b.node(format!("lines {k}"), prim));
+        children.push(b.node(scene.names.lines(k), prim));
     }
     for (k, p) in scene.polylines.iter().enumerate() {
         if p.points.len() < 2 {
@@ -291,7 +295,7 @@ pub fn encode_glb(scene: &GlbScene<'_>) -> Result<Vec<u8>, String> {
             ink,
             mode,
         );
-        children.push(b.node(format!("polyline {k}"), prim));
+        children.push(b.node(scene.names.polyline(k), prim));
     }
     if children.is_empty() {
         return Err("nothing to export: no mesh face, line or polyline".into());

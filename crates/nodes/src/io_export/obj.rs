@@ -8,6 +8,8 @@ use std::io::Write;
 
 use cnets_geometry::{DVec3, Line, PolygonMesh, Polyline};
 
+use super::names::{ItemNames, obj_token};
+
 /// Writes a `v` line.
 fn vertex(out: &mut dyn Write, p: DVec3) -> std::io::Result<()> {
     writeln!(out, "v {} {} {}", p.x, p.y, p.z)
@@ -21,8 +23,9 @@ pub fn write_obj(
     meshes: &[&PolygonMesh],
     lines: &[&[Line]],
     polylines: &[&Polyline],
+    names: ItemNames<'_>,
 ) -> Result<(), String> {
-    write_items(out, meshes, lines, polylines).map_err(|e| match e {
+    write_items(out, meshes, lines, polylines, names).map_err(|e| match e {
         Failure::Io(e) => e.to_string(),
         Failure::Invalid(m) => m,
     })
@@ -45,6 +48,7 @@ fn write_items(
     meshes: &[&PolygonMesh],
     lines: &[&[Line]],
     polylines: &[&Polyline],
+    names: ItemNames<'_>,
 ) -> Result<(), Failure> {
     let invalid = |m: String| Failure::Invalid(m);
     out.write_all(
@@ -61,7 +65,7 @@ fn write_items(
         }
         m.validate()
             .map_err(|e| invalid(format!("mesh {k}: {e}")))?;
-        writeln!(out, "o mesh_{k}")?;
+        writeln!(out, "o {}", obj_token(&names.mesh(k)))?;
         for p in &m.vertices {
             vertex(out, *p)?;
         }
@@ -85,7 +89,7 @@ fn write_items(
         {
             return Err(invalid(format!("line set {k}, segment {s} is not finite")));
         }
-        writeln!(out, "o lines_{k}")?;
+        writeln!(out, "o {}", obj_token(&names.lines(k)))?;
         for l in set.iter() {
             vertex(out, l.start)?;
             vertex(out, l.end)?;
@@ -103,7 +107,7 @@ fn write_items(
         if let Some(v) = p.points.iter().position(|q| !q.is_finite()) {
             return Err(invalid(format!("polyline {k}, point {v} is not finite")));
         }
-        writeln!(out, "o polyline_{k}")?;
+        writeln!(out, "o {}", obj_token(&names.polyline(k)))?;
         for q in &p.points {
             vertex(out, *q)?;
         }
