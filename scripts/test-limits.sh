@@ -205,6 +205,25 @@ if [ "$code" -gt 2 ]; then
   failed=1
 fi
 
+# The same ladder with an explicit budget above what the process may safely use (`--max-memory 6G`
+# under ulimit -v 8000000 aborted once): the budget is clamped to the default's bound, with a
+# warning naming both figures, and the run ends in a clear error, not an abort.
+set +e
+( ulimit -v 8000000; exec timeout 300 "$cnets" run ladder.ron --max-memory 6G \
+    >ladder6.out 2>ladder6.err )
+code=$?
+set -e
+printf '%-22s exit %3s  %s\n' "ladder, 6G asked" "$code" "$(grep -m1 '^error' ladder6.err | cut -c1-140)"
+if [ "$code" -gt 2 ]; then
+  echo "  FAILED: the flatten ladder with --max-memory 6G under ulimit -v 8000000 ended with exit $code" >&2
+  tail -5 ladder6.err >&2
+  failed=1
+elif ! grep -q '^warning: the memory budget asked for (6 GB).*8.2 GB.*4.1 GB' ladder6.err; then
+  echo "  FAILED: no warning naming the asked budget (6 GB), the address limit (8.2 GB) and the budget (4.1 GB):" >&2
+  head -5 ladder6.err >&2
+  failed=1
+fi
+
 if [ "$failed" -ne 0 ]; then
   echo "test-limits.sh: some memory cases failed (above)" >&2
   exit 1

@@ -192,6 +192,10 @@ def construct(
 construct.__doc__ = _doc("cnets.construct", "CNets Construct: returns a ConeNet.")
 
 
+_NORMALS = ("an (N, M−1, 3) array of plane normals (one list per row) or an (M−1, 3) array "
+            "(one per directrix edge, shared by every row)")
+
+
 def ctube(
     directrix: PolylineLike,
     generatrix: PolylineLike,
@@ -209,12 +213,11 @@ def ctube(
         try:
             normals = np.asarray(normals, dtype=np.float64)
         except (TypeError, ValueError):
-            raise CnetsError(f"normals: expected an (N, M−1, 3) array of plane normals, got "
-                             f"{_describe(normals)}") from None
-    if normals is not None and (normals.dtype.kind not in "fiu" or normals.ndim != 3
+            raise CnetsError(f"normals: expected {_NORMALS}, got {_describe(normals)}") from None
+    # (M−1, 3): one normal per directrix edge, shared by every row, as the node takes it.
+    if normals is not None and (normals.dtype.kind not in "fiu" or normals.ndim not in (2, 3)
                                 or normals.shape[-1] != 3):
-        raise CnetsError(f"normals: expected an (N, M−1, 3) array of plane normals, got "
-                         f"{_describe(normals)}")
+        raise CnetsError(f"normals: expected {_NORMALS}, got {_describe(normals)}")
     inputs = _inputs(
         directrix=d,
         generatrix=g,

@@ -45,10 +45,25 @@ impl Settings {
         })
     }
 
-    /// The memory budget of an evaluation (`max_memory`, else half the machine's memory).
+    /// The memory budget of an evaluation (`max_memory`, clamped to half the process's hard
+    /// limit with a Python `ResourceWarning` when it asks for more; else half the memory the
+    /// process has).
     pub fn budget(&self) -> MemoryBudget {
-        self.max_memory
-            .map_or_else(MemoryBudget::default, MemoryBudget::new)
+        match self.max_memory {
+            Some(limit) => {
+                let granted = MemoryBudget::requested(limit);
+                if let Some(w) = &granted.warning {
+                    Python::attach(|py| {
+                        let category = py.get_type::<pyo3::exceptions::PyResourceWarning>();
+                        // A warning filter set to "error" raises here; the budget still holds.
+                        let message = std::ffi::CString::new(w.as_str()).unwrap_or_default();
+                        let _ = PyErr::warn(py, category.as_any(), &message, 1);
+                    });
+                }
+                granted.budget
+            }
+            None => MemoryBudget::default(),
+        }
     }
 
     /// The node context of one evaluation; creates the output folder when the graph exports.
@@ -63,8 +78,8 @@ impl Settings {
             None
         };
         let mut ctx = NodeContext::new(out_dir, base);
-        if let Some(limit) = self.max_memory {
-            ctx.budget = MemoryBudget::new(limit);
+        if self.max_memory.is_some() {
+            ctx.budget = self.budget();
         }
         ctx.allow_read = self.allow_read.clone();
         Ok(ctx)

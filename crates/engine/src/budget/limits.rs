@@ -20,6 +20,16 @@ pub fn process_memory_limit() -> Option<u64> {
     .min()
 }
 
+/// The smallest *hard* limit the process runs under, in bytes: its cgroup's limit and its
+/// `RLIMIT_AS` / `RLIMIT_DATA`, past which an allocation fails and a Rust process aborts (`None`
+/// when none is set). The machine's memory is not one: past it the system swaps or overcommits.
+pub fn hard_memory_limit() -> Option<u64> {
+    cgroup_limit(Path::new("/proc/self/cgroup"), Path::new("/sys/fs/cgroup"))
+        .into_iter()
+        .chain(resource_limits())
+        .min()
+}
+
 /// The machine's physical memory in bytes (Linux: `MemTotal` of `/proc/meminfo`).
 pub fn machine_memory() -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;

@@ -58,6 +58,36 @@ impl MemoryBudget {
         )
     }
 
+    /// The budget a user asked for (`--max-memory`, Python's `max_memory`), clamped to the
+    /// default's bound — half the process's hard limit ([`limits::hard_memory_limit`]) — when it
+    /// asks for more: values are not all a process allocates, and past the hard limit an
+    /// allocation aborts the process. The machine's memory alone does not clamp (a user may mean
+    /// to use most of it).
+    pub fn requested(limit: u64) -> Requested {
+        Self::requested_under(limit, limits::hard_memory_limit())
+    }
+
+    /// [`MemoryBudget::requested`] under a given hard limit (`None`: none).
+    pub fn requested_under(limit: u64, hard_limit: Option<u64>) -> Requested {
+        match hard_limit.map(|hard| (hard, hard / 2)) {
+            Some((hard, bound)) if limit > bound => Requested {
+                budget: Self::new(bound),
+                warning: Some(format!(
+                    "the memory budget asked for ({}) is more than this process can use safely: \
+                     it may address {} (ulimit -v or its cgroup), so the budget is {}, half of it, \
+                     as the default is",
+                    format_bytes(limit),
+                    format_bytes(hard),
+                    format_bytes(bound)
+                )),
+            },
+            _ => Requested {
+                budget: Self::new(limit),
+                warning: None,
+            },
+        }
+    }
+
     /// Checks that `needed` more bytes fit beside `in_use` bytes already live.
     pub fn check(&self, needed: u64, in_use: u64, what: &str) -> Result<(), BudgetError> {
         if needed.saturating_add(in_use) <= self.limit {
@@ -70,6 +100,15 @@ impl MemoryBudget {
             limit: self.limit,
         })
     }
+}
+
+/// A budget asked for, as granted ([`MemoryBudget::requested`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Requested {
+    /// The budget granted.
+    pub budget: MemoryBudget,
+    /// Why it is less than asked (both figures named), when it is.
+    pub warning: Option<String>,
 }
 
 /// A request over the memory budget.
@@ -172,6 +211,23 @@ pub fn bytes_of(count: u128, item_bytes: usize) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_requested_budget_over_half_the_hard_limit_is_clamped_with_both_figures() {
+        // `--max-memory 6G` under `ulimit -v 8000000` (8 192 000 000 bytes).
+        let r = MemoryBudget::requested_under(6_000_000_000, Some(8_192_000_000));
+        assert_eq!(r.budget.limit, 4_096_000_000);
+        let w = r.warning.expect("a warning");
+        assert!(
+            w.contains("6 GB") && w.contains("8.2 GB") && w.contains("4.1 GB"),
+            "{w}"
+        );
+        // Within the bound, or with no hard limit: granted as asked, no warning.
+        let r = MemoryBudget::requested_under(4_000_000_000, Some(8_192_000_000));
+        assert_eq!((r.budget.limit, r.warning), (4_000_000_000, None));
+        let r = MemoryBudget::requested_under(20_000_000_000, None);
+        assert_eq!((r.budget.limit, r.warning), (20_000_000_000, None));
+    }
 
     #[test]
     fn sizes_parse_in_decimal_and_binary_units() {

@@ -69,9 +69,16 @@ pub fn run(args: Args) -> CommandResult {
         )));
     };
     // The document is consumed by decoding: its packed rows move into the input values.
-    let budget = args
-        .max_memory
-        .map_or_else(MemoryBudget::default, MemoryBudget::new);
+    let budget = match args.max_memory {
+        Some(limit) => {
+            let granted = MemoryBudget::requested(limit);
+            if let Some(w) = &granted.warning {
+                crate::errln!("warning: {w}");
+            }
+            granted.budget
+        }
+        None => MemoryBudget::default(),
+    };
     let inputs = node_inputs(def, read_json(&args.inputs, budget.limit)?)?;
     let out_dir = def.has_flag(NodeFlag::Export).then(|| args.out.clone());
     if let Some(dir) = &out_dir {

@@ -87,7 +87,11 @@ pub fn run(args: Args) -> CommandResult {
     let base = args.graph.parent().map(Path::to_path_buf);
     let mut ctx = NodeContext::new(exports.then(|| args.out.clone()), base);
     if let Some(limit) = args.max_memory {
-        ctx.budget = MemoryBudget::new(limit);
+        let granted = MemoryBudget::requested(limit);
+        if let Some(w) = &granted.warning {
+            crate::errln!("warning: {w}");
+        }
+        ctx.budget = granted.budget;
     }
     ctx.allow_read = args.allow_read.clone();
     ctx.cancel = crate::signals::cancel_flag();
