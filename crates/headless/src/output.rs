@@ -37,10 +37,13 @@ pub fn json_line<T: serde::Serialize + ?Sized>(value: &T) -> Result<(), Failure>
 
 /// Writes formatted text and a newline to stderr; a failure to write is ignored. A line that
 /// quotes a long input (a 1 MB input name, a path of a million characters) says a short excerpt
-/// of it (`files::short_quotes`: quoted pieces over 200 characters, the line at most 4 000).
+/// of it (`files::short_quotes`: quoted pieces over 200 characters, the line at most 4 000), and
+/// control characters escaped (`files::escape_controls`).
 pub fn error_line(args: std::fmt::Arguments<'_>) {
     let line = std::fmt::format(args);
     let line = cnets_engine::files::short_quotes(&line, 200);
+    // Names and values echoed in a message never reach the terminal as control sequences.
+    let line = cnets_engine::files::escape_controls(&line);
     let mut err = io::stderr().lock();
     let _ = err
         .write_all(line.as_bytes())

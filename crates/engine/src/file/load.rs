@@ -158,7 +158,7 @@ impl Loader<'_> {
         self.diagnostics.push(Diagnostic {
             file: self.file.to_string(),
             pos,
-            message: short_quotes(&message.into()),
+            message: crate::files::escape_controls(&short_quotes(&message.into())).into_owned(),
         });
     }
 

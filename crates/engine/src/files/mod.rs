@@ -115,6 +115,23 @@ pub fn excerpt(text: &str, max: usize) -> String {
     out
 }
 
+/// `text` with every control character but the line break escaped (`\u{1b}`, `\u{7}`): a name,
+/// id or value echoed in a message can neither set a terminal's title nor clear its screen.
+pub fn escape_controls(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(|c| c.is_control() && c != '\n') {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if c.is_control() && c != '\n' {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
+}
+
 /// `message` for an error line: when it is longer than `4 × max` characters, every quoted piece
 /// (`'…'`) longer than `max` becomes an excerpt of `max` characters and the whole at most `20 ×
 /// max` characters. An error that quotes a 10 MB edge, a 1 MB input name or a path of a million
@@ -160,6 +177,18 @@ mod tests {
         );
         let unquoted = "p".repeat(1_000_000) + " is outside";
         assert_eq!(short_quotes(&unquoted, 60).chars().count(), 1201);
+    }
+
+    #[test]
+    fn control_characters_are_escaped_in_messages() {
+        assert_eq!(
+            escape_controls("node 'a\u{1b}]0;PWNED\u{7}\u{1b}[2J': bad\nnext"),
+            "node 'a\\u{1b}]0;PWNED\\u{7}\\u{1b}[2J': bad\nnext"
+        );
+        assert!(matches!(
+            escape_controls("plain"),
+            std::borrow::Cow::Borrowed(_)
+        ));
     }
 
     #[test]

@@ -81,12 +81,8 @@ impl MapperKind {
     /// Parses a name (case-insensitive; `square-root`, `bell`, `polyline` and `smooth` are accepted
     /// as aliases of `sqrt`, `gaussian`, `piecewise` and `spline`).
     pub fn parse(s: &str) -> Result<Self, GeometryError> {
-        let norm: String = s
-            .trim()
-            .to_ascii_lowercase()
-            .chars()
-            .filter(|c| c.is_ascii_alphanumeric())
-            .collect();
+        // A word with any other character (a control, format or combining one) is refused.
+        let norm = super::choice_key(s).unwrap_or_else(|| "\u{0}".to_string());
         let kind = match norm.as_str() {
             "linear" | "line" => Self::Linear,
             "bezier" => Self::Bezier,

@@ -107,3 +107,44 @@ pub(crate) fn cumulative_lengths(points: &[DVec3]) -> Vec<f64> {
     }
     out
 }
+
+/// The key of a choice word: lower case, the separators `-`, `_` and spaces dropped
+/// (`Catmull-Rom` → `catmullrom`). A word holding any other character — a control, format or
+/// combining character, another letter — has no key (`None`): it is refused, not silently read
+/// as a valid word.
+pub fn choice_key(word: &str) -> Option<String> {
+    let mut key = String::with_capacity(word.len());
+    for c in word.trim().chars() {
+        match c {
+            '-' | '_' | ' ' => {}
+            c if c.is_ascii_alphanumeric() => key.push(c.to_ascii_lowercase()),
+            _ => return None,
+        }
+    }
+    Some(key)
+}
+
+#[cfg(test)]
+mod choice_tests {
+    use super::choice_key;
+    use super::spline::SplineKind;
+    use super::subdivide::SubdivisionScheme;
+
+    #[test]
+    fn choice_words_with_hidden_characters_are_refused() {
+        assert_eq!(choice_key(" Catmull-Rom ").as_deref(), Some("catmullrom"));
+        assert_eq!(choice_key("four_point").as_deref(), Some("fourpoint"));
+        for bad in [
+            "natural\u{301}",
+            "natural\u{200b}",
+            "catmull-rom\u{0}",
+            "natüral",
+        ] {
+            assert_eq!(choice_key(bad), None, "{bad:?}");
+            assert!(SplineKind::parse(bad).is_err(), "{bad:?}");
+        }
+        assert!(SplineKind::parse("Natural").is_ok());
+        assert!(SubdivisionScheme::parse("linear\u{7}").is_err());
+        assert!(SubdivisionScheme::parse("Four-Point").is_ok());
+    }
+}

@@ -32,12 +32,8 @@ impl SplineKind {
     /// Parses `catmull-rom` (also `catmull_rom`, `catmullrom`, `centripetal`) or `natural`
     /// (also `cubic`), case-insensitively.
     pub fn parse(s: &str) -> Result<Self, GeometryError> {
-        let norm: String = s
-            .trim()
-            .to_ascii_lowercase()
-            .chars()
-            .filter(|c| c.is_ascii_alphanumeric())
-            .collect();
+        // A word with any other character (a control, format or combining one) is refused.
+        let norm = super::choice_key(s).unwrap_or_else(|| "\u{0}".to_string());
         match norm.as_str() {
             "catmullrom" | "centripetal" | "" => Ok(Self::CatmullRom),
             "natural" | "cubic" => Ok(Self::Natural),

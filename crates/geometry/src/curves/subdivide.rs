@@ -23,12 +23,8 @@ pub enum SubdivisionScheme {
 impl SubdivisionScheme {
     /// Parses `linear`, `four-point` (also `fourpoint`, `4-point`) or `chaikin`, case-insensitively.
     pub fn parse(s: &str) -> Result<Self, GeometryError> {
-        let norm: String = s
-            .trim()
-            .to_ascii_lowercase()
-            .chars()
-            .filter(|c| c.is_ascii_alphanumeric())
-            .collect();
+        // A word with any other character (a control, format or combining one) is refused.
+        let norm = super::choice_key(s).unwrap_or_else(|| "\u{0}".to_string());
         match norm.as_str() {
             "linear" | "" => Ok(Self::Linear),
             "fourpoint" | "4point" => Ok(Self::FourPoint),
