@@ -252,6 +252,7 @@ fn assisted_correction() -> (cnets_engine::Graph, Setup) {
             max: 0.99,
         }],
         penalties: Vec::new(),
+        convex: Vec::new(),
         method: cnets_engine::optimize::Method::Lbfgsb,
         max_iter: 5,
     };

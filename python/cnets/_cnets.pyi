@@ -54,6 +54,15 @@ class Graph:
         """The outputs of one node (``{output: value}``), evaluating it first when needed; a
         node that failed or is blocked raises ``CnetsError`` with its message."""
         ...
+    def optimize(
+        self,
+        max_iter: Optional[int] = ...,
+        method: Optional[str] = ...,
+        convex: Union[str, Sequence[str], None] = ...,
+    ) -> Dict[str, Any]:
+        """Runs the file's optimization setup (as ``cnets optimize``) and keeps the result's
+        values; ``convex`` names constructions whose faces stay (++)(++) for the whole run."""
+        ...
     def save(self, path: _Path) -> None:
         """Saves the graph (with the values set) as a graph file, atomically."""
         ...

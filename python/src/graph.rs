@@ -343,6 +343,91 @@ impl PyGraph {
         }
     }
 
+    /// Runs the graph file's optimization setup (as `cnets optimize`) and keeps the result's
+    /// values in this graph. `max_iter`: the iteration limit (default: the setup's); `method`:
+    /// `"auto"`, `"lbfgsb"` or `"nelder_mead"`; `convex`: a construction's node id or a list of
+    /// them whose faces must stay (++)(++) for the whole run (added to the setup's `convex`).
+    /// Returns a dict: `start`, `objective`, `iterations`, `evaluations`, `gradients`,
+    /// `exact_gradients`, `finite_difference_nodes`, `not_convex` (`{node: faces}` for every
+    /// construction on the path), `notes`, `stop` and `variables` (`{"node.input[i]": value}`).
+    #[pyo3(signature = (max_iter=None, method=None, convex=None))]
+    fn optimize<'py>(
+        &mut self,
+        py: Python<'py>,
+        max_iter: Option<&Bound<'py, PyAny>>,
+        method: Option<&Bound<'py, PyAny>>,
+        convex: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        use cnets_engine::optimize::{self, Method, Options, Stop};
+        let mut setup = self.meta.optimization.clone().ok_or_else(|| {
+            error("this graph file has no optimization setup (an `optimization: (…)` section)")
+        })?;
+        for id in args::texts(convex, "convex")?.unwrap_or_default() {
+            if !setup.convex.contains(&id) {
+                setup.convex.push(id);
+            }
+        }
+        let mut options = Options::default();
+        if let Some(m) = max_iter.filter(|m| !m.is_none()) {
+            let n = args::count(m, "max_iter")?;
+            if n == 0 {
+                return Err(error("max_iter: expected a positive integer, got 0"));
+            }
+            options.max_iter = Some(n);
+        }
+        if let Some(m) = method.filter(|m| !m.is_none()) {
+            let name = args::text(m, "method")?;
+            options.method = Some(Method::parse(&name).ok_or_else(|| {
+                error(format!(
+                    "method: expected \"auto\", \"lbfgsb\" or \"nelder_mead\", got '{name}'"
+                ))
+            })?);
+        }
+        let base = self.path.parent().map(Path::to_path_buf);
+        let (graph, settings) = (&self.graph, &self.settings);
+        let outcome = py
+            .detach(|| {
+                let ctx = settings.context(false, base)?;
+                optimize::optimize(graph, &setup, &options, &ctx, &mut |_| {})
+                    .map_err(|e| e.to_string())
+            })
+            .map_err(error)?;
+        let d = PyDict::new(py);
+        d.set_item("start", outcome.start)?;
+        d.set_item("objective", outcome.objective)?;
+        d.set_item("iterations", outcome.iterations)?;
+        d.set_item("evaluations", outcome.evaluations)?;
+        d.set_item("gradients", outcome.gradients)?;
+        d.set_item("exact_gradients", outcome.exact_gradients)?;
+        d.set_item(
+            "finite_difference_nodes",
+            outcome.finite_difference_nodes.clone(),
+        )?;
+        let folded = PyDict::new(py);
+        for (node, n) in &outcome.not_convex {
+            folded.set_item(node, *n)?;
+        }
+        d.set_item("not_convex", folded)?;
+        d.set_item("notes", outcome.notes.clone())?;
+        d.set_item(
+            "stop",
+            match &outcome.stop {
+                Stop::Converged(why) => format!("converged ({why})"),
+                Stop::MaxIterations => "iteration limit reached".to_string(),
+                Stop::Cancelled => "cancelled".to_string(),
+            },
+        )?;
+        let variables = PyDict::new(py);
+        for (v, x) in outcome.variables.iter().zip(&outcome.x) {
+            variables.set_item(v.input.to_string(), *x)?;
+        }
+        d.set_item("variables", variables)?;
+        // The result's values are this graph's from now on (evaluated afresh).
+        self.graph = outcome.graph;
+        self.evaluator = Evaluator::new();
+        Ok(d)
+    }
+
     /// Saves the graph (with the values set) as a graph file, atomically.
     fn save(&self, path: &Bound<'_, PyAny>) -> PyResult<()> {
         let path = args::path(path, "path")?;

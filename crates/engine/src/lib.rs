@@ -30,7 +30,8 @@ pub use eval::{EvalSummary, Evaluator, NodeOutputs, NodeResult};
 pub use graph::{Continued, Graph, GraphError, NodeInstance, Revision, WireRef};
 pub use kinds::{ChoiceEnum, IntoPort, PortKind};
 pub use node::{
-    Choices, Layer, MAX_CLUSTER_DEPTH, NodeContext, NodeDef, NodeFlag, PortDef, PortHint, Widget,
+    Choices, Layer, MAX_CLUSTER_DEPTH, NodeContext, NodeDef, NodeFlag, PortDef, PortHint, Role,
+    Widget,
 };
 pub use registry::Registry;
 pub use value::{Access, Items, Record, Value, ValueType};

@@ -63,7 +63,7 @@ macro_rules! node {
                     $( let port = port.with_default($crate::kinds::default_value::<$ikind, _>($idef)); )?
                     $( let port = port.with_hint({
                         #[allow(unused_imports)]
-                        use $crate::node::hint::{Layer::*, Widget::*};
+                        use $crate::node::hint::{Layer::*, Role::*, Widget::*};
                         let mut hint = $crate::node::HintBuilder::default();
                         $( hint.$ikey($ival); )*
                         hint.0
@@ -79,7 +79,7 @@ macro_rules! node {
                     );
                     $( let port = port.with_hint({
                         #[allow(unused_imports)]
-                        use $crate::node::hint::{Layer::*, Widget::*};
+                        use $crate::node::hint::{Layer::*, Role::*, Widget::*};
                         let mut hint = $crate::node::HintBuilder::default();
                         $( hint.$okey($oval); )*
                         hint.0

@@ -168,6 +168,7 @@ type Outputs = (
     Value,
     Vec<String>,
     Record,
+    Vec<f64>,
 );
 
 /// The reports a construction node computes: those whose outputs were asked for (lazy outputs).
@@ -183,6 +184,11 @@ fn reports(ctx: &NodeContext) -> Reports {
 fn outputs(ctx: &NodeContext, net: ConeNet) -> Outputs {
     // Every sweep step fails on a non-finite vertex (`GeometryError::NonFiniteOutput`).
     ctx.vouch_finite("mesh");
+    let margins = if ctx.wants("margins") {
+        conenet::margins::face_margins(&net)
+    } else {
+        Vec::new()
+    };
     let quality = if ctx.wants("quality") {
         quality_record(&net)
     } else {
@@ -237,6 +243,7 @@ fn outputs(ctx: &NodeContext, net: ConeNet) -> Outputs {
         configurations,
         corrections,
         quality,
+        margins,
     )
 }
 
@@ -300,6 +307,11 @@ node! {
         corrections: k::List<k::Text>,
         /// Quality: max_planarity, mean_planarity, cone residuals, configuration counts, first_bad.
         quality: k::Record,
+        /// Convexity margins: four unit-free numbers per face (row-major), s1 and s2 of its two
+        /// configurations over the directrix edge; all four are positive exactly when the face is
+        /// (++)(++). The optimizer's `convex` constraint keeps them positive.
+        #[ui(role = FaceMargins)]
+        margins: k::List<k::Number>,
     ) {
         reserve_construction(ctx, &directrix, &generatrix)?;
         let inputs = CtubeInputs {
@@ -310,11 +322,11 @@ node! {
             end_planes,
         };
         // Only the mesh asked for: the sweep alone, no apices, quality pass or output tables.
-        let others = ["apex", "apices", "planes", "configurations", "corrections", "quality"];
+        let others = ["apex", "apices", "planes", "configurations", "corrections", "quality", "margins"];
         if !others.iter().any(|o| ctx.wants(o)) {
             let mesh = conenet::ctube_mesh(&inputs)?;
             ctx.vouch_finite("mesh");
-            return Ok((mesh, Vec::new(), Vec::new(), Value::list(Vec::new()), Value::list(Vec::new()), Vec::new(), Record::new()));
+            return Ok((mesh, Vec::new(), Vec::new(), Value::list(Vec::new()), Value::list(Vec::new()), Vec::new(), Record::new(), Vec::new()));
         }
         Ok(outputs(ctx, conenet::construct_ctube_with(&inputs, reports(ctx))?))
     }
@@ -365,6 +377,11 @@ node! {
         corrections: k::List<k::Text>,
         /// Quality: max_planarity, mean_planarity, cone residuals, configuration counts, first_bad.
         quality: k::Record,
+        /// Convexity margins: four unit-free numbers per face (row-major), s1 and s2 of its two
+        /// configurations over the directrix edge; all four are positive exactly when the face is
+        /// (++)(++). The optimizer's `convex` constraint keeps them positive.
+        #[ui(role = FaceMargins)]
+        margins: k::List<k::Number>,
     ) {
         reserve_construction(ctx, &directrix, &generatrix)?;
         let mut inputs = ConstructInputs::new(unwrap_arc(directrix), unwrap_arc(generatrix));
@@ -420,6 +437,11 @@ node! {
         corrections: k::List<k::Text>,
         /// Quality: max_planarity, mean_planarity, cone residuals, configuration counts, first_bad.
         quality: k::Record,
+        /// Convexity margins: four unit-free numbers per face (row-major), s1 and s2 of its two
+        /// configurations over the directrix edge; all four are positive exactly when the face is
+        /// (++)(++). The optimizer's `convex` constraint keeps them positive.
+        #[ui(role = FaceMargins)]
+        margins: k::List<k::Number>,
     ) {
         let column = |v: Vec<f64>| match v.as_slice() {
             [single] => ColumnValues::Uniform(*single),

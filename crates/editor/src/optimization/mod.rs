@@ -72,6 +72,8 @@ pub struct Draft {
     pub variables: Vec<Variable>,
     /// Penalties picked so far.
     pub penalties: Vec<Penalty>,
+    /// Constructions whose faces must stay (++)(++), picked so far.
+    pub convex: Vec<String>,
 }
 
 /// The panel's state.
@@ -258,6 +260,7 @@ impl OptimizationPanel {
             objective,
             variables: self.draft.variables.clone(),
             penalties: self.draft.penalties.clone(),
+            convex: self.draft.convex.clone(),
             method: Method::Auto,
             max_iter: 100,
         };

@@ -360,6 +360,41 @@ fn setup_editor(
             });
         }
     }
+    // Keep faces convex: one box per construction (a node reporting convexity margins).
+    let mut convex_toggled = false;
+    let constructions: Vec<(String, String)> = doc
+        .graph
+        .nodes()
+        .filter(|(_, n)| {
+            n.def
+                .outputs
+                .iter()
+                .any(|p| p.hint.role == cnets_engine::Role::FaceMargins)
+        })
+        .map(|(_, n)| (n.id.clone(), n.label().to_string()))
+        .collect();
+    if !constructions.is_empty() {
+        ui.add_space(4.0);
+        ui.label("keep faces convex (++)(++)");
+        for (id, label) in constructions {
+            let mut on = edited.convex.contains(&id);
+            if ui
+                .checkbox(&mut on, label)
+                .on_hover_text(
+                    "the run keeps every face of this net (++)(++): a barrier on its convexity \
+                     margins, no correction needed",
+                )
+                .changed()
+            {
+                if on {
+                    edited.convex.push(id);
+                } else {
+                    edited.convex.retain(|c| *c != id);
+                }
+                convex_toggled = true;
+            }
+        }
+    }
     ui.add_space(4.0);
     ui.horizontal(|ui| {
         ui.label("method");
@@ -383,7 +418,7 @@ fn setup_editor(
             key = Some(EditKey::Optimization("max_iter".into()));
         }
     });
-    let structural = remove_var.is_some() || remove_pen.is_some();
+    let structural = remove_var.is_some() || remove_pen.is_some() || convex_toggled;
     if let Some(k) = remove_var {
         edited.variables.remove(k);
     }

@@ -94,6 +94,18 @@ impl Layer {
     }
 }
 
+/// What an output means to the engine's tools beyond its type (read by role, never by name).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Role {
+    /// Nothing special.
+    #[default]
+    Plain,
+    /// A construction's convexity margins: a list of numbers, four per face of its mesh, all
+    /// positive exactly when the face is (++)(++) (`cnets_geometry::conenet::margins`). The
+    /// optimizer's `convex` constraint keeps them positive and counts the faces that are not.
+    FaceMargins,
+}
+
 /// The fixed words a choice port accepts, and the rule that accepts a text (aliases and case
 /// included), from the port's [`crate::kinds::Choice`] kind.
 #[derive(Debug, Clone, Copy)]
@@ -133,6 +145,8 @@ pub struct PortHint {
     pub step: Option<f64>,
     /// For an output: the preview layer it is drawn in.
     pub layer: Layer,
+    /// For an output: what it means to the engine's tools ([`Role`]).
+    pub role: Role,
 }
 
 /// Builder of a [`PortHint`], fed by `#[ui(key = value, …)]` in `node!`.
@@ -168,5 +182,10 @@ impl HintBuilder {
     /// `layer = Support`: the preview layer of an output.
     pub fn layer(&mut self, layer: Layer) {
         self.0.layer = layer;
+    }
+
+    /// `role = FaceMargins`: what an output means to the engine's tools.
+    pub fn role(&mut self, role: Role) {
+        self.0.role = role;
     }
 }

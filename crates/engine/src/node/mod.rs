@@ -22,6 +22,6 @@ pub use crate::error::NodeError;
 pub use context::{MAX_CLUSTER_DEPTH, NodeContext};
 pub use def::{NodeDef, NodeFlag, PortDef, RunFn, doc_text, port_name};
 pub use derivative::{Branch, BranchFn, Cotangents, VjpArgs, VjpFn, VjpResult};
-pub use hint::{Choices, HintBuilder, Layer, PortHint, Widget};
+pub use hint::{Choices, HintBuilder, Layer, PortHint, Role, Widget};
 pub use mask::OutputMask;
 pub use stamp::FileStamp;

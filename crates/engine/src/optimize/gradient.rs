@@ -13,6 +13,7 @@ use std::collections::HashMap;
 
 use petgraph::stable_graph::NodeIndex;
 
+use super::convexity::{self, Phase};
 use super::leaves;
 use super::problem::Problem;
 use super::setup::PenaltyKind;
@@ -63,8 +64,11 @@ impl Problem {
             c[leaf] += weight;
             Ok(())
         };
-        seed(&self.setup.objective, 1.0)?;
-        for p in &self.setup.penalties {
+        let fitting = self.phase != Phase::Feasibility;
+        if fitting {
+            seed(&self.setup.objective, 1.0)?;
+        }
+        for p in self.setup.penalties.iter().filter(|_| fitting) {
             let v = self
                 .evaluator
                 .output(graph, &p.output.node, &p.output.port)
@@ -76,6 +80,16 @@ impl Problem {
                 PenaltyKind::AtLeast => -(p.target - v).max(0.0),
             };
             seed(&p.output, 2.0 * p.weight * d)?;
+        }
+        // Faces kept convex: the barrier's (or the feasibility phase's) slope by each margin.
+        if self.phase != Phase::Off {
+            for w in self.watched.iter().filter(|w| w.kept) {
+                let slopes = convexity::slopes(self.phase, &self.margins(w)?);
+                let c = cot
+                    .entry((w.index, w.output))
+                    .or_insert_with(|| vec![0.0; slopes.len()]);
+                leaves::accumulate(c, &slopes);
+            }
         }
         let mut gradient = vec![0.0; self.dimension()];
         let mut finite_differences = Vec::new();

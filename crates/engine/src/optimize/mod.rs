@@ -9,6 +9,7 @@
 //! the context's cancel flag, and report every iteration.
 
 pub mod branch;
+pub mod convexity;
 pub mod gradient;
 mod lbfgsb;
 mod nelder_mead;
@@ -106,9 +107,14 @@ pub struct Outcome {
     pub node_runs: u64,
     /// Gradients computed.
     pub gradients: u64,
-    /// Gradients that were exact (the reverse pass); the others used finite differences of the
-    /// whole graph.
+    /// Gradients that were exact: the reverse pass with no node on the path differentiated by
+    /// finite differences (the others used finite differences of a node or of the whole graph).
     pub exact_gradients: u64,
+    /// Nodes whose part of some gradient was taken by finite differences of their own run.
+    pub finite_difference_nodes: Vec<String>,
+    /// Per construction on the path (and each `convex` names): its faces that are not (++)(++)
+    /// at the result (`None`: it failed there).
+    pub not_convex: Vec<(String, Option<usize>)>,
     /// Nodes whose part of the gradient used finite differences of their own run, with the reason
     /// (first occurrence of each), and why whole gradients fell back to finite differences.
     pub notes: Vec<String>,
@@ -144,6 +150,7 @@ struct Run<'a> {
     gradients: u64,
     exact: bool,
     exact_gradients: u64,
+    finite_difference_nodes: Vec<String>,
     notes: Vec<String>,
     branches: branch::BranchWatch,
 }
@@ -165,6 +172,7 @@ impl<'a> Run<'a> {
             gradients: 0,
             exact,
             exact_gradients: 0,
+            finite_difference_nodes: Vec::new(),
             notes: Vec::new(),
             branches: branch::BranchWatch::default(),
         };
@@ -192,8 +200,13 @@ impl<'a> Run<'a> {
             match self.problem.gradient(x, self.ctx) {
                 Ok(g) => {
                     self.gradients += 1;
-                    self.exact_gradients += 1;
+                    if g.finite_differences.is_empty() {
+                        self.exact_gradients += 1;
+                    }
                     for (node, reason) in g.finite_differences {
+                        if !self.finite_difference_nodes.contains(&node) {
+                            self.finite_difference_nodes.push(node.clone());
+                        }
                         self.note(format!(
                             "node '{node}': finite differences for its part ({reason})"
                         ));
@@ -263,10 +276,14 @@ pub fn optimize(
 ) -> Result<Outcome, OptimizeError> {
     let problem = Problem::new(graph.clone(), setup.clone(), options.incremental)?;
     let (mut run, x) = Run::at_start(problem, ctx, options.exact_gradients);
-    let start = run.problem.value(&x, ctx).map_err(OptimizeError::Start)?;
+    let max_iter = options.max_iter.unwrap_or(setup.max_iter);
+    let mut start = run.problem.value(&x, ctx).map_err(OptimizeError::Start)?;
+    let mut x = x;
+    if run.problem.keeps_convex() {
+        (x, start) = convex_start(&mut run, x, start, max_iter, options, report)?;
+    }
     run.start = start;
     run.best = (x.clone(), start);
-    let max_iter = options.max_iter.unwrap_or(setup.max_iter);
     let method = options.method.unwrap_or(setup.method);
     let mut iterations = 0;
     let mut fell_back = false;
@@ -294,7 +311,11 @@ pub fn optimize(
         stop = s;
     }
     let (x, objective) = run.best.clone();
-    run.problem.apply(&x).map_err(OptimizeError::Start)?;
+    // Evaluated at the result, so the faces counted are the result's.
+    if run.problem.value(&x, ctx).is_err() {
+        run.problem.apply(&x).map_err(OptimizeError::Start)?;
+    }
+    let not_convex = run.problem.not_convex();
     Ok(Outcome {
         x,
         variables: run.problem.setup().variables.clone(),
@@ -305,12 +326,73 @@ pub fn optimize(
         node_runs: run.problem.node_runs,
         gradients: run.gradients,
         exact_gradients: run.exact_gradients,
+        finite_difference_nodes: run.finite_difference_nodes,
+        not_convex,
         notes: run.notes,
         branch_crossings: run.branches.crossings,
         fell_back,
         stop,
         graph: run.problem.into_graph(),
     })
+}
+
+/// Prepares a run that keeps faces convex: a folded start is first made convex (the feasibility
+/// phase, [`convexity`]); then the barrier's weight is set from the objective there. Returns the
+/// start point and its objective with the barrier.
+fn convex_start(
+    run: &mut Run<'_>,
+    x: Vec<f64>,
+    fit: f64,
+    max_iter: usize,
+    options: &Options,
+    report: &mut dyn FnMut(&Iteration),
+) -> Result<(Vec<f64>, f64), OptimizeError> {
+    let ctx = run.ctx;
+    let mut x = x;
+    let mut fit = fit;
+    if run.problem.kept_folded() {
+        let folded = folded_count(&run.problem);
+        run.problem.phase = convexity::Phase::Feasibility;
+        let f0 = run.problem.value(&x, ctx).map_err(OptimizeError::Start)?;
+        run.start = f0;
+        run.best = (x.clone(), f0);
+        let _ = lbfgs(run, x.clone(), f0, max_iter, options, report);
+        x = run.best.0.clone();
+        run.problem.phase = convexity::Phase::Off;
+        fit = run.problem.value(&x, ctx).map_err(OptimizeError::Start)?;
+        if run.problem.kept_folded() {
+            run.note(format!(
+                "the start had {folded} faces not (++)(++) and {} remain after the feasibility \
+                 phase: the run continues without keeping faces convex",
+                folded_count(&run.problem)
+            ));
+            return Ok((x, fit));
+        }
+        run.note(format!(
+            "the start had {folded} faces not (++)(++): a feasibility phase made them convex \
+             before the fit"
+        ));
+    }
+    let weight = convexity::WEIGHT * fit.abs().max(1e-12);
+    run.problem.phase = convexity::Phase::Barrier(weight);
+    let start = run.problem.value(&x, ctx).map_err(OptimizeError::Start)?;
+    Ok((x, start))
+}
+
+/// Folded faces of the constructions `convex` names, at the last evaluation.
+fn folded_count(problem: &Problem) -> usize {
+    let kept: Vec<&str> = problem
+        .watched
+        .iter()
+        .filter(|w| w.kept)
+        .map(|w| w.node.as_str())
+        .collect();
+    problem
+        .not_convex()
+        .iter()
+        .filter(|(node, _)| kept.contains(&node.as_str()))
+        .map(|(_, n)| n.unwrap_or(0))
+        .sum()
 }
 
 /// The exact gradient at the start point against central differences of the whole graph.

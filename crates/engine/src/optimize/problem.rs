@@ -3,6 +3,7 @@
 
 use petgraph::stable_graph::NodeIndex;
 
+use super::convexity::{self, Phase, Watched};
 use super::leaves;
 use super::setup::{Setup, Variable};
 use crate::eval::{Evaluator, NodeResult, OutputMask};
@@ -45,6 +46,10 @@ pub struct Problem {
     demand: Vec<(NodeIndex, OutputMask)>,
     /// The literal inputs holding variables.
     pub(super) groups: Vec<Group>,
+    /// The constructions on the path (and those `convex` names) whose margins are read.
+    pub(super) watched: Vec<Watched>,
+    /// What keeping faces convex adds to the objective now.
+    pub(super) phase: Phase,
     /// Objective evaluations so far.
     pub evaluations: u64,
     /// Node runs so far (over all evaluations).
@@ -194,8 +199,45 @@ impl Problem {
                     .map_err(|e| SetupMismatch(e.to_string()))?,
             );
         }
-        let active = active_nodes(&graph, &request, &groups);
-        let demand = derivative_demand(&graph, &request, &active);
+        let mut kept = Vec::new();
+        for id in &setup.convex {
+            let index = graph
+                .index(id)
+                .map_err(|_| SetupMismatch(format!("convex: no node '{id}'")))?;
+            if convexity::margins_output(&graph, index).is_none() {
+                let ty = graph.node_at(index).map_or("?", |n| n.def.id.as_ref());
+                return Err(SetupMismatch(format!(
+                    "convex: node '{id}' ({ty}) reports no convexity margins; name a \
+                     construction (cnets.construct, cnets.construct_coplanar, ctube.construct)"
+                )));
+            }
+            kept.push(index);
+        }
+        let targets: Vec<NodeIndex> = request.iter().chain(&kept).copied().collect();
+        let active = active_nodes(&graph, &targets, &groups);
+        let mut demand = derivative_demand(&graph, &request, &active);
+        // Every construction on the path is watched (its folded faces are reported); those
+        // `convex` names are kept convex.
+        let mut watched = Vec::new();
+        for (k, node) in graph.nodes() {
+            let is_kept = kept.contains(&k);
+            if !(is_kept || active[k.index()]) {
+                continue;
+            }
+            let Some(output) = convexity::margins_output(&graph, k) else {
+                continue;
+            };
+            watched.push(Watched {
+                node: node.id.clone(),
+                index: k,
+                output,
+                kept: is_kept,
+            });
+            match demand.iter_mut().find(|(d, _)| *d == k) {
+                Some((_, mask)) => *mask = mask.union(OutputMask::one(output)),
+                None => demand.push((k, OutputMask::one(output))),
+            }
+        }
         Ok(Self {
             graph,
             setup,
@@ -204,6 +246,8 @@ impl Problem {
             active,
             demand,
             groups,
+            watched,
+            phase: Phase::Off,
             evaluations: 0,
             node_runs: 0,
         })
@@ -267,15 +311,65 @@ impl Problem {
         if summary.cancelled {
             return Err("cancelled".into());
         }
-        let mut total = self.read(&self.setup.objective.clone())?;
-        for p in self.setup.penalties.clone() {
-            total += p.value(self.read(&p.output)?);
+        let mut total = if self.phase == Phase::Feasibility {
+            0.0
+        } else {
+            let mut total = self.read(&self.setup.objective.clone())?;
+            for p in self.setup.penalties.clone() {
+                total += p.value(self.read(&p.output)?);
+            }
+            total
+        };
+        if self.phase != Phase::Off {
+            for w in self.watched.iter().filter(|w| w.kept) {
+                let m = self.margins(w)?;
+                total += convexity::term(self.phase, &m);
+            }
         }
         if total.is_finite() {
             Ok(total)
         } else {
             Err(format!("the objective is not finite ({total})"))
         }
+    }
+
+    /// The margins of a watched construction at the last evaluation.
+    pub(super) fn margins(&self, w: &Watched) -> Result<Vec<f64>, String> {
+        let result = self
+            .evaluator
+            .result_at(&self.graph, w.index)
+            .ok_or_else(|| format!("node '{}' was not evaluated", w.node))?;
+        let outputs = result
+            .outputs()
+            .ok_or_else(|| self.failure_message(&w.node, result))?;
+        Ok(convexity::numbers(&outputs.values[w.output]))
+    }
+
+    /// Per watched construction, its faces that are not (++)(++) at the last evaluation (a
+    /// construction that failed there counts all of its faces as unknown: `None`).
+    pub fn not_convex(&self) -> Vec<(String, Option<usize>)> {
+        self.watched
+            .iter()
+            .map(|w| {
+                (
+                    w.node.clone(),
+                    self.margins(w).ok().map(|m| convexity::folded_faces(&m)),
+                )
+            })
+            .collect()
+    }
+
+    /// Whether a construction named in `convex` has a folded face at the last evaluation.
+    pub(super) fn kept_folded(&self) -> bool {
+        self.watched.iter().filter(|w| w.kept).any(|w| {
+            self.margins(w)
+                .map_or(true, |m| convexity::folded_faces(&m) > 0)
+        })
+    }
+
+    /// Whether the setup keeps faces convex.
+    pub(super) fn keeps_convex(&self) -> bool {
+        self.watched.iter().any(|w| w.kept)
     }
 
     fn read(&self, path: &super::path::ValuePath) -> Result<f64, String> {

@@ -9,10 +9,15 @@
 //!     penalties: [
 //!         (output: "width.value", weight: 10.0, kind: "at_most", target: 2.0),
 //!     ],
+//!     convex: ["construct"],
 //!     method: "auto",
 //!     max_iter: 100,
 //! ),
 //! ```
+//!
+//! `convex` names constructions whose faces must stay (++)(++) for the whole run (their
+//! convexity margins, an output of role [`crate::node::Role::FaceMargins`], are kept positive by a
+//! barrier: docs/optimizer.md).
 
 use std::fmt::Write as _;
 
@@ -119,6 +124,8 @@ pub struct Setup {
     pub variables: Vec<Variable>,
     /// Soft constraints.
     pub penalties: Vec<Penalty>,
+    /// Constructions (node ids) whose faces must stay (++)(++) for the whole run.
+    pub convex: Vec<String>,
     /// The minimizer.
     pub method: Method,
     /// Iteration limit.
@@ -244,6 +251,7 @@ impl Setup {
         let mut objective = None;
         let mut variables = Vec::new();
         let mut penalties = Vec::new();
+        let mut convex = Vec::new();
         let mut method = Method::Auto;
         let mut max_iter = 100;
         for (name, pos, v) in fields(node, "'optimization'")? {
@@ -258,6 +266,22 @@ impl Setup {
                     let items = v.items().filter(|_| matches!(v.kind, Kind::List(_)));
                     let items = items.ok_or((v.pos, "'penalties' must be a list".to_string()))?;
                     penalties = items.iter().map(penalty).collect::<Result<_, _>>()?;
+                }
+                "convex" => {
+                    let items = v.items().filter(|_| matches!(v.kind, Kind::List(_)));
+                    let items = items.ok_or((
+                        v.pos,
+                        "'convex' must be a list of node ids [\"construct\", …]".to_string(),
+                    ))?;
+                    convex = items
+                        .iter()
+                        .map(|n| {
+                            n.as_str().map(str::to_string).ok_or((
+                                n.pos,
+                                "'convex' must list node ids as strings".to_string(),
+                            ))
+                        })
+                        .collect::<Result<_, _>>()?;
                 }
                 "method" => {
                     method = v.as_str().and_then(Method::parse).ok_or((
@@ -275,7 +299,7 @@ impl Setup {
                     return Err((
                         pos,
                         format!(
-                            "unknown optimization field '{other}'; expected objective, variables, penalties, method, max_iter"
+                            "unknown optimization field '{other}'; expected objective, variables, penalties, convex, method, max_iter"
                         ),
                     ));
                 }
@@ -295,6 +319,7 @@ impl Setup {
             objective,
             variables,
             penalties,
+            convex,
             method,
             max_iter,
         })
@@ -342,6 +367,18 @@ impl Setup {
                 );
             }
             line(&mut out, "],");
+        }
+        if !self.convex.is_empty() {
+            let ids: Vec<String> = self
+                .convex
+                .iter()
+                .map(|id| {
+                    let mut q = String::new();
+                    quote(&mut q, id);
+                    q
+                })
+                .collect();
+            line(&mut out, &format!("convex: [{}],", ids.join(", ")));
         }
         line(&mut out, &format!("method: \"{}\",", self.method.name()));
         line(&mut out, &format!("max_iter: {},", self.max_iter));

@@ -131,12 +131,25 @@ pub fn run(args: Args) -> CommandResult {
         save_file(out, &doc.graph, &doc.meta)
             .map_err(|e| Failure::usage(format!("{}: cannot write: {e}", out.display())))?;
     }
+    let not_convex: serde_json::Map<String, serde_json::Value> = outcome
+        .not_convex
+        .iter()
+        .map(|(node, n)| (node.clone(), json!(n)))
+        .collect();
     let variables: serde_json::Map<String, serde_json::Value> = outcome
         .variables
         .iter()
         .zip(&outcome.x)
         .map(|(v, x)| (v.input.to_string(), json!(x)))
         .collect();
+    for (node, n) in &outcome.not_convex {
+        if let Some(n) = n.filter(|&n| n > 0) {
+            crate::errln!(
+                "warning: {n} faces of '{node}' are not (++)(++) (folded); keep them convex with \
+                 `convex: [\"{node}\"]` in the optimization setup (docs/optimizer.md)"
+            );
+        }
+    }
     if args.json {
         crate::outln!(
             "{}",
@@ -147,6 +160,8 @@ pub fn run(args: Args) -> CommandResult {
                 "evaluations": outcome.evaluations,
                 "gradients": outcome.gradients,
                 "exact_gradients": outcome.exact_gradients,
+                "finite_difference_nodes": outcome.finite_difference_nodes,
+                "not_convex": not_convex,
                 "notes": outcome.notes,
                 "branch_crossings": outcome.branch_crossings,
                 "node_runs": outcome.node_runs,
@@ -170,6 +185,12 @@ pub fn run(args: Args) -> CommandResult {
         );
         for note in &outcome.notes {
             crate::outln!("note: {note}");
+        }
+        for (node, n) in &outcome.not_convex {
+            match n {
+                Some(n) => crate::outln!("faces not (++)(++): {n} ({node})"),
+                None => crate::outln!("faces not (++)(++): unknown ({node} failed at the result)"),
+            }
         }
         if outcome.branch_crossings > 0 {
             crate::outln!(
