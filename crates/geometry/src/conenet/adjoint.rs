@@ -23,26 +23,30 @@ use std::f64::consts::PI;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::construct::construct_with;
-use super::correction::CorrectionKind;
+use super::correction_adjoint::{
+    ApexFix, FIX_B0, FIX_B1, FIX_E0, FIX_E1, FIX_EPS, FIX_G, FIX_R0, FIX_R1, FIX_X, FIX_XM, FIX_XP,
+    GeneratrixFix, N_FIX, Piece, apex_fix, generatrix_scale, piece,
+};
 use super::directrix_adjoint::{ColumnBars, pull_back};
 use super::dual::{D3, Dual};
 use super::inputs::{ConstructInputs, GridValues};
 use super::prepare::prepare;
-use super::result::Reports;
 use super::tolerance;
 use crate::{GeometryError, QuadGrid};
 
-// The directions of a step's local Jacobian: G_{i,j−1} (3), r, a_j, ε, X_{j−1} (3), X_j (3), ê_j
-// (3), b_j (3). A sweep follows the first N of them.
-const G: usize = 0;
-const R: usize = 3;
-const A: usize = 4;
-const EPS: usize = 5;
-const X0: usize = 6;
-const X1: usize = 9;
-const E: usize = 12;
-const B: usize = 15;
+/// The directions of a step's local Jacobian: G_{i,j−1} (3), r, a_j, ε, X_{j−1} (3), X_j (3), ê_j
+/// (3), b_j (3). A sweep follows the first N of them.
+pub(super) mod layout {
+    pub const G: usize = 0;
+    pub const R: usize = 3;
+    pub const A: usize = 4;
+    pub const EPS: usize = 5;
+    pub const X0: usize = 6;
+    pub const X1: usize = 9;
+    pub const E: usize = 12;
+    pub const B: usize = 15;
+}
+use layout::{A, B, E, EPS, G, R, X0, X1};
 /// Directions for the ratios and the generatrix only.
 const N_RATIOS: usize = 4;
 /// … and the apex values and ε.
@@ -52,7 +56,7 @@ const N_ALL: usize = 18;
 
 /// How the plane of a step is obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum PlaneRule {
+pub(super) enum PlaneRule {
     /// From the ratio (notes §3).
     Ratio,
     /// The assisted correction's plane fix: `θ = (1 − ε) φ` (notes §6).
@@ -60,15 +64,15 @@ enum PlaneRule {
 }
 
 /// The values one step reads, on dual numbers.
-struct StepInputs<const N: usize> {
-    g: D3<N>,
-    r: Dual<N>,
-    a: Dual<N>,
-    epsilon: Dual<N>,
-    x0: D3<N>,
-    x1: D3<N>,
-    e: D3<N>,
-    b: D3<N>,
+pub(super) struct StepInputs<const N: usize> {
+    pub g: D3<N>,
+    pub r: Dual<N>,
+    pub a: Dual<N>,
+    pub epsilon: Dual<N>,
+    pub x0: D3<N>,
+    pub x1: D3<N>,
+    pub e: D3<N>,
+    pub b: D3<N>,
 }
 
 /// One step of the ratio construction on dual numbers: `G_{i,jn}` from `g = G_{i,jn−1}`, the ratio
@@ -78,48 +82,70 @@ struct StepInputs<const N: usize> {
 /// derivatives along the unit sphere are used by the chain that follows.
 #[inline(always)]
 fn ratio_step<const N: usize>(s: &StepInputs<N>, rule: PlaneRule, inv_scale: f64) -> D3<N> {
+    let p = step_plane(s, rule, inv_scale);
+    step_vertex(s.g, s.a, s.x0, s.x1, p)
+}
+
+/// The plane normal Π_{i,jn} of a step (see [`ratio_step`]; `s.a` is not read).
+#[inline(always)]
+pub(super) fn step_plane<const N: usize>(
+    s: &StepInputs<N>,
+    rule: PlaneRule,
+    inv_scale: f64,
+) -> D3<N> {
     let StepInputs {
         g,
         r,
-        a,
         epsilon,
         x0,
         x1,
         e,
         b,
+        ..
     } = *s;
     let d = g.sub(x0);
     let on_directrix =
         d.0.iter().fold(0.0f64, |m, x| m.max(x.v.abs())) * inv_scale <= tolerance::FRAME;
-    let p = if on_directrix {
-        b
-    } else {
-        let perp = d.sub(e.scale(d.dot(e)));
-        let inv_len = Dual::constant(1.0) / perp.dot(perp).sqrt();
-        let w = perp.scale(inv_len);
-        let theta = match rule {
-            PlaneRule::Fixed => {
-                // φ: the angle of G_{i,j−1} − X_j from ê in the support frame.
-                let v = g.sub(x1);
-                Dual::atan2(w.dot(v), e.dot(v)) * (Dual::constant(1.0) - epsilon)
+    if on_directrix {
+        return b;
+    }
+    let perp = d.sub(e.scale(d.dot(e)));
+    let inv_len = Dual::constant(1.0) / perp.dot(perp).sqrt();
+    let w = perp.scale(inv_len);
+    let theta = match rule {
+        PlaneRule::Fixed => {
+            // φ: the angle of G_{i,j−1} − X_j from ê in the support frame.
+            let v = g.sub(x1);
+            Dual::atan2(w.dot(v), e.dot(v)) * (Dual::constant(1.0) - epsilon)
+        }
+        PlaneRule::Ratio => {
+            let theta_b = Dual::atan2(e.dot(b), -w.dot(b));
+            // At r = ½ the map has a kink (slopes 2θ_b and 2(π − θ_b)): the mean slope π is
+            // used there, the derivative central differences see (an element of the
+            // subdifferential). Both pieces have slope 1 in θ_b there.
+            if r.v == 0.5 {
+                theta_b + (r - Dual::constant(0.5)) * PI
+            } else if r.v < 0.5 {
+                r * theta_b * 2.0
+            } else {
+                theta_b + (r * 2.0 - Dual::constant(1.0)) * (Dual::constant(PI) - theta_b)
             }
-            PlaneRule::Ratio => {
-                let theta_b = Dual::atan2(e.dot(b), -w.dot(b));
-                // At r = ½ the map has a kink (slopes 2θ_b and 2(π − θ_b)): the mean slope π is
-                // used there, the derivative central differences see (an element of the
-                // subdifferential). Both pieces have slope 1 in θ_b there.
-                if r.v == 0.5 {
-                    theta_b + (r - Dual::constant(0.5)) * PI
-                } else if r.v < 0.5 {
-                    r * theta_b * 2.0
-                } else {
-                    theta_b + (r * 2.0 - Dual::constant(1.0)) * (Dual::constant(PI) - theta_b)
-                }
-            }
-        };
-        e.scale(theta.sin()).sub(w.scale(theta.cos()))
+        }
     };
-    let v = d.scale(a).add(x1).sub(g);
+    e.scale(theta.sin()).sub(w.scale(theta.cos()))
+}
+
+/// The step of Eq. 1 on dual numbers: `G_{i,j}` from `g = G_{i,j−1}`, `a = a_j`, `x0 = X_{j−1}`,
+/// `x1 = X_j` and the plane normal `p`.
+#[inline(always)]
+pub(super) fn step_vertex<const N: usize>(
+    g: D3<N>,
+    a: Dual<N>,
+    x0: D3<N>,
+    x1: D3<N>,
+    p: D3<N>,
+) -> D3<N> {
+    let v = g.sub(x0).scale(a).add(x1).sub(g);
     let t = x1.sub(g).dot(p) / v.dot(p);
     g.add(v.scale(t))
 }
@@ -195,8 +221,9 @@ pub fn construct_adjoint(
 /// The backward sweep of [`super::construct`] for the mesh it built (`mesh`) and the cotangents of
 /// its outputs (`bars`): the ratios' and the generatrix's cotangents, and those `wrt` asks for.
 ///
-/// With the assisted correction on, the construction is run again to learn which planes it fixed;
-/// a run that changed apex values or scaled the generatrix is declined (an error).
+/// With the assisted correction on, the construction is run again to learn which piece it took
+/// (see [`super::correction_adjoint`]); a blend, or a run mixing plane fixes with apex or
+/// generatrix fixes, is declined (an error).
 pub fn construct_adjoint_for(
     inputs: &ConstructInputs,
     mesh: &QuadGrid,
@@ -230,62 +257,63 @@ pub fn construct_adjoint_for(
     let grid = inputs
         .ratios
         .resolve("ratios", n, m - 1, (0.0, 1.0, "a value in [0, 1]"))?;
-    let fixed = fixed_planes(inputs, n, m)?;
-    let sweep = Backward {
-        prep: &prep,
-        grid: &grid,
-        mesh,
-        mesh_bar: bars.mesh,
-        fixed: &fixed,
-        epsilon: inputs.assistance.epsilon,
-    };
-    let (ratio_bar, generatrix, mut columns, epsilon) = if wrt.directrix {
-        sweep.run::<N_ALL>()
-    } else if wrt.apex || wrt.epsilon {
-        sweep.run::<N_APEX>()
-    } else {
-        sweep.run::<N_RATIOS>()
-    };
-    // The apex and apices outputs.
+    let piece = piece(inputs, &prep, &grid, mesh)?;
     let dx = &prep.dx;
-    columns
+    // The apex and apices outputs (of the values used).
+    let mut outputs = ColumnBars::zeros(m);
+    outputs
         .a
         .iter_mut()
         .zip(bars.apex)
         .for_each(|(s, x)| *s += x);
     for (j, c_bar) in (1..m).zip(bars.apices) {
-        let a = prep.apex[j - 1];
-        let t = 1.0 - a;
-        let edge = dx.points[j] - dx.points[j - 1];
+        let a = piece.apex[j - 1];
         // C = X_j + (X_j − X_{j−1}) a / (1 − a) (`apex::apex_point`); none at infinity.
         if super::apex::apex_point(dx.points[j - 1], dx.points[j], a).is_none() {
             continue;
         }
-        columns.x[j] += *c_bar / t;
-        columns.x[j - 1] -= *c_bar * (a / t);
-        columns.a[j - 1] += c_bar.dot(edge) / (t * t);
+        let t = 1.0 - a;
+        outputs.x[j] += *c_bar / t;
+        outputs.x[j - 1] -= *c_bar * (a / t);
+        outputs.a[j - 1] += c_bar.dot(dx.points[j] - dx.points[j - 1]) / (t * t);
     }
+    let sweep = Backward {
+        prep: &prep,
+        grid: &grid,
+        mesh,
+        mesh_bar: bars.mesh,
+        piece: &piece,
+        epsilon: inputs.assistance.epsilon,
+    };
+    let coupled = !piece.apex_fixes.is_empty() || piece.generatrix_fix.is_some();
+    let swept = if wrt.directrix || coupled {
+        sweep.run::<N_ALL>(outputs)
+    } else if wrt.apex || wrt.epsilon {
+        sweep.run::<N_APEX>(outputs)
+    } else {
+        sweep.run::<N_RATIOS>(outputs)
+    };
     let ratios = match &inputs.ratios {
-        GridValues::Uniform(_) => vec![ratio_bar.iter().sum()],
+        GridValues::Uniform(_) => vec![swept.ratios.iter().sum()],
         GridValues::PerColumn(_) => (0..m - 1)
-            .map(|j| ratio_bar.iter().skip(j).step_by(m - 1).sum())
+            .map(|j| swept.ratios.iter().skip(j).step_by(m - 1).sum())
             .collect(),
-        GridValues::PerVertex(_) => ratio_bar,
+        GridValues::PerVertex(_) => swept.ratios,
     };
     let stored = inputs.directrix.points.len();
     let pulled = (wrt.apex || wrt.directrix)
-        .then(|| pull_back(columns, dx, inputs.end_planes, &inputs.apex, stored));
+        .then(|| pull_back(swept.columns, dx, inputs.end_planes, &inputs.apex, stored));
     let finite = |x: &f64| x.is_finite();
     let result = ConstructAdjoint {
         ratios,
-        generatrix,
+        generatrix: swept.generatrix,
         apex: pulled.as_ref().filter(|_| wrt.apex).map(|p| p.apex.clone()),
         scale: pulled.as_ref().filter(|_| wrt.apex).and_then(|p| p.scale),
         directrix: pulled
             .as_ref()
             .filter(|_| wrt.directrix)
             .map(|p| p.directrix.clone()),
-        epsilon: wrt.epsilon.then_some(epsilon),
+        epsilon: wrt.epsilon.then_some(swept.epsilon),
     };
     let all_finite = result.ratios.iter().all(finite)
         && result.generatrix.iter().all(|g| g.is_finite())
@@ -301,44 +329,23 @@ pub fn construct_adjoint_for(
     Ok(result)
 }
 
-/// Which planes the assisted correction fixed (N·(M−1), row-major; empty without assistance), or
-/// the error that declines a run whose corrections this adjoint does not follow.
-fn fixed_planes(inputs: &ConstructInputs, n: usize, m: usize) -> Result<Vec<bool>, GeometryError> {
-    if !inputs.assistance.enabled() {
-        return Ok(Vec::new());
-    }
-    let net = construct_with(
-        inputs,
-        Reports {
-            apices: false,
-            quality: false,
-        },
-    )?;
-    let mut fixed = vec![false; n * (m - 1)];
-    for c in &net.corrections {
-        match (c.kind, c.row) {
-            (CorrectionKind::Ratio, Some(i)) if i < n && (1..m).contains(&c.column) => {
-                fixed[i * (m - 1) + c.column - 1] = true;
-            }
-            _ => {
-                return Err(GeometryError::Degenerate(format!(
-                    "the derivative of a correction that changes the apex function or the \
-                     generatrix is not implemented ({c})"
-                )));
-            }
-        }
-    }
-    Ok(fixed)
-}
-
 /// The backward sweep's data.
 struct Backward<'a> {
     prep: &'a super::prepare::Prepared,
     grid: &'a super::inputs::Grid<'a>,
     mesh: &'a QuadGrid,
     mesh_bar: &'a [DVec3],
-    /// Plane-fixed steps (N·(M−1)), or empty.
-    fixed: &'a [bool],
+    /// The piece the run took (plane fixes, the apex values used, coupled fixes).
+    piece: &'a Piece,
+    epsilon: f64,
+}
+
+/// What a backward sweep returns: the cotangents of the ratios (N·(M−1), row-major), the
+/// generatrix, the column quantities (a_j here: the user's values; a fixed a_j has none) and ε.
+struct Swept {
+    ratios: Vec<f64>,
+    generatrix: Vec<DVec3>,
+    columns: ColumnBars,
     epsilon: f64,
 }
 
@@ -348,59 +355,93 @@ struct Collected {
     epsilon: f64,
 }
 
-impl Backward<'_> {
-    /// The sweep following the first `N` directions: the ratios' cotangents (N·(M−1), row-major),
-    /// the generatrix's, the column quantities' and ε's.
-    fn run<const N: usize>(&self) -> (Vec<f64>, Vec<DVec3>, ColumnBars, f64) {
-        let (n, m) = (self.prep.generatrix.len(), self.prep.dx.columns());
-        let mut ratio_bar = vec![0.0; n * (m - 1)];
-        let mut generatrix = vec![DVec3::ZERO; n];
-        let columns = |m| Collected {
+impl Collected {
+    fn zeros<const N: usize>(m: usize) -> Self {
+        Self {
             columns: ColumnBars::zeros(if N > N_RATIOS { m } else { 0 }),
             epsilon: 0.0,
-        };
-        let collected = ratio_bar
-            .par_chunks_mut(m - 1)
-            .zip(generatrix.par_iter_mut())
-            .enumerate()
-            .fold(
-                || columns(m),
-                |mut acc, (i, (r_bar, g_bar))| {
-                    *g_bar = self.row::<N>(i, r_bar, &mut acc);
-                    acc
-                },
-            )
-            .reduce(
-                || columns(m),
-                |a, b| Collected {
-                    columns: a.columns.add(&b.columns),
-                    epsilon: a.epsilon + b.epsilon,
-                },
-            );
-        let mut bars = collected.columns;
-        if N <= N_RATIOS {
-            bars = ColumnBars::zeros(m);
         }
-        (ratio_bar, generatrix, bars, collected.epsilon)
+    }
+    fn add(self, o: Self) -> Self {
+        Self {
+            columns: self.columns.add(&o.columns),
+            epsilon: self.epsilon + o.epsilon,
+        }
+    }
+}
+
+impl Backward<'_> {
+    /// The sweep following the first `N` directions, the column cotangents starting at `outputs`
+    /// (the outputs' own). The rows are swept in parallel between the columns of coupled fixes;
+    /// at such a column the fixed a_{j0}'s total cotangent goes to the row the fix came from.
+    fn run<const N: usize>(&self, outputs: ColumnBars) -> Swept {
+        let (n, m) = (self.prep.generatrix.len(), self.prep.dx.columns());
+        let mut ratios = vec![0.0; n * (m - 1)];
+        let mut lambda: Vec<DVec3> = (0..n).map(|i| self.mesh_bar[i * m + m - 1]).collect();
+        let mut total = Collected {
+            columns: outputs,
+            epsilon: 0.0,
+        };
+        let mut hi = m - 1;
+        let mut fixes = self.piece.apex_fixes.iter().peekable();
+        while hi >= 1 {
+            let fix = fixes.next_if(|f| f.column <= hi && f.column >= 1);
+            let lo = fix.map_or(1, |f| f.column);
+            let part = ratios
+                .par_chunks_mut(m - 1)
+                .zip(lambda.par_iter_mut())
+                .enumerate()
+                .fold(
+                    || Collected::zeros::<N>(m),
+                    |mut acc, (i, (r_bar, l))| {
+                        *l = self.row::<N>(i, hi, lo, *l, r_bar, &mut acc);
+                        acc
+                    },
+                )
+                .reduce(|| Collected::zeros::<N>(m), Collected::add);
+            if N > N_RATIOS {
+                total = total.add(part);
+            }
+            if let Some(fix) = fix {
+                self.pull_apex_fix(fix, &mut total, &mut ratios, &mut lambda);
+            }
+            hi = lo - 1;
+        }
+        if let Some(fix) = self.piece.generatrix_fix {
+            self.pull_generatrix_fix(fix, &mut total, &mut ratios, &mut lambda);
+        }
+        Swept {
+            ratios,
+            generatrix: lambda,
+            columns: total.columns,
+            epsilon: total.epsilon,
+        }
     }
 
-    /// Row i's backward sweep: writes ∂L/∂r_{i,·} to `r_bar`, adds the column quantities' and ε's
-    /// cotangents to `acc`, returns ∂L/∂G_{i,0}.
+    /// Row i's backward sweep over the steps `hi` down to `lo` from λ_{i,hi}: writes ∂L/∂r_{i,·}
+    /// to `r_bar`, adds the column quantities' and ε's cotangents to `acc`, returns λ_{i,lo−1}.
     #[inline(always)]
-    fn row<const N: usize>(&self, i: usize, r_bar: &mut [f64], acc: &mut Collected) -> DVec3 {
+    fn row<const N: usize>(
+        &self,
+        i: usize,
+        hi: usize,
+        lo: usize,
+        mut lambda: DVec3,
+        r_bar: &mut [f64],
+        acc: &mut Collected,
+    ) -> DVec3 {
         let (dx, m) = (&self.prep.dx, self.prep.dx.columns());
         let ratios = self.grid.row(i);
         let inv_scale = 1.0 / self.prep.scale;
-        let mut lambda = self.mesh_bar[i * m + m - 1];
-        for jn in (1..m).rev() {
-            let rule = match self.fixed.get(i * (m - 1) + jn - 1) {
+        for jn in (lo..=hi).rev() {
+            let rule = match self.piece.fixed.get(i * (m - 1) + jn - 1) {
                 Some(true) => PlaneRule::Fixed,
                 _ => PlaneRule::Ratio,
             };
             let s = StepInputs::<N> {
                 g: D3::seed(self.mesh.vertices[i * m + jn - 1], G),
                 r: Dual::seed(ratios[jn - 1], R),
-                a: Dual::seed(self.prep.apex[jn - 1], A),
+                a: Dual::seed(self.piece.apex[jn - 1], A),
                 epsilon: Dual::seed(self.epsilon, EPS),
                 x0: D3::seed(dx.points[jn - 1], X0),
                 x1: D3::seed(dx.points[jn], X1),
@@ -424,6 +465,73 @@ impl Backward<'_> {
         }
         lambda
     }
+
+    /// The apex fix at column j0: a_{j0}'s whole cotangent (its steps' and the outputs') goes to
+    /// what the fixed value reads; the user's a_{j0} keeps none.
+    fn pull_apex_fix(
+        &self,
+        fix: &ApexFix,
+        total: &mut Collected,
+        ratios: &mut [f64],
+        lambda: &mut [DVec3],
+    ) {
+        let (j0, i, m) = (fix.column, fix.row, self.prep.dx.columns());
+        let bar = std::mem::take(&mut total.columns.a[j0 - 1]);
+        let a = apex_fix::<N_FIX>(
+            self.prep,
+            self.grid,
+            self.mesh,
+            &self.piece.apex,
+            j0,
+            i,
+            self.epsilon,
+            fix.pole,
+        );
+        let one = |k: usize| bar * a.d[k];
+        let three = |k: usize| DVec3::new(one(k), one(k + 1), one(k + 2));
+        lambda[i] += three(FIX_G);
+        ratios[i * (m - 1) + j0 - 1] += one(FIX_R0);
+        ratios[i * (m - 1) + j0] += one(FIX_R1);
+        total.epsilon += one(FIX_EPS);
+        let c = &mut total.columns;
+        c.x[j0 - 1] += three(FIX_XM);
+        c.x[j0] += three(FIX_X);
+        c.x[j0 + 1] += three(FIX_XP);
+        c.e[j0] += three(FIX_E0);
+        c.b[j0] += three(FIX_B0);
+        c.e[j0 + 1] += three(FIX_E1);
+        c.b[j0 + 1] += three(FIX_B1);
+    }
+
+    /// The generatrix fix: column 0 of the mesh is `X_0 + (G_{i,0} − X_0) T`; `lambda` holds its
+    /// cotangents on entry and the input generatrix's on return.
+    fn pull_generatrix_fix(
+        &self,
+        fix: GeneratrixFix,
+        total: &mut Collected,
+        ratios: &mut [f64],
+        lambda: &mut [DVec3],
+    ) {
+        let (x0, m) = (self.prep.dx.points[0], self.prep.dx.columns());
+        let t = fix.scale;
+        let mut t_bar = 0.0;
+        for (l, g) in lambda.iter_mut().zip(&self.prep.generatrix) {
+            t_bar += l.dot(*g - x0);
+            total.columns.x[0] += *l * (1.0 - t);
+            *l *= t;
+        }
+        let s = generatrix_scale::<N_ALL>(self.prep, self.grid, fix.row, self.epsilon);
+        let one = |k: usize| t_bar * s.d[k];
+        let three = |k: usize| DVec3::new(one(k), one(k + 1), one(k + 2));
+        lambda[fix.row] += three(G);
+        ratios[fix.row * (m - 1)] += one(R);
+        total.epsilon += one(EPS);
+        let c = &mut total.columns;
+        c.x[0] += three(X0);
+        c.x[1] += three(X1);
+        c.e[1] += three(E);
+        c.b[1] += three(B);
+    }
 }
 
 #[cfg(test)]
@@ -431,6 +539,7 @@ mod tests {
     use super::*;
     use crate::Polyline;
     use crate::conenet::construct;
+    use crate::conenet::correction::CorrectionKind;
     use crate::conenet::inputs::{ApexInput, Assistance, ColumnValues, EndPlanes};
     use proptest::prelude::*;
 
@@ -632,10 +741,46 @@ mod tests {
         }
     }
 
-    #[test]
-    fn plane_fixes_of_the_correction_are_differentiated() {
-        // A straight directrix (slightly bent) with a ruling leaning back at column 2: planes only
-        // (α = 0) turns the planes of column 2 (tests/correction.rs, `tilted`).
+    /// The relative differences of every exact cotangent (directrix, apex, ratios, ε, generatrix)
+    /// against central differences.
+    fn check_all(c: &ConstructInputs) -> [f64; 5] {
+        let net = construct(c).unwrap();
+        let w = weights(net.mesh.vertices.len());
+        let adj = construct_adjoint(c, &net.mesh, &w).unwrap();
+        let [directrix, apex, _] = check_inputs(c);
+        let ratios = compare(
+            c,
+            &w,
+            adj.ratios.len(),
+            &adj.ratios,
+            |c, k, h| match &mut c.ratios {
+                GridValues::Uniform(r) => *r += h,
+                GridValues::PerColumn(r) => r[k] += h,
+                GridValues::PerVertex(r) => {
+                    let cols = r[0].len();
+                    r[k / cols][k % cols] += h;
+                }
+            },
+        );
+        // ε: zero without fixes (then the differences must vanish too).
+        let at = |h: f64| {
+            let mut p = c.clone();
+            p.assistance.epsilon += h;
+            loss(&p, &w)
+        };
+        let fd = (at(1e-6) - at(-1e-6)) / 2e-6;
+        let exact = adj.epsilon.unwrap();
+        let epsilon = (fd - exact).abs() / fd.abs().max(1e-9);
+        let flat: Vec<f64> = adj.generatrix.iter().flat_map(|p| p.to_array()).collect();
+        let generatrix = compare(c, &w, flat.len(), &flat, |c, k, h| {
+            c.generatrix.points[k / 3][k % 3] += h;
+        });
+        [directrix, apex, ratios, epsilon, generatrix]
+    }
+
+    /// A straight directrix (slightly bent) with a ruling leaning back at column 2: the vertices
+    /// of column 1 lie beyond Π_{·,2} (tests/correction.rs, `tilted`).
+    fn tilted(alpha: f64) -> ConstructInputs {
         let directrix = Polyline::open(
             (0..6)
                 .map(|j| DVec3::new(j as f64, 0.05 * (j as f64).sin(), 0.03 * (j * j) as f64))
@@ -648,41 +793,93 @@ mod tests {
         ]);
         let mut c = ConstructInputs::new(directrix, generatrix);
         c.ratios = GridValues::PerColumn(vec![0.5, 0.9, 0.45, 0.55, 0.5]);
-        c.apex.values = ColumnValues::List(vec![1.0, 0.97, 1.02, 0.99, 1.0]);
-        c.assistance = Assistance::new(0.0);
-        let net = construct(&c).unwrap();
+        c.apex.values = ColumnValues::List(vec![1.01, 0.97, 1.02, 0.99, 1.03]);
+        c.assistance = Assistance::new(alpha);
+        c
+    }
+
+    fn kinds(c: &ConstructInputs) -> Vec<CorrectionKind> {
+        construct(c)
+            .unwrap()
+            .corrections
+            .iter()
+            .map(|c| c.kind)
+            .collect()
+    }
+
+    #[test]
+    fn plane_fixes_of_the_correction_are_differentiated() {
+        // Planes only (α = 0) turns the planes of column 2.
+        let c = tilted(0.0);
+        let k = kinds(&c);
         assert!(
-            !net.corrections.is_empty()
-                && net
-                    .corrections
-                    .iter()
-                    .all(|k| k.kind == CorrectionKind::Ratio),
-            "{:?}",
-            net.corrections
+            !k.is_empty() && k.iter().all(|k| *k == CorrectionKind::Ratio),
+            "{k:?}"
         );
-        let w = weights(net.mesh.vertices.len());
-        let adj = construct_adjoint(&c, &net.mesh, &w).unwrap();
-        let [directrix, apex, _] = check_inputs(&c);
-        assert!(directrix < 1e-6 && apex < 1e-6, "{directrix}, {apex}");
-        let ratios = compare(&c, &w, 5, &adj.ratios, |c, k, h| {
-            if let GridValues::PerColumn(r) = &mut c.ratios {
-                r[k] += h;
-            }
-        });
-        assert!(ratios < 1e-6, "ratios: {ratios}");
-        let epsilon = compare(&c, &w, 1, &[adj.epsilon.unwrap()], |c, _, h| {
-            c.assistance.epsilon += h;
-        });
-        assert!(epsilon < 1e-6, "ε: {epsilon}");
-        let flat: Vec<f64> = adj.generatrix.iter().flat_map(|p| p.to_array()).collect();
-        let generatrix = compare(&c, &w, flat.len(), &flat, |c, k, h| {
-            c.generatrix.points[k / 3][k % 3] += h;
-        });
-        assert!(generatrix < 1e-6, "generatrix: {generatrix}");
-        // Apex only changes the apex function: declined.
-        c.assistance = Assistance::new(1.0);
+        let rel = check_all(&c);
+        assert!(
+            rel.iter().all(|r| *r < 1e-6),
+            "directrix, apex, ratios, ε, generatrix: {rel:?}"
+        );
+        // A blend (its apex values come from another sweep) is declined.
+        let c = tilted(0.5);
+        let k = kinds(&c);
+        assert!(k.contains(&CorrectionKind::Apex), "{k:?}");
         let net = construct(&c).unwrap();
+        let w = weights(net.mesh.vertices.len());
         assert!(construct_adjoint(&c, &net.mesh, &w).is_err());
+    }
+
+    #[test]
+    fn apex_fixes_of_the_correction_are_differentiated() {
+        // Apex only (α = 1) lowers a_1, per column, and with ratios per vertex.
+        let mut c = tilted(1.0);
+        for per_vertex in [false, true] {
+            if per_vertex {
+                c.ratios = GridValues::PerVertex(vec![
+                    vec![0.5, 0.9, 0.45, 0.55, 0.5],
+                    vec![0.52, 0.88, 0.5, 0.5, 0.47],
+                    vec![0.49, 0.91, 0.53, 0.5, 0.5],
+                ]);
+            }
+            let k = kinds(&c);
+            assert!(
+                !k.is_empty() && k.iter().all(|k| *k == CorrectionKind::Apex),
+                "{k:?}"
+            );
+            let rel = check_all(&c);
+            assert!(
+                rel.iter().all(|r| *r < 1e-6),
+                "per vertex {per_vertex}: directrix, apex, ratios, ε, generatrix: {rel:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_generatrix_fix_of_the_correction_is_differentiated() {
+        // G_{1,0} beyond the first plane (tests/correction.rs, `first_column_fold`), the directrix
+        // slightly bent: apex only scales the generatrix about X_0.
+        let directrix = Polyline::open(
+            (0..4)
+                .map(|j| DVec3::new(j as f64, 0.04 * (j * j) as f64, -0.03 * j as f64))
+                .collect(),
+        );
+        let generatrix = Polyline::open(vec![
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(1.4, 1.0, 1.0),
+            DVec3::new(0.0, 1.0, 2.0),
+        ]);
+        let mut c = ConstructInputs::new(directrix, generatrix);
+        c.ratios = GridValues::PerColumn(vec![0.48, 0.53, 0.5]);
+        c.apex.values = ColumnValues::List(vec![0.98, 1.02, 0.97]);
+        c.assistance = Assistance::new(1.0);
+        let k = kinds(&c);
+        assert!(k.contains(&CorrectionKind::Generatrix), "{k:?}");
+        let rel = check_all(&c);
+        assert!(
+            rel.iter().all(|r| *r < 1e-6),
+            "directrix, apex, ratios, ε, generatrix: {rel:?}"
+        );
     }
 
     #[test]
@@ -749,7 +946,11 @@ mod tests {
             worst = worst.max((fd - x).abs());
             size = size.max(fd.abs());
         }
-        assert!(worst / size < 1e-6, "relative difference {} ({worst} of {size})", worst / size);
+        assert!(
+            worst / size < 1e-6,
+            "relative difference {} ({worst} of {size})",
+            worst / size
+        );
     }
 
     proptest! {
