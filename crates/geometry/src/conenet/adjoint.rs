@@ -30,6 +30,7 @@ use super::correction_adjoint::{
 use super::directrix_adjoint::{ColumnBars, pull_back};
 use super::dual::{D3, Dual};
 use super::inputs::{ConstructInputs, GridValues};
+use super::output_adjoint::seed;
 use super::prepare::prepare;
 use super::tolerance;
 use crate::{GeometryError, QuadGrid};
@@ -75,15 +76,19 @@ pub(super) struct StepInputs<const N: usize> {
     pub b: D3<N>,
 }
 
-/// One step of the ratio construction on dual numbers: `G_{i,jn}` from `g = G_{i,jn−1}`, the ratio
+/// One step of the ratio construction on dual numbers: `G_{i,jn}` and the plane normal `P_{i,jn}` from `g = G_{i,jn−1}`, the ratio
 /// `r` (or the plane fix's ε), `a = a_jn`, `x0 = X_{jn−1}`, `x1 = X_jn`, `e = ê_jn` and the Monge
 /// normal `b = b_jn` (same formulas as the lanes kernel, `ratios::ratio_planes`, the plane fix of
 /// `sweep::sources` and `prepare::step`). `e` and `b` are followed as free vectors: only their
 /// derivatives along the unit sphere are used by the chain that follows.
 #[inline(always)]
-fn ratio_step<const N: usize>(s: &StepInputs<N>, rule: PlaneRule, inv_scale: f64) -> D3<N> {
+fn ratio_step<const N: usize>(
+    s: &StepInputs<N>,
+    rule: PlaneRule,
+    inv_scale: f64,
+) -> (D3<N>, D3<N>) {
     let p = step_plane(s, rule, inv_scale);
-    step_vertex(s.g, s.a, s.x0, s.x1, p)
+    (step_vertex(s.g, s.a, s.x0, s.x1, p), p)
 }
 
 /// The plane normal Π_{i,jn} of a step (see [`ratio_step`]; `s.a` is not read).
@@ -180,6 +185,10 @@ pub struct OutputBars<'a> {
     /// ∂L/∂C_{j−1} of the `apices` output (M−1; an apex at infinity has none and is ignored), or
     /// empty.
     pub apices: &'a [DVec3],
+    /// ∂L/∂P_{i,j} of the plane normals used (N·(M−1), row-major), or empty.
+    pub planes: &'a [DVec3],
+    /// ∂L/∂ the convexity margins ([`super::margins::face_margins`]: 4 per face), or empty.
+    pub margins: &'a [f64],
 }
 
 /// What the backward sweep returns.
@@ -214,6 +223,8 @@ pub fn construct_adjoint(
         mesh: mesh_bar,
         apex: &[],
         apices: &[],
+        planes: &[],
+        margins: &[],
     };
     construct_adjoint_for(inputs, mesh, bars, Wrt::ALL)
 }
@@ -259,32 +270,22 @@ pub fn construct_adjoint_for(
         .resolve("ratios", n, m - 1, (0.0, 1.0, "a value in [0, 1]"))?;
     let piece = piece(inputs, &prep, &grid, mesh)?;
     let dx = &prep.dx;
-    // The apex and apices outputs (of the values used).
-    let mut outputs = ColumnBars::zeros(m);
-    outputs
-        .a
-        .iter_mut()
-        .zip(bars.apex)
-        .for_each(|(s, x)| *s += x);
-    for (j, c_bar) in (1..m).zip(bars.apices) {
-        let a = piece.apex[j - 1];
-        // C = X_j + (X_j − X_{j−1}) a / (1 − a) (`apex::apex_point`); none at infinity.
-        if super::apex::apex_point(dx.points[j - 1], dx.points[j], a).is_none() {
-            continue;
-        }
-        let t = 1.0 - a;
-        outputs.x[j] += *c_bar / t;
-        outputs.x[j - 1] -= *c_bar * (a / t);
-        outputs.a[j - 1] += c_bar.dot(dx.points[j] - dx.points[j - 1]) / (t * t);
-    }
     let sweep = Backward {
         prep: &prep,
         grid: &grid,
         mesh,
         mesh_bar: bars.mesh,
+        plane_bar: &[],
         piece: &piece,
         epsilon: inputs.assistance.epsilon,
     };
+    let seeded = seed(&sweep, &bars)?;
+    let sweep = Backward {
+        mesh_bar: &seeded.mesh,
+        plane_bar: &seeded.planes,
+        ..sweep
+    };
+    let outputs = seeded.columns;
     let coupled = !piece.apex_fixes.is_empty() || piece.generatrix_fix.is_some();
     let swept = if wrt.directrix || coupled {
         sweep.run::<N_ALL>(outputs)
@@ -330,14 +331,18 @@ pub fn construct_adjoint_for(
 }
 
 /// The backward sweep's data.
-struct Backward<'a> {
-    prep: &'a super::prepare::Prepared,
-    grid: &'a super::inputs::Grid<'a>,
-    mesh: &'a QuadGrid,
-    mesh_bar: &'a [DVec3],
+#[derive(Clone, Copy)]
+pub(super) struct Backward<'a> {
+    pub prep: &'a super::prepare::Prepared,
+    pub grid: &'a super::inputs::Grid<'a>,
+    pub mesh: &'a QuadGrid,
+    /// ∂L/∂G (N·M, row-major).
+    pub mesh_bar: &'a [DVec3],
+    /// ∂L/∂P_{i,j} (N·(M−1), row-major), or empty.
+    pub plane_bar: &'a [DVec3],
     /// The piece the run took (plane fixes, the apex values used, coupled fixes).
-    piece: &'a Piece,
-    epsilon: f64,
+    pub piece: &'a Piece,
+    pub epsilon: f64,
 }
 
 /// What a backward sweep returns: the cotangents of the ratios (N·(M−1), row-major), the
@@ -371,6 +376,38 @@ impl Collected {
 }
 
 impl Backward<'_> {
+    /// What step `jn` of row i reads, on dual numbers following the first `N` directions, and
+    /// how its plane is obtained.
+    #[inline(always)]
+    pub(super) fn step_inputs<const N: usize>(
+        &self,
+        i: usize,
+        jn: usize,
+    ) -> (StepInputs<N>, PlaneRule) {
+        let (dx, m) = (&self.prep.dx, self.prep.dx.columns());
+        let rule = match self.piece.fixed.get(i * (m - 1) + jn - 1) {
+            Some(true) => PlaneRule::Fixed,
+            _ => PlaneRule::Ratio,
+        };
+        let s = StepInputs::<N> {
+            g: D3::seed(self.mesh.vertices[i * m + jn - 1], G),
+            r: Dual::seed(self.grid.row(i)[jn - 1], R),
+            a: Dual::seed(self.piece.apex[jn - 1], A),
+            epsilon: Dual::seed(self.epsilon, EPS),
+            x0: D3::seed(dx.points[jn - 1], X0),
+            x1: D3::seed(dx.points[jn], X1),
+            e: D3::seed(dx.edges[jn], E),
+            b: D3::seed(dx.bisectors[jn], B),
+        };
+        (s, rule)
+    }
+
+    /// The plane normal P_{i,jn} the run used.
+    pub(super) fn plane(&self, i: usize, jn: usize) -> DVec3 {
+        let (s, rule) = self.step_inputs::<0>(i, jn);
+        step_plane(&s, rule, 1.0 / self.prep.scale).value()
+    }
+
     /// The sweep following the first `N` directions, the column cotangents starting at `outputs`
     /// (the outputs' own). The rows are swept in parallel between the columns of coupled fixes;
     /// at such a column the fixed a_{j0}'s total cotangent goes to the row the fix came from.
@@ -430,38 +467,31 @@ impl Backward<'_> {
         r_bar: &mut [f64],
         acc: &mut Collected,
     ) -> DVec3 {
-        let (dx, m) = (&self.prep.dx, self.prep.dx.columns());
-        let ratios = self.grid.row(i);
+        let m = self.prep.dx.columns();
         let inv_scale = 1.0 / self.prep.scale;
         for jn in (lo..=hi).rev() {
-            let rule = match self.piece.fixed.get(i * (m - 1) + jn - 1) {
-                Some(true) => PlaneRule::Fixed,
-                _ => PlaneRule::Ratio,
-            };
-            let s = StepInputs::<N> {
-                g: D3::seed(self.mesh.vertices[i * m + jn - 1], G),
-                r: Dual::seed(ratios[jn - 1], R),
-                a: Dual::seed(self.piece.apex[jn - 1], A),
-                epsilon: Dual::seed(self.epsilon, EPS),
-                x0: D3::seed(dx.points[jn - 1], X0),
-                x1: D3::seed(dx.points[jn], X1),
-                e: D3::seed(dx.edges[jn], E),
-                b: D3::seed(dx.bisectors[jn], B),
-            };
-            let out = ratio_step(&s, rule, inv_scale);
-            r_bar[jn - 1] = out.pull(lambda, R);
+            let (s, rule) = self.step_inputs::<N>(i, jn);
+            let (out, p) = ratio_step(&s, rule, inv_scale);
+            let mu = self
+                .plane_bar
+                .get(i * (m - 1) + jn - 1)
+                .copied()
+                .unwrap_or(DVec3::ZERO);
+            let pull = |k: usize| out.pull(lambda, k) + p.pull(mu, k);
+            let pull3 = |k: usize| out.pull3(lambda, k) + p.pull3(mu, k);
+            r_bar[jn - 1] = pull(R);
             if N > EPS {
-                acc.columns.a[jn - 1] += out.pull(lambda, A);
-                acc.epsilon += out.pull(lambda, EPS);
+                acc.columns.a[jn - 1] += pull(A);
+                acc.epsilon += pull(EPS);
             }
             if N > B {
                 let c = &mut acc.columns;
-                c.x[jn - 1] += out.pull3(lambda, X0);
-                c.x[jn] += out.pull3(lambda, X1);
-                c.e[jn] += out.pull3(lambda, E);
-                c.b[jn] += out.pull3(lambda, B);
+                c.x[jn - 1] += pull3(X0);
+                c.x[jn] += pull3(X1);
+                c.e[jn] += pull3(E);
+                c.b[jn] += pull3(B);
             }
-            lambda = out.pull3(lambda, G) + self.mesh_bar[i * m + jn - 1];
+            lambda = pull3(G) + self.mesh_bar[i * m + jn - 1];
         }
         lambda
     }
@@ -541,6 +571,7 @@ mod tests {
     use crate::conenet::construct;
     use crate::conenet::correction::CorrectionKind;
     use crate::conenet::inputs::{ApexInput, Assistance, ColumnValues, EndPlanes};
+    use crate::conenet::margins::face_margins;
     use proptest::prelude::*;
 
     fn inputs(ratios: Vec<Vec<f64>>, twist: f64) -> ConstructInputs {
@@ -882,8 +913,100 @@ mod tests {
         );
     }
 
+    /// L = Σ weights · (apex values, apices, plane normals, convexity margins): the relative
+    /// differences of the exact directrix, apex, ratio and generatrix cotangents against central
+    /// differences.
+    fn check_outputs(c: &ConstructInputs) -> f64 {
+        let net = construct(c).unwrap();
+        let cols = net.apex.len();
+        let zero = vec![DVec3::ZERO; net.mesh.vertices.len()];
+        let apex_w: Vec<f64> = (0..cols).map(|j| (0.9 * j as f64).sin() + 0.2).collect();
+        let apices_w: Vec<DVec3> = (0..cols)
+            .map(|j| DVec3::new(0.1 * j as f64, -0.2, 0.05))
+            .collect();
+        let planes_w: Vec<DVec3> = (0..net.mesh.rows * cols)
+            .map(|k| DVec3::new((0.3 * k as f64).cos(), 0.4, -(0.7 * k as f64).sin()))
+            .collect();
+        let margins_w: Vec<f64> = (0..face_margins(&net).len())
+            .map(|k| (1.7 * k as f64).sin())
+            .collect();
+        let bars = OutputBars {
+            mesh: &zero,
+            apex: &apex_w,
+            apices: &apices_w,
+            planes: &planes_w,
+            margins: &margins_w,
+        };
+        let adj = construct_adjoint_for(c, &net.mesh, bars, Wrt::ALL).unwrap();
+        let out = |c: &ConstructInputs| {
+            let net = construct(c).unwrap();
+            let a: f64 = net.apex.iter().zip(&apex_w).map(|(a, w)| a * w).sum();
+            let p: f64 = net
+                .apices
+                .iter()
+                .zip(&apices_w)
+                .filter_map(|(p, w)| p.map(|p| p.dot(*w)))
+                .sum();
+            let rows = net.mesh.rows;
+            let planes: f64 = (0..rows * cols)
+                .map(|k| net.normals.get(k / cols, k % cols + 1).dot(planes_w[k]))
+                .sum();
+            let margins: f64 = face_margins(&net)
+                .iter()
+                .zip(&margins_w)
+                .map(|(m, w)| m * w)
+                .sum();
+            a + p + planes + margins
+        };
+        let central = |set: &dyn Fn(&mut ConstructInputs, f64)| {
+            let h = 1e-6;
+            let (mut p, mut q) = (c.clone(), c.clone());
+            set(&mut p, h);
+            set(&mut q, -h);
+            (out(&p) - out(&q)) / (2.0 * h)
+        };
+        let (mut worst, mut size) = (0.0f64, 0.0f64);
+        let mut compare = |fd: f64, x: f64| {
+            worst = worst.max((fd - x).abs());
+            size = size.max(fd.abs());
+        };
+        for (k, p) in adj.directrix.unwrap().iter().enumerate() {
+            for d in 0..3 {
+                compare(central(&|c, h| c.directrix.points[k][d] += h), p[d]);
+            }
+        }
+        for (k, p) in adj.generatrix.iter().enumerate() {
+            for d in 0..3 {
+                compare(central(&|c, h| c.generatrix.points[k][d] += h), p[d]);
+            }
+        }
+        for (k, x) in adj.apex.unwrap().iter().enumerate() {
+            compare(
+                central(&|c, h| match &mut c.apex.values {
+                    ColumnValues::Uniform(v) => *v += h,
+                    ColumnValues::List(v) => v[k] += h,
+                }),
+                *x,
+            );
+        }
+        for (k, x) in adj.ratios.iter().enumerate() {
+            compare(
+                central(&|c, h| match &mut c.ratios {
+                    GridValues::Uniform(r) => *r += h,
+                    GridValues::PerColumn(r) => r[k] += h,
+                    GridValues::PerVertex(r) => {
+                        let cols = r[0].len();
+                        r[k / cols][k % cols] += h;
+                    }
+                }),
+                *x,
+            );
+        }
+        worst / size
+    }
+
     #[test]
-    fn apex_and_apices_outputs_are_differentiated() {
+    fn the_other_outputs_are_differentiated() {
         let c = design(
             false,
             &[0.0; 18],
@@ -893,64 +1016,25 @@ mod tests {
             None,
             EndPlanes::Perpendicular,
         );
-        let net = construct(&c).unwrap();
-        let zero = vec![DVec3::ZERO; net.mesh.vertices.len()];
-        let apex_w = [0.3, -0.7, 0.2, 0.5, -0.1];
-        let apices_w: Vec<DVec3> = (0..5)
-            .map(|j| DVec3::new(0.1 * j as f64, -0.2, 0.05))
-            .collect();
-        let bars = OutputBars {
-            mesh: &zero,
-            apex: &apex_w,
-            apices: &apices_w,
-        };
-        let adj = construct_adjoint_for(&c, &net.mesh, bars, Wrt::ALL).unwrap();
-        let out = |c: &ConstructInputs| {
-            let net = construct(c).unwrap();
-            let a: f64 = net.apex.iter().zip(apex_w).map(|(a, w)| a * w).sum();
-            let p: f64 = net
-                .apices
-                .iter()
-                .zip(&apices_w)
-                .filter_map(|(p, w)| p.map(|p| p.dot(*w)))
-                .sum();
-            a + p
-        };
-        let flat: Vec<f64> = adj
-            .directrix
-            .unwrap()
-            .iter()
-            .flat_map(|p| p.to_array())
-            .collect();
-        let h = 1e-6;
-        let (mut worst, mut size) = (0.0f64, 0.0f64);
-        for (k, x) in flat.iter().enumerate() {
-            let mut p = c.clone();
-            p.directrix.points[k / 3][k % 3] += h;
-            let mut q = c.clone();
-            q.directrix.points[k / 3][k % 3] -= h;
-            let fd = (out(&p) - out(&q)) / (2.0 * h);
-            worst = worst.max((fd - x).abs());
-            size = size.max(fd.abs());
-        }
-        for (k, x) in adj.apex.unwrap().iter().enumerate() {
-            let mut p = c.clone();
-            let mut q = c.clone();
-            if let (ColumnValues::List(u), ColumnValues::List(d)) =
-                (&mut p.apex.values, &mut q.apex.values)
-            {
-                u[k] += h;
-                d[k] -= h;
-            }
-            let fd = (out(&p) - out(&q)) / (2.0 * h);
-            worst = worst.max((fd - x).abs());
-            size = size.max(fd.abs());
-        }
-        assert!(
-            worst / size < 1e-6,
-            "relative difference {} ({worst} of {size})",
-            worst / size
+        let mut closed = design(
+            true,
+            &[0.05; 18],
+            vec![vec![0.52; 6]; 4],
+            ColumnValues::Uniform(0.96),
+            false,
+            None,
+            EndPlanes::Perpendicular,
         );
+        closed.generatrix.closed = false;
+        for (what, c) in [
+            ("open, normalized", c),
+            ("closed", closed),
+            ("planes only", tilted(0.0)),
+            ("apex only", tilted(1.0)),
+        ] {
+            let rel = check_outputs(&c);
+            assert!(rel < 1e-6, "{what}: relative difference {rel}");
+        }
     }
 
     proptest! {

@@ -158,6 +158,12 @@ impl<const N: usize> D3<N> {
         ])
     }
 
+    /// The values.
+    #[inline(always)]
+    pub fn value(self) -> DVec3 {
+        DVec3::new(self.0[0].v, self.0[1].v, self.0[2].v)
+    }
+
     /// `Jᵀ λ` for direction `k`: Σ_c ∂self_c/∂k · λ_c.
     #[inline(always)]
     pub fn pull(&self, lambda: DVec3, k: usize) -> f64 {

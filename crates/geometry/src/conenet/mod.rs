@@ -32,6 +32,7 @@ mod lanes;
 pub mod margins;
 pub mod normalize;
 mod ordered;
+mod output_adjoint;
 mod prepare;
 pub mod quality;
 pub mod ratios;

@@ -11,13 +11,18 @@ use crate::cnets::{apex_input, grid_values, parse_end_planes};
 
 type Product = fn(&VjpArgs<'_>) -> VjpResult;
 
+/// The outputs of `cnets.construct` whose cotangents its product takes: mesh, apex, apices, planes
+/// and margins.
+const DIFFERENTIATED: [usize; 5] = [0, 1, 2, 3, 7];
+
 /// `cnets.construct`: the backward sweep (`construct_adjoint_for`) for the directrix, generatrix,
 /// apex function, ratios, scale and ε (inputs 0, 1, 2, 3, 6, 7), from the cotangents of the mesh,
-/// the apex values used and the apices (outputs 0, 1, 2). A run of the assisted correction that only
-/// turned planes is differentiated on its piece; one that changed the apex function or scaled the
-/// generatrix is declined (finite differences), as are the other outputs' cotangents. `assistance`
-/// selects the correction's form: its derivative is 0 when the correction is off or changed
-/// nothing, else declined.
+/// the apex values used, the apices, the plane normals and the convexity margins (outputs 0, 1,
+/// 2, 3, 7). A run of the assisted correction is differentiated on the piece it took when it only
+/// turned planes (planes only) or only changed apex values and the generatrix (apex only); a blend
+/// or a mixed run is declined (finite differences), as are the other outputs' cotangents.
+/// `assistance` selects the correction's form: its derivative is 0 when the correction is off or
+/// changed nothing, else declined.
 fn construct(args: &VjpArgs<'_>) -> VjpResult {
     let wanted = |k: usize| args.wanted.get(k) == Some(&true);
     let corrected = matches!(args.outputs.get(5), Some(Value::List(c)) if !c.is_empty());
@@ -28,10 +33,12 @@ fn construct(args: &VjpArgs<'_>) -> VjpResult {
              (α chooses the correction's form)",
         ));
     }
-    if let Some(k) = (3..args.cotangents.len()).find(|&k| args.cotangents[k].is_some()) {
+    if let Some(k) = (0..args.cotangents.len())
+        .find(|&k| args.cotangents[k].is_some() && !DIFFERENTIATED.contains(&k))
+    {
         return Err(NodeError::new(format!(
-            "only the mesh, apex and apices outputs of the construction are differentiated \
-             (output {k} has a cotangent)"
+            "only the mesh, apex, apices, planes and margins outputs of the construction are \
+             differentiated (output {k} has a cotangent)"
         )));
     }
     let (Value::Polyline(directrix), Value::Polyline(generatrix), Value::QuadMesh(mesh)) =
@@ -68,6 +75,20 @@ fn construct(args: &VjpArgs<'_>) -> VjpResult {
         Some(c) => apices_cotangent(&args.outputs[2], c)?,
         None => Vec::new(),
     };
+    let planes_bar = points(
+        &args
+            .cotangents
+            .get(3)
+            .cloned()
+            .flatten()
+            .unwrap_or_default(),
+    );
+    let margins_bar = args
+        .cotangents
+        .get(7)
+        .cloned()
+        .flatten()
+        .unwrap_or_default();
     let wrt = Wrt {
         apex: wanted(2) || wanted(6),
         directrix: wanted(0),
@@ -77,6 +98,8 @@ fn construct(args: &VjpArgs<'_>) -> VjpResult {
         mesh: &mesh_bar,
         apex: &apex_bar,
         apices: &apices_bar,
+        planes: &planes_bar,
+        margins: &margins_bar,
     };
     let adjoint = construct_adjoint_for(&inputs, mesh, bars, wrt)?;
     let mut result = vec![None; args.inputs.len()];
