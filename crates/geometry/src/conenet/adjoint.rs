@@ -1025,10 +1025,11 @@ mod tests {
             None,
             EndPlanes::Perpendicular,
         );
-        closed.generatrix.closed = false;
+        // A closed generatrix too: the margins of the faces between the last row and the first.
+        closed.generatrix.closed = true;
         for (what, c) in [
             ("open, normalized", c),
-            ("closed", closed),
+            ("closed directrix and generatrix", closed),
             ("planes only", tilted(0.0)),
             ("apex only", tilted(1.0)),
         ] {
