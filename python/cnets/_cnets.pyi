@@ -54,6 +54,17 @@ class Graph:
         """The outputs of one node (``{output: value}``), evaluating it first when needed; a
         node that failed or is blocked raises ``CnetsError`` with its message."""
         ...
+    def drag(
+        self,
+        node: str,
+        vertex: Tuple[int, int],
+        to: Sequence[float],
+        pins: Optional[Sequence[Tuple[int, int]]] = ...,
+        free: Union[str, Sequence[str], None] = ...,
+    ) -> Dict[str, Any]:
+        """Drags vertex (i, j) of a node's quad mesh to the point ``to`` (as ``cnets drag``):
+        the free inputs are solved, the pins stay, the faces stay (++)(++); keeps the values."""
+        ...
     def optimize(
         self,
         max_iter: Optional[int] = ...,

@@ -428,6 +428,121 @@ impl PyGraph {
         Ok(d)
     }
 
+    /// Drags vertex `vertex` = (i, j) (row along the generatrix, column along the directrix) of
+    /// node `node`'s quad mesh to the point `to`, as the editor's Drag net tool and `cnets drag`
+    /// do: the free inputs (`free`: `"node.input"` names; default every slider, point list,
+    /// mapper handle and list of numbers upstream) are solved so the vertex reaches the point,
+    /// the `pins` ((i, j) pairs) stay where they are and the faces stay (++)(++). The new values
+    /// are kept in this graph. Returns a dict: `reached` (x, y, z), `distance_left`, `pin_drift`,
+    /// `not_convex` (`{node: faces}`), `changes` (`[{"input", "old", "new"}]`), `iterations` and
+    /// `evaluations`.
+    #[pyo3(signature = (node, vertex, to, pins=None, free=None))]
+    fn drag<'py>(
+        &mut self,
+        py: Python<'py>,
+        node: &Bound<'py, PyAny>,
+        vertex: &Bound<'py, PyAny>,
+        to: &Bound<'py, PyAny>,
+        pins: Option<&Bound<'py, PyAny>>,
+        free: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        use cnets_engine::optimize::drag::{DragRequest, default_free, drag};
+        use cnets_engine::optimize::{ValuePath, Variable};
+        let node = args::text(node, "node")?;
+        let pair = |v: &Bound<'py, PyAny>, name: &str| -> PyResult<(usize, usize)> {
+            let items: Vec<Bound<'py, PyAny>> = v
+                .try_iter()
+                .and_then(|it| it.collect::<PyResult<Vec<_>>>())
+                .map_err(|_| {
+                    error(format!(
+                        "{name}: expected (i, j), got {}",
+                        args::describe(v)
+                    ))
+                })?;
+            match items.as_slice() {
+                [i, j] => Ok((args::count(i, name)?, args::count(j, name)?)),
+                _ => Err(error(format!(
+                    "{name}: expected (i, j), got {}",
+                    args::describe(v)
+                ))),
+            }
+        };
+        let vertex = pair(vertex, "vertex")?;
+        let to: Vec<f64> = to
+            .try_iter()
+            .and_then(|it| {
+                it.map(|x| x?.extract::<f64>())
+                    .collect::<PyResult<Vec<_>>>()
+            })
+            .map_err(|_| {
+                error(format!(
+                    "to: expected (x, y, z), got {}",
+                    args::describe(to)
+                ))
+            })?;
+        let [x, y, z] = to.as_slice() else {
+            return Err(error("to: expected three numbers (x, y, z)"));
+        };
+        let mut request = DragRequest::new(node.clone(), vertex, [*x, *y, *z].into());
+        if let Some(pins) = pins.filter(|p| !p.is_none()) {
+            for p in pins
+                .try_iter()
+                .map_err(|_| error("pins: expected a list of (i, j)"))?
+            {
+                request.pins.push(pair(&p?, "pins")?);
+            }
+        }
+        if let Some(names) = args::texts(free, "free")? {
+            let all = default_free(&self.graph, &node).map_err(|e| error(e.to_string()))?;
+            let mut chosen = Vec::new();
+            for f in names {
+                let path = ValuePath::parse(&f).map_err(|e| error(format!("free: {e}")))?;
+                chosen.push(
+                    all.iter()
+                        .find(|v| v.input.node == path.node && v.input.port == path.port)
+                        .cloned()
+                        .unwrap_or(Variable {
+                            input: path,
+                            min: f64::NEG_INFINITY,
+                            max: f64::INFINITY,
+                        }),
+                );
+            }
+            request.free = Some(chosen);
+        }
+        let base = self.path.parent().map(Path::to_path_buf);
+        let (graph, settings) = (&self.graph, &self.settings);
+        let report = py
+            .detach(|| {
+                let ctx = settings.context(false, base)?;
+                drag(graph, &request, &ctx).map_err(|e| e.to_string())
+            })
+            .map_err(error)?;
+        let d = PyDict::new(py);
+        d.set_item("reached", report.reached.to_array().to_vec())?;
+        d.set_item("distance_left", report.distance_left)?;
+        d.set_item("pin_drift", report.pin_drift)?;
+        let folded = PyDict::new(py);
+        for (n, count) in &report.not_convex {
+            folded.set_item(n, *count)?;
+        }
+        d.set_item("not_convex", folded)?;
+        let changes = pyo3::types::PyList::empty(py);
+        for c in &report.changes {
+            let item = PyDict::new(py);
+            item.set_item("input", c.input.to_string())?;
+            item.set_item("old", c.old)?;
+            item.set_item("new", c.new)?;
+            changes.append(item)?;
+        }
+        d.set_item("changes", changes)?;
+        d.set_item("iterations", report.iterations)?;
+        d.set_item("evaluations", report.evaluations)?;
+        self.graph = report.graph;
+        self.evaluator = Evaluator::new();
+        Ok(d)
+    }
+
     /// Saves the graph (with the values set) as a graph file, atomically.
     fn save(&self, path: &Bound<'_, PyAny>) -> PyResult<()> {
         let path = args::path(path, "path")?;

@@ -54,6 +54,8 @@ enum Command {
     Optimize(commands::optimize::Args),
     /// Render the previewed geometry of a graph off-screen to a PNG.
     Render(commands::render::Args),
+    /// Drag a vertex of a net to a point: solve the design's free inputs (the Drag net tool).
+    Drag(commands::drag::Args),
 }
 
 /// The exit of a command line clap did not run: help and version on stdout (a failed write is
@@ -101,6 +103,7 @@ fn main() -> ExitCode {
         Command::Check(args) => commands::check::run(args),
         Command::Optimize(args) => commands::optimize::run(args),
         Command::Render(args) => commands::render::run(args),
+        Command::Drag(args) => commands::drag::run(args),
     };
     let result = result.and_then(|code| output::flush().map(|()| code));
     match result {

@@ -147,6 +147,9 @@ pub struct PortHint {
     pub layer: Layer,
     /// For an output: what it means to the engine's tools ([`Role`]).
     pub role: Role,
+    /// The inputs of the same node that hold this input's range (a slider's `min` and `max`),
+    /// declared by the node so tools read the range instead of guessing it.
+    pub range_inputs: Option<(&'static str, &'static str)>,
 }
 
 /// Builder of a [`PortHint`], fed by `#[ui(key = value, …)]` in `node!`.
@@ -182,6 +185,11 @@ impl HintBuilder {
     /// `layer = Support`: the preview layer of an output.
     pub fn layer(&mut self, layer: Layer) {
         self.0.layer = layer;
+    }
+
+    /// `range_inputs = ("min", "max")`: the sibling inputs that hold this input's range.
+    pub fn range_inputs(&mut self, names: (&'static str, &'static str)) {
+        self.0.range_inputs = Some(names);
     }
 
     /// `role = FaceMargins`: what an output means to the engine's tools.

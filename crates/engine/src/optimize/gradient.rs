@@ -43,7 +43,6 @@ impl Problem {
     pub fn gradient(&mut self, x: &[f64], ctx: &NodeContext) -> Result<Gradient, String> {
         let value = self.value(x, ctx)?;
         let graph = &self.graph;
-        let active = |k: NodeIndex| self.active.get(k.index()).copied().unwrap_or(false);
         // Seeds: the objective, and each penalty's derivative at its value.
         let mut cot: HashMap<(NodeIndex, usize), Vec<f64>> = HashMap::new();
         let mut seed = |path: &super::path::ValuePath, weight: f64| -> Result<(), String> {
@@ -91,6 +90,25 @@ impl Problem {
                 leaves::accumulate(c, &slopes);
             }
         }
+        let pass = self.reverse(cot, ctx)?;
+        Ok(Gradient {
+            value,
+            gradient: pass.gradient,
+            finite_differences: pass.finite_differences,
+            node_runs: pass.node_runs,
+            branches: pass.branches,
+        })
+    }
+
+    /// The reverse pass from the cotangents `cot` of node outputs (`(node, output)` → one number
+    /// per leaf) at the last evaluation: the cotangents that reach the variables.
+    pub(super) fn reverse(
+        &mut self,
+        mut cot: HashMap<(NodeIndex, usize), Vec<f64>>,
+        ctx: &NodeContext,
+    ) -> Result<Reverse, String> {
+        let graph = &self.graph;
+        let active = |k: NodeIndex| self.active.get(k.index()).copied().unwrap_or(false);
         let mut gradient = vec![0.0; self.dimension()];
         let mut finite_differences = Vec::new();
         let mut branches = Vec::new();
@@ -198,12 +216,24 @@ impl Problem {
             }
         }
         self.node_runs += node_runs;
-        Ok(Gradient {
-            value,
+        Ok(Reverse {
             gradient,
             finite_differences,
             node_runs,
             branches,
         })
     }
+}
+
+/// What one reverse pass gives.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Reverse {
+    /// The cotangents of the variables.
+    pub(super) gradient: Vec<f64>,
+    /// Nodes differentiated by finite differences of their own run, with the reason.
+    pub(super) finite_differences: Vec<(String, String)>,
+    /// Node runs spent on those.
+    pub(super) node_runs: u64,
+    /// The smooth pieces of the piecewise-smooth nodes on the path.
+    pub(super) branches: Vec<(String, super::branch::Branch)>,
 }

@@ -10,6 +10,7 @@
 
 pub mod branch;
 pub mod convexity;
+pub mod drag;
 pub mod gradient;
 mod lbfgsb;
 mod nelder_mead;

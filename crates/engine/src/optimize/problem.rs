@@ -299,18 +299,7 @@ impl Problem {
 
     /// The objective plus penalties at `x`; `Err` when a node fails or a value is not a number.
     pub fn value(&mut self, x: &[f64], ctx: &NodeContext) -> Result<f64, String> {
-        self.apply(x)?;
-        if !self.incremental {
-            self.evaluator = Evaluator::new();
-        }
-        let summary =
-            self.evaluator
-                .evaluate_outputs(&self.graph, &self.demand, ctx, &mut |_, _| {});
-        self.evaluations += 1;
-        self.node_runs += summary.ran as u64;
-        if summary.cancelled {
-            return Err("cancelled".into());
-        }
+        self.evaluate(x, ctx)?;
         let mut total = if self.phase == Phase::Feasibility {
             0.0
         } else {
@@ -331,6 +320,39 @@ impl Problem {
         } else {
             Err(format!("the objective is not finite ({total})"))
         }
+    }
+
+    /// Writes `x` into the inputs and evaluates what the setup reads (counted).
+    pub(super) fn evaluate(&mut self, x: &[f64], ctx: &NodeContext) -> Result<(), String> {
+        self.apply(x)?;
+        if !self.incremental {
+            self.evaluator = Evaluator::new();
+        }
+        let summary =
+            self.evaluator
+                .evaluate_outputs(&self.graph, &self.demand, ctx, &mut |_, _| {});
+        self.evaluations += 1;
+        self.node_runs += summary.ran as u64;
+        if summary.cancelled {
+            return Err("cancelled".into());
+        }
+        Ok(())
+    }
+
+    /// An output of a node at the last evaluation (`Err` naming why it has none).
+    pub(super) fn output_at(&self, index: NodeIndex, output: usize) -> Result<&Value, String> {
+        let node = self.graph.node_at(index).map_or("?", |n| n.id.as_str());
+        let result = self
+            .evaluator
+            .result_at(&self.graph, index)
+            .ok_or_else(|| format!("node '{node}' was not evaluated"))?;
+        let outputs = result
+            .outputs()
+            .ok_or_else(|| self.failure_message(node, result))?;
+        outputs
+            .values
+            .get(output)
+            .ok_or_else(|| format!("node '{node}' has no output {output}"))
     }
 
     /// The margins of a watched construction at the last evaluation.

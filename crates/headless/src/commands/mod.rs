@@ -1,6 +1,7 @@
 //! One module per `cnets` subcommand.
 
 pub mod check;
+pub mod drag;
 pub mod eval;
 pub mod nodes;
 pub mod optimize;
