@@ -17,9 +17,10 @@ Components (inputs → outputs):
   ``Support`` (a conical second layer, a mesh).
 - one component per graph file of ``--library`` that has ``graph.input`` / ``graph.output`` nodes,
   at ``/<file name without .ron>`` (percent-encoded in URLs: ``my tube.ron`` is ``/my%20tube``),
-  with the graph's inputs and outputs. A file whose name cannot be a URL of its own (``...ron``,
-  a name of a built-in component, two names that differ only in case) is skipped with the reason
-  at start-up.
+  with the graph's inputs and outputs, named as the built-ins' are (``closure_gap`` is
+  ``ClosureGap``) and reading the same inputs (one number broadcasts to a list or table port). A
+  file whose name cannot be a URL of its own (``...ron``, a name of a built-in component, two
+  names that differ only in case) is skipped with the reason at start-up.
 
 The server parses Hops' requests and encodes its answers itself: numbers are read straight from
 the request, curves decoded with rhino3dm, meshes written in bulk from the engine's arrays with
@@ -48,7 +49,7 @@ import os
 import signal
 import sys
 import unicodedata
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 from urllib.parse import quote, unquote, urlsplit
@@ -210,6 +211,9 @@ class Component:
     outputs: List[Param]
     solve: Callable[[Dict[str, Any]], List[List[Dict[str, str]]]]
     category: str = "cnets"
+    #: Other names a request may give an input by (a library graph's port names, which Hops
+    #: components saved before the inputs were Capitalised send) → the input's name.
+    aliases: Dict[str, str] = field(default_factory=dict)
 
     @property
     def uri(self) -> str:
@@ -793,6 +797,7 @@ class HopsServer:
                 raise HopsError("every entry of \"values\" needs a \"ParamName\"")
             if name.startswith("RH_IN:"):
                 name = name[len("RH_IN:"):]
+            name = name if name in params else component.aliases.get(name, name)
             if name not in params:
                 raise HopsError(f"{component.name} has no input {name!r} (its inputs: "
                                 f"{', '.join(params)})")
@@ -835,38 +840,54 @@ def _unsafe_name(name: str) -> Optional[str]:
     return None
 
 
-def _numbers(x: Any) -> Any:
-    """A Hops number input (item, list or tree branches) as a cnets number, list or table."""
-    if x is None:
-        return None
-    if isinstance(x, list) and x and isinstance(x[0], list):  # a tree: branches
-        if len(x) == 1:
-            b = x[0]
-            return b[0] if len(b) == 1 else b
-        return x
-    if isinstance(x, list):
-        return x[0] if len(x) == 1 else x
+def _broadcast(x: Any) -> Any:
+    """A decoded Hops input (an item, a list, or a tree's branches) as the value of an engine
+    port, broadcast as Grasshopper does: a tree of one branch is that branch's list, a list of
+    one item is that item — one number given to a list or table port is that number, which the
+    node repeats; a tree of several branches is a table (a list of lists). The built-in and the
+    library components read their inputs through it alike."""
+    if isinstance(x, list) and len(x) == 1:
+        x = x[0]
+        if isinstance(x, list) and len(x) == 1:  # a tree of one branch of one item
+            x = x[0]
     return x
+
+
+def _hops_name(port: str) -> str:
+    """The name Hops shows for an engine port: its words Capitalised and joined, as the built-in
+    components name theirs (``ratios`` is ``Ratios``, ``ruling_ratios`` ``RulingRatios``; a
+    library graph's ``closure_gap`` is ``ClosureGap``)."""
+    words = [w for w in port.replace("-", "_").replace(" ", "_").split("_") if w]
+    return "".join(w[:1].upper() + w[1:] for w in words) or port
+
+
+def _port(port: str, nickname: str, description: str, kind: str, access: str = ITEM,
+          default: Any = None, optional: bool = False) -> Param:
+    """The Hops parameter of an engine port, named by ``_hops_name`` (the built-in components'
+    parameters and the library graphs' alike)."""
+    return Param(_hops_name(port), nickname, description, kind, access, default, optional)
 
 
 def _builtin_components(server: HopsServer) -> List[Component]:
     construct_outputs = [
-        Param("Mesh", "M", "The cone-net: a quad mesh, N rows (generatrix points) × M columns", "Mesh"),
-        Param("Apex", "A", "The apex values a_j used (M−1), after normalization and correction",
+        _port("mesh", "M", "The cone-net: a quad mesh, N rows (generatrix points) × M columns",
+              "Mesh"),
+        _port("apex", "A", "The apex values a_j used (M−1), after normalization and correction",
               "Number", LIST),
-        Param("Quality", "Q", "The largest planarity defect of a face (0: every face planar)", "Number"),
+        _port("quality", "Q", "The largest planarity defect of a face (0: every face planar)",
+              "Number"),
     ]
 
-    def construction(node: str, title: str, extra: Dict[str, str]) -> Callable:
+    def construction(node: str, title: str, extra: List[str]) -> Callable:
         def solve(inputs: Dict[str, Any]) -> List[List[Dict[str, str]]]:
             values = {
                 "directrix": server.curve("Directrix", inputs["Directrix"]),
                 "generatrix": server.curve("Generatrix", inputs["Generatrix"]),
-                "apex": _numbers(inputs["Apex"]),
+                "apex": _broadcast(inputs["Apex"]),
                 "assistance": inputs["Assistance"],
             }
-            for hops_name, port in extra.items():
-                values[port] = _numbers(inputs[hops_name])
+            for port in extra:
+                values[port] = _broadcast(inputs[_hops_name(port)])
             out = server.eval(node, values, outputs=["mesh", "apex", "quality"], title=title)
             return [
                 write_output(construct_outputs[0], out["mesh"]),
@@ -876,8 +897,8 @@ def _builtin_components(server: HopsServer) -> List[Component]:
         return solve
 
     curve_in = [
-        Param("Directrix", "X", "Directrix X (any curve; NURBS curves are sampled)", "Curve"),
-        Param("Generatrix", "G", "Generatrix G, drawn from a point off the directrix (closed: the "
+        _port("directrix", "X", "Directrix X (any curve; NURBS curves are sampled)", "Curve"),
+        _port("generatrix", "G", "Generatrix G, drawn from a point off the directrix (closed: the "
               "mesh wraps)", "Curve"),
     ]
     components = [
@@ -887,15 +908,15 @@ def _builtin_components(server: HopsServer) -> List[Component]:
             "directrix; ratios pick each plane's ruling; assistance repairs folded configurations.",
             "Cone-nets",
             curve_in + [
-                Param("Apex", "A", "Apex function a_j: one number or one per directrix edge",
+                _port("apex", "A", "Apex function a_j: one number or one per directrix edge",
                       "Number", LIST, default=1.0),
-                Param("Ratios", "R", "Ratios r_ij: one number, a list of M−1, or a tree of N "
+                _port("ratios", "R", "Ratios r_ij: one number, a list of M−1, or a tree of N "
                       "branches of M−1", "Number", TREE, default=0.5),
-                Param("Assistance", "α", "Assisted correction: negative off, 0 planes, 1 apex",
+                _port("assistance", "α", "Assisted correction: negative off, 0 planes, 1 apex",
                       "Number", default=-1.0),
             ],
             construct_outputs,
-            construction("cnets.construct", "CNets Construct", {"Ratios": "ratios"}),
+            construction("cnets.construct", "CNets Construct", ["ratios"]),
         ),
         Component(
             "/cnets_construct_coplanar", "CNets Construct Coplanar", "CNetsCop",
@@ -903,19 +924,20 @@ def _builtin_components(server: HopsServer) -> List[Component]:
             "polyline is planar.",
             "Cone-nets",
             curve_in + [
-                Param("Apex", "A", "Apex function a_j", "Number", LIST, default=1.0),
-                Param("RulingRatios", "ρ", "Ruling ratios ρ_j", "Number", LIST, default=0.5),
-                Param("PlaneRatios", "τ", "Plane-rotation ratios τ_j", "Number", LIST, default=0.5),
-                Param("Assistance", "α", "Assisted correction", "Number", default=-1.0),
+                _port("apex", "A", "Apex function a_j", "Number", LIST, default=1.0),
+                _port("ruling_ratios", "ρ", "Ruling ratios ρ_j", "Number", LIST, default=0.5),
+                _port("plane_ratios", "τ", "Plane-rotation ratios τ_j", "Number", LIST,
+                      default=0.5),
+                _port("assistance", "α", "Assisted correction", "Number", default=-1.0),
             ],
-            [Param("Mesh", "M", "The cone-net; every column is planar", "Mesh"),
+            [_port("mesh", "M", "The cone-net; every column is planar", "Mesh"),
              construct_outputs[1], construct_outputs[2]],
             construction("cnets.construct_coplanar", "CNets Construct Coplanar",
-                         {"RulingRatios": "ruling_ratios", "PlaneRatios": "plane_ratios"}),
+                         ["ruling_ratios", "plane_ratios"]),
         ),
     ]
 
-    apex_out = Param("Apex", "A", "The apex values (M−1)", "Number", LIST)
+    apex_out = _port("apex", "A", "The apex values (M−1)", "Number", LIST)
 
     def graph_to_apex(inputs: Dict[str, Any]) -> List[List[Dict[str, str]]]:
         values: Dict[str, Any] = {"widths": inputs["Widths"] or [],
@@ -931,17 +953,22 @@ def _builtin_components(server: HopsServer) -> List[Component]:
         "The widths y_j of the support strips give the apex function a_j = y_j / y_{j−1}.",
         "Cone-nets",
         [
-            Param("Widths", "Y", "Widths y_0 … y_{M−1} (> 0), one per directrix point", "Number", LIST),
-            Param("Normalized", "N", "Output the normalized apex function", "Boolean", default=False),
-            Param("Directrix", "X", "The directrix (needed when normalized)", "Curve", optional=True),
-            Param("Scale", "L", "Normalization scale L (0: directrix length / 5)", "Number", default=0.0),
+            _port("widths", "Y", "Widths y_0 … y_{M−1} (> 0), one per directrix point", "Number",
+                  LIST),
+            _port("normalized", "N", "Output the normalized apex function", "Boolean",
+                  default=False),
+            _port("directrix", "X", "The directrix (needed when normalized)", "Curve",
+                  optional=True),
+            _port("scale", "L", "Normalization scale L (0: directrix length / 5)", "Number",
+                  default=0.0),
         ],
         [apex_out],
         graph_to_apex,
     ))
 
     support_out = [
-        Param("Axes", "Ax", "The node axes X_j → G_ij, one line per vertex", "Curve", LIST),
+        _port("axes", "Ax", "The node axes X_j → G_ij, one line per vertex", "Curve", LIST),
+        # Named for what it is: cnets.conical_support's port is "mesh".
         Param("Support", "S", "The conical support layer", "Mesh"),
     ]
 
@@ -963,10 +990,10 @@ def _builtin_components(server: HopsServer) -> List[Component]:
         "with the same apices, its first column scaled by Factor about X_0).",
         "Cone-nets",
         [
-            Param("Directrix", "X", "The directrix the mesh was built from", "Curve"),
-            Param("Mesh", "M", "The cone-net (the Mesh output of CNets Construct)", "Mesh"),
-            Param("Apex", "A", "The Apex output of CNets Construct", "Number", LIST),
-            Param("Factor", "λ", "Scale of the support's first column about X_0", "Number",
+            _port("directrix", "X", "The directrix the mesh was built from", "Curve"),
+            _port("mesh", "M", "The cone-net (the Mesh output of CNets Construct)", "Mesh"),
+            _port("apex", "A", "The Apex output of CNets Construct", "Number", LIST),
+            _port("factor", "λ", "Scale of the support's first column about X_0", "Number",
                   default=0.8),
         ],
         support_out,
@@ -990,8 +1017,9 @@ _KINDS = {
 }
 
 
-def _port_param(port: Dict[str, Any]) -> Tuple[Param, str]:
-    """A Hops parameter for a graph's port, and the port's base type."""
+def _port_param(port: Dict[str, Any], name: Optional[str] = None) -> Tuple[Param, str]:
+    """A Hops parameter for a graph's port (named ``name``, else by ``_hops_name`` as the
+    built-ins' are), and the port's base type."""
     ty: str = port["type"]
     access, base = ITEM, ty
     for prefix, a in (("list<", LIST), ("tree<", TREE), ("table<", TREE)):
@@ -1003,9 +1031,16 @@ def _port_param(port: Dict[str, Any]) -> Tuple[Param, str]:
     default = port.get("default")
     if not isinstance(default, (int, float, str, bool)):
         default = None
-    name = port["name"]
-    return Param(name, name, port.get("doc") or name, kind, access, default,
+    name = name or _hops_name(port["name"])
+    return Param(name, name, port.get("doc") or port["name"], kind, access, default,
                  bool(port.get("optional"))), base
+
+
+def _hops_names(ports: List[Dict[str, Any]]) -> List[str]:
+    """The Hops names of a graph's inputs or outputs: ``_hops_name`` of each, or the port's own
+    name where two would come out the same (``a_b`` and ``aB``)."""
+    names = [_hops_name(p["name"]) for p in ports]
+    return [n if names.count(n) == 1 else p["name"] for n, p in zip(names, ports)]
 
 
 def _to_cnets(value: Any, base: str, param: Param, server: HopsServer) -> Any:
@@ -1040,22 +1075,29 @@ def _library_component(server: HopsServer, path: Path, url: str) -> Optional[Com
         if "no graph.input or graph.output" in str(e):
             return None
         raise
-    ins = [_port_param(p) for p in interface["inputs"]]
-    outs = [_port_param(p) for p in interface["outputs"]]
+    ins = [_port_param(p, n) for p, n in zip(interface["inputs"],
+                                              _hops_names(interface["inputs"]))]
+    outs = [_port_param(p, n) for p, n in zip(interface["outputs"],
+                                               _hops_names(interface["outputs"]))]
     title = path.name[: -len(".ron")]
 
     def solve(inputs: Dict[str, Any]) -> List[List[Dict[str, str]]]:
         values = {}
         for (param, base), port in zip(ins, interface["inputs"]):
-            v = _to_cnets(inputs[param.name], base, param, server)
+            value = inputs[param.name]
+            # A list of lines stays a list (an array of lines), one line included.
+            v = _to_cnets(value if base == "lines" else _broadcast(value), base, param, server)
             if v is not None:
                 values[port["name"]] = v
         out = server.eval(node_type, values, title=title)
-        return [write_output(param, out.get(param.name)) for param, _ in outs]
+        return [write_output(param, out.get(port["name"]))
+                for (param, _), port in zip(outs, interface["outputs"])]
 
     doc = interface.get("doc") or f"The graph {path.name}"
+    aliases = {port["name"]: param.name for (param, _), port in zip(ins, interface["inputs"])
+               if port["name"] != param.name}
     return Component(url, title, title[:12], doc, "Library", [p for p, _ in ins],
-                     [p for p, _ in outs], solve)
+                     [p for p, _ in outs], solve, aliases=aliases)
 
 
 def create_app(library: Optional[str] = None, samples: int = 33,

@@ -162,16 +162,16 @@ def test_components_are_listed_with_the_contracted_ports(server):
     assert meta["Inputs"][4]["AtMost"] == 1, "Assistance is one number"
     assert [p["Name"] for p in meta["Outputs"]] == ["Mesh", "Apex", "Quality"]
     status, lib = _get(server.url + "/arc-length")
-    assert [p["Name"] for p in lib["Inputs"]] == ["radius"]
-    assert [p["Name"] for p in lib["Outputs"]] == ["length"]
+    assert [p["Name"] for p in lib["Inputs"]] == ["Radius"]
+    assert [p["Name"] for p in lib["Outputs"]] == ["Length"]
 
 
 def test_library_names_are_percent_decoded_and_unsafe_ones_refused_at_start_up(server):
     status, meta = _get(server.url + "/my%20tube")
     assert status == 200 and meta["Uri"] == "/my%20tube", meta
-    status, response = _post(server.url + "/my%20tube", {"values": [_param("radius", _number_items([2.0]))]})
+    status, response = _post(server.url + "/my%20tube", {"values": [_param("Radius", _number_items([2.0]))]})
     assert status == 200, response
-    assert json.loads(_values(response)["length"][0]["data"]) == pytest.approx(2 * np.pi, rel=1e-3)
+    assert json.loads(_values(response)["Length"][0]["data"]) == pytest.approx(2 * np.pi, rel=1e-3)
     # The legacy route with the pointer as Hops sends it: the component's whole URL.
     status, response = _post(server.url + "/solve", {"pointer": server.url + "/my%20tube",
                                                       "values": [_param("radius", _number_items([1.0]))]})
@@ -346,9 +346,13 @@ def test_coplanar_graph_to_apex_support_and_library(server):
         _param("Apex", _number_items(net.apex)),
     ]}), 400, "Mesh", "not a quad grid")
 
+    status, response = _post(server.url + "/arc-length", {"values": [_param("Radius", _number_items([2.0]))]})
+    assert status == 200, response
+    assert json.loads(_values(response)["Length"][0]["data"]) == pytest.approx(2 * np.pi, rel=1e-3)
+    # A Hops component saved before the inputs were Capitalised sends the graph's port name.
     status, response = _post(server.url + "/arc-length", {"values": [_param("radius", _number_items([2.0]))]})
     assert status == 200, response
-    assert json.loads(_values(response)["length"][0]["data"]) == pytest.approx(2 * np.pi, rel=1e-3)
+    assert json.loads(_values(response)["Length"][0]["data"]) == pytest.approx(2 * np.pi, rel=1e-3)
 
 
 def test_concurrent_solves_are_all_answered_while_slow_clients_wait(server):
@@ -421,7 +425,7 @@ def test_the_shipped_library_is_served(tmp_path):
         assert {"/strip-fabrication", "/support-structure", "/reference-fit", "/closed-tube"} <= uris
         assert "skipped" not in hops.log(), hops.log()
         status, meta = _get(hops.url + "/closed-tube")
-        assert [p["Name"] for p in meta["Inputs"]] == ["profile", "path", "apex", "ratios"]
+        assert [p["Name"] for p in meta["Inputs"]] == ["Profile", "Path", "Apex", "Ratios"]
         assert [p["ParamType"] for p in meta["Inputs"]] == ["Curve", "Curve", "Number", "Number"]
         prof = cnets.eval("curve.circle", centre=(4, 0, 0), radius=0.8,
                           plane={"origin": (4, 0, 0), "normal": (0, 2, 1)}, count=8)["curve"]
@@ -430,15 +434,111 @@ def test_the_shipped_library_is_served(tmp_path):
         from cnets.rhino import polyline_to_rhino
 
         status, response = _post(hops.url + "/closed-tube", {"values": [
-            _param("profile", [_curve_item(polyline_to_rhino(prof))]),
-            _param("path", [_curve_item(_polyline(path))]),
+            _param("Profile", [_curve_item(polyline_to_rhino(prof))]),
+            _param("Path", [_curve_item(_polyline(path))]),
         ]})
         assert status == 200, response
         values = _values(response)
         expected = cnets.eval(f"cluster:{LIBRARY / 'closed-tube.ron'}", profile=prof, path=path)
-        mesh = _decode(values["mesh"][0])
+        mesh = _decode(values["Mesh"][0])
         np.testing.assert_array_equal(_mesh_vertices(mesh), expected["mesh"].vertices.reshape(-1, 3))
         assert mesh.Faces.Count == 8 * 11, "the tube wraps around its profile"
-        assert float(values["closure_gap"][0]["data"]) == expected["closure_gap"]
+        assert float(values["ClosureGap"][0]["data"]) == expected["closure_gap"]
+    finally:
+        hops.stop()
+
+
+def _tube_curves():
+    """The closed-tube's test curves: a closed profile of 8 points (N = 8), a path of 12 (M − 1
+    = 11)."""
+    from cnets.rhino import polyline_to_rhino
+
+    prof = cnets.eval("curve.circle", centre=(4, 0, 0), radius=0.8,
+                      plane={"origin": (4, 0, 0), "normal": (0, 2, 1)}, count=8)["curve"]
+    t = np.radians(np.linspace(0, 90, 12))
+    path = np.c_[4 * np.cos(t), 4 * np.sin(t), np.zeros(12)]
+    return prof, path, [_param("Profile", [_curve_item(polyline_to_rhino(prof))]),
+                        _param("Path", [_curve_item(_polyline(path))])]
+
+
+def test_library_components_broadcast_one_number_as_the_builtins_do(tmp_path):
+    """/closed-tube's `ratios` is a table port: one number (a tree of one branch of one item,
+    what a slider sends) broadcasts to every ratio, as /cnets_construct's Ratios does, and
+    solves to the same mesh as the full table of N branches of M − 1; one branch of M − 1 is one
+    row for every profile point; one number for the list port `apex` is that number for every
+    edge."""
+    hops = HopsProcess(tmp_path / "hops.log", "--library", str(LIBRARY))
+    try:
+        prof, path, curves = _tube_curves()
+
+        def tube(*inputs):
+            status, response = _post(hops.url + "/closed-tube", {"values": curves + list(inputs)})
+            assert status == 200, response
+            assert response["errors"] == [], response
+            values = _values(response)
+            return (_mesh_vertices(_decode(values["Mesh"][0])),
+                    float(values["ClosureGap"][0]["data"]),
+                    float(values["MaxPlanarity"][0]["data"]))
+
+        one = tube(_param("Ratios", _number_items([0.4])), _param("Apex", _number_items([0.97])))
+        table = tube(_param("Ratios", None, tree={"{%d}" % i: _number_items([0.4] * 11)
+                                                  for i in range(8)}),
+                     _param("Apex", _number_items([0.97] * 11)))
+        row = tube(_param("Ratios", _number_items([0.4] * 11)),
+                   _param("Apex", _number_items([0.97])))
+        for got in (table, row):
+            np.testing.assert_array_equal(got[0], one[0])
+            assert got[1:] == one[1:]
+        expected = cnets.eval(f"cluster:{LIBRARY / 'closed-tube.ron'}", profile=prof, path=path,
+                              ratios=np.full((8, 11), 0.4), apex=[0.97] * 11)
+        np.testing.assert_array_equal(one[0], expected["mesh"].vertices.reshape(-1, 3))
+        assert one[1] == expected["closure_gap"]
+        # The built-in reads one number the same way: the same net.
+        status, response = _post(hops.url + "/cnets_construct", {"values": [
+            _param("Directrix", curves[1]["InnerTree"]["{0}"]),
+            _param("Generatrix", curves[0]["InnerTree"]["{0}"]),
+            _param("Apex", _number_items([0.97])), _param("Ratios", _number_items([0.4])),
+        ]})
+        assert status == 200, response
+        np.testing.assert_array_equal(_mesh_vertices(_decode(_values(response)["Mesh"][0])),
+                                      one[0])
+    finally:
+        hops.stop()
+
+
+def test_library_components_name_their_ports_as_the_builtins(tmp_path):
+    """A library graph's ports are presented as the built-ins' are: each port name's words
+    Capitalised and joined (`closure_gap` is `ClosureGap`), by the one function that names the
+    built-ins' parameters after their engine ports (`ruling_ratios` is `RulingRatios`)."""
+    from cnets.hops import _hops_name
+
+    assert [_hops_name(p) for p in ("directrix", "ratios", "ruling_ratios", "plane_ratios")] == \
+        ["Directrix", "Ratios", "RulingRatios", "PlaneRatios"]
+    hops = HopsProcess(tmp_path / "hops.log", "--library", str(LIBRARY))
+    try:
+        status, listing = _get(hops.url + "/")
+        assert status == 200
+        style = __import__("re").compile(r"[A-Z][A-Za-z0-9]*")
+        for component in listing:
+            for p in component["Inputs"] + component["Outputs"]:
+                assert style.fullmatch(p["Name"]), (component["Uri"], p["Name"])
+        status, meta = _get(hops.url + "/closed-tube")
+        assert [p["Name"] for p in meta["Inputs"]] == ["Profile", "Path", "Apex", "Ratios"]
+        assert [p["Name"] for p in meta["Outputs"]] == ["Mesh", "ClosureGap", "MaxPlanarity"]
+        assert [p["Nickname"] for p in meta["Inputs"]] == ["Profile", "Path", "Apex", "Ratios"]
+        status, meta = _get(hops.url + "/strip-fabrication")
+        interface = cnets._cnets.node_interface(f"cluster:{LIBRARY / 'strip-fabrication.ron'}",
+                                                None)
+        assert [p["Name"] for p in meta["Inputs"]] == \
+            [_hops_name(p["name"]) for p in interface["inputs"]]
+        assert "SheetWidth" in [p["Name"] for p in meta["Inputs"]]
+        # The same input under its port name (what a component saved earlier sends) solves too;
+        # an unknown name is refused with the component's input names.
+        prof, path, curves = _tube_curves()
+        status, response = _post(hops.url + "/closed-tube", {"values": curves + [
+            _param("ratios", _number_items([0.4]))]})
+        assert status == 200, response
+        _one_error(*_post(hops.url + "/closed-tube", {"values": curves + [
+            _param("Ratio", _number_items([0.4]))]}), 400, "'Ratio'", "Profile, Path, Apex, Ratios")
     finally:
         hops.stop()
