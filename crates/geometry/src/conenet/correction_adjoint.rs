@@ -90,8 +90,9 @@ pub(super) fn piece(
         .any(|c| matches!(c.kind, CorrectionKind::Apex | CorrectionKind::Generatrix));
     if others && (planes || (alpha > 0.0 && alpha < 1.0)) {
         return Err(GeometryError::Degenerate(
-            "the derivative of a correction that changes both planes and the apex function or the \
-             generatrix (a blend, or a plane fix falling back to the apex fix) is not implemented"
+            "the assisted correction changed planes and the apex function or the generatrix \
+             together (a blend, or a plane fix falling back to the apex fix): its derivative is \
+             not implemented"
                 .into(),
         ));
     }
@@ -117,14 +118,16 @@ pub(super) fn piece(
                 });
                 let Some(row) = row else {
                     return Err(GeometryError::Degenerate(format!(
-                        "the generatrix fix could not be replayed ({c})"
+                        "the assisted correction changed the generatrix, and its fix could not \
+                         be replayed ({c})"
                     )));
                 };
                 piece.generatrix_fix = Some(GeneratrixFix { row, scale: c.new });
             }
             _ => {
                 return Err(GeometryError::Degenerate(format!(
-                    "the derivative of this correction is not implemented ({c})"
+                    "the assisted correction changed a value whose derivative is not \
+                     implemented ({c})"
                 )));
             }
         }
@@ -147,7 +150,7 @@ pub(super) fn piece(
         });
         let Some((row, pole)) = found else {
             return Err(GeometryError::Degenerate(format!(
-                "the apex fix at column {j0} could not be replayed"
+                "the assisted correction changed a_{j0}, and its fix could not be replayed"
             )));
         };
         piece.apex_fixes.push(ApexFix {

@@ -209,7 +209,7 @@ pub fn product(id: &str) -> Option<Product> {
 }
 
 /// The branch function of a construction node and the outputs its derivative reads off the path
-/// (the corrections: a run the assisted correction changed is declined), by id.
+/// (the corrections: which piece a corrected run took; a blend is declined), by id.
 pub fn branch(id: &str) -> Option<(BranchFn, &'static [&'static str])> {
     match id {
         "cnets.construct" => Some((construct_branch, &["corrections"])),
