@@ -6,17 +6,23 @@
 //! runs j = M−1 … 1: `∂L/∂r_{i,j} = J_r(i,j)ᵀ λ_{i,j}`, `λ_{i,j−1} += J_g(i,j)ᵀ λ_{i,j}`, and the
 //! column quantities collect `J_a ᵀ λ`, `J_X ᵀ λ`, `J_ê ᵀ λ`, `J_b ᵀ λ` summed over the rows; what
 //! reaches column 0 is the generatrix's cotangent. The local Jacobians come from one forward-mode
-//! evaluation of the step on dual numbers ([`super::dual`]) at the stored vertices, with as many
+//! evaluation of the step on dual numbers (`dual`) at the stored vertices, with as many
 //! directions as the wanted inputs need ([`Wrt`]: 4, 6 or 18), so the backward sweep costs a small
 //! constant times the forward one, rows in parallel. The column cotangents are then pulled back
 //! through the directrix's edges and bisectors and the apex normalization to the user's inputs
-//! ([`super::directrix_adjoint`]).
+//! (`directrix_adjoint`).
 //!
 //! The ratio → angle map has a kink at r = ½; exactly there the mean of its two slopes is used.
-//! A run of the assisted correction is differentiated on the piece it took when it only turned
-//! planes (per-row plane fixes, `θ = (1 − ε) φ`: then the plane no longer depends on the ratio nor
-//! the bisector, but on ε); a run that changed apex values or scaled the generatrix is declined (an
-//! error: the caller differentiates by finite differences and says so).
+//! Besides the mesh, the apex values used, the apices, the plane normals and the convexity margins
+//! may carry cotangents ([`OutputBars`], `output_adjoint`): they seed the sweep (the
+//! planes' through the step that made them).
+//!
+//! A run of the assisted correction is differentiated on the piece it took
+//! (`correction_adjoint`): planes only (per-row plane fixes, `θ = (1 − ε) φ`: the plane
+//! then reads ε instead of the ratio and the bisector) or apex only (the fixed a_{j0} and the
+//! generatrix scale are smooth functions of one row's values; the rows are coupled only at those
+//! columns). A blend (0 < α < 1) or a run mixing both kinds is declined (an error: the caller
+//! differentiates by finite differences and says so).
 
 use std::f64::consts::PI;
 
@@ -233,7 +239,7 @@ pub fn construct_adjoint(
 /// its outputs (`bars`): the ratios' and the generatrix's cotangents, and those `wrt` asks for.
 ///
 /// With the assisted correction on, the construction is run again to learn which piece it took
-/// (see [`super::correction_adjoint`]); a blend, or a run mixing plane fixes with apex or
+/// (see `correction_adjoint`); a blend, or a run mixing plane fixes with apex or
 /// generatrix fixes, is declined (an error).
 pub fn construct_adjoint_for(
     inputs: &ConstructInputs,
