@@ -28,7 +28,7 @@ pub use join::{join, reverse};
 pub use mapper::{Domains, GraphMapper, MapperKind};
 pub use nurbs::Nurbs;
 pub use offset::offset;
-pub use primitives::{arc, circle, helix, line, polygon};
+pub use primitives::{arc, arc_span_rise, arc_through, circle, helix, line, polygon};
 pub use query::{closest_point, evaluate};
 pub use resample::{divide_equal_chords, resample_by_count, resample_by_length};
 pub use spline::{Spline, SplineKind};

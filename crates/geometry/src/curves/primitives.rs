@@ -90,6 +90,101 @@ pub fn arc(
     check_output("arc", Polyline::open(points))
 }
 
+/// The circular arc from `first` through `through` to `last`, sampled at `count` points (≥ 3) with
+/// the three given points among them, exactly: the samples split the two sub-arcs in proportion to
+/// their angles. Fails when the points are collinear, coincide or are not finite.
+pub fn arc_through(
+    first: DVec3,
+    through: DVec3,
+    last: DVec3,
+    count: usize,
+) -> Result<Polyline, GeometryError> {
+    check_finite_vec("first point", first)?;
+    check_finite_vec("through point", through)?;
+    check_finite_vec("last point", last)?;
+    check_count("count", count, 3)?;
+    let (a, b) = (through - first, last - first);
+    let normal = a.cross(b);
+    let scale = a.length().max(b.length());
+    let area = normal.length();
+    if area.is_nan() || area <= 1e-12 * scale * scale {
+        return Err(GeometryError::Degenerate(
+            "the three points of the arc are collinear or coincide: no circle passes through them"
+                .into(),
+        ));
+    }
+    // The circumcentre of the triangle (first, through, last).
+    let centre = first
+        + (b.cross(normal) * a.length_squared() + normal.cross(a) * b.length_squared())
+            / (2.0 * normal.length_squared());
+    let u = first - centre;
+    let radius = u.length();
+    let (x, n) = (u / radius, normal.normalize());
+    let y = n.cross(x);
+    let angle_of = |p: DVec3| {
+        let d = p - centre;
+        let t = d.dot(y).atan2(d.dot(x));
+        if t <= 0.0 {
+            t + std::f64::consts::TAU
+        } else {
+            t
+        }
+    };
+    let (t1, t2) = (angle_of(through), angle_of(last));
+    // Samples before the through point: in proportion to its angle, at least one each side.
+    let steps = count - 1;
+    let k1 = ((steps as f64 * t1 / t2).round() as usize).clamp(1, steps - 1);
+    let mut points = Vec::with_capacity(count);
+    for k in 0..=steps {
+        let p = if k == 0 {
+            first
+        } else if k == k1 {
+            through
+        } else if k == steps {
+            last
+        } else {
+            let t = if k < k1 {
+                t1 * k as f64 / k1 as f64
+            } else {
+                t1 + (t2 - t1) * (k - k1) as f64 / (steps - k1) as f64
+            };
+            centre + (x * t.cos() + y * t.sin()) * radius
+        };
+        points.push(p);
+    }
+    check_output("arc", Polyline::open(points))
+}
+
+/// An arc over a chord of length `span` (centred at `centre`, along the plane's x axis) rising
+/// `rise` at its middle (along the plane's y axis): the arc through the chord's ends and the top.
+pub fn arc_span_rise(
+    centre: DVec3,
+    span: f64,
+    rise: f64,
+    plane: &Plane,
+    count: usize,
+) -> Result<Polyline, GeometryError> {
+    check_finite_vec("centre", centre)?;
+    check_plane(plane)?;
+    if span.is_nan() || span <= 0.0 || span.is_infinite() {
+        return Err(GeometryError::Degenerate(format!(
+            "an arc's span must be a positive length, got {span}"
+        )));
+    }
+    if rise == 0.0 || !rise.is_finite() {
+        return Err(GeometryError::Degenerate(format!(
+            "an arc's rise must be a non-zero length, got {rise}"
+        )));
+    }
+    let half = plane.x_axis * (span / 2.0);
+    arc_through(
+        centre - half,
+        centre + plane.y_axis * rise,
+        centre + half,
+        count,
+    )
+}
+
 /// A closed circle about `centre` in the orientation of `plane`, sampled at `count` points (≥ 3);
 /// the first point lies on the plane's x axis direction.
 pub fn circle(
@@ -176,6 +271,59 @@ pub fn helix(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The distance from `p` to the polyline's nearest vertex.
+    fn nearest_vertex(line: &Polyline, p: DVec3) -> f64 {
+        line.points
+            .iter()
+            .map(|q| q.distance(p))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    #[test]
+    fn an_arc_by_span_and_rise_passes_through_its_three_points() {
+        let plane = Plane::XY;
+        let centre = DVec3::new(1.0, 2.0, 3.0);
+        for count in [3, 8, 17, 50] {
+            let arc = arc_span_rise(centre, 6.0, 3.0, &plane, count).unwrap();
+            assert_eq!(arc.points.len(), count);
+            for p in [
+                centre - DVec3::X * 3.0,
+                centre + DVec3::Y * 3.0,
+                centre + DVec3::X * 3.0,
+            ] {
+                assert!(nearest_vertex(&arc, p) <= 1e-12, "{count}: {p}");
+            }
+            // Span 6, rise 3: a half circle of radius 3 about the chord's middle.
+            for q in &arc.points {
+                assert!((q.distance(centre) - 3.0).abs() <= 1e-12, "{q}");
+            }
+        }
+        // A flat arc: every sample on the circle through the three points.
+        let arc = arc_span_rise(DVec3::ZERO, 10.0, 1.0, &plane, 21).unwrap();
+        let r = (25.0 + 1.0) / 2.0; // r = (s²/4 + h²) / 2h
+        let c = DVec3::new(0.0, 1.0 - r, 0.0);
+        for q in &arc.points {
+            assert!((q.distance(c) - r).abs() <= 1e-12);
+        }
+        assert!((arc.points[10] - DVec3::new(0.0, 1.0, 0.0)).length() <= 1e-15);
+        assert!(arc_span_rise(DVec3::ZERO, 6.0, 0.0, &plane, 9).is_err());
+        assert!(arc_span_rise(DVec3::ZERO, -1.0, 1.0, &plane, 9).is_err());
+    }
+
+    #[test]
+    fn an_arc_through_three_points_keeps_them_and_refuses_a_line() {
+        let (a, b, c) = (
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 2.0, 0.5),
+            DVec3::new(3.0, 1.0, -1.0),
+        );
+        let arc = arc_through(a, b, c, 12).unwrap();
+        assert_eq!(arc.points[0], a);
+        assert_eq!(*arc.points.last().unwrap(), c);
+        assert!(arc.points.contains(&b));
+        assert!(arc_through(a, DVec3::X, DVec3::X * 2.0, 5).is_err());
+    }
 
     #[test]
     fn line_is_evenly_spaced_and_exact_at_the_ends() {

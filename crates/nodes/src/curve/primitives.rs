@@ -49,12 +49,16 @@ node! {
 }
 
 node! {
-    /// A circular arc in a plane, from `start` to `end` (degrees, measured from the plane's x axis
-    /// towards its y axis; `end` < `start` runs the other way), sampled at `count` evenly spaced
-    /// points.
+    /// A circular arc in a plane, in one of three forms (`mode`): `centre` — about `centre` with
+    /// `radius`, from `start` to `end` (degrees, measured from the plane's x axis towards its y
+    /// axis; `end` < `start` runs the other way), sampled at `count` evenly spaced points;
+    /// `three-points` — from `first` through `through` to `last`; `span-rise` — over a chord of
+    /// length `span` centred at `centre` along the plane's x axis, rising `rise` at its middle along
+    /// the plane's y axis (a vault's profile: one `rise` slider drives it). The last two keep their
+    /// three points among the `count` samples, exactly.
     #[node(id = "curve.arc", category = "Curves")]
     pub fn arc(
-        /// Centre of the arc (in world coordinates).
+        /// Centre of the arc (in world coordinates); with `span-rise`, the chord's middle.
         centre: k::Point = DVec3::ZERO,
         /// Radius (> 0).
         radius: k::Number = 1.0,
@@ -64,14 +68,30 @@ node! {
         end: k::Number = 90.0,
         /// Plane of the arc (its origin is ignored: the arc is centred at `centre`).
         plane: k::Plane = Plane::XY,
-        /// Number of points (≥ 2).
+        /// Number of points (≥ 2; ≥ 3 through three points).
         count: k::Integer = 16,
+        /// The form: `centre` (centre, radius, angles), `three-points` or `span-rise`.
+        mode: k::Choice<crate::choices::ArcMode> = "centre",
+        /// `three-points`: where the arc starts.
+        first: k::Point = DVec3::new(-1.0, 0.0, 0.0),
+        /// `three-points`: a point the arc passes through.
+        through: k::Point = DVec3::new(0.0, 1.0, 0.0),
+        /// `three-points`: where the arc ends.
+        last: k::Point = DVec3::new(1.0, 0.0, 0.0),
+        /// `span-rise`: the chord's length (> 0).
+        span: k::Number = 6.0,
+        /// `span-rise`: the height of the arc's middle above the chord (≠ 0; negative: below).
+        rise: k::Number = 1.0,
     ) -> (
         /// The sampled arc.
         curve: k::Polyline,
     ) {
         let n = count_input("count", count)?;
-        Ok((curves::arc(centre, radius, start, end, &plane, n)?,))
+        Ok((match mode {
+            "three-points" => curves::arc_through(first, through, last, n)?,
+            "span-rise" => curves::arc_span_rise(centre, span, rise, &plane, n)?,
+            _ => curves::arc(centre, radius, start, end, &plane, n)?,
+        },))
     }
 }
 
@@ -157,6 +177,44 @@ node! {
 mod tests {
     use super::super::test_util::{poly, pts, run};
     use super::*;
+
+    #[test]
+    fn an_arc_by_span_and_rise_through_the_node_passes_through_its_three_points() {
+        let def = arc();
+        let out = run(
+            &def,
+            &[
+                ("mode", Value::text("span-rise")),
+                ("centre", Value::Point(DVec3::new(0.0, 0.0, 2.0))),
+                ("plane", Value::from(Plane::ZX)),
+                ("span", Value::Number(6.0)),
+                ("rise", Value::Number(3.0)),
+                ("count", Value::Integer(9)),
+            ],
+        )
+        .unwrap();
+        let curve = poly(&out[0]);
+        let xz = Plane::ZX;
+        for p in [
+            DVec3::new(0.0, 0.0, 2.0) - xz.x_axis * 3.0,
+            DVec3::new(0.0, 0.0, 2.0) + xz.y_axis * 3.0,
+            DVec3::new(0.0, 0.0, 2.0) + xz.x_axis * 3.0,
+        ] {
+            let d = curve
+                .points
+                .iter()
+                .map(|q| q.distance(p))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d <= 1e-12, "{p}: {d}");
+        }
+        // The default form is unchanged: centre, radius and angles.
+        let out = run(
+            &def,
+            &[("radius", Value::Number(2.0)), ("count", Value::Integer(3))],
+        )
+        .unwrap();
+        assert!((poly(&out[0]).points[2] - DVec3::new(0.0, 2.0, 0.0)).length() < 1e-15);
+    }
 
     #[test]
     fn polyline_validates_and_drops_a_repeated_closing_point() {
