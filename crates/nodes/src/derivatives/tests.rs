@@ -704,7 +704,6 @@ fn graph_to_apex_products_match_differences() {
 
 #[test]
 fn subdivide_rows_products_match_differences() {
-    // The grid's faces are not planar: the projection's plane turns with the points too.
     for count in [1, 3] {
         let rel = compare(
             "cnets.subdivide_rows",
@@ -713,6 +712,26 @@ fn subdivide_rows_products_match_differences() {
         );
         assert!(rel < 1e-6, "subdivide_rows ({count}): {rel}");
     }
+    // Far from planar faces: the plane of the projection (normal to the face's diagonals) turns
+    // with the points, a first-order effect here (second order in the small twist of `grid`).
+    let mut v = Vec::new();
+    for i in 0..3 {
+        for j in 0..4 {
+            let (x, y) = (j as f64 * 1.1, i as f64 * 0.9);
+            v.push(DVec3::new(
+                x + 0.2 * (y * 1.3).sin(),
+                y + 0.15 * (x * 2.1).cos(),
+                0.4 * (1.7 * x + 2.3 * y).sin(),
+            ));
+        }
+    }
+    let twisted = Value::QuadMesh(Arc::new(QuadGrid::new(3, 4, v).unwrap()));
+    let rel = compare(
+        "cnets.subdivide_rows",
+        &[("mesh", twisted), ("count", Value::Integer(4))],
+        &["mesh"],
+    );
+    assert!(rel < 1e-6, "subdivide_rows (twisted faces): {rel}");
     // Wrapping rows: a ring of 5 rows around a cone-like surface.
     let mut v = Vec::new();
     for i in 0..5 {
