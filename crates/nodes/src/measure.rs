@@ -3,7 +3,10 @@
 //! gradient for the optimizer (`crate::derivatives::measure`).
 
 use cnets_engine::prelude::*;
-use cnets_geometry::surface_fit::{Directions, MAX_SAMPLES, SurfaceDistances, surface_distances};
+use cnets_geometry::surface_fit::{
+    Directions, MAX_SAMPLES, SurfaceDistances, fan_triangle_count, surface_distances,
+    vertex_distances, vertex_working_bytes, working_bytes,
+};
 use cnets_geometry::{measure, objectives};
 
 /// The points of a list of points, polylines and/or meshes (their vertices in order), in order.
@@ -85,19 +88,21 @@ node! {
     /// The distance between a mesh and a reference surface (its polygons fanned into triangles),
     /// e.g. to fit a cone-net to a target hull. `value` and `max` measure from the mesh's vertices
     /// to the reference only; the other outputs measure both directions on points sampled over the
-    /// faces (each fan triangle split `samples` times along each edge, sampled at the centroids of
-    /// its samples² sub-triangles, area-weighted): from the mesh to the reference and from the
-    /// reference to the mesh, so a fit cannot pull away from parts of the reference unseen.
-    /// `symmetric` is the measure to minimize when fitting. Every output has an exact gradient in
-    /// the mesh's vertices.
+    /// faces: each fan triangle is split into n² sub-triangles, n = its longest edge over the other
+    /// mesh's mean longest triangle edge, rounded up, from 1 to `samples`, and each sub-triangle is
+    /// integrated by a 6-point rule of degree 4 (interior points, area-weighted): from the mesh to
+    /// the reference and from the reference to the mesh, so a fit cannot pull away from parts of
+    /// the reference unseen. `symmetric` is the measure to minimize when fitting. Every output has
+    /// an exact gradient in the mesh's vertices.
     #[node(id = "measure.surface_distance", category = "Measure")]
     pub fn surface_distance[ctx](
         /// The mesh whose vertices are measured (quad or polygon mesh).
         mesh: k::Mesh,
         /// The reference surface.
         reference: k::Mesh,
-        /// Sub-triangles per triangle edge for the sampled (two-way) outputs: samples² points per
-        /// triangle (1 to 64).
+        /// The most sub-triangles per triangle edge for the sampled (two-way) outputs (1 to 64):
+        /// up to 6 · samples² points per triangle, fewer on triangles no longer than the other
+        /// mesh's.
         samples: k::Integer = 2,
     ) -> (
         /// Mean of the squared vertex distances (mesh vertices → reference).
@@ -118,15 +123,17 @@ node! {
         from_reference_max: k::Number,
     ) {
         let samples = sample_count(samples)?;
-        let (value, max) = if ctx.wants("value") || ctx.wants("max") {
-            measure::surface_distance(&mesh.vertices, &reference)?
-        } else {
-            (0.0, 0.0)
-        };
+        let one_sided = ctx.wants("value") || ctx.wants("max");
         let both = ["symmetric", "hausdorff"].iter().any(|o| ctx.wants(o));
         let directions = Directions {
             to_reference: both || ctx.wants("to_reference") || ctx.wants("to_reference_max"),
             from_reference: both || ctx.wants("from_reference") || ctx.wants("from_reference_max"),
+        };
+        reserve_surface_distance(ctx, &mesh, &reference, one_sided, directions, false)?;
+        let (value, max) = if one_sided {
+            vertex_distances(&mesh.vertices, &reference)?
+        } else {
+            (0.0, 0.0)
         };
         let d = if directions.to_reference || directions.from_reference {
             surface_distances(&mesh, &reference, samples, directions)?
@@ -144,6 +151,36 @@ node! {
             d.from_reference_max,
         ))
     }
+}
+
+/// Declares to the memory budget, before anything is built, what `measure.surface_distance` (or,
+/// with `gradient`, its product) will allocate: the closest-point hierarchies and fan triangles
+/// of the directions asked for (the samples are never stored).
+pub(crate) fn reserve_surface_distance(
+    ctx: &NodeContext,
+    mesh: &PolygonMesh,
+    reference: &PolygonMesh,
+    one_sided: bool,
+    directions: Directions,
+    gradient: bool,
+) -> Result<(), NodeError> {
+    let (tm, tr) = (fan_triangle_count(mesh), fan_triangle_count(reference));
+    let (vm, vr) = (mesh.vertices.len(), reference.vertices.len());
+    let mut bytes = if one_sided {
+        vertex_working_bytes(vm, tr, gradient)
+    } else {
+        0
+    };
+    if directions.to_reference || directions.from_reference {
+        bytes = bytes.max(working_bytes(tm, vm, tr, vr, directions, gradient));
+    }
+    ctx.reserve(
+        bytes,
+        &format!(
+            "the surface distance between a mesh of {tm} triangles and a reference of {tr} \
+             triangles"
+        ),
+    )
 }
 
 /// The `samples` input of `measure.surface_distance`, checked.

@@ -2,14 +2,15 @@
 
 use cnets_engine::optimize::vjp::{VjpArgs, VjpResult};
 use cnets_engine::prelude::*;
-use cnets_geometry::mesh_query::MeshQuery;
 use cnets_geometry::objectives;
 use cnets_geometry::surface_fit::{
-    Directions, DistanceCotangents, surface_distances, surface_distances_gradient,
+    Directions, DistanceCotangents, surface_distances, surface_distances_gradient, vertex_closest,
 };
 
 use super::flat;
-use crate::measure::{alignment_targets, points_of, sample_count, table_rows};
+use crate::measure::{
+    alignment_targets, points_of, reserve_surface_distance, sample_count, table_rows,
+};
 
 type Product = fn(&VjpArgs<'_>) -> VjpResult;
 
@@ -85,25 +86,6 @@ fn surface_distance(args: &VjpArgs<'_>) -> VjpResult {
         _ => 2,
     })?;
     let (c0, c1) = (c(args, 0), c(args, 1));
-    let mut g = vec![DVec3::ZERO; mesh.vertices.len()];
-    if c0 != 0.0 || c1 != 0.0 {
-        let query = MeshQuery::new(reference)
-            .map_err(|e| NodeError::new(format!("the reference mesh: {e}")))?;
-        let hits = query.closest_all(&mesh.vertices)?;
-        let n = mesh.vertices.len().max(1) as f64;
-        for ((g, v), h) in g.iter_mut().zip(&mesh.vertices).zip(&hits) {
-            *g = (*v - h.point) * (2.0 * c0 / n);
-        }
-        if c1 != 0.0
-            && let Some((k, h)) = hits
-                .iter()
-                .enumerate()
-                .max_by(|a, b| a.1.distance.total_cmp(&b.1.distance))
-            && h.distance > 0.0
-        {
-            g[k] += (mesh.vertices[k] - h.point) * (c1 / h.distance);
-        }
-    }
     // The two-way outputs: symmetric = ½ (to + from); the Hausdorff distance is the larger of the
     // two largest distances (to_reference_max on a tie).
     let (symmetric, hausdorff) = (c(args, 2), c(args, 3));
@@ -113,6 +95,34 @@ fn surface_distance(args: &VjpArgs<'_>) -> VjpResult {
         from_reference: c(args, 6) + 0.5 * symmetric,
         from_reference_max: c(args, 7),
     };
+    let one_sided = c0 != 0.0 || c1 != 0.0;
+    let directions = Directions {
+        to_reference: two_way.to_reference != 0.0 || two_way.to_reference_max != 0.0,
+        from_reference: two_way.from_reference != 0.0 || two_way.from_reference_max != 0.0,
+    };
+    let directions = if hausdorff != 0.0 {
+        Directions::BOTH
+    } else {
+        directions
+    };
+    reserve_surface_distance(args.ctx, mesh, reference, one_sided, directions, true)?;
+    let mut g = vec![DVec3::ZERO; mesh.vertices.len()];
+    if one_sided {
+        let hits = vertex_closest(&mesh.vertices, reference)?;
+        let n = mesh.vertices.len().max(1) as f64;
+        for ((g, v), h) in g.iter_mut().zip(&mesh.vertices).zip(&hits) {
+            *g = (*v - h.point) * (2.0 * c0 / n);
+        }
+        if c1 != 0.0
+            && let Some((k, h)) = hits
+                .iter()
+                .enumerate()
+                .max_by(|a, b| a.1.distance_squared.total_cmp(&b.1.distance_squared))
+            && h.distance_squared > 0.0
+        {
+            g[k] += (mesh.vertices[k] - h.point) * (c1 / h.distance_squared.sqrt());
+        }
+    }
     if hausdorff != 0.0 {
         // Recomputed: the outputs not asked for in the run are placeholders.
         let d = surface_distances(mesh, reference, samples, Directions::BOTH)?;
