@@ -4,7 +4,8 @@
 //! word of the name; the name starts with the query; a word of the name starts with it; the name
 //! or id contains it; a fuzzy match of name and id (`nucleo-matcher`, the matcher of the helix
 //! editor: typos such as "cnstruct" still find CNets Construct); the words only in the category
-//! or documentation. Within a rank the paper's own components come first, then shorter names,
+//! or documentation. A Rhino or Grasshopper word for what a node does (trim, split, loft, sweep,
+//! join, explode, bake, point …: [`SYNONYMS`]) ranks that node as if it were its name. Within a rank the paper's own components come first, then shorter names,
 //! then registry order. Enter in the palette adds the top hit.
 
 use std::sync::Arc;
@@ -26,6 +27,36 @@ pub struct Ranked {
     pub score: u32,
 }
 
+/// Rhino's and Grasshopper's words for what a node does, and the node they mean (a query that is
+/// one of these words ranks that node first, as if it were its name).
+const SYNONYMS: &[(&str, &str)] = &[
+    ("trim", "mesh.cut_by_plane"),
+    ("split", "mesh.cut_by_plane"),
+    ("cut", "mesh.cut_by_plane"),
+    ("loft", "cnets.construct"),
+    ("sweep", "cnets.construct"),
+    ("sweep1", "cnets.construct"),
+    ("join", "mesh.join"),
+    ("weld", "mesh.join"),
+    ("explode", "mesh.deconstruct"),
+    ("bake", "io.export_gltf"),
+    ("point", "vector.point"),
+    ("construct point", "vector.point"),
+    ("pt", "vector.point"),
+    ("arc", "curve.arc"),
+    ("interpolate", "curve.spline"),
+    ("interpcrv", "curve.spline"),
+    ("reflect", "mesh.mirror"),
+];
+
+/// Whether `query` is a Rhino/Grasshopper word for `def` ([`SYNONYMS`]).
+fn is_synonym(def: &NodeDef, query: &str) -> bool {
+    let q = query.trim().to_lowercase();
+    SYNONYMS
+        .iter()
+        .any(|(word, id)| *word == q && *id == def.id.as_ref())
+}
+
 fn words_of(text: &str) -> Vec<String> {
     text.split(|c: char| !c.is_alphanumeric())
         .filter(|w| !w.is_empty())
@@ -40,7 +71,7 @@ fn rank_of(def: &NodeDef, query: &str, fuzzy: Option<u32>) -> Option<u8> {
     let id = def.id.to_lowercase();
     let words = words_of(&q);
     let name_words = words_of(&name);
-    if name == q || id == q {
+    if name == q || id == q || is_synonym(def, &q) {
         return Some(0);
     }
     if !words.is_empty() && words.iter().all(|w| name_words.contains(w)) {
@@ -98,6 +129,7 @@ pub fn rank(registry: &Registry, query: &str) -> Vec<Ranked> {
         let fuzzy = |r: &Ranked| if r.rank == 5 { r.score } else { 0 };
         a.rank
             .cmp(&b.rank)
+            .then_with(|| is_synonym(&b.def, query).cmp(&is_synonym(&a.def, query)))
             .then(fuzzy(b).cmp(&fuzzy(a)))
             .then_with(|| paper(&a.def).cmp(&paper(&b.def)))
             .then_with(|| display_name(&a.def).len().cmp(&display_name(&b.def).len()))
@@ -179,6 +211,29 @@ mod tests {
             ("cnets.encode", "cnets.encode"),
         ] {
             assert_eq!(top(&registry, query), expected, "'{query}'");
+        }
+        // Rhino's and Grasshopper's words find the node they mean first.
+        for (query, expected) in [
+            ("trim", "mesh.cut_by_plane"),
+            ("split", "mesh.cut_by_plane"),
+            ("loft", "cnets.construct"),
+            ("sweep", "cnets.construct"),
+            ("explode", "mesh.deconstruct"),
+            ("bake", "io.export_gltf"),
+            ("point", "vector.point"),
+        ] {
+            assert_eq!(top(&registry, query), expected, "'{query}'");
+        }
+        // "join" names two nodes: the curves' and the meshes' join are the first two hits.
+        let joins: Vec<String> = rank(&registry, "join")
+            .iter()
+            .take(2)
+            .map(|r| r.def.id.to_string())
+            .collect();
+        assert!(joins.contains(&"mesh.join".to_string()), "{joins:?}");
+        // Every synonym names a registered node.
+        for (word, id) in SYNONYMS {
+            assert!(registry.get(id).is_some(), "{word} → {id}");
         }
         // A typo still finds it among the first hits (fuzzy).
         let typo: Vec<String> = rank(&registry, "cnstruct")
