@@ -3,6 +3,7 @@
 //! gradient for the optimizer (`crate::derivatives::measure`).
 
 use cnets_engine::prelude::*;
+use cnets_geometry::fabrication::polygon::newell_vector;
 use cnets_geometry::surface_fit::{
     Directions, MAX_SAMPLES, SurfaceDistances, fan_triangle_count, surface_distances,
     vertex_distances, vertex_working_bytes, working_bytes,
@@ -294,6 +295,42 @@ node! {
     }
 }
 
+/// The corners of face `f` of `mesh`, in order.
+pub(crate) fn face_corners(mesh: &PolygonMesh, f: usize) -> Vec<DVec3> {
+    mesh.face(f)
+        .iter()
+        .map(|&v| mesh.vertices[v as usize])
+        .collect()
+}
+
+/// The area of every face of `mesh`: half the length of its Newell normal (a planar polygon's
+/// area; a non-planar face's vector area, the area of its projection on its Newell plane).
+pub(crate) fn face_areas(mesh: &PolygonMesh) -> Vec<f64> {
+    (0..mesh.face_count())
+        .map(|f| 0.5 * newell_vector(&face_corners(mesh, f)).length())
+        .collect()
+}
+
+node! {
+    /// The area of a mesh: the sum of its faces' areas, each half the length of the face's Newell
+    /// normal Σ p_k × p_{k+1} (a planar polygon's area; a non-planar face counts the area of its
+    /// projection on its Newell plane). Has an exact gradient in the mesh's vertices, for sweeps
+    /// and objectives on the surface a design covers.
+    #[node(id = "measure.area", category = "Measure")]
+    pub fn area(
+        /// The mesh (quad or polygon mesh).
+        mesh: k::Mesh,
+    ) -> (
+        /// The sum of the faces' areas.
+        total: k::Number,
+        /// The area of every face, in face order.
+        faces: k::List<k::Number>,
+    ) {
+        let faces = face_areas(&mesh);
+        Ok((faces.iter().sum::<f64>(), faces))
+    }
+}
+
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
     vec![
@@ -302,5 +339,6 @@ pub fn nodes() -> Vec<NodeDef> {
         surface_distance(),
         normal_alignment(),
         fairness(),
+        area(),
     ]
 }

@@ -56,7 +56,7 @@ fn ports_are_documented_contracts() {
         (
             "analysis.face_classes",
             &["mesh", "configurations"],
-            &["classes", "labels", "colours"],
+            &["classes", "labels", "colours", "convex", "convex_share"],
         ),
         (
             "io.export_gltf",
@@ -253,6 +253,13 @@ fn face_attribute_nodes() {
             assert_ne!(classes[i * 4 + j], 4);
         }
     }
+    // The convex faces counted, and their share of all faces.
+    let convex = classes.iter().filter(|c| **c == 0).count();
+    assert_eq!(get(&out, "convex"), &Value::Integer(convex as i64));
+    assert_eq!(
+        get(&out, "convex_share"),
+        &Value::Number(convex as f64 / 12.0)
+    );
     let err = run(
         &ctx,
         "analysis.face_classes",

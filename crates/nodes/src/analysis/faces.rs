@@ -70,6 +70,7 @@ node! {
     /// construction's `configurations` (N lists of M−1 labels c_{i,j}): face (i, j) combines c_{i,j}
     /// and c_{i+1,j}. Classes: 0 convex ((++),(++), green), 1 non-convex (mixed, red), 2 minus-minus
     /// ((−−),(−−), orange), 3 negative apex ((+−) or (−+), purple), 4 unclassified (no configuration: column 0 of an older M−2-label table, grey).
+    /// `convex` and `convex_share` count the convex faces, e.g. a figure for a sweep.
     #[node(id = "analysis.face_classes", category = "Analysis")]
     pub fn face_classes(
         /// The constructed cone-net.
@@ -83,13 +84,23 @@ node! {
         labels: k::List<k::Text>,
         /// Colour per face (RGB in [0, 1]).
         colours: k::List<k::Vector>,
+        /// The number of convex faces (class 0, ((++),(++))).
+        convex: k::Integer,
+        /// The convex faces' share of all faces (0 to 1; 0 for a mesh without faces).
+        convex_share: k::Number,
     ) {
         let rows = label_rows(&configurations)?;
         let classes = fab::face_classes(&mesh, &rows).map_err(fab_err)?;
         let index: Vec<usize> = classes.iter().map(|c| c.index()).collect();
         let names: Vec<&str> = classes.iter().map(|c| c.name()).collect();
         let colours: Vec<DVec3> = classes.iter().map(|c| FaceClass::colour(*c)).collect();
-        Ok((index, names, colours))
+        let convex = classes.iter().filter(|c| **c == FaceClass::Convex).count();
+        let share = if classes.is_empty() {
+            0.0
+        } else {
+            convex as f64 / classes.len() as f64
+        };
+        Ok((index, names, colours, convex as i64, share))
     }
 }
 

@@ -2,6 +2,7 @@
 
 use cnets_engine::optimize::vjp::{VjpArgs, VjpResult};
 use cnets_engine::prelude::*;
+use cnets_geometry::fabrication::polygon::newell_vector;
 use cnets_geometry::objectives;
 use cnets_geometry::surface_fit::{
     Directions, DistanceCotangents, surface_distances, surface_distances_gradient, vertex_closest,
@@ -9,7 +10,7 @@ use cnets_geometry::surface_fit::{
 
 use super::flat;
 use crate::measure::{
-    alignment_targets, points_of, reserve_surface_distance, sample_count, table_rows,
+    alignment_targets, face_corners, points_of, reserve_surface_distance, sample_count, table_rows,
 };
 
 type Product = fn(&VjpArgs<'_>) -> VjpResult;
@@ -186,6 +187,34 @@ fn fairness(args: &VjpArgs<'_>) -> VjpResult {
     Ok(vec![values, mesh])
 }
 
+/// The area's product: a face's area A = |N| / 2, N = Σ_k p_k × p_{k+1} its Newell normal, so
+/// ∂A/∂p_k = ½ n × (p_{k−1} − p_{k+1}) with n = N / |N| (none for a face without area, where the
+/// length is not differentiable), weighted by the total's cotangent plus the face's.
+fn area(args: &VjpArgs<'_>) -> VjpResult {
+    let Value::Mesh(mesh) = &args.inputs[0] else {
+        return Err(NodeError::new("internal: the area needs a mesh"));
+    };
+    let total = c(args, 0);
+    let faces = args.cotangents.get(1).and_then(|c| c.as_deref());
+    let mut g = vec![DVec3::ZERO; mesh.vertices.len()];
+    for f in 0..mesh.face_count() {
+        let w = total + faces.and_then(|c| c.get(f)).copied().unwrap_or(0.0);
+        if w == 0.0 {
+            continue;
+        }
+        let corners = face_corners(mesh, f);
+        let Some(n) = newell_vector(&corners).try_normalize() else {
+            continue;
+        };
+        let count = corners.len();
+        for (k, &v) in mesh.face(f).iter().enumerate() {
+            let (prev, next) = (corners[(k + count - 1) % count], corners[(k + 1) % count]);
+            g[v as usize] += n.cross(prev - next) * (0.5 * w);
+        }
+    }
+    Ok(vec![args.wanted[0].then(|| flat(&g))])
+}
+
 /// The product of a measure node, by id.
 pub fn product(id: &str) -> Option<Product> {
     Some(match id {
@@ -194,6 +223,7 @@ pub fn product(id: &str) -> Option<Product> {
         "measure.surface_distance" => surface_distance,
         "measure.normal_alignment" => normal_alignment,
         "measure.fairness" => fairness,
+        "measure.area" => area,
         _ => return None,
     })
 }

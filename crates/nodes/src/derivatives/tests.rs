@@ -933,3 +933,74 @@ fn construction_products_match_differences() {
     assert!(rel < 1e-6, "cnets.construct (apex only): {rel}");
     gives_every_wanted("cnets.construct", &named, &wanted);
 }
+
+#[test]
+fn area_product_matches_differences() {
+    let d = def("measure.area");
+    // The area itself: a unit square and a planar pentagon (shoelace area 4) in a tilted
+    // plane (orthonormal axes u, v keep areas), their sum the total.
+    let (u, v) = (
+        DVec3::new(1.0, 2.0, 2.0) / 3.0,
+        DVec3::new(2.0, 1.0, -2.0) / 3.0,
+    );
+    let pentagon = [[0.0, 0.0], [2.0, 0.0], [2.5, 1.0], [1.0, 2.0], [-0.5, 1.0]]
+        .map(|[x, y]| DVec3::new(3.0, -1.0, 2.0) + u * x + v * y);
+    let mut vertices = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+    vertices.extend(pentagon);
+    let mesh = PolygonMesh::from_faces(vertices, &[vec![0, 1, 2, 3], vec![4, 5, 6, 7, 8]]).unwrap();
+    let out =
+        crate::testing::run_named(&d, &[("mesh", Value::Mesh(Arc::new(mesh.clone())))]).unwrap();
+    let faces: Vec<f64> = out[1]
+        .as_list()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert!((faces[0] - 1.0).abs() < 1e-14, "{faces:?}");
+    assert!((faces[1] - 4.0).abs() < 1e-13, "{faces:?}");
+    assert!((out[0].as_f64().unwrap() - 5.0).abs() < 1e-13, "{out:?}");
+    // A quad grid converts: its faces' areas sum to the total.
+    let out = crate::testing::run_named(&d, &[("mesh", grid())]).unwrap();
+    let faces = out[1].as_list().unwrap();
+    assert_eq!(faces.len(), 3 * 4);
+    let sum: f64 = faces.iter().map(|v| v.as_f64().unwrap()).sum();
+    assert!((sum - out[0].as_f64().unwrap()).abs() < 1e-12);
+    // The product against differences: a non-planar quad grid (both outputs weighted), polygons
+    // of 3 to 5 corners, and a wrapping grid (its faces share vertices across the seam).
+    let rel = compare("measure.area", &[("mesh", grid())], &["mesh"]);
+    assert!(rel < 1e-7, "measure.area (grid): {rel}");
+    let mut bumpy = mesh;
+    for (k, v) in bumpy.vertices.iter_mut().enumerate() {
+        v.z += 0.3 * (k as f64 * 1.7).sin();
+    }
+    let bumpy = PolygonMesh::from_faces(
+        bumpy.vertices.clone(),
+        &[vec![0, 1, 2, 3], vec![4, 5, 6, 7, 8], vec![1, 4, 2]],
+    )
+    .unwrap();
+    let rel = compare(
+        "measure.area",
+        &[("mesh", Value::Mesh(Arc::new(bumpy)))],
+        &["mesh"],
+    );
+    assert!(rel < 1e-7, "measure.area (polygons): {rel}");
+    let mut v = Vec::new();
+    for i in 0..5 {
+        let t = i as f64 / 5.0 * std::f64::consts::TAU;
+        for j in 0..4 {
+            let r = 1.0 + 0.2 * j as f64;
+            v.push(DVec3::new(
+                r * t.cos(),
+                r * t.sin(),
+                0.7 * j as f64 + 0.1 * t.sin(),
+            ));
+        }
+    }
+    let ring = QuadGrid::new(5, 4, v).unwrap().with_wrap(true, false);
+    let rel = compare(
+        "measure.area",
+        &[("mesh", Value::QuadMesh(Arc::new(ring)))],
+        &["mesh"],
+    );
+    assert!(rel < 1e-7, "measure.area (wrapping rows): {rel}");
+}
