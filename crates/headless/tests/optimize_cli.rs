@@ -133,7 +133,12 @@ fn a_rerun_at_the_optimum_stops_there_and_says_why() {
     let (ok, text, err) = cnets(&dir, &["optimize", "fitted.ron"]);
     assert!(ok, "{text}\n{err}");
     let summary = text.lines().next().unwrap_or_default();
-    assert!(summary.contains("converged (at a minimum"), "{text}");
+    // It converges where it is (no descent step, or only steps that decrease nothing more).
+    assert!(
+        summary.contains("converged (at a minimum")
+            || summary.contains("converged (no further decrease)"),
+        "{text}"
+    );
     assert!(!text.contains("Nelder–Mead"), "{text}");
     let iterations: usize = summary
         .split(" in ")
