@@ -190,3 +190,72 @@ def test_not_finite_names_what_is_not_finite():
     assert _not_finite(np.arange(3)) is None
     assert _not_finite({"a": 1.0, "b": {"c": np.nan}}) == "b: c: nan"
     assert _not_finite([1.0, float("inf")]) == "[1]: inf"
+
+
+def _newell_areas(vertices, faces):
+    """Each face's area by numpy: half the length of Σ p_k × p_{k+1}."""
+    areas = []
+    for f in faces:
+        p = np.asarray(vertices)[f]
+        areas.append(0.5 * np.linalg.norm(np.cross(p, np.roll(p, -1, axis=0)).sum(axis=0)))
+    return np.array(areas)
+
+
+def test_measure_area_from_python():
+    """`cnets.eval("measure.area", mesh=…)`: a cone-net (a quad mesh converts) and a polygon mesh
+    give the total and the per-face areas, as numpy's Newell normals say."""
+    t = np.radians(np.linspace(0.0, 120.0, 9))
+    directrix = np.c_[5 * np.cos(t), 5 * np.sin(t), np.zeros(9)]
+    s = np.linspace(0.0, 1.0, 5)
+    generatrix = np.c_[5 + 0.8 * s, np.zeros(5), 3 * s + 0.5]
+    net = cnets.construct(directrix, generatrix, apex=0.9)
+    out = cnets.eval("measure.area", mesh=net)
+    expected = _newell_areas(net.vertices.reshape(-1, 3), net.faces())
+    np.testing.assert_allclose(out["faces"], expected, rtol=1e-12)
+    assert len(out["faces"]) == 4 * 8
+    assert out["total"] == pytest.approx(expected.sum(), rel=1e-12)
+    mesh = cnets.PolygonMesh([[0, 0, 0], [2, 0, 0], [2, 1, 0], [0, 1, 0], [1, 2, 1]],
+                             [[0, 1, 2, 3], [3, 2, 4]])
+    out = cnets.eval("measure.area", mesh=mesh)
+    np.testing.assert_allclose(out["faces"], [2.0, np.sqrt(2.0)], rtol=1e-14)
+    assert out["total"] == pytest.approx(2.0 + np.sqrt(2.0), rel=1e-14)
+
+
+def test_a_sweep_reports_the_area_and_the_convex_share(design, tmp_path, client):
+    """A study's figures: the net's area (`measure.area`) and the share of its faces that are
+    convex (`analysis.face_classes`' convex_share) over a design parameter, each row equal to a
+    direct run."""
+    text = design.read_text().replace(
+        '"len": (type: "curve.length"),',
+        '"len": (type: "curve.length"),\n'
+        '        "area": (type: "measure.area"),\n'
+        '        "classes": (type: "analysis.face_classes"),',
+    ).replace('"dir.curve -> len.curve",', '"dir.curve -> len.curve",\n'
+              '        "net.mesh -> area.mesh",\n'
+              '        "net.mesh -> classes.mesh",\n'
+              '        "net.configurations -> classes.configurations",')
+    path = tmp_path / "study.ron"
+    path.write_text(text)
+    outputs = ["area.total", "classes.convex_share", "classes.convex"]
+    apex = [0.6, 0.8, 1.0, 1.2, 1.4]
+    df = cnets.sweep(path, {"apex.value": apex}, outputs, client=client)
+    assert df["ok"].all(), df["error"].tolist()
+    assert list(df.columns) == ["apex.value", *outputs, "ok", "error"]
+    for k, a in enumerate(apex):
+        g = cnets.Graph.load(path)
+        g.set("apex.value", a)
+        r = g.run()
+        assert df["area.total"].iloc[k] == r["area"]["total"]
+        assert df["area.total"].iloc[k] == pytest.approx(
+            _newell_areas(r["net"]["mesh"].vertices.reshape(-1, 3), r["net"]["mesh"].faces()).sum(),
+            rel=1e-12)
+        assert df["classes.convex_share"].iloc[k] == r["classes"]["convex_share"]
+        faces = len(r["classes"]["classes"])
+        assert faces == 5 * 11
+        assert df["classes.convex"].iloc[k] == int(np.sum(np.asarray(r["classes"]["classes"]) == 0))
+        assert df["classes.convex_share"].iloc[k] == df["classes.convex"].iloc[k] / faces
+    # The apex function scales the columns: the area grows with it; past 1 some faces stop
+    # being convex ((++),(++)), so the share falls from 1.
+    assert df["area.total"].is_monotonic_increasing and df["area.total"].nunique() == len(apex)
+    assert df["classes.convex_share"].iloc[0] == 1.0
+    assert 0.0 < df["classes.convex_share"].iloc[-1] < 1.0
