@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::export::ExportFormat;
-use crate::preview::{ColorMode, Layer, PreviewOptions};
+use crate::preview::{ColorMode, DistanceSide, Layer, PreviewOptions};
 use crate::viewport::screen::CPlane;
 use crate::viewport::{DrawTool, MeasureTool, NamedView, Tool};
 
@@ -351,6 +351,19 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                 if ui.radio(o.color_mode == mode, mode.label()).clicked() {
                     o.color_mode = mode;
                     pick_preview = Some(o);
+                }
+                // The distance mode's side: the net by its distance to the reference, or the
+                // reference by its distance to the net (a gap the net's colours cannot show).
+                if mode == ColorMode::Distance {
+                    for side in [DistanceSide::Net, DistanceSide::Reference] {
+                        let mut o = mc.preview;
+                        let on = o.color_mode == ColorMode::Distance && o.distance_side == side;
+                        if ui.radio(on, format!("    {}", side.label())).clicked() {
+                            o.color_mode = ColorMode::Distance;
+                            o.distance_side = side;
+                            pick_preview = Some(o);
+                        }
+                    }
                 }
             }
             ui.separator();

@@ -52,7 +52,22 @@ fn torus_render_is_not_blank_and_matches_its_snapshot() {
         "cnets render failed: {}",
         String::from_utf8_lossy(&o.stderr)
     );
-    assert!(String::from_utf8_lossy(&o.stdout).contains("480x270"));
+    let line = String::from_utf8_lossy(&o.stdout);
+    assert!(line.contains("480x270"), "{line}");
+    // The summary leads with the cone-nets' figures and names the mesh of each.
+    let headline = line.lines().nth(1).unwrap_or_default();
+    assert!(
+        headline.contains("max planarity") && headline.contains("headline: the cone-nets"),
+        "{line}"
+    );
+    assert!(
+        line.lines()
+            .nth(2)
+            .unwrap_or_default()
+            .trim_start()
+            .starts_with("cone-net "),
+        "{line}"
+    );
     let (w, h, pixels) = read_png(&out);
     assert_eq!((w, h), (480, 270));
     let background = [pixels[0], pixels[1], pixels[2]];
@@ -317,8 +332,23 @@ fn planarity_colours_every_previewed_mesh_and_names_the_mesh_of_its_figure() {
             / (w * h) as f64
     };
     let (line, planarity) = shot("planarity.png", "planarity");
+    // No cone-net previewed (the construction is cut and mirrored): the meshes lead, named.
     assert!(
-        line.contains("max planarity") && line.contains("(reference_hull.mesh)"),
+        line.contains("max planarity")
+            && line.contains("(reference_hull.mesh; headline: the meshes"),
+        "{line}"
+    );
+    assert!(line.contains("mesh whole.mesh: "), "{line}");
+    // Measured against the hull, the reference is no longer in the headline: the net's is.
+    let (line, _) = shot("distance.png", "distance:reference_hull");
+    let headline = line.lines().nth(1).unwrap();
+    assert!(
+        headline.contains("(whole.mesh; headline: the meshes"),
+        "{line}"
+    );
+    assert!(
+        line.contains("reference reference_hull.mesh: ")
+            && line.contains("not in the net's figures"),
         "{line}"
     );
     let (_, plain) = shot("plain.png", "plain");
@@ -349,8 +379,9 @@ fn distance_colours_the_net_by_its_distance_to_the_reference() {
     let (o, out) = shot("distance.png", "distance:reference_hull");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let line = String::from_utf8_lossy(&o.stdout).into_owned();
-    // "…, distance to reference_hull: max 0.0441 m rms 0.00290 m over 1234 vertices"
-    let figure = |key: &str| -> f64 {
+    // "  distance whole.mesh ↔ reference_hull (symmetric, area-weighted): rms 0.00520 m max
+    // 0.0940 m; net → reference rms … max …; reference → net rms … max …"
+    let figure = |line: &str, key: &str| -> f64 {
         let at = line.find(key).unwrap_or_else(|| panic!("{key} in {line}")) + key.len();
         line[at..]
             .split(" m")
@@ -360,9 +391,24 @@ fn distance_colours_the_net_by_its_distance_to_the_reference() {
             .parse()
             .unwrap()
     };
-    assert!(line.contains("distance to reference_hull"), "{line}");
-    let (max, rms) = (figure(": max "), figure(" rms "));
+    assert!(
+        line.contains("distance whole.mesh ↔ reference_hull (symmetric, area-weighted)"),
+        "{line}"
+    );
+    let (rms, max) = (
+        figure(&line, "area-weighted): rms "),
+        figure(&line, " m max "),
+    );
     assert!(0.0 < rms && rms < max && max < 1.0, "{line}");
+    let (net_max, reference_max) = (
+        figure(&line, "net → reference rms "),
+        figure(&line, "reference → net rms "),
+    );
+    assert!(net_max > 0.0 && reference_max > 0.0, "{line}");
+    assert!(
+        line.contains("colours: the net's vertices by their distance to reference_hull"),
+        "{line}"
+    );
     if let Some(keep) = std::env::var_os("CNETS_KEEP_RENDERS") {
         let _ = std::fs::copy(&out, Path::new(&keep).join("distance.png"));
     }
@@ -387,13 +433,54 @@ fn distance_colours_the_net_by_its_distance_to_the_reference() {
     assert!(o.status.success());
     let plain = read_png(&plain);
     assert!(share(&plain, &greenish) < 0.001 && share(&plain, &purple) < 0.001);
-    // A reference that is not in the graph is a usage error naming it.
-    let (o, _) = shot("none.png", "distance:no_such_node");
-    assert!(!o.status.success());
+    // The other side: the reference (not previewed) drawn and coloured by its distance to the
+    // net, the same symmetric figure; the summary says which side the colours show.
+    let (o, out) = shot(
+        "distance-reference.png",
+        "distance-reference:reference_hull",
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let other = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert_eq!(
+        figure(&other, "area-weighted): rms "),
+        rms,
+        "the same figure: {other}"
+    );
     assert!(
-        String::from_utf8_lossy(&o.stderr).contains("no node 'no_such_node'"),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
+        other.contains("colours: reference_hull's vertices by their distance to the net"),
+        "{other}"
+    );
+    assert!(other.contains("reference reference_hull.mesh: "), "{other}");
+    if let Some(keep) = std::env::var_os("CNETS_KEEP_RENDERS") {
+        let _ = std::fs::copy(&out, Path::new(&keep).join("distance-reference.png"));
+    }
+    // Both ends of the scale on the reference: near the net (purple) and far (green to yellow).
+    let picture = read_png(&out);
+    assert!(
+        share(&picture, &purple) > 0.003 && share(&picture, &greenish) > 0.05,
+        "{} {}",
+        share(&picture, &purple),
+        share(&picture, &greenish)
+    );
+    // A reference that is not in the graph is a usage error naming it, in either spelling.
+    for spelling in ["distance", "distance-reference"] {
+        let (o, _) = shot("none.png", &format!("{spelling}:no_such_node"));
+        assert_eq!(o.status.code(), Some(2));
+        assert!(
+            String::from_utf8_lossy(&o.stderr).contains(&format!(
+                "--color {spelling}:no_such_node: the graph has no node"
+            )),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    // The net itself as the reference: nothing else to measure, and the summary says so.
+    let (o, _) = shot("self.png", "distance:whole");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let line = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        line.contains("no distance measured: nothing else is previewed to measure against 'whole'"),
+        "{line}"
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

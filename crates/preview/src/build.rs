@@ -7,19 +7,21 @@ use std::time::Instant;
 #[cfg(target_arch = "wasm32")]
 use web_time::Instant;
 
-use cnets_engine::{Evaluator, Graph, Layer as HintLayer, PortDef, Value};
+use cnets_engine::value::Access;
+use cnets_engine::{Evaluator, Graph, Layer as HintLayer, PortDef, Value, ValueType};
 use cnets_geometry::conenet::quad_planarity;
 use cnets_geometry::fabrication::{FaceClass, face_planarity};
-use cnets_geometry::mesh_query::MeshQuery;
-use cnets_geometry::{DVec3, PolygonMesh, QuadGrid};
+use cnets_geometry::{DVec3, QuadGrid};
 use cnets_render::palette::{self, SequentialMap, ToleranceMap};
 use cnets_render::{Color, FaceColors, LineStyle, MeshStyle, PointStyle, Scene};
-use std::collections::HashMap;
 use std::sync::Arc;
 
 use crate::classes::{class_color, face_classes};
+use crate::distance::{
+    DistanceFigures, DistanceReference, Measured, distance_reference, is_construction, measure,
+};
 use crate::legend::{APEX_COLOR, LegendInfo};
-use crate::options::{ColorMode, Layer, PreviewOptions};
+use crate::options::{ColorMode, DistanceSide, Layer, PreviewOptions};
 use crate::picks::{PickCurve, PickGeometry, PickMesh, Picks};
 
 /// What the preview of a graph shows: the scene, its figures and what each drawn thing came from.
@@ -49,6 +51,8 @@ struct PendingGrid {
     origin: Origin,
     /// The node's preview colour and depth layer.
     look: Look,
+    /// What the mesh is to the figures.
+    kind: MeshKind,
 }
 
 /// How one node's geometry is drawn: its picked colour (if any) and its depth layer.
@@ -58,6 +62,44 @@ struct Look {
     depth_layer: u32,
 }
 
+/// What a previewed mesh is to the figures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshKind {
+    /// A cone-net: a mesh output of a construction (a node declaring its faces' convexity margins,
+    /// [`cnets_engine::Role::FaceMargins`], and with them the configurations).
+    ConeNet,
+    /// Any other mesh (a cut or mirrored net, a support layer, an imported surface).
+    Mesh,
+    /// The reference of the distance mode: measured against, never counted in the net's figures.
+    Reference,
+}
+
+impl MeshKind {
+    /// The word for it in figures: `cone-net`, `mesh`, `reference`.
+    pub fn word(self) -> &'static str {
+        match self {
+            MeshKind::ConeNet => "cone-net",
+            MeshKind::Mesh => "mesh",
+            MeshKind::Reference => "reference",
+        }
+    }
+}
+
+/// The figures of one previewed mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshFigures {
+    /// `node.output`, with `[item]` for an item of a list.
+    pub name: String,
+    /// What it is.
+    pub kind: MeshKind,
+    /// Its vertices.
+    pub vertices: usize,
+    /// Its faces.
+    pub faces: usize,
+    /// Its largest face planarity (`None` without a finite one).
+    pub max_planarity: Option<f64>,
+}
+
 /// Figures about the previewed geometry.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct PreviewStats {
@@ -65,96 +107,28 @@ pub struct PreviewStats {
     pub vertices: usize,
     /// Faces of all previewed meshes.
     pub faces: usize,
-    /// Largest face planarity over all previewed meshes, quad grids and polygon meshes (`None`
-    /// without faces).
+    /// The headline planarity: the largest face planarity of the previewed cone-nets, or without
+    /// any, of the other previewed meshes — never of a distance reference ([`MeshKind`]); `None`
+    /// without faces.
     pub max_planarity: Option<f64>,
-    /// The mesh `max_planarity` is for (`node.output`, `[item]` in a list), when more than one
-    /// mesh is previewed (`None` with one: the figure is plainly its own).
+    /// The mesh `max_planarity` is on (`node.output`, `[item]` in a list).
     pub max_planarity_mesh: Option<String>,
+    /// Every previewed mesh with its own figures: cone-nets first, then other meshes, then the
+    /// distance reference.
+    pub meshes: Vec<MeshFigures>,
     /// Legend of the surface colours.
     pub legend: LegendInfo,
     /// Apex points drawn (the apices layer shown).
     pub apices: usize,
-    /// In [`ColorMode::Distance`]: the reference (`node.output`) and the largest and root mean
-    /// square distance of the other previewed meshes' vertices to it (`None` in other modes, or
-    /// without a reference mesh or other meshes).
+    /// In [`ColorMode::Distance`]: the symmetric distance between the net and the reference, and
+    /// what the colours show (`None` in other modes, or when nothing was measured:
+    /// [`PreviewStats::distance_status`] says why).
     pub distance: Option<DistanceFigures>,
+    /// In [`ColorMode::Distance`] without figures: why (no reference picked, the reference has no
+    /// mesh, nothing else previewed…).
+    pub distance_status: Option<String>,
     /// Time spent building the scene, in milliseconds.
     pub build_ms: f64,
-}
-
-/// The figures of [`ColorMode::Distance`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct DistanceFigures {
-    /// The reference node.
-    pub reference: String,
-    /// Largest vertex distance to it, in model units (metres).
-    pub max: f64,
-    /// Root mean square of the vertex distances.
-    pub rms: f64,
-    /// Vertices measured.
-    pub vertices: usize,
-}
-
-/// The reference of the distance mode: its node and the closest-point hierarchy of its mesh.
-struct DistanceReference {
-    node: String,
-    query: MeshQuery,
-}
-
-/// Calls `f` on every quad grid and polygon mesh in a value (lists walked).
-fn each_mesh(value: &Value, f: &mut dyn FnMut(MeshRef<'_>)) {
-    match value {
-        Value::List(items) => items.iter().for_each(|v| each_mesh(v, f)),
-        Value::QuadMesh(g) => f(MeshRef::Grid(g)),
-        Value::Mesh(m) => f(MeshRef::Mesh(m)),
-        _ => {}
-    }
-}
-
-/// A mesh found in an output.
-enum MeshRef<'a> {
-    Grid(&'a Arc<QuadGrid>),
-    Mesh(&'a Arc<PolygonMesh>),
-}
-
-impl MeshRef<'_> {
-    fn vertices(&self) -> &[DVec3] {
-        match self {
-            MeshRef::Grid(g) => &g.vertices,
-            MeshRef::Mesh(m) => &m.vertices,
-        }
-    }
-
-    /// The address of the shared payload: the key of its distances.
-    fn key(&self) -> usize {
-        match self {
-            MeshRef::Grid(g) => Arc::as_ptr(g) as usize,
-            MeshRef::Mesh(m) => Arc::as_ptr(m) as usize,
-        }
-    }
-}
-
-/// The reference mesh of the distance mode: the first mesh output of the node with uid `uid`.
-fn distance_reference(graph: &Graph, eval: &Evaluator, uid: u64) -> Option<DistanceReference> {
-    let (index, node) = graph.nodes().find(|(_, n)| n.uid() == uid)?;
-    let outputs = eval.result_at(graph, index)?.outputs()?;
-    let mut mesh: Option<PolygonMesh> = None;
-    for value in &outputs.values {
-        each_mesh(value, &mut |m| {
-            if mesh.is_none() {
-                mesh = Some(match m {
-                    MeshRef::Grid(g) => PolygonMesh::from(g.as_ref()),
-                    MeshRef::Mesh(m) => m.as_ref().clone(),
-                });
-            }
-        });
-    }
-    let query = MeshQuery::new(&mesh?).ok()?;
-    Some(DistanceReference {
-        node: node.id.clone(),
-        query,
-    })
 }
 
 /// A length in metres for legends, to three significant digits (`0 m`, `0.0450 m`, `1.25 m`).
@@ -166,9 +140,9 @@ pub fn format_metres(v: f64) -> String {
     format!("{v:.digits$} m")
 }
 
-/// The legend of the distance mode: 0 … `max` in metres, six stops.
-pub fn distance_legend(reference: &str, max: f64) -> cnets_render::Legend {
-    let mut legend = SequentialMap::new(0.0, max).legend(&format!("distance to {reference}"), 6);
+/// The legend of the distance mode: 0 … `max` in metres, six stops, under `title`.
+pub fn distance_legend(title: &str, max: f64) -> cnets_render::Legend {
+    let mut legend = SequentialMap::new(0.0, max).legend(title, 6);
     legend.labels = legend
         .stops
         .iter()
@@ -199,24 +173,73 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
         any_classes: false,
         planarity_range: None,
         picks: Picks::default(),
-        planarity_max: None,
-        planarity_meshes: 0,
         look: Look::default(),
-        distances: HashMap::new(),
+        kind: MeshKind::Mesh,
+        measured: None,
         distance_map: None,
+        reference: None,
+        skip_key: None,
     };
-    // The distance mode measures every other previewed mesh against the reference first: one
-    // scale over all of them.
-    if opts.color_mode == ColorMode::Distance
-        && let Some(reference) = opts
-            .distance_to
-            .and_then(|uid| distance_reference(graph, eval, uid))
-    {
-        b.measure_distances(graph, eval, &reference);
-    }
-    // Planarity colours need one range over all meshes: collect meshes first.
+    // Planarity colours need one range over all meshes: quad grids are collected first.
     let mut meshes: Vec<PendingGrid> = Vec::new();
     let mut next_layer = 0u32;
+    // The distance mode measures the net (every other previewed mesh) against the reference
+    // first: one scale over all of them.
+    if opts.color_mode == ColorMode::Distance {
+        let reference = opts
+            .distance_to
+            .ok_or_else(|| {
+                "no reference picked: the distance colouring needs a mesh other than the net \
+                 (import one, e.g. with io.read_mesh)"
+                    .to_string()
+            })
+            .and_then(|uid| distance_reference(graph, eval, uid));
+        match reference.and_then(|r| Ok((measure(graph, eval, &r, opts.distance_side)?, r))) {
+            Ok((measured, reference)) => {
+                b.distance_map = Some(SequentialMap::new(0.0, measured.figures.colour_max));
+                b.stats.distance = Some(measured.figures.clone());
+                b.measured = Some(measured);
+                // Colouring the reference: drawn first (even when not previewed), so the net's
+                // translucent faces blend over it.
+                if opts.distance_side == DistanceSide::Reference {
+                    b.look = Look {
+                        color: None,
+                        depth_layer: next_layer,
+                    };
+                    next_layer += 1;
+                    b.kind = MeshKind::Reference;
+                    let origin = Origin {
+                        node: reference.node.clone(),
+                        output: reference.output.clone(),
+                        item: None,
+                    };
+                    b.collect(
+                        &reference.value,
+                        Layer::Surfaces,
+                        &None,
+                        &origin,
+                        &mut meshes,
+                    );
+                    // A quad grid is drawn now too, before the net.
+                    if let Some(grid) = meshes.pop() {
+                        let planarity: Vec<f64> =
+                            grid.grid.quads().map(|(_, q)| quad_planarity(q)).collect();
+                        b.note_mesh(
+                            grid.kind,
+                            &grid.origin,
+                            grid.grid.vertices.len(),
+                            &planarity,
+                        );
+                        b.add_quad_grid(grid, planarity);
+                    }
+                    // Not drawn again with its node.
+                    b.skip_key = Some(reference.key);
+                }
+                b.reference = Some(reference);
+            }
+            Err(why) => b.stats.distance_status = Some(why),
+        }
+    }
     for (index, node) in graph.nodes() {
         if !node.preview || !node.enabled {
             continue;
@@ -231,13 +254,28 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
             depth_layer: next_layer,
         };
         next_layer += 1;
-        let configurations = node
-            .def
-            .output_index("configurations")
+        // A construction's configurations: its table of labels (a tree of texts), read by type.
+        let construction = is_construction(node);
+        let configurations = construction
+            .then(|| {
+                node.def
+                    .outputs
+                    .iter()
+                    .position(|p| p.ty == ValueType::Text && p.access == Access::Tree)
+            })
+            .flatten()
             .and_then(|k| outputs.values.get(k))
             .cloned();
+        let is_reference = b.reference.as_ref().is_some_and(|r| r.node == node.id);
         for (port, value) in node.def.outputs.iter().zip(&outputs.values) {
             let layer = layer_of(port);
+            b.kind = if is_reference {
+                MeshKind::Reference
+            } else if construction && layer == Layer::Surfaces {
+                MeshKind::ConeNet
+            } else {
+                MeshKind::Mesh
+            };
             let origin = Origin {
                 node: node.id.clone(),
                 output: port.name.to_string(),
@@ -252,12 +290,9 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
         .map(|m| m.grid.quads().map(|(_, q)| quad_planarity(q)).collect())
         .collect();
     for (m, p) in meshes.iter().zip(&planarities) {
-        b.note_planarity(p, &m.origin);
+        b.note_mesh(m.kind, &m.origin, m.grid.vertices.len(), p);
     }
-    b.stats.max_planarity = b.planarity_max.as_ref().map(|(v, _)| *v);
-    if b.planarity_meshes > 1 {
-        b.stats.max_planarity_mesh = b.planarity_max.take().map(|(_, name)| name);
-    }
+    b.headline();
     if opts.color_mode == ColorMode::Planarity {
         // Anchored to tolerances, not fitted to the data (rounding noise is not a patchwork).
         b.planarity_range = Some(opts.planarity_map());
@@ -278,7 +313,7 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
             .planarity_range
             .map_or(LegendInfo::None, |m| LegendInfo::Planarity(m.legend())),
         ColorMode::Distance => match &b.stats.distance {
-            Some(d) => LegendInfo::Distance(distance_legend(&d.reference, d.max)),
+            Some(d) => LegendInfo::Distance(distance_legend(&d.legend_title(), d.colour_max)),
             None => LegendInfo::None,
         },
         _ => LegendInfo::None,
@@ -312,22 +347,26 @@ struct Builder {
     any_classes: bool,
     planarity_range: Option<ToleranceMap>,
     picks: Picks,
-    /// The largest face planarity so far and the mesh it is on.
-    planarity_max: Option<(f64, String)>,
-    /// Meshes with faces whose planarity was noted.
-    planarity_meshes: usize,
     /// The colour and depth layer of the node being collected.
     look: Look,
-    /// Distance mode: each measured mesh's vertex distances, by payload address.
-    distances: HashMap<usize, Vec<f64>>,
-    /// Distance mode: the colour scale (0 … the largest distance).
+    /// What the meshes of the output being collected are to the figures.
+    kind: MeshKind,
+    /// Distance mode: what was measured (the vertex distances coloured, the net's meshes).
+    measured: Option<Measured>,
+    /// Distance mode: the colour scale (0 … the largest coloured distance).
     distance_map: Option<SequentialMap>,
+    /// Distance mode: the reference (drawn first when it is the side coloured).
+    reference: Option<DistanceReference>,
+    /// The payload address of a mesh already drawn (the reference, drawn first): not drawn again.
+    skip_key: Option<usize>,
 }
 
 /// Support layers are drawn translucent so the surface they support stays visible.
 const SUPPORT_COLOR: Color = Color::hex(0xc9a66b).with_alpha(170);
 const AXIS_COLOR: Color = Color::hex(0x2a9d5c);
 const CURVE_COLOR: Color = palette::LINE;
+/// The alpha of the net's faces drawn over a reference coloured by its distance to them.
+const NET_OVER_REFERENCE_ALPHA: u8 = 90;
 
 /// Whether `value` can show anything in the 3D view (what [`Builder::collect`] draws).
 fn may_show(value: &Value) -> bool {
@@ -353,71 +392,49 @@ impl Origin {
 }
 
 impl Builder {
-    /// Distance mode: the vertex distances of every previewed mesh but the reference's own, their
-    /// figures and the colour scale.
-    fn measure_distances(
-        &mut self,
-        graph: &Graph,
-        eval: &Evaluator,
-        reference: &DistanceReference,
-    ) {
-        let (mut max, mut sum2, mut count) = (0.0f64, 0.0f64, 0usize);
-        for (index, node) in graph.nodes() {
-            if !node.preview || !node.enabled || node.id == reference.node {
-                continue;
-            }
-            let Some(outputs) = eval.result_at(graph, index).and_then(|r| r.outputs()) else {
-                continue;
-            };
-            for (port, value) in node.def.outputs.iter().zip(&outputs.values) {
-                if !matches!(layer_of(port), Layer::Surfaces) {
-                    continue;
-                }
-                each_mesh(value, &mut |m| {
-                    if self.distances.contains_key(&m.key()) {
-                        return;
-                    }
-                    let Ok(closest) = reference.query.closest_all(m.vertices()) else {
-                        return;
-                    };
-                    let d: Vec<f64> = closest.iter().map(|c| c.distance).collect();
-                    for &v in &d {
-                        max = max.max(v);
-                        sum2 += v * v;
-                    }
-                    count += d.len();
-                    self.distances.insert(m.key(), d);
-                });
-            }
-        }
-        if count > 0 {
-            self.distance_map = Some(SequentialMap::new(0.0, max));
-            self.stats.distance = Some(DistanceFigures {
-                reference: reference.node.clone(),
-                max,
-                rms: (sum2 / count as f64).sqrt(),
-                vertices: count,
-            });
-        }
-    }
-
-    /// Counts a mesh's face planarities in the figure (the largest, and which mesh it is on).
-    fn note_planarity(&mut self, planarity: &[f64], origin: &Origin) {
-        if planarity.is_empty() {
-            return;
-        }
-        self.planarity_meshes += 1;
-        let Some(max) = planarity
+    /// Notes a mesh's figures (its kind, size and largest face planarity).
+    fn note_mesh(&mut self, kind: MeshKind, origin: &Origin, vertices: usize, planarity: &[f64]) {
+        let max_planarity = planarity
             .iter()
             .copied()
             .filter(|v| v.is_finite())
-            .reduce(f64::max)
-        else {
-            return;
+            .reduce(f64::max);
+        self.stats.meshes.push(MeshFigures {
+            name: origin.name(),
+            kind,
+            vertices,
+            faces: planarity.len(),
+            max_planarity,
+        });
+    }
+
+    /// Orders the meshes' figures (cone-nets, other meshes, the reference) and takes the headline
+    /// planarity from the cone-nets, or without any from the other meshes: never the reference's.
+    fn headline(&mut self) {
+        let rank = |k: MeshKind| match k {
+            MeshKind::ConeNet => 0,
+            MeshKind::Mesh => 1,
+            MeshKind::Reference => 2,
         };
-        if self.planarity_max.as_ref().is_none_or(|(m, _)| max > *m) {
-            self.planarity_max = Some((max, origin.name()));
-        }
+        self.stats.meshes.sort_by_key(|m| rank(m.kind));
+        let lead = self
+            .stats
+            .meshes
+            .iter()
+            .map(|m| m.kind)
+            .find(|k| *k != MeshKind::Reference);
+        let best = self
+            .stats
+            .meshes
+            .iter()
+            .filter(|m| Some(m.kind) == lead)
+            .filter_map(|m| Some((m.max_planarity?, &m.name)))
+            .fold(None::<(f64, &String)>, |acc, (p, name)| match acc {
+                Some((q, _)) if q >= p => acc,
+                _ => Some((p, name)),
+            });
+        self.stats.max_planarity = best.map(|(p, _)| p);
+        self.stats.max_planarity_mesh = best.map(|(_, name)| name.clone());
     }
 
     fn edges(&self) -> Option<LineStyle> {
@@ -472,6 +489,8 @@ impl Builder {
                     }
                 }
             }
+            Value::QuadMesh(grid) if self.skip_key == Some(Arc::as_ptr(grid) as usize) => {}
+            Value::Mesh(mesh) if self.skip_key == Some(Arc::as_ptr(mesh) as usize) => {}
             Value::QuadMesh(grid) => {
                 let layer = if layer == Layer::Supports {
                     layer
@@ -484,6 +503,7 @@ impl Builder {
                     layer,
                     origin: origin.clone(),
                     look: self.look,
+                    kind: self.kind,
                 });
             }
             Value::Mesh(mesh) => {
@@ -497,7 +517,7 @@ impl Builder {
                 // Every polygon mesh counts in the planarity figure and is coloured by it in that
                 // mode (an imported reference, a cut and mirrored net), not only quad grids.
                 let planarity = face_planarity(mesh).unwrap_or_default();
-                self.note_planarity(&planarity, origin);
+                self.note_mesh(self.kind, origin, mesh.vertices.len(), &planarity);
                 if show {
                     let color = self.uniform_color(layer);
                     let colors: Option<Vec<Color>> = (self.opts.color_mode == ColorMode::Planarity
@@ -507,14 +527,15 @@ impl Builder {
                         let map = self.opts.planarity_map();
                         planarity.iter().map(|&v| map.color(v)).collect()
                     });
+                    let key = Arc::as_ptr(mesh) as usize;
                     let by_distance = match layer {
                         Layer::Supports => None,
-                        _ => self.vertex_distance_colors(Arc::as_ptr(mesh) as usize),
+                        _ => self.vertex_distance_colors(key),
                     };
                     let faces = match (&colors, &by_distance) {
                         (_, Some(c)) => FaceColors::PerVertex(c),
                         (Some(c), None) => FaceColors::PerFace(c),
-                        (None, None) => FaceColors::Uniform(color),
+                        (None, None) => FaceColors::Uniform(self.net_color(key, color)),
                     };
                     let style = MeshStyle::new(faces)
                         .edges(self.edges())
@@ -582,12 +603,23 @@ impl Builder {
         }
     }
 
-    /// Distance mode: the vertex colours of a measured mesh (`None`: not measured — the reference
-    /// itself — or another mode).
+    /// Distance mode: the vertex colours of a coloured mesh (`None`: not coloured — the side
+    /// not coloured — or another mode).
     fn vertex_distance_colors(&self, key: usize) -> Option<Vec<Color>> {
         let map = self.distance_map?;
-        let d = self.distances.get(&key)?;
+        let d = self.measured.as_ref()?.colours.get(&key)?;
         Some(d.iter().map(|&v| map.color(v)).collect())
+    }
+
+    /// The one colour of a mesh: translucent for the net when the reference is the side coloured
+    /// (the reference stays visible through it), else `color`.
+    fn net_color(&self, key: usize, color: Color) -> Color {
+        match &self.measured {
+            Some(m) if m.figures.side == DistanceSide::Reference && m.net.contains(&key) => {
+                color.with_alpha(NET_OVER_REFERENCE_ALPHA)
+            }
+            _ => color,
+        }
     }
 
     fn add_points(&mut self, points: &[DVec3], layer: Layer) {
@@ -617,6 +649,7 @@ impl Builder {
             layer,
             origin,
             look,
+            kind: _,
         } = pending;
         self.look = look;
         self.stats.vertices += grid.vertices.len();
@@ -651,7 +684,9 @@ impl Builder {
         let faces = match (&colors, &by_distance) {
             (_, Some(c)) => FaceColors::PerVertex(c),
             (Some(c), None) => FaceColors::PerFace(c),
-            (None, None) => FaceColors::Uniform(uniform),
+            (None, None) => {
+                FaceColors::Uniform(self.net_color(Arc::as_ptr(&grid) as usize, uniform))
+            }
         };
         let style = MeshStyle::new(faces)
             .edges(self.edges())

@@ -11,17 +11,24 @@
 
 mod build;
 mod classes;
+mod distance;
+#[cfg(test)]
+mod distance_tests;
 mod legend;
 mod options;
 mod picks;
 
 pub use build::{
-    DistanceFigures, Preview, PreviewStats, build_preview, build_scene, distance_legend,
+    MeshFigures, MeshKind, Preview, PreviewStats, build_preview, build_scene, distance_legend,
     format_metres, layer_of,
 };
 pub use classes::{class_color, face_classes};
+pub use distance::{
+    DistanceFigures, SAMPLE_BUDGET, default_distance_reference, gives_mesh, is_construction,
+    samples_for,
+};
 pub use legend::{APEX_COLOR, APEX_LEGEND, LegendInfo, legend_rows, paper_class};
-pub use options::{ColorMode, Layer, PLANARITY_LIMIT_RANGE, PreviewOptions};
+pub use options::{ColorMode, DistanceSide, Layer, PLANARITY_LIMIT_RANGE, PreviewOptions};
 pub use picks::{PickCurve, PickGeometry, PickMesh, Picks};
 
 #[cfg(test)]
@@ -180,8 +187,11 @@ mod tests {
         assert_eq!(format_metres(0.0441), "0.0441 m");
         assert_eq!(format_metres(1.25), "1.25 m");
         assert_eq!(format_metres(17.9), "17.9 m");
-        let (title, rows) =
-            legend_rows(&LegendInfo::Distance(distance_legend("hull", 0.179))).unwrap();
+        let (title, rows) = legend_rows(&LegendInfo::Distance(distance_legend(
+            "distance to hull",
+            0.179,
+        )))
+        .unwrap();
         assert_eq!(title, "distance to hull");
         assert_eq!(rows.len(), 6);
         assert_eq!(rows[0].1, "0.179 m", "largest on top: {rows:?}");

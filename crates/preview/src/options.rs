@@ -12,8 +12,11 @@ pub enum ColorMode {
     /// By per-face planarity (viridis on a log scale anchored to tolerances: planar below 1e-9
     /// relative, not planar from 1e-3; `ToleranceMap`).
     Planarity,
-    /// By each vertex's distance to a reference mesh ([`PreviewOptions::distance_to`]): every
-    /// other previewed mesh blends viridis from 0 to the largest distance, the legend in metres.
+    /// By distance to a reference mesh ([`PreviewOptions::distance_to`]), viridis from 0 to the
+    /// largest distance, the legend in metres: each vertex of every other previewed mesh (the
+    /// net) by its distance to the reference, or each vertex of the reference by its distance to
+    /// the net ([`PreviewOptions::distance_side`]). The figures are the fit objective's
+    /// symmetric, area-weighted measure between the net and the reference.
     Distance,
     /// One colour (each node's own preview colour, when it has one).
     Plain,
@@ -35,6 +38,29 @@ impl ColorMode {
             ColorMode::Planarity => "Planarity",
             ColorMode::Distance => "Distance to a reference",
             ColorMode::Plain => "Plain",
+        }
+    }
+}
+
+/// Which side [`ColorMode::Distance`] colours.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum DistanceSide {
+    /// The net (every previewed mesh but the reference), each vertex by its distance to the
+    /// reference: where the net strays from the reference.
+    #[default]
+    Net,
+    /// The reference (drawn even when not previewed), each vertex by its distance to the net,
+    /// the net drawn translucent over it: where the reference is far from the net — a gap the
+    /// net's own colours cannot show.
+    Reference,
+}
+
+impl DistanceSide {
+    /// Menu label.
+    pub fn label(self) -> &'static str {
+        match self {
+            DistanceSide::Net => "Colour the net (its distance to the reference)",
+            DistanceSide::Reference => "Colour the reference (its distance to the net)",
         }
     }
 }
@@ -128,6 +154,8 @@ pub struct PreviewOptions {
     /// the node whose first mesh output the other meshes are measured against (`None`: not picked
     /// yet; the meshes are then drawn plainly).
     pub distance_to: Option<u64>,
+    /// What [`ColorMode::Distance`] colours: the net or the reference.
+    pub distance_side: DistanceSide,
     layers: u8,
     /// The top of the planarity scale (see [`PreviewOptions::planarity_limit`]), as `f64` bits
     /// so the options stay `Eq`.
@@ -139,6 +167,7 @@ impl Default for PreviewOptions {
         Self {
             color_mode: ColorMode::default(),
             distance_to: None,
+            distance_side: DistanceSide::Net,
             layers: Layer::ALL
                 .iter()
                 .filter(|l| !Layer::OFF_BY_DEFAULT.contains(l))

@@ -1,19 +1,16 @@
 //! The "colour by distance to …" mode's reference picker: in [`ColorMode::Distance`] a small list
-//! under the legend names the mesh the other previewed meshes are measured against (any node with
-//! a mesh output; it need not be previewed).
+//! under the legend names the mesh the net is measured against (any node with a mesh output; it
+//! need not be previewed) and which side is coloured: the net by its distance to the reference,
+//! or the reference by its distance to the net. The mode picks a reference by itself only among
+//! meshes that are not the net nor made from it ([`default_distance_reference`]); with none, it
+//! says so.
 
-use cnets_engine::{Graph, ValueType};
+use cnets_engine::Graph;
 use egui::{Rect, Ui};
 
-use crate::preview::{ColorMode, PreviewOptions};
-
-/// Whether a node gives a mesh (a quad grid or a polygon mesh, or a list of them).
-pub fn gives_mesh(node: &cnets_engine::NodeInstance) -> bool {
-    node.def
-        .outputs
-        .iter()
-        .any(|p| matches!(p.ty, ValueType::Mesh | ValueType::QuadMesh))
-}
+use crate::preview::{
+    ColorMode, DistanceSide, PreviewOptions, default_distance_reference, gives_mesh,
+};
 
 /// The nodes that can be the reference, `(uid, id)` in graph order.
 pub fn candidates(graph: &Graph) -> Vec<(u64, String)> {
@@ -24,41 +21,51 @@ pub fn candidates(graph: &Graph) -> Vec<(u64, String)> {
         .collect()
 }
 
-/// Picks the first mesh node when none (or a removed one) is the reference, so the mode shows
-/// something as soon as it is chosen. Returns whether the options changed.
-pub fn ensure_reference(options: &mut PreviewOptions, graph: &Graph) -> bool {
-    if options.color_mode != ColorMode::Distance {
-        return false;
+/// What the status bar says when the mode finds no mesh to measure the net against.
+pub const NO_REFERENCE: &str = "Distance to a reference: no mesh besides the net and what it is \
+                                made from — import or build a reference mesh (e.g. io.read_mesh), \
+                                or pick a node in the list under the legend";
+
+/// Picks a reference when none (or a removed one) is set — never the net itself or a mesh made
+/// from it ([`default_distance_reference`]) — so the mode shows something as soon as it is
+/// chosen. Returns a status message when there is none to pick, once (`said` remembers it until
+/// a reference is set or the mode left).
+pub fn ensure_reference(
+    options: &mut PreviewOptions,
+    graph: &Graph,
+    said: &mut bool,
+) -> Option<String> {
+    let valid = |uid: u64| graph.nodes().any(|(_, n)| n.uid() == uid && gives_mesh(n));
+    if options.color_mode != ColorMode::Distance || options.distance_to.is_some_and(valid) {
+        *said = false;
+        return None;
     }
-    let list = candidates(graph);
-    if options
-        .distance_to
-        .is_some_and(|uid| list.iter().any(|(u, _)| *u == uid))
-    {
-        return false;
+    options.distance_to = default_distance_reference(graph);
+    if options.distance_to.is_some() || *said {
+        *said = options.distance_to.is_none();
+        return None;
     }
-    let first = list.first().map(|(u, _)| *u);
-    let changed = options.distance_to != first;
-    options.distance_to = first;
-    changed
+    *said = true;
+    Some(NO_REFERENCE.to_string())
 }
 
-/// Draws the picker at `top` along the view's right edge; returns the bottom of what it drew.
+/// Draws the picker at `top` along the view's right edge (the reference, and which side is
+/// coloured); returns the rectangle it covers (`Rect::NOTHING` outside the mode).
 pub fn picker(
     ui: &mut Ui,
     rect: Rect,
     top: f32,
     options: &mut PreviewOptions,
     graph: &Graph,
-) -> f32 {
+) -> Rect {
     if options.color_mode != ColorMode::Distance {
-        return top;
+        return Rect::NOTHING;
     }
     let list = candidates(graph);
     let current = options
         .distance_to
         .and_then(|uid| list.iter().find(|(u, _)| *u == uid))
-        .map_or("(no mesh node)".to_string(), |(_, id)| id.clone());
+        .map_or("(none: pick a mesh)".to_string(), |(_, id)| id.clone());
     let at = egui::pos2(rect.right() - 240.0, top + 6.0);
     let response = egui::Area::new(egui::Id::new("cnets-distance-reference"))
         .fixed_pos(at)
@@ -76,10 +83,27 @@ pub fn picker(
                     })
                     .response
                     .on_hover_text(
-                        "the mesh the other previewed meshes are measured against: each vertex \
-                         is coloured by its distance to it (legend in metres)",
+                        "the mesh the net (every other previewed mesh) is measured against; the \
+                         figures are the symmetric, area-weighted distance (the fit objective's), \
+                         the colours each vertex's distance (legend in metres)",
                     );
             });
+            let mut reference = options.distance_side == DistanceSide::Reference;
+            if ui
+                .checkbox(&mut reference, "colour the reference")
+                .on_hover_text(
+                    "colour the reference by its distance to the net (the net translucent over \
+                     it): shows where the reference is far from the net, which the net's own \
+                     colours cannot",
+                )
+                .changed()
+            {
+                options.distance_side = if reference {
+                    DistanceSide::Reference
+                } else {
+                    DistanceSide::Net
+                };
+            }
         });
-    response.response.rect.bottom()
+    response.response.rect
 }

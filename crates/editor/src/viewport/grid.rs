@@ -143,13 +143,18 @@ impl Grid {
     }
 
     /// Labels the major lines in metres where they cross the plane's axes, and names the
-    /// spacing in the view's corner.
-    pub fn paint_labels(&self, painter: &Painter, map: &ScreenMap) {
+    /// spacing in the view's corner. No label is drawn over `keep_out` (the corner figures, the
+    /// legend): one that would touch them is left out.
+    pub fn paint_labels(&self, painter: &Painter, map: &ScreenMap, keep_out: &[Rect]) {
         let (u, v, _) = self.plane.axes();
         let font = egui::FontId::proportional(10.5);
         let ink = Color32::from_gray(95);
         let inside = map.rect.shrink(4.0);
-        let mut placed: Vec<Rect> = Vec::new();
+        let mut placed: Vec<Rect> = keep_out
+            .iter()
+            .copied()
+            .filter(|r| r.is_positive())
+            .collect();
         let mut label = |p: DVec3, text: String| {
             let Some(at) = map.to_screen(p) else {
                 return;

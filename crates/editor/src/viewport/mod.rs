@@ -122,6 +122,8 @@ pub struct Viewport {
     /// The lower edge of the labels in the view's top corners (statistics, legend) in the last
     /// frame: what sits below is free (the web page's first-visit hint goes there).
     pub labels_bottom: f32,
+    /// The distance mode found no reference and the status bar said so (said once).
+    no_reference_said: bool,
     fitted_once: bool,
     aspect: f32,
     /// Scene versions handed to the GPU (one per frame at most): the app reads it to know when a
@@ -179,6 +181,7 @@ impl Default for Viewport {
             bounds: None,
             fit_pending: false,
             labels_bottom: 0.0,
+            no_reference_said: false,
             fitted_once: false,
             aspect: 1.0,
             drawn_version: 0,
@@ -633,9 +636,6 @@ impl Viewport {
         let grid = self.show_grid.then(|| Grid::new(&map, self.cplane()));
         self.paint_scene(ui, gpu, rect, grid.as_ref());
         let painter = ui.painter_at(rect);
-        if let Some(grid) = &grid {
-            grid.paint_labels(&painter, &map);
-        }
         grid::paint_gizmo(&painter, &map);
         let pointer = ui
             .input(|i| i.pointer.hover_pos())
@@ -647,16 +647,27 @@ impl Viewport {
             Tool::Measure(m) => m.paint(&painter, &map, self.tool_point),
             Tool::Select => {}
         }
-        let stats = overlay::paint_stats(ui, rect, &self.stats);
+        // The figures wrap short of the legend's column.
+        let stats_width = rect.width() - overlay::LEGEND_WIDTH - 28.0;
+        let stats = overlay::paint_stats(ui, rect, &self.stats, stats_width);
         let folds = self.picks.folded_faces().len();
         let legend = overlay::legend(ui, rect, stats, &self.stats, folds);
         self.fold_entry = legend.fold_entry;
         self.labels_bottom = legend.bottom.max(stats.bottom());
-        // Colour by distance: which mesh the others are measured against.
-        distance::ensure_reference(&mut self.options, input.graph);
-        let picker_bottom =
-            distance::picker(ui, rect, legend.bottom, &mut self.options, input.graph);
-        self.labels_bottom = self.labels_bottom.max(picker_bottom);
+        // Colour by distance: which mesh the others are measured against, and which side is
+        // coloured.
+        if let Some(message) =
+            distance::ensure_reference(&mut self.options, input.graph, &mut self.no_reference_said)
+        {
+            actions.push(ViewportAction::Message(message));
+        }
+        let picker = distance::picker(ui, rect, legend.bottom, &mut self.options, input.graph);
+        self.labels_bottom = self.labels_bottom.max(picker.bottom());
+        // The grid's labels last, clear of the corner figures, the legend and the picker.
+        if let Some(grid) = &grid {
+            let keep_out = [stats, legend.covers, picker];
+            grid.paint_labels(&painter, &map, &keep_out);
+        }
         if legend.clicked {
             self.show_folds();
             actions.push(ViewportAction::Message(format!(

@@ -5,7 +5,7 @@
 use cnets_render::Bounds;
 use egui::{Color32, Rect, Sense, Ui, vec2};
 
-use crate::preview::{LegendInfo, PreviewStats, paper_class};
+use crate::preview::{LegendInfo, MeshKind, PreviewStats, format_metres, paper_class};
 use crate::worker::format_number;
 
 const INK: Color32 = Color32::from_gray(30);
@@ -14,43 +14,99 @@ fn font() -> egui::FontId {
     egui::FontId::proportional(12.0)
 }
 
-/// Paints the counts and the max planarity (naming its mesh when several are previewed) in the
-/// top-left corner.
-/// Returns the rectangle the text covers.
-pub fn paint_stats(ui: &Ui, rect: Rect, s: &PreviewStats) -> Rect {
-    let painter = ui.painter_at(rect);
-    let mut lines = vec![format!("{} vertices · {} faces", s.vertices, s.faces)];
-    if let Some(p) = s.max_planarity {
-        // Below 1e-12 the digits are rounding noise (and differ between machines).
-        let shown = if p < 1e-12 {
-            "< 1e-12".to_string()
-        } else {
-            format_number(p)
-        };
-        // With several meshes previewed, the one the figure is for.
-        match &s.max_planarity_mesh {
-            Some(mesh) => lines.push(format!("max planarity {shown} ({mesh})")),
-            None => lines.push(format!("max planarity {shown}")),
+/// A planarity as the corner shows it: below 1e-12 the digits are rounding noise (and differ
+/// between machines).
+fn planarity(p: f64) -> String {
+    if p < 1e-12 {
+        "< 1e-12".to_string()
+    } else {
+        format_number(p)
+    }
+}
+
+/// The lines of the top-left corner, each figure naming its mesh: the counts; the headline max
+/// planarity (the cone-nets', or without any the other meshes' — never a distance reference's);
+/// the largest planarity of the meshes it leaves out (other meshes beside cone-nets, the
+/// reference); in the distance mode the symmetric distance, or why there is none (the second
+/// item: a warning).
+pub fn stats_lines(s: &PreviewStats) -> Vec<(String, bool)> {
+    let mut lines = vec![(
+        format!("{} vertices · {} faces", s.vertices, s.faces),
+        false,
+    )];
+    if let (Some(p), Some(mesh)) = (s.max_planarity, &s.max_planarity_mesh) {
+        lines.push((format!("max planarity {} ({mesh})", planarity(p)), false));
+    }
+    let lead = s
+        .meshes
+        .iter()
+        .map(|m| m.kind)
+        .find(|k| *k != MeshKind::Reference);
+    for kind in [MeshKind::Mesh, MeshKind::Reference] {
+        if Some(kind) == lead {
+            continue;
+        }
+        let worst = s
+            .meshes
+            .iter()
+            .filter(|m| m.kind == kind)
+            .filter_map(|m| Some((m.max_planarity?, &m.name)))
+            .max_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((p, name)) = worst {
+            let what = match kind {
+                MeshKind::Reference => "reference",
+                _ => "other meshes",
+            };
+            lines.push((
+                format!("{what}: max planarity {} ({name})", planarity(p)),
+                false,
+            ));
         }
     }
-    let mut covered = Rect::NOTHING;
-    for (k, line) in lines.iter().enumerate() {
-        covered = covered.union(painter.text(
-            rect.left_top() + vec2(8.0, 6.0 + 16.0 * k as f32),
-            egui::Align2::LEFT_TOP,
-            line,
-            font(),
-            INK,
+    if let Some(d) = &s.distance {
+        lines.push((
+            format!(
+                "distance {} ↔ {}: rms {} · max {}",
+                d.net_name(),
+                d.reference,
+                format_metres(d.rms),
+                format_metres(d.max)
+            ),
+            false,
         ));
+    } else if let Some(why) = &s.distance_status {
+        lines.push((format!("⚠ distance: {why}"), true));
+    }
+    lines
+}
+
+/// The colour of a warning in the corner.
+const WARN: Color32 = Color32::from_rgb(0xb0, 0x3a, 0x0a);
+
+/// Paints the counts, the max planarity naming its mesh and the distance figures
+/// ([`stats_lines`]) in the top-left corner, at most `width` wide (a longer line wraps).
+/// Returns the rectangle the text covers.
+pub fn paint_stats(ui: &Ui, rect: Rect, s: &PreviewStats, width: f32) -> Rect {
+    let painter = ui.painter_at(rect);
+    let mut covered = Rect::NOTHING;
+    let mut y = rect.top() + 6.0;
+    for (line, warning) in stats_lines(s) {
+        let ink = if warning { WARN } else { INK };
+        let galley = painter.layout(line, font(), ink, width.max(80.0));
+        let at = egui::pos2(rect.left() + 8.0, y);
+        let r = Rect::from_min_size(at, galley.size());
+        y = r.bottom() + 2.0;
+        painter.galley(at, galley, ink);
+        covered = covered.union(r);
     }
     covered
 }
 
 /// The legend's width from the view's right edge (points).
-const LEGEND_WIDTH: f32 = 170.0;
+pub const LEGEND_WIDTH: f32 = 170.0;
 
-/// The legend as painted: whether its fold entry was clicked, that entry's rectangle, and the
-/// legend's lower edge (the view's top when there is no legend).
+/// The legend as painted: whether its fold entry was clicked, that entry's rectangle, the
+/// legend's lower edge (the view's top when there is no legend) and what it covers.
 #[derive(Clone, Copy, Debug)]
 pub struct LegendShown {
     /// The fold entry was clicked.
@@ -59,6 +115,9 @@ pub struct LegendShown {
     pub fold_entry: Option<Rect>,
     /// The legend's lower edge.
     pub bottom: f32,
+    /// The rectangle the legend covers (title, swatches, labels, fold entry; `Rect::NOTHING`
+    /// without one): the grid's labels keep out of it.
+    pub covers: Rect,
 }
 
 /// The legend's fold entry: how many faces are not (++)(++).
@@ -71,21 +130,20 @@ pub fn fold_label(folds: usize) -> String {
 /// (++)(++), an entry counting them that the designer clicks to frame and outline them.
 pub fn legend(ui: &mut Ui, rect: Rect, stats: Rect, s: &PreviewStats, folds: usize) -> LegendShown {
     let painter = ui.painter_at(rect);
+    let covered = std::cell::Cell::new(Rect::NOTHING);
     let swatch = |y: f32, color: cnets_render::Color, label: String| {
         let [r, g, b, _] = color.0;
         let x = rect.right() - LEGEND_WIDTH;
-        painter.rect_filled(
-            Rect::from_min_size(egui::pos2(x, y), vec2(14.0, 12.0)),
-            2.0,
-            Color32::from_rgb(r, g, b),
-        );
-        painter.text(
+        let square = Rect::from_min_size(egui::pos2(x, y), vec2(14.0, 12.0));
+        painter.rect_filled(square, 2.0, Color32::from_rgb(r, g, b));
+        let text = painter.text(
             egui::pos2(x + 20.0, y),
             egui::Align2::LEFT_TOP,
             label,
             font(),
             INK,
         );
+        covered.set(covered.get().union(square).union(text));
     };
     let beside = !stats.is_positive() || stats.right() + 12.0 < rect.right() - LEGEND_WIDTH;
     let top = if beside {
@@ -94,13 +152,14 @@ pub fn legend(ui: &mut Ui, rect: Rect, stats: Rect, s: &PreviewStats, folds: usi
         stats.bottom() + 10.0
     };
     let title = |text: &str| {
-        painter.text(
+        let r = painter.text(
             egui::pos2(rect.right() - LEGEND_WIDTH, top),
             egui::Align2::LEFT_TOP,
             text,
             font(),
             INK,
         );
+        covered.set(covered.get().union(r));
     };
     let rows = match &s.legend {
         LegendInfo::None => 0,
@@ -139,6 +198,7 @@ pub fn legend(ui: &mut Ui, rect: Rect, stats: Rect, s: &PreviewStats, folds: usi
             clicked: false,
             fold_entry: None,
             bottom,
+            covers: covered.get(),
         };
     }
     let y = top + 22.0 + 16.0 * rows as f32;
@@ -160,10 +220,12 @@ pub fn legend(ui: &mut Ui, rect: Rect, stats: Rect, s: &PreviewStats, folds: usi
         );
     }
     painter.galley(entry.min + vec2(2.0, 2.0), galley, Color32::PLACEHOLDER);
+    let covers = covered.get().union(entry);
     LegendShown {
         clicked: response.clicked(),
         fold_entry: Some(entry),
         bottom: entry.bottom(),
+        covers,
     }
 }
 

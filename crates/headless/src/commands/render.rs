@@ -1,14 +1,17 @@
 //! `cnets render <GRAPH.ron> --png <FILE> [--size WxH] [--view iso|top|front|side] [--color …]
 //! [--apices] [--planarity-limit X]`: the picture carries its legend (the face classes in words
-//! and the paper's notation, or the planarity scale; the apices when shown).
+//! and the paper's notation, the planarity scale or the distance scale; the apices when shown).
+//! The summary names the mesh of every figure: the previewed cone-nets first, a distance
+//! reference apart (never in the net's planarity), and in the distance modes the symmetric,
+//! area-weighted distance between the net and the reference (the fit objective's measure).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag};
 use cnets_preview::{
-    APEX_COLOR, APEX_LEGEND, ColorMode, Layer, PreviewOptions, PreviewStats, build_scene,
-    legend_rows,
+    APEX_COLOR, APEX_LEGEND, ColorMode, DistanceSide, Layer, MeshKind, PreviewOptions,
+    PreviewStats, build_scene, legend_rows,
 };
 use cnets_render::{Camera, Image, LegendBlock, Offscreen, View, draw_legend};
 
@@ -30,7 +33,10 @@ pub struct Args {
     #[arg(long, default_value = "iso")]
     view: String,
     /// Face colours: config (face class from the construction's configurations), planarity, plain,
-    /// or distance:NODE (each vertex's distance to NODE's mesh, legend in metres).
+    /// distance:NODE (each vertex of the net — every other previewed mesh — by its distance to
+    /// NODE's mesh) or distance-reference:NODE (each vertex of NODE's mesh, drawn even when not
+    /// previewed, by its distance to the net, the net translucent over it: shows where the
+    /// reference is far from the net). Legend in metres; the summary gives the symmetric distance.
     #[arg(long, default_value = "config")]
     color: String,
     /// Hide a layer: surfaces, edges, curves, apices, axes, supports or points (repeatable).
@@ -70,21 +76,30 @@ fn parse_size(text: &str) -> Result<(u32, u32), Failure> {
     Ok((w, h))
 }
 
-/// The colour mode, and for `distance:NODE` the reference node's id.
-fn parse_color(text: &str) -> Result<(ColorMode, Option<String>), Failure> {
+/// The colour mode; for `distance:NODE` and `distance-reference:NODE` the reference node's id
+/// and the side coloured.
+fn parse_color(text: &str) -> Result<(ColorMode, Option<(String, DistanceSide)>), Failure> {
     match text {
         "config" | "configuration" | "class" => Ok((ColorMode::Configuration, None)),
         "planarity" => Ok((ColorMode::Planarity, None)),
         "plain" | "none" => Ok((ColorMode::Plain, None)),
-        other => match other.split_once(':') {
-            Some(("distance", node)) if !node.trim().is_empty() => {
-                Ok((ColorMode::Distance, Some(node.trim().to_string())))
+        other => {
+            let side = match other.split_once(':') {
+                Some(("distance", node)) => Some((node, DistanceSide::Net)),
+                Some(("distance-reference", node)) => Some((node, DistanceSide::Reference)),
+                _ => None,
+            };
+            match side {
+                Some((node, side)) if !node.trim().is_empty() => {
+                    Ok((ColorMode::Distance, Some((node.trim().to_string(), side))))
+                }
+                _ => Err(Failure::usage(format!(
+                    "--color '{other}': use config, planarity, plain, distance:NODE (the net \
+                     coloured by its distance to NODE's mesh) or distance-reference:NODE (NODE's \
+                     mesh coloured by its distance to the net)"
+                ))),
             }
-            _ => Err(Failure::usage(format!(
-                "--color '{other}': use config, planarity, plain or distance:NODE (the node whose \
-                 mesh the others are measured against)"
-            ))),
-        },
+        }
     }
 }
 
@@ -96,7 +111,8 @@ pub struct Look {
     pub view: View,
     /// Colours and visible layers.
     pub options: PreviewOptions,
-    /// `--color distance:NODE`: the reference node's id, until [`Look::resolve`] finds it.
+    /// `--color distance:NODE` or `distance-reference:NODE`: the reference node's id, until
+    /// [`Look::resolve`] finds it.
     pub distance_to: Option<String>,
 }
 
@@ -108,8 +124,12 @@ impl Look {
             .parse()
             .map_err(|_| Failure::usage(format!("--view '{view}': use iso, top, front or side")))?;
         let mut options = PreviewOptions::default();
-        let (mode, distance_to) = parse_color(color)?;
+        let (mode, distance) = parse_color(color)?;
         options.color_mode = mode;
+        let distance_to = distance.map(|(node, side)| {
+            options.distance_side = side;
+            node
+        });
         // Apices are far from the surface and clutter a picture: shown only when asked.
         options.set(Layer::Apices, false);
         for name in hide {
@@ -133,8 +153,12 @@ impl Look {
             return Ok(());
         };
         let node = graph.node(id).ok_or_else(|| {
+            let spelling = match self.options.distance_side {
+                DistanceSide::Net => "distance",
+                DistanceSide::Reference => "distance-reference",
+            };
             Failure::usage(format!(
-                "--color distance:{id}: the graph has no node '{id}'"
+                "--color {spelling}:{id}: the graph has no node '{id}'"
             ))
         })?;
         self.options.distance_to = Some(node.uid());
@@ -190,7 +214,7 @@ pub fn check_target(path: &Path) -> Result<(), Failure> {
 }
 
 /// Renders the previewed geometry of an evaluated graph to a PNG (atomically), with its legend;
-/// returns a one-line summary.
+/// returns a summary: `wrote …` and the figures ([`summary`]), one indented line each.
 pub fn render_png(
     graph: &Graph,
     evaluator: &Evaluator,
@@ -215,32 +239,119 @@ pub fn render_png(
     // Atomic, and only over nothing or a regular file (never a FIFO or a device).
     cnets_engine::files::write_file(png, &bytes)
         .map_err(|e| Failure::usage(format!("cannot write the picture: {e}")))?;
-    // With several meshes previewed, the one the figure is for.
-    let planarity = match (stats.max_planarity, &stats.max_planarity_mesh) {
-        (Some(p), Some(mesh)) => format!(", max planarity {p:.1e} ({mesh})"),
-        (Some(p), None) => format!(", max planarity {p:.1e}"),
-        _ => String::new(),
-    };
-    let distance = match (&stats.distance, look.options.color_mode) {
-        (Some(d), _) => format!(
-            ", distance to {}: max {} rms {} over {} vertices",
-            d.reference,
-            cnets_preview::format_metres(d.max),
-            cnets_preview::format_metres(d.rms),
-            d.vertices
-        ),
-        (None, ColorMode::Distance) => ", no mesh measured (the reference has no mesh, or \
-                                        nothing else is previewed)"
-            .to_string(),
-        _ => String::new(),
-    };
     Ok(format!(
-        "wrote {} ({width}x{height}, {} view, {} vertices, {} faces{planarity}{distance})",
+        "wrote {} ({width}x{height}, {} view)\n{}",
         png.display(),
         look.view,
-        stats.vertices,
-        stats.faces
+        summary(&stats, look.options.color_mode)
     ))
+}
+
+/// A planarity for the summary: `< 1e-12` below rounding noise, else two digits.
+fn planarity(p: f64) -> String {
+    if p < 1e-12 {
+        "< 1e-12".into()
+    } else {
+        format!("{p:.1e}")
+    }
+}
+
+/// Meshes of one kind listed one a line before the rest are counted.
+const LISTED: usize = 8;
+
+/// The figures of a picture, one indented line each, every figure naming its mesh: the headline
+/// planarity (the cone-nets', or without any the other meshes' — never a distance reference's),
+/// each previewed mesh (cone-nets first, the reference last), and in the distance modes the
+/// symmetric distance and what the colours show.
+pub fn summary(stats: &PreviewStats, mode: ColorMode) -> String {
+    let mut lines = Vec::new();
+    let lead = stats.meshes.iter().find(|m| m.kind != MeshKind::Reference);
+    let headline_of = lead.map(|m| match m.kind {
+        MeshKind::ConeNet => "the cone-nets",
+        _ => "the meshes",
+    });
+    match (stats.max_planarity, &stats.max_planarity_mesh, headline_of) {
+        (Some(p), Some(mesh), Some(of)) => lines.push(format!(
+            "max planarity {} ({mesh}; headline: {of}, {} vertices, {} faces in all)",
+            planarity(p),
+            stats.vertices,
+            stats.faces
+        )),
+        _ => lines.push(format!(
+            "{} vertices, {} faces in all",
+            stats.vertices, stats.faces
+        )),
+    }
+    for kind in [MeshKind::ConeNet, MeshKind::Mesh, MeshKind::Reference] {
+        let of_kind: Vec<_> = stats.meshes.iter().filter(|m| m.kind == kind).collect();
+        for m in of_kind.iter().take(LISTED) {
+            let p = m.max_planarity.map_or(String::new(), |p| {
+                format!(", max planarity {}", planarity(p))
+            });
+            let note = if kind == MeshKind::Reference {
+                " (the distance reference: not in the net's figures)"
+            } else {
+                ""
+            };
+            lines.push(format!(
+                "{} {}: {} vertices, {} faces{p}{note}",
+                kind.word(),
+                m.name,
+                m.vertices,
+                m.faces
+            ));
+        }
+        if of_kind.len() > LISTED {
+            lines.push(format!(
+                "… and {} more {}es",
+                of_kind.len() - LISTED,
+                kind.word()
+            ));
+        }
+    }
+    let metres = cnets_preview::format_metres;
+    match (&stats.distance, mode) {
+        (Some(d), _) => {
+            lines.push(format!(
+                "distance {} ↔ {} (symmetric, area-weighted): rms {} max {}; net → reference rms \
+                 {} max {}; reference → net rms {} max {}",
+                d.net_name(),
+                d.reference,
+                metres(d.rms),
+                metres(d.max),
+                metres(d.net_rms),
+                metres(d.net_max),
+                metres(d.reference_rms),
+                metres(d.reference_max)
+            ));
+            let coloured = match d.side {
+                DistanceSide::Net => {
+                    format!("the net's vertices by their distance to {}", d.reference)
+                }
+                DistanceSide::Reference => {
+                    format!("{}'s vertices by their distance to the net", d.reference)
+                }
+            };
+            lines.push(format!(
+                "colours: {coloured}, 0 … {} over {} vertices",
+                metres(d.colour_max),
+                d.vertices
+            ));
+        }
+        (None, ColorMode::Distance) => lines.push(format!(
+            "no distance measured: {}",
+            stats
+                .distance_status
+                .as_deref()
+                .unwrap_or("no reference mesh")
+        )),
+        _ => {}
+    }
+    lines
+        .iter()
+        .map(|l| format!("  {l}"))
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// Runs the command.

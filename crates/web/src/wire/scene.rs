@@ -4,8 +4,8 @@
 use std::sync::Arc;
 
 use cnets_editor::preview::{
-    ColorMode, Layer, LegendInfo, PickCurve, PickGeometry, PickMesh, Picks, PreviewOptions,
-    PreviewStats,
+    ColorMode, DistanceFigures, DistanceSide, Layer, LegendInfo, MeshFigures, MeshKind, PickCurve,
+    PickGeometry, PickMesh, Picks, PreviewOptions, PreviewStats,
 };
 use cnets_geometry::fabrication::FaceClass;
 use cnets_geometry::{PolygonMesh, Polyline, QuadGrid};
@@ -22,6 +22,7 @@ pub(super) fn options(w: &mut Writer, o: &PreviewOptions) {
         ColorMode::Distance => 3,
     });
     w.opt(o.distance_to.as_ref(), |w, uid| w.u64(*uid));
+    w.u8(side_index(o.distance_side));
     let layers = Layer::ALL
         .iter()
         .enumerate()
@@ -40,6 +41,7 @@ pub(super) fn read_options(r: &mut Reader) -> Res<PreviewOptions> {
         _ => return Err(WireError("unknown colour mode")),
     };
     o.distance_to = r.opt(Reader::u64)?;
+    o.distance_side = read_side(r)?;
     let layers = r.u32()?;
     for (k, l) in Layer::ALL.iter().enumerate() {
         o.set(*l, layers & (1 << k) != 0);
@@ -95,11 +97,51 @@ pub(super) fn read_class(r: &mut Reader) -> Res<FaceClass> {
         .ok_or(WireError("unknown face class"))
 }
 
+fn side_index(side: DistanceSide) -> u8 {
+    match side {
+        DistanceSide::Net => 0,
+        DistanceSide::Reference => 1,
+    }
+}
+
+fn read_side(r: &mut Reader) -> Res<DistanceSide> {
+    match r.u8()? {
+        0 => Ok(DistanceSide::Net),
+        1 => Ok(DistanceSide::Reference),
+        _ => Err(WireError("unknown distance side")),
+    }
+}
+
+fn kind_index(kind: MeshKind) -> u8 {
+    match kind {
+        MeshKind::ConeNet => 0,
+        MeshKind::Mesh => 1,
+        MeshKind::Reference => 2,
+    }
+}
+
+fn read_kind(r: &mut Reader) -> Res<MeshKind> {
+    match r.u8()? {
+        0 => Ok(MeshKind::ConeNet),
+        1 => Ok(MeshKind::Mesh),
+        2 => Ok(MeshKind::Reference),
+        _ => Err(WireError("unknown mesh kind")),
+    }
+}
+
 pub(super) fn stats(w: &mut Writer, s: &PreviewStats) {
     w.u64(s.vertices as u64);
     w.u64(s.faces as u64);
     w.opt(s.max_planarity.as_ref(), |w, p| w.f64(*p));
     w.opt(s.max_planarity_mesh.as_ref(), |w, m| w.str(m));
+    w.len(s.meshes.len());
+    for m in &s.meshes {
+        w.str(&m.name);
+        w.u8(kind_index(m.kind));
+        w.u64(m.vertices as u64);
+        w.u64(m.faces as u64);
+        w.opt(m.max_planarity.as_ref(), |w, p| w.f64(*p));
+    }
     match &s.legend {
         LegendInfo::None => w.u8(0),
         LegendInfo::Classes(classes) => {
@@ -130,10 +172,24 @@ pub(super) fn stats(w: &mut Writer, s: &PreviewStats) {
     w.u64(s.apices as u64);
     w.opt(s.distance.as_ref(), |w, d| {
         w.str(&d.reference);
-        w.f64(d.max);
-        w.f64(d.rms);
+        w.strs(&d.net);
+        for x in [
+            d.rms,
+            d.max,
+            d.net_rms,
+            d.net_max,
+            d.reference_rms,
+            d.reference_max,
+        ] {
+            w.f64(x);
+        }
+        w.u64(d.samples.0 as u64);
+        w.u64(d.samples.1 as u64);
+        w.u8(side_index(d.side));
         w.u64(d.vertices as u64);
+        w.f64(d.colour_max);
     });
+    w.opt(s.distance_status.as_ref(), |w, t| w.str(t));
     w.f64(s.build_ms);
 }
 
@@ -142,6 +198,19 @@ pub(super) fn read_stats(r: &mut Reader) -> Res<PreviewStats> {
     let faces = r.usize()?;
     let max_planarity = r.opt(Reader::f64)?;
     let max_planarity_mesh = r.opt(Reader::string)?;
+    // A name (its length), a kind, two counts and an optional number: at least 26 bytes each.
+    let n = r.len(26)?;
+    let meshes = (0..n)
+        .map(|_| {
+            Ok(MeshFigures {
+                name: r.string()?,
+                kind: read_kind(r)?,
+                vertices: r.usize()?,
+                faces: r.usize()?,
+                max_planarity: r.opt(Reader::f64)?,
+            })
+        })
+        .collect::<Res<_>>()?;
     let legend = match r.u8()? {
         0 => LegendInfo::None,
         1 => {
@@ -185,16 +254,26 @@ pub(super) fn read_stats(r: &mut Reader) -> Res<PreviewStats> {
         faces,
         max_planarity,
         max_planarity_mesh,
+        meshes,
         legend,
         apices: r.usize()?,
         distance: r.opt(|r| {
-            Ok(cnets_editor::preview::DistanceFigures {
+            Ok(DistanceFigures {
                 reference: r.string()?,
-                max: r.f64()?,
+                net: r.strings()?,
                 rms: r.f64()?,
+                max: r.f64()?,
+                net_rms: r.f64()?,
+                net_max: r.f64()?,
+                reference_rms: r.f64()?,
+                reference_max: r.f64()?,
+                samples: (r.usize()?, r.usize()?),
+                side: read_side(r)?,
                 vertices: r.usize()?,
+                colour_max: r.f64()?,
             })
         })?,
+        distance_status: r.opt(Reader::string)?,
         build_ms: r.f64()?,
     })
 }

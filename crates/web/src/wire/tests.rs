@@ -3,7 +3,8 @@
 use std::sync::Arc;
 
 use cnets_editor::preview::{
-    ColorMode, Layer, LegendInfo, PickCurve, PickGeometry, PickMesh, PreviewOptions, PreviewStats,
+    ColorMode, DistanceSide, Layer, LegendInfo, MeshFigures, MeshKind, PickCurve, PickGeometry,
+    PickMesh, PreviewOptions, PreviewStats,
 };
 use cnets_geometry::fabrication::FaceClass;
 use cnets_geometry::{DVec3, Polyline, QuadGrid};
@@ -19,6 +20,8 @@ fn round_trip(message: &ToWorker) -> ToWorker {
 fn requests_round_trip() {
     let mut options = PreviewOptions::default();
     options.color_mode = ColorMode::Planarity;
+    options.distance_to = Some(17);
+    options.distance_side = DistanceSide::Reference;
     options.set(Layer::Apices, false);
     assert!(options.set_planarity_limit(1e-5));
     let job = ToWorker::Evaluate(Job {
@@ -124,14 +127,39 @@ fn answers_round_trip_with_statuses_scene_and_picks() {
             faces: 2,
             max_planarity: Some(2e-3),
             max_planarity_mesh: Some("net.mesh".into()),
+            meshes: vec![
+                MeshFigures {
+                    name: "net.mesh".into(),
+                    kind: MeshKind::ConeNet,
+                    vertices: 6,
+                    faces: 2,
+                    max_planarity: Some(2e-3),
+                },
+                MeshFigures {
+                    name: "hull.mesh[3]".into(),
+                    kind: MeshKind::Reference,
+                    vertices: 4,
+                    faces: 1,
+                    max_planarity: None,
+                },
+            ],
             legend: LegendInfo::Classes(vec![(FaceClass::Convex, 1)]),
             apices: 0,
             distance: Some(cnets_editor::preview::DistanceFigures {
                 reference: "hull".into(),
-                max: 0.179,
+                net: vec!["net.mesh".into(), "net.mesh[1]".into()],
                 rms: 0.025,
+                max: 0.179,
+                net_rms: 0.02,
+                net_max: 0.1,
+                reference_rms: 0.03,
+                reference_max: 0.179,
+                samples: (4, 2),
+                side: DistanceSide::Reference,
                 vertices: 560,
+                colour_max: 0.17,
             }),
+            distance_status: Some("nothing else is previewed".into()),
             build_ms: 0.5,
         },
         picks: Arc::new(picks),
@@ -148,7 +176,7 @@ fn answers_round_trip_with_statuses_scene_and_picks() {
     assert_eq!(a.statuses, statuses);
     let (s, stats, p) = a.preview.expect("the preview");
     assert!(same_scene(&s, &scene) && s.bounds() == scene.bounds());
-    assert_eq!(stats.legend, response.stats.legend);
+    assert_eq!(stats, response.stats);
     assert_eq!(p.meshes[0].classes, response.picks.meshes[0].classes);
     assert_eq!(p.meshes[0].planarity, response.picks.meshes[0].planarity);
     assert_eq!(p.meshes[0].geometry.vertices(), grid_vertices(&response));
