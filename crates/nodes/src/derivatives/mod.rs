@@ -11,6 +11,7 @@
 mod construction;
 mod curves;
 mod dual;
+mod mapper;
 mod math;
 mod measure;
 mod mesh_ops;
@@ -37,6 +38,13 @@ pub fn attach(defs: Vec<NodeDef>) -> Vec<NodeDef> {
             if let Some(d) = curves::product(&id) {
                 let def = def.with_vjp(d);
                 return match curves::branch(&id, def.inputs.clone()) {
+                    Some(branch) => def.with_branch(branch),
+                    None => def,
+                };
+            }
+            if let Some(d) = mapper::product(&id) {
+                let def = def.with_vjp(d);
+                return match mapper::branch(&id) {
                     Some(branch) => def.with_branch(branch),
                     None => def,
                 };

@@ -1004,3 +1004,148 @@ fn area_product_matches_differences() {
     );
     assert!(rel < 1e-7, "measure.area (wrapping rows): {rel}");
 }
+
+fn mapper_handles(hs: &[(f64, f64)]) -> Value {
+    Value::list(
+        hs.iter()
+            .map(|&(u, v)| Value::Point(DVec3::new(u, v, 0.0)))
+            .collect(),
+    )
+}
+
+/// Every mapper kind at handles that are not the defaults, mapping values on a stretched domain
+/// (inside the handles, between them and held or extended beyond them, off every kink) and
+/// sampling: the product in the handles (u and v), the domains and the values.
+#[test]
+fn mapper_products_match_differences_for_every_kind() {
+    let n = Value::Number;
+    let cases: Vec<(&str, Vec<(f64, f64)>)> = vec![
+        ("linear", vec![(0.2, 0.1), (0.7, 0.9)]),
+        (
+            "bezier",
+            vec![(0.1, 0.2), (0.3, 0.9), (0.6, 0.0), (0.9, 0.8)],
+        ),
+        ("parabola", vec![(0.4, 0.2), (0.9, 0.7)]),
+        ("power", vec![(0.1, 0.1), (0.9, 0.8), (0.6, 0.2)]),
+        ("sine", vec![(0.2, 0.9), (0.45, 0.1)]),
+        ("gaussian", vec![(0.6, 0.8), (0.4, 0.3)]),
+        ("sqrt", vec![(0.1, 0.3), (0.8, 0.6)]),
+        (
+            "conic",
+            vec![(0.0, 0.0), (0.2, 0.8), (1.0, 1.0), (0.3, 0.6)],
+        ),
+        ("piecewise", vec![(0.7, 0.1), (0.1, 0.5), (0.4, 0.9)]),
+        // Extrema at the interior knots (zero slopes).
+        (
+            "spline",
+            vec![(0.0, 0.2), (0.3, 0.7), (0.5, 0.4), (1.0, 0.9)],
+        ),
+        // Monotone, given out of order: harmonic-mean slopes, the three-point ends.
+        (
+            "spline",
+            vec![
+                (0.6, 0.65),
+                (0.0, 0.1),
+                (0.25, 0.5),
+                (1.0, 1.0),
+                (0.8, 0.95),
+            ],
+        ),
+        // A peak at the first interior knot: the start slope clamped to 3δ.
+        (
+            "spline",
+            vec![(0.0, 0.0), (0.1, 0.9), (0.9, 0.1), (1.0, 0.15)],
+        ),
+    ];
+    let us = [-0.1, 0.13, 0.37, 0.58, 0.66, 0.81, 1.2];
+    let (x0, x1) = (-2.0, 6.0);
+    let values = Value::list(us.iter().map(|u| n(x0 + u * (x1 - x0))).collect());
+    for (kind, hs) in &cases {
+        let named = [
+            ("kind", Value::text(*kind)),
+            ("handles", mapper_handles(hs)),
+            ("x_start", n(x0)),
+            ("x_end", n(x1)),
+            ("y_start", n(10.0)),
+            ("y_end", n(5.0)),
+            ("values", values.clone()),
+        ];
+        let all = ["handles", "x_start", "x_end", "y_start", "y_end", "values"];
+        let rel = compare("mapper.graph", &named, &all);
+        assert!(rel < 1e-6, "mapper.graph {kind} (values): {rel}");
+        // Each input alone (a wrong partial is not hidden by a large one elsewhere).
+        for one in all {
+            let rel = compare("mapper.graph", &named, &[one]);
+            assert!(rel < 1e-6, "mapper.graph {kind} in {one}: {rel}");
+        }
+        // Samples at u = k/7: kinds with a handle there sit on a kink (held or not) and are
+        // covered by the values above.
+        if hs.iter().any(|h| (h.0 * 7.0 - (h.0 * 7.0).round()).abs() < 0.05) {
+            continue;
+        }
+        let sampled = [
+            ("kind", Value::text(*kind)),
+            ("handles", mapper_handles(hs)),
+            ("x_start", n(x0)),
+            ("x_end", n(x1)),
+            ("y_start", n(-1.0)),
+            ("y_end", n(2.5)),
+            ("count", Value::Integer(8)),
+        ];
+        let rel = compare(
+            "mapper.graph",
+            &sampled,
+            &["handles", "x_start", "x_end", "y_start", "y_end"],
+        );
+        assert!(rel < 1e-6, "mapper.graph {kind} (sampled): {rel}");
+    }
+}
+
+/// The spline's piece is the limiter branch of every knot: moving a handle's v across a level
+/// (an interior extremum appears) changes it; a small move on the same piece does not.
+#[test]
+fn mapper_spline_branches_are_the_limiter_branches() {
+    let d = def("mapper.graph");
+    let branch = d.branch.clone().expect("the mapper has a branch function");
+    let piece = |v: f64| {
+        let ins = inputs(
+            &d,
+            &[
+                ("kind", Value::text("spline")),
+                (
+                    "handles",
+                    mapper_handles(&[(0.0, 0.1), (0.3, v), (0.6, 0.6), (1.0, 0.9)]),
+                ),
+                ("count", Value::Integer(9)),
+            ],
+        );
+        branch(&ins, &[]).unwrap()
+    };
+    let (a, b, c) = (piece(0.3), piece(0.31), piece(0.7));
+    assert_eq!(a.key, b.key);
+    assert_ne!(a.key, c.key, "{} / {}", a.summary, c.summary);
+    assert!(c.summary.contains("zero"), "{}", c.summary);
+    // Extending kinds have one piece.
+    let ins = inputs(&d, &[("kind", Value::text("sine"))]);
+    assert!(branch(&ins, &[]).is_none());
+}
+
+#[test]
+fn table_products_match_differences() {
+    let n = Value::Number;
+    let list = |xs: &[f64]| Value::list(xs.iter().map(|&x| n(x)).collect());
+    for rule in ["sum", "product", "mean"] {
+        let named = [
+            ("rows", list(&[0.3, -1.2, 0.8])),
+            ("columns", list(&[1.5, 0.4, -0.7, 2.0])),
+            ("rule", Value::text(rule)),
+            ("centre", n(0.45)),
+        ];
+        let rel = compare("list.table", &named, &["rows", "columns", "centre"]);
+        assert!(rel < 1e-8, "list.table {rule}: {rel}");
+        for one in ["rows", "columns"] {
+            let rel = compare("list.table", &named, &[one]);
+            assert!(rel < 1e-8, "list.table {rule} in {one}: {rel}");
+        }
+    }
+}
