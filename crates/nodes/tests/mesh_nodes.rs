@@ -67,12 +67,13 @@ fn ports_are_documented_contracts() {
                 "lines",
                 "polylines",
                 "planarity_limit",
+                "names",
             ],
             &["path"],
         ),
         (
             "io.export_obj",
-            &["name", "meshes", "lines", "polylines"],
+            &["name", "meshes", "lines", "polylines", "names"],
             &["path"],
         ),
         (
