@@ -71,39 +71,84 @@ pub fn picker(
         .fixed_pos(at)
         .order(egui::Order::Foreground)
         .show(ui.ctx(), |ui| {
-            ui.horizontal(|ui| {
-                ui.label("distance to");
-                egui::ComboBox::from_id_salt("cnets-distance-reference-combo")
-                    .selected_text(current)
-                    .width(140.0)
-                    .show_ui(ui, |ui| {
-                        for (uid, id) in &list {
-                            ui.selectable_value(&mut options.distance_to, Some(*uid), id);
-                        }
-                    })
-                    .response
-                    .on_hover_text(
-                        "the mesh the net (every other previewed mesh) is measured against; the \
-                         figures are the symmetric, area-weighted distance (the fit objective's), \
-                         the colours each vertex's distance (legend in metres)",
-                    );
-            });
-            let mut reference = options.distance_side == DistanceSide::Reference;
-            if ui
-                .checkbox(&mut reference, "colour the reference")
-                .on_hover_text(
-                    "colour the reference by its distance to the net (the net translucent over \
-                     it): shows where the reference is far from the net, which the net's own \
-                     colours cannot",
-                )
-                .changed()
-            {
-                options.distance_side = if reference {
-                    DistanceSide::Reference
-                } else {
-                    DistanceSide::Net
-                };
-            }
+            // On a plate of its own: the view behind is light, the theme's words may not be.
+            egui::Frame::popup(ui.style()).show(ui, |ui| picker_body(ui, options, &list, current));
         });
     response.response.rect
+}
+
+/// The picker's rows: the reference list and the side checkbox.
+fn picker_body(ui: &mut Ui, options: &mut PreviewOptions, list: &[(u64, String)], current: String) {
+    ui.horizontal(|ui| {
+        ui.label("distance to");
+        egui::ComboBox::from_id_salt("cnets-distance-reference-combo")
+            .selected_text(current)
+            .width(140.0)
+            .show_ui(ui, |ui| {
+                for (uid, id) in list {
+                    ui.selectable_value(&mut options.distance_to, Some(*uid), id);
+                }
+            })
+            .response
+            .on_hover_text(
+                "the mesh the net (every other previewed mesh) is measured against; the \
+                         figures are the symmetric, area-weighted distance (the fit objective's), \
+                         the colours each vertex's distance (legend in metres)",
+            );
+    });
+    let mut reference = options.distance_side == DistanceSide::Reference;
+    if ui
+        .checkbox(&mut reference, "colour the reference")
+        .on_hover_text(
+            "colour the reference by its distance to the net (the net translucent over \
+                     it): shows where the reference is far from the net, which the net's own \
+                     colours cannot",
+        )
+        .changed()
+    {
+        options.distance_side = if reference {
+            DistanceSide::Reference
+        } else {
+            DistanceSide::Net
+        };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn without_a_reference_the_mode_says_so_once_and_never_picks_the_net() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../graphs/editor-default.ron"
+        ))
+        .unwrap();
+        let registry = std::sync::Arc::new(cnets_nodes::registry());
+        let graph = cnets_engine::file::load_str(&text, "default.ron", &registry)
+            .unwrap()
+            .graph;
+        let mut o = PreviewOptions::default();
+        let mut said = false;
+        assert_eq!(
+            ensure_reference(&mut o, &graph, &mut said),
+            None,
+            "not in the mode"
+        );
+        o.color_mode = ColorMode::Distance;
+        let first = ensure_reference(&mut o, &graph, &mut said);
+        assert!(first.is_some_and(|m| m.contains("no mesh besides the net")));
+        assert_eq!(o.distance_to, None, "the net is not its own reference");
+        assert_eq!(
+            ensure_reference(&mut o, &graph, &mut said),
+            None,
+            "said once"
+        );
+        // Picked by hand, it is kept.
+        let uid = graph.node("construct").unwrap().uid();
+        o.distance_to = Some(uid);
+        assert_eq!(ensure_reference(&mut o, &graph, &mut said), None);
+        assert_eq!(o.distance_to, Some(uid));
+    }
 }

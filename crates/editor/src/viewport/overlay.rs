@@ -256,6 +256,49 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_corner_names_the_mesh_of_each_figure_and_keeps_the_reference_apart() {
+        use crate::preview::MeshFigures;
+        let mesh = |name: &str, kind, p| MeshFigures {
+            name: name.into(),
+            kind,
+            vertices: 4,
+            faces: 1,
+            max_planarity: Some(p),
+        };
+        let s = PreviewStats {
+            vertices: 8,
+            faces: 2,
+            max_planarity: Some(1e-13),
+            max_planarity_mesh: Some("net.mesh".into()),
+            meshes: vec![
+                mesh("net.mesh", MeshKind::ConeNet, 1e-13),
+                mesh("hull.mesh", MeshKind::Reference, 0.16),
+            ],
+            distance_status: None,
+            ..PreviewStats::default()
+        };
+        let lines: Vec<String> = stats_lines(&s).into_iter().map(|(l, _)| l).collect();
+        assert_eq!(
+            lines,
+            [
+                "8 vertices · 2 faces".to_string(),
+                "max planarity < 1e-12 (net.mesh)".into(),
+                "reference: max planarity 0.16 (hull.mesh)".into(),
+            ]
+        );
+        // No figures in the distance mode: the reason, as a warning.
+        let s = PreviewStats {
+            distance_status: Some("nothing else is previewed to measure against 'net'".into()),
+            ..s
+        };
+        let last = stats_lines(&s).pop().unwrap();
+        assert!(
+            last.1 && last.0.contains("nothing else is previewed"),
+            "{last:?}"
+        );
+    }
+
+    #[test]
     fn dimensions_read_width_depth_height() {
         let b = Bounds::new(
             glam::Vec3::new(-6.0, -3.0, 0.0),
