@@ -39,10 +39,10 @@ fn tube_closure_gradient_is_exact_through_the_construction() {
         "largest relative difference {:e}",
         check.largest_relative_difference
     );
-    // The construction, the column and the distance are differentiated exactly; only the
-    // monotone-spline mapper falls back to finite differences of its own run.
+    // The monotone-spline mapper, the construction, the column and the distance are all
+    // differentiated exactly: no node falls back to finite differences of its own run.
     let fd: Vec<&str> = check.node_notes.iter().map(|n| n.0.as_str()).collect();
-    assert_eq!(fd, ["ratios"], "{:?}", check.node_notes);
+    assert!(fd.is_empty(), "{:?}", check.node_notes);
     assert!(check.exact.iter().any(|g| g.abs() > 1e-3));
 }
 
@@ -303,4 +303,75 @@ fn a_fit_that_leaves_the_ratio_kink_reports_the_branch_crossing() {
         .find(|n| n.contains("node 'net' crossed a branch"))
         .unwrap_or_else(|| panic!("{:?}", o.notes));
     assert!(crossing.contains("at ½: 1600"), "{crossing}");
+}
+
+/// The gallery's catamaran hull fit (the file's setup: the row and column ratio handles) runs on
+/// exact gradients only — the ratio mappers, the widths mapper and the ratio table have products
+/// — and with the widths handles free too the gradient matches differences of the whole graph.
+#[test]
+fn catamaran_hull_fit_has_no_finite_differences() {
+    let doc = load("catamaran-hull");
+    let setup = doc.meta.optimization.clone().unwrap();
+    // The reference hull is read relative to the graph's folder.
+    let ctx = NodeContext::new(None, Some(cnets_tests::root().join("graphs")));
+    let options = Options {
+        max_iter: Some(3),
+        ..Options::default()
+    };
+    let out = optimize(&doc.graph, &setup, &options, &ctx, &mut |_| {}).unwrap();
+    assert!(out.gradients > 0);
+    assert_eq!(out.gradients, out.exact_gradients, "{:?}", out.notes);
+    assert!(
+        out.finite_difference_nodes.is_empty(),
+        "{:?}",
+        out.finite_difference_nodes
+    );
+    assert!(
+        out.notes.iter().all(|n| !n.contains("finite differences")),
+        "{:?}",
+        out.notes
+    );
+
+    // The check off every kink: the file starts with level ratio handles at ½ (flat spline
+    // pieces and the ratio → angle map's kink); here the rows rise, the columns fall, all
+    // ratios above ½. The widths mapper (a bezier feeding the apex function) is free as well:
+    // its four handles' v.
+    let mut graph = doc.graph.clone();
+    let handles = |v: [f64; 3]| {
+        Value::list(
+            v.iter()
+                .enumerate()
+                .map(|(k, y)| Value::Point(glam::DVec3::new(k as f64 * 0.5, *y, 0.0)))
+                .collect(),
+        )
+    };
+    graph
+        .set_value("row_ratios", "handles", handles([0.56, 0.6, 0.66]))
+        .unwrap();
+    graph
+        .set_value("column_ratios", "handles", handles([0.62, 0.57, 0.54]))
+        .unwrap();
+    let mut setup = setup;
+    for k in 0..4 {
+        setup.variables.push(Variable {
+            input: ValuePath::parse(&format!("widths.handles[{k}][1]")).unwrap(),
+            min: 0.05,
+            max: 1.5,
+        });
+    }
+    let check = check_gradient(&graph, &setup, &ctx).unwrap();
+    assert_eq!(check.exact.len(), 10);
+    assert!(
+        check.node_notes.is_empty(),
+        "finite differences for {:?}",
+        check.node_notes
+    );
+    assert!(
+        check.largest_relative_difference < 1e-5,
+        "largest relative difference {:e}: exact {:?}, differences {:?}",
+        check.largest_relative_difference,
+        check.exact,
+        check.finite_differences
+    );
+    assert!(check.exact[6..].iter().any(|g| g.abs() > 1e-6));
 }
