@@ -144,6 +144,9 @@ for name, fmt, node in [("junk.ply", "ply", "mesh"), ("repeat.gltf", "gltf", "me
 with open("add.json", "w") as f:
     f.write('{"b": 1.5, "a": [' + ",".join("0.5" for _ in range(20_000_000)) + "]}")
 json.dump({"count": 2_000_000}, open("circle.json", "w"))
+# curve.spline through 5·10^5 points (its arc-length table once took 16 bytes × 64 per span: 512 MB).
+with open("spline.json", "w") as f:
+    f.write('{"count": 1000, "points": [' + ",".join(f"[{k * 0.001}, {(k % 97) * 0.01}, 0]" for k in range(500_000)) + "]}")
 PY
 
 echo "== memory cases under ulimit -v ${address_kb} kB, budget ${budget}"
@@ -154,6 +157,7 @@ for f in circles.dxf bulges.dxf curves.svg entity.svg wide.csv; do
   run "$f" "$address_kb" io.read_polylines "$f.json"
 done
 run "math.add 2e7" "$address_kb" math.add add.json
+run "curve.spline 5e5" "$address_kb" curve.spline spline.json
 
 # The writers: a 2·10^6-point circle as JSON and CSV through `cnets run` (streamed).
 for node in io.export_json io.export_csv; do

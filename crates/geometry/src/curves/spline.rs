@@ -218,23 +218,21 @@ impl Spline {
     /// the length of the chords through the spline's points there, from the first control point.
     pub fn arc_table(&self, per_span: usize) -> Vec<(f64, f64)> {
         let mut table = Vec::with_capacity((self.knots.len() - 1) * per_span + 1);
-        let mut prev = self.points[0];
-        let mut acc = 0.0;
-        table.push((self.knots[0], 0.0));
-        for w in self.knots.windows(2) {
-            for k in 1..=per_span {
-                let t = if k == per_span {
-                    w[1]
-                } else {
-                    w[0] + (w[1] - w[0]) * k as f64 / per_span as f64
-                };
-                let p = self.eval(t);
-                acc += p.distance(prev);
-                prev = p;
-                table.push((t, acc));
-            }
-        }
+        table.extend(self.arc_walk(per_span));
         table
+    }
+
+    /// The entries of [`Spline::arc_table`] one by one, computed as they are needed (the same
+    /// numbers, nothing stored: a million-point spline's table would take a gigabyte).
+    fn arc_walk(&self, per_span: usize) -> ArcWalk<'_> {
+        ArcWalk {
+            spline: self,
+            per_span,
+            span: 0,
+            k: 0,
+            prev: self.points[0],
+            acc: 0.0,
+        }
     }
 
     /// Samples `count` points evenly spaced by arc length along the spline (open: ≥ 2, both ends
@@ -242,8 +240,16 @@ impl Spline {
     /// the spline; the spacing is even to within the accuracy of a 64-per-span arc-length table.
     pub fn sample_even(&self, count: usize) -> Result<Polyline, GeometryError> {
         check_count("count", count, if self.closed { 3 } else { 2 })?;
-        let table = self.arc_table(ARC_TABLE_PER_SPAN);
-        let total = table[table.len() - 1].1;
+        // Two walks along the arc-length table, nothing stored: the total length, then the
+        // samples (the same numbers as a stored table).
+        let entries = (self.knots.len() - 1) * ARC_TABLE_PER_SPAN + 1;
+        let total = self
+            .arc_walk(ARC_TABLE_PER_SPAN)
+            .last()
+            .map_or(0.0, |e| e.1);
+        let mut walk = self.arc_walk(ARC_TABLE_PER_SPAN);
+        let mut a = walk.next().unwrap_or((self.knots[0], 0.0));
+        let mut b = walk.next().unwrap_or(a);
         let intervals = if self.closed { count } else { count - 1 };
         let mut points = Vec::with_capacity(count);
         let mut cursor = 0;
@@ -257,11 +263,12 @@ impl Spline {
                 continue;
             }
             let s = total * k as f64 / intervals as f64;
-            while cursor + 1 < table.len() - 1 && table[cursor + 1].1 < s {
+            while cursor + 1 < entries - 1 && b.1 < s {
+                a = b;
+                b = walk.next().unwrap_or(a);
                 cursor += 1;
             }
-            let (ta, sa) = table[cursor];
-            let (tb, sb) = table[cursor + 1];
+            let ((ta, sa), (tb, sb)) = (a, b);
             let t = if sb > sa {
                 ta + (tb - ta) * ((s - sa) / (sb - sa))
             } else {
@@ -294,6 +301,50 @@ impl Spline {
                 closed: self.closed,
             },
         )
+    }
+}
+
+/// The arc-length table of a spline walked entry by entry ([`Spline::arc_table`]).
+struct ArcWalk<'a> {
+    spline: &'a Spline,
+    per_span: usize,
+    /// The span being walked (`knots.len() − 1` when done).
+    span: usize,
+    /// The step inside it (0: the first entry, not yet given).
+    k: usize,
+    prev: DVec3,
+    acc: f64,
+}
+
+impl Iterator for ArcWalk<'_> {
+    type Item = (f64, f64);
+
+    fn next(&mut self) -> Option<(f64, f64)> {
+        let knots = &self.spline.knots;
+        if self.span == 0 && self.k == 0 {
+            self.k = 1;
+            return Some((knots[0], 0.0));
+        }
+        if self.span + 1 >= knots.len() {
+            return None;
+        }
+        let (t0, t1) = (knots[self.span], knots[self.span + 1]);
+        let k = self.k;
+        let t = if k == self.per_span {
+            t1
+        } else {
+            t0 + (t1 - t0) * k as f64 / self.per_span as f64
+        };
+        let p = self.spline.eval(t);
+        self.acc += p.distance(self.prev);
+        self.prev = p;
+        if k == self.per_span {
+            self.span += 1;
+            self.k = 1;
+        } else {
+            self.k += 1;
+        }
+        Some((t, self.acc))
     }
 }
 
@@ -394,6 +445,76 @@ fn thomas(a: &[f64], b: &[f64], c: &[f64], r: &[DVec3]) -> Vec<DVec3> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The stored-table sampling the walk replaced, written out independently.
+    fn sample_even_stored(sp: &Spline, count: usize) -> Vec<DVec3> {
+        let mut table = vec![(sp.knots[0], 0.0)];
+        let (mut prev, mut acc) = (sp.points[0], 0.0);
+        for w in sp.knots.windows(2) {
+            for k in 1..=ARC_TABLE_PER_SPAN {
+                let t = if k == ARC_TABLE_PER_SPAN {
+                    w[1]
+                } else {
+                    w[0] + (w[1] - w[0]) * k as f64 / ARC_TABLE_PER_SPAN as f64
+                };
+                let p = sp.eval(t);
+                acc += p.distance(prev);
+                prev = p;
+                table.push((t, acc));
+            }
+        }
+        let total = table[table.len() - 1].1;
+        let intervals = if sp.closed { count } else { count - 1 };
+        let mut cursor = 0;
+        (0..count)
+            .map(|k| {
+                if !sp.closed && k + 1 == count {
+                    return sp.points[sp.points.len() - 1];
+                }
+                if k == 0 {
+                    return sp.points[0];
+                }
+                let s = total * k as f64 / intervals as f64;
+                while cursor + 1 < table.len() - 1 && table[cursor + 1].1 < s {
+                    cursor += 1;
+                }
+                let ((ta, sa), (tb, sb)) = (table[cursor], table[cursor + 1]);
+                let t = if sb > sa {
+                    ta + (tb - ta) * ((s - sa) / (sb - sa))
+                } else {
+                    ta
+                };
+                sp.eval(t)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn sampling_walks_the_arc_table_without_storing_it_and_gives_the_same_points() {
+        let pts: Vec<DVec3> = (0..9)
+            .map(|k| {
+                let t = k as f64 * 0.7;
+                DVec3::new(t.cos() * (2.0 + t), t.sin(), 0.3 * t * t)
+            })
+            .collect();
+        for kind in [SplineKind::CatmullRom, SplineKind::Natural] {
+            for closed in [false, true] {
+                let sp = Spline::new(kind, &pts, closed).unwrap();
+                for count in [3, 17, 200] {
+                    let walked = sp.sample_even(count).unwrap();
+                    assert_eq!(
+                        walked.points,
+                        sample_even_stored(&sp, count),
+                        "{kind:?} {closed} {count}"
+                    );
+                }
+                assert_eq!(
+                    sp.arc_table(ARC_TABLE_PER_SPAN).len(),
+                    (sp.knots.len() - 1) * ARC_TABLE_PER_SPAN + 1
+                );
+            }
+        }
+    }
 
     fn zigzag() -> Vec<DVec3> {
         vec![

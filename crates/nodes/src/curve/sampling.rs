@@ -5,6 +5,10 @@ use cnets_geometry::curves::{self, Spline};
 
 use super::count_input;
 
+/// Bytes a spline holds per control point: the point (24), its knot (8), its second derivative (24)
+/// and the working copies of the natural spline's solve (3 × 8).
+const SPLINE_BYTES_PER_POINT: usize = 80;
+
 node! {
     /// A smooth curve through the control points (it passes exactly through each of them), open or
     /// closed, sampled at `count` points evenly spaced by arc length along the smooth curve (an open
@@ -13,7 +17,7 @@ node! {
     /// within a span) or `natural` (cubic spline: C², global; natural ends when open, periodic when
     /// closed). Needs at least 2 control points (3 when closed), no two consecutive ones equal.
     #[node(id = "curve.spline", category = "Curves")]
-    pub fn spline(
+    pub fn spline[ctx](
         /// The control points, in order.
         points: k::List<k::Point>,
         /// Whether the curve closes back to its first point.
@@ -28,6 +32,13 @@ node! {
     ) {
         let kind = method;
         let n = count_input("count", count)?;
+        // What the spline holds (its points, knots and second derivatives) and the samples, before
+        // anything is built; the arc-length table is walked, not stored.
+        ctx.reserve(
+            cnets_engine::budget::bytes_of(points.len() as u128, SPLINE_BYTES_PER_POINT)
+                .saturating_add(cnets_engine::budget::bytes_of(n as u128, 24)),
+            &format!("a spline through {} points sampled at {n}", points.len()),
+        )?;
         let spline = Spline::new(kind, &points, closed)?;
         Ok((spline.sample_even(n)?,))
     }
