@@ -39,8 +39,8 @@ pub struct DistanceFigures {
     pub reference_rms: f64,
     /// Reference → net: the largest distance (a gap where the reference is far from the net).
     pub reference_max: f64,
-    /// Sub-triangles per triangle edge on the net and on the reference (each fan triangle sampled
-    /// at n² points).
+    /// The caps on sub-triangles per triangle edge on the net and on the reference
+    /// ([`samples_for`]).
     pub samples: (usize, usize),
     /// What the colours show: the net's or the reference's vertices.
     pub side: DistanceSide,
@@ -68,12 +68,13 @@ impl DistanceFigures {
     }
 }
 
-/// Sample points per direction the figures aim at: the sub-triangles per edge of a mesh are
-/// chosen so that its triangles give about this many (from 2, the fit objective's default, to
-/// [`MAX_SAMPLES`]).
+/// Sub-triangles a side of the figures may be split into at most: the cap on sub-triangles per
+/// triangle edge ([`surface_distances`]' `samples`) is chosen so a mesh's triangles give at most
+/// about this many (from 2, the fit objective's default, to [`MAX_SAMPLES`]).
 pub const SAMPLE_BUDGET: usize = 40_000;
 
-/// Sub-triangles per triangle edge for a mesh of `triangles` fan triangles ([`SAMPLE_BUDGET`]).
+/// The cap on sub-triangles per triangle edge for a mesh of `triangles` fan triangles: the
+/// largest n with n² · triangles ≤ [`SAMPLE_BUDGET`], within 2 … [`MAX_SAMPLES`].
 pub fn samples_for(triangles: usize) -> usize {
     let n = (SAMPLE_BUDGET as f64 / triangles.max(1) as f64)
         .sqrt()
