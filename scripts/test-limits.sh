@@ -209,6 +209,28 @@ if [ "$code" -gt 2 ]; then
   failed=1
 fi
 
+# pq.unroll_strips of a 3000 × 1000 net at --max-memory 1G (it peaked at 1.44 GB): the node
+# declares what it will build, so it ends in a clear error, not past the budget.
+cat >unroll.ron <<'EOF'
+(version: 1, nodes: {
+    "d": (type: "curve.arc", inputs: {"radius": 50.0, "start": 0.0, "end": 90.0, "count": 1000}),
+    "g": (type: "curve.arc", inputs: {"centre": (60.0, 0.0, 0.0), "radius": 5.0, "start": 100.0, "end": 260.0, "plane": ZX, "count": 3000}),
+    "net": (type: "cnets.construct", preview: false),
+    "u": (type: "pq.unroll_strips"),
+}, edges: ["d.curve -> net.directrix", "g.curve -> net.generatrix", "net.mesh -> u.mesh"])
+EOF
+set +e
+( ulimit -v $(( (2 * 1024 + 1024) * 1024 )); exec timeout 300 "$cnets" run unroll.ron --max-memory 1G \
+    >unroll.out 2>unroll.err )
+code=$?
+set -e
+printf '%-22s exit %3s  %s\n' "unroll 3000 x 1000" "$code" "$(grep -m1 '^error' unroll.err | cut -c1-140)"
+if [ "$code" -ne 1 ] || ! grep -q "pq.unroll_strips): unrolling the strips of a mesh of 3000000 vertices needs" unroll.err; then
+  echo "  FAILED: pq.unroll_strips of a 3000 × 1000 net at --max-memory 1G (exit $code):" >&2
+  tail -3 unroll.err >&2
+  failed=1
+fi
+
 # The same ladder with an explicit budget above what the process may safely use (`--max-memory 6G`
 # under ulimit -v 8000000 aborted once): the budget is clamped to the default's bound, with a
 # warning naming both figures, and the run ends in a clear error, not an abort.

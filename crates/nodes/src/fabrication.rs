@@ -106,6 +106,10 @@ node! {
     }
 }
 
+/// Bytes the unrolling holds per mesh vertex: the flat rungs (2 × 16), the outline (16 + 24), the
+/// laid-out quads (96) and their working copies, as measured on a 3000 × 1000 net (≈ 400).
+const UNROLL_BYTES_PER_VERTEX: usize = 400;
+
 node! {
     /// PQ Mesh Parallel Transform (paper Sec. 4.4.2): the Combescure transform of any PQ quad grid. The
     /// edges of the boundary polylines G_{:,0} and G_{0,:} are scaled by μ and ν, every other vertex
@@ -163,7 +167,7 @@ node! {
     /// included; strips end at the cut and at a mirror seam), and the mirrored half's strips are
     /// labelled `D9 (mirror of D2)` (docs/fabrication.md).
     #[node(id = "pq.unroll_strips", category = "PQ", name = "Unroll strips")]
-    pub fn unroll_strips(
+    pub fn unroll_strips[ctx](
         /// The quad grid (a cone-net, a support layer, or one extracted strip), or a polygon mesh
         /// made from one (cut, mirrored, joined).
         mesh: k::Mesh,
@@ -187,6 +191,11 @@ node! {
         label_points: k::List<k::Point>,
     ) {
         let options = UnrollOptions { tolerance, spacing };
+        // The flat strips, their outlines and laid-out quads, declared before they are built.
+        ctx.reserve(
+            cnets_engine::budget::bytes_of(mesh.vertices.len() as u128, UNROLL_BYTES_PER_VERTEX),
+            &format!("unrolling the strips of a mesh of {} vertices", mesh.vertices.len()),
+        )?;
         // A quad grid arrives converted to a polygon mesh: unrolled as the grid it still is.
         if let Some(grid) = fab::grid_of(&mesh) {
             let u = fab::unroll_strips(&grid, direction, options).map_err(fab_err)?;
