@@ -1080,7 +1080,10 @@ fn mapper_products_match_differences_for_every_kind() {
         }
         // Samples at u = k/7: kinds with a handle there sit on a kink (held or not) and are
         // covered by the values above.
-        if hs.iter().any(|h| (h.0 * 7.0 - (h.0 * 7.0).round()).abs() < 0.05) {
+        if hs
+            .iter()
+            .any(|h| (h.0 * 7.0 - (h.0 * 7.0).round()).abs() < 0.05)
+        {
             continue;
         }
         let sampled = [
