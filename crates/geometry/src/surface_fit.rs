@@ -10,16 +10,18 @@
 //! - **from the reference**: the same with samples r on the reference's faces and d(r, M), the
 //!   distance to the mesh.
 //!
-//! **Sampling.** Every polygon is fanned into triangles (`[v0, v_c, v_{c+1}]`). A triangle is
-//! split into n_t² equal sub-triangles, n_t = ⌈ℓ_t / (f · h)⌉ clamped to 1 … `samples`: ℓ_t its
-//! longest edge, h the *other* mesh's feature size (the mean longest edge of its triangles) and
-//! f = [`FEATURE_RATIO`]. Each sub-triangle is integrated by the symmetric 6-point rule of
-//! degree 4 ([`quadrature_rule`]; all points interior, weights positive): the mean is
-//! Σ_t A_t Σ_q w_q d(s_q)² / n_t² / A. The rule integrates d² exactly while d is a quadratic
-//! over a sub-triangle — a flat face over a curved reference, the case of a fit — so an
-//! optimizer cannot lower the figure by bringing a few sample points onto the reference while the
-//! face between them stays off it (as it could with sub-triangle centroids: 23 % low on a fitted
-//! hull). The symmetric measure is the mean of the two means; its largest distance is the sampled
+//! **Sampling.** Every polygon is fanned into triangles (`[v0, v_c, v_{c+1}]`). With ℓ_t a
+//! triangle's longest edge, h the *other* mesh's feature size (the mean longest edge of its
+//! triangles) and r = ℓ_t / (f · h), f = [`FEATURE_RATIO`]: a triangle with r ≤ 1 (no larger
+//! than the other mesh's facets, so the other surface is about flat over it and d about linear)
+//! is integrated by the symmetric 3-point rule of degree 2 ([`SMALL_RULE`]), exact for d² when d
+//! is linear; a larger one is split into n_t² equal sub-triangles, n_t = ⌈r⌉ clamped to
+//! 1 … `samples`, each integrated by the symmetric 6-point rule of degree 4
+//! ([`quadrature_rule`]), exact for d² while d is a quadratic over a sub-triangle — a flat face
+//! over a curved reference, the case of a fit. All points are interior, all weights positive:
+//! the mean is Σ_t A_t Σ_q w_q d(s_q)² / A. So an optimizer cannot lower the figure by bringing a
+//! few sample points onto the reference while the face between them stays off it (as it could
+//! with the sub-triangle centroids sampled before: 23 % low on a fitted hull). The symmetric measure is the mean of the two means; its largest distance is the sampled
 //! Hausdorff distance.
 //!
 //! **Cost.** The closest points come from a [`TriangleBvh`] built once per direction over the
@@ -49,7 +51,7 @@ pub const MAX_SAMPLES: usize = 64;
 
 /// A triangle is split so its sub-triangles' longest edges are at most this many times the other
 /// mesh's feature size (the mean longest edge of its triangles).
-pub const FEATURE_RATIO: f64 = 1.0;
+pub const FEATURE_RATIO: f64 = 1.5;
 
 /// Triangles a parallel task sweeps (fixed, so sums do not depend on the thread count).
 const CHUNK: usize = 1024;
@@ -99,25 +101,41 @@ pub fn longest_edge(a: DVec3, b: DVec3, c: DVec3) -> f64 {
     a.distance(b).max(b.distance(c)).max(c.distance(a))
 }
 
-/// The sub-triangles per edge of a triangle with longest edge `longest`, against a mesh of
-/// feature size `feature` ([module docs](self)): ⌈longest / (FEATURE_RATIO · feature)⌉ within
-/// 1 … `cap`.
+/// How a triangle with longest edge `longest` is sampled against a mesh of feature size
+/// `feature` ([module docs](self)): 0 when it is no longer than [`FEATURE_RATIO`] · `feature`
+/// (the whole triangle by the 3-point rule of degree 2), else its sub-triangles per edge,
+/// ⌈longest / (FEATURE_RATIO · feature)⌉ within 1 … `cap` (each by the 6-point rule).
 pub fn split_count(longest: f64, feature: f64, cap: usize) -> usize {
     let ratio = longest / (FEATURE_RATIO * feature);
-    if ratio.is_finite() && ratio > 1.0 {
-        // A ratio a hair above a whole number (rounding) keeps that number.
-        ((ratio - 1e-9).ceil() as usize).clamp(1, cap)
-    } else if ratio.is_finite() {
-        1
-    } else {
+    if !ratio.is_finite() {
         cap
+    } else if ratio <= 1.0 + 1e-9 {
+        // A ratio a hair above 1 (rounding) is 1.
+        0
+    } else {
+        ((ratio - 1e-9).ceil() as usize).clamp(1, cap)
     }
 }
 
-/// Calls `f(barycentric, fraction)` for every sample of a triangle split `n` times per edge: the
-/// rule's points in each of the n² sub-triangles, in a fixed order; the fractions sum to 1.
+/// The symmetric 3-point rule of degree 2 on a triangle (points (⅔, ⅙, ⅙) and its permutations,
+/// weights ⅓): exact for polynomials of degree up to 2; every point is interior.
+pub const SMALL_RULE: [([f64; 3], f64); 3] = [
+    ([2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0], 1.0 / 3.0),
+    ([1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0], 1.0 / 3.0),
+    ([1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0], 1.0 / 3.0),
+];
+
+/// Calls `f(barycentric, fraction)` for every sample of a triangle sampled as [`split_count`]
+/// says: with `n` = 0 the points of [`SMALL_RULE`], else `rule`'s points in each of the n²
+/// sub-triangles, in a fixed order; the fractions sum to 1.
 #[inline]
 pub fn for_each_sample(n: usize, rule: &[([f64; 3], f64); 6], mut f: impl FnMut([f64; 3], f64)) {
+    if n == 0 {
+        for (b, w) in SMALL_RULE {
+            f(b, w);
+        }
+        return;
+    }
     let nf = n as f64;
     let per = 1.0 / (nf * nf);
     let mut sub = |p: [[f64; 2]; 3]| {
@@ -346,6 +364,16 @@ fn farther(a: Option<Far>, b: Option<Far>) -> Option<Far> {
 /// One direction: the area-weighted mean of d² over `from`'s samples and the sample (or vertex)
 /// at the largest distance, distances to `to`'s triangles.
 fn sweep(from: &Fanned, to: &TriangleBvh, feature: f64, cap: usize) -> (f64, Option<Far>) {
+    let (mean, far) = sweep_samples(from, to, feature, cap);
+    // The vertices count for the largest distance only.
+    let used = from.used();
+    let (_, _, vertex_far) = vertex_sweep(from.vertices, Some(&used), false, to);
+    (mean, farther(far, vertex_far))
+}
+
+/// The area-weighted mean of d² over `from`'s face samples and the sample at the largest
+/// distance (vertices not included).
+fn sweep_samples(from: &Fanned, to: &TriangleBvh, feature: f64, cap: usize) -> (f64, Option<Far>) {
     let rule = quadrature_rule();
     let chunk = chunk_len(cap);
     let (mut sum, mut far) = (0.0, None);
@@ -382,22 +410,35 @@ fn sweep(from: &Fanned, to: &TriangleBvh, feature: f64, cap: usize) -> (f64, Opt
             far = farther(far, f);
         }
     }
-    // The vertices count for the largest distance only.
-    let used = from.used();
-    let vertex_far = from
-        .vertices
+    (sum / from.area, far)
+}
+
+/// The closest points of `vertices` to `to`, chunk by chunk: with `all`, the sum of the squared
+/// distances and the largest squared distance over every vertex (in a fixed order); the vertex
+/// at the largest distance among those `used` (every one without a mask). A vertex is queried
+/// when `all` or used.
+fn vertex_sweep(
+    vertices: &[DVec3],
+    used: Option<&[bool]>,
+    all: bool,
+    to: &TriangleBvh,
+) -> (f64, f64, Option<Far>) {
+    let parts: Vec<(f64, f64, Option<Far>)> = vertices
         .par_chunks(CHUNK)
         .enumerate()
         .map(|(k, points)| {
-            let (mut far, mut hint) = (None::<Far>, None);
+            let (mut sum, mut max2, mut far, mut hint) = (0.0, 0.0f64, None::<Far>, None);
             for (i, &p) in points.iter().enumerate() {
                 let index = k * CHUNK + i;
-                if !used[index] {
+                let counts = used.is_none_or(|u| u[index]);
+                if !(all || counts) {
                     continue;
                 }
                 let h = to.closest(p, hint);
                 hint = Some(h.slot);
-                if far.is_none_or(|f| h.distance_squared > f.hit.distance_squared) {
+                sum += h.distance_squared;
+                max2 = max2.max(h.distance_squared);
+                if counts && far.is_none_or(|f| h.distance_squared > f.hit.distance_squared) {
                     far = Some(Far {
                         point: p,
                         corners: [index as u32; 3],
@@ -406,10 +447,14 @@ fn sweep(from: &Fanned, to: &TriangleBvh, feature: f64, cap: usize) -> (f64, Opt
                     });
                 }
             }
-            far
+            (sum, max2, far)
         })
-        .reduce(|| None, farther);
-    (sum / from.area, farther(far, vertex_far))
+        .collect();
+    parts
+        .into_iter()
+        .fold((0.0, 0.0f64, None), |(s, m, f), (a, b, g)| {
+            (s + a, m.max(b), farther(f, g))
+        })
 }
 
 /// Bytes [`surface_distances`] (or, with `gradient`, [`surface_distances_gradient`]) allocates at
@@ -454,18 +499,48 @@ pub fn surface_distances(
     samples: usize,
     directions: Directions,
 ) -> Result<SurfaceDistances, GeometryError> {
+    Ok(surface_and_vertex_distances(mesh, reference, samples, directions, false)?.0)
+}
+
+/// [`surface_distances`] and, with `vertices`, [`vertex_distances`] of the mesh's vertices, with
+/// one hierarchy of the reference for both (and one query a vertex): the mean of the squared
+/// distances of every vertex and the largest distance ((0, 0) without `vertices`).
+pub fn surface_and_vertex_distances(
+    mesh: &PolygonMesh,
+    reference: &PolygonMesh,
+    samples: usize,
+    directions: Directions,
+    vertices: bool,
+) -> Result<(SurfaceDistances, (f64, f64)), GeometryError> {
     check_samples(samples)?;
     const REF: Option<&str> = Some("the reference mesh");
     let mut out = SurfaceDistances::default();
-    if directions.to_reference {
-        let m = Fanned::new(mesh, None)?;
-        m.check_area(None)?;
+    let mut one_sided = (0.0, 0.0);
+    if directions.to_reference || vertices {
+        let m = if directions.to_reference {
+            let m = Fanned::new(mesh, None)?;
+            m.check_area(None)?;
+            Some(m)
+        } else {
+            crate::error::check_finite_points("points", &mesh.vertices)?;
+            None
+        };
         let r = Fanned::new(reference, REF)?;
         let bvh = TriangleBvh::new(r.vertices, &r.triangles);
         drop(r.triangles);
-        let (mean, far) = sweep(&m, &bvh, r.feature, samples);
-        out.to_reference = mean;
-        out.to_reference_max = far.map_or(0.0, |f| f.hit.distance_squared.sqrt());
+        let mut far = None;
+        if let Some(m) = &m {
+            let (mean, samples_far) = sweep_samples(m, &bvh, r.feature, samples);
+            out.to_reference = mean;
+            far = samples_far;
+        }
+        let used = m.as_ref().map(Fanned::used);
+        let (sum, max2, vertex_far) = vertex_sweep(&mesh.vertices, used.as_deref(), vertices, &bvh);
+        if vertices {
+            one_sided = (sum / mesh.vertices.len().max(1) as f64, max2.sqrt());
+        }
+        out.to_reference_max =
+            farther(far, vertex_far).map_or(0.0, |f| f.hit.distance_squared.sqrt());
     }
     if directions.from_reference {
         let m = Fanned::new(mesh, None)?;
@@ -477,7 +552,7 @@ pub fn surface_distances(
         out.from_reference = mean;
         out.from_reference_max = far.map_or(0.0, |f| f.hit.distance_squared.sqrt());
     }
-    Ok(out)
+    Ok((out, one_sided))
 }
 
 /// The mean of the squared distances from `points` to `reference`'s surface and the largest
@@ -491,23 +566,8 @@ pub fn vertex_distances(
     crate::error::check_finite_points("points", points)?;
     let bvh = TriangleBvh::new(r.vertices, &r.triangles);
     drop(r.triangles);
-    let parts: Vec<(f64, f64)> = points
-        .par_chunks(CHUNK)
-        .map(|chunk| {
-            let (mut sum, mut max, mut hint) = (0.0, 0.0f64, None);
-            for &p in chunk {
-                let h = bvh.closest(p, hint);
-                hint = Some(h.slot);
-                sum += h.distance_squared;
-                max = max.max(h.distance_squared);
-            }
-            (sum, max)
-        })
-        .collect();
-    let (sum, max) = parts
-        .iter()
-        .fold((0.0, 0.0f64), |(s, m), &(a, b)| (s + a, m.max(b)));
-    Ok((sum / points.len().max(1) as f64, max.sqrt()))
+    let (sum, max2, _) = vertex_sweep(points, None, true, &bvh);
+    Ok((sum / points.len().max(1) as f64, max2.sqrt()))
 }
 
 /// The closest point of `reference`'s surface to each of `points`, in order.

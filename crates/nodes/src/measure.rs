@@ -5,8 +5,8 @@
 use cnets_engine::prelude::*;
 use cnets_geometry::fabrication::polygon::newell_vector;
 use cnets_geometry::surface_fit::{
-    Directions, MAX_SAMPLES, SurfaceDistances, fan_triangle_count, surface_distances,
-    vertex_distances, vertex_working_bytes, working_bytes,
+    Directions, MAX_SAMPLES, fan_triangle_count, surface_and_vertex_distances,
+    vertex_working_bytes, working_bytes,
 };
 use cnets_geometry::{measure, objectives};
 
@@ -131,16 +131,9 @@ node! {
             from_reference: both || ctx.wants("from_reference") || ctx.wants("from_reference_max"),
         };
         reserve_surface_distance(ctx, &mesh, &reference, one_sided, directions, false)?;
-        let (value, max) = if one_sided {
-            vertex_distances(&mesh.vertices, &reference)?
-        } else {
-            (0.0, 0.0)
-        };
-        let d = if directions.to_reference || directions.from_reference {
-            surface_distances(&mesh, &reference, samples, directions)?
-        } else {
-            SurfaceDistances::default()
-        };
+        // One hierarchy of the reference serves the vertices and the samples towards it.
+        let (d, (value, max)) =
+            surface_and_vertex_distances(&mesh, &reference, samples, directions, one_sided)?;
         Ok((
             value,
             max,

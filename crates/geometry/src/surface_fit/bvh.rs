@@ -106,6 +106,13 @@ impl<'a> TriangleBvh<'a> {
         let t = self.triangles[slot as usize];
         let v = self.vertices;
         let (a, b, c) = (v[t[0] as usize], v[t[1] as usize], v[t[2] as usize]);
+        // The triangle's box first: a cheap lower bound that rejects most of a leaf.
+        let gap = (a.min(b).min(c) - p)
+            .max(p - a.max(b).max(c))
+            .max(DVec3::ZERO);
+        if gap.length_squared() > best.distance_squared {
+            return;
+        }
         let bary = closest_barycentric(p, a, b, c);
         let q = a * bary[0] + b * bary[1] + c * bary[2];
         let d2 = q.distance_squared(p);
@@ -184,7 +191,8 @@ fn bounds_of(items: &[(DVec3, u32)], vertices: &[DVec3], triangles: &[[u32; 3]])
 }
 
 /// Fills node `at` with `items` (which start at triangle `offset` of the final order), splitting
-/// at the median centroid along the longest axis of the centroids' bounds.
+/// at the median centroid along the longest axis of the centroids' bounds; a node's box is the
+/// union of its children's (bottom-up: every triangle's corners are read once).
 fn build(
     nodes: &mut Vec<Node>,
     at: usize,
@@ -193,8 +201,8 @@ fn build(
     vertices: &[DVec3],
     triangles: &[[u32; 3]],
 ) {
-    let (min, max) = bounds_of(items, vertices, triangles);
     if items.len() <= LEAF {
+        let (min, max) = bounds_of(items, vertices, triangles);
         nodes[at] = Node {
             min,
             max,
@@ -219,12 +227,6 @@ fn build(
     let mid = items.len() / 2;
     items.select_nth_unstable_by(mid, |a, b| a.0[axis].total_cmp(&b.0[axis]));
     let first = nodes.len();
-    nodes[at] = Node {
-        min,
-        max,
-        start: first as u32,
-        count: 0,
-    };
     let empty = Node {
         min: DVec3::ZERO,
         max: DVec3::ZERO,
@@ -243,6 +245,13 @@ fn build(
         vertices,
         triangles,
     );
+    let (l, r) = (nodes[first], nodes[first + 1]);
+    nodes[at] = Node {
+        min: l.min.min(r.min),
+        max: l.max.max(r.max),
+        start: first as u32,
+        count: 0,
+    };
 }
 
 #[cfg(test)]

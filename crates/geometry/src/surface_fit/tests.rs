@@ -77,6 +77,21 @@ fn brute_direction(from: &PolygonMesh, to: &PolygonMesh, cap: usize) -> (f64, f6
             let area = 0.5 * (b - a).cross(cc - a).length();
             area_sum += area;
             let longest = a.distance(b).max(b.distance(cc)).max(cc.distance(a));
+            if longest / feature <= 1.0 + 1e-9 {
+                // No larger than the other's facets: the 3-point rule, (⅔, ⅙, ⅙) and its
+                // permutations, weights ⅓.
+                let (big, small) = (2.0 / 3.0, 1.0 / 6.0);
+                for l in [
+                    [big, small, small],
+                    [small, big, small],
+                    [small, small, big],
+                ] {
+                    let d = brute_distance(a * l[0] + b * l[1] + cc * l[2], to);
+                    sum += area / 3.0 * d * d;
+                    max = max.max(d);
+                }
+                continue;
+            }
             let n = ((longest / feature - 1e-9).ceil() as usize).clamp(1, cap);
             let nf = n as f64;
             // The sub-triangles' corners as points.
@@ -131,6 +146,20 @@ fn the_rule_integrates_polynomials_of_degree_four_exactly() {
             }
         }
     }
+    // The small triangles' 3-point rule: degree 2 exactly, not degree 3.
+    for i in 0..=2u32 {
+        for j in 0..=2 - i {
+            let exact = fact(i) * fact(j) / fact(i + j + 2) * 2.0;
+            let mut sum = 0.0;
+            for_each_sample(0, &quadrature_rule(), |b, w| {
+                sum += w * b[1].powi(i as i32) * b[2].powi(j as i32)
+            });
+            assert!((sum - exact).abs() < 1e-15, "x^{i} y^{j}: {sum} vs {exact}");
+        }
+    }
+    let mut sum = 0.0;
+    for_each_sample(0, &quadrature_rule(), |b, w| sum += w * b[1].powi(3));
+    assert!((sum - fact(3) / fact(5) * 2.0).abs() > 1e-6);
     // Degree 5 is not exact (the rule is not better than it says).
     let mut sum = 0.0;
     for_each_sample(1, &quadrature_rule(), |b, w| sum += w * b[1].powi(5));
@@ -139,11 +168,14 @@ fn the_rule_integrates_polynomials_of_degree_four_exactly() {
 
 #[test]
 fn triangles_are_split_by_their_size_against_the_other_mesh() {
-    assert_eq!(split_count(0.5, 1.0, 8), 1);
-    assert_eq!(split_count(1.0, 1.0, 8), 1);
-    assert_eq!(split_count(1.0 + 1e-12, 1.0, 8), 1);
-    assert_eq!(split_count(2.5, 1.0, 8), 3);
-    assert_eq!(split_count(2.5, 1.0, 2), 2);
+    // Lengths in units of the other mesh's feature size times FEATURE_RATIO.
+    let f = FEATURE_RATIO;
+    assert_eq!(split_count(0.5 * f, 1.0, 8), 0);
+    assert_eq!(split_count(f, 1.0, 8), 0);
+    assert_eq!(split_count(f * (1.0 + 1e-12), 1.0, 8), 0);
+    assert_eq!(split_count(1.5 * f, 1.0, 1), 1);
+    assert_eq!(split_count(2.5 * f, 1.0, 8), 3);
+    assert_eq!(split_count(2.5 * f, 1.0, 2), 2);
     assert_eq!(split_count(100.0, 0.0, 5), 5);
 }
 
@@ -281,6 +313,17 @@ proptest! {
         prop_assert!((d.to_reference_max - to_max).abs() <= 1e-12, "{} vs {to_max}", d.to_reference_max);
         prop_assert!((d.from_reference - from).abs() <= 1e-12 * from.max(1.0), "{} vs {from}", d.from_reference);
         prop_assert!((d.from_reference_max - from_max).abs() <= 1e-12, "{} vs {from_max}", d.from_reference_max);
+        // With the vertices (one hierarchy for both): the same directions, and the vertices' mean
+        // of d² and largest distance as a search over every triangle finds them.
+        let (same, (mean, max)) =
+            surface_and_vertex_distances(&mesh, &reference, n, Directions::BOTH, true).unwrap();
+        prop_assert_eq!(same, d);
+        let brute: Vec<f64> = mesh.vertices.iter().map(|&p| brute_distance(p, &reference)).collect();
+        let brute_mean = brute.iter().map(|d| d * d).sum::<f64>() / brute.len() as f64;
+        let brute_max = brute.iter().copied().fold(0.0, f64::max);
+        prop_assert!((mean - brute_mean).abs() <= 1e-12 * brute_mean.max(1.0), "{mean} vs {brute_mean}");
+        prop_assert!((max - brute_max).abs() <= 1e-12, "{max} vs {brute_max}");
+        prop_assert_eq!(vertex_distances(&mesh.vertices, &reference).unwrap(), (mean, max));
         // One direction asked for: the other stays 0, the asked one is the same.
         let only = surface_distances(&mesh, &reference, n, Directions { to_reference: false, from_reference: true }).unwrap();
         prop_assert_eq!(only.to_reference, 0.0);
