@@ -89,12 +89,13 @@ node! {
     /// The distance between a mesh and a reference surface (its polygons fanned into triangles),
     /// e.g. to fit a cone-net to a target hull. `value` and `max` measure from the mesh's vertices
     /// to the reference only; the other outputs measure both directions on points sampled over the
-    /// faces: each fan triangle is split into n² sub-triangles, n = its longest edge over the other
-    /// mesh's mean longest triangle edge, rounded up, from 1 to `samples`, and each sub-triangle is
-    /// integrated by a 6-point rule of degree 4 (interior points, area-weighted): from the mesh to
-    /// the reference and from the reference to the mesh, so a fit cannot pull away from parts of
-    /// the reference unseen. `symmetric` is the measure to minimize when fitting. Every output has
-    /// an exact gradient in the mesh's vertices.
+    /// faces, at interior quadrature points, area-weighted: a fan triangle no longer than 1.5 × the
+    /// other mesh's mean longest triangle edge by a 3-point rule of degree 2, a longer one split
+    /// into n² sub-triangles (n its length over that, rounded up, at most `samples`), each by a
+    /// 6-point rule of degree 4: from the mesh to the reference and from the reference to the
+    /// mesh, so a fit cannot pull away from parts of the reference unseen. `symmetric` is the
+    /// measure to minimize when fitting. Every output has an exact gradient in the mesh's
+    /// vertices.
     #[node(id = "measure.surface_distance", category = "Measure")]
     pub fn surface_distance[ctx](
         /// The mesh whose vertices are measured (quad or polygon mesh).
@@ -102,8 +103,8 @@ node! {
         /// The reference surface.
         reference: k::Mesh,
         /// The most sub-triangles per triangle edge for the sampled (two-way) outputs (1 to 64):
-        /// up to 6 · samples² points per triangle, fewer on triangles no longer than the other
-        /// mesh's.
+        /// up to 6 · samples² points on a triangle longer than 1.5 × the other mesh's mean
+        /// longest edge, 3 on a shorter one.
         samples: k::Integer = 2,
     ) -> (
         /// Mean of the squared vertex distances (mesh vertices → reference).
