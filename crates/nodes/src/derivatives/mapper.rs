@@ -212,6 +212,28 @@ fn pchip(p: &[P]) -> (Vec<D>, Vec<u64>) {
     (d, codes)
 }
 
+/// Whether the monotone spline through sorted handles `p` sits exactly on a branch boundary of its
+/// limiter: a step of zero next to a knot, or an end slope exactly at a switch.
+fn on_limiter_kink(p: &[P]) -> bool {
+    let n = p.len();
+    if n < 3 {
+        return false;
+    }
+    let delta: Vec<f64> = p
+        .windows(2)
+        .map(|w| (w[1].y.v - w[0].y.v) / (w[1].x.v - w[0].x.v))
+        .collect();
+    if delta.contains(&0.0) {
+        return true;
+    }
+    let end = |h0: f64, h1: f64, d0: f64, d1: f64| {
+        let s = ((2.0 * h0 + h1) * d0 - h0 * d1) / (h0 + h1);
+        s == 0.0 || s.abs() == 3.0 * d0.abs()
+    };
+    let h = |k: usize| p[k + 1].x.v - p[k].x.v;
+    end(h(0), h(1), delta[0], delta[1]) || end(h(n - 2), h(n - 3), delta[n - 2], delta[n - 3])
+}
+
 /// The interval of sorted points `u` falls in: None before the first or after the last (held).
 fn interval(p: &[P], u: f64) -> Option<usize> {
     let n = p.len();
@@ -386,6 +408,13 @@ fn eval(kind: MapperKind, h: &[P], u: D) -> Result<(D, u64), NodeError> {
 fn graph(args: &VjpArgs<'_>) -> VjpResult {
     let run = read(args.inputs)?;
     let h = dual_handles(&run.handles)?;
+    if run.kind == MapperKind::Spline && on_limiter_kink(&sorted(&h)) {
+        // Exactly on a kink (level neighbouring handles: a step of 0) one side's slope is not what
+        // a designer's change sees; the node's own central differences (microseconds) are.
+        return Err(NodeError::new(
+            "the spline mapper sits on a kink of its slope limiter (level handles)",
+        ));
+    }
     let cy = args.cotangent(0);
     let cx = args.cotangent(1);
     let ys: Vec<f64> = args
