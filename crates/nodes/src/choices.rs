@@ -119,22 +119,6 @@ impl ChoiceEnum for PolylineFormat {
     }
 }
 
-/// `curve.arc`'s form: by `centre` and angles, through three points, or by span and rise.
-pub struct ArcMode;
-
-impl ChoiceEnum for ArcMode {
-    type Value = &'static str;
-    const OPTIONS: &'static [&'static str] = &["centre", "three-points", "span-rise"];
-    fn parse(text: &str) -> Option<&'static str> {
-        word(text, Self::OPTIONS)
-            .or_else(|| word(text, &["center", "angles"]).map(|_| "centre"))
-            .or_else(|| {
-                word(text, &["three points", "3 points", "3-points"]).map(|_| "three-points")
-            })
-            .or_else(|| word(text, &["span rise", "span/rise"]).map(|_| "span-rise"))
-    }
-}
-
 /// `param.list`'s item type.
 pub struct ListItemType;
 

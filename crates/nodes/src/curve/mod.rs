@@ -14,7 +14,9 @@ pub mod query;
 pub mod sampling;
 
 pub use edit::{join, offset, reverse, transform};
-pub use primitives::{arc, circle, helix, line, polygon, polyline};
+pub use primitives::{
+    arc, arc_span_rise, arc_three_points, circle, helix, line, polygon, polyline,
+};
 pub use query::{closest_point, evaluate, length, points};
 pub use sampling::{resample, spline, subdivide};
 
@@ -32,6 +34,8 @@ pub fn nodes() -> Vec<NodeDef> {
         polyline(),
         line(),
         arc(),
+        arc_three_points(),
+        arc_span_rise(),
         circle(),
         polygon(),
         helix(),

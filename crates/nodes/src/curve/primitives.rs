@@ -49,16 +49,13 @@ node! {
 }
 
 node! {
-    /// A circular arc in a plane, in one of three forms (`mode`): `centre` — about `centre` with
-    /// `radius`, from `start` to `end` (degrees, measured from the plane's x axis towards its y
-    /// axis; `end` < `start` runs the other way), sampled at `count` evenly spaced points;
-    /// `three-points` — from `first` through `through` to `last`; `span-rise` — over a chord of
-    /// length `span` centred at `centre` along the plane's x axis, rising `rise` at its middle along
-    /// the plane's y axis (a vault's profile: one `rise` slider drives it). The last two keep their
-    /// three points among the `count` samples, exactly.
+    /// A circular arc in a plane, from `start` to `end` (degrees, measured from the plane's x axis
+    /// towards its y axis; `end` < `start` runs the other way), sampled at `count` evenly spaced
+    /// points. Through three points: `curve.arc_three_points`; by span and rise:
+    /// `curve.arc_span_rise`.
     #[node(id = "curve.arc", category = "Curves")]
     pub fn arc(
-        /// Centre of the arc (in world coordinates); with `span-rise`, the chord's middle.
+        /// Centre of the arc (in world coordinates).
         centre: k::Point = DVec3::ZERO,
         /// Radius (> 0).
         radius: k::Number = 1.0,
@@ -68,30 +65,61 @@ node! {
         end: k::Number = 90.0,
         /// Plane of the arc (its origin is ignored: the arc is centred at `centre`).
         plane: k::Plane = Plane::XY,
-        /// Number of points (≥ 2; ≥ 3 through three points).
+        /// Number of points (≥ 2).
         count: k::Integer = 16,
-        /// The form: `centre` (centre, radius, angles), `three-points` or `span-rise`.
-        mode: k::Choice<crate::choices::ArcMode> = "centre",
-        /// `three-points`: where the arc starts.
-        first: k::Point = DVec3::new(-1.0, 0.0, 0.0),
-        /// `three-points`: a point the arc passes through.
-        through: k::Point = DVec3::new(0.0, 1.0, 0.0),
-        /// `three-points`: where the arc ends.
-        last: k::Point = DVec3::new(1.0, 0.0, 0.0),
-        /// `span-rise`: the chord's length (> 0).
-        span: k::Number = 6.0,
-        /// `span-rise`: the height of the arc's middle above the chord (≠ 0; negative: below).
-        rise: k::Number = 1.0,
     ) -> (
         /// The sampled arc.
         curve: k::Polyline,
     ) {
         let n = count_input("count", count)?;
-        Ok((match mode {
-            "three-points" => curves::arc_through(first, through, last, n)?,
-            "span-rise" => curves::arc_span_rise(centre, span, rise, &plane, n)?,
-            _ => curves::arc(centre, radius, start, end, &plane, n)?,
-        },))
+        Ok((curves::arc(centre, radius, start, end, &plane, n)?,))
+    }
+}
+
+node! {
+    /// The circular arc from `first` through `through` to `last`, sampled at `count` points with
+    /// the three points among them, exactly.
+    #[node(id = "curve.arc_three_points", category = "Curves", name = "Arc through three points")]
+    pub fn arc_three_points(
+        /// Where the arc starts.
+        first: k::Point = DVec3::new(-1.0, 0.0, 0.0),
+        /// A point the arc passes through.
+        through: k::Point = DVec3::new(0.0, 1.0, 0.0),
+        /// Where the arc ends.
+        last: k::Point = DVec3::new(1.0, 0.0, 0.0),
+        /// Number of points (≥ 3).
+        count: k::Integer = 16,
+    ) -> (
+        /// The sampled arc.
+        curve: k::Polyline,
+    ) {
+        let n = count_input("count", count)?;
+        Ok((curves::arc_through(first, through, last, n)?,))
+    }
+}
+
+node! {
+    /// An arc over a chord of length `span` centred at `centre` along the plane's x axis, rising
+    /// `rise` at its middle along the plane's y axis (a vault's profile: one `rise` slider drives
+    /// it), sampled at `count` points with its ends and its top among them, exactly.
+    #[node(id = "curve.arc_span_rise", category = "Curves", name = "Arc by span and rise")]
+    pub fn arc_span_rise(
+        /// The chord's middle.
+        centre: k::Point = DVec3::ZERO,
+        /// The chord's length (> 0).
+        span: k::Number = 6.0,
+        /// The height of the arc's middle above the chord (≠ 0; negative: below).
+        rise: k::Number = 1.0,
+        /// Plane of the arc: the chord along its x axis, the rise along its y axis.
+        plane: k::Plane = Plane::XY,
+        /// Number of points (≥ 3).
+        count: k::Integer = 17,
+    ) -> (
+        /// The sampled arc.
+        curve: k::Polyline,
+    ) {
+        let n = count_input("count", count)?;
+        Ok((curves::arc_span_rise(centre, span, rise, &plane, n)?,))
     }
 }
 
@@ -180,11 +208,10 @@ mod tests {
 
     #[test]
     fn an_arc_by_span_and_rise_through_the_node_passes_through_its_three_points() {
-        let def = arc();
+        let def = arc_span_rise();
         let out = run(
             &def,
             &[
-                ("mode", Value::text("span-rise")),
                 ("centre", Value::Point(DVec3::new(0.0, 0.0, 2.0))),
                 ("plane", Value::from(Plane::ZX)),
                 ("span", Value::Number(6.0)),
@@ -207,9 +234,27 @@ mod tests {
                 .fold(f64::INFINITY, f64::min);
             assert!(d <= 1e-12, "{p}: {d}");
         }
-        // The default form is unchanged: centre, radius and angles.
+        // Through three points given directly: they are among the samples.
+        let (a, b, c) = (
+            DVec3::ZERO,
+            DVec3::new(1.0, 2.0, 0.5),
+            DVec3::new(3.0, 1.0, -1.0),
+        );
         let out = run(
-            &def,
+            &arc_three_points(),
+            &[
+                ("first", Value::Point(a)),
+                ("through", Value::Point(b)),
+                ("last", Value::Point(c)),
+                ("count", Value::Integer(10)),
+            ],
+        )
+        .unwrap();
+        let points = poly(&out[0]).points;
+        assert!(points.contains(&a) && points.contains(&b) && points.contains(&c));
+        // The arc by centre, radius and angles is unchanged.
+        let out = run(
+            &arc(),
             &[("radius", Value::Number(2.0)), ("count", Value::Integer(3))],
         )
         .unwrap();
