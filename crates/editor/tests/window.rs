@@ -421,16 +421,34 @@ fn the_fold_entry_frames_and_outlines_the_folds_in_the_real_window() {
 }
 
 /// The bounding box of a GLB's POSITION accessors.
-fn glb_size(path: &std::path::Path) -> [f64; 3] {
+/// The size of the meshes named `name` in the GLB at `path` (the preview export names each
+/// drawn mesh and curve after its node), found on the mesh or on the scene node holding it.
+fn glb_size(path: &std::path::Path, name: &str) -> [f64; 3] {
     let bytes = std::fs::read(path).unwrap();
     assert_eq!(&bytes[0..4], b"glTF");
     let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
     let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + len]).unwrap();
     let accessors = json["accessors"].as_array().unwrap();
+    let meshes = json["meshes"].as_array().unwrap();
+    let mut named: Vec<usize> = (0..meshes.len())
+        .filter(|&m| meshes[m]["name"] == name)
+        .collect();
+    for node in json["nodes"].as_array().into_iter().flatten() {
+        if node["name"] == name
+            && let Some(m) = node["mesh"].as_u64()
+        {
+            named.push(m as usize);
+        }
+    }
+    assert!(
+        !named.is_empty(),
+        "no mesh named {name} in {}",
+        path.display()
+    );
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
-    for mesh in json["meshes"].as_array().unwrap() {
-        for prim in mesh["primitives"].as_array().unwrap() {
+    for &m in &named {
+        for prim in meshes[m]["primitives"].as_array().unwrap() {
             let a = &accessors[prim["attributes"]["POSITION"].as_u64().unwrap() as usize];
             for k in 0..3 {
                 lo[k] = lo[k].min(a["min"][k].as_f64().unwrap());
@@ -509,7 +527,7 @@ fn the_canopy_brief_played_with_pointer_events_only() {
             .unwrap()
             .contains("LWPOLYLINE")
     );
-    let exported = glb_size(&glb);
+    let exported = glb_size(&glb, "construct");
     let shown = points(&lines["mesh size after"])[0];
     for k in 0..3 {
         assert!(
