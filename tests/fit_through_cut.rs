@@ -101,9 +101,10 @@ fn fit(cut: bool) -> (Outcome, Duration) {
 fn the_gradient_through_cut_and_mirror_is_exact() {
     let doc = load_str(&graph(true), "hull-fit.ron", &registry()).unwrap_or_else(|e| panic!("{e}"));
     let mut g = doc.graph;
-    // Off the kinks of the ratio map at ½ and of the level mapper handles.
+    // Off the kinks of the ratio map at ½ and of the mapper's slope limiter (level handles, an
+    // end slope at its clamp: 0.46, 0.55, 0.52 is on one).
     for (node, v) in [
-        ("rows", [0.46, 0.55, 0.52]),
+        ("rows", [0.46, 0.55, 0.50]),
         ("columns", [0.53, 0.47, 0.58]),
     ] {
         let handles = cnets_engine::Value::list(
@@ -118,8 +119,10 @@ fn the_gradient_through_cut_and_mirror_is_exact() {
         check_gradient(&g, &doc.meta.optimization.unwrap(), &NodeContext::default()).unwrap();
     assert!(
         check.largest_relative_difference <= 1e-6,
-        "largest relative difference {:e}",
-        check.largest_relative_difference
+        "largest relative difference {:e}: exact {:?}, differences {:?}",
+        check.largest_relative_difference,
+        check.exact,
+        check.finite_differences
     );
     // Neither the cut nor the mirror falls back to finite differences.
     for (node, why) in &check.node_notes {

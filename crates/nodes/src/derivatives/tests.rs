@@ -1104,6 +1104,33 @@ fn mapper_products_match_differences_for_every_kind() {
     }
 }
 
+/// Sampled at its knots (count 9 on handles at u = 0, ½, 1: samples fall exactly on them), a
+/// spline with a peak or a trough at the middle handle: the product in the handles' v matches
+/// differences. (0.46, 0.55, 0.52) would put the last end slope on its clamp at 3δ, a kink
+/// where the node declines and is differentiated by differences.
+#[test]
+fn a_spline_sampled_on_its_knots_matches_differences() {
+    let n = Value::Number;
+    for hs in [
+        [(0.0, 0.46), (0.5, 0.55), (1.0, 0.50)],
+        [(0.0, 0.53), (0.5, 0.47), (1.0, 0.58)],
+    ] {
+        for count in [9, 20] {
+            let named = [
+                ("kind", Value::text("spline")),
+                ("handles", mapper_handles(&hs)),
+                ("x_start", n(0.0)),
+                ("x_end", n(1.0)),
+                ("y_start", n(0.0)),
+                ("y_end", n(1.0)),
+                ("count", Value::Integer(count)),
+            ];
+            let rel = compare("mapper.graph", &named, &["handles"]);
+            assert!(rel < 1e-6, "{hs:?}, count {count}: {rel}");
+        }
+    }
+}
+
 /// The spline's piece is the limiter branch of every knot: moving a handle's v across a level
 /// (an interior extremum appears) changes it; a small move on the same piece does not.
 #[test]
