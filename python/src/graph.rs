@@ -208,7 +208,9 @@ impl PyGraph {
     ) -> PyResult<Self> {
         let path = args::path(path, "path")?;
         let settings = Settings::new(max_memory, allow_read, library, out, "")?;
-        let doc = cnets_host::load_graph(&path, &settings.library, &[], &settings.allow_read)
+        let doc = settings
+            .session()
+            .load_graph(&path, &[])
             .map_err(|e| error(e.to_string()))?;
         Ok(Self::from_document(doc, path, settings))
     }

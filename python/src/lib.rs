@@ -14,10 +14,8 @@ mod settings;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::Instant;
 
-use cnets_engine::eval::evaluate_node;
-use cnets_engine::{NodeFlag, Registry, Value};
+use cnets_engine::{Registry, Value};
 use numpy::PyArray1;
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
@@ -92,15 +90,12 @@ fn eval<'py>(
     })?;
     let outputs = args::texts(outputs, &format!("{option_prefix}outputs"))?;
     let settings = Settings::new(max_memory, allow_read, library, out, option_prefix)?;
-    let node = cnets_host::resolve(
-        &node_type,
-        registry(),
-        &settings.library,
-        &settings.allow_read,
-    )
-    .map_err(|e| error(e.to_string()))?;
+    let session = settings.session();
+    let node = session
+        .resolve(&node_type, registry())
+        .map_err(|e| error(e.to_string()))?;
     let def = node.def().clone();
-    let budget = settings.budget();
+    let budget = session.budget();
     let mut given: Vec<Option<Value>> = vec![None; def.inputs.len()];
     for (name, value) in inputs.iter() {
         let name: String = name
@@ -122,29 +117,12 @@ fn eval<'py>(
         given[k] = Some(v);
     }
     let values = cnets_host::complete_inputs(&def, given).map_err(|e| error(e.to_string()))?;
-    if let Some(names) = &outputs
-        && let Some(bad) = names.iter().find(|n| def.output_index(n).is_none())
-    {
-        return Err(error(format!(
-            "unknown output '{bad}' for {}; valid outputs: {}",
-            def.id,
-            def.output_names()
-        )));
-    }
-    let exports = def.has_flag(NodeFlag::Export);
     let base = std::env::current_dir().ok();
-    let ctx_def = def.clone();
-    let requested = outputs.clone();
-    let result = py.detach(move || {
-        let mut ctx = settings.context(exports, base)?;
-        ctx.requested = requested;
-        let start = Instant::now();
-        let result = evaluate_node(&ctx_def, &ctx, &values);
-        LAST_EVAL_NANOS.store(start.elapsed().as_nanos() as u64, Ordering::Relaxed);
-        Ok::<_, String>(result)
-    });
-    let result = result.map_err(error)?;
-    let outputs_of = result.map_err(|m| error(format!("{}: {m}", def.id)))?;
+    let run = py
+        .detach(|| session.eval_node(&def, &values, outputs.as_deref(), base))
+        .map_err(|e| error(e.to_string()))?;
+    LAST_EVAL_NANOS.store(run.elapsed.as_nanos() as u64, Ordering::Relaxed);
+    let outputs_of = run.into_outputs().map_err(|e| error(e.to_string()))?;
     for w in &outputs_of.warnings {
         warn(py, &format!("{}: {w}", def.id))?;
     }
@@ -320,13 +298,12 @@ fn node_interface<'py>(
     library: Option<&Bound<'py, PyAny>>,
     allow_read: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let node = cnets_host::resolve(
-        &node_type_arg(node_type)?,
-        registry(),
-        &args::paths(library, "library")?,
-        &args::paths(allow_read, "allow_read")?,
-    )
-    .map_err(|e| error(e.to_string()))?;
+    let session = cnets_host::Session::new()
+        .with_library(settings::library_with_env(args::paths(library, "library")?))
+        .with_allow_read(args::paths(allow_read, "allow_read")?);
+    let node = session
+        .resolve(&node_type_arg(node_type)?, registry())
+        .map_err(|e| error(e.to_string()))?;
     def_dict(py, node.def())
 }
 

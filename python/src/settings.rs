@@ -1,9 +1,11 @@
 //! What an evaluation may use: the memory budget, the folders it may read, the library folders of
-//! cluster files, and where exports go (docs/engine.md, Bounded resources and File access).
+//! cluster files, and where exports go (docs/engine.md, Bounded resources and File access); each
+//! evaluation's [`Session`] is made from them.
 
 use std::path::PathBuf;
 
 use cnets_engine::{MemoryBudget, NodeContext};
+use cnets_host::Session;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyInt, PyString};
 
@@ -16,7 +18,7 @@ pub struct Settings {
     pub max_memory: Option<u64>,
     /// Folders nodes and cluster files may also read from.
     pub allow_read: Vec<PathBuf>,
-    /// Folders searched for cluster graph files.
+    /// Folders searched for cluster graph files: `CNETS_LIBRARY`'s, then those given.
     pub library: Vec<PathBuf>,
     /// Where export nodes write (`None`: `out` in the working folder, as `cnets run`).
     pub out: Option<PathBuf>,
@@ -26,7 +28,8 @@ impl Settings {
     /// Settings from keyword arguments, named in messages as `names` gives them (`max_memory`,
     /// `allow_read`, `library`, `out`, each with `prefix` before it: `cnets.eval` takes them as
     /// `_max_memory` …). `max_memory` is a number of bytes or a size text such as `"512MB"`;
-    /// `allow_read` and `library` a folder or a list of folders; `out` a folder.
+    /// `allow_read` and `library` a folder or a list of folders (the library after
+    /// `CNETS_LIBRARY`'s folders); `out` a folder.
     pub fn new(
         max_memory: Option<&Bound<'_, PyAny>>,
         allow_read: Option<&Bound<'_, PyAny>>,
@@ -40,50 +43,51 @@ impl Settings {
                 .map(|m| parse_memory(m, &format!("{prefix}max_memory")))
                 .transpose()?,
             allow_read: args::paths(allow_read, &format!("{prefix}allow_read"))?,
-            library: args::paths(library, &format!("{prefix}library"))?,
+            library: library_with_env(args::paths(library, &format!("{prefix}library"))?),
             out: args::opt_path(out, &format!("{prefix}out"))?,
         })
     }
 
-    /// The memory budget of an evaluation (`max_memory`, clamped to half the process's hard
-    /// limit with a Python `ResourceWarning` when it asks for more; else half the memory the
-    /// process has).
-    pub fn budget(&self) -> MemoryBudget {
-        match self.max_memory {
-            Some(limit) => {
-                let granted = MemoryBudget::requested(limit);
-                if let Some(w) = &granted.warning {
-                    Python::attach(|py| {
-                        let category = py.get_type::<pyo3::exceptions::PyResourceWarning>();
-                        // A warning filter set to "error" raises here; the budget still holds.
-                        let message = std::ffi::CString::new(w.as_str()).unwrap_or_default();
-                        let _ = PyErr::warn(py, category.as_any(), &message, 1);
-                    });
-                }
-                granted.budget
-            }
-            None => MemoryBudget::default(),
+    /// The session of an evaluation: the budget of `max_memory` (clamped to half the process's
+    /// hard limit with a Python `ResourceWarning` when it asks for more; else half the memory the
+    /// process has), the folders to read, the library, the output folder (`out` in the working
+    /// folder when unset).
+    pub fn session(&self) -> Session {
+        let session = Session::new()
+            .with_max_memory(self.max_memory)
+            .with_allow_read(self.allow_read.iter().cloned())
+            .with_library(self.library.iter().cloned())
+            .with_out_dir(self.out.clone());
+        if let Some(w) = session.budget_warning() {
+            Python::attach(|py| {
+                let category = py.get_type::<pyo3::exceptions::PyResourceWarning>();
+                // A warning filter set to "error" raises here; the budget still holds.
+                let message = std::ffi::CString::new(w).unwrap_or_default();
+                let _ = PyErr::warn(py, category.as_any(), &message, 1);
+            });
         }
+        session
+    }
+
+    /// The memory budget of an evaluation (see [`Settings::session`]).
+    pub fn budget(&self) -> MemoryBudget {
+        self.session().budget()
     }
 
     /// The node context of one evaluation; creates the output folder when the graph exports.
     pub fn context(&self, exports: bool, base: Option<PathBuf>) -> Result<NodeContext, String> {
-        let out_dir = if exports {
-            let dir = self.out.clone().unwrap_or_else(|| PathBuf::from("out"));
-            std::fs::create_dir_all(&dir).map_err(|e| {
-                format!("{}: cannot create the output directory: {e}", dir.display())
-            })?;
-            Some(dir)
-        } else {
-            None
-        };
-        let mut ctx = NodeContext::new(out_dir, base);
-        if self.max_memory.is_some() {
-            ctx.budget = self.budget();
-        }
-        ctx.allow_read = self.allow_read.clone();
-        Ok(ctx)
+        self.session()
+            .export_context(base, exports)
+            .map_err(|e| e.to_string())
     }
+}
+
+/// `CNETS_LIBRARY`'s folders, then `library`: the library of the Python door (and its Hops server).
+pub fn library_with_env(library: Vec<PathBuf>) -> Vec<PathBuf> {
+    cnets_host::library_from_env()
+        .into_iter()
+        .chain(library)
+        .collect()
 }
 
 fn parse_memory(value: &Bound<'_, PyAny>, name: &str) -> PyResult<u64> {

@@ -9,6 +9,7 @@ mod output;
 mod peak;
 mod progress;
 mod runtime_dir;
+mod session;
 mod signals;
 
 use std::process::ExitCode;

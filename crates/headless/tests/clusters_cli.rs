@@ -132,3 +132,82 @@ fn nodes_lists_a_library_folder_and_run_finds_clusters_there() {
         .unwrap();
     assert!((a2 / a - 0.5).abs() < 1e-3, "{a2} {a}");
 }
+
+/// `CNETS_LIBRARY` (folders separated like `PATH`) is searched for cluster sources after the
+/// graph's folder and before `--library`'s folders, by `run`, `check` and a graph run by `eval`
+/// alike (the engine reads no environment: the command line hands these folders to its session).
+#[test]
+fn cnets_library_is_searched_before_the_library_flag() {
+    let d = folder("env-library");
+    let (env_a, env_b, flag) = (d.join("env-a"), d.join("env-b"), d.join("flag"));
+    for dir in [&env_a, &env_b, &flag] {
+        std::fs::create_dir_all(dir).unwrap();
+    }
+    write(&env_b.join("arc-length.ron"), ARC_LENGTH);
+    write(
+        &flag.join("arc-length.ron"),
+        &ARC_LENGTH.replace("\"end\": 180.0", "\"end\": 90.0"),
+    );
+    let main = d.join("main.ron");
+    write(
+        &main,
+        r#"(version: 1, nodes: {
+            "a": (type: "cluster", source: "arc-length.ron", inputs: {"radius": 1.0}),
+        }, edges: [])"#,
+    );
+    let with_env = |args: &[&str], env: Option<&std::ffi::OsStr>| {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_cnets"));
+        c.args(args).env_remove("CNETS_LIBRARY");
+        if let Some(v) = env {
+            c.env("CNETS_LIBRARY", v);
+        }
+        c.output().unwrap()
+    };
+    let joined = std::env::join_paths([&env_a, &env_b]).unwrap();
+    let length = |o: &Output| json(o)["nodes"]["a"]["outputs"]["length"].as_f64().unwrap();
+    let main = main.to_str().unwrap();
+    let o = with_env(&["check", main], None);
+    assert_eq!(o.status.code(), Some(2), "not found without a library");
+    let o = with_env(&["check", main], Some(&joined));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = with_env(&["run", main, "--json"], Some(&joined));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        (length(&o) - std::f64::consts::PI).abs() < 0.01,
+        "the half circle"
+    );
+    // `CNETS_LIBRARY`'s copy comes before `--library`'s.
+    let flagged = ["run", main, "--json", "--library", flag.to_str().unwrap()];
+    let o = with_env(&flagged, Some(&joined));
+    assert!(
+        (length(&o) - std::f64::consts::PI).abs() < 0.01,
+        "CNETS_LIBRARY first"
+    );
+    let o = with_env(&flagged, None);
+    assert!(
+        (length(&o) - std::f64::consts::FRAC_PI_2).abs() < 0.01,
+        "--library's"
+    );
+    // A graph run as one node finds its cluster sources there too.
+    let target = format!("cluster:{}", d.join("outer.ron").display());
+    write(
+        &d.join("outer.ron"),
+        r#"(version: 1, nodes: {
+            "r": (type: "graph.input", inputs: {"name": "radius", "type": "number", "default": 1.0}),
+            "a": (type: "cluster", source: "arc-length.ron"),
+            "out": (type: "graph.output", inputs: {"name": "length", "type": "number"}),
+        }, edges: ["r.value -> a.radius", "a.length -> out.value"])"#,
+    );
+    let inputs = d.join("inputs.json");
+    write(&inputs, r#"{"radius": 2}"#);
+    let o = with_env(
+        &["eval", &target, "--inputs", inputs.to_str().unwrap()],
+        Some(&joined),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let length = json(&o)["length"].as_f64().unwrap();
+    assert!(
+        (length - 2.0 * std::f64::consts::PI).abs() < 0.01,
+        "{length}"
+    );
+}

@@ -388,3 +388,119 @@ fn a_json_list_larger_than_the_budget_is_refused_while_it_is_read() {
         .expect("--timing prints the peak");
     assert!(peak < 40.0 + 256.0, "peak {peak} MB");
 }
+
+/// A cluster file that doubles its input (put outside the graph's folder: reading it needs
+/// `--allow-read`).
+const DOUBLE: &str = r#"(version: 1, nodes: {
+    "x": (type: "graph.input", inputs: {"name": "x", "type": "number"}),
+    "d": (type: "math.multiply", inputs: {"b": 2.0}),
+    "y": (type: "graph.output", inputs: {"name": "y", "type": "number"}),
+}, edges: ["x.value -> d.a", "d.result -> y.value"])"#;
+
+/// Issue 46 §4: every subcommand that evaluates takes the session flags of `run` —
+/// `--max-memory` and `--allow-read` included for `render`, `optimize` and `drag`.
+#[test]
+fn render_optimize_and_drag_take_the_session_flags() {
+    let d = folder("session");
+    let elsewhere = folder("session-elsewhere");
+    std::fs::write(elsewhere.join("double.ron"), DOUBLE).unwrap();
+    let g = d.join("g.ron");
+    std::fs::write(
+        &g,
+        format!(
+            r#"(version: 1, nodes: {{
+    "x": (type: "param.number", inputs: {{"value": 0.3, "min": 0.0, "max": 1.0}}),
+    "c": (type: "cluster", source: "{}"),
+    "q": (type: "math.multiply", inputs: {{"b": 1.0}}),
+    "circle": (type: "curve.circle", inputs: {{"count": 8}}),
+}}, edges: ["x.value -> c.x", "c.y -> q.a"],
+optimization: (objective: "q.result", variables: [(input: "x.value", min: 0.0, max: 1.0)]))"#,
+            elsewhere.join("double.ron").display()
+        ),
+    )
+    .unwrap();
+    let (g, allowed) = (g.to_str().unwrap(), elsewhere.to_str().unwrap());
+    let png = d.join("g.png");
+    let png = png.to_str().unwrap();
+    // Without `--allow-read` the cluster file is refused, by every subcommand alike.
+    for args in [vec!["optimize", g], vec!["render", g, "--png", png]] {
+        let (o, _) = cnets(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("outside the folders reads are allowed in"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+    }
+    let session = ["--allow-read", allowed, "--max-memory", "512MB"];
+    let (o, _) = cnets(&[&["optimize", g][..], &session].concat());
+    assert!(o.status.success(), "optimize: {}", stderr(&o));
+    assert!(
+        String::from_utf8_lossy(&o.stdout).contains("objective"),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    let (o, _) = cnets(&[&["render", g, "--png", png][..], &session].concat());
+    assert!(o.status.success(), "render: {}", stderr(&o));
+    assert!(Path::new(png).is_file());
+    // `drag` parses them too (the drag itself fails: the graph has no quad mesh to drag).
+    let drag = [
+        "drag", g, "--node", "circle", "--vertex", "0,0", "--to", "0,0,1",
+    ];
+    let (o, _) = cnets(&[&drag[..], &session].concat());
+    assert_ne!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        !stderr(&o).contains("unexpected argument"),
+        "{}",
+        stderr(&o)
+    );
+    // A bad size is a usage error everywhere.
+    for sub in [vec!["optimize", g], vec!["render", g, "--png", png]] {
+        let (o, _) = cnets(&[&sub[..], &["--max-memory", "nonsense"]].concat());
+        assert_eq!(o.status.code(), Some(2), "{sub:?}: {}", stderr(&o));
+    }
+}
+
+/// A too-small `--max-memory` stops `render`'s evaluation with the words `run` uses.
+#[test]
+fn render_under_a_small_budget_says_what_run_says() {
+    let d = folder("render-budget");
+    let g = d.join("table.ron");
+    std::fs::write(
+        &g,
+        r#"(
+    version: 1,
+    nodes: {
+        "s": (type: "param.series", inputs: {"count": 100000}),
+        "t": (type: "list.table", preview: true),
+        "circle": (type: "curve.circle", inputs: {"count": 8}),
+    },
+    edges: ["s.values -> t.rows", "s.values -> t.columns"],
+)"#,
+    )
+    .unwrap();
+    let said = |err: &str| -> String {
+        err.lines()
+            .find_map(|l| l.split_once("node 't' (list.table): ").map(|(_, m)| m))
+            .unwrap_or_else(|| panic!("no error of node 't' in:\n{err}"))
+            .to_string()
+    };
+    let run = run_fails_within_budget(&g, "t");
+    let png = d.join("table.png");
+    let (o, time) = cnets(&[
+        "render",
+        g.to_str().unwrap(),
+        "--png",
+        png.to_str().unwrap(),
+        "--max-memory",
+        "64MB",
+    ]);
+    let render = stderr(&o);
+    assert!(time < Duration::from_secs(30), "took {time:?}");
+    assert_eq!(said(&render), said(&run), "{render}");
+    assert!(
+        said(&render)
+            .contains("a table of 100000 × 100000 numbers needs 320 GB, the limit is 64 MB"),
+        "{render}"
+    );
+}

@@ -35,7 +35,8 @@ pub fn load_graph(
     Ok(doc)
 }
 
-/// Load options for a graph file, with extra library folders.
+/// Load options for a graph file, with library folders (in the order given; a door puts
+/// `CNETS_LIBRARY`'s first, [`crate::library_from_env`]).
 pub fn options(path: &Path, library: &[PathBuf]) -> LoadOptions {
     library
         .iter()
@@ -45,11 +46,14 @@ pub fn options(path: &Path, library: &[PathBuf]) -> LoadOptions {
 /// Load options for a document at `doc` (`None`: an untitled document, with no folder of its own)
 /// whose cluster sources are also looked up in the folders `library`, each followed by its
 /// `library` subfolder ([`library_folders`]), after `CNETS_LIBRARY`'s: the editor's resolution.
+/// (The editor's door reads `CNETS_LIBRARY` here, [`crate::library_from_env`], until it hands its
+/// library to a [`crate::Session`] itself.)
 pub fn document_options(doc: Option<&Path>, library: &[PathBuf]) -> LoadOptions {
-    let mut options = options(
-        doc.unwrap_or(Path::new("untitled.ron")),
-        &library_folders(library),
-    );
+    let folders: Vec<PathBuf> = crate::library_from_env()
+        .into_iter()
+        .chain(library_folders(library))
+        .collect();
+    let mut options = options(doc.unwrap_or(Path::new("untitled.ron")), &folders);
     if doc.is_none() {
         options.base_dir = None;
     }
@@ -192,10 +196,12 @@ pub fn writes_files(graph: &Graph) -> bool {
 }
 
 /// Every graph of a folder that declares an interface, as node types (sorted by file name), and a
-/// message for each file that does not load (skipped).
+/// message for each file that does not load (skipped). Their cluster sources resolve next to
+/// them, then in `library` (a door passes `CNETS_LIBRARY`'s folders), then in `dir`.
 pub fn folder_defs(
     dir: &Path,
     registry: &Arc<Registry>,
+    library: &[PathBuf],
 ) -> Result<(Vec<NodeDef>, Vec<String>), HostError> {
     let files = graph_files(dir).map_err(|e| {
         HostError::usage(format!(
@@ -207,7 +213,12 @@ pub fn folder_defs(
     let mut skipped = Vec::new();
     for file in files {
         let path = file.display().to_string();
-        match cluster_def(&path, registry, &[dir.to_path_buf()], &[]) {
+        let folders: Vec<PathBuf> = library
+            .iter()
+            .chain([&dir.to_path_buf()])
+            .cloned()
+            .collect();
+        match cluster_def(&path, registry, &folders, &[]) {
             Ok(def) => defs.push(def),
             Err(e) => skipped.extend(e.to_string().lines().map(str::to_string)),
         }
@@ -298,7 +309,7 @@ mod tests {
         let support = cluster_def(&shipped("support-structure"), &registry, &[], &[]).unwrap();
         assert!(!support.has_flag(NodeFlag::Export));
         let (defs, skipped) =
-            folder_defs(Path::new(&shipped("x")).parent().unwrap(), &registry).unwrap();
+            folder_defs(Path::new(&shipped("x")).parent().unwrap(), &registry, &[]).unwrap();
         assert!(skipped.is_empty(), "{skipped:?}");
         assert_eq!(defs.len(), 4, "the shipped library's four clusters");
     }

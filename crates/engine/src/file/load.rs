@@ -55,15 +55,13 @@ pub struct LoadOptions {
 }
 
 impl LoadOptions {
-    /// Options for loading `path`: its folder first, then the folders of `CNETS_LIBRARY`
-    /// (separated like `PATH`).
+    /// Options for loading `path`: cluster sources resolve in its folder, and in library folders
+    /// added with [`LoadOptions::with_library`] (the engine reads no environment: a front end
+    /// reads `CNETS_LIBRARY` and adds its folders, `cnets_host::library_from_env`).
     pub fn for_file(path: &Path) -> Self {
-        let library = std::env::var_os("CNETS_LIBRARY")
-            .map(|v| std::env::split_paths(&v).collect())
-            .unwrap_or_default();
         Self {
             base_dir: path.parent().map(Path::to_path_buf),
-            library,
+            library: Vec::new(),
             allow_read: Vec::new(),
             top_dir: None,
             stack: Vec::new(),
@@ -167,7 +165,7 @@ impl Loader<'_> {
     }
 }
 
-/// Reads a graph file from disk (cluster sources resolve next to it, then in `CNETS_LIBRARY`).
+/// Reads a graph file from disk (cluster sources resolve next to it; no library folders).
 pub fn load_file(path: &Path, registry: &Arc<Registry>) -> Result<Document, LoadError> {
     load_file_with(path, registry, &LoadOptions::for_file(path))
 }

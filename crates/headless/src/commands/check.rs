@@ -4,26 +4,21 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use crate::failure::CommandResult;
-use crate::library;
+use crate::session::SessionArgs;
 
 /// Arguments of `cnets check`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// The graph file.
     graph: PathBuf,
-    /// A folder nodes and cluster files may also read from (besides the graph file's folder);
-    /// repeat for several.
-    #[arg(long = "allow-read", value_name = "DIR")]
-    allow_read: Vec<PathBuf>,
-    /// Extra folders searched for cluster graph files (besides the graph's own folder and
-    /// `CNETS_LIBRARY`).
-    #[arg(long)]
-    library: Vec<PathBuf>,
+    /// The session's flags (`--max-memory` is accepted as everywhere; nothing is evaluated).
+    #[command(flatten)]
+    session: SessionArgs,
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let doc = library::load_graph_allowing(&args.graph, &args.library, &[], &args.allow_read)?;
+    let doc = args.session.session().load_graph(&args.graph, &[])?;
     for w in &doc.warnings {
         crate::errln!("warning: {w}");
     }

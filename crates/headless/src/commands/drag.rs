@@ -5,14 +5,13 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use cnets_engine::NodeContext;
 use cnets_engine::file::save_file;
 use cnets_engine::optimize::drag::{DragError, DragReport, DragRequest, default_free, drag};
 use cnets_engine::optimize::{ValuePath, Variable};
 use serde_json::json;
 
 use crate::failure::{CommandResult, Failure};
-use crate::library;
+use crate::session::SessionArgs;
 
 /// Arguments of `cnets drag`.
 #[derive(Debug, clap::Args)]
@@ -38,9 +37,8 @@ pub struct Args {
     /// Write the graph with the new values to this file (atomically).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Extra folders searched for cluster graph files.
-    #[arg(long)]
-    library: Vec<PathBuf>,
+    #[command(flatten)]
+    session: SessionArgs,
     /// Print the report as JSON.
     #[arg(long)]
     json: bool,
@@ -85,7 +83,8 @@ fn parse_point(text: &str) -> Result<[f64; 3], String> {
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let mut doc = library::load_graph(&args.graph, &args.library, &[])?;
+    let session = args.session.session();
+    let mut doc = session.load_graph(&args.graph, &[])?;
     if let Some(out) = &args.out {
         crate::commands::render::check_target(out)?;
     }
@@ -113,7 +112,7 @@ pub fn run(args: Args) -> CommandResult {
     let mut request = DragRequest::new(args.node.clone(), args.vertex, args.to.into());
     request.pins = args.pins.clone();
     request.free = free;
-    let ctx = NodeContext::new(None, args.graph.parent().map(Path::to_path_buf));
+    let ctx = session.context(args.graph.parent().map(Path::to_path_buf));
     let report = drag(&doc.graph, &request, &ctx).map_err(|e| match e {
         DragError::Evaluation(m) => Failure::node(m),
         other => usage(other),

@@ -9,8 +9,8 @@ use cnets_engine::optimize::{Method, Options, Stop, check_gradient, optimize};
 use serde_json::json;
 
 use crate::failure::{CommandResult, Failure};
-use crate::library;
 use crate::progress::Progress;
+use crate::session::SessionArgs;
 
 /// Arguments of `cnets optimize`.
 #[derive(Debug, clap::Args)]
@@ -46,14 +46,18 @@ pub struct Args {
     /// Print every iteration on stderr.
     #[arg(long, short)]
     verbose: bool,
-    /// Extra folders searched for cluster graph files.
-    #[arg(long)]
-    library: Vec<PathBuf>,
+    #[command(flatten)]
+    session: SessionArgs,
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> CommandResult {
-    let mut doc = library::load_graph(&args.graph, &args.library, &[])?;
+    // Its own cancel flag: `--time-limit` sets it (Ctrl+C ends the process).
+    let session = args
+        .session
+        .session()
+        .with_cancel(std::sync::Arc::default());
+    let mut doc = session.load_graph(&args.graph, &[])?;
     let setup = doc.meta.optimization.clone().ok_or_else(|| {
         Failure::usage(format!(
             "{}: the graph has no optimization setup (an `optimization: (…)` section)",
@@ -78,7 +82,7 @@ pub fn run(args: Args) -> CommandResult {
     if let Some(out) = &args.out {
         crate::commands::render::check_target(out)?;
     }
-    let ctx = NodeContext::new(None, args.graph.parent().map(Path::to_path_buf));
+    let ctx = session.context(args.graph.parent().map(Path::to_path_buf));
     if args.check_gradient {
         return check(&args, &doc.graph, &setup, &ctx);
     }

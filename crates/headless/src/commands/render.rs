@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use cnets_engine::{Evaluator, Graph, NodeContext, NodeFlag};
+use cnets_engine::{Evaluator, Graph, NodeFlag};
 use cnets_preview::{
     APEX_COLOR, APEX_LEGEND, ColorMode, DistanceSide, Layer, MeshKind, PreviewOptions,
     PreviewStats, build_scene, legend_rows,
@@ -16,7 +16,7 @@ use cnets_preview::{
 use cnets_render::{Camera, Image, LegendBlock, Offscreen, View, draw_legend};
 
 use crate::failure::{CommandResult, Failure};
-use crate::library;
+use crate::session::SessionArgs;
 
 /// Arguments of `cnets render`.
 #[derive(Debug, clap::Args)]
@@ -52,9 +52,8 @@ pub struct Args {
     /// Override an input before rendering: `node.input=value` (as for `cnets run`).
     #[arg(long = "set", value_name = "NODE.INPUT=VALUE")]
     sets: Vec<String>,
-    /// Extra folders searched for cluster graph files.
-    #[arg(long)]
-    library: Vec<PathBuf>,
+    #[command(flatten)]
+    session: SessionArgs,
 }
 
 fn parse_size(text: &str) -> Result<(u32, u32), Failure> {
@@ -369,7 +368,8 @@ pub fn run(args: Args) -> CommandResult {
         look.set_planarity_limit(limit)?;
     }
     check_target(&args.png)?;
-    let doc = library::load_graph(&args.graph, &args.library, &args.sets)?;
+    let session = args.session.session();
+    let doc = session.load_graph(&args.graph, &args.sets)?;
     let graph = doc.graph;
     look.resolve(&graph)?;
     // The reference is evaluated even when it is not previewed.
@@ -384,7 +384,7 @@ pub fn run(args: Args) -> CommandResult {
         .map(|(k, _)| k)
         .chain(reference)
         .collect();
-    let ctx = NodeContext::new(None, args.graph.parent().map(Path::to_path_buf));
+    let ctx = session.context(args.graph.parent().map(Path::to_path_buf));
     let mut evaluator = Evaluator::new();
     evaluator.evaluate(&graph, &request, &ctx, &mut |_, _| {});
     for (index, node) in graph.nodes() {

@@ -7,30 +7,20 @@ use std::time::Instant;
 use cnets_engine::Value;
 use cnets_engine::eval::OutputMask;
 use cnets_engine::value::json::JsonOut;
-use cnets_engine::{Evaluator, MemoryBudget, NodeContext, NodeFlag, NodeResult};
+use cnets_engine::{Evaluator, NodeFlag, NodeResult};
 
 use crate::commands::render::{Look, render_png};
 use crate::failure::{CommandResult, Failure};
-use crate::library;
 use crate::progress::Progress;
+use crate::session::SessionArgs;
 
 /// Arguments of `cnets run`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// The graph file.
     graph: PathBuf,
-    /// The most memory the evaluation's values may take, e.g. `12G`, `512MB` (default: half the
-    /// machine's memory); a node that would need more fails with what it needs.
-    #[arg(long, value_name = "SIZE", value_parser = cnets_engine::budget::parse_size)]
-    max_memory: Option<u64>,
-    /// A folder nodes and cluster files may also read from (besides the graph file's folder);
-    /// repeat for several.
-    #[arg(long = "allow-read", value_name = "DIR")]
-    allow_read: Vec<PathBuf>,
-    /// Extra folders searched for cluster graph files (besides the graph's own folder and
-    /// `CNETS_LIBRARY`).
-    #[arg(long)]
-    library: Vec<PathBuf>,
+    #[command(flatten)]
+    session: SessionArgs,
     /// Override an input before running: `node.input=value` (value in JSON; plain text for text inputs).
     #[arg(long = "set", value_name = "NODE.INPUT=VALUE")]
     sets: Vec<String>,
@@ -75,26 +65,14 @@ pub fn run(args: Args) -> CommandResult {
     if let Some(png) = &args.png {
         crate::commands::render::check_target(png)?;
     }
-    let doc =
-        library::load_graph_allowing(&args.graph, &args.library, &args.sets, &args.allow_read)?;
+    let session = args.session.session().with_out_dir(Some(args.out.clone()));
+    let doc = session.load_graph(&args.graph, &args.sets)?;
     let graph = doc.graph;
     let exports = graph
         .nodes()
         .any(|(_, n)| n.def.has_flag(NodeFlag::Export) && n.enabled);
-    if exports {
-        crate::commands::create_out_dir(&args.out)?;
-    }
     let base = args.graph.parent().map(Path::to_path_buf);
-    let mut ctx = NodeContext::new(exports.then(|| args.out.clone()), base);
-    if let Some(limit) = args.max_memory {
-        let granted = MemoryBudget::requested(limit);
-        if let Some(w) = &granted.warning {
-            crate::errln!("warning: {w}");
-        }
-        ctx.budget = granted.budget;
-    }
-    ctx.allow_read = args.allow_read.clone();
-    ctx.cancel = crate::signals::cancel_flag();
+    let ctx = session.export_context(base, exports)?;
     let mut evaluator = Evaluator::new();
     // Every node runs (its errors are reported). Outputs are lazy: `--json` prints them all, so
     // it asks for all; otherwise a previewed node (as in the editor) and an export are asked for
