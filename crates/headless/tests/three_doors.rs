@@ -368,9 +368,10 @@ fn case(def: &NodeDef) -> BoxedStrategy<Case> {
 // ------------------------------------------------------------------------------------------------
 // The doors
 
-/// The context every door evaluates in (as `cnets eval` and `cnets run` build it, no folders).
+/// The context every door evaluates in (made by a session, as `cnets eval`, `cnets run` and
+/// Python make theirs; no folders).
 fn context() -> NodeContext {
-    NodeContext::new(None, None)
+    cnets_host::Session::new().context(None)
 }
 
 fn outcome(result: Result<cnets_engine::eval::NodeOutputs, NodeError>) -> Outcome {
