@@ -10,6 +10,7 @@ use crate::failure::Failure;
 
 /// The flags of an evaluation's session, shared by every subcommand (docs/cli.md, Session flags).
 #[derive(Debug, Clone, clap::Args)]
+#[command(next_help_heading = "Session")]
 pub struct SessionArgs {
     /// The most memory the evaluation's values may take, e.g. `12G`, `512MB` (default: half the
     /// machine's memory); a node that would need more fails with what it needs.
@@ -21,7 +22,7 @@ pub struct SessionArgs {
     pub allow_read: Vec<PathBuf>,
     /// Extra folders searched for cluster graph files (besides the graph's own folder and
     /// `CNETS_LIBRARY`).
-    #[arg(long)]
+    #[arg(long, value_name = "DIR")]
     pub library: Vec<PathBuf>,
 }
 
