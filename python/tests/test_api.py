@@ -255,6 +255,37 @@ def test_cluster_graph_as_a_node(library):
     assert out["length"] == pytest.approx(2.0 * np.pi, rel=1e-3)
 
 
+def test_cnets_library_is_searched_before_the_library_argument(library, tmp_path, monkeypatch):
+    """CNETS_LIBRARY's folders (read by the Python door, not by the engine) come after the graph's
+    folder and before `library=`'s, for Graph.load, cnets.eval and node_interface alike."""
+    import os
+
+    main = tmp_path / "main.ron"
+    main.write_text('(version: 1, nodes: {"a": (type: "cluster", source: "arc-length.ron", '
+                    'inputs: {"radius": 1.0})}, edges: [])')
+    outer = tmp_path / "outer.ron"
+    outer.write_text(
+        '(version: 1, nodes: {"r": (type: "graph.input", inputs: {"name": "radius", '
+        '"type": "number", "default": 1.0}), "a": (type: "cluster", source: "arc-length.ron"), '
+        '"out": (type: "graph.output", inputs: {"name": "length", "type": "number"})}, '
+        'edges: ["r.value -> a.radius", "a.length -> out.value"])')
+    quarter = tmp_path / "quarter"
+    quarter.mkdir()
+    (quarter / "arc-length.ron").write_text(
+        (library / "arc-length.ron").read_text().replace('"end": 180.0', '"end": 90.0'))
+    monkeypatch.delenv("CNETS_LIBRARY", raising=False)
+    with pytest.raises(cnets.CnetsError, match="not found"):
+        cnets.Graph.load(main)
+    assert cnets.Graph.load(main, library=[quarter]).run()["a"]["length"] == pytest.approx(
+        np.pi / 2, rel=1e-3)
+    monkeypatch.setenv("CNETS_LIBRARY", os.pathsep.join([str(tmp_path / "none"), str(library)]))
+    assert cnets.Graph.load(main).run()["a"]["length"] == pytest.approx(np.pi, rel=1e-3)
+    assert cnets.Graph.load(main, library=[quarter]).run()["a"]["length"] == pytest.approx(
+        np.pi, rel=1e-3), "CNETS_LIBRARY first"
+    out = cnets.eval(f"cluster:{outer}", radius=2.0)
+    assert out["length"] == pytest.approx(2.0 * np.pi, rel=1e-3)
+
+
 def test_read_permissions(tmp_path, design):
     inside = tmp_path / "curves.csv"
     inside.write_text("0,0,0\n1,0,0\n1,1,0\n")
