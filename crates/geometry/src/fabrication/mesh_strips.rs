@@ -41,6 +41,7 @@ use std::collections::HashMap;
 use glam::{DVec2, DVec3};
 
 use super::FabricationError;
+use super::collapsed::{CollapsedEdge, edge_error};
 use super::face_attributes::polygon_planarity;
 use super::layout;
 use super::polygon::{check_mesh, newell};
@@ -314,6 +315,8 @@ pub struct UnrolledMeshStrip {
     pub max_length_error: f64,
     /// Largest face planarity in this strip.
     pub max_planarity: f64,
+    /// The edges of this strip collapsed to less than [`super::COLLAPSED_EDGE`] of the mesh size.
+    pub collapsed: Vec<CollapsedEdge>,
 }
 
 /// All strips of one direction of a polygon mesh, unrolled and laid out.
@@ -333,6 +336,7 @@ struct FlatStrip {
     outline: Vec<DVec2>,
     max_length_error: f64,
     max_planarity: f64,
+    collapsed: Vec<CollapsedEdge>,
 }
 
 fn flatten(
@@ -346,6 +350,7 @@ fn flatten(
     // +1: corner order runs counter-clockwise when placed; −1: the face was turned over.
     let mut signs: Vec<f64> = Vec::with_capacity(strip.faces.len());
     let (mut max_err, mut max_planarity) = (0.0f64, 0.0f64);
+    let mut collapsed = Vec::new();
     for (k, &f) in strip.faces.iter().enumerate() {
         let face = mesh.face(f);
         let corners: Vec<DVec3> = face.iter().map(|&i| v[i as usize]).collect();
@@ -420,11 +425,14 @@ fn flatten(
         for e in 0..face.len() {
             let l3 = corners[e].distance(corners[(e + 1) % face.len()]);
             let l2 = flat[e].distance(flat[(e + 1) % face.len()]);
-            let err = if l3 > 1e-14 * scale {
-                (l2 - l3).abs() / l3
-            } else {
-                (l2 - l3).abs() / scale
-            };
+            let (err, short) = edge_error(l3, l2, scale);
+            if short {
+                collapsed.push(CollapsedEdge {
+                    panel: k,
+                    edge: e,
+                    length: l3,
+                });
+            }
             max_err = max_err.max(err);
         }
         placed.push(flat);
@@ -497,6 +505,7 @@ fn flatten(
         outline,
         max_length_error: max_err,
         max_planarity,
+        collapsed,
     })
 }
 
@@ -618,6 +627,7 @@ pub fn unroll_mesh_strips(
             copy_of,
             max_length_error: flat.max_length_error,
             max_planarity: flat.max_planarity,
+            collapsed: flat.collapsed.clone(),
         });
     }
     Ok(UnrolledMesh {

@@ -9,16 +9,19 @@
 
 pub mod apex_graph;
 pub mod axes;
+pub mod collapsed;
 pub mod conical;
 pub mod cut;
 pub mod error;
 pub mod face_attributes;
+pub mod folds;
 pub mod join;
 pub mod layout;
 pub mod lines;
 pub mod mesh_strips;
 pub mod mirror;
 pub mod nest;
+pub mod panels;
 pub mod parallel_support;
 pub mod parallel_transform;
 pub mod polygon;
@@ -28,18 +31,21 @@ pub mod unroll;
 
 pub use apex_graph::{graph_to_apex, graph_to_normalized_apex};
 pub use axes::{directrix_for, torsion_free_axes};
+pub use collapsed::{COLLAPSED_EDGE, CollapsedEdge};
 pub use conical::conical_support;
 pub use cut::{Cut, cut_by_plane};
 pub use error::FabricationError;
 pub use face_attributes::{
     FaceClass, face_classes, face_planarity, planarity_colour, polygon_planarity,
 };
+pub use folds::{Fold, folds};
 pub use join::{join, weld};
 pub use mesh_strips::{
     MeshStrip, UnrolledMesh, UnrolledMeshStrip, grid_of, mesh_strips, unroll_mesh_strips,
 };
 pub use mirror::mirror;
 pub use nest::{Nested, nest, nest_until, stack_sheets};
+pub use panels::{Panel, PanelSource, StripPanels, grid_panels, mesh_panels};
 pub use parallel_support::parallel_support;
 pub use parallel_transform::{ParallelTransform, parallel_transform};
 pub use polygon::triangulate;

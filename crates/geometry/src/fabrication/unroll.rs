@@ -12,7 +12,9 @@
 //! For a planar quad the map is an isometry: its edge lengths and angles are kept to rounding error.
 //! Quads whose planarity (libigl measure) exceeds `tolerance` are rejected with an error naming the
 //! strip and the quad; below that the projection onto the Newell plane is used and the result reports
-//! the largest relative edge-length change (`max_length_error`). Closed strips are cut open at their
+//! the largest relative edge-length change (`max_length_error`; an edge collapsed to less than
+//! [`super::COLLAPSED_EDGE`] of the mesh size is measured against the mesh size and listed in
+//! [`UnrolledStrip::collapsed`], see [`super::collapsed`]). Closed strips are cut open at their
 //! first rung, which then appears at both ends.
 //!
 //! The flat strips are laid out by [`super::layout::stack`]: turned so their minimum-area rectangle is
@@ -21,6 +23,7 @@
 use glam::{DVec2, DVec3};
 
 use super::FabricationError;
+use super::collapsed::{CollapsedEdge, edge_error};
 use super::layout;
 use super::polygon::newell;
 use super::strips::{Strip, StripDirection, strips};
@@ -62,8 +65,11 @@ pub struct UnrolledStrip {
     pub quads: Vec<[DVec3; 4]>,
     /// The mesh quad (row, column) of every placed quad.
     pub mesh_quads: Vec<(usize, usize)>,
-    /// Largest relative edge-length change in this strip.
+    /// Largest relative edge-length change in this strip (collapsed edges: relative to the mesh
+    /// size).
     pub max_length_error: f64,
+    /// The edges of this strip collapsed to less than [`super::COLLAPSED_EDGE`] of the mesh size.
+    pub collapsed: Vec<CollapsedEdge>,
 }
 
 /// All strips of one direction, unrolled and laid out.
@@ -82,6 +88,7 @@ struct Flat {
     b: Vec<DVec2>,
     quads: Vec<[DVec2; 4]>,
     max_length_error: f64,
+    collapsed: Vec<CollapsedEdge>,
 }
 
 /// Places one strip flat.
@@ -100,6 +107,7 @@ fn flatten(
     let mut b = vec![DVec2::new(first, 0.0)];
     let mut quads = Vec::with_capacity(count);
     let mut max_err = 0.0f64;
+    let mut collapsed = Vec::new();
     for k in 0..count {
         let (row, column) = strip.mesh_quad(k);
         let idx = strip.quad_indices(k);
@@ -158,11 +166,14 @@ fn flatten(
         for e in 0..4 {
             let l3 = corners[e].distance(corners[(e + 1) % 4]);
             let l2 = flat[e].distance(flat[(e + 1) % 4]);
-            let err = if l3 > 1e-14 * scale {
-                (l2 - l3).abs() / l3
-            } else {
-                (l2 - l3).abs() / scale
-            };
+            let (err, short) = edge_error(l3, l2, scale);
+            if short {
+                collapsed.push(CollapsedEdge {
+                    panel: k,
+                    edge: e,
+                    length: l3,
+                });
+            }
             max_err = max_err.max(err);
         }
         quads.push(flat);
@@ -179,6 +190,7 @@ fn flatten(
         b,
         quads,
         max_length_error: max_err,
+        collapsed,
     })
 }
 
@@ -249,6 +261,7 @@ pub fn unroll_strips(
                 .map(|k| strip.mesh_quad(k))
                 .collect(),
             max_length_error: flat.max_length_error,
+            collapsed: flat.collapsed.clone(),
         });
     }
     Ok(Unrolled {
