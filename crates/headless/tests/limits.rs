@@ -92,9 +92,9 @@ fn a_construction_on_huge_polylines_fails_before_allocating() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
 
-#[test]
-fn a_series_into_both_inputs_of_a_table_fails() {
-    let d = folder("table");
+/// A graph whose previewed table `t` of a 10⁵-number series by itself needs 320 GB (and a circle,
+/// something to render).
+fn table_graph(d: &Path) -> PathBuf {
     let g = d.join("table.ron");
     std::fs::write(
         &g,
@@ -102,12 +102,20 @@ fn a_series_into_both_inputs_of_a_table_fails() {
     version: 1,
     nodes: {
         "s": (type: "param.series", inputs: {"count": 100000}),
-        "t": (type: "list.table"),
+        "t": (type: "list.table", preview: true),
+        "circle": (type: "curve.circle", inputs: {"count": 8}),
     },
     edges: ["s.values -> t.rows", "s.values -> t.columns"],
 )"#,
     )
     .unwrap();
+    g
+}
+
+#[test]
+fn a_series_into_both_inputs_of_a_table_fails() {
+    let d = folder("table");
+    let g = table_graph(&d);
     let err = run_fails_within_budget(&g, "t");
     assert!(
         err.contains("a table of 100000 × 100000 numbers needs 320 GB"),
@@ -465,20 +473,7 @@ optimization: (objective: "q.result", variables: [(input: "x.value", min: 0.0, m
 #[test]
 fn render_under_a_small_budget_says_what_run_says() {
     let d = folder("render-budget");
-    let g = d.join("table.ron");
-    std::fs::write(
-        &g,
-        r#"(
-    version: 1,
-    nodes: {
-        "s": (type: "param.series", inputs: {"count": 100000}),
-        "t": (type: "list.table", preview: true),
-        "circle": (type: "curve.circle", inputs: {"count": 8}),
-    },
-    edges: ["s.values -> t.rows", "s.values -> t.columns"],
-)"#,
-    )
-    .unwrap();
+    let g = table_graph(&d);
     let said = |err: &str| -> String {
         err.lines()
             .find_map(|l| l.split_once("node 't' (list.table): ").map(|(_, m)| m))

@@ -356,16 +356,21 @@ mod tests {
         assert_eq!(split, [PathBuf::from("/x"), PathBuf::from("/y")]);
     }
 
-    #[test]
-    fn unknown_outputs_are_refused_once_with_the_valid_ones() {
-        let registry = registry();
-        let session = Session::new();
+    /// `math.add` resolved by `session`, and its inputs `a = 1` and the default `b`.
+    fn add(session: &Session) -> (Arc<NodeDef>, Vec<Value>) {
         let def = session
-            .resolve("math.add", &registry)
+            .resolve("math.add", &registry())
             .unwrap()
             .def()
             .clone();
         let inputs = crate::complete_inputs(&def, vec![Some(Value::Number(1.0)), None]).unwrap();
+        (def, inputs)
+    }
+
+    #[test]
+    fn unknown_outputs_are_refused_once_with_the_valid_ones() {
+        let session = Session::new();
+        let (def, inputs) = add(&session);
         let err = session
             .eval_node(&def, &inputs, Some(&["nope".to_string()]), None)
             .unwrap_err()
@@ -379,7 +384,7 @@ mod tests {
         let outputs = run.into_outputs().unwrap();
         assert_eq!(outputs.values.len(), def.outputs.len());
         let err = session
-            .resolve("math.ad", &registry)
+            .resolve("math.ad", &registry())
             .unwrap_err()
             .to_string();
         assert!(err.contains("did you mean"), "{err}");
@@ -387,14 +392,8 @@ mod tests {
 
     #[test]
     fn a_cancelled_session_reports_it() {
-        let registry = registry();
         let session = Session::new();
-        let def = session
-            .resolve("math.add", &registry)
-            .unwrap()
-            .def()
-            .clone();
-        let inputs = crate::complete_inputs(&def, vec![Some(Value::Number(1.0)), None]).unwrap();
+        let (def, inputs) = add(&session);
         session.cancel_flag().store(true, Ordering::Relaxed);
         assert!(matches!(
             session.eval_node(&def, &inputs, None, None),
