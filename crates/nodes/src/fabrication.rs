@@ -189,6 +189,16 @@ node! {
         /// Label positions (the midpoint of each strip's middle rung).
         #[ui(layer = Fabrication)]
         label_points: k::List<k::Point>,
+        /// Every fold line between consecutive panels of a strip, in the flat layout (two points),
+        /// strip after strip.
+        #[ui(layer = Fabrication)]
+        folds: k::List<k::Polyline>,
+        /// The fold angle of every fold, in degrees, signed: mountain positive, seen from the side
+        /// the panels' normals point to (the flat layout seen from +z; docs/fabrication.md).
+        fold_angles: k::List<k::Number>,
+        /// The collapsed edges, by strip and panel (`D4 panel 7 (mesh quad row 4, column 7): edge
+        /// 0 collapsed to …`); their length change counts against the mesh size.
+        degenerate: k::List<k::Text>,
     ) {
         let options = UnrollOptions { tolerance, spacing };
         // The flat strips, their outlines and laid-out quads, declared before they are built.
@@ -197,18 +207,38 @@ node! {
             &format!("unrolling the strips of a mesh of {} vertices", mesh.vertices.len()),
         )?;
         // A quad grid arrives converted to a polygon mesh: unrolled as the grid it still is.
-        if let Some(grid) = fab::grid_of(&mesh) {
-            let u = fab::unroll_strips(&grid, direction, options).map_err(fab_err)?;
-            let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
-            let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
-            let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();
-            return Ok((outlines, u.max_length_error, labels, points));
-        }
-        let u = fab::unroll_mesh_strips(&mesh, direction, options).map_err(fab_err)?;
-        let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
-        let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
-        let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();
-        Ok((outlines, u.max_length_error, labels, points))
+        let (outlines, max_length_error, labels, points, panels) =
+            if let Some(grid) = fab::grid_of(&mesh) {
+                let u = fab::unroll_strips(&grid, direction, options).map_err(fab_err)?;
+                let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
+                let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
+                let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();
+                let panels = fab::grid_panels(&grid, &u);
+                (outlines, u.max_length_error, labels, points, panels)
+            } else {
+                let u = fab::unroll_mesh_strips(&mesh, direction, options).map_err(fab_err)?;
+                let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
+                let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
+                let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();
+                let panels = fab::mesh_panels(&mesh, &u);
+                (outlines, u.max_length_error, labels, points, panels)
+            };
+        let folds = fab::folds(&panels);
+        let fold_lines: Vec<Polyline> = folds
+            .iter()
+            .map(|f| Polyline::open(f.line.to_vec()))
+            .collect();
+        let fold_angles: Vec<f64> = folds.iter().map(|f| f.angle.to_degrees()).collect();
+        let degenerate = fab::collapsed::describe_all(&panels);
+        Ok((
+            outlines,
+            max_length_error,
+            labels,
+            points,
+            fold_lines,
+            fold_angles,
+            degenerate,
+        ))
     }
 }
 

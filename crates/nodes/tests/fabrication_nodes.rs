@@ -46,7 +46,15 @@ fn ports_are_the_contract() {
         (
             "pq.unroll_strips",
             &["mesh", "direction", "tolerance", "spacing"],
-            &["outlines", "max_length_error", "labels", "label_points"],
+            &[
+                "outlines",
+                "max_length_error",
+                "labels",
+                "label_points",
+                "folds",
+                "fold_angles",
+                "degenerate",
+            ],
         ),
     ];
     for (id, inputs, outputs) in table {

@@ -7,6 +7,8 @@
 //! relative to the mesh size instead of its own length, so the figure stays the honest ≤ 1e-9 of a
 //! planar mesh.
 
+use super::panels::StripPanels;
+
 /// Edges shorter than this fraction of the mesh size are collapsed.
 pub const COLLAPSED_EDGE: f64 = 1e-6;
 
@@ -38,6 +40,22 @@ pub fn describe(strip: &str, edge: &CollapsedEdge, source: &str) -> String {
         "{strip} panel {} ({source}): edge {} collapsed to {:.3e} (shorter than {COLLAPSED_EDGE:e} of the mesh size)",
         edge.panel, edge.edge, edge.length
     )
+}
+
+/// The `degenerate` lines of every collapsed edge of the strips, strip after strip.
+pub fn describe_all(strips: &[StripPanels]) -> Vec<String> {
+    strips
+        .iter()
+        .flat_map(|s| {
+            s.collapsed.iter().map(move |c| {
+                let source = s
+                    .panels
+                    .get(c.panel.wrapping_sub(s.first_panel))
+                    .map_or(String::new(), |p| p.source.to_string());
+                describe(&s.name, c, &source)
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]
