@@ -178,6 +178,9 @@ node! {
         tolerance: k::Number = 1e-6,
         /// Gap between strips in model units; empty: a tenth of the tallest strip.
         spacing: Option<k::Number>,
+        /// Station planes (frames, waterlines): each strip gets a mark where it crosses one,
+        /// labelled `S<k>` for plane k.
+        stations: Option<k::List<k::Plane>>,
     ) -> (
         /// One closed outline per strip, in the XY plane.
         #[ui(layer = Fabrication)]
@@ -199,6 +202,12 @@ node! {
         /// The collapsed edges, by strip and panel (`D4 panel 7 (mesh quad row 4, column 7): edge
         /// 0 collapsed to …`); their length change counts against the mesh size.
         degenerate: k::List<k::Text>,
+        /// Marks in the flat layout: a tick on each long edge where a strip meets a neighbour
+        /// (labelled with its name), then the station lines, strip after strip.
+        #[ui(layer = Fabrication)]
+        marks: k::List<k::Polyline>,
+        /// The text of every mark: the neighbour's name (`D3`) or the station (`S0`).
+        mark_labels: k::List<k::Text>,
     ) {
         let options = UnrollOptions { tolerance, spacing };
         // The flat strips, their outlines and laid-out quads, declared before they are built.
@@ -230,6 +239,12 @@ node! {
             .collect();
         let fold_angles: Vec<f64> = folds.iter().map(|f| f.angle.to_degrees()).collect();
         let degenerate = fab::collapsed::describe_all(&panels);
+        let mut marks = fab::neighbour_marks(&panels);
+        marks.extend(fab::station_marks(&panels, stations.as_deref().unwrap_or(&[])));
+        // Strip after strip, neighbours before stations (a stable sort keeps each strip's order).
+        marks.sort_by_key(|m| m.strip);
+        let mark_labels: Vec<String> = marks.iter().map(|m| m.label.clone()).collect();
+        let marks: Vec<Polyline> = marks.into_iter().map(|m| Polyline::open(m.line)).collect();
         Ok((
             outlines,
             max_length_error,
@@ -238,6 +253,8 @@ node! {
             fold_lines,
             fold_angles,
             degenerate,
+            marks,
+            mark_labels,
         ))
     }
 }

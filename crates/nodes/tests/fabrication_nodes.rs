@@ -45,7 +45,7 @@ fn ports_are_the_contract() {
         ("pq.extract_strips", &["mesh", "direction"], &["strips"]),
         (
             "pq.unroll_strips",
-            &["mesh", "direction", "tolerance", "spacing"],
+            &["mesh", "direction", "tolerance", "spacing", "stations"],
             &[
                 "outlines",
                 "max_length_error",
@@ -54,6 +54,8 @@ fn ports_are_the_contract() {
                 "folds",
                 "fold_angles",
                 "degenerate",
+                "marks",
+                "mark_labels",
             ],
         ),
     ];

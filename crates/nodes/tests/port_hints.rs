@@ -165,6 +165,7 @@ fn designer_facing_ports_declare_their_widgets_and_layers() {
     assert_eq!(layer("cnets.construct", "apices"), Layer::Apices);
     assert_eq!(layer("pq.unroll_strips", "outlines"), Layer::Fabrication);
     assert_eq!(layer("pq.unroll_strips", "folds"), Layer::Fabrication);
+    assert_eq!(layer("pq.unroll_strips", "marks"), Layer::Fabrication);
     assert_eq!(layer("fab.nest", "outlines"), Layer::Fabrication);
     assert_eq!(layer("cnets.construct", "mesh"), Layer::Auto);
     // Display names come from the nodes (Grasshopper's names where a designer expects them).

@@ -119,3 +119,40 @@ fn collapsed_edges_are_reported_by_strip_and_panel() {
         assert!(line.contains("collapsed to 2.69"), "{line}");
     }
 }
+
+#[test]
+fn marks_name_the_neighbours_and_the_stations() {
+    use cnets_geometry::Plane;
+    let net = cone_net(5, 8, false);
+    let ctx = NodeContext::default();
+    let station = Plane::from_normal(DVec3::new(3.5, 0.0, 0.0), DVec3::X).unwrap();
+    let out = run(
+        &ctx,
+        "pq.unroll_strips",
+        &[
+            ("mesh", net.mesh.clone().into()),
+            ("stations", Value::list(vec![Value::Plane(station.into())])),
+        ],
+    )
+    .unwrap();
+    let marks = polylines(get(&out, "marks"));
+    let labels = texts(get(&out, "mark_labels"));
+    assert_eq!(marks.len(), labels.len());
+    // Four directrix strips: 2 × 2 inner neighbours + 2 outer ones, and the station on each strip.
+    let neighbours: Vec<&str> = labels
+        .iter()
+        .map(String::as_str)
+        .filter(|l| l.starts_with('D'))
+        .collect();
+    assert_eq!(neighbours, ["D1", "D0", "D2", "D1", "D3", "D2"]);
+    assert_eq!(labels.iter().filter(|l| *l == "S0").count(), 4);
+    assert!(marks.iter().flatten().all(|p| p.z == 0.0));
+    // Without stations: only the neighbours.
+    let out = run(
+        &ctx,
+        "pq.unroll_strips",
+        &[("mesh", net.mesh.clone().into())],
+    )
+    .unwrap();
+    assert_eq!(texts(get(&out, "mark_labels")).len(), 6);
+}

@@ -18,6 +18,7 @@ pub mod folds;
 pub mod join;
 pub mod layout;
 pub mod lines;
+pub mod marks;
 pub mod mesh_strips;
 pub mod mirror;
 pub mod nest;
@@ -40,6 +41,7 @@ pub use face_attributes::{
 };
 pub use folds::{Fold, folds};
 pub use join::{join, weld};
+pub use marks::{Mark, neighbour_marks, station_marks};
 pub use mesh_strips::{
     MeshStrip, UnrolledMesh, UnrolledMeshStrip, grid_of, mesh_strips, unroll_mesh_strips,
 };
