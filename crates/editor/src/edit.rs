@@ -82,6 +82,9 @@ pub enum Edit {
     /// Set the points of point nodes moved in the 3D view: (node, input, value) — one undo step
     /// per drag.
     SetPoints(Vec<(String, String, Value)>),
+    /// Set the inputs a drag of the net itself solved for: (node, input, value) — one undo step
+    /// per drag (the Drag net tool, [`crate::net_drag`]).
+    SetDragged(Vec<(String, String, Value)>),
     /// Turn the preview of a node on or off.
     SetPreview(String, bool),
     /// Set (or clear) the colour a node's geometry is previewed in.
@@ -120,6 +123,21 @@ pub enum Edit {
 
 /// Canvas spacing of the nodes [`Edit::AddCurves`] places.
 const CURVE_NODE_STEP: [f32; 2] = [270.0, 150.0];
+
+/// Sets several nodes' input values as one step of the gesture `key` (a drag's edits merge).
+fn set_inputs(
+    doc: &mut GraphDocument,
+    key: EditKey,
+    values: Vec<(String, String, Value)>,
+) -> Result<(), String> {
+    doc.edit(Some(key), |g, _| {
+        for (node, input, value) in values {
+            g.set_value(&node, &input, value)
+                .map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    })
+}
 
 /// Applies an edit to a document as one undoable step. Returns the ids of the nodes the edit
 /// created (the cluster node, the duplicates). Errors are messages for the status bar; the graph
@@ -173,12 +191,8 @@ pub fn apply(doc: &mut GraphDocument, edit: Edit) -> Result<Vec<String>, String>
                 Ok(())
             }))
         }
-        Edit::SetPoints(values) => none(doc.edit(Some(EditKey::Points), |g, _| {
-            for (node, input, value) in values {
-                g.set_value(&node, &input, value).map_err(err)?;
-            }
-            Ok(())
-        })),
+        Edit::SetPoints(values) => none(set_inputs(doc, EditKey::Points, values)),
+        Edit::SetDragged(values) => none(set_inputs(doc, EditKey::NetDrag, values)),
         Edit::SetPreview(node, on) => {
             none(doc.edit(None, |g, _| g.set_preview(&node, on).map_err(err)))
         }

@@ -20,6 +20,8 @@ pub enum EditKey {
     Mapper(String),
     /// Moving point handles in the 3D view.
     Points,
+    /// Dragging a cone-net's vertex (the Drag net tool): the inputs its solves change.
+    NetDrag,
     /// Editing a field of the optimization setup (which one).
     Optimization(String),
 }

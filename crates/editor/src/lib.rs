@@ -48,6 +48,7 @@ pub mod load_failure;
 pub mod mapper;
 pub mod menus;
 pub mod narrow;
+pub mod net_drag;
 pub mod opening_notice;
 pub mod optimization;
 pub mod overview;

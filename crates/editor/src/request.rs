@@ -33,6 +33,9 @@ pub enum UiRequest {
     /// `param.points` node per curve wired into a `curve.polyline` (Grasshopper's "Internalise
     /// data").
     Internalise(String),
+    /// Lock a node for dragging the net (its inputs stay put while a cone-net is dragged), or
+    /// unlock it.
+    ToggleDragLock(String),
     /// Open the table editor of an input's literal list (its **Edit…** button on the node; see
     /// [`crate::list_editor`]).
     EditList {

@@ -22,7 +22,7 @@ node! {
     #[node(id = "param.number", category = "Params", name = "Number slider", flags(Parameter))]
     pub fn number[ctx](
         /// The value.
-        #[ui(widget = Slider, range_inputs = ("min", "max"))]
+        #[ui(widget = Slider, range_inputs = ("min", "max"), step_input = "step")]
         value: k::Number = 0.5,
         /// Slider minimum.
         min: k::Number = 0.0,

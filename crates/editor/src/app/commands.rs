@@ -166,6 +166,8 @@ impl EditorApp {
             }
             ViewportAction::AddCurve(curve) => self.add_curve(curve),
             ViewportAction::Message(m) => self.message = m,
+            ViewportAction::DragNet(target) => self.drag_net_to(target),
+            ViewportAction::DragNetEnd => self.end_net_drag(),
         }
     }
 
@@ -316,6 +318,10 @@ impl EditorApp {
                 self.optimization.add_penalty(&mut self.doc, path)
             }
             UiRequest::Internalise(id) => self.internalise(&id),
+            UiRequest::ToggleDragLock(id) => {
+                self.toggle_drag_lock(id);
+                return true;
+            }
             UiRequest::EditList { node, input } => {
                 // Beside the Edit… button clicked (else the pointer).
                 let at = self

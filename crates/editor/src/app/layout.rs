@@ -24,6 +24,7 @@ impl EditorApp {
     pub fn ui(&mut self, ui: &mut Ui) {
         let ctx = ui.ctx().clone();
         self.poll_worker();
+        self.poll_net_drag();
         self.optimization.poll();
         // An active list editor window takes pasted text, Copy and Delete before the shortcuts.
         self.list_editors.claim_input(&ctx, &self.doc.view_path());

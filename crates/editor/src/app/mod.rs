@@ -12,10 +12,12 @@ mod exports;
 mod files;
 mod layout;
 mod loading;
+mod net_drag;
 mod reads;
 mod worker;
 
 pub use arrivals::Arrived;
+pub use net_drag::NetDragFigures;
 pub use reads::ReadPrompt;
 
 pub use files::is_example;
@@ -191,6 +193,12 @@ pub struct EditorApp {
     declined_reads: Vec<PathBuf>,
     /// What the last File › Export wrote, shown in a dialog until it is closed.
     pub export_report: Option<crate::export::ExportReport>,
+    /// Called when a result is ready off the UI thread (requests a repaint).
+    wake: Arc<dyn Fn() + Send + Sync>,
+    /// A drag of the net in progress (the Drag net tool).
+    net_drag: Option<crate::net_drag::NetDragSession>,
+    /// What the last drag of the net measured.
+    pub last_net_drag: Option<NetDragFigures>,
 }
 
 /// How often cluster files are checked for changes.
@@ -283,7 +291,10 @@ impl EditorApp {
             import_watch: crate::import_watch::ImportWatch::default(),
             watch: ClusterWatch::default(),
             last_watch: Instant::now(),
-            optimization: OptimizationPanel::new(options.wake),
+            optimization: OptimizationPanel::new(options.wake.clone()),
+            wake: options.wake,
+            net_drag: None,
+            last_net_drag: None,
             parameters_open: false,
             parameters_rect: None,
             parameter_editors: Vec::new(),

@@ -36,6 +36,9 @@ use crate::{list_editor, mapper};
 
 /// The canvas: the snarl mirror of the graph and what the last frame learned about it.
 pub struct Canvas {
+    /// Nodes locked for dragging the net: the Drag net tool leaves their inputs alone (a node's
+    /// context menu; kept for the session, not saved).
+    pub drag_locked: std::collections::BTreeSet<String>,
     snarl: Snarl<CanvasNode>,
     ids: FxHashMap<String, NodeId>,
     /// A fingerprint of the graph's wires when the snarl's wires were last made to match them
@@ -150,6 +153,7 @@ impl Canvas {
     /// the graph around it).
     pub fn with_id(id: egui::Id) -> Self {
         Self {
+            drag_locked: Default::default(),
             snarl: Snarl::new(),
             ids: FxHashMap::default(),
             wires_synced: None,
@@ -586,6 +590,7 @@ impl Canvas {
             panels: HashMap::new(),
             selected: self.selected.clone(),
             chosen: self.chosen.clone(),
+            drag_locked: self.drag_locked.clone(),
         };
         let response = self.widget.show(&mut self.snarl, &mut viewer, ui);
         self.to_global = viewer.to_global;

@@ -80,6 +80,8 @@ pub(super) struct Viewer<'a> {
     pub(super) selected: Vec<String>,
     /// Nodes selected from outside the canvas (outlined here: the snarl does not know them).
     pub(super) chosen: Vec<String>,
+    /// Nodes locked for dragging the net (marked with a lock; their menu unlocks them).
+    pub(super) drag_locked: std::collections::BTreeSet<String>,
 }
 
 /// The graph node id a snarl node shows, if the snarl has that node.
@@ -301,6 +303,11 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 None => {
                     ui.weak(instance.def.id.as_ref());
                 }
+            }
+            if self.drag_locked.contains(&id) {
+                ui.label("🔒").on_hover_text(
+                    "locked for dragging: the Drag net tool leaves its inputs alone",
+                );
             }
             let mut preview = instance.preview;
             // The eye takes the node's preview colour; right-click it to pick one.
@@ -635,6 +642,20 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             ui.close();
         }
         self.rename_node_menu(ui, &id);
+        let locked = self.drag_locked.contains(&id);
+        let mut lock = locked;
+        if ui
+            .checkbox(&mut lock, "Locked for dragging")
+            .on_hover_text(
+                "the Drag net tool (G) leaves this node's inputs as they are while a cone-net is \
+                 dragged",
+            )
+            .changed()
+        {
+            self.actions
+                .push(CanvasAction::Request(UiRequest::ToggleDragLock(id.clone())));
+            ui.close();
+        }
         if self
             .graph
             .node(&id)

@@ -174,7 +174,7 @@ pub fn handle_at<'a>(handles: &'a [Handle], map: &ScreenMap, at: Pos2) -> Option
 /// Where a drag that grabbed at `grab` puts the handle that started at `origin`, with the
 /// pointer's ray now `ray`; snapped to `step` in the drag's plane (or along its normal) when
 /// `step` is given.
-fn dragged_to(
+pub(super) fn dragged_to(
     how: DragPlane,
     origin: DVec3,
     grab: DVec3,

@@ -9,7 +9,9 @@
 //!   and `param.points` nodes; hover a mesh for the node, row and column, class and planarity of a
 //!   face or vertex, click it to select its node;
 //! - Draw curve ([`draw`]): click points on the construction plane → `param.points` + a curve;
-//! - Measure ([`measure`]): two clicks snapped to vertices → their distance.
+//! - Measure ([`measure`]): two clicks snapped to vertices → their distance;
+//! - Drag net ([`net_drag`]): grab a vertex of a cone-net and drag it, the design's inputs solved
+//!   to follow (Shift+click pins).
 //!
 //! The overlay ([`overlay`]) shows counts, the legend with its fold entry, and the size of the
 //! previewed geometry. The same code runs in the web build. Keys and mouse: docs/editor.md,
@@ -23,6 +25,7 @@ pub mod grid;
 pub mod handles;
 pub mod measure;
 pub mod navigation;
+pub mod net_drag;
 pub mod overlay;
 pub mod pick;
 pub mod screen;
@@ -46,6 +49,7 @@ use grid::{Grid, Spacing};
 use handles::{DragPlane, Handle, HandleTool};
 pub use measure::MeasureTool;
 pub use navigation::NamedView;
+pub use net_drag::{NetDragTarget, NetDragTool, NetVertex};
 use pick::Hit;
 use screen::{CPlane, ScreenMap};
 
@@ -59,6 +63,8 @@ pub enum Tool {
     Draw(DrawTool),
     /// Measure a distance.
     Measure(MeasureTool),
+    /// Drag a vertex of a cone-net, the design's inputs solved to follow.
+    DragNet(NetDragTool),
 }
 
 impl Tool {
@@ -68,6 +74,7 @@ impl Tool {
             Tool::Select => "Select",
             Tool::Draw(_) => "Draw curve",
             Tool::Measure(_) => "Measure",
+            Tool::DragNet(_) => "Drag net",
         }
     }
 }
@@ -83,6 +90,10 @@ pub enum ViewportAction {
     AddCurve(DrawnCurve),
     /// Say this in the status bar.
     Message(String),
+    /// Solve the design so a grabbed cone-net vertex reaches a target (the Drag net tool).
+    DragNet(NetDragTarget),
+    /// The net's drag ended (the pointer was released): commit it as one undo step.
+    DragNetEnd,
 }
 
 /// What the view needs to know of the rest of the editor each frame.
@@ -312,6 +323,14 @@ impl Viewport {
         self.view.cplane(self.perspective_plane)
     }
 
+    /// Where the last solve of a net drag left the grabbed vertex and its distance to the target
+    /// (drawn as a line to the target when it stopped short).
+    pub fn set_net_reached(&mut self, reached: DVec3, distance_left: f64) {
+        if let Tool::DragNet(d) = &mut self.tool {
+            d.reached = Some((reached, distance_left));
+        }
+    }
+
     /// Frames everything on the next frame (the F key).
     pub fn fit(&mut self) {
         self.fit_pending = true;
@@ -485,6 +504,17 @@ impl Viewport {
         {
             self.toggle_tool(Tool::Measure(MeasureTool::default()));
         }
+        let dragging_net = matches!(self.tool, Tool::DragNet(_));
+        if ui
+            .selectable_label(dragging_net, "✋ Drag net")
+            .on_hover_text(
+                "drag a vertex of a cone-net: the sliders, points and handles upstream follow \
+                 (G); Shift+click pins a vertex, Esc clears the pins",
+            )
+            .clicked()
+        {
+            self.toggle_tool(Tool::DragNet(NetDragTool::default()));
+        }
         ui.separator();
         ui.toggle_value(&mut self.snap, "Snap")
             .on_hover_text("grid snap (F9); hold Alt to suspend it");
@@ -512,10 +542,11 @@ impl Viewport {
         if let Some(v) = NamedView::pressed(ctx) {
             self.set_view(v);
         }
-        let (c, m, f9, f7, shift_f, enter, backspace, esc) = ctx.input_mut(|i| {
+        let (c, m, g, f9, f7, shift_f, enter, backspace, esc) = ctx.input_mut(|i| {
             (
                 i.consume_key(Modifiers::NONE, Key::C),
                 i.consume_key(Modifiers::NONE, Key::M),
+                i.consume_key(Modifiers::NONE, Key::G),
                 i.consume_key(Modifiers::NONE, Key::F9),
                 i.consume_key(Modifiers::NONE, Key::F7),
                 i.consume_key(Modifiers::SHIFT, Key::F),
@@ -529,6 +560,9 @@ impl Viewport {
         }
         if m {
             self.toggle_tool(Tool::Measure(MeasureTool::default()));
+        }
+        if g {
+            self.toggle_tool(Tool::DragNet(NetDragTool::default()));
         }
         if f9 {
             self.snap = !self.snap;
@@ -559,6 +593,14 @@ impl Viewport {
                 }
             }
             Tool::Measure(_) if esc => self.tool = Tool::Select,
+            Tool::DragNet(d) if esc => {
+                if d.pins.is_empty() {
+                    self.tool = Tool::Select;
+                } else {
+                    d.pins.clear();
+                    actions.push(ViewportAction::Message("pins cleared".into()));
+                }
+            }
             _ if esc => {
                 self.handles.selected.clear();
                 self.folds_shown = false;
@@ -645,6 +687,7 @@ impl Viewport {
         match &self.tool {
             Tool::Draw(d) => d.paint(&painter, &map, self.tool_point),
             Tool::Measure(m) => m.paint(&painter, &map, self.tool_point),
+            Tool::DragNet(d) => d.paint(&painter, &map, self.tool_point),
             Tool::Select => {}
         }
         // The figures wrap short of the legend's column.
@@ -718,28 +761,43 @@ impl Viewport {
         let cplane = self.cplane();
         // A primary drag starting on a handle moves it; on empty space it box-selects in the
         // orthographic views (or with Ctrl in Perspective), else orbits (Shift: pans).
+        let elevator = modifiers.command && !ortho;
+        // Orthographic views: the view's plane through the grabbed point; Perspective: the
+        // construction plane through it, or its normal with Ctrl.
+        let how = |at: DVec3| {
+            if elevator {
+                DragPlane::Normal(cplane)
+            } else {
+                DragPlane::Plane(cplane.through(at), cplane)
+            }
+        };
         if response.drag_started_by(PointerButton::Primary)
             && let Some(p0) = press_origin
-            && matches!(self.tool, Tool::Select)
         {
-            let elevator = modifiers.command && !ortho;
-            // Orthographic views: the view's plane through the handle; Perspective: the
-            // construction plane through it, or its normal with Ctrl.
-            let how = |at: DVec3| {
-                if elevator {
-                    DragPlane::Normal(cplane)
-                } else {
-                    DragPlane::Plane(cplane.through(at), cplane)
+            match &mut self.tool {
+                Tool::Select => {
+                    let grabbed =
+                        self.handles
+                            .press(&self.handle_list, &map, p0, how, modifiers.shift);
+                    if !grabbed && (ortho || modifiers.command) && !modifiers.shift {
+                        self.handles.boxing = Some(p0);
+                    }
                 }
-            };
-            let grabbed = self
-                .handles
-                .press(&self.handle_list, &map, p0, how, modifiers.shift);
-            if !grabbed && (ortho || modifiers.command) && !modifiers.shift {
-                self.handles.boxing = Some(p0);
+                Tool::DragNet(d) if !modifiers.shift => {
+                    d.press(&self.picks, &map, p0, how);
+                }
+                _ => {}
             }
         }
-        if primary && self.handles.dragging() {
+        let net_dragging = matches!(&self.tool, Tool::DragNet(d) if d.dragging());
+        if primary && net_dragging {
+            if let Tool::DragNet(d) = &mut self.tool
+                && let Some(at) = response.interact_pointer_pos()
+                && let Some(target) = d.drag_to(&map, at)
+            {
+                actions.push(ViewportAction::DragNet(target));
+            }
+        } else if primary && self.handles.dragging() {
             if let Some(at) = response.interact_pointer_pos()
                 && let Some(edit) =
                     self.handles
@@ -768,6 +826,12 @@ impl Viewport {
             }
         }
         if response.drag_stopped() {
+            if let Tool::DragNet(d) = &mut self.tool
+                && d.dragging()
+            {
+                d.release();
+                actions.push(ViewportAction::DragNetEnd);
+            }
             self.handles.release();
             if self.handles.boxing.is_some()
                 && let Some(at) = response.interact_pointer_pos().or(hover)
@@ -788,7 +852,10 @@ impl Viewport {
         self.tool_point = hover.and_then(|at| match &self.tool {
             Tool::Draw(_) => self.plane_point(&map, at, modifiers),
             Tool::Measure(_) => self.measure_point(&map, at, modifiers),
-            Tool::Select => None,
+            Tool::DragNet(d) if !d.dragging() => {
+                net_drag::vertex_at(&self.picks, &map, at).map(|v| v.position)
+            }
+            Tool::DragNet(_) | Tool::Select => None,
         });
         let clicked = response.clicked_by(PointerButton::Primary);
         let at = response.interact_pointer_pos().or(hover);
@@ -809,6 +876,15 @@ impl Viewport {
                     actions.push(ViewportAction::AddCurve(curve));
                     // As a Rhino command ends with its curve.
                     self.tool = Tool::Select;
+                }
+            }
+            Tool::DragNet(d) => {
+                if clicked
+                    && modifiers.shift
+                    && let Some(at) = at
+                    && let Some(text) = d.toggle_pin(&self.picks, &map, at)
+                {
+                    actions.push(ViewportAction::Message(text));
                 }
             }
             Tool::Measure(m) => {

@@ -92,7 +92,7 @@ fn cast(mesh: &PickMesh, ray: &WorldRay) -> Option<(usize, f64)> {
 }
 
 /// The vertex index of each corner of face `f`.
-fn face_vertex_indices(geometry: &PickGeometry, f: usize) -> Vec<usize> {
+pub(super) fn face_vertex_indices(geometry: &PickGeometry, f: usize) -> Vec<usize> {
     match geometry {
         PickGeometry::Grid(g) => {
             let qc = g.quad_cols();

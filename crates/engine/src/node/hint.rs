@@ -150,6 +150,10 @@ pub struct PortHint {
     /// The inputs of the same node that hold this input's range (a slider's `min` and `max`),
     /// declared by the node so tools read the range instead of guessing it.
     pub range_inputs: Option<(&'static str, &'static str)>,
+    /// The input of the same node that holds the step this input snaps to (a slider's `step`):
+    /// with a positive step the value moves in whole steps, which a continuous solve (dragging
+    /// the net) cannot take.
+    pub step_input: Option<&'static str>,
 }
 
 /// Builder of a [`PortHint`], fed by `#[ui(key = value, …)]` in `node!`.
@@ -190,6 +194,11 @@ impl HintBuilder {
     /// `range_inputs = ("min", "max")`: the sibling inputs that hold this input's range.
     pub fn range_inputs(&mut self, names: (&'static str, &'static str)) {
         self.0.range_inputs = Some(names);
+    }
+
+    /// `step_input = "step"`: the sibling input that holds the step this input snaps to.
+    pub fn step_input(&mut self, name: &'static str) {
+        self.0.step_input = Some(name);
     }
 
     /// `role = FaceMargins`: what an output means to the engine's tools.

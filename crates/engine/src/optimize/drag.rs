@@ -3,9 +3,9 @@
 //!
 //! The unknowns u are the free inputs (expanded into numbers, with bounds, as an optimization's
 //! variables). The residual r stacks the grabbed vertex minus the target (3 rows) and every pinned
-//! vertex minus where it started (3 rows each). Its Jacobian J = ∂r/∂u has few rows and many
-//! columns: one reverse pass per row gives it exactly (the optimizer's reverse pass, seeded with
-//! one coordinate of one vertex). A step is the minimum-change Levenberg–Marquardt step
+//! vertex minus where it started (3 rows each, weighted by [`PIN_WEIGHT`]). Its Jacobian
+//! J = ∂r/∂u has few rows and many columns: one reverse pass per row gives it exactly (the
+//! optimizer's reverse pass, seeded with one coordinate of one vertex). A step is the minimum-change Levenberg–Marquardt step
 //!
 //! `Δu = −D Jᵀ (J D Jᵀ + λ I)⁻¹ r`,
 //!
@@ -28,6 +28,11 @@ use crate::graph::Graph;
 use crate::node::{NodeContext, Widget};
 use crate::value::{Value, ValueType};
 
+/// How much more a pinned vertex's distance weighs than the grabbed vertex's: a pin is all but
+/// a hard constraint, so a target the inputs cannot reach moves the grabbed vertex only as far as
+/// the pins let it (a pin gives way by about 1/PIN_WEIGHT² of the distance left).
+pub const PIN_WEIGHT: f64 = 1e3;
+
 /// What to drag, where to, and what may change.
 #[derive(Debug, Clone)]
 pub struct DragRequest {
@@ -39,6 +44,9 @@ pub struct DragRequest {
     pub target: DVec3,
     /// Vertices that must stay where they are.
     pub pins: Vec<(usize, usize)>,
+    /// Where the pins must stay (`None`: where they are in the graph given; a live drag solved
+    /// again from its last answer keeps the positions of the grab).
+    pub pinned_at: Option<Vec<DVec3>>,
     /// The free inputs (`None`: every parameter upstream of the node, [`default_free`]).
     pub free: Option<Vec<Variable>>,
     /// Steps at most.
@@ -53,6 +61,7 @@ impl DragRequest {
             vertex,
             target,
             pins: Vec::new(),
+            pinned_at: None,
             free: None,
             max_iter: 30,
         }
@@ -106,9 +115,10 @@ pub enum DragError {
 }
 
 /// The free inputs a drag of `node` changes by default: every parameter upstream of it — a
-/// slider's value within its range (the inputs its port declares as its range), a point list's
-/// points, a graph mapper's handles (their v, in the port's range), a list of numbers — numbers
-/// only (integers stay integers), each with its bounds.
+/// slider's value within its range (the inputs its port declares as its range; not a slider
+/// snapping to a step, which cannot move continuously), a point list's points, a graph mapper's
+/// handles (their v, in the port's range), a list of numbers — numbers only (integers stay
+/// integers), each with its bounds.
 pub fn default_free(graph: &Graph, node: &str) -> Result<Vec<Variable>, DragError> {
     let start = graph
         .index(node)
@@ -154,6 +164,16 @@ pub fn default_free(graph: &Graph, node: &str) -> Result<Vec<Variable>, DragErro
             }
             let value = n.value(input).or(port.default.as_ref());
             if value.is_none_or(|v| !holds_numbers(v)) {
+                continue;
+            }
+            // A slider that snaps to a step moves in whole steps: its derivative is 0, so a
+            // continuous solve cannot move it (set its step to 0 to let a drag move it).
+            if port
+                .hint
+                .step_input
+                .and_then(|s| sibling_number(graph, k, s))
+                .is_some_and(|step| step > 0.0)
+            {
                 continue;
             }
             let (min, max) = match (
@@ -290,11 +310,21 @@ pub fn drag(
             )));
         }
     }
-    let pinned_at: Vec<DVec3> = request
-        .pins
-        .iter()
-        .map(|&(i, j)| mesh.2[i * cols + j])
-        .collect();
+    let pinned_at: Vec<DVec3> = match &request.pinned_at {
+        Some(at) if at.len() == request.pins.len() => at.clone(),
+        Some(at) => {
+            return Err(DragError::Request(format!(
+                "{} pins but {} positions to hold them at",
+                request.pins.len(),
+                at.len()
+            )));
+        }
+        None => request
+            .pins
+            .iter()
+            .map(|&(i, j)| mesh.2[i * cols + j])
+            .collect(),
+    };
     let size = extent(&mesh.2);
     // The inputs' scales: a bounded input's range, else the design's size.
     let scale: Vec<f64> = lo
@@ -311,7 +341,7 @@ pub fn drag(
         let (i, j) = request.vertex;
         r.extend((mesh[i * cols + j] - request.target).to_array());
         for (&(i, j), p) in request.pins.iter().zip(&pinned_at) {
-            r.extend((mesh[i * cols + j] - *p).to_array());
+            r.extend(((mesh[i * cols + j] - *p) * PIN_WEIGHT).to_array());
         }
         r
     };
@@ -323,7 +353,10 @@ pub fn drag(
     let mut iterations = 0;
     while iterations < request.max_iter && merit > tolerance {
         iterations += 1;
-        let jacobian = rows_of(&mut problem, &net, cols, &grabbed, ctx)?;
+        let mut jacobian = rows_of(&mut problem, &net, cols, &grabbed, ctx)?;
+        for row in jacobian.iter_mut().skip(3) {
+            row.iter_mut().for_each(|v| *v *= PIN_WEIGHT);
+        }
         let Some(step) = step(&jacobian, &r, &scale, lambda) else {
             break;
         };

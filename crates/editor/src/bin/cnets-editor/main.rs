@@ -26,6 +26,7 @@ use cnets_editor::viewport::GpuTarget;
 
 mod bench;
 mod canopy;
+mod drag_net;
 mod drive;
 mod scenarios;
 mod script;

@@ -348,9 +348,10 @@ pub fn script(name: &str) -> Option<Vec<Step>> {
         "folds" => folds(),
         "canopy" => crate::canopy::canopy(),
         "wire-click" => wire_click(),
+        "drag-net" => crate::drag_net::drag_net(),
         _ => return None,
     })
 }
 
 /// The names of the scripts.
-pub const NAMES: &str = "handles, draw, pick, folds, canopy, wire-click";
+pub const NAMES: &str = "handles, draw, pick, folds, canopy, wire-click, drag-net";

@@ -1,0 +1,168 @@
+//! The Drag net tool's glue: a drag's solver started at the press ([`NetDragSession`]), the
+//! pointer's targets handed to it, its answers written into the document as one gesture, the
+//! drag committed (one undo step, autosaved with the document) at the release.
+
+use std::collections::BTreeSet;
+
+use cnets_geometry::DVec3;
+use web_time::Duration;
+
+use super::EditorApp;
+use crate::edit::Edit;
+use crate::net_drag::{NetDragSession, Solved, free_inputs};
+use crate::viewport::NetDragTarget;
+use crate::worker::format_number;
+
+/// How long the release waits for the answer to the pointer's last position.
+const FINISH_WAIT: Duration = Duration::from_millis(500);
+
+impl EditorApp {
+    /// The pointer asks for the grabbed vertex at `target`: starts the drag's solver at the
+    /// first target of a press, then hands it the newest.
+    pub(super) fn drag_net_to(&mut self, target: NetDragTarget) {
+        if self.net_drag.as_ref().is_none_or(|s| !s.is_for(&target)) {
+            self.net_drag = None;
+            if !self.doc.view_path().is_empty() {
+                self.message = "the net can be dragged at the top level of the graph: close the \
+                                cluster first"
+                    .into();
+                return;
+            }
+            let graph = self.doc.eval_graph();
+            let variables = self
+                .doc
+                .meta
+                .optimization
+                .as_ref()
+                .map(|s| s.variables.clone())
+                .unwrap_or_default();
+            let free = match free_inputs(
+                &graph,
+                &target.grabbed.node,
+                &variables,
+                &self.canvas.drag_locked,
+            ) {
+                Ok(free) => free,
+                Err(e) => {
+                    self.message = format!("cannot drag the net: {e}");
+                    return;
+                }
+            };
+            let mut ctx = cnets_engine::NodeContext::new(None, self.doc.base_dir());
+            ctx.allow_read = self.doc.allowed_reads.clone();
+            self.net_drag = Some(NetDragSession::start(
+                &graph,
+                &target,
+                free,
+                ctx,
+                self.wake.clone(),
+            ));
+        }
+        if let Some(session) = &mut self.net_drag {
+            session.aim(target.target);
+        }
+    }
+
+    /// Takes the drag's newest answer, if one arrived (every frame).
+    pub(super) fn poll_net_drag(&mut self) {
+        if let Some(answer) = self.net_drag.as_mut().and_then(|s| s.poll()) {
+            self.take_solved(answer);
+        }
+    }
+
+    /// The pointer was released: the answer to its last position, then the drag is one step.
+    pub(super) fn end_net_drag(&mut self) {
+        let Some(mut session) = self.net_drag.take() else {
+            return;
+        };
+        let last = session.finish(FINISH_WAIT);
+        if let Some(answer) = last {
+            self.take_solved(answer);
+        }
+        self.doc.history.end_gesture();
+        let figures = NetDragFigures {
+            node: session.node.clone(),
+            vertex: session.vertex,
+            target: session.last_target,
+            solved: session.newest.clone(),
+            solves: session.solves,
+            seconds: session.started.elapsed().as_secs_f64(),
+            solve_ms: session.solve_ms / session.solves.max(1) as f64,
+        };
+        let (i, j) = figures.vertex;
+        let short = figures
+            .solved
+            .as_ref()
+            .map(|s| s.distance_left)
+            .filter(|d| *d > 1e-4)
+            .map_or(String::new(), |d| {
+                format!("; {} m short of the target", format_number(d))
+            });
+        self.message = format!(
+            "dragged {} (i {i}, j {j}): {} solves, {:.0} a second{short} — Ctrl+Z undoes it",
+            figures.node,
+            figures.solves,
+            figures.rate()
+        );
+        self.last_net_drag = Some(figures);
+    }
+
+    /// Writes an answer into the document (the drag's gesture) and the view.
+    fn take_solved(&mut self, answer: Result<Solved, String>) {
+        match answer {
+            Ok(s) => {
+                if !s.values.is_empty() {
+                    self.edit(Edit::SetDragged(s.values.clone()));
+                }
+                self.viewport.set_net_reached(s.reached, s.distance_left);
+                let mut text = match &self.viewport.tool {
+                    crate::viewport::Tool::DragNet(d) => d.status().unwrap_or_default(),
+                    _ => String::new(),
+                };
+                if s.not_convex > 0 {
+                    text.push_str(&format!(" · {} faces not (++)(++)", s.not_convex));
+                }
+                self.message = text;
+            }
+            Err(e) => self.message = format!("cannot drag the net: {e}"),
+        }
+    }
+
+    /// Locks `node` for dragging the net, or unlocks it.
+    pub(super) fn toggle_drag_lock(&mut self, node: String) {
+        let locked: &mut BTreeSet<String> = &mut self.canvas.drag_locked;
+        self.message = if locked.remove(&node) {
+            format!("'{node}' unlocked: dragging the net may change it again")
+        } else {
+            let text = format!("'{node}' locked for dragging: the Drag net tool leaves it alone");
+            locked.insert(node);
+            text
+        };
+    }
+}
+
+/// What the last drag of the net measured (the docs' update rates; tests read them).
+#[derive(Clone, Debug)]
+pub struct NetDragFigures {
+    /// The dragged net's node.
+    pub node: String,
+    /// The grabbed vertex (i, j).
+    pub vertex: (usize, usize),
+    /// The last target the pointer asked for.
+    pub target: Option<DVec3>,
+    /// The last answer.
+    pub solved: Option<Solved>,
+    /// Solves answered.
+    pub solves: usize,
+    /// The drag's wall time (press to release), in seconds.
+    pub seconds: f64,
+    /// Mean wall time of a solve, in milliseconds.
+    pub solve_ms: f64,
+}
+
+impl NetDragFigures {
+    /// Solved updates a second.
+    pub fn rate(&self) -> f64 {
+        self.solves as f64 / self.seconds.max(1e-9)
+    }
+}
