@@ -181,6 +181,9 @@ node! {
         /// Station planes (frames, waterlines): each strip gets a mark where it crosses one,
         /// labelled `S<k>` for plane k.
         stations: Option<k::List<k::Plane>>,
+        /// Longest piece (model units, along the strip): a longer strip is cut at folds into
+        /// pieces `D4.1`, `D4.2`, … with the joint line marked on both; empty: strips stay whole.
+        max_length: Option<k::Number>,
     ) -> (
         /// One closed outline per strip, in the XY plane.
         #[ui(layer = Fabrication)]
@@ -203,10 +206,12 @@ node! {
         /// 0 collapsed to …`); their length change counts against the mesh size.
         degenerate: k::List<k::Text>,
         /// Marks in the flat layout: a tick on each long edge where a strip meets a neighbour
-        /// (labelled with its name), then the station lines, strip after strip.
+        /// (labelled with its name), the station lines, then the joint lines of split pieces,
+        /// strip after strip.
         #[ui(layer = Fabrication)]
         marks: k::List<k::Polyline>,
-        /// The text of every mark: the neighbour's name (`D3`) or the station (`S0`).
+        /// The text of every mark: the neighbour's name (`D3`), the station (`S0`) or the joint
+        /// (`D4.1 | D4.2`).
         mark_labels: k::List<k::Text>,
     ) {
         let options = UnrollOptions { tolerance, spacing };
@@ -216,7 +221,7 @@ node! {
             &format!("unrolling the strips of a mesh of {} vertices", mesh.vertices.len()),
         )?;
         // A quad grid arrives converted to a polygon mesh: unrolled as the grid it still is.
-        let (outlines, max_length_error, labels, points, panels) =
+        let (mut outlines, max_length_error, mut labels, mut points, mut panels) =
             if let Some(grid) = fab::grid_of(&mesh) {
                 let u = fab::unroll_strips(&grid, direction, options).map_err(fab_err)?;
                 let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
@@ -232,6 +237,15 @@ node! {
                 let panels = fab::mesh_panels(&mesh, &u);
                 (outlines, u.max_length_error, labels, points, panels)
             };
+        let mut joints = Vec::new();
+        if let Some(max_length) = max_length {
+            let p = fab::split_strips(&panels, max_length, spacing).map_err(fab_err)?;
+            outlines = p.outlines;
+            labels = p.pieces.iter().map(|s| s.label.clone()).collect();
+            points = p.label_points;
+            panels = p.pieces;
+            joints = p.joints;
+        }
         let folds = fab::folds(&panels);
         let fold_lines: Vec<Polyline> = folds
             .iter()
@@ -241,7 +255,8 @@ node! {
         let degenerate = fab::collapsed::describe_all(&panels);
         let mut marks = fab::neighbour_marks(&panels);
         marks.extend(fab::station_marks(&panels, stations.as_deref().unwrap_or(&[])));
-        // Strip after strip, neighbours before stations (a stable sort keeps each strip's order).
+        marks.extend(joints);
+        // Strip after strip: neighbours, stations, joints (a stable sort keeps each strip's order).
         marks.sort_by_key(|m| m.strip);
         let mark_labels: Vec<String> = marks.iter().map(|m| m.label.clone()).collect();
         let marks: Vec<Polyline> = marks.into_iter().map(|m| Polyline::open(m.line)).collect();

@@ -45,7 +45,14 @@ fn ports_are_the_contract() {
         ("pq.extract_strips", &["mesh", "direction"], &["strips"]),
         (
             "pq.unroll_strips",
-            &["mesh", "direction", "tolerance", "spacing", "stations"],
+            &[
+                "mesh",
+                "direction",
+                "tolerance",
+                "spacing",
+                "stations",
+                "max_length",
+            ],
             &[
                 "outlines",
                 "max_length_error",

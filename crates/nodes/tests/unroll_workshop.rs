@@ -156,3 +156,72 @@ fn marks_name_the_neighbours_and_the_stations() {
     .unwrap();
     assert_eq!(texts(get(&out, "mark_labels")).len(), 6);
 }
+
+#[test]
+fn max_length_splits_strips_into_labelled_pieces_with_joint_marks() {
+    let net = cone_net(3, 25, false);
+    let ctx = NodeContext::default();
+    let out = run(
+        &ctx,
+        "pq.unroll_strips",
+        &[
+            ("mesh", net.mesh.clone().into()),
+            ("max_length", Value::Number(6.0)),
+        ],
+    )
+    .unwrap();
+    let outlines = polylines(get(&out, "outlines"));
+    let labels = texts(get(&out, "labels"));
+    assert_eq!(outlines.len(), labels.len());
+    assert_eq!(
+        get(&out, "label_points").as_list().unwrap().len(),
+        labels.len()
+    );
+    assert!(labels.len() >= 6, "{labels:?}");
+    assert_eq!(labels[0], "D0.1");
+    assert_eq!(labels[1], "D0.2");
+    for (o, l) in outlines.iter().zip(&labels) {
+        let (lo, hi) = o
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p.x), b.max(p.x))
+            });
+        assert!(hi - lo <= 6.0 + 1e-9, "{l}: {}", hi - lo);
+    }
+    // Each joint is marked on both pieces with both names, at the same length.
+    let marks = polylines(get(&out, "marks"));
+    let mark_labels = texts(get(&out, "mark_labels"));
+    let joint: Vec<&Vec<DVec3>> = marks
+        .iter()
+        .zip(&mark_labels)
+        .filter(|(_, l)| *l == "D0.1 | D0.2")
+        .map(|(m, _)| m)
+        .collect();
+    assert_eq!(joint.len(), 2);
+    let len = |l: &[DVec3]| l[0].distance(l[1]);
+    assert!((len(joint[0]) - len(joint[1])).abs() <= 1e-9);
+    // One fold fewer per joint.
+    let folds = get(&out, "folds").as_list().unwrap().len();
+    let whole = run(
+        &ctx,
+        "pq.unroll_strips",
+        &[("mesh", net.mesh.clone().into())],
+    )
+    .unwrap();
+    let all = get(&whole, "folds").as_list().unwrap().len();
+    assert_eq!(folds + (labels.len() - 2), all);
+    // A panel longer than max_length is named.
+    let err = run(
+        &ctx,
+        "pq.unroll_strips",
+        &[
+            ("mesh", net.mesh.clone().into()),
+            ("max_length", Value::Number(0.5)),
+        ],
+    )
+    .unwrap_err();
+    assert!(
+        err.contains("D0 panel 0") && err.contains("max_length"),
+        "{err}"
+    );
+}

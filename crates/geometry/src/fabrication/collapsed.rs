@@ -50,7 +50,7 @@ pub fn describe_all(strips: &[StripPanels]) -> Vec<String> {
             s.collapsed.iter().map(move |c| {
                 let source = s
                     .panels
-                    .get(c.panel.wrapping_sub(s.first_panel))
+                    .get(c.panel)
                     .map_or(String::new(), |p| p.source.to_string());
                 describe(&s.name, c, &source)
             })

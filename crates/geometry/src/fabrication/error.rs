@@ -49,6 +49,20 @@ pub enum FabricationError {
         /// The offending value.
         value: f64,
     },
+    /// A panel of a strip is longer than the pieces a strip is split into may be.
+    #[error(
+        "{strip} panel {panel} is {length} long on its own, more than max_length {max_length}: pieces are cut at folds, raise max_length"
+    )]
+    PanelTooLong {
+        /// The strip's short name.
+        strip: String,
+        /// The panel, in strip order.
+        panel: usize,
+        /// Its length (the long side of its minimum-area rectangle).
+        length: f64,
+        /// The asked maximum.
+        max_length: f64,
+    },
     /// A scalar parameter is out of range.
     #[error("{what} is {value}, expected {expected}")]
     BadParameter {

@@ -54,7 +54,7 @@ pub struct StripPanels {
     pub panels: Vec<Panel>,
     /// The number in the strip of panel 0 (0 unless this is a later piece of a split strip).
     pub first_panel: usize,
-    /// The collapsed edges (panel numbers of the whole strip).
+    /// The collapsed edges (panel numbers of this chain: of the piece for a piece).
     pub collapsed: Vec<CollapsedEdge>,
 }
 
