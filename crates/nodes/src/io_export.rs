@@ -191,7 +191,9 @@ node! {
     /// Writes a DXF drawing (R2000, millimetres, metric, extents set, the same bytes for the same
     /// input) of the outlines for cutting: one LWPOLYLINE per outline on its own layer
     /// `STRIP_<label>` (`SHEET<s>_STRIP_<label>` when nested on sheets), with its label as TEXT on
-    /// the same layer.
+    /// the same layer. With `folds` or `marks` (from `pq.unroll_strips`) the workshop layers are
+    /// used instead: outlines on `CUT`, labels on `TEXT`, fold lines on `FOLDS` each with its
+    /// signed angle as TEXT, marks on `MARKS` with their labels.
     #[node(id = "io.export_dxf", category = "Export", flags(Export))]
     pub fn export_dxf[ctx](
         /// File name inside the output directory (`.dxf` is added when missing).
@@ -207,12 +209,28 @@ node! {
         scale: k::Number = 1000.0,
         /// The sheet of each outline (`fab.nest`): one group / layer set per sheet.
         sheets: Option<k::List<k::Integer>>,
+        /// Fold lines (`pq.unroll_strips`): written on layer `FOLDS`; with folds or marks the
+        /// outlines go on `CUT` and their labels on `TEXT`.
+        folds: Option<k::List<k::Polyline>>,
+        /// The signed angle of every fold in degrees (mountain positive), written beside it.
+        fold_angles: Option<k::List<k::Number>>,
+        /// Marks (`pq.unroll_strips`): written on layer `MARKS`.
+        marks: Option<k::List<k::Polyline>>,
+        /// The text of every mark, written at its end.
+        mark_labels: Option<k::List<k::Text>>,
     ) -> (
         /// The written file.
         path: k::Text,
     ) {
         let sheet = outlines::prepare(&outlines, labels.as_deref(), label_points.as_deref(), scale)?
-            .with_sheets(sheets.as_deref())?;
+            .with_sheets(sheets.as_deref())?
+            .with_workshop_lines(
+                folds.as_deref(),
+                fold_angles.as_deref(),
+                marks.as_deref(),
+                mark_labels.as_deref(),
+                scale,
+            )?;
         warn_z(ctx, &sheet);
         let bytes = cad::encode_dxf(&sheet)?;
         Ok((write_export(ctx, &name, "dxf", &bytes)?,))

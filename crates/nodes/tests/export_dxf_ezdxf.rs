@@ -5,7 +5,7 @@
 mod fab_support;
 
 use cnets_engine::{NodeContext, Value};
-use cnets_geometry::Polyline;
+use cnets_geometry::{DVec3, Polyline};
 use fab_support::*;
 
 /// Unrolled strips of a test cone-net: (outlines, labels, label points) as node values.
@@ -350,4 +350,110 @@ fn the_strips_of_a_cut_and_mirrored_net_pass_the_ezdxf_audit() {
         polys.iter().map(|p| p["layer"].as_str().unwrap()).collect();
     assert_eq!(layers.len(), 16, "{layers:?}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The full workshop export (issue 43): a net cut and mirrored, unrolled with stations and split at
+/// `max_length`, written with outlines, labels, folds with their angles and marks. ezdxf audits it
+/// clean and finds every entity on its layer: `CUT`, `FOLDS`, `MARKS`, `TEXT`.
+#[test]
+fn the_full_workshop_export_passes_the_ezdxf_audit_on_its_layers() {
+    use cnets_geometry::fabrication::{cut_by_plane, mirror};
+    use cnets_geometry::{Plane, PolygonMesh};
+    let net = cone_net(6, 12, false);
+    let plane = Plane::from_normal(DVec3::new(6.3, 0.0, 0.0), DVec3::new(1.0, 0.3, 0.1)).unwrap();
+    let half = cut_by_plane(&PolygonMesh::from(&net.mesh), &plane, false)
+        .unwrap()
+        .mesh;
+    let whole = mirror(&half, &plane, 1e-9).unwrap();
+    let station = Plane::from_normal(DVec3::new(3.0, 0.0, 0.0), DVec3::X).unwrap();
+    let unrolled = run(
+        &NodeContext::default(),
+        "pq.unroll_strips",
+        &[
+            ("mesh", Value::Mesh(std::sync::Arc::new(whole))),
+            ("stations", Value::list(vec![Value::Plane(station.into())])),
+            ("max_length", Value::Number(4.0)),
+        ],
+    )
+    .unwrap();
+    let dir = scratch("dxf-workshop");
+    let ctx = ctx_in(&dir);
+    let mut inputs = vec![("name", Value::text("workshop"))];
+    for (port, output) in [
+        ("outlines", "outlines"),
+        ("labels", "labels"),
+        ("label_points", "label_points"),
+        ("folds", "folds"),
+        ("fold_angles", "fold_angles"),
+        ("marks", "marks"),
+        ("mark_labels", "mark_labels"),
+    ] {
+        inputs.push((port, get(&unrolled, output).clone()));
+    }
+    let out = run(&ctx, "io.export_dxf", &inputs).unwrap();
+    let r = ezdxf_report(&out);
+    assert_eq!(r["audit_errors"], 0, "ezdxf audit found errors");
+    assert_eq!(
+        r["audit_fixes"], 0,
+        "ezdxf audit repaired something: {}",
+        r["audit_messages"]
+    );
+    let layers: Vec<&str> = r["layers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l.as_str().unwrap())
+        .collect();
+    for layer in ["CUT", "FOLDS", "MARKS", "TEXT"] {
+        assert!(layers.contains(&layer), "no layer {layer}: {layers:?}");
+    }
+    let on = |kind: &str, layer: &str| -> Vec<serde_json::Value> {
+        r[kind]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|e| e["layer"] == layer)
+            .cloned()
+            .collect()
+    };
+    let outlines = polylines(get(&unrolled, "outlines"));
+    let folds = polylines(get(&unrolled, "folds"));
+    let marks = polylines(get(&unrolled, "marks"));
+    assert!(!folds.is_empty() && !marks.is_empty());
+    let cut = on("lwpolylines", "CUT");
+    assert_eq!(cut.len(), outlines.len());
+    assert!(cut.iter().all(|c| c["closed"] == true));
+    assert_eq!(on("lwpolylines", "FOLDS").len(), folds.len());
+    assert_eq!(on("lwpolylines", "MARKS").len(), marks.len());
+    // Every fold's angle as text on FOLDS, in order; the labels on TEXT; the mark labels on MARKS.
+    let angles: Vec<String> = get(&unrolled, "fold_angles")
+        .as_list()
+        .unwrap()
+        .iter()
+        .map(|a| format!("{:+.2}", a.as_f64().unwrap()))
+        .collect();
+    let written: Vec<String> = on("texts", "FOLDS")
+        .iter()
+        .map(|t| t["text"].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(written, angles);
+    let labels = texts(get(&unrolled, "labels"));
+    assert!(
+        labels
+            .iter()
+            .any(|l| l.ends_with(".2") || l.contains(".2 "))
+    );
+    let on_text: Vec<String> = on("texts", "TEXT")
+        .iter()
+        .map(|t| t["text"].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(on_text, labels);
+    let mark_texts: Vec<String> = on("texts", "MARKS")
+        .iter()
+        .map(|t| t["text"].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(mark_texts, texts(get(&unrolled, "mark_labels")));
+    // Coordinates in mm: the first fold line at 1000 × its model coordinates.
+    let f0 = &on("lwpolylines", "FOLDS")[0]["points"];
+    assert!((f0[0][0].as_f64().unwrap() - 1000.0 * folds[0].points[0].x).abs() < 1e-6);
 }

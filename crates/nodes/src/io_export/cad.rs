@@ -15,9 +15,16 @@
 //! `STRIP_<label>` (or `STRIP_<k>`; prefixed `SHEET<s>_` when the outlines are nested on sheets, so
 //! each sheet is a group of layers), with its label as a TEXT entity on the same layer, centred on
 //! the label point. Coordinates are the model's x and y times `scale` (no offset).
+//!
+//! With fold lines or marks (issue 43) the drawing is on the workshop layers instead: outlines on
+//! `CUT`, their labels on `TEXT`, fold lines on `FOLDS` each with its signed angle (`+12.50`,
+//! degrees, mountain positive) as TEXT at its middle, marks on `MARKS` with their labels as TEXT at
+//! the mark's inner end; the texts run along their lines.
 
 use std::collections::HashSet;
 use std::fmt::Write;
+
+use glam::DVec2;
 
 use super::outlines::Sheet;
 
@@ -114,7 +121,11 @@ impl Writer {
     }
 }
 
-/// One outline's layer, in drawing order.
+/// The layers of a drawing with folds or marks: name and colour index (red cut lines, blue folds,
+/// green marks, white/black text).
+const WORKSHOP_LAYERS: [(&str, usize); 4] = [("CUT", 1), ("FOLDS", 5), ("MARKS", 3), ("TEXT", 7)];
+
+/// One layer, in drawing order.
 struct LayerEntry {
     name: String,
     colour: usize,
@@ -138,19 +149,36 @@ pub fn encode_dxf(sheet: &Sheet) -> Result<Vec<u8>, String> {
     let (style, appid, dimstyle) = (w.next(), w.next(), w.next());
     let mut taken = HashSet::with_capacity(sheet.paths.len());
     let mut layers = Vec::with_capacity(sheet.paths.len());
-    for (k, label) in sheet.labels.iter().enumerate() {
-        let mut name = layer_name(label, k, &taken);
-        taken.insert(name.to_ascii_uppercase());
-        if let Some(sheets) = &sheet.sheets {
-            name = format!("SHEET{}_{name}", sheets[k] + 1);
+    // The layer of every outline and of its label.
+    let mut outline_layers: Vec<(usize, usize)> = Vec::with_capacity(sheet.paths.len());
+    if sheet.is_workshop() {
+        for (name, colour) in WORKSHOP_LAYERS {
+            layers.push(LayerEntry {
+                name: name.to_string(),
+                colour,
+                handle: w.next(),
+            });
         }
-        layers.push(LayerEntry {
-            name,
-            colour: k % 6 + 1,
-            handle: w.next(),
-        });
+        outline_layers.resize(sheet.paths.len(), (0, 3));
+    } else {
+        for (k, label) in sheet.labels.iter().enumerate() {
+            let mut name = layer_name(label, k, &taken);
+            taken.insert(name.to_ascii_uppercase());
+            if let Some(sheets) = &sheet.sheets {
+                name = format!("SHEET{}_{name}", sheets[k] + 1);
+            }
+            layers.push(LayerEntry {
+                name,
+                colour: k % 6 + 1,
+                handle: w.next(),
+            });
+            outline_layers.push((k, k));
+        }
     }
     let entity_handles: Vec<(u64, u64)> = (0..sheet.paths.len())
+        .map(|_| (w.next(), w.next()))
+        .collect();
+    let line_handles: Vec<(u64, u64)> = (0..sheet.folds.len() + sheet.marks.len())
         .map(|_| (w.next(), w.next()))
         .collect();
     let seed = w.next;
@@ -353,38 +381,36 @@ pub fn encode_dxf(sheet: &Sheet) -> Result<Vec<u8>, String> {
         .zip(sheet.labels.iter().zip(&sheet.anchors))
         .enumerate()
     {
-        let layer = &layers[k].name;
         let (poly, text) = entity_handles[k];
-        w.group(0, "LWPOLYLINE");
-        w.handle(5, poly);
-        w.handle(330, ms_record);
-        w.group(100, "AcDbEntity");
-        w.group(8, layer);
-        w.group(100, "AcDbPolyline");
-        w.group(90, pts.len());
-        w.group(70, u8::from(*closed));
-        for p in pts {
-            w.real(10, p.x);
-            w.real(20, p.y);
-        }
+        let (line_layer, text_layer) = outline_layers[k];
+        w.lwpolyline(poly, ms_record, &layers[line_layer].name, pts, *closed);
         if !label.is_empty() {
-            w.group(0, "TEXT");
-            w.handle(5, text);
-            w.handle(330, ms_record);
-            w.group(100, "AcDbEntity");
-            w.group(8, layer);
-            w.group(100, "AcDbText");
-            w.real(10, anchor.x);
-            w.real(20, anchor.y);
-            w.real(30, 0.0);
-            w.real(40, height);
-            w.group(1, dxf_text(label));
-            w.group(72, 1);
-            w.real(11, anchor.x);
-            w.real(21, anchor.y);
-            w.real(31, 0.0);
-            w.group(100, "AcDbText");
-            w.group(73, 2);
+            w.text(
+                text,
+                ms_record,
+                &layers[text_layer].name,
+                (label, *anchor, height, 0.0),
+            );
+        }
+    }
+    // Fold lines with their angles on FOLDS, marks with their labels on MARKS: the text at the
+    // line's middle (a fold) or its inner end (a tick), along the line, half the label height.
+    let lines = sheet
+        .folds
+        .iter()
+        .map(|l| (l, 1, true))
+        .chain(sheet.marks.iter().map(|l| (l, 2, false)));
+    for (((pts, label), layer, middle), &(poly, text)) in lines.zip(&line_handles) {
+        let layer = &layers[layer].name;
+        w.lwpolyline(poly, ms_record, layer, pts, false);
+        if !label.is_empty() {
+            let (a, b) = (pts[0], pts[pts.len() - 1]);
+            let at = if middle { (a + b) * 0.5 } else { b };
+            let mut angle = (b - a).y.atan2((b - a).x).to_degrees();
+            if !(-90.0..=90.0).contains(&angle) {
+                angle -= 180.0f64.copysign(angle);
+            }
+            w.text(text, ms_record, layer, (label, at, 0.5 * height, angle));
         }
     }
     w.group(0, "ENDSEC");
@@ -423,6 +449,54 @@ pub fn encode_dxf(sheet: &Sheet) -> Result<Vec<u8>, String> {
     w.group(0, "ENDSEC");
     w.group(0, "EOF");
     Ok(w.out.into_bytes())
+}
+
+impl Writer {
+    /// An LWPOLYLINE entity.
+    fn lwpolyline(&mut self, h: u64, owner: u64, layer: &str, pts: &[DVec2], closed: bool) {
+        self.group(0, "LWPOLYLINE");
+        self.handle(5, h);
+        self.handle(330, owner);
+        self.group(100, "AcDbEntity");
+        self.group(8, layer);
+        self.group(100, "AcDbPolyline");
+        self.group(90, pts.len());
+        self.group(70, u8::from(closed));
+        for p in pts {
+            self.real(10, p.x);
+            self.real(20, p.y);
+        }
+    }
+
+    /// A TEXT entity centred on `at`: (text, at, height, rotation in degrees).
+    fn text(
+        &mut self,
+        h: u64,
+        owner: u64,
+        layer: &str,
+        (label, at, height, angle): (&str, DVec2, f64, f64),
+    ) {
+        self.group(0, "TEXT");
+        self.handle(5, h);
+        self.handle(330, owner);
+        self.group(100, "AcDbEntity");
+        self.group(8, layer);
+        self.group(100, "AcDbText");
+        self.real(10, at.x);
+        self.real(20, at.y);
+        self.real(30, 0.0);
+        self.real(40, height);
+        self.group(1, dxf_text(label));
+        if angle != 0.0 {
+            self.real(50, angle);
+        }
+        self.group(72, 1);
+        self.real(11, at.x);
+        self.real(21, at.y);
+        self.real(31, 0.0);
+        self.group(100, "AcDbText");
+        self.group(73, 2);
+    }
 }
 
 /// A LAYOUT object (plot settings left at their defaults).

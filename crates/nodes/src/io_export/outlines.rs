@@ -20,6 +20,10 @@ pub struct Sheet {
     pub dropped_z: bool,
     /// The sheet of each outline (`fab.nest`), or `None` when they are not nested.
     pub sheets: Option<Vec<usize>>,
+    /// Fold lines (mm) with their text (the signed angle in degrees).
+    pub folds: Vec<(Vec<DVec2>, String)>,
+    /// Marks (mm) with their text.
+    pub marks: Vec<(Vec<DVec2>, String)>,
 }
 
 /// Checks and scales the outlines. `scale` is millimetres per model unit (> 0). Labels and label
@@ -106,10 +110,87 @@ pub fn prepare(
         bounds: (lo, hi),
         dropped_z,
         sheets: None,
+        folds: Vec::new(),
+        marks: Vec::new(),
     })
 }
 
+/// Scales workshop lines (folds or marks) to mm with one text each; `what` names them in errors.
+fn workshop_lines(
+    what: &str,
+    lines: &[std::sync::Arc<Polyline>],
+    texts: Vec<String>,
+    scale: f64,
+) -> Result<Vec<(Vec<DVec2>, String)>, String> {
+    if texts.len() != lines.len() {
+        return Err(format!(
+            "{what} has {} entries and its texts {}: give one per line",
+            lines.len(),
+            texts.len()
+        ));
+    }
+    lines
+        .iter()
+        .zip(texts)
+        .enumerate()
+        .map(|(k, (l, t))| {
+            if l.points.len() < 2 {
+                return Err(format!(
+                    "{what} {k} has {} points, expected at least 2",
+                    l.points.len()
+                ));
+            }
+            if let Some(v) = l.points.iter().position(|p| !p.is_finite()) {
+                return Err(format!("{what} {k}, point {v} is not finite"));
+            }
+            Ok((l.points.iter().map(|p| p.truncate() * scale).collect(), t))
+        })
+        .collect()
+}
+
 impl Sheet {
+    /// Adds the fold lines with their signed angles (degrees, written `+12.50`) and the marks with
+    /// their labels (the outputs of `pq.unroll_strips`), scaled by `scale`. Angles and labels, when
+    /// given, must have one entry per line.
+    pub fn with_workshop_lines(
+        mut self,
+        folds: Option<&[std::sync::Arc<Polyline>]>,
+        fold_angles: Option<&[f64]>,
+        marks: Option<&[std::sync::Arc<Polyline>]>,
+        mark_labels: Option<&[String]>,
+        scale: f64,
+    ) -> Result<Self, String> {
+        let folds = folds.unwrap_or(&[]);
+        let angles = match fold_angles {
+            Some(a) => a
+                .iter()
+                .enumerate()
+                .map(|(k, a)| {
+                    a.is_finite()
+                        .then(|| format!("{a:+.2}"))
+                        .ok_or_else(|| format!("fold_angles[{k}] is {a}, expected a finite angle"))
+                })
+                .collect::<Result<_, _>>()?,
+            None => vec![String::new(); folds.len()],
+        };
+        self.folds = workshop_lines("folds", folds, angles, scale)?;
+        let marks = marks.unwrap_or(&[]);
+        let labels =
+            mark_labels.map_or_else(|| vec![String::new(); marks.len()], <[String]>::to_vec);
+        self.marks = workshop_lines("marks", marks, labels, scale)?;
+        for p in self.folds.iter().chain(&self.marks).flat_map(|(l, _)| l) {
+            self.bounds.0 = self.bounds.0.min(*p);
+            self.bounds.1 = self.bounds.1.max(*p);
+        }
+        Ok(self)
+    }
+
+    /// Whether the drawing has fold lines or marks: then it is written on the workshop layers
+    /// `CUT`, `FOLDS`, `MARKS` and `TEXT`.
+    pub fn is_workshop(&self) -> bool {
+        !(self.folds.is_empty() && self.marks.is_empty())
+    }
+
     /// Assigns every outline to a sheet (one entry per outline, each ≥ 0).
     pub fn with_sheets(mut self, sheets: Option<&[i64]>) -> Result<Self, String> {
         let Some(sheets) = sheets else {
