@@ -161,7 +161,10 @@ fn a_flat_strip_has_zero_fold_angles() {
     let u = unroll_strips(&flat, StripDirection::Directrix, UnrollOptions::default()).unwrap();
     let f = folds(&grid_panels(&flat, &u));
     assert_eq!(f.len(), 2 * 3);
-    assert!(f.iter().all(|f| f.angle == 0.0), "{f:?}");
+    assert!(
+        f.iter().all(|f| f.angle == 0.0 && f.angle.is_sign_positive()),
+        "{f:?}"
+    );
 }
 
 /// A zigzag folded plate (every quad planar: the profile swept along y) whose profile points 1 and

@@ -56,10 +56,11 @@ pub fn fold_angle(
     let t = (q - p).normalize_or_zero();
     let mut d = centroid - p;
     d -= t * d.dot(t);
+    // `0.0 - m`, not `-m`: a flat fold is +0, not −0 (written `+0.00`).
     Some(if d.dot(na) < 0.0 {
         magnitude
     } else {
-        -magnitude
+        0.0 - magnitude
     })
 }
 
