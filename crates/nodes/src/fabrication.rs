@@ -107,8 +107,10 @@ node! {
 }
 
 /// Bytes the unrolling holds per mesh vertex: the flat rungs (2 × 16), the outline (16 + 24), the
-/// laid-out quads (96) and their working copies, as measured on a 3000 × 1000 net (≈ 400).
-const UNROLL_BYTES_PER_VERTEX: usize = 400;
+/// laid-out quads (96) and their working copies, as measured on a 3000 × 1000 net (≈ 400), plus
+/// the panels folds and marks are computed from (corner ids, 3D and flat corners, three vectors:
+/// 32 + 96 + 96 + 72 ≈ 300, counted, not measured) and the fold lines (≈ 100).
+const UNROLL_BYTES_PER_VERTEX: usize = 800;
 
 node! {
     /// PQ Mesh Parallel Transform (paper Sec. 4.4.2): the Combescure transform of any PQ quad grid. The
