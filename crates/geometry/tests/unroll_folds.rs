@@ -162,7 +162,8 @@ fn a_flat_strip_has_zero_fold_angles() {
     let f = folds(&grid_panels(&flat, &u));
     assert_eq!(f.len(), 2 * 3);
     assert!(
-        f.iter().all(|f| f.angle == 0.0 && f.angle.is_sign_positive()),
+        f.iter()
+            .all(|f| f.angle == 0.0 && f.angle.is_sign_positive()),
         "{f:?}"
     );
 }
