@@ -61,9 +61,11 @@ class Graph:
         to: Sequence[float],
         pins: Optional[Sequence[Tuple[int, int]]] = ...,
         free: Union[str, Sequence[str], None] = ...,
+        item: Optional[int] = ...,
     ) -> Dict[str, Any]:
         """Drags vertex (i, j) of a node's quad mesh to the point ``to`` (as ``cnets drag``):
-        the free inputs are solved, the pins stay, the faces stay (++)(++); keeps the values."""
+        the free inputs are solved, the pins stay, the faces stay (++)(++); keeps the values.
+        ``item``: which net when the node's output is a list of them."""
         ...
     def optimize(
         self,

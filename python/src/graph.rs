@@ -437,8 +437,8 @@ impl PyGraph {
     /// the `pins` ((i, j) pairs) stay where they are and the faces stay (++)(++). The new values
     /// are kept in this graph. Returns a dict: `reached` (x, y, z), `distance_left`, `pin_drift`,
     /// `not_convex` (`{node: faces}`), `changes` (`[{"input", "old", "new"}]`), `iterations` and
-    /// `evaluations`.
-    #[pyo3(signature = (node, vertex, to, pins=None, free=None))]
+    /// `evaluations`. `item`: which net when the node's output is a list of them.
+    #[pyo3(signature = (node, vertex, to, pins=None, free=None, item=None))]
     fn drag<'py>(
         &mut self,
         py: Python<'py>,
@@ -447,6 +447,7 @@ impl PyGraph {
         to: &Bound<'py, PyAny>,
         pins: Option<&Bound<'py, PyAny>>,
         free: Option<&Bound<'py, PyAny>>,
+        item: Option<usize>,
     ) -> PyResult<Bound<'py, PyDict>> {
         use cnets_engine::optimize::drag::{DragRequest, default_free, drag};
         use cnets_engine::optimize::{ValuePath, Variable};
@@ -486,6 +487,7 @@ impl PyGraph {
             return Err(error("to: expected three numbers (x, y, z)"));
         };
         let mut request = DragRequest::new(node.clone(), vertex, [*x, *y, *z].into());
+        request.item = item;
         if let Some(pins) = pins.filter(|p| !p.is_none()) {
             for p in pins
                 .try_iter()

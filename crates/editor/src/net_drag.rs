@@ -60,6 +60,7 @@ struct Solver {
     graph: Graph,
     node: String,
     vertex: (usize, usize),
+    item: Option<usize>,
     pins: Vec<(usize, usize)>,
     pinned_at: Vec<DVec3>,
     free: Vec<Variable>,
@@ -74,6 +75,7 @@ impl Solver {
         let started = Instant::now();
         let mut request = DragRequest::new(self.node.clone(), self.vertex, target);
         request.pins = self.pins.clone();
+        request.item = self.item;
         request.pinned_at = Some(self.pinned_at.clone());
         request.free = Some(self.free.clone());
         request.max_iter = steps;
@@ -171,6 +173,8 @@ pub struct NetDragSession {
     pub node: String,
     /// The grabbed vertex.
     pub vertex: (usize, usize),
+    /// Which of the node's nets.
+    pub item: Option<usize>,
     runner: Runner,
     /// Solves answered, and their total wall time (ms): the update rate the docs report.
     pub solves: usize,
@@ -234,13 +238,14 @@ impl NetDragSession {
             graph: crate::optimization::isolated(graph),
             node: grab.grabbed.node.clone(),
             vertex: grab.grabbed.vertex,
+            item: grab.grabbed.item,
             pins: grab.pins.iter().map(|p| p.0).collect(),
             pinned_at: grab.pins.iter().map(|p| p.1).collect(),
             free,
             ctx,
             touched: BTreeSet::new(),
         };
-        let (node, vertex) = (solver.node.clone(), solver.vertex);
+        let (node, vertex, item) = (solver.node.clone(), solver.vertex, solver.item);
         let mailbox = Arc::new(Mailbox::default());
         let (tx, answers): (Sender<Result<Solved, String>>, _) = channel();
         let inbox = mailbox.clone();
@@ -284,6 +289,7 @@ impl NetDragSession {
         Self {
             node,
             vertex,
+            item,
             runner,
             solves: 0,
             solve_ms: 0.0,
@@ -296,7 +302,9 @@ impl NetDragSession {
 
     /// Whether `target` belongs to this drag (the same vertex of the same net).
     pub fn is_for(&self, target: &NetDragTarget) -> bool {
-        self.node == target.grabbed.node && self.vertex == target.grabbed.vertex
+        self.node == target.grabbed.node
+            && self.item == target.grabbed.item
+            && self.vertex == target.grabbed.vertex
     }
 
     /// Asks for the vertex at `target` (the newest target wins).

@@ -64,7 +64,7 @@ pub enum Tool {
     /// Measure a distance.
     Measure(MeasureTool),
     /// Drag a vertex of a cone-net, the design's inputs solved to follow.
-    DragNet(NetDragTool),
+    DragNet(Box<NetDragTool>),
 }
 
 impl Tool {
@@ -513,7 +513,7 @@ impl Viewport {
             )
             .clicked()
         {
-            self.toggle_tool(Tool::DragNet(NetDragTool::default()));
+            self.toggle_tool(Tool::DragNet(Box::default()));
         }
         ui.separator();
         ui.toggle_value(&mut self.snap, "Snap")
@@ -562,7 +562,7 @@ impl Viewport {
             self.toggle_tool(Tool::Measure(MeasureTool::default()));
         }
         if g {
-            self.toggle_tool(Tool::DragNet(NetDragTool::default()));
+            self.toggle_tool(Tool::DragNet(Box::default()));
         }
         if f9 {
             self.snap = !self.snap;

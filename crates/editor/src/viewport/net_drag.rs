@@ -22,6 +22,8 @@ use crate::worker::format_number;
 pub struct NetVertex {
     /// The node whose mesh it belongs to.
     pub node: String,
+    /// Which of the node's nets when its output is a list of them.
+    pub item: Option<usize>,
     /// (i along the generatrix, j along the directrix).
     pub vertex: (usize, usize),
     /// Its position.
@@ -61,13 +63,10 @@ pub struct NetDragTool {
 }
 
 /// The vertex of a previewed quad mesh under `at`: a picked vertex, or the picked face's corner
-/// nearest the pointer on screen. Only a node's single quad-mesh output can be dragged.
+/// nearest the pointer on screen (quad meshes only, one of a list included).
 pub fn vertex_at(picks: &Picks, map: &ScreenMap, at: Pos2) -> Option<NetVertex> {
     let hit = pick::pick(picks, map, at)?;
     let mesh = &picks.meshes[hit.mesh()];
-    if mesh.item.is_some() {
-        return None;
-    }
     let index = match hit {
         Hit::Vertex { vertex, .. } => vertex,
         Hit::Face { face, .. } => {
@@ -83,6 +82,7 @@ pub fn vertex_at(picks: &Picks, map: &ScreenMap, at: Pos2) -> Option<NetVertex> 
     };
     Some(NetVertex {
         node: mesh.node.clone(),
+        item: mesh.item,
         vertex: mesh.geometry.vertex_row_col(index)?,
         position: *mesh.geometry.vertices().get(index)?,
     })
@@ -141,7 +141,9 @@ impl NetDragTool {
         let pins = self
             .pins
             .iter()
-            .filter(|p| p.node == g.vertex.node && p.vertex != g.vertex.vertex)
+            .filter(|p| {
+                p.node == g.vertex.node && p.item == g.vertex.item && p.vertex != g.vertex.vertex
+            })
             .map(|p| (p.vertex, p.position))
             .collect();
         Some(NetDragTarget {
@@ -163,7 +165,7 @@ impl NetDragTool {
         if let Some(k) = self
             .pins
             .iter()
-            .position(|p| p.node == v.node && p.vertex == v.vertex)
+            .position(|p| p.node == v.node && p.item == v.item && p.vertex == v.vertex)
         {
             self.pins.remove(k);
             return Some(format!("unpinned {} (i {i}, j {j})", v.node));

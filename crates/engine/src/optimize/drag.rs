@@ -40,6 +40,9 @@ pub struct DragRequest {
     pub node: String,
     /// The grabbed vertex: (row i along the generatrix, column j along the directrix).
     pub vertex: (usize, usize),
+    /// Which net of a list of them (a construction over several generatrices, e.g. a
+    /// non-manifold one): `None` for a node whose output is one quad mesh.
+    pub item: Option<usize>,
     /// Where it should go.
     pub target: DVec3,
     /// Vertices that must stay where they are.
@@ -59,6 +62,7 @@ impl DragRequest {
         Self {
             node: node.into(),
             vertex,
+            item: None,
             target,
             pins: Vec::new(),
             pinned_at: None,
@@ -298,7 +302,7 @@ pub fn drag(
     }
     let start = x.clone();
     problem.evaluate(&x, ctx).map_err(DragError::Evaluation)?;
-    let mesh = mesh_of(&problem, &net)?;
+    let mesh = mesh_of(&problem, &net, request.item)?;
     let (rows, cols) = (mesh.0, mesh.1);
     let mut grabbed = vec![request.vertex];
     grabbed.extend(request.pins.iter().copied());
@@ -353,7 +357,7 @@ pub fn drag(
     let mut iterations = 0;
     while iterations < request.max_iter && merit > tolerance {
         iterations += 1;
-        let mut jacobian = rows_of(&mut problem, &net, cols, &grabbed, ctx)?;
+        let mut jacobian = rows_of(&mut problem, &net, (cols, mesh.3), &grabbed, ctx)?;
         for row in jacobian.iter_mut().skip(3) {
             row.iter_mut().for_each(|v| *v *= PIN_WEIGHT);
         }
@@ -373,7 +377,7 @@ pub fn drag(
                 break;
             }
             if problem.evaluate(&trial, ctx).is_ok()
-                && let Ok(m) = mesh_of(&problem, &net)
+                && let Ok(m) = mesh_of(&problem, &net, request.item)
                 && !(convex_start && problem.kept_folded())
             {
                 let rt = residual(&m.2);
@@ -396,7 +400,7 @@ pub fn drag(
         }
     }
     problem.evaluate(&x, ctx).map_err(DragError::Evaluation)?;
-    let mesh = mesh_of(&problem, &net)?;
+    let mesh = mesh_of(&problem, &net, request.item)?;
     let (i, j) = request.vertex;
     let reached = mesh.2[i * cols + j];
     let pin_drift = request
@@ -430,19 +434,43 @@ pub fn drag(
     })
 }
 
-/// Rows, columns and vertices of the dragged net at the last evaluation.
-fn mesh_of(problem: &Problem, net: &Net) -> Result<(usize, usize, Vec<DVec3>), DragError> {
-    match problem
+/// Rows, columns and vertices of the dragged net at the last evaluation, and the index of its
+/// first coordinate among the output's numbers (the nets before it in a list).
+fn mesh_of(
+    problem: &Problem,
+    net: &Net,
+    item: Option<usize>,
+) -> Result<(usize, usize, Vec<DVec3>, usize), DragError> {
+    let value = problem
         .output_at(net.index, net.output)
-        .map_err(DragError::Evaluation)?
-    {
-        Value::QuadMesh(g) => Ok((g.rows, g.cols, g.vertices.clone())),
-        other => Err(DragError::Evaluation(format!(
-            "the net is {}, not one quad mesh (a construction mapped over a list cannot be \
-             dragged)",
-            other.type_name()
-        ))),
-    }
+        .map_err(DragError::Evaluation)?;
+    let (mesh, offset) = match (value, item) {
+        (Value::QuadMesh(g), None) => (g, 0),
+        (Value::List(items), Some(k)) => match items.get(k) {
+            Some(Value::QuadMesh(g)) => {
+                (g, items[..k].iter().map(crate::value::leaves::count).sum())
+            }
+            _ => {
+                return Err(DragError::Request(format!(
+                    "the net has {} items; item {k} is not a quad mesh",
+                    items.len()
+                )));
+            }
+        },
+        (Value::List(items), None) => {
+            return Err(DragError::Request(format!(
+                "the node's output is a list of {} nets: say which one (the item)",
+                items.len()
+            )));
+        }
+        (other, _) => {
+            return Err(DragError::Evaluation(format!(
+                "the net is {}, not a quad mesh",
+                other.type_name()
+            )));
+        }
+    };
+    Ok((mesh.rows, mesh.cols, mesh.vertices.clone(), offset))
 }
 
 /// The largest coordinate extent of the vertices (1 when they have none).
@@ -460,7 +488,7 @@ fn extent(points: &[DVec3]) -> f64 {
 fn rows_of(
     problem: &mut Problem,
     net: &Net,
-    cols: usize,
+    (cols, offset): (usize, usize),
     vertices: &[(usize, usize)],
     ctx: &NodeContext,
 ) -> Result<Vec<Vec<f64>>, DragError> {
@@ -473,7 +501,7 @@ fn rows_of(
     for &(i, j) in vertices {
         for c in 0..3 {
             let mut seed = vec![0.0; leaves];
-            seed[3 * (i * cols + j) + c] = 1.0;
+            seed[offset + 3 * (i * cols + j) + c] = 1.0;
             let cot = HashMap::from([((net.index, net.output), seed)]);
             let pass = problem.reverse(cot, ctx).map_err(DragError::Evaluation)?;
             rows.push(pass.gradient);

@@ -24,6 +24,10 @@ pub struct Args {
     /// The grabbed vertex: row I (along the generatrix), column J (along the directrix).
     #[arg(long, value_name = "I,J", value_parser = parse_vertex)]
     vertex: (usize, usize),
+    /// Which net when the node's output is a list of them (a construction over several
+    /// generatrices, e.g. the facade's non-manifold one), counted from 0.
+    #[arg(long, value_name = "K")]
+    item: Option<usize>,
     /// Where the vertex should go.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
     to: [f64; 3],
@@ -111,6 +115,7 @@ pub fn run(args: Args) -> CommandResult {
     };
     let mut request = DragRequest::new(args.node.clone(), args.vertex, args.to.into());
     request.pins = args.pins.clone();
+    request.item = args.item;
     request.free = free;
     let ctx = session.context(args.graph.parent().map(Path::to_path_buf));
     let report = drag(&doc.graph, &request, &ctx).map_err(|e| match e {
