@@ -439,6 +439,7 @@ impl PyGraph {
     /// `not_convex` (`{node: faces}`), `changes` (`[{"input", "old", "new"}]`), `iterations` and
     /// `evaluations`. `item`: which net when the node's output is a list of them.
     #[pyo3(signature = (node, vertex, to, pins=None, free=None, item=None))]
+    #[allow(clippy::too_many_arguments)] // Python's keyword arguments, one parameter each
     fn drag<'py>(
         &mut self,
         py: Python<'py>,

@@ -1,5 +1,5 @@
 """Inverse design from Python: `Graph.drag` (the same solve as `cnets drag`) and `Graph.optimize`
-with faces kept convex (docs/optimizer.md, docs/editor.md Dragging the net)."""
+with faces kept convex (docs/optimizer.md, docs/editor/3d-view.md, Dragging the net)."""
 
 import json
 import subprocess

@@ -94,16 +94,25 @@ def test_reference_fit_measures_distances_to_a_surface():
     _, net = _net()
     itself = cnets.PolygonMesh(net.vertices.reshape(-1, 3), net.faces().tolist())
     same = cnets.eval(_cluster("reference-fit"), mesh=net, reference=itself)
-    assert same["mean_squared"] == 0.0 and same["max_distance"] == 0.0
+    # The symmetric measure samples both meshes: a mesh against itself is 0 to rounding.
+    assert same["mean_squared"] < 1e-24 and same["max_distance"] < 1e-12
     assert same["max_planarity"] < 1e-12
-    # A flat 5 × 4 grid at height 0 against the plane z = 0.25: every vertex 0.25 away.
+    # A flat 5 × 4 grid at height 0 against the plane z = 0.25 over the same 4 × 3 m: every
+    # point of either 0.25 from the other, both ways (mean_squared is the symmetric measure,
+    # max_distance the Hausdorff distance).
     xs, ys = np.meshgrid(np.linspace(0, 4, 5), np.linspace(0, 3, 4))
     grid = np.stack([xs, ys, np.zeros_like(xs)], axis=-1)
-    plane = cnets.PolygonMesh([[-10, -10, 0.25], [10, -10, 0.25], [10, 10, 0.25], [-10, 10, 0.25]],
+    plane = cnets.PolygonMesh([[0, 0, 0.25], [4, 0, 0.25], [4, 3, 0.25], [0, 3, 0.25]],
                               [[0, 1, 2, 3]])
     off = cnets.eval(_cluster("reference-fit"), mesh=grid, reference=plane)
     assert off["mean_squared"] == pytest.approx(0.0625, rel=1e-12)
     assert off["max_distance"] == pytest.approx(0.25, rel=1e-12)
+    # A reference larger than the net: its overhang, up to 10 m out, is measured back to the net
+    # (what the one-way figure never saw).
+    wide = cnets.PolygonMesh([[-10, -10, 0.25], [10, -10, 0.25], [10, 10, 0.25], [-10, 10, 0.25]],
+                             [[0, 1, 2, 3]])
+    over = cnets.eval(_cluster("reference-fit"), mesh=grid, reference=wide)
+    assert over["max_distance"] > 9.0 and over["mean_squared"] > 1.0
 
 
 def test_closed_tube_wraps_and_measures_its_closure():

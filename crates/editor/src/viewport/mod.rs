@@ -14,7 +14,7 @@
 //!   to follow (Shift+click pins).
 //!
 //! The overlay ([`overlay`]) shows counts, the legend with its fold entry, and the size of the
-//! previewed geometry. The same code runs in the web build. Keys and mouse: docs/editor.md,
+//! previewed geometry. The same code runs in the web build. Keys and mouse: docs/editor/3d-view.md,
 //! "Drawing and editing in the 3D view".
 
 pub mod colors;

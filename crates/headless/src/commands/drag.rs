@@ -1,5 +1,5 @@
 //! `cnets drag <GRAPH.ron> --node NODE --vertex I,J --to X,Y,Z [--pin I,J]… [--free NODE.INPUT]…
-//! [--out FILE] [--json]`: the editor's Drag net tool, solved once (docs/editor.md, Dragging the
+//! [--out FILE] [--json]`: the editor's Drag net tool, solved once (docs/editor/3d-view.md, Dragging the
 //! net; the solver is `cnets_engine::optimize::drag`).
 
 use std::path::{Path, PathBuf};
