@@ -464,38 +464,15 @@ fn flatten(
             directed.push((key(a.0, a.1), key(b.0, b.1), a.1));
         }
     }
-    let mut count: HashMap<(Key, Key), usize> = HashMap::new();
-    for &(a, b, _) in &directed {
-        *count.entry((a, b)).or_default() += 1;
-    }
-    let boundary: Vec<&(Key, Key, DVec2)> = directed
-        .iter()
-        .filter(|(a, b, _)| !count.contains_key(&(*b, *a)))
-        .collect();
-    let next: HashMap<Key, usize> = boundary
-        .iter()
-        .enumerate()
-        .map(|(i, (a, _, _))| (*a, i))
-        .collect();
-    let mut outline = Vec::with_capacity(boundary.len());
-    if let Some(first) = boundary.first() {
-        let mut at = first.0;
-        while let Some(&i) = next.get(&at) {
-            outline.push(boundary[i].2);
-            at = boundary[i].1;
-            if at == first.0 || outline.len() > boundary.len() {
-                break;
-            }
-        }
-    }
-    if outline.len() != boundary.len() || outline.len() < 3 {
+    let (outline, edges) = super::boundary::boundary_loop(&directed);
+    if outline.len() != edges || outline.len() < 3 {
         return Err(FabricationError::DegenerateFace {
             what: "unroll",
             face: strip.faces[0],
             reason: format!(
                 "strip {}: its faces do not bound one flat piece (a boundary of {} edges, {} on one loop)",
                 strip.index,
-                boundary.len(),
+                edges,
                 outline.len()
             ),
         });

@@ -9,6 +9,7 @@
 
 pub mod apex_graph;
 pub mod axes;
+pub mod boundary;
 pub mod collapsed;
 pub mod conical;
 pub mod cut;

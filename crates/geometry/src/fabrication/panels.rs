@@ -2,7 +2,6 @@
 //! and its placed flat corners, whether it came from a quad grid ([`super::unroll_strips`]) or a
 //! polygon mesh ([`super::unroll_mesh_strips`]). Folds, marks and pieces are computed from this.
 
-use std::collections::HashMap;
 use std::fmt;
 
 use glam::{DVec2, DVec3};
@@ -156,28 +155,6 @@ pub fn outline_of(panels: &[Panel]) -> Option<Polyline> {
             directed.push((key(a.0, a.1), key(b.0, b.1), a.1));
         }
     }
-    let mut count: HashMap<(Key, Key), usize> = HashMap::new();
-    for &(a, b, _) in &directed {
-        *count.entry((a, b)).or_default() += 1;
-    }
-    let boundary: Vec<&(Key, Key, DVec3)> = directed
-        .iter()
-        .filter(|(a, b, _)| !count.contains_key(&(*b, *a)))
-        .collect();
-    let next: HashMap<Key, usize> = boundary
-        .iter()
-        .enumerate()
-        .map(|(i, (a, _, _))| (*a, i))
-        .collect();
-    let mut points = Vec::with_capacity(boundary.len());
-    let first = boundary.first()?;
-    let mut at = first.0;
-    while let Some(&i) = next.get(&at) {
-        points.push(boundary[i].2);
-        at = boundary[i].1;
-        if at == first.0 || points.len() > boundary.len() {
-            break;
-        }
-    }
-    (points.len() == boundary.len() && points.len() >= 3).then(|| Polyline::closed(points))
+    let (points, edges) = super::boundary::boundary_loop(&directed);
+    (points.len() == edges && points.len() >= 3).then(|| Polyline::closed(points))
 }
