@@ -41,6 +41,9 @@ use super::prepare::prepare;
 use super::tolerance;
 use crate::{GeometryError, QuadGrid};
 
+mod ctube;
+pub use ctube::ctube_adjoint_for;
+
 /// The directions of a step's local Jacobian: G_{i,j−1} (3), r, a_j, ε, X_{j−1} (3), X_j (3), ê_j
 /// (3), b_j (3). A sweep follows the first N of them.
 pub(super) mod layout {
@@ -68,6 +71,8 @@ pub(super) enum PlaneRule {
     Ratio,
     /// The assisted correction's plane fix: `θ = (1 − ε) φ` (notes §6).
     Fixed,
+    /// Given beforehand (the C-tube construction): the step's `b` is the plane normal itself.
+    Given,
 }
 
 /// The values one step reads, on dual numbers.
@@ -114,6 +119,9 @@ pub(super) fn step_plane<const N: usize>(
         b,
         ..
     } = *s;
+    if rule == PlaneRule::Given {
+        return b;
+    }
     let d = g.sub(x0);
     let on_directrix =
         d.0.iter().fold(0.0f64, |m, x| m.max(x.v.abs())) * inv_scale <= tolerance::FRAME;
@@ -129,7 +137,7 @@ pub(super) fn step_plane<const N: usize>(
             let v = g.sub(x1);
             Dual::atan2(w.dot(v), e.dot(v)) * (Dual::constant(1.0) - epsilon)
         }
-        PlaneRule::Ratio => {
+        PlaneRule::Ratio | PlaneRule::Given => {
             let theta_b = Dual::atan2(e.dot(b), -w.dot(b));
             // At r = ½ the map has a kink (slopes 2θ_b and 2(π − θ_b)): the mean slope π is
             // used there, the derivative central differences see (an element of the
@@ -170,6 +178,8 @@ pub struct Wrt {
     pub directrix: bool,
     /// The correction margin ε's.
     pub epsilon: bool,
+    /// The given plane normals' (the C-tube construction, [`ctube_adjoint_for`]).
+    pub normals: bool,
 }
 
 impl Wrt {
@@ -178,6 +188,7 @@ impl Wrt {
         apex: true,
         directrix: true,
         epsilon: true,
+        normals: true,
     };
 }
 
@@ -216,6 +227,10 @@ pub struct ConstructAdjoint {
     pub directrix: Option<Vec<DVec3>>,
     /// ∂L/∂ε (nonzero only when the correction turned planes); `None` when not asked for.
     pub epsilon: Option<f64>,
+    /// ∂L/∂ the given plane normals of the C-tube construction, in the shape of the input (M−1
+    /// shared, or N·(M−1) per vertex, row-major; the Monge planes have none); `None` when not
+    /// asked for or not given.
+    pub normals: Option<Vec<DVec3>>,
 }
 
 /// The backward sweep of [`super::construct`] for the mesh it built (`mesh`) and the cotangents of
@@ -254,6 +269,51 @@ pub fn construct_adjoint_for(
         inputs.end_planes,
     )?;
     let (n, m) = (prep.generatrix.len(), prep.dx.columns());
+    check_sizes(n, m, mesh, &bars)?;
+    let grid = inputs
+        .ratios
+        .resolve("ratios", n, m - 1, (0.0, 1.0, "a value in [0, 1]"))?;
+    let piece = piece(inputs, &prep, &grid, mesh)?;
+    let sweep = Backward {
+        prep: &prep,
+        grid: &grid,
+        mesh,
+        mesh_bar: bars.mesh,
+        plane_bar: &[],
+        piece: &piece,
+        epsilon: inputs.assistance.epsilon,
+        given: None,
+    };
+    let wrt = Wrt {
+        normals: false,
+        ..wrt
+    };
+    let mut result = sweep_and_pull(
+        sweep,
+        &bars,
+        wrt,
+        &inputs.apex,
+        inputs.end_planes,
+        inputs.directrix.points.len(),
+    )?;
+    let swept = std::mem::take(&mut result.ratios);
+    result.ratios = match &inputs.ratios {
+        GridValues::Uniform(_) => vec![swept.iter().sum()],
+        GridValues::PerColumn(_) => (0..m - 1)
+            .map(|j| swept.iter().skip(j).step_by(m - 1).sum())
+            .collect(),
+        GridValues::PerVertex(_) => swept,
+    };
+    finite(result)
+}
+
+/// Checks the mesh has the construction's size and the outputs' cotangents fit it.
+pub(super) fn check_sizes(
+    n: usize,
+    m: usize,
+    mesh: &QuadGrid,
+    bars: &OutputBars<'_>,
+) -> Result<(), GeometryError> {
     if mesh.rows != n || mesh.cols != m || bars.mesh.len() != n * m {
         return Err(GeometryError::Degenerate(format!(
             "the adjoint needs the {n} × {m} mesh the construction built and one cotangent per vertex"
@@ -270,70 +330,103 @@ pub fn construct_adjoint_for(
         }
     };
     extra(bars.apex.len(), "apex")?;
-    extra(bars.apices.len(), "apices")?;
-    let grid = inputs
-        .ratios
-        .resolve("ratios", n, m - 1, (0.0, 1.0, "a value in [0, 1]"))?;
-    let piece = piece(inputs, &prep, &grid, mesh)?;
-    let dx = &prep.dx;
-    let sweep = Backward {
-        prep: &prep,
-        grid: &grid,
-        mesh,
-        mesh_bar: bars.mesh,
-        plane_bar: &[],
-        piece: &piece,
-        epsilon: inputs.assistance.epsilon,
-    };
-    let seeded = seed(&sweep, &bars)?;
+    extra(bars.apices.len(), "apices")
+}
+
+/// Seeds `sweep` from the outputs' cotangents, runs it with as many directions as `wrt` needs and
+/// pulls the column cotangents back to the directrix and the apex input (`stored` directrix
+/// points): every cotangent, the ratios' and the given normals' per vertex (N·(M−1), row-major;
+/// the normals' `None` unless asked for and given, not the Monge planes).
+pub(super) fn sweep_and_pull(
+    sweep: Backward<'_>,
+    bars: &OutputBars<'_>,
+    wrt: Wrt,
+    apex: &super::inputs::ApexInput,
+    end_planes: super::inputs::EndPlanes,
+    stored: usize,
+) -> Result<ConstructAdjoint, GeometryError> {
+    let seeded = seed(&sweep, bars)?;
     let sweep = Backward {
         mesh_bar: &seeded.mesh,
         plane_bar: &seeded.planes,
         ..sweep
     };
     let outputs = seeded.columns;
-    let coupled = !piece.apex_fixes.is_empty() || piece.generatrix_fix.is_some();
-    let swept = if wrt.directrix || coupled {
+    let coupled = !sweep.piece.apex_fixes.is_empty() || sweep.piece.generatrix_fix.is_some();
+    let normals = wrt.normals && sweep.given.is_some_and(|g| !g.monge);
+    let swept = if wrt.directrix || coupled || normals {
         sweep.run::<N_ALL>(outputs)
     } else if wrt.apex || wrt.epsilon {
         sweep.run::<N_APEX>(outputs)
     } else {
         sweep.run::<N_RATIOS>(outputs)
     };
-    let ratios = match &inputs.ratios {
-        GridValues::Uniform(_) => vec![swept.ratios.iter().sum()],
-        GridValues::PerColumn(_) => (0..m - 1)
-            .map(|j| swept.ratios.iter().skip(j).step_by(m - 1).sum())
-            .collect(),
-        GridValues::PerVertex(_) => swept.ratios,
-    };
-    let stored = inputs.directrix.points.len();
-    let pulled = (wrt.apex || wrt.directrix)
-        .then(|| pull_back(swept.columns, dx, inputs.end_planes, &inputs.apex, stored));
-    let finite = |x: &f64| x.is_finite();
-    let result = ConstructAdjoint {
+    let dx = &sweep.prep.dx;
+    let Swept {
         ratios,
-        generatrix: swept.generatrix,
-        apex: pulled.as_ref().filter(|_| wrt.apex).map(|p| p.apex.clone()),
+        generatrix,
+        columns,
+        epsilon,
+        normals: normals_bar,
+    } = swept;
+    let mut pulled =
+        (wrt.apex || wrt.directrix).then(|| pull_back(columns, dx, end_planes, apex, stored));
+    Ok(ConstructAdjoint {
+        ratios,
+        generatrix,
+        apex: pulled
+            .as_mut()
+            .filter(|_| wrt.apex)
+            .map(|p| std::mem::take(&mut p.apex)),
         scale: pulled.as_ref().filter(|_| wrt.apex).and_then(|p| p.scale),
         directrix: pulled
-            .as_ref()
+            .as_mut()
             .filter(|_| wrt.directrix)
-            .map(|p| p.directrix.clone()),
-        epsilon: wrt.epsilon.then_some(swept.epsilon),
-    };
+            .map(|p| std::mem::take(&mut p.directrix)),
+        epsilon: wrt.epsilon.then_some(epsilon),
+        normals: normals.then_some(normals_bar),
+    })
+}
+
+/// `result`, or an error when one of its numbers is not finite.
+pub(super) fn finite(result: ConstructAdjoint) -> Result<ConstructAdjoint, GeometryError> {
+    let finite = |x: &f64| x.is_finite();
     let all_finite = result.ratios.iter().all(finite)
         && result.generatrix.iter().all(|g| g.is_finite())
         && result.apex.iter().flatten().all(finite)
         && result.scale.iter().all(finite)
         && result.directrix.iter().flatten().all(|g| g.is_finite())
-        && result.epsilon.iter().all(finite);
+        && result.epsilon.iter().all(finite)
+        && result.normals.iter().flatten().all(|g| g.is_finite());
     if !all_finite {
         return Err(GeometryError::Degenerate(
             "the construction's derivative is not finite (a degenerate step)".into(),
         ));
     }
     Ok(result)
+}
+
+/// Plane normals given beforehand (the C-tube construction): those the sweep used.
+#[derive(Clone, Copy)]
+pub(super) struct GivenPlanes<'a> {
+    /// Unit normals with `P·ê_j > 0`: M−1 shared by every row, or N·(M−1) (row-major).
+    pub planes: &'a [DVec3],
+    /// Whether `planes` has one normal per vertex.
+    pub per_vertex: bool,
+    /// Whether they are the Monge planes (the bisectors: their cotangents go to the directrix).
+    pub monge: bool,
+}
+
+impl GivenPlanes<'_> {
+    /// The plane of row i at column jn.
+    #[inline(always)]
+    fn plane(&self, i: usize, jn: usize, m: usize) -> DVec3 {
+        if self.per_vertex {
+            self.planes[i * (m - 1) + jn - 1]
+        } else {
+            self.planes[jn - 1]
+        }
+    }
 }
 
 /// The backward sweep's data.
@@ -349,15 +442,19 @@ pub(super) struct Backward<'a> {
     /// The piece the run took (plane fixes, the apex values used, coupled fixes).
     pub piece: &'a Piece,
     pub epsilon: f64,
+    /// The planes given beforehand (the C-tube construction), or `None`: planes from ratios.
+    pub given: Option<GivenPlanes<'a>>,
 }
 
 /// What a backward sweep returns: the cotangents of the ratios (N·(M−1), row-major), the
-/// generatrix, the column quantities (a_j here: the user's values; a fixed a_j has none) and ε.
+/// generatrix, the column quantities (a_j here: the user's values; a fixed a_j has none), ε and
+/// the given plane normals (N·(M−1), row-major, when given and not the Monge planes; else empty).
 struct Swept {
     ratios: Vec<f64>,
     generatrix: Vec<DVec3>,
     columns: ColumnBars,
     epsilon: f64,
+    normals: Vec<DVec3>,
 }
 
 /// What the column quantities collect over the rows: their cotangents and ε's.
@@ -391,10 +488,14 @@ impl Backward<'_> {
         jn: usize,
     ) -> (StepInputs<N>, PlaneRule) {
         let (dx, m) = (&self.prep.dx, self.prep.dx.columns());
-        let rule = match self.piece.fixed.get(i * (m - 1) + jn - 1) {
-            Some(true) => PlaneRule::Fixed,
+        let rule = match (self.given, self.piece.fixed.get(i * (m - 1) + jn - 1)) {
+            (Some(_), _) => PlaneRule::Given,
+            (None, Some(true)) => PlaneRule::Fixed,
             _ => PlaneRule::Ratio,
         };
+        let b = self
+            .given
+            .map_or(dx.bisectors[jn], |given| given.plane(i, jn, m));
         let s = StepInputs::<N> {
             g: D3::seed(self.mesh.vertices[i * m + jn - 1], G),
             r: Dual::seed(self.grid.row(i)[jn - 1], R),
@@ -403,7 +504,7 @@ impl Backward<'_> {
             x0: D3::seed(dx.points[jn - 1], X0),
             x1: D3::seed(dx.points[jn], X1),
             e: D3::seed(dx.edges[jn], E),
-            b: D3::seed(dx.bisectors[jn], B),
+            b: D3::seed(b, B),
         };
         (s, rule)
     }
@@ -420,6 +521,10 @@ impl Backward<'_> {
     fn run<const N: usize>(&self, outputs: ColumnBars) -> Swept {
         let (n, m) = (self.prep.generatrix.len(), self.prep.dx.columns());
         let mut ratios = vec![0.0; n * (m - 1)];
+        // The given normals' cotangents: one per vertex, else a dummy per row.
+        let normal_bars = self.given_normals();
+        let width = if normal_bars { m - 1 } else { 1 };
+        let mut normals = vec![DVec3::ZERO; n * width];
         let mut lambda: Vec<DVec3> = (0..n).map(|i| self.mesh_bar[i * m + m - 1]).collect();
         let mut total = Collected {
             columns: outputs,
@@ -432,12 +537,13 @@ impl Backward<'_> {
             let lo = fix.map_or(1, |f| f.column);
             let part = ratios
                 .par_chunks_mut(m - 1)
+                .zip(normals.par_chunks_mut(width))
                 .zip(lambda.par_iter_mut())
                 .enumerate()
                 .fold(
                     || Collected::zeros::<N>(m),
-                    |mut acc, (i, (r_bar, l))| {
-                        *l = self.row::<N>(i, hi, lo, *l, r_bar, &mut acc);
+                    |mut acc, (i, ((r_bar, p_bar), l))| {
+                        *l = self.row::<N>(i, hi, lo, *l, (r_bar, p_bar), &mut acc);
                         acc
                     },
                 )
@@ -453,16 +559,27 @@ impl Backward<'_> {
         if let Some(fix) = self.piece.generatrix_fix {
             self.pull_generatrix_fix(fix, &mut total, &mut ratios, &mut lambda);
         }
+        if !normal_bars {
+            normals.clear();
+        }
         Swept {
             ratios,
             generatrix: lambda,
             columns: total.columns,
             epsilon: total.epsilon,
+            normals,
         }
     }
 
+    /// Whether the planes are given by the user (not the Monge planes): their cotangents are
+    /// kept per vertex (the Monge planes' go to the bisectors).
+    fn given_normals(&self) -> bool {
+        self.given.is_some_and(|g| !g.monge)
+    }
+
     /// Row i's backward sweep over the steps `hi` down to `lo` from λ_{i,hi}: writes ∂L/∂r_{i,·}
-    /// to `r_bar`, adds the column quantities' and ε's cotangents to `acc`, returns λ_{i,lo−1}.
+    /// to `r_bar` and the given normals' ∂L/∂P_{i,·} to `p_bar` (when [`Self::given_normals`]),
+    /// adds the column quantities' and ε's cotangents to `acc`, returns λ_{i,lo−1}.
     #[inline(always)]
     fn row<const N: usize>(
         &self,
@@ -470,10 +587,11 @@ impl Backward<'_> {
         hi: usize,
         lo: usize,
         mut lambda: DVec3,
-        r_bar: &mut [f64],
+        (r_bar, p_bar): (&mut [f64], &mut [DVec3]),
         acc: &mut Collected,
     ) -> DVec3 {
         let m = self.prep.dx.columns();
+        let normal_bars = self.given_normals();
         let inv_scale = 1.0 / self.prep.scale;
         for jn in (lo..=hi).rev() {
             let (s, rule) = self.step_inputs::<N>(i, jn);
@@ -495,7 +613,11 @@ impl Backward<'_> {
                 c.x[jn - 1] += pull3(X0);
                 c.x[jn] += pull3(X1);
                 c.e[jn] += pull3(E);
-                c.b[jn] += pull3(B);
+                if normal_bars {
+                    p_bar[jn - 1] = pull3(B);
+                } else {
+                    c.b[jn] += pull3(B);
+                }
             }
             lambda = pull3(G) + self.mesh_bar[i * m + jn - 1];
         }

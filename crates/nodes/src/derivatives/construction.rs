@@ -3,8 +3,9 @@
 use cnets_engine::optimize::branch::{Branch, key_of};
 use cnets_engine::optimize::vjp::{VjpArgs, VjpResult};
 use cnets_engine::prelude::*;
-use cnets_geometry::conenet::adjoint::{OutputBars, Wrt, construct_adjoint_for};
-use cnets_geometry::conenet::{ConstructInputs, GridValues};
+use cnets_geometry::conenet::adjoint::{OutputBars, Wrt, construct_adjoint_for, ctube_adjoint_for};
+use cnets_geometry::conenet::{ConstructInputs, CtubeInputs, GridValues, NormalsInput};
+use cnets_geometry::{Polyline, QuadGrid};
 
 use super::{flat, points};
 use crate::cnets::{apex_input, grid_values, parse_end_planes};
@@ -33,28 +34,11 @@ fn construct(args: &VjpArgs<'_>) -> VjpResult {
              (α chooses the correction's form)",
         ));
     }
-    if let Some(k) = (0..args.cotangents.len())
-        .find(|&k| args.cotangents[k].is_some() && !DIFFERENTIATED.contains(&k))
-    {
-        return Err(NodeError::new(format!(
-            "only the mesh, apex, apices, planes and margins outputs of the construction are \
-             differentiated (output {k} has a cotangent)"
-        )));
-    }
-    let (Value::Polyline(directrix), Value::Polyline(generatrix), Value::QuadMesh(mesh)) =
-        (&args.inputs[0], &args.inputs[1], &args.outputs[0])
-    else {
-        return Err(NodeError::new("internal: construction inputs"));
-    };
-    let apex: Vec<f64> = args.inputs[2]
-        .as_list()
-        .map(|l| l.iter().filter_map(Value::as_f64).collect())
-        .or_else(|| args.inputs[2].as_f64().map(|x| vec![x]))
-        .unwrap_or_default();
+    let (directrix, generatrix, mesh) = curves_and_mesh(args)?;
     let normalized = matches!(args.inputs[5], Value::Boolean(true));
     let scale = args.inputs[6].as_f64();
-    let mut inputs = ConstructInputs::new((**directrix).clone(), (**generatrix).clone());
-    inputs.apex = apex_input(apex, normalized, scale);
+    let mut inputs = ConstructInputs::new(directrix, generatrix);
+    inputs.apex = apex_input(apex_values(&args.inputs[2]), normalized, scale);
     inputs.ratios = grid_values(&args.inputs[3], "ratios")?;
     inputs.assistance.alpha = alpha;
     if let Some(epsilon) = args.inputs[7].as_f64() {
@@ -64,44 +48,14 @@ fn construct(args: &VjpArgs<'_>) -> VjpResult {
         Value::Text(t) => t,
         _ => "perpendicular",
     })?;
-    let mesh_bar = points(&args.cotangent(0));
-    let apex_bar = args
-        .cotangents
-        .get(1)
-        .cloned()
-        .flatten()
-        .unwrap_or_default();
-    let apices_bar = match args.cotangents.get(2).and_then(Option::as_ref) {
-        Some(c) => apices_cotangent(&args.outputs[2], c)?,
-        None => Vec::new(),
-    };
-    let planes_bar = points(
-        &args
-            .cotangents
-            .get(3)
-            .cloned()
-            .flatten()
-            .unwrap_or_default(),
-    );
-    let margins_bar = args
-        .cotangents
-        .get(7)
-        .cloned()
-        .flatten()
-        .unwrap_or_default();
     let wrt = Wrt {
         apex: wanted(2) || wanted(6),
         directrix: wanted(0),
         epsilon: wanted(7),
+        normals: false,
     };
-    let bars = OutputBars {
-        mesh: &mesh_bar,
-        apex: &apex_bar,
-        apices: &apices_bar,
-        planes: &planes_bar,
-        margins: &margins_bar,
-    };
-    let adjoint = construct_adjoint_for(&inputs, mesh, bars, wrt)?;
+    let owned = OwnedBars::of(args)?;
+    let adjoint = construct_adjoint_for(&inputs, mesh, owned.bars(), wrt)?;
     let mut result = vec![None; args.inputs.len()];
     if wanted(0) {
         result[0] = adjoint.directrix.as_deref().map(flat);
@@ -124,6 +78,160 @@ fn construct(args: &VjpArgs<'_>) -> VjpResult {
     }
     if wanted(7) {
         result[7] = adjoint.epsilon.map(|e| vec![e]);
+    }
+    Ok(result)
+}
+
+/// The directrix, the generatrix and the mesh built of a construction (inputs 0 and 1, output 0),
+/// after checking only the differentiated outputs have cotangents.
+fn curves_and_mesh<'a>(
+    args: &'a VjpArgs<'_>,
+) -> Result<(Polyline, Polyline, &'a QuadGrid), NodeError> {
+    if let Some(k) = (0..args.cotangents.len())
+        .find(|&k| args.cotangents[k].is_some() && !DIFFERENTIATED.contains(&k))
+    {
+        return Err(NodeError::new(format!(
+            "only the mesh, apex, apices, planes and margins outputs of the construction are \
+             differentiated (output {k} has a cotangent)"
+        )));
+    }
+    let (Value::Polyline(directrix), Value::Polyline(generatrix), Value::QuadMesh(mesh)) =
+        (&args.inputs[0], &args.inputs[1], &args.outputs[0])
+    else {
+        return Err(NodeError::new("internal: construction inputs"));
+    };
+    Ok(((**directrix).clone(), (**generatrix).clone(), mesh))
+}
+
+/// The apex input's values (one number or a list).
+fn apex_values(value: &Value) -> Vec<f64> {
+    value
+        .as_list()
+        .map(|l| l.iter().filter_map(Value::as_f64).collect())
+        .or_else(|| value.as_f64().map(|x| vec![x]))
+        .unwrap_or_default()
+}
+
+/// The cotangents of a construction's differentiated outputs (mesh, apex, apices, planes,
+/// margins), owned; [`OwnedBars::bars`] lends them to the adjoint.
+struct OwnedBars {
+    mesh: Vec<DVec3>,
+    apex: Vec<f64>,
+    apices: Vec<DVec3>,
+    planes: Vec<DVec3>,
+    margins: Vec<f64>,
+}
+
+impl OwnedBars {
+    /// The cotangents of `args`' outputs 0, 1, 2, 3 and 7 (empty when none).
+    fn of(args: &VjpArgs<'_>) -> Result<Self, NodeError> {
+        let leaves = |k: usize| {
+            args.cotangents
+                .get(k)
+                .cloned()
+                .flatten()
+                .unwrap_or_default()
+        };
+        let apices = match args.cotangents.get(2).and_then(Option::as_ref) {
+            Some(c) => apices_cotangent(&args.outputs[2], c)?,
+            None => Vec::new(),
+        };
+        Ok(Self {
+            mesh: points(&args.cotangent(0)),
+            apex: leaves(1),
+            apices,
+            planes: points(&leaves(3)),
+            margins: leaves(7),
+        })
+    }
+
+    /// The adjoint's view of the cotangents.
+    fn bars(&self) -> OutputBars<'_> {
+        OutputBars {
+            mesh: &self.mesh,
+            apex: &self.apex,
+            apices: &self.apices,
+            planes: &self.planes,
+            margins: &self.margins,
+        }
+    }
+}
+
+/// The normals input of `ctube.construct` as the node reads it (`cnets::normals_input`): null or
+/// an empty list for the Monge planes, a list of vectors shared by every row, or a table of them.
+fn ctube_normals(value: &Value) -> Result<NormalsInput, NodeError> {
+    let vector = |v: &Value| {
+        v.as_vec3()
+            .ok_or_else(|| NodeError::new("internal: a normal is not a vector"))
+    };
+    match value {
+        Value::Null => Ok(NormalsInput::Monge),
+        Value::List(items) if items.is_empty() => Ok(NormalsInput::Monge),
+        Value::List(items) if items.iter().any(|v| v.as_list().is_some()) => items
+            .iter()
+            .map(|row| {
+                row.as_list()
+                    .ok_or_else(|| NodeError::new("internal: a row of normals is not a list"))?
+                    .iter()
+                    .map(vector)
+                    .collect()
+            })
+            .collect::<Result<Vec<Vec<DVec3>>, _>>()
+            .map(NormalsInput::PerVertex),
+        Value::List(items) => items
+            .iter()
+            .map(vector)
+            .collect::<Result<Vec<DVec3>, _>>()
+            .map(NormalsInput::PerColumn),
+        other => vector(other).map(|v| NormalsInput::PerColumn(vec![v])),
+    }
+}
+
+/// `ctube.construct`: the backward sweep with the planes given (`ctube_adjoint_for`) for the
+/// directrix, generatrix, apex function, normals and scale (inputs 0, 1, 2, 3, 5), from the
+/// cotangents of the mesh, the apex values used, the apices, the plane normals and the
+/// convexity margins (outputs 0, 1, 2, 3, 7). The normals may be shared by every row (M−1) or
+/// given per vertex (N lists of M−1); the Monge planes (no normals) follow the directrix. The
+/// construction has no correction: every run is on one smooth piece.
+fn ctube(args: &VjpArgs<'_>) -> VjpResult {
+    let wanted = |k: usize| args.wanted.get(k) == Some(&true);
+    let (directrix, generatrix, mesh) = curves_and_mesh(args)?;
+    let normalized = matches!(args.inputs[4], Value::Boolean(true));
+    let scale = args.inputs[5].as_f64();
+    let inputs = CtubeInputs {
+        directrix,
+        generatrix,
+        apex: apex_input(apex_values(&args.inputs[2]), normalized, scale),
+        normals: ctube_normals(&args.inputs[3])?,
+        end_planes: parse_end_planes(match &args.inputs[6] {
+            Value::Text(t) => t,
+            _ => "perpendicular",
+        })?,
+    };
+    let wrt = Wrt {
+        apex: wanted(2) || wanted(5),
+        directrix: wanted(0),
+        epsilon: false,
+        normals: wanted(3),
+    };
+    let owned = OwnedBars::of(args)?;
+    let adjoint = ctube_adjoint_for(&inputs, mesh, owned.bars(), wrt)?;
+    let mut result = vec![None; args.inputs.len()];
+    if wanted(0) {
+        result[0] = adjoint.directrix.as_deref().map(flat);
+    }
+    if wanted(1) {
+        result[1] = Some(flat(&adjoint.generatrix));
+    }
+    if wanted(2) {
+        result[2] = adjoint.apex;
+    }
+    // The Monge planes (no normals given) have no numbers.
+    if wanted(3) {
+        result[3] = adjoint.normals.as_deref().map(flat);
+    }
+    if wanted(5) && scale.is_some() {
+        result[5] = adjoint.scale.map(|s| vec![s]);
     }
     Ok(result)
 }
@@ -204,6 +312,7 @@ fn construct_branch(inputs: &[Value], outputs: &[Value]) -> Option<Branch> {
 pub fn product(id: &str) -> Option<Product> {
     match id {
         "cnets.construct" => Some(construct),
+        "ctube.construct" => Some(ctube),
         _ => None,
     }
 }

@@ -63,7 +63,7 @@ fn compare_components(
                 "measure.surface_distance" => 8,
                 // Mesh, apex values, apices, planes and the margins (the labels, records and
                 // corrections between have no numbers or none to follow).
-                "cnets.construct" => 8,
+                "cnets.construct" | "ctube.construct" | "cnets.construct_coplanar" => 8,
                 _ => 3,
             };
             (n > 0 && !leaves::opaque(v) && o < outputs).then(|| {
@@ -942,6 +942,140 @@ fn construction_products_match_differences() {
     let rel = compare("cnets.construct", &named, &wanted);
     assert!(rel < 1e-6, "cnets.construct (apex only): {rel}");
     gives_every_wanted("cnets.construct", &named, &wanted);
+}
+
+/// The vector value of `v`.
+fn vector(v: DVec3) -> Value {
+    Value::Vector(v)
+}
+
+#[test]
+fn ctube_products_match_differences() {
+    let arc = |closed: bool| {
+        let step = if closed {
+            std::f64::consts::PI / 3.0
+        } else {
+            0.4
+        };
+        let points = (0..6)
+            .map(|k| {
+                let t = k as f64 * step;
+                DVec3::new(
+                    3.0 * t.cos() + 0.05 * t,
+                    3.0 * t.sin(),
+                    0.4 * (2.0 * t).sin(),
+                )
+            })
+            .collect();
+        construction_curve(points, closed)
+    };
+    let generatrix = construction_curve(
+        (0..4)
+            .map(|k| DVec3::new(3.4 + 0.4 * k as f64, 0.1, 0.3 * k as f64 - 0.4))
+            .collect(),
+        false,
+    );
+    let n = Value::Number;
+    // Normals near the Monge planes of the arc (the edge direction turned a little), some
+    // pointing backwards (the construction flips them) and of various lengths.
+    let normal = |k: usize, i: usize, columns: usize| {
+        let t = (k as f64 + 0.5)
+            * if columns == 6 {
+                std::f64::consts::PI / 3.0
+            } else {
+                0.4
+            };
+        let along = DVec3::new(-t.sin(), t.cos(), 0.1 * (k as f64 - 2.0));
+        let tilt = DVec3::new(0.1 * (i as f64 + 1.0), -0.05 * k as f64, 0.15);
+        let sign = if (k + i) % 3 == 1 { -1.0 } else { 1.0 };
+        (along + tilt) * sign * (1.0 + 0.3 * k as f64)
+    };
+    let shared = |columns: usize| {
+        Value::list(
+            (0..columns)
+                .map(|k| vector(normal(k, 0, columns)))
+                .collect(),
+        )
+    };
+    let table = |columns: usize| {
+        Value::list(
+            (0..4)
+                .map(|i| {
+                    Value::list(
+                        (0..columns)
+                            .map(|k| vector(normal(k, i, columns)))
+                            .collect(),
+                    )
+                })
+                .collect(),
+        )
+    };
+    let open_apex = crate::testing::nums(&[0.9, 0.95, 1.08, 0.85, 1.05]);
+    let everything = ["directrix", "generatrix", "apex", "normals", "scale"];
+    for (what, named) in [
+        (
+            "open, shared normals",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", open_apex.clone()),
+                ("normals", shared(5)),
+            ],
+        ),
+        (
+            "open, normals per vertex, mirror end planes",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", open_apex.clone()),
+                ("normals", table(5)),
+                ("end_planes", Value::Text("mirror".into())),
+            ],
+        ),
+        (
+            "open, Monge planes, normalized, scale given",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", open_apex.clone()),
+                ("normalized", Value::Boolean(true)),
+                ("scale", n(1.7)),
+            ],
+        ),
+        (
+            "closed, normals per vertex, one apex value",
+            vec![
+                ("directrix", arc(true)),
+                ("apex", n(0.93)),
+                ("normals", table(6)),
+            ],
+        ),
+        (
+            "closed, shared normals, normalized",
+            vec![
+                ("directrix", arc(true)),
+                (
+                    "apex",
+                    crate::testing::nums(&[0.9, 0.95, 1.08, 0.85, 1.05, 0.97]),
+                ),
+                ("normals", shared(6)),
+                ("normalized", Value::Boolean(true)),
+            ],
+        ),
+    ] {
+        let mut named = named;
+        named.push(("generatrix", generatrix.clone()));
+        let rel = compare("ctube.construct", &named, &everything);
+        println!("ctube.construct ({what}): {rel:.2e}");
+        gives_every_wanted("ctube.construct", &named, &everything);
+        assert!(rel < 1e-6, "ctube.construct ({what}): {rel}");
+        // Each input alone.
+        for one in everything {
+            if named.iter().any(|(k, _)| *k == one)
+                || ["directrix", "generatrix", "apex"].contains(&one)
+            {
+                let rel = compare("ctube.construct", &named, &[one]);
+                assert!(rel < 1e-6, "ctube.construct ({what}, {one} alone): {rel}");
+            }
+        }
+    }
 }
 
 #[test]
