@@ -41,7 +41,9 @@ use super::prepare::prepare;
 use super::tolerance;
 use crate::{GeometryError, QuadGrid};
 
+mod coplanar;
 mod ctube;
+pub use coplanar::coplanar_adjoint_for;
 pub use ctube::ctube_adjoint_for;
 
 /// The directions of a step's local Jacobian: G_{i,j−1} (3), r, a_j, ε, X_{j−1} (3), X_j (3), ê_j
@@ -137,21 +139,23 @@ pub(super) fn step_plane<const N: usize>(
             let v = g.sub(x1);
             Dual::atan2(w.dot(v), e.dot(v)) * (Dual::constant(1.0) - epsilon)
         }
-        PlaneRule::Ratio | PlaneRule::Given => {
-            let theta_b = Dual::atan2(e.dot(b), -w.dot(b));
-            // At r = ½ the map has a kink (slopes 2θ_b and 2(π − θ_b)): the mean slope π is
-            // used there, the derivative central differences see (an element of the
-            // subdifferential). Both pieces have slope 1 in θ_b there.
-            if r.v == 0.5 {
-                theta_b + (r - Dual::constant(0.5)) * PI
-            } else if r.v < 0.5 {
-                r * theta_b * 2.0
-            } else {
-                theta_b + (r * 2.0 - Dual::constant(1.0)) * (Dual::constant(PI) - theta_b)
-            }
-        }
+        PlaneRule::Ratio | PlaneRule::Given => ratio_angle(r, Dual::atan2(e.dot(b), -w.dot(b))),
     };
     e.scale(theta.sin()).sub(w.scale(theta.cos()))
+}
+
+/// The ratio → angle map (`ratios::ratio_to_angle`) on dual numbers. At r = ½ the map has a kink
+/// (slopes 2θ_b and 2(π − θ_b)): the mean slope π is used there, the derivative central
+/// differences see (an element of the subdifferential). Both pieces have slope 1 in θ_b there.
+#[inline(always)]
+pub(super) fn ratio_angle<const N: usize>(r: Dual<N>, theta_b: Dual<N>) -> Dual<N> {
+    if r.v == 0.5 {
+        theta_b + (r - Dual::constant(0.5)) * PI
+    } else if r.v < 0.5 {
+        r * theta_b * 2.0
+    } else {
+        theta_b + (r * 2.0 - Dual::constant(1.0)) * (Dual::constant(PI) - theta_b)
+    }
 }
 
 /// The step of Eq. 1 on dual numbers: `G_{i,j}` from `g = G_{i,j−1}`, `a = a_j`, `x0 = X_{j−1}`,
@@ -231,6 +235,12 @@ pub struct ConstructAdjoint {
     /// shared, or N·(M−1) per vertex, row-major; the Monge planes have none); `None` when not
     /// asked for or not given.
     pub normals: Option<Vec<DVec3>>,
+    /// ∂L/∂ρ of the coplanar construction ([`coplanar_adjoint_for`]) in the shape of the input
+    /// (1 or M−1); empty for the others.
+    pub ruling_ratios: Vec<f64>,
+    /// ∂L/∂τ of the coplanar construction in the shape of the input (1 or M−1); empty for the
+    /// others.
+    pub plane_ratios: Vec<f64>,
 }
 
 /// The backward sweep of [`super::construct`] for the mesh it built (`mesh`) and the cotangents of
@@ -353,8 +363,9 @@ pub(super) fn sweep_and_pull(
     };
     let outputs = seeded.columns;
     let coupled = !sweep.piece.apex_fixes.is_empty() || sweep.piece.generatrix_fix.is_some();
-    let normals = wrt.normals && sweep.given.is_some_and(|g| !g.monge);
-    let swept = if wrt.directrix || coupled || normals {
+    let normals = wrt.normals && sweep.given.is_some_and(|g| !g.monge && g.pencil.is_none());
+    let pencil = sweep.given.is_some_and(|g| g.pencil.is_some());
+    let swept = if wrt.directrix || coupled || normals || pencil {
         sweep.run::<N_ALL>(outputs)
     } else if wrt.apex || wrt.epsilon {
         sweep.run::<N_APEX>(outputs)
@@ -368,6 +379,7 @@ pub(super) fn sweep_and_pull(
         columns,
         epsilon,
         normals: normals_bar,
+        pencil: (rho, tau),
     } = swept;
     let mut pulled =
         (wrt.apex || wrt.directrix).then(|| pull_back(columns, dx, end_planes, apex, stored));
@@ -385,6 +397,8 @@ pub(super) fn sweep_and_pull(
             .map(|p| std::mem::take(&mut p.directrix)),
         epsilon: wrt.epsilon.then_some(epsilon),
         normals: normals.then_some(normals_bar),
+        ruling_ratios: rho,
+        plane_ratios: tau,
     })
 }
 
@@ -397,7 +411,9 @@ pub(super) fn finite(result: ConstructAdjoint) -> Result<ConstructAdjoint, Geome
         && result.scale.iter().all(finite)
         && result.directrix.iter().flatten().all(|g| g.is_finite())
         && result.epsilon.iter().all(finite)
-        && result.normals.iter().flatten().all(|g| g.is_finite());
+        && result.normals.iter().flatten().all(|g| g.is_finite())
+        && result.ruling_ratios.iter().all(finite)
+        && result.plane_ratios.iter().all(finite);
     if !all_finite {
         return Err(GeometryError::Degenerate(
             "the construction's derivative is not finite (a degenerate step)".into(),
@@ -415,6 +431,9 @@ pub(super) struct GivenPlanes<'a> {
     pub per_vertex: bool,
     /// Whether they are the Monge planes (the bisectors: their cotangents go to the directrix).
     pub monge: bool,
+    /// The coplanar construction's ratios: the shared planes are then functions of row 0's
+    /// vertices (`coplanar`), pulled back column by column.
+    pub pencil: Option<coplanar::PencilRatios<'a>>,
 }
 
 impl GivenPlanes<'_> {
@@ -455,6 +474,8 @@ struct Swept {
     columns: ColumnBars,
     epsilon: f64,
     normals: Vec<DVec3>,
+    /// The coplanar construction's ∂L/∂ρ_j and ∂L/∂τ_j (M−1 each), or empty.
+    pencil: (Vec<f64>, Vec<f64>),
 }
 
 /// What the column quantities collect over the rows: their cotangents and ε's.
@@ -532,9 +553,19 @@ impl Backward<'_> {
         };
         let mut hi = m - 1;
         let mut fixes = self.piece.apex_fixes.iter().peekable();
+        let pencil = self.given.and_then(|g| g.pencil);
+        let mut pencil_bars = match pencil {
+            Some(_) => (vec![0.0; m - 1], vec![0.0; m - 1]),
+            None => Default::default(),
+        };
         while hi >= 1 {
             let fix = fixes.next_if(|f| f.column <= hi && f.column >= 1);
-            let lo = fix.map_or(1, |f| f.column);
+            // The coplanar planes couple the rows at every column (row 0's vertex).
+            let lo = match (fix, pencil) {
+                (_, Some(_)) => hi,
+                (Some(f), None) => f.column,
+                (None, None) => 1,
+            };
             let part = ratios
                 .par_chunks_mut(m - 1)
                 .zip(normals.par_chunks_mut(width))
@@ -554,6 +585,14 @@ impl Backward<'_> {
             if let Some(fix) = fix {
                 self.pull_apex_fix(fix, &mut total, &mut ratios, &mut lambda);
             }
+            if let Some(pencil) = pencil {
+                let bar = (0..n).map(|i| normals[i * width + hi - 1]).sum();
+                let (g, rho, tau) =
+                    coplanar::pull_plane(self.prep, pencil, self.mesh, hi, bar, &mut total.columns);
+                lambda[0] += g;
+                pencil_bars.0[hi - 1] = rho;
+                pencil_bars.1[hi - 1] = tau;
+            }
             hi = lo - 1;
         }
         if let Some(fix) = self.piece.generatrix_fix {
@@ -568,6 +607,7 @@ impl Backward<'_> {
             columns: total.columns,
             epsilon: total.epsilon,
             normals,
+            pencil: pencil_bars,
         }
     }
 

@@ -3,8 +3,12 @@
 use cnets_engine::optimize::branch::{Branch, key_of};
 use cnets_engine::optimize::vjp::{VjpArgs, VjpResult};
 use cnets_engine::prelude::*;
-use cnets_geometry::conenet::adjoint::{OutputBars, Wrt, construct_adjoint_for, ctube_adjoint_for};
-use cnets_geometry::conenet::{ConstructInputs, CtubeInputs, GridValues, NormalsInput};
+use cnets_geometry::conenet::adjoint::{
+    OutputBars, Wrt, construct_adjoint_for, coplanar_adjoint_for, ctube_adjoint_for,
+};
+use cnets_geometry::conenet::{
+    ColumnValues, ConstructInputs, CoplanarInputs, CtubeInputs, GridValues, NormalsInput,
+};
 use cnets_geometry::{Polyline, QuadGrid};
 
 use super::{flat, points};
@@ -236,6 +240,75 @@ fn ctube(args: &VjpArgs<'_>) -> VjpResult {
     Ok(result)
 }
 
+/// `cnets.construct_coplanar`: the backward sweep with the shared planes pulled back through
+/// their pencils (`coplanar_adjoint_for`) for the directrix, generatrix, apex function, ruling
+/// ratios, plane ratios and scale (inputs 0, 1, 2, 3, 4, 7), from the cotangents of the mesh, the
+/// apex values used, the apices, the plane normals and the convexity margins (outputs 0, 1, 2, 3,
+/// 7). A run the assisted correction changed is declined (finite differences); when it changed
+/// nothing, `assistance` and `epsilon` have derivative 0.
+fn coplanar(args: &VjpArgs<'_>) -> VjpResult {
+    let wanted = |k: usize| args.wanted.get(k) == Some(&true);
+    if matches!(args.outputs.get(5), Some(Value::List(c)) if !c.is_empty()) {
+        return Err(NodeError::new(
+            "the assisted correction changed the coplanar construction: its derivative is not \
+             implemented",
+        ));
+    }
+    let (directrix, generatrix, mesh) = curves_and_mesh(args)?;
+    let column = |v: &Value| match apex_values(v).as_slice() {
+        [single] => ColumnValues::Uniform(*single),
+        values => ColumnValues::List(values.to_vec()),
+    };
+    let normalized = matches!(args.inputs[6], Value::Boolean(true));
+    let scale = args.inputs[7].as_f64();
+    let mut inputs = CoplanarInputs::new(directrix, generatrix);
+    inputs.apex = apex_input(apex_values(&args.inputs[2]), normalized, scale);
+    inputs.ruling_ratios = column(&args.inputs[3]);
+    inputs.plane_ratios = column(&args.inputs[4]);
+    inputs.assistance.alpha = args.inputs[5].as_f64().unwrap_or(-1.0);
+    if let Some(epsilon) = args.inputs[8].as_f64() {
+        inputs.assistance.epsilon = epsilon;
+    }
+    inputs.end_planes = parse_end_planes(match &args.inputs[9] {
+        Value::Text(t) => t,
+        _ => "perpendicular",
+    })?;
+    let wrt = Wrt {
+        apex: wanted(2) || wanted(7),
+        directrix: wanted(0),
+        epsilon: false,
+        normals: false,
+    };
+    let owned = OwnedBars::of(args)?;
+    let adjoint = coplanar_adjoint_for(&inputs, mesh, owned.bars(), wrt)?;
+    let mut result = vec![None; args.inputs.len()];
+    if wanted(0) {
+        result[0] = adjoint.directrix.as_deref().map(flat);
+    }
+    if wanted(1) {
+        result[1] = Some(flat(&adjoint.generatrix));
+    }
+    if wanted(2) {
+        result[2] = adjoint.apex;
+    }
+    if wanted(3) {
+        result[3] = Some(adjoint.ruling_ratios);
+    }
+    if wanted(4) {
+        result[4] = Some(adjoint.plane_ratios);
+    }
+    // Nothing was corrected: α and ε change nothing here.
+    for k in [5, 8] {
+        if wanted(k) {
+            result[k] = Some(vec![0.0]);
+        }
+    }
+    if wanted(7) && scale.is_some() {
+        result[7] = adjoint.scale.map(|s| vec![s]);
+    }
+    Ok(result)
+}
+
 /// The apices output's cotangent (its leaves: 3 per apex, none for one at infinity) as one vector
 /// per apex (zero at infinity).
 fn apices_cotangent(apices: &Value, leaves: &[f64]) -> Result<Vec<DVec3>, NodeError> {
@@ -313,6 +386,7 @@ pub fn product(id: &str) -> Option<Product> {
     match id {
         "cnets.construct" => Some(construct),
         "ctube.construct" => Some(ctube),
+        "cnets.construct_coplanar" => Some(coplanar),
         _ => None,
     }
 }
@@ -321,7 +395,10 @@ pub fn product(id: &str) -> Option<Product> {
 /// (the corrections: which piece a corrected run took; a blend is declined), by id.
 pub fn branch(id: &str) -> Option<(BranchFn, &'static [&'static str])> {
     match id {
-        "cnets.construct" => Some((construct_branch, &["corrections"])),
+        // The coplanar construction's ruling ratios are its input 3 too.
+        "cnets.construct" | "cnets.construct_coplanar" => {
+            Some((construct_branch, &["corrections"]))
+        }
         _ => None,
     }
 }

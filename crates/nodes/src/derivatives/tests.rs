@@ -1079,6 +1079,116 @@ fn ctube_products_match_differences() {
 }
 
 #[test]
+fn coplanar_products_match_differences() {
+    let arc = |closed: bool| {
+        let step = if closed {
+            std::f64::consts::PI / 3.0
+        } else {
+            0.4
+        };
+        let points = (0..6)
+            .map(|k| {
+                let t = k as f64 * step;
+                DVec3::new(
+                    3.0 * t.cos() + 0.05 * t,
+                    3.0 * t.sin(),
+                    0.4 * (2.0 * t).sin(),
+                )
+            })
+            .collect();
+        construction_curve(points, closed)
+    };
+    let generatrix = construction_curve(
+        (0..4)
+            .map(|k| DVec3::new(3.4 + 0.4 * k as f64, 0.1, 0.3 * k as f64 - 0.4))
+            .collect(),
+        false,
+    );
+    let n = Value::Number;
+    let nums = crate::testing::nums;
+    let everything = [
+        "directrix",
+        "generatrix",
+        "apex",
+        "ruling_ratios",
+        "plane_ratios",
+        "scale",
+    ];
+    for (what, named) in [
+        (
+            "open, ratios per column",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", nums(&[0.9, 0.95, 1.08, 0.85, 1.05])),
+                ("ruling_ratios", nums(&[0.47, 0.53, 0.4995, 0.5005, 0.6])),
+                ("plane_ratios", nums(&[0.5, 0.45, 0.55, 0.6, 0.4])),
+            ],
+        ),
+        (
+            "open, mirror end planes, one value each",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", n(0.93)),
+                ("ruling_ratios", n(0.46)),
+                ("plane_ratios", n(0.52)),
+                ("end_planes", Value::Text("mirror".into())),
+            ],
+        ),
+        (
+            "open, normalized, scale given, correction on (nothing to correct)",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", nums(&[0.9, 0.95, 1.08, 0.85, 1.05])),
+                ("ruling_ratios", nums(&[0.55, 0.48, 0.52, 0.45, 0.51])),
+                ("normalized", Value::Boolean(true)),
+                ("scale", n(1.7)),
+                ("assistance", n(0.0)),
+            ],
+        ),
+        (
+            "closed, normalized",
+            vec![
+                ("directrix", arc(true)),
+                ("apex", nums(&[0.9, 0.95, 1.08, 0.85, 1.05, 0.97])),
+                (
+                    "ruling_ratios",
+                    nums(&[0.47, 0.53, 0.4995, 0.5005, 0.6, 0.45]),
+                ),
+                ("plane_ratios", nums(&[0.5, 0.45, 0.55, 0.6, 0.4, 0.48])),
+                ("normalized", Value::Boolean(true)),
+            ],
+        ),
+    ] {
+        let mut named = named;
+        named.push(("generatrix", generatrix.clone()));
+        let d = def("cnets.construct_coplanar");
+        let outs = evaluate_node(&d, &NodeContext::default(), &inputs(&d, &named))
+            .unwrap()
+            .values;
+        assert!(
+            matches!(&outs[5], Value::List(c) if c.is_empty()),
+            "{what}: nothing corrected: {:?}",
+            outs[5]
+        );
+        let rel = compare("cnets.construct_coplanar", &named, &everything);
+        println!("cnets.construct_coplanar ({what}): {rel:.2e}");
+        gives_every_wanted("cnets.construct_coplanar", &named, &everything);
+        assert!(rel < 1e-6, "cnets.construct_coplanar ({what}): {rel}");
+        // Each input alone (the scale only when given: else it has no numbers).
+        for one in everything {
+            if one == "scale" && !named.iter().any(|(k, _)| *k == one) {
+                continue;
+            }
+            let rel = compare("cnets.construct_coplanar", &named, &[one]);
+            assert!(
+                rel < 1e-6,
+                "cnets.construct_coplanar ({what}, {one} alone): {rel}"
+            );
+        }
+    }
+}
+
+#[test]
 fn area_product_matches_differences() {
     let d = def("measure.area");
     // The area itself: a unit square and a planar pentagon (shoelace area 4) in a tilted

@@ -95,6 +95,7 @@ pub fn ctube_adjoint_for(
             planes: &planes,
             per_vertex,
             monge,
+            pencil: None,
         }),
     };
     let wrt = Wrt {
