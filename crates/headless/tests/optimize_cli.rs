@@ -165,3 +165,123 @@ fn a_failed_upstream_node_is_named_with_its_own_message() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A gallery graph copied to a temporary folder with an optimization setup whose variables are
+/// the directrix's points (`variables`, RON) and objective `objective`, plus `nodes` and `edges`
+/// (RON, may be empty) added.
+fn with_free_directrix(
+    graph: &str,
+    variables: &[String],
+    objective: &str,
+    nodes: &str,
+    edges: &str,
+) -> PathBuf {
+    let text = std::fs::read_to_string(workspace().join("graphs").join(graph)).unwrap();
+    // Without the file's own setup (if any): ours goes before the nodes.
+    let text = match (text.find("    optimization: ("), text.find("    nodes: {")) {
+        (Some(start), Some(end)) if start < end => format!("{}{}", &text[..start], &text[end..]),
+        _ => text,
+    };
+    let setup = format!(
+        "    optimization: (\n        objective: \"{objective}\",\n        variables: [\n{}        ],\n        method: \"lbfgsb\",\n        max_iter: 2,\n    ),\n",
+        variables
+            .iter()
+            .map(|v| format!("            (input: \"{v}\", min: -100.0, max: 100.0),\n"))
+            .collect::<String>()
+    );
+    let text = text
+        .replacen(
+            "    nodes: {\n",
+            &format!("{setup}    nodes: {{\n{nodes}"),
+            1,
+        )
+        .replacen("    edges: [\n", &format!("    edges: [\n{edges}"), 1);
+    let dir = std::env::temp_dir().join(format!(
+        "cnets-free-directrix-{}-{}",
+        graph.trim_end_matches(".ron"),
+        std::process::id()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(graph);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn check_gradient_with_the_directrix_points_free_is_exact() {
+    // The pedestrian bridge (CNets Construct Coplanar) draws its directrix as a spline through
+    // points (x, y · bulge, −1) from two lists; its area is the objective. The closing tube (CNets
+    // Construct) draws its directrix as a closed spline through four literal points; the gap of
+    // its end is the objective. Every node from the points to the objective has an exact product.
+    let bridge_points: Vec<String> = (0..5)
+        .flat_map(|k| [format!("plan_x.values[{k}]"), format!("plan_y.values[{k}]")])
+        .collect();
+    let tube_points: Vec<String> = (0..4)
+        .flat_map(|k| (0..3).map(move |d| format!("directrix.points[{k}][{d}]")))
+        .collect();
+    let bridge = with_free_directrix(
+        "pedestrian-bridge.ron",
+        &bridge_points,
+        "area.total",
+        "        \"area\": (\n            type: \"measure.area\",\n            position: (2208.0, 700.0),\n        ),\n",
+        "        \"bridge.mesh -> area.mesh\",\n",
+    );
+    let tube = with_free_directrix("tube-closure.ron", &tube_points, "gap.value", "", "");
+    for (path, count) in [(&bridge, 10), (&tube, 12)] {
+        let dir = path.parent().unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_cnets"))
+            .args(["optimize"])
+            .arg(path)
+            .args(["--check-gradient", "--json"])
+            .current_dir(dir)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{}: {text}\n{}",
+            path.display(),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["variables"].as_u64(), Some(count), "{v}");
+        let rel = v["largest_relative_difference"].as_f64().unwrap();
+        println!("{}: largest relative difference {rel:.3e}", path.display());
+        assert!(rel < 1e-5, "{}: {rel:e}\n{v}", path.display());
+        assert!(
+            v["exact"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|g| g.as_f64().unwrap().abs() > 1e-6),
+            "{v}"
+        );
+        // No node on the path is differenced.
+        assert_eq!(v["notes"].as_array().map(Vec::len), Some(0), "{v}");
+        // The same in an optimization's report.
+        let out = Command::new(env!("CARGO_BIN_EXE_cnets"))
+            .args(["optimize"])
+            .arg(path)
+            .args(["--json", "--max-iter", "1"])
+            .current_dir(dir)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}: {}",
+            path.display(),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(
+            report["finite_difference_nodes"].as_array().map(Vec::len),
+            Some(0),
+            "{}: {report}",
+            path.display()
+        );
+        assert_eq!(report["gradients"], report["exact_gradients"], "{report}");
+    }
+    for path in [bridge, tube] {
+        std::fs::remove_dir_all(path.parent().unwrap()).ok();
+    }
+}

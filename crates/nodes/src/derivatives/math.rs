@@ -1,4 +1,5 @@
-//! Partial derivatives of the math nodes (item ports: one number in, one out).
+//! Partial derivatives of the math nodes (item ports: one number in, one out) and of
+//! `vector.point` (three numbers in, one point out).
 
 use cnets_engine::optimize::vjp::{VjpArgs, VjpResult};
 use cnets_engine::prelude::*;
@@ -114,6 +115,19 @@ fn clamp(a: &VjpArgs<'_>) -> VjpResult {
     scale(a, &which)
 }
 
+/// `vector.point`: the point's cotangent, component by component, to x, y and z.
+fn point(a: &VjpArgs<'_>) -> VjpResult {
+    let c = a.cotangent(0);
+    Ok(a.wanted
+        .iter()
+        .enumerate()
+        .map(|(k, &w)| {
+            (w && k < 3 && a.inputs[k].as_f64().is_some())
+                .then(|| vec![c.get(k).copied().unwrap_or(0.0)])
+        })
+        .collect())
+}
+
 /// The product of a math node, by id.
 pub fn product(id: &str) -> Option<Product> {
     Some(match id {
@@ -126,6 +140,7 @@ pub fn product(id: &str) -> Option<Product> {
         "math.min" => min,
         "math.max" => max,
         "math.clamp" => clamp,
+        "vector.point" => point,
         _ => return None,
     })
 }

@@ -136,6 +136,10 @@ fn math_products_match_differences() {
         ("math.min", vec![("a", n(1.5)), ("b", n(-0.7))]),
         ("math.max", vec![("a", n(1.5)), ("b", n(-0.7))]),
         ("math.clamp", vec![("value", n(0.4))]),
+        (
+            "vector.point",
+            vec![("x", n(1.5)), ("y", n(-0.7)), ("z", n(2.0))],
+        ),
     ] {
         let wanted: Vec<&str> = named.iter().map(|(k, _)| *k).collect();
         let rel = compare(id, &named, &wanted);
