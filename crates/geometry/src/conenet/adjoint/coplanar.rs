@@ -245,3 +245,162 @@ pub fn coplanar_adjoint_for(
     );
     finite(result)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Polyline;
+    use crate::conenet::construct_coplanar;
+    use crate::conenet::inputs::ApexInput;
+    use proptest::prelude::*;
+
+    /// L = Σ w_k · G_k with fixed weights.
+    fn loss(c: &CoplanarInputs, w: &[DVec3]) -> f64 {
+        let net = construct_coplanar(c).unwrap();
+        net.mesh
+            .vertices
+            .iter()
+            .zip(w)
+            .map(|(g, w)| g.dot(*w))
+            .sum()
+    }
+
+    /// The largest difference between `exact` and central differences (Richardson) of `loss`
+    /// over the scalars `set(c, k, ·)` moves, relative to the largest difference quotient.
+    fn compare(
+        c: &CoplanarInputs,
+        w: &[DVec3],
+        exact: &[f64],
+        set: impl Fn(&mut CoplanarInputs, usize, f64),
+    ) -> f64 {
+        let central = |k: usize, h: f64| {
+            let (mut p, mut q) = (c.clone(), c.clone());
+            set(&mut p, k, h);
+            set(&mut q, k, -h);
+            (loss(&p, w) - loss(&q, w)) / (2.0 * h)
+        };
+        let (mut worst, mut size) = (0.0f64, 0.0f64);
+        for (k, &x) in exact.iter().enumerate() {
+            let fd = (4.0 * central(k, 5e-7) - central(k, 1e-6)) / 3.0;
+            worst = worst.max((fd - x).abs());
+            size = size.max(fd.abs());
+        }
+        assert!(size > 0.0, "the gradient is zero");
+        worst / size
+    }
+
+    fn list(c: &mut ColumnValues, k: usize, h: f64) {
+        match c {
+            ColumnValues::Uniform(v) => *v += h,
+            ColumnValues::List(v) => v[k] += h,
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        #[test]
+        fn coplanar_gradients_match_differences(
+            closed in any::<bool>(),
+            mirror in any::<bool>(),
+            uniform in any::<bool>(),
+            jitter in proptest::collection::vec(-0.15f64..0.15, 18),
+            apex in proptest::collection::vec(0.85f64..1.15, 6),
+            // Ruling ratios near the kink at ½, on either side (not at it), or farther away.
+            rho in proptest::collection::vec(
+                prop_oneof![1e-4f64..1e-2, -1e-2f64..-1e-4, -0.15f64..0.15],
+                6,
+            ),
+            tau in proptest::collection::vec(0.3f64..0.7, 6),
+        ) {
+            let step = if closed { std::f64::consts::PI / 3.0 } else { 0.4 };
+            let points: Vec<DVec3> = (0..6)
+                .map(|k| {
+                    let t = k as f64 * step;
+                    let j = DVec3::new(jitter[3 * k], jitter[3 * k + 1], jitter[3 * k + 2]);
+                    DVec3::new(3.0 * t.cos(), 3.0 * t.sin(), 0.4 * (2.0 * t).sin()) + j
+                })
+                .collect();
+            let directrix = if closed { Polyline::closed(points) } else { Polyline::open(points) };
+            let generatrix = Polyline::open(
+                (0..4)
+                    .map(|k| DVec3::new(3.4 + 0.4 * k as f64, 0.1, 0.3 * k as f64 - 0.4))
+                    .collect(),
+            );
+            let cols = if closed { 6 } else { 5 };
+            let values = |v: Vec<f64>| {
+                if uniform { ColumnValues::Uniform(v[0]) } else { ColumnValues::List(v) }
+            };
+            let mut c = CoplanarInputs::new(directrix, generatrix);
+            c.apex = ApexInput {
+                values: ColumnValues::List(apex[..cols].to_vec()),
+                ..ApexInput::default()
+            };
+            c.ruling_ratios = values(
+                rho[..cols].iter().map(|d| if *d == 0.0 { 0.51 } else { 0.5 + d }).collect(),
+            );
+            c.plane_ratios = values(tau[..cols].to_vec());
+            c.end_planes = if mirror { EndPlanes::Mirror } else { EndPlanes::Perpendicular };
+            prop_assume!(construct_coplanar(&c).is_ok());
+            let net = construct_coplanar(&c).unwrap();
+            let w: Vec<DVec3> = (0..net.mesh.vertices.len())
+                .map(|k| DVec3::new((k as f64 * 0.7).sin(), (k as f64 * 1.3).cos(), 0.5))
+                .collect();
+            let bars = OutputBars { mesh: &w, apex: &[], apices: &[], planes: &[], margins: &[] };
+            let adj = coplanar_adjoint_for(&c, &net.mesh, bars, Wrt::ALL).unwrap();
+            let flat = |p: &[DVec3]| p.iter().flat_map(|p| p.to_array()).collect::<Vec<f64>>();
+            let directrix = compare(&c, &w, &flat(&adj.directrix.unwrap()), |c, k, h| {
+                c.directrix.points[k / 3][k % 3] += h;
+            });
+            let generatrix = compare(&c, &w, &flat(&adj.generatrix), |c, k, h| {
+                c.generatrix.points[k / 3][k % 3] += h;
+            });
+            let apex = compare(&c, &w, &adj.apex.unwrap(), |c, k, h| list(&mut c.apex.values, k, h));
+            let ruling = compare(&c, &w, &adj.ruling_ratios, |c, k, h| {
+                list(&mut c.ruling_ratios, k, h)
+            });
+            let plane = compare(&c, &w, &adj.plane_ratios, |c, k, h| {
+                list(&mut c.plane_ratios, k, h)
+            });
+            let rel = [directrix, generatrix, apex, ruling, plane];
+            prop_assert!(
+                rel.iter().all(|r| *r < 1e-6),
+                "directrix, generatrix, apex, ruling ratios, plane ratios: {:?}", rel
+            );
+        }
+    }
+
+    #[test]
+    fn a_corrected_run_is_declined() {
+        // A straight directrix (slightly bent) with a ruling leaning back at column 2
+        // (`adjoint::tests::tilted`): planes only turns a plane.
+        let directrix = Polyline::open(
+            (0..6)
+                .map(|j| DVec3::new(j as f64, 0.05 * (j as f64).sin(), 0.03 * (j * j) as f64))
+                .collect(),
+        );
+        let generatrix = Polyline::open(vec![
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.5, 0.5),
+            DVec3::new(0.0, 2.0, 0.2),
+        ]);
+        let c = CoplanarInputs::new(directrix, generatrix)
+            .ruling_ratios(vec![0.5, 0.95, 0.45, 0.55, 0.5])
+            .plane_ratios(vec![0.5, 0.9, 0.5, 0.5, 0.5])
+            .assistance(0.0);
+        let net = construct_coplanar(&c).unwrap();
+        assert!(
+            !net.corrections.is_empty(),
+            "the correction changed the run"
+        );
+        let w = vec![DVec3::X; net.mesh.vertices.len()];
+        let bars = OutputBars {
+            mesh: &w,
+            apex: &[],
+            apices: &[],
+            planes: &[],
+            margins: &[],
+        };
+        let err = coplanar_adjoint_for(&c, &net.mesh, bars, Wrt::ALL).unwrap_err();
+        assert!(err.to_string().contains("assisted correction"), "{err}");
+    }
+}
