@@ -137,6 +137,15 @@ pub fn input_editor_with_rect(
     (r.inner, r.response.rect)
 }
 
+/// Whether the secondary (right) button is down or was just released: egui's slider follows any
+/// button, but a right-click on a slider locks its node for dragging and never moves it.
+fn secondary_button(ui: &egui::Ui) -> bool {
+    ui.input(|i| {
+        i.pointer.button_down(egui::PointerButton::Secondary)
+            || i.pointer.button_released(egui::PointerButton::Secondary)
+    })
+}
+
 fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef) -> Option<Value> {
     let current = effective_value(node, k);
     match port.widget() {
@@ -163,7 +172,7 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
                 if step > 0.0 {
                     slider = slider.step_by(step);
                 }
-                let changed = ui.add(slider).changed();
+                let changed = ui.add(slider).changed() && !secondary_button(ui);
                 if changed {
                     // The node's own rule: multiples of the step from min, as short decimals; no
                     // step: a thousandth of the slider's range (a pixel is about a hundredth), so
@@ -192,7 +201,8 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
                 let (min, max, _) = slider_range_or(node, 0.0, 10.0);
                 let slider = egui::Slider::new(&mut i, min as i64..=max as i64)
                     .clamping(egui::SliderClamping::Always);
-                return ui.add(slider).changed().then_some(Value::Integer(i));
+                return (ui.add(slider).changed() && !secondary_button(ui))
+                    .then_some(Value::Integer(i));
             }
             let drag = egui::DragValue::new(&mut i).speed(0.1);
             ui.add(drag).changed().then_some(Value::Integer(i))

@@ -139,3 +139,35 @@ fn a_node_is_renamed_from_its_titles_right_click_menu() {
         cnets_engine::file::to_ron(graph, &Default::default()).contains("name: \"Apex height\"")
     );
 }
+
+/// Issue 41: a right-click on a slider locks its node for dragging (the Drag net tool leaves it
+/// alone; the node's title shows 🔒), a second one unlocks it; the slider's value is untouched.
+#[test]
+fn a_right_click_on_a_slider_toggles_locked_for_dragging() {
+    let mut h = harness("slider-lock");
+    show_node(&mut h, "apex");
+    let before = h.state().doc.graph.node("apex").unwrap().value(0).cloned();
+    let slider = h
+        .state()
+        .canvas
+        .editor_screen_rect("apex", "value")
+        .expect("the apex slider is drawn");
+    assert!(!h.state().canvas.drag_locked.contains("apex"));
+    click_with(&mut h, slider.center(), egui::PointerButton::Secondary);
+    assert!(
+        h.state().canvas.drag_locked.contains("apex"),
+        "locked after one right-click: {:?}",
+        h.state().canvas.drag_locked
+    );
+    assert_eq!(
+        h.state().doc.graph.node("apex").unwrap().value(0).cloned(),
+        before,
+        "the right-click did not move the slider"
+    );
+    assert!(
+        h.query_by_label("🔒").is_some(),
+        "the node says it is locked"
+    );
+    click_with(&mut h, slider.center(), egui::PointerButton::Secondary);
+    assert!(h.state().canvas.drag_locked.is_empty(), "unlocked again");
+}

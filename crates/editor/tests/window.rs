@@ -654,5 +654,19 @@ fn dragging_the_net_moves_the_vertex_holds_the_pin_and_undoes_in_one_step() {
         "drag-net: moved {moved:.3} m, {left:.2e} m left, pin drift {drift:.1e} m, {solves} solves in {} s (mean solve {} ms)",
         figures[5], figures[6]
     );
+    // The UI thread's time a frame while dragging (CPU side; the solves run on their thread).
+    let ui: Vec<&str> = lines["ui frames"].split('|').collect();
+    let frames: usize = ui[3].parse().unwrap();
+    let median: f64 = ui[0].parse().unwrap();
+    assert!(frames >= 2, "frames timed while dragging: {ui:?}");
+    assert!(
+        median < 50.0,
+        "the UI thread's median frame while dragging: {median} ms"
+    );
+    println!(
+        "drag-net: UI thread a frame while dragging: median {} ms, p90 {} ms, max {} ms ({} frames); \
+         the release frame waited {} ms for the last answer",
+        ui[0], ui[1], ui[2], ui[3], ui[4]
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

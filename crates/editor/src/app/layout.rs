@@ -22,6 +22,7 @@ use super::{EditorApp, OVERLAP_HINT, WATCH_INTERVAL};
 impl EditorApp {
     /// One frame of the editor.
     pub fn ui(&mut self, ui: &mut Ui) {
+        let frame_started = web_time::Instant::now();
         let ctx = ui.ctx().clone();
         self.poll_worker();
         self.poll_net_drag();
@@ -269,6 +270,7 @@ impl EditorApp {
             // Keep checking cluster and imported files while idle.
             ctx.request_repaint_after(WATCH_INTERVAL);
         }
+        self.time_net_drag_frame(frame_started);
     }
 
     /// The parameter panel's contents; returns the edits made in it.

@@ -199,6 +199,8 @@ pub struct EditorApp {
     net_drag: Option<crate::net_drag::NetDragSession>,
     /// What the last drag of the net measured.
     pub last_net_drag: Option<NetDragFigures>,
+    /// The UI thread's frame times of the drag running (ms), for its figures.
+    net_drag_frames: Vec<f64>,
 }
 
 /// How often cluster files are checked for changes.
@@ -295,6 +297,7 @@ impl EditorApp {
             wake: options.wake,
             net_drag: None,
             last_net_drag: None,
+            net_drag_frames: Vec::new(),
             parameters_open: false,
             parameters_rect: None,
             parameter_editors: Vec::new(),

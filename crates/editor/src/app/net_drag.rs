@@ -22,6 +22,7 @@ impl EditorApp {
     pub(super) fn drag_net_to(&mut self, target: NetDragTarget) {
         if self.net_drag.as_ref().is_none_or(|s| !s.is_for(&target)) {
             self.net_drag = None;
+            self.net_drag_frames.clear();
             if !self.doc.view_path().is_empty() {
                 self.message = "the net can be dragged at the top level of the graph: close the \
                                 cluster first"
@@ -63,6 +64,15 @@ impl EditorApp {
         }
     }
 
+    /// Counts a frame's UI-thread time (`started`: the frame's start) in the drag's figures while
+    /// a drag runs.
+    pub(super) fn time_net_drag_frame(&mut self, started: web_time::Instant) {
+        if self.net_drag.is_some() && self.net_drag_frames.len() < 100_000 {
+            self.net_drag_frames
+                .push(started.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+
     /// Takes the drag's newest answer, if one arrived (every frame).
     pub(super) fn poll_net_drag(&mut self) {
         if let Some(answer) = self.net_drag.as_mut().and_then(|s| s.poll()) {
@@ -75,7 +85,9 @@ impl EditorApp {
         let Some(mut session) = self.net_drag.take() else {
             return;
         };
+        let release = web_time::Instant::now();
         let last = session.finish(FINISH_WAIT);
+        let release_ms = release.elapsed().as_secs_f64() * 1e3;
         if let Some(answer) = last {
             self.take_solved(answer);
         }
@@ -88,6 +100,8 @@ impl EditorApp {
             solves: session.solves,
             seconds: session.started.elapsed().as_secs_f64(),
             solve_ms: session.solve_ms / session.solves.max(1) as f64,
+            ui_frame_ms: std::mem::take(&mut self.net_drag_frames),
+            release_ms,
         };
         let (i, j) = figures.vertex;
         let short = figures
@@ -158,6 +172,12 @@ pub struct NetDragFigures {
     pub seconds: f64,
     /// Mean wall time of a solve, in milliseconds.
     pub solve_ms: f64,
+    /// The UI thread's time of each frame while the drag ran (press to release, the release's
+    /// frame not counted), in milliseconds: the window's side of a drag, solves excluded.
+    pub ui_frame_ms: Vec<f64>,
+    /// How long the release's frame waited for the answer to the pointer's last position, in
+    /// milliseconds (at most half a second).
+    pub release_ms: f64,
 }
 
 impl NetDragFigures {

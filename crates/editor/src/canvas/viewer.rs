@@ -440,6 +440,15 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
                 let (changed, rect) = widgets::input_editor_with_rect(ui, instance, k);
                 self.editors
                     .insert((id.clone(), port.name.to_string()), rect);
+                // A right-click on a slider toggles its node's "locked for dragging" (the node's
+                // context menu has the same switch): the Drag net tool leaves it alone.
+                if port.widget() == cnets_engine::Widget::Slider
+                    && ui.input(|i| i.pointer.secondary_clicked())
+                    && pointer_on(ui, rect)
+                {
+                    self.actions
+                        .push(CanvasAction::Request(UiRequest::ToggleDragLock(id.clone())));
+                }
                 if let Some(value) = changed {
                     self.actions.push(CanvasAction::Edit(Edit::SetValue {
                         node: id.clone(),
@@ -780,4 +789,21 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         }
         self.to_global = *to_global;
     }
+}
+
+/// Whether the pointer is on `rect` (in `ui`'s canvas coordinates) and no window or popup lies
+/// over the canvas there. The canvas's node layers are transformed but are not areas, so egui's
+/// `rect_contains_pointer` (which asks for the topmost area) does not see them.
+fn pointer_on(ui: &Ui, rect: Rect) -> bool {
+    let ctx = ui.ctx();
+    let Some(p) = ctx.input(|i| i.pointer.interact_pos()) else {
+        return false;
+    };
+    let to_global = ctx
+        .layer_transform_to_global(ui.layer_id())
+        .unwrap_or_default();
+    (to_global * ui.clip_rect().intersect(rect)).contains(p)
+        && ctx
+            .layer_id_at(p)
+            .is_none_or(|l| l.order == egui::Order::Background)
 }

@@ -218,6 +218,28 @@ pub fn drag_net() -> Vec<Step> {
             ),
             None => "none".into(),
         }),
+        // The window's side of the drag: the UI thread's time a frame while it ran (median,
+        // p90, max, frames) and the release frame's wait for the last answer (ms).
+        print("ui frames", |app| match &app.last_net_drag {
+            Some(f) => {
+                let mut v = f.ui_frame_ms.clone();
+                v.sort_by(f64::total_cmp);
+                let q = |p: f64| {
+                    v.get(((v.len().max(1) - 1) as f64 * p).round() as usize)
+                        .copied()
+                        .unwrap_or(f64::NAN)
+                };
+                format!(
+                    "{:.2}|{:.2}|{:.2}|{}|{:.1}",
+                    q(0.5),
+                    q(0.9),
+                    q(1.0),
+                    v.len(),
+                    f.release_ms
+                )
+            }
+            None => "none".into(),
+        }),
         print("target", |app| {
             vec(app.last_net_drag.as_ref().and_then(|f| f.target))
         }),
