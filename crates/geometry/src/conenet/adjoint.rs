@@ -19,25 +19,30 @@
 //!
 //! A run of the assisted correction is differentiated on the piece it took
 //! (`correction_adjoint`): planes only (per-row plane fixes, `θ = (1 − ε) φ`: the plane
-//! then reads ε instead of the ratio and the bisector) or apex only (the fixed a_{j0} and the
+//! then reads ε instead of the ratio and the bisector), apex only (the fixed a_{j0} and the
 //! generatrix scale are smooth functions of one row's values; the rows are coupled only at those
-//! columns). A blend (0 < α < 1) or a run mixing both kinds is declined (an error: the caller
-//! differentiates by finite differences and says so).
+//! columns) or a blend (0 < α < 1: planes only on apex values and a generatrix moved the fraction
+//! λ towards apex only's; the cotangents of a_j^Q and t_Q go through apex only's own backward
+//! sweep). A run where a plane fix was numerically insufficient and fell back to an apex or
+//! generatrix fix (mixed) is declined (an error: the caller differentiates by finite differences
+//! and says so).
 
 use std::f64::consts::PI;
 
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::construct::construct_with;
 use super::correction_adjoint::{
-    ApexFix, FIX_B0, FIX_B1, FIX_E0, FIX_E1, FIX_EPS, FIX_G, FIX_R0, FIX_R1, FIX_X, FIX_XM, FIX_XP,
-    GeneratrixFix, N_FIX, Piece, apex_fix, generatrix_scale, piece,
+    ApexFix, Blend, FIX_B0, FIX_B1, FIX_E0, FIX_E1, FIX_EPS, FIX_G, FIX_R0, FIX_R1, FIX_X, FIX_XM,
+    FIX_XP, GeneratrixFix, N_FIX, Piece, apex_fix, generatrix_scale, piece,
 };
 use super::directrix_adjoint::{ColumnBars, pull_back};
 use super::dual::{D3, Dual};
 use super::inputs::{ConstructInputs, GridValues};
 use super::output_adjoint::seed;
 use super::prepare::prepare;
+use super::result::Reports;
 use super::tolerance;
 use crate::{GeometryError, QuadGrid};
 
@@ -264,13 +269,25 @@ pub fn construct_adjoint(
 /// its outputs (`bars`): the ratios' and the generatrix's cotangents, and those `wrt` asks for.
 ///
 /// With the assisted correction on, the construction is run again to learn which piece it took
-/// (see `correction_adjoint`); a blend, or a run mixing plane fixes with apex or
-/// generatrix fixes, is declined (an error).
+/// (see `correction_adjoint`; a blend also runs and differentiates its apex-only sweep); a run
+/// mixing plane fixes with apex or generatrix fixes is declined (an error).
 pub fn construct_adjoint_for(
     inputs: &ConstructInputs,
     mesh: &QuadGrid,
     bars: OutputBars<'_>,
     wrt: Wrt,
+) -> Result<ConstructAdjoint, GeometryError> {
+    adjoint_on_piece(inputs, mesh, bars, wrt, 0.0)
+}
+
+/// [`construct_adjoint_for`] with `scale_bar`, a cotangent of the generatrix fix's total scale
+/// from outside (a blend's, sent to its apex-only sweep; ignored without that fix).
+fn adjoint_on_piece(
+    inputs: &ConstructInputs,
+    mesh: &QuadGrid,
+    bars: OutputBars<'_>,
+    wrt: Wrt,
+    scale_bar: f64,
 ) -> Result<ConstructAdjoint, GeometryError> {
     let prep = prepare(
         &inputs.directrix,
@@ -283,7 +300,10 @@ pub fn construct_adjoint_for(
     let grid = inputs
         .ratios
         .resolve("ratios", n, m - 1, (0.0, 1.0, "a value in [0, 1]"))?;
-    let piece = piece(inputs, &prep, &grid, mesh)?;
+    let mut piece = piece(inputs, &prep, &grid, mesh)?;
+    if let Some(fix) = &mut piece.generatrix_fix {
+        fix.bar = scale_bar;
+    }
     let sweep = Backward {
         prep: &prep,
         grid: &grid,
@@ -298,7 +318,7 @@ pub fn construct_adjoint_for(
         normals: false,
         ..wrt
     };
-    let mut result = sweep_and_pull(
+    let (mut result, blend) = sweep_and_pull_blend(
         sweep,
         &bars,
         wrt,
@@ -314,7 +334,54 @@ pub fn construct_adjoint_for(
             .collect(),
         GridValues::PerVertex(_) => swept,
     };
+    if let Some(blend) = blend {
+        // The apex-only sweep the blend took its apex values a^Q and scale t_Q from, with their
+        // cotangents as outputs: a smooth function of the inputs on its own piece.
+        let mut apex_only = inputs.clone();
+        apex_only.assistance.alpha = 1.0;
+        let q = construct_with(
+            &apex_only,
+            Reports {
+                apices: false,
+                quality: false,
+            },
+        )?;
+        let zero = vec![DVec3::ZERO; q.mesh.vertices.len()];
+        let q_bars = OutputBars {
+            mesh: &zero,
+            apex: &blend.apex,
+            apices: &[],
+            planes: &[],
+            margins: &[],
+        };
+        let q = adjoint_on_piece(&apex_only, &q.mesh, q_bars, wrt, blend.scale)?;
+        result = result.add(q);
+    }
     finite(result)
+}
+
+impl ConstructAdjoint {
+    /// The sum of two adjoints of the same inputs (a blend's two sweeps).
+    fn add(mut self, o: ConstructAdjoint) -> ConstructAdjoint {
+        fn sum<T: Copy + std::ops::AddAssign>(a: &mut [T], b: &[T]) {
+            a.iter_mut().zip(b).for_each(|(x, y)| *x += *y);
+        }
+        sum(&mut self.ratios, &o.ratios);
+        sum(&mut self.generatrix, &o.generatrix);
+        if let (Some(a), Some(b)) = (&mut self.apex, &o.apex) {
+            sum(a, b);
+        }
+        if let (Some(a), Some(b)) = (&mut self.scale, o.scale) {
+            *a += b;
+        }
+        if let (Some(a), Some(b)) = (&mut self.directrix, &o.directrix) {
+            sum(a, b);
+        }
+        if let (Some(a), Some(b)) = (&mut self.epsilon, o.epsilon) {
+            *a += b;
+        }
+        self
+    }
 }
 
 /// Checks the mesh has the construction's size and the outputs' cotangents fit it.
@@ -355,6 +422,18 @@ pub(super) fn sweep_and_pull(
     end_planes: super::inputs::EndPlanes,
     stored: usize,
 ) -> Result<ConstructAdjoint, GeometryError> {
+    sweep_and_pull_blend(sweep, bars, wrt, apex, end_planes, stored).map(|(a, _)| a)
+}
+
+/// [`sweep_and_pull`], also returning a blend's cotangents of apex only's values.
+fn sweep_and_pull_blend(
+    sweep: Backward<'_>,
+    bars: &OutputBars<'_>,
+    wrt: Wrt,
+    apex: &super::inputs::ApexInput,
+    end_planes: super::inputs::EndPlanes,
+    stored: usize,
+) -> Result<(ConstructAdjoint, Option<BlendBars>), GeometryError> {
     let seeded = seed(&sweep, bars)?;
     let sweep = Backward {
         mesh_bar: &seeded.mesh,
@@ -362,7 +441,9 @@ pub(super) fn sweep_and_pull(
         ..sweep
     };
     let outputs = seeded.columns;
-    let coupled = !sweep.piece.apex_fixes.is_empty() || sweep.piece.generatrix_fix.is_some();
+    let coupled = !sweep.piece.apex_fixes.is_empty()
+        || sweep.piece.generatrix_fix.is_some()
+        || sweep.piece.blend.is_some();
     let normals = wrt.normals && sweep.given.is_some_and(|g| !g.monge && g.pencil.is_none());
     let pencil = sweep.given.is_some_and(|g| g.pencil.is_some());
     let swept = if wrt.directrix || coupled || normals || pencil {
@@ -380,26 +461,30 @@ pub(super) fn sweep_and_pull(
         epsilon,
         normals: normals_bar,
         pencil: (rho, tau),
+        blend,
     } = swept;
     let mut pulled =
         (wrt.apex || wrt.directrix).then(|| pull_back(columns, dx, end_planes, apex, stored));
-    Ok(ConstructAdjoint {
-        ratios,
-        generatrix,
-        apex: pulled
-            .as_mut()
-            .filter(|_| wrt.apex)
-            .map(|p| std::mem::take(&mut p.apex)),
-        scale: pulled.as_ref().filter(|_| wrt.apex).and_then(|p| p.scale),
-        directrix: pulled
-            .as_mut()
-            .filter(|_| wrt.directrix)
-            .map(|p| std::mem::take(&mut p.directrix)),
-        epsilon: wrt.epsilon.then_some(epsilon),
-        normals: normals.then_some(normals_bar),
-        ruling_ratios: rho,
-        plane_ratios: tau,
-    })
+    Ok((
+        ConstructAdjoint {
+            ratios,
+            generatrix,
+            apex: pulled
+                .as_mut()
+                .filter(|_| wrt.apex)
+                .map(|p| std::mem::take(&mut p.apex)),
+            scale: pulled.as_ref().filter(|_| wrt.apex).and_then(|p| p.scale),
+            directrix: pulled
+                .as_mut()
+                .filter(|_| wrt.directrix)
+                .map(|p| std::mem::take(&mut p.directrix)),
+            epsilon: wrt.epsilon.then_some(epsilon),
+            normals: normals.then_some(normals_bar),
+            ruling_ratios: rho,
+            plane_ratios: tau,
+        },
+        blend,
+    ))
 }
 
 /// `result`, or an error when one of its numbers is not finite.
@@ -476,6 +561,14 @@ struct Swept {
     normals: Vec<DVec3>,
     /// The coplanar construction's ∂L/∂ρ_j and ∂L/∂τ_j (M−1 each), or empty.
     pencil: (Vec<f64>, Vec<f64>),
+    /// A blend's cotangents of apex only's values.
+    blend: Option<BlendBars>,
+}
+
+/// A blend's cotangents of what it took from apex only: a_j^Q (M−1) and t_Q.
+struct BlendBars {
+    apex: Vec<f64>,
+    scale: f64,
 }
 
 /// What the column quantities collect over the rows: their cotangents and ε's.
@@ -598,6 +691,10 @@ impl Backward<'_> {
         if let Some(fix) = self.piece.generatrix_fix {
             self.pull_generatrix_fix(fix, &mut total, &mut ratios, &mut lambda);
         }
+        let blend = self
+            .piece
+            .blend
+            .map(|b| self.pull_blend(b, &mut total, &mut lambda));
         if !normal_bars {
             normals.clear();
         }
@@ -608,6 +705,7 @@ impl Backward<'_> {
             epsilon: total.epsilon,
             normals,
             pencil: pencil_bars,
+            blend,
         }
     }
 
@@ -701,6 +799,34 @@ impl Backward<'_> {
         c.b[j0 + 1] += three(FIX_B1);
     }
 
+    /// A blend: the sweep read a_j(λ) = (1 − λ) a_j + λ a_j^Q and the generatrix scaled about X_0
+    /// by t(λ) = (1 − λ) + λ t_Q. The user's a_j and generatrix keep their parts (`total`,
+    /// `lambda`: the mesh's column 0 cotangents on entry, the input generatrix's on return);
+    /// apex only's a_j^Q and t_Q get the rest.
+    fn pull_blend(&self, blend: Blend, total: &mut Collected, lambda: &mut [DVec3]) -> BlendBars {
+        let (x0, t, l) = (self.prep.dx.points[0], blend.scale, blend.lambda);
+        let mut t_bar = 0.0;
+        for (g_bar, g) in lambda.iter_mut().zip(&self.prep.generatrix) {
+            t_bar += g_bar.dot(*g - x0);
+            total.columns.x[0] += *g_bar * (1.0 - t);
+            *g_bar *= t;
+        }
+        let apex = total
+            .columns
+            .a
+            .iter_mut()
+            .map(|a| {
+                let q = l * *a;
+                *a *= 1.0 - l;
+                q
+            })
+            .collect();
+        BlendBars {
+            apex,
+            scale: l * t_bar,
+        }
+    }
+
     /// The generatrix fix: column 0 of the mesh is `X_0 + (G_{i,0} − X_0) T`; `lambda` holds its
     /// cotangents on entry and the input generatrix's on return.
     fn pull_generatrix_fix(
@@ -712,7 +838,7 @@ impl Backward<'_> {
     ) {
         let (x0, m) = (self.prep.dx.points[0], self.prep.dx.columns());
         let t = fix.scale;
-        let mut t_bar = 0.0;
+        let mut t_bar = fix.bar;
         for (l, g) in lambda.iter_mut().zip(&self.prep.generatrix) {
             t_bar += l.dot(*g - x0);
             total.columns.x[0] += *l * (1.0 - t);
@@ -736,7 +862,9 @@ impl Backward<'_> {
 mod tests {
     use super::*;
     use crate::Polyline;
+    use crate::conenet::blend::Taken;
     use crate::conenet::construct;
+    use crate::conenet::construct::construct_traced;
     use crate::conenet::correction::CorrectionKind;
     use crate::conenet::inputs::{ApexInput, Assistance, ColumnValues, EndPlanes};
     use crate::conenet::margins::face_margins;
@@ -1026,13 +1154,112 @@ mod tests {
             rel.iter().all(|r| *r < 1e-6),
             "directrix, apex, ratios, ε, generatrix: {rel:?}"
         );
-        // A blend (its apex values come from another sweep) is declined.
-        let c = tilted(0.5);
-        let k = kinds(&c);
-        assert!(k.contains(&CorrectionKind::Apex), "{k:?}");
-        let net = construct(&c).unwrap();
-        let w = weights(net.mesh.vertices.len());
-        assert!(construct_adjoint(&c, &net.mesh, &w).is_err());
+    }
+
+    /// Which piece a run took: its form (a blend's λ) and which values the correction changed.
+    type PieceKey = (Taken, Vec<(CorrectionKind, usize, Option<usize>)>);
+
+    fn piece_key(c: &ConstructInputs) -> PieceKey {
+        let (net, taken) = construct_traced(c, Reports::ALL).unwrap();
+        let changed = net
+            .corrections
+            .iter()
+            .map(|c| (c.kind, c.column, c.row))
+            .collect();
+        (taken, changed)
+    }
+
+    /// Asserts every input moved by ±1e-6 (the difference steps) keeps the piece of `c`.
+    fn assert_one_piece(c: &ConstructInputs) {
+        let key = piece_key(c);
+        let mut moved: Vec<ConstructInputs> = Vec::new();
+        for h in [1e-6, -1e-6, 5e-7, -5e-7] {
+            for k in 0..c.directrix.points.len() * 3 {
+                let mut p = c.clone();
+                p.directrix.points[k / 3][k % 3] += h;
+                moved.push(p);
+            }
+            for k in 0..c.generatrix.points.len() * 3 {
+                let mut p = c.clone();
+                p.generatrix.points[k / 3][k % 3] += h;
+                moved.push(p);
+            }
+            let mut p = c.clone();
+            p.assistance.epsilon += h;
+            moved.push(p);
+            let count = match &c.apex.values {
+                ColumnValues::Uniform(_) => 1,
+                ColumnValues::List(v) => v.len(),
+            };
+            for k in 0..count {
+                let mut p = c.clone();
+                match &mut p.apex.values {
+                    ColumnValues::Uniform(v) => *v += h,
+                    ColumnValues::List(v) => v[k] += h,
+                }
+                moved.push(p);
+            }
+            let count = match &c.ratios {
+                GridValues::Uniform(_) => 1,
+                GridValues::PerColumn(r) => r.len(),
+                GridValues::PerVertex(r) => r.len() * r[0].len(),
+            };
+            for k in 0..count {
+                let mut p = c.clone();
+                match &mut p.ratios {
+                    GridValues::Uniform(r) => *r += h,
+                    GridValues::PerColumn(r) => r[k] += h,
+                    GridValues::PerVertex(r) => {
+                        let cols = r[0].len();
+                        r[k / cols][k % cols] += h;
+                    }
+                }
+                moved.push(p);
+            }
+        }
+        for p in &moved {
+            assert_eq!(piece_key(p), key, "a difference step leaves the piece");
+        }
+    }
+
+    #[test]
+    fn a_blended_run_of_the_correction_is_differentiated() {
+        // A blend (α = 0.5): the apex values and the generatrix scale move half way to apex
+        // only's (another sweep, differentiated on its own piece), planes only on top.
+        for (what, mut c, ratios) in [
+            ("per column", tilted(0.5), None),
+            (
+                "per vertex",
+                tilted(0.5),
+                Some(GridValues::PerVertex(vec![
+                    vec![0.5, 0.9, 0.45, 0.55, 0.5],
+                    vec![0.52, 0.88, 0.5, 0.5, 0.47],
+                    vec![0.49, 0.91, 0.53, 0.5, 0.5],
+                ])),
+            ),
+            ("generatrix scaled", first_column_fold(0.5), None),
+        ] {
+            if let Some(r) = ratios {
+                c.ratios = r;
+            }
+            let (taken, changed) = piece_key(&c);
+            assert!(
+                matches!(taken, Taken::Blend { lambda, mixed: false } if lambda == 0.5),
+                "{what}: {taken:?}"
+            );
+            assert!(
+                changed.iter().any(|k| k.0 != CorrectionKind::Ratio),
+                "{what}: {changed:?}"
+            );
+            assert_one_piece(&c);
+            let rel = check_all(&c);
+            assert!(
+                rel.iter().all(|r| *r < 1e-6),
+                "{what}: directrix, apex, ratios, ε, generatrix: {rel:?}"
+            );
+            let rel = check_outputs(&c);
+            assert!(rel < 1e-6, "{what}: the other outputs: {rel}");
+        }
     }
 
     #[test]
@@ -1060,10 +1287,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn the_generatrix_fix_of_the_correction_is_differentiated() {
-        // G_{1,0} beyond the first plane (tests/correction.rs, `first_column_fold`), the directrix
-        // slightly bent: apex only scales the generatrix about X_0.
+    /// G_{1,0} beyond the first plane (tests/correction.rs, `first_column_fold`), the directrix
+    /// slightly bent.
+    fn first_column_fold(alpha: f64) -> ConstructInputs {
         let directrix = Polyline::open(
             (0..4)
                 .map(|j| DVec3::new(j as f64, 0.04 * (j * j) as f64, -0.03 * j as f64))
@@ -1077,7 +1303,14 @@ mod tests {
         let mut c = ConstructInputs::new(directrix, generatrix);
         c.ratios = GridValues::PerColumn(vec![0.48, 0.53, 0.5]);
         c.apex.values = ColumnValues::List(vec![0.98, 1.02, 0.97]);
-        c.assistance = Assistance::new(1.0);
+        c.assistance = Assistance::new(alpha);
+        c
+    }
+
+    #[test]
+    fn the_generatrix_fix_of_the_correction_is_differentiated() {
+        // Apex only scales the generatrix about X_0.
+        let c = first_column_fold(1.0);
         let k = kinds(&c);
         assert!(k.contains(&CorrectionKind::Generatrix), "{k:?}");
         let rel = check_all(&c);

@@ -30,6 +30,17 @@ use crate::GeometryError;
 /// The number of steps of λ from α to 1 when α itself would exceed a bound.
 const STEPS: usize = 8;
 
+/// Which form of the assisted correction a run took (what its derivative follows).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Taken {
+    /// One sweep: no assistance, a pure form, or apex only standing in for a blend (its records
+    /// are that sweep's own).
+    Single,
+    /// A blend: planes only on the inputs moved the fraction `lambda` of the way to apex only
+    /// ([`towards`]); `mixed` when that sweep also fell back to apex or generatrix fixes.
+    Blend { lambda: f64, mixed: bool },
+}
+
 /// Runs the assisted construction for `assistance` (off, or α ∈ [0, 1]); `sweep` runs one sweep of the
 /// construction rule on the given inputs with a pure assistance (α = 0 or 1) or none, stopping early
 /// once its total plane turn passes the given limit (infinite: the whole sweep).
@@ -41,9 +52,22 @@ pub(crate) fn assisted<F>(
 where
     F: Fn(&Prepared, Option<Assistance>, f64) -> Result<Raw, GeometryError>,
 {
+    assisted_traced(prep, assistance, sweep).map(|(raw, _)| raw)
+}
+
+/// [`assisted`], also saying which form the run took.
+pub(crate) fn assisted_traced<F>(
+    prep: &Prepared,
+    assistance: Assistance,
+    sweep: F,
+) -> Result<(Raw, Taken), GeometryError>
+where
+    F: Fn(&Prepared, Option<Assistance>, f64) -> Result<Raw, GeometryError>,
+{
+    let single = |r: Result<Raw, GeometryError>| r.map(|r| (r, Taken::Single));
     let whole = f64::INFINITY;
     if !assistance.enabled() {
-        return sweep(prep, None, whole);
+        return single(sweep(prep, None, whole));
     }
     let pure = |alpha: f64| Assistance {
         alpha,
@@ -53,14 +77,14 @@ where
     let mut apex_only = match sweep(prep, Some(pure(1.0)), whole) {
         Ok(q) => q,
         // Planes only does not need the apex-only plan.
-        Err(_) if alpha == 0.0 => return sweep(prep, Some(pure(0.0)), whole),
+        Err(_) if alpha == 0.0 => return single(sweep(prep, Some(pure(0.0)), whole)),
         Err(e) => return Err(e),
     };
     if alpha >= 1.0 || apex_only.corrections.is_empty() {
-        return Ok(apex_only);
+        return Ok((apex_only, Taken::Single));
     }
     if alpha == 0.0 {
-        return sweep(prep, Some(pure(0.0)), whole);
+        return single(sweep(prep, Some(pure(0.0)), whole));
     }
     let bound = Bounds {
         apex: apex_change(prep, &apex_only),
@@ -76,9 +100,15 @@ where
     let mut planes_only = PlanesOnlyTurn::Unknown;
     for k in 0..STEPS {
         let lambda = alpha + (1.0 - alpha) * k as f64 / STEPS as f64;
-        let Some(r) = sweep(&towards(prep, &plan, lambda), Some(pure(0.0)), whole)
+        let Some((r, mixed)) = sweep(&towards(prep, &plan, lambda), Some(pure(0.0)), whole)
             .ok()
-            .map(|r| rebase(prep, r, lambda, plan.generatrix_scale))
+            .map(|r| {
+                let mixed = r
+                    .corrections
+                    .iter()
+                    .any(|c| matches!(c.kind, CorrectionKind::Apex | CorrectionKind::Generatrix));
+                (rebase(prep, r, lambda, plan.generatrix_scale), mixed)
+            })
         else {
             continue;
         };
@@ -87,10 +117,10 @@ where
                 sweep(prep, Some(pure(0.0)), limit).map(|p| p.turn)
             })?
         {
-            return Ok(r);
+            return Ok((r, Taken::Blend { lambda, mixed }));
         }
     }
-    sweep(prep, Some(pure(1.0)), whole)
+    single(sweep(prep, Some(pure(1.0)), whole))
 }
 
 /// What the blend takes from apex only: its apex values and generatrix scale.

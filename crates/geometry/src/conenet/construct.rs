@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::blend::assisted;
+use super::blend::{Taken, assisted, assisted_traced};
 use super::ctube::Raw;
 use super::inputs::{ConstructInputs, CoplanarInputs, check_unit_interval};
 use super::prepare::prepare;
@@ -22,6 +22,14 @@ pub fn construct_with(
     inputs: &ConstructInputs,
     reports: Reports,
 ) -> Result<ConeNet, GeometryError> {
+    construct_traced(inputs, reports).map(|(net, _)| net)
+}
+
+/// [`construct_with`], also saying which form of the assisted correction the run took.
+pub(super) fn construct_traced(
+    inputs: &ConstructInputs,
+    reports: Reports,
+) -> Result<(ConeNet, Taken), GeometryError> {
     let prep = prepare(
         &inputs.directrix,
         &inputs.generatrix,
@@ -34,19 +42,20 @@ pub fn construct_with(
         .resolve("ratios", n, m - 1, (0.0, 1.0, "a value in [0, 1]"))?;
     inputs.assistance.validate()?;
     prep.dx.check_bisectors()?;
-    assisted(&prep, inputs.assistance, |prep, assistance, turn_limit| {
-        let mut sweep = Sweep::new(
-            prep,
-            zeroed_points(n * (m - 1)),
-            true,
-            Rule::Ratios(&grid),
-            assistance,
-        );
-        sweep.turn_limit = turn_limit;
-        sweep.run()?;
-        Ok(Raw::from_sweep(sweep, prep.wrap_rows))
-    })?
-    .finish_with(reports)
+    let (raw, taken) =
+        assisted_traced(&prep, inputs.assistance, |prep, assistance, turn_limit| {
+            let mut sweep = Sweep::new(
+                prep,
+                zeroed_points(n * (m - 1)),
+                true,
+                Rule::Ratios(&grid),
+                assistance,
+            );
+            sweep.turn_limit = turn_limit;
+            sweep.run()?;
+            Ok(Raw::from_sweep(sweep, prep.wrap_rows))
+        })?;
+    Ok((raw.finish_with(reports)?, taken))
 }
 
 /// CNets Construct Coplanar (`cnets.construct_coplanar`): one plane per column through the ruling

@@ -13,11 +13,25 @@
 //!   `T = (1 − ε) t_{i*}`, `t_i = ((X_1 − X_0)·P_{i,1}) / ((G_{i,0} − X_0)·P_{i,1})` on the input
 //!   generatrix (rounds multiply to the same form).
 //!
-//! A run mixing plane fixes with apex or generatrix fixes, or a blend (0 < α < 1: its apex values
-//! come from another, apex-only, sweep), is declined.
+//! * **Blend** (0 < α < 1, `blend.rs`): the mesh is the planes-only sweep Q_λ on the inputs
+//!   moved the fraction λ towards apex only Q, `a_j(λ) = a_j + λ (a_j^Q − a_j)` and the
+//!   generatrix scaled about X_0 by `t(λ) = 1 + λ (t_Q − 1)`. λ is α or one of the steps towards
+//!   1 the bounds choose (piecewise constant: the construction reports it, [`Taken`]); the plane
+//!   fixes of Q_λ are its `Ratio` records. Q_λ is differentiated as planes only at a_j(λ); the user's a_j keeps
+//!   (1 − λ) of ā_j and the generatrix t(λ) of its column-0 cotangent, and λ ā_j, λ t̄ go to
+//!   a_j^Q and t_Q as cotangents of apex only's outputs, through its own backward sweep (apex
+//!   fixes, generatrix fix: smooth on its piece). A blend that fell back to Q itself is apex only.
+//!
+//! **Mixed runs** are declined: a plane fix followed, at the same column, by an apex fix (or at
+//! the first column by the generatrix fix), in planes only or in a blend's Q_λ. θ = (1 − ε) φ
+//! satisfies Eq. 2 with margin in exact arithmetic, so the fallback happens only when rounding
+//! loses that margin (`sweep::mod`, a stop after an insufficient plane fix): which rows fall back
+//! is decided by rounding, no open piece contains the run (a difference step leaves it), and the
+//! fixed value would read the turned plane at the vertex before the fix (another form).
 
 use super::adjoint::{PlaneRule, StepInputs, step_plane, step_vertex};
-use super::construct::construct_with;
+use super::blend::Taken;
+use super::construct::construct_traced;
 use super::correction::CorrectionKind;
 use super::dual::{D3, Dual};
 use super::inputs::{ConstructInputs, Grid};
@@ -38,6 +52,17 @@ pub(super) struct ApexFix {
 pub(super) struct GeneratrixFix {
     pub row: usize,
     pub scale: f64,
+    /// A cotangent of T from outside the sweep (a blend's, through `t(λ)`), else 0.
+    pub bar: f64,
+}
+
+/// A blend's piece: planes only on the inputs moved the fraction λ towards apex only, a_j(λ) =
+/// a_j + λ (a_j^Q − a_j) and the generatrix scaled about X_0 by t(λ) = 1 + λ (t_Q − 1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Blend {
+    pub lambda: f64,
+    /// t(λ) (1 when apex only did not scale the generatrix).
+    pub scale: f64,
 }
 
 /// The piece a run took.
@@ -51,6 +76,8 @@ pub(super) struct Piece {
     pub apex_fixes: Vec<ApexFix>,
     /// The generatrix fix.
     pub generatrix_fix: Option<GeneratrixFix>,
+    /// A blend: `apex` holds a_j(λ), `fixed` the plane fixes of the sweep on top.
+    pub blend: Option<Blend>,
 }
 
 /// The piece of the run of `inputs` (prepared as `prep`, ratios `grid`) that built `mesh`, or the
@@ -70,14 +97,13 @@ pub(super) fn piece(
     if !inputs.assistance.enabled() {
         return Ok(piece);
     }
-    let net = construct_with(
+    let (net, taken) = construct_traced(
         inputs,
         Reports {
             apices: false,
             quality: false,
         },
     )?;
-    let alpha = inputs.assistance.alpha;
     let planes = net.corrections.iter().any(|c| {
         matches!(
             c.kind,
@@ -88,13 +114,45 @@ pub(super) fn piece(
         .corrections
         .iter()
         .any(|c| matches!(c.kind, CorrectionKind::Apex | CorrectionKind::Generatrix));
-    if others && (planes || (alpha > 0.0 && alpha < 1.0)) {
+    let mixed = match taken {
+        Taken::Single => others && planes,
+        Taken::Blend { mixed, .. } => mixed,
+    };
+    if mixed {
         return Err(GeometryError::Degenerate(
-            "the assisted correction changed planes and the apex function or the generatrix \
-             together (a blend, or a plane fix falling back to the apex fix): its derivative is \
+            "the assisted correction changed planes and then, where rounding left a turned plane \
+             still failing, the apex function or the generatrix at the same column (a mixed run: \
+             the rows that fall back are chosen by rounding, no smooth piece): its derivative is \
              not implemented"
                 .into(),
         ));
+    }
+    if let Taken::Blend { lambda, .. } = taken {
+        // The planes only sweep on top of the moved inputs: its plane fixes; the rebased records
+        // state the moved apex values and the generatrix scale t(λ) (no fixes of their own).
+        let mut fixed = vec![false; n * (m - 1)];
+        let mut scale = 1.0;
+        for c in &net.corrections {
+            match (c.kind, c.row) {
+                (CorrectionKind::Ratio, Some(i)) if i < n && (1..m).contains(&c.column) => {
+                    fixed[i * (m - 1) + c.column - 1] = true;
+                }
+                (CorrectionKind::Generatrix, None) => scale = c.new,
+                (CorrectionKind::Apex, None) => {}
+                _ => {
+                    return Err(GeometryError::Degenerate(format!(
+                        "the assisted correction changed a value whose derivative is not \
+                         implemented ({c})"
+                    )));
+                }
+            }
+        }
+        return Ok(Piece {
+            fixed: if planes { fixed } else { Vec::new() },
+            apex: net.apex,
+            blend: Some(Blend { lambda, scale }),
+            ..Piece::default()
+        });
     }
     piece.apex = net.apex.clone();
     let eps = inputs.assistance.epsilon;
@@ -122,7 +180,11 @@ pub(super) fn piece(
                          be replayed ({c})"
                     )));
                 };
-                piece.generatrix_fix = Some(GeneratrixFix { row, scale: c.new });
+                piece.generatrix_fix = Some(GeneratrixFix {
+                    row,
+                    scale: c.new,
+                    bar: 0.0,
+                });
             }
             _ => {
                 return Err(GeometryError::Degenerate(format!(

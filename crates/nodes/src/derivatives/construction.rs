@@ -23,9 +23,10 @@ const DIFFERENTIATED: [usize; 5] = [0, 1, 2, 3, 7];
 /// `cnets.construct`: the backward sweep (`construct_adjoint_for`) for the directrix, generatrix,
 /// apex function, ratios, scale and ε (inputs 0, 1, 2, 3, 6, 7), from the cotangents of the mesh,
 /// the apex values used, the apices, the plane normals and the convexity margins (outputs 0, 1,
-/// 2, 3, 7). A run of the assisted correction is differentiated on the piece it took when it only
-/// turned planes (planes only) or only changed apex values and the generatrix (apex only); a blend
-/// or a mixed run is declined (finite differences), as are the other outputs' cotangents.
+/// 2, 3, 7). A run of the assisted correction is differentiated on the piece it took: planes
+/// only, apex only, or a blend (its apex-only sweep differentiated too); a mixed run (a plane fix
+/// falling back to an apex fix, decided by rounding) is declined (finite differences), as are the
+/// other outputs' cotangents.
 /// `assistance` selects the correction's form: its derivative is 0 when the correction is off or
 /// changed nothing, else declined.
 fn construct(args: &VjpArgs<'_>) -> VjpResult {
@@ -392,7 +393,7 @@ pub fn product(id: &str) -> Option<Product> {
 }
 
 /// The branch function of a construction node and the outputs its derivative reads off the path
-/// (the corrections: which piece a corrected run took; a blend is declined), by id.
+/// (the corrections: which piece a corrected run took), by id.
 pub fn branch(id: &str) -> Option<(BranchFn, &'static [&'static str])> {
     match id {
         // The coplanar construction's ruling ratios are its input 3 too.

@@ -946,6 +946,31 @@ fn construction_products_match_differences() {
     let rel = compare("cnets.construct", &named, &wanted);
     assert!(rel < 1e-6, "cnets.construct (apex only): {rel}");
     gives_every_wanted("cnets.construct", &named, &wanted);
+    // A blend (α = 0.5) moves a_1 half way to apex only's and turns planes on top: the product
+    // follows both sweeps (no finite differences).
+    named[4] = ("assistance", n(0.5));
+    let outs = evaluate_node(&d, &NodeContext::default(), &inputs(&d, &named))
+        .unwrap()
+        .values;
+    let lines = match &outs[5] {
+        Value::List(c) => c
+            .iter()
+            .filter_map(|v| match v {
+                Value::Text(t) => Some(t.to_string()),
+                _ => None,
+            })
+            .collect::<Vec<_>>(),
+        other => panic!("corrections: {other:?}"),
+    };
+    assert!(
+        lines.iter().any(|l| l.starts_with("apex fix"))
+            && lines.iter().any(|l| l.starts_with("plane fix")),
+        "the blend changed the apex function and turned planes: {lines:?}"
+    );
+    let rel = compare("cnets.construct", &named, &wanted);
+    println!("cnets.construct (blend, α = 0.5): {rel:.2e}");
+    assert!(rel < 1e-6, "cnets.construct (blend): {rel}");
+    gives_every_wanted("cnets.construct", &named, &wanted);
 }
 
 /// The vector value of `v`.
