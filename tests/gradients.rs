@@ -230,6 +230,53 @@ fn figures() {
     );
 }
 
+#[test]
+#[ignore = "timings for docs/editor/3d-view.md: cargo test --release -p cnets-tests --test gradients -- --ignored --nocapture drag"]
+fn drag_rate_figures() {
+    use cnets_engine::optimize::drag::{DragRequest, drag};
+    use std::time::Instant;
+    let ctx = NodeContext::default();
+    for (name, net, size) in [
+        ("torus-monge", "varying_ratios", None),
+        ("torus-monge", "varying_ratios", Some(100)),
+    ] {
+        let mut graph = load(name).graph;
+        if let Some(n) = size {
+            graph.set_value("rows", "value", Value::Integer(n)).unwrap();
+            graph
+                .set_value("columns", "value", Value::Integer(n))
+                .unwrap();
+        }
+        let vertex = size.map_or((6, 12), |n| (n as usize / 2, n as usize / 2));
+        // Where the vertex is: a request of no steps reports it.
+        let mut request = DragRequest::new(net, vertex, glam::DVec3::ZERO);
+        request.max_iter = 0;
+        let start = drag(&graph, &request, &ctx).unwrap().reached;
+        // As the tool does: 8 targets 0.6 m apart in eighths, each solved from the last answer
+        // in at most 8 steps.
+        let mut times = Vec::new();
+        let mut steps = 0;
+        for k in 1..=8 {
+            let target = start + glam::DVec3::Z * 0.6 * f64::from(k) / 8.0;
+            let mut request = DragRequest::new(net, vertex, target);
+            request.max_iter = 8;
+            let t = Instant::now();
+            let report = drag(&graph, &request, &ctx).unwrap();
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+            steps += report.iterations;
+            graph = report.graph;
+        }
+        times.sort_by(f64::total_cmp);
+        let median = 0.5 * (times[3] + times[4]);
+        println!(
+            "drag {name} {net} {:?}: median solved update {median:.1} ms ({:.1} steps on average), {:.1} updates a second",
+            vertex,
+            steps as f64 / 8.0,
+            1e3 / median
+        );
+    }
+}
+
 /// Paper Fig. 5's leaning ratios with the assisted correction at ½ (it changes planes), the
 /// area of the blended net as the objective and the construction's constant apex as the variable
 /// (the lean only moves the ratios the correction repairs, so the net does not depend on it).

@@ -588,6 +588,85 @@ for (const name of gallery) {
   await page.close();
 }
 
+// 13. Drag the net (the Drag net tool, key G) on the start-up torus: the solves run in the page's
+//     drag worker (a second Web Worker), never in the page's frames; the release's answer closes
+//     one undo step, and Ctrl+Z restores every slider. The figures (solves, their rate, the page's
+//     time a frame while dragging) are reported.
+{
+  const { page, state: opened } = await openAny(`${base}/index.html?example=torus-monge`);
+  // The Top view (key 1): the pointer moves the vertex in the view's plane.
+  const [cx, cy] = [(opened.view[0] + opened.view[2]) / 2, (opened.view[1] + opened.view[3]) / 2];
+  await page.mouse.move(cx, cy);
+  await page.keyboard.press("1");
+  await settled(page);
+  // Pictures with the pointer off the view (no hover highlight in them).
+  await page.mouse.move(5, 5);
+  const before = await settled(page);
+  const pictured = await shot(page, "13-torus-top-before", before.view);
+  assert.ok(before.net_vertex, `a vertex of the net in view: ${JSON.stringify(before.view)}`);
+  const [vx, vy, node, i, j] = before.net_vertex;
+  await page.mouse.move(vx, vy);
+  await page.keyboard.press("g");
+  const drag = await page.evaluate(async ([x0, y0]) => {
+    const canvas = document.getElementById("cnets");
+    const fire = (type, x, y, buttons) => {
+      const init = { bubbles: true, cancelable: true, composed: true, clientX: x, clientY: y, button: 0, buttons };
+      canvas.dispatchEvent(type === "mousemove" ? new MouseEvent(type, init)
+        : new PointerEvent(type, { ...init, pointerId: 1, pointerType: "mouse", isPrimary: true }));
+    };
+    const editor = () => window.cnets_test ?? {};
+    const editorFrames = async (n) => {
+      const start = editor().frames ?? 0;
+      for (let k = 0; k < 600 && (editor().frames ?? 0) < start + n; k++) {
+        await new Promise((r) => setTimeout(r, 10));
+      }
+    };
+    fire("mousemove", x0, y0, 0);
+    await editorFrames(1);
+    fire("pointerdown", x0, y0, 1);
+    await editorFrames(2);
+    const t0 = performance.now();
+    const steps = 30;
+    for (let k = 1; k <= steps; k++) {
+      fire("mousemove", x0 + (60 * k) / steps, y0 + (20 * k) / steps, 1);
+      await editorFrames(1);
+    }
+    const t1 = performance.now();
+    fire("pointerup", x0 + 60, y0 + 20, 0);
+    return { seconds: (t1 - t0) / 1000 };
+  }, [vx, vy]);
+  const dragged = await until(page, "the drag's last answer", (t) => t.net_drag !== null, 60_000);
+  await page.mouse.move(5, 5);
+  const after = await settled(page);
+  const moved = await shot(page, "13-torus-net-dragged", before.view);
+  const d = dragged.net_drag;
+  figures.drag_net = {
+    node, vertex: [i, j], seconds: +drag.seconds.toFixed(2), solves: d.solves,
+    worker_answers: after.drag_worker_answers, solves_per_second: +d.rate.toFixed(1),
+    mean_solve_ms: +d.solve_ms.toFixed(1), ui_frame_median_ms: +(d.ui_frame_median_ms ?? 0).toFixed(1),
+    ui_frame_max_ms: +(d.ui_frame_max_ms ?? 0).toFixed(1), frames: d.frames,
+    release_ms: +d.release_ms.toFixed(1), distance_left: d.distance_left, not_convex: d.not_convex,
+  };
+  console.log(`drag the net: ${JSON.stringify(figures.drag_net)}`);
+  assert.equal(d.node, node);
+  assert.ok(d.solves >= 1, "the drag was solved");
+  assert.ok(after.drag_worker_answers >= d.solves, "every solve came from the drag worker");
+  assert.ok(after.message.startsWith(`dragged ${node}`), after.message);
+  assert.equal(d.not_convex, 0, "every face (++)(++)");
+  const changed = difference(pictured.px, moved.px);
+  assert.ok(changed > 0.002, `the drag changed the picture: ${(changed * 100).toFixed(2)} %`);
+  await page.keyboard.press("Control+z");
+  await settled(page);
+  const undone = await shot(page, "13-torus-net-undone", before.view);
+  const left = difference(pictured.px, undone.px);
+  figures.drag_net.picture_changed = +changed.toFixed(4);
+  figures.drag_net.picture_left_after_undo = +left.toFixed(4);
+  console.log(`drag the net: the picture changed ${(changed * 100).toFixed(2)} %, after Ctrl+Z ${(left * 100).toFixed(3)} %`);
+  assert.ok(left < 0.0005, `one undo restores the picture: ${(left * 100).toFixed(3)} % differ`);
+  noProblems("drag the net");
+  await page.close();
+}
+
 await context.close();
 fs.rmSync(userData, { recursive: true, force: true });
 fs.writeFileSync(path.join(out, "figures.json"), JSON.stringify(figures, null, 2) + "\n");

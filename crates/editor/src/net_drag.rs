@@ -10,8 +10,10 @@
 //! the sliders and the handles move while the pointer moves and the whole drag is one undo step.
 //! A solve takes at most [`STEPS_PER_SOLVE`] steps, so the picture follows the pointer; at the
 //! release the last target is solved on to the end ([`STEPS_TO_FINISH`]) and the app waits for
-//! that answer (half a second at most) before it closes the undo step. Where threads are not
-//! available (the web page) the solves run in the frame instead.
+//! that answer (half a second at most) before it closes the undo step. On the web page (no threads)
+//! the solves run in a drag worker of their own ([`RemoteDrag`]): the release does not wait there,
+//! the undo step closes when the last answer arrives ([`NetDragSession::closed`]). Where neither
+//! is available the solves run in the frame.
 //!
 //! Free inputs: the optimization setup's variables when it has any, else every slider, point
 //! list, mapper handle and list of numbers upstream of the net ([`default_free`]) except the
@@ -22,11 +24,12 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 use std::sync::{Arc, Condvar, Mutex};
 
 use cnets_engine::optimize::Variable;
-use cnets_engine::optimize::drag::{DragRequest, default_free, drag};
-use cnets_engine::{Graph, NodeContext, Value};
+use cnets_engine::optimize::drag::default_free;
+use cnets_engine::{Graph, NodeContext};
 use cnets_geometry::DVec3;
 use web_time::{Duration, Instant};
 
+pub use crate::drag_solver::{DragProblem, DragSolver, RemoteDrag, Solved};
 use crate::viewport::NetDragTarget;
 
 /// Steps a solve takes at most: a solve answers within a frame or two on the gallery's nets, and
@@ -35,84 +38,6 @@ pub const STEPS_PER_SOLVE: usize = 8;
 
 /// Steps the last solve of a drag may take (after the release, for where the pointer let go).
 pub const STEPS_TO_FINISH: usize = 40;
-
-/// What one solve reached.
-#[derive(Clone, Debug)]
-pub struct Solved {
-    /// Every input the drag changed so far, with its value now: (node, input, value).
-    pub values: Vec<(String, String, Value)>,
-    /// Where the grabbed vertex is.
-    pub reached: DVec3,
-    /// Its distance to the target.
-    pub distance_left: f64,
-    /// How far a pinned vertex moved at most.
-    pub pin_drift: f64,
-    /// Faces that are not (++)(++) on the dragged net.
-    pub not_convex: usize,
-    /// The solve's wall time (ms).
-    pub solve_ms: f64,
-    /// The solve stopped before its last step: at the target, or as close as the inputs go.
-    pub settled: bool,
-}
-
-/// One drag's problem: the graph (the last answer), what is grabbed and pinned, what may move.
-struct Solver {
-    graph: Graph,
-    node: String,
-    vertex: (usize, usize),
-    item: Option<usize>,
-    pins: Vec<(usize, usize)>,
-    pinned_at: Vec<DVec3>,
-    free: Vec<Variable>,
-    ctx: NodeContext,
-    /// Every (node, input) changed so far.
-    touched: BTreeSet<(String, String)>,
-}
-
-impl Solver {
-    /// Solves for `target`, from the last answer.
-    fn solve(&mut self, target: DVec3, steps: usize) -> Result<Solved, String> {
-        let started = Instant::now();
-        let mut request = DragRequest::new(self.node.clone(), self.vertex, target);
-        request.pins = self.pins.clone();
-        request.item = self.item;
-        request.pinned_at = Some(self.pinned_at.clone());
-        request.free = Some(self.free.clone());
-        request.max_iter = steps;
-        let report = drag(&self.graph, &request, &self.ctx).map_err(|e| e.to_string())?;
-        self.touched.extend(
-            report
-                .changes
-                .iter()
-                .map(|c| (c.input.node.clone(), c.input.port.clone())),
-        );
-        self.graph = report.graph;
-        let values = self
-            .touched
-            .iter()
-            .filter_map(|(node, input)| {
-                let n = self.graph.node(node)?;
-                let value = n.value(n.def.input_index(input)?)?.clone();
-                Some((node.clone(), input.clone(), value))
-            })
-            .collect();
-        let not_convex = report
-            .not_convex
-            .iter()
-            .filter(|(n, _)| *n == self.node)
-            .map(|(_, c)| c.unwrap_or(0))
-            .sum();
-        Ok(Solved {
-            values,
-            reached: report.reached,
-            distance_left: report.distance_left,
-            pin_drift: report.pin_drift,
-            not_convex,
-            solve_ms: started.elapsed().as_secs_f64() * 1e3,
-            settled: report.iterations < steps,
-        })
-    }
-}
 
 /// The newest target, handed from the UI thread to the solver's.
 #[derive(Default)]
@@ -160,9 +85,15 @@ enum Runner {
         mailbox: Arc<Mailbox>,
         answers: Receiver<Result<Solved, String>>,
     },
-    /// In the frame (no threads: the web page).
+    /// In the web page's drag worker.
+    Remote {
+        service: Box<dyn RemoteDrag>,
+        /// The release asked for its last answer.
+        closing: bool,
+    },
+    /// In the frame (no thread could be started).
     Inline {
-        solver: Box<Solver>,
+        solver: Box<DragSolver>,
         target: Option<DVec3>,
     },
 }
@@ -226,15 +157,17 @@ pub fn free_inputs(
 
 impl NetDragSession {
     /// Starts a drag of `grab`'s vertex in a copy of `graph` (evaluated with `ctx`), the pins of
-    /// `grab` held; `wake` is called when an answer is ready.
+    /// `grab` held; `wake` is called when an answer is ready. With `remote` the solves run there
+    /// (the web page's drag worker), else on a thread of their own.
     pub fn start(
         graph: &Graph,
         grab: &NetDragTarget,
         free: Vec<Variable>,
         ctx: NodeContext,
         wake: Arc<dyn Fn() + Send + Sync>,
+        remote: Option<Box<dyn RemoteDrag>>,
     ) -> Self {
-        let solver = Solver {
+        let problem = DragProblem {
             graph: crate::optimization::isolated(graph),
             node: grab.grabbed.node.clone(),
             vertex: grab.grabbed.vertex,
@@ -242,10 +175,34 @@ impl NetDragSession {
             pins: grab.pins.iter().map(|p| p.0).collect(),
             pinned_at: grab.pins.iter().map(|p| p.1).collect(),
             free,
-            ctx,
-            touched: BTreeSet::new(),
         };
-        let (node, vertex, item) = (solver.node.clone(), solver.vertex, solver.item);
+        let (node, vertex, item) = (problem.node.clone(), problem.vertex, problem.item);
+        let runner = match remote {
+            Some(mut service) => {
+                service.start(&problem, ctx.base_dir.as_deref());
+                Runner::Remote {
+                    service,
+                    closing: false,
+                }
+            }
+            None => Self::on_a_thread(DragSolver::new(problem, ctx), wake),
+        };
+        Self {
+            node,
+            vertex,
+            item,
+            runner,
+            solves: 0,
+            solve_ms: 0.0,
+            started: Instant::now(),
+            targets: 0,
+            last_target: None,
+            newest: None,
+        }
+    }
+
+    /// Runs `solver` on a thread of its own (in the frame when no thread can be started).
+    fn on_a_thread(solver: DragSolver, wake: Arc<dyn Fn() + Send + Sync>) -> Runner {
         let mailbox = Arc::new(Mailbox::default());
         let (tx, answers): (Sender<Result<Solved, String>>, _) = channel();
         let inbox = mailbox.clone();
@@ -273,7 +230,7 @@ impl NetDragSession {
                     wake();
                 }
             });
-        let runner = match spawned {
+        match spawned {
             // Detached: it ends once the drag is closed and its last answer sent.
             Ok(_thread) => Runner::Thread { mailbox, answers },
             Err(_) => Runner::Inline {
@@ -285,18 +242,6 @@ impl NetDragSession {
                 ),
                 target: None,
             },
-        };
-        Self {
-            node,
-            vertex,
-            item,
-            runner,
-            solves: 0,
-            solve_ms: 0.0,
-            started: Instant::now(),
-            targets: 0,
-            last_target: None,
-            newest: None,
         }
     }
 
@@ -313,6 +258,7 @@ impl NetDragSession {
         self.last_target = Some(target);
         match &mut self.runner {
             Runner::Thread { mailbox, .. } => mailbox.post(target),
+            Runner::Remote { service, .. } => service.aim(target, STEPS_PER_SOLVE),
             Runner::Inline { target: t, .. } => *t = Some(target),
         }
     }
@@ -321,6 +267,7 @@ impl NetDragSession {
     pub fn poll(&mut self) -> Option<Result<Solved, String>> {
         let answer = match &mut self.runner {
             Runner::Thread { answers, .. } => answers.try_iter().last(),
+            Runner::Remote { service, .. } => service.receive().pop(),
             Runner::Inline { solver, target } => {
                 target.take().map(|t| solver.solve(t, STEPS_PER_SOLVE))
             }
@@ -330,7 +277,9 @@ impl NetDragSession {
 
     /// Ends the drag: waits up to `timeout` for the answer to the last target (where the pointer
     /// was released) and returns the newest answer not yet taken. A solve still running then is
-    /// left to finish on its own; its answer is dropped.
+    /// left to finish on its own; its answer is dropped. In the drag worker nothing is waited
+    /// for: the last target is asked for to the end, and its answer comes by [`Self::poll`]
+    /// until [`Self::closed`].
     pub fn finish(&mut self, timeout: Duration) -> Option<Result<Solved, String>> {
         let deadline = Instant::now() + timeout;
         let mut newest = None;
@@ -347,6 +296,15 @@ impl NetDragSession {
                     }
                 }
             }
+            Runner::Remote { service, closing } => {
+                // The last target to the end (one step when it was reached already); the window
+                // does not wait for it.
+                *closing = true;
+                newest = service.receive().pop();
+                if let Some(t) = self.last_target {
+                    service.aim(t, STEPS_TO_FINISH);
+                }
+            }
             Runner::Inline { solver, target } => {
                 let unsettled = self.newest.as_ref().is_some_and(|s| !s.settled);
                 newest = target
@@ -356,6 +314,20 @@ impl NetDragSession {
             }
         }
         self.count(newest)
+    }
+
+    /// Whether the drag has its last answer: always once finished, except in the drag worker,
+    /// until the answer to the release's target arrived.
+    pub fn closed(&self) -> bool {
+        match &self.runner {
+            Runner::Remote { service, closing } => *closing && service.idle(),
+            _ => true,
+        }
+    }
+
+    /// Whether the solves run in the web page's drag worker.
+    pub fn is_remote(&self) -> bool {
+        matches!(self.runner, Runner::Remote { .. })
     }
 
     /// Counts an answer in the figures.

@@ -81,6 +81,8 @@ struct WebApp {
     app: EditorApp,
     /// The evaluation worker (the editor's `Worker` holds it too).
     remote: WebWorker,
+    /// The drag worker (the editor holds it too).
+    drag: crate::drag_remote::WebDrag,
     inbox: Inbox,
     ctx: egui::Context,
     frames: u64,
@@ -141,6 +143,9 @@ impl WebApp {
         // Evaluation in a Web Worker: the page answers input while a graph evaluates.
         let remote = WebWorker::start(ctx.clone());
         app.set_worker(Worker::remote(Box::new(remote.clone())));
+        // Drags of the net solved in a second worker: the frames never wait for a solve.
+        let drag = crate::drag_remote::WebDrag::new(ctx.clone(), remote.clone());
+        app.set_net_drag_remote(Box::new(drag.clone()));
         // Autosave into the browser's local storage, with the desktop's recovery offer.
         app.set_recovery(Recovery::with_store(
             Path::new("localStorage"),
@@ -158,6 +163,7 @@ impl WebApp {
         let mut me = Self {
             app,
             remote,
+            drag,
             inbox: Rc::default(),
             ctx,
             frames: 0,
@@ -508,8 +514,99 @@ impl WebApp {
                 .as_ref()
                 .map_or(JsValue::NULL, large_open_object),
         );
+        set(
+            "drag_worker_answers",
+            JsValue::from_f64(self.drag.answered() as f64),
+        );
+        set("net_vertex", net_vertex(&self.app));
+        set(
+            "net_drag",
+            self.app
+                .last_net_drag
+                .as_ref()
+                .map_or(JsValue::NULL, net_drag_object),
+        );
         let _ = js_sys::Reflect::set(&window, &"cnets_test".into(), &o);
     }
+}
+
+/// `window.cnets_test.net_vertex`: `[x, y, node, i, j]`, a vertex of the first previewed net the
+/// Drag net tool can grab where the view draws it (not on the net's border, nearest the view's
+/// centre), or null.
+fn net_vertex(app: &EditorApp) -> JsValue {
+    use cnets_editor::viewport::net_drag::vertex_at;
+    let picks = app.viewport.picks();
+    let map = app.viewport.screen_map();
+    let inner = app.viewport.rect.shrink(60.0);
+    let centre = app.viewport.rect.center();
+    let best = picks
+        .meshes
+        .iter()
+        .filter_map(|m| match &m.geometry {
+            cnets_editor::preview::PickGeometry::Grid(g) => Some((m, g)),
+            _ => None,
+        })
+        .flat_map(|(m, g)| {
+            let map = &map;
+            g.vertices.iter().enumerate().filter_map(move |(k, p)| {
+                let (i, j) = (k / g.cols, k % g.cols);
+                if i == 0 || j == 0 || i + 1 == g.rows || j + 1 == g.cols {
+                    return None;
+                }
+                let at = map.to_screen(*p).filter(|s| inner.contains(*s))?;
+                let v = vertex_at(picks, map, at)?;
+                (v.node == m.node && v.vertex == (i, j)).then(|| (at, m.node.clone(), i, j))
+            })
+        })
+        .min_by(|a, b| a.0.distance(centre).total_cmp(&b.0.distance(centre)));
+    let Some((at, node, i, j)) = best else {
+        return JsValue::NULL;
+    };
+    let a = js_sys::Array::new();
+    a.push(&JsValue::from_f64(f64::from(at.x)));
+    a.push(&JsValue::from_f64(f64::from(at.y)));
+    a.push(&JsValue::from(node.as_str()));
+    a.push(&JsValue::from_f64(i as f64));
+    a.push(&JsValue::from_f64(j as f64));
+    a.into()
+}
+
+/// `window.cnets_test.net_drag`: what the last drag of the net measured.
+fn net_drag_object(f: &cnets_editor::app::NetDragFigures) -> JsValue {
+    let o = js_sys::Object::new();
+    let set = |k: &str, v: JsValue| {
+        let _ = js_sys::Reflect::set(&o, &k.into(), &v);
+    };
+    set("node", f.node.as_str().into());
+    set("solves", JsValue::from_f64(f.solves as f64));
+    set("rate", JsValue::from_f64(f.rate()));
+    set("solve_ms", JsValue::from_f64(f.solve_ms));
+    let mut frames = f.ui_frame_ms.clone();
+    frames.sort_by(f64::total_cmp);
+    let median = frames.get(frames.len() / 2).copied();
+    set(
+        "ui_frame_median_ms",
+        median.map_or(JsValue::NULL, JsValue::from_f64),
+    );
+    set(
+        "ui_frame_max_ms",
+        frames
+            .last()
+            .copied()
+            .map_or(JsValue::NULL, JsValue::from_f64),
+    );
+    set("frames", JsValue::from_f64(frames.len() as f64));
+    set("release_ms", JsValue::from_f64(f.release_ms));
+    let solved = f.solved.as_ref();
+    set(
+        "distance_left",
+        solved.map_or(JsValue::NULL, |s| JsValue::from_f64(s.distance_left)),
+    );
+    set(
+        "not_convex",
+        solved.map_or(JsValue::NULL, |s| JsValue::from_f64(s.not_convex as f64)),
+    );
+    o.into()
 }
 
 /// Whether the browser test has set `window.<name>` to a true value.

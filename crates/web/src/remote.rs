@@ -164,38 +164,26 @@ impl WebWorker {
         self.0.borrow().figures.clone()
     }
 
+    /// The files opened on the page from the `from`-th on, as the messages that give them to a
+    /// worker.
+    pub fn file_messages(&self, from: usize) -> Vec<Vec<u8>> {
+        let s = self.0.borrow();
+        s.files.get(from..).unwrap_or_default().to_vec()
+    }
+
     fn spawn(&self) {
-        let options = web_sys::WorkerOptions::new();
-        options.set_type(web_sys::WorkerType::Module);
-        let worker = match web_sys::Worker::new_with_options("./worker.js", &options) {
+        let me = self.clone();
+        let on_message = move |bytes: Vec<u8>| me.received(&bytes);
+        let me = self.clone();
+        let on_error = move |message: String| me.stopped(&message);
+        let worker = match start_worker(on_message, on_error) {
             Ok(w) => w,
-            Err(e) => {
-                let text = e.as_string().unwrap_or_else(|| format!("{e:?}"));
+            Err(text) => {
                 self.0.borrow_mut().notice =
                     Some(format!("cannot start the evaluation worker: {text}"));
                 return;
             }
         };
-        let me = self.clone();
-        let on_message = Closure::<dyn FnMut(web_sys::MessageEvent)>::new(
-            move |event: web_sys::MessageEvent| {
-                let bytes = js_sys::Uint8Array::new(&event.data()).to_vec();
-                me.received(&bytes);
-            },
-        );
-        worker.set_onmessage(Some(on_message.as_ref().unchecked_ref()));
-        on_message.forget();
-        let me = self.clone();
-        let on_error =
-            Closure::<dyn FnMut(web_sys::ErrorEvent)>::new(move |event: web_sys::ErrorEvent| {
-                me.stopped(&event.message());
-            });
-        worker.set_onerror(Some(on_error.as_ref().unchecked_ref()));
-        on_error.forget();
-        // The worker instantiates the module this page compiled.
-        if let Err(e) = worker.post_message(&wasm_bindgen::module()) {
-            web_sys::console::warn_2(&"cnets: cannot start the evaluation worker".into(), &e);
-        }
         let mut s = self.0.borrow_mut();
         s.worker = Some(worker);
         s.ready = false;
@@ -269,6 +257,11 @@ impl WebWorker {
                 s.figures.read_decode_ms = start.elapsed().as_secs_f64() * 1e3;
                 s.reading.retain(|&t| t != token);
                 s.read.push((token, result));
+            }
+            Ok(FromWorker::Dragged(_)) => {
+                web_sys::console::warn_1(
+                    &"cnets: a drag's answer from the evaluation worker".into(),
+                );
             }
             Ok(FromWorker::Stopped { message }) => {
                 drop(s);
@@ -373,8 +366,37 @@ impl Remote for WebWorker {
     }
 }
 
+/// Starts a worker running `worker.js` on this page's compiled module: its messages' bytes go to
+/// `on_message`, its errors to `on_error`.
+pub(crate) fn start_worker(
+    mut on_message: impl FnMut(Vec<u8>) + 'static,
+    mut on_error: impl FnMut(String) + 'static,
+) -> Result<web_sys::Worker, String> {
+    let options = web_sys::WorkerOptions::new();
+    options.set_type(web_sys::WorkerType::Module);
+    let worker = web_sys::Worker::new_with_options("./worker.js", &options)
+        .map_err(|e| e.as_string().unwrap_or_else(|| format!("{e:?}")))?;
+    let on_message =
+        Closure::<dyn FnMut(web_sys::MessageEvent)>::new(move |event: web_sys::MessageEvent| {
+            on_message(js_sys::Uint8Array::new(&event.data()).to_vec());
+        });
+    worker.set_onmessage(Some(on_message.as_ref().unchecked_ref()));
+    on_message.forget();
+    let on_error =
+        Closure::<dyn FnMut(web_sys::ErrorEvent)>::new(move |event: web_sys::ErrorEvent| {
+            on_error(event.message());
+        });
+    worker.set_onerror(Some(on_error.as_ref().unchecked_ref()));
+    on_error.forget();
+    // The worker instantiates the module this page compiled.
+    if let Err(e) = worker.post_message(&wasm_bindgen::module()) {
+        web_sys::console::warn_2(&"cnets: cannot start a worker".into(), &e);
+    }
+    Ok(worker)
+}
+
 /// Posts a message to the worker (its bytes are transferred, not copied).
-fn post(worker: Option<&web_sys::Worker>, bytes: &[u8]) {
+pub(crate) fn post(worker: Option<&web_sys::Worker>, bytes: &[u8]) {
     let Some(worker) = worker else { return };
     let array = js_sys::Uint8Array::from(bytes);
     let transfer = js_sys::Array::of1(&array.buffer());

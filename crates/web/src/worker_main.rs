@@ -1,6 +1,7 @@
-//! The evaluation worker's entry point (wasm32 only): `worker.js` instantiates the page's own wasm
-//! module in a Web Worker and calls [`worker_start`], which answers the page's messages with a
-//! [`Service`].
+//! The workers' entry point (wasm32 only): `worker.js` instantiates the page's own wasm module in
+//! a Web Worker and calls [`worker_start`], which answers the page's messages with a [`Service`]
+//! (the evaluation worker) or a [`DragService`] (the drag worker: the same module, started by
+//! the page's first drag of the net; each solve answered as it arrives).
 //!
 //! Latest change wins: a message only files the newest request; the evaluation loop takes it
 //! when it is free. After a request's first phase (the 3D view's answer) the loop lets the
@@ -15,6 +16,7 @@ use wasm_bindgen::JsCast as _;
 use wasm_bindgen::prelude::*;
 use web_sys::{DedicatedWorkerGlobalScope, MessageEvent};
 
+use crate::drag_service::DragService;
 use crate::service::Service;
 use crate::wire::{self, Job, ToWorker};
 
@@ -48,9 +50,9 @@ pub fn worker_start() {
         post(&wire::encode_stopped(&text));
     }));
     crate::bundle::provide_all();
-    let service = Rc::new(RefCell::new(Service::new(
-        Arc::new(cnets_nodes::registry()),
-    )));
+    let registry = Arc::new(cnets_nodes::registry());
+    let service = Rc::new(RefCell::new(Service::new(registry.clone())));
+    let drag = Rc::new(RefCell::new(DragService::new(registry)));
     let inbox = Rc::new(RefCell::new(Inbox::default()));
     let on_message = Closure::<dyn FnMut(MessageEvent)>::new(move |event: MessageEvent| {
         let bytes = js_sys::Uint8Array::new(&event.data()).to_vec();
@@ -60,6 +62,8 @@ pub fn worker_start() {
             }
             Ok(ToWorker::Literal { key, value }) => service.borrow_mut().remember(key, value),
             Ok(ToWorker::Parse(job)) => post(&service.borrow_mut().parse(job)),
+            Ok(ToWorker::DragStart(job)) => drag.borrow_mut().start(&job),
+            Ok(ToWorker::DragAim { target, steps }) => post(&drag.borrow_mut().aim(target, steps)),
             Ok(ToWorker::Evaluate(job)) => {
                 // Forgotten on receipt: a request still waiting is replaced by this one, and the
                 // one running holds its values already.

@@ -180,8 +180,12 @@ impl EditorApp {
         }
 
         // A gesture ends when the pointer is released and no text field is being typed in (so a
-        // drag, or typing a name, is one undo step).
-        if !ctx.input(|i| i.pointer.any_down()) && !ctx.egui_wants_keyboard_input() {
+        // drag, or typing a name, is one undo step); a released drag of the net whose last answer
+        // the drag worker still solves closes its own.
+        if !ctx.input(|i| i.pointer.any_down())
+            && !ctx.egui_wants_keyboard_input()
+            && !self.net_drag_closing()
+        {
             self.doc.history.end_gesture();
         }
         // The window's close button: ask first when there are unsaved changes.

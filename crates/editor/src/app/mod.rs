@@ -197,6 +197,11 @@ pub struct EditorApp {
     wake: Arc<dyn Fn() + Send + Sync>,
     /// A drag of the net in progress (the Drag net tool).
     net_drag: Option<crate::net_drag::NetDragSession>,
+    /// A released drag whose last answer is still being solved in the drag worker (the web
+    /// page): its undo step closes when the answer arrives.
+    net_drag_closing: Option<(crate::net_drag::NetDragSession, f64)>,
+    /// Where drags of the net are solved when not on a thread (the web page's drag worker).
+    net_drag_remote: Option<Box<dyn crate::net_drag::RemoteDrag>>,
     /// What the last drag of the net measured.
     pub last_net_drag: Option<NetDragFigures>,
     /// The UI thread's frame times of the drag running (ms), for its figures.
@@ -296,6 +301,8 @@ impl EditorApp {
             optimization: OptimizationPanel::new(options.wake.clone()),
             wake: options.wake,
             net_drag: None,
+            net_drag_closing: None,
+            net_drag_remote: None,
             last_net_drag: None,
             net_drag_frames: Vec::new(),
             parameters_open: false,

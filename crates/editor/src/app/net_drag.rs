@@ -1,6 +1,7 @@
 //! The Drag net tool's glue: a drag's solver started at the press ([`NetDragSession`]), the
 //! pointer's targets handed to it, its answers written into the document as one gesture, the
-//! drag committed (one undo step, autosaved with the document) at the release.
+//! drag committed (one undo step, autosaved with the document) at the release — on the web page,
+//! whose drag worker is not waited for, when the release's answer arrives.
 
 use std::collections::BTreeSet;
 
@@ -9,18 +10,27 @@ use web_time::Duration;
 
 use super::EditorApp;
 use crate::edit::Edit;
-use crate::net_drag::{NetDragSession, Solved, free_inputs};
+use crate::net_drag::{NetDragSession, RemoteDrag, Solved, free_inputs};
 use crate::viewport::NetDragTarget;
 use crate::worker::format_number;
 
 /// How long the release waits for the answer to the pointer's last position.
 const FINISH_WAIT: Duration = Duration::from_millis(500);
 
+/// How long a released drag waits for the drag worker's last answer before it closes anyway.
+const CLOSING_WAIT: Duration = Duration::from_secs(5);
+
 impl EditorApp {
+    /// Drags of the net are solved by `remote` (the web page's drag worker) instead of a thread.
+    pub fn set_net_drag_remote(&mut self, remote: Box<dyn RemoteDrag>) {
+        self.net_drag_remote = Some(remote);
+    }
+
     /// The pointer asks for the grabbed vertex at `target`: starts the drag's solver at the
     /// first target of a press, then hands it the newest.
     pub(super) fn drag_net_to(&mut self, target: NetDragTarget) {
         if self.net_drag.as_ref().is_none_or(|s| !s.is_for(&target)) {
+            self.close_released_net_drag(true);
             self.net_drag = None;
             self.net_drag_frames.clear();
             if !self.doc.view_path().is_empty() {
@@ -57,6 +67,7 @@ impl EditorApp {
                 free,
                 ctx,
                 self.wake.clone(),
+                self.net_drag_remote.as_ref().map(|r| r.handle()),
             ));
         }
         if let Some(session) = &mut self.net_drag {
@@ -73,10 +84,34 @@ impl EditorApp {
         }
     }
 
-    /// Takes the drag's newest answer, if one arrived (every frame).
+    /// A released drag of the net waits for the drag worker's last answer (its undo step open).
+    pub(super) fn net_drag_closing(&self) -> bool {
+        self.net_drag_closing.is_some()
+    }
+
+    /// Takes the drag's newest answer, if one arrived (every frame), and closes a released one
+    /// whose last answer came.
     pub(super) fn poll_net_drag(&mut self) {
         if let Some(answer) = self.net_drag.as_mut().and_then(|s| s.poll()) {
             self.take_solved(answer);
+        }
+        self.close_released_net_drag(false);
+    }
+
+    /// A released drag still solving in the drag worker: takes its answers and, once the last
+    /// came (or `now`, or after [`CLOSING_WAIT`]), closes its undo step.
+    fn close_released_net_drag(&mut self, now: bool) {
+        let Some((mut session, release_ms)) = self.net_drag_closing.take() else {
+            return;
+        };
+        if let Some(answer) = session.poll() {
+            self.take_solved(answer);
+        }
+        let waited = session.started.elapsed().as_secs_f64() * 1e3 - release_ms;
+        if now || session.closed() || waited > CLOSING_WAIT.as_secs_f64() * 1e3 {
+            self.close_net_drag(session, 0.0);
+        } else {
+            self.net_drag_closing = Some((session, release_ms));
         }
     }
 
@@ -91,6 +126,17 @@ impl EditorApp {
         if let Some(answer) = last {
             self.take_solved(answer);
         }
+        if !session.closed() {
+            // The drag worker solves the release's target: the gesture stays open until then.
+            let at = session.started.elapsed().as_secs_f64() * 1e3;
+            self.net_drag_closing = Some((session, at));
+            return;
+        }
+        self.close_net_drag(session, release_ms);
+    }
+
+    /// Closes `session`'s undo step and keeps its figures.
+    fn close_net_drag(&mut self, session: NetDragSession, release_ms: f64) {
         self.doc.history.end_gesture();
         let figures = NetDragFigures {
             node: session.node.clone(),

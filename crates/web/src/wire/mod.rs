@@ -9,11 +9,15 @@
 //! panic or a huge allocation.
 
 mod codec;
+mod drag;
 mod scene;
 mod values;
 
+pub use drag::DragJob;
+
 use std::collections::HashMap;
 
+use cnets_editor::net_drag::Solved;
 use cnets_editor::preview::{Picks, PreviewOptions, PreviewStats};
 use cnets_editor::worker::{EvalResponse, NodeStatus};
 use cnets_engine::Value;
@@ -65,6 +69,16 @@ pub enum ToWorker {
     },
     /// A large graph file to read (parse) for the page, which keeps answering meanwhile.
     Parse(ParseJob),
+    /// A drag of the net starts (the drag worker): its problem.
+    DragStart(Box<DragJob>),
+    /// The drag's vertex should be at `target`: solve in at most `steps` steps, from the last
+    /// answer.
+    DragAim {
+        /// The target point.
+        target: [f64; 3],
+        /// Steps at most.
+        steps: u64,
+    },
 }
 
 /// A graph file the worker reads for the page (`crate::literals`, docs/web.md "Large files").
@@ -127,6 +141,8 @@ pub enum FromWorker {
         /// The graph, or the load error (as the page's own reading would have said it).
         result: Result<Parsed, String>,
     },
+    /// What a drag's solve reached, or why it failed.
+    Dragged(Result<Solved, String>),
     /// The worker stopped (a panic: wasm cannot unwind); the page starts another.
     Stopped {
         /// The panic's message.
@@ -143,11 +159,14 @@ const TO_EVALUATE: u8 = 1;
 const TO_PROVIDE: u8 = 2;
 const TO_LITERAL: u8 = 3;
 const TO_PARSE: u8 = 4;
+const TO_DRAG_START: u8 = 5;
+const TO_DRAG_AIM: u8 = 6;
 const FROM_READY: u8 = 10;
 const FROM_ANSWER: u8 = 11;
 const FROM_FAILED: u8 = 12;
 const FROM_STOPPED: u8 = 13;
 const FROM_PARSED: u8 = 14;
+const FROM_DRAGGED: u8 = 15;
 
 /// The bytes of a message to the worker.
 pub fn encode_to_worker(message: &ToWorker) -> Vec<u8> {
@@ -185,6 +204,15 @@ pub fn encode_to_worker(message: &ToWorker) -> Vec<u8> {
             w.str(&job.origin);
             w.strs(&job.library);
             w.bytes(&job.text);
+        }
+        ToWorker::DragStart(job) => {
+            w.u8(TO_DRAG_START);
+            drag::job(&mut w, job);
+        }
+        ToWorker::DragAim { target, steps } => {
+            w.u8(TO_DRAG_AIM);
+            target.iter().for_each(|x| w.f64(*x));
+            w.u64(*steps);
         }
     }
     w.0
@@ -231,6 +259,11 @@ pub fn decode_to_worker(bytes: &[u8]) -> Res<ToWorker> {
             library: r.strings()?,
             text: r.bytes()?.to_vec(),
         }),
+        TO_DRAG_START => ToWorker::DragStart(Box::new(drag::read_job(&mut r)?)),
+        TO_DRAG_AIM => ToWorker::DragAim {
+            target: [r.f64()?, r.f64()?, r.f64()?],
+            steps: r.u64()?,
+        },
         _ => return Err(WireError("unknown message to the worker")),
     };
     r.end()?;
@@ -273,6 +306,14 @@ pub fn encode_parsed(token: u64, result: &Result<Parsed, String>) -> Vec<u8> {
             w.str(e);
         }
     }
+    w.0
+}
+
+/// The message carrying a drag's answer.
+pub fn encode_dragged(answer: &Result<Solved, String>) -> Vec<u8> {
+    let mut w = Writer::default();
+    w.u8(FROM_DRAGGED);
+    drag::answer(&mut w, answer);
     w.0
 }
 
@@ -322,6 +363,7 @@ pub fn decode_from_worker(bytes: &[u8]) -> Res<FromWorker> {
         FROM_STOPPED => FromWorker::Stopped {
             message: r.string()?,
         },
+        FROM_DRAGGED => FromWorker::Dragged(drag::read_answer(&mut r)?),
         FROM_PARSED => FromWorker::Parsed {
             token: r.u64()?,
             result: if r.bool()? {
