@@ -168,9 +168,10 @@ fn a_curve_drawn_in_the_front_view_becomes_points_and_a_spline() {
     let points = points_of(app, &source.from);
     let got: Vec<DVec3> = points.iter().filter_map(Value::as_vec3).collect();
     assert_eq!(got, clicks, "the snapped clicks, on the XZ plane");
-    assert!(
-        app.canvas.selected.contains(&spline) && app.canvas.selected.contains(&source.from),
-        "both new nodes are selected"
+    assert_eq!(
+        app.canvas.selected,
+        vec![spline.clone()],
+        "the curve node alone is selected (Delete removes the curve, not its points too)"
     );
     assert!(
         matches!(
@@ -178,6 +179,61 @@ fn a_curve_drawn_in_the_front_view_becomes_points_and_a_spline() {
             Some(cnets_editor::worker::NodeStatus::Ok { .. })
         ),
         "the spline evaluates"
+    );
+}
+
+/// The toolbar shows the kind of curve while Draw curve is active: Polyline clicked draws straight
+/// segments (a `curve.polyline`, the curve node alone selected), and P switches the kind.
+#[test]
+fn the_draw_tool_offers_a_polyline_on_the_toolbar_and_p_switches() {
+    let mut h = open("draw-polyline", POINTS_GRAPH);
+    view(&mut h, NamedView::Front);
+    // The pointer over the 3D view, nothing typed.
+    let centre = h.state().viewport.rect.center();
+    h.hover_at(centre);
+    h.key_press(Key::C);
+    h.run_steps(2);
+    assert!(
+        matches!(h.state().viewport.tool, Tool::Draw(_)),
+        "C: Draw curve"
+    );
+    // The toolbar's Polyline, clicked with the pointer.
+    let toggle = h.get_by_label("Polyline").rect().center();
+    click(&mut h, toggle);
+    h.run_steps(1);
+    let polyline = |h: &Harness<'static, EditorApp>| match &h.state().viewport.tool {
+        Tool::Draw(d) => d.polyline,
+        other => panic!("still drawing: {}", other.label()),
+    };
+    assert!(polyline(&h), "the toolbar's Polyline chosen");
+    // P switches the kind while the tool is active.
+    h.hover_at(centre);
+    h.key_press(Key::P);
+    h.run_steps(2);
+    assert!(!polyline(&h), "P: a spline");
+    h.key_press(Key::P);
+    h.run_steps(2);
+    assert!(polyline(&h), "P again: a polyline");
+    let step = h.state().viewport.spacing.minor;
+    for (x, z) in [(0.0, 0.0), (4.0, 0.0), (4.0, 3.0)] {
+        let at = screen_of(&h, DVec3::new(steps(x, step), 0.0, steps(z, step)));
+        click(&mut h, at);
+    }
+    h.key_press(Key::Enter);
+    h.run_steps(2);
+    settle(&mut h);
+    let app = h.state();
+    let made: Vec<String> = app
+        .doc
+        .graph
+        .nodes()
+        .filter(|(_, n)| n.def.id == "curve.polyline")
+        .map(|(_, n)| n.id.clone())
+        .collect();
+    assert_eq!(made.len(), 1, "one curve.polyline drawn: {made:?}");
+    assert_eq!(
+        app.canvas.selected, made,
+        "the curve node alone is selected"
     );
 }
 

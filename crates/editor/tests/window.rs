@@ -382,10 +382,7 @@ fn a_four_point_curve_drawn_in_the_front_view_becomes_points_and_a_spline_in_the
     );
     assert!(lines["wires"].contains("points.points->spline.points"));
     assert_eq!(lines["splines"], "curve spline");
-    assert_eq!(
-        lines["selected"], "points spline",
-        "both new nodes selected"
-    );
+    assert_eq!(lines["selected"], "spline", "the curve node alone selected");
 }
 
 #[test]
@@ -589,6 +586,20 @@ fn the_first_click_on_a_field_after_a_wire_drag_edits_it_in_the_real_window() {
     // A path input's Browse… button opens the file dialog (in the real window; a click on it
     // inside the kittest canvas does not register).
     assert_eq!(lines["browse dialog"], "BrowseInput", "{lines:?}");
+}
+
+/// A node renamed from its context menu in the real window, by pointer and keys only: a
+/// right-click on the title of `R`, a click in the menu's Name field (the menu stays open), Ctrl+A,
+/// "Radius" typed, Enter. The name sticks and is saved with the graph.
+#[test]
+fn a_node_is_renamed_from_its_menu_by_pointer_and_keys() {
+    if skip() {
+        return;
+    }
+    let (lines, _dir) = run_script("rename-menu", None, Some("torus-monge.ron"));
+    assert_eq!(lines["label before"], "R", "{lines:?}");
+    assert_eq!(lines["label after"], "Radius", "{lines:?}");
+    assert_eq!(lines["saved"], "true", "{lines:?}");
 }
 
 /// The Drag net tool in the real window (pointer events only): on the start-up graph (the

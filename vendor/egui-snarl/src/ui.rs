@@ -1995,9 +1995,13 @@ where
     }
 
     if viewer.has_node_menu(&snarl.nodes[node.0].value) {
-        r.context_menu(|ui| {
-            viewer.show_node_menu(node, &inputs, &outputs, ui, snarl);
-        });
+        // cnets: a click inside the node's menu does not close it (its text fields take the
+        // click and the keys); its buttons close it themselves (vendor/README.md).
+        egui::Popup::context_menu(&r)
+            .close_behavior(egui::PopupCloseBehavior::CloseOnClickOutside)
+            .show(|ui| {
+                viewer.show_node_menu(node, &inputs, &outputs, ui, snarl);
+            });
 
         if !snarl.nodes.contains(node.0) {
             node_state.clear(ui.ctx());

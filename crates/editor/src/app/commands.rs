@@ -173,7 +173,8 @@ impl EditorApp {
 
     /// Adds a drawn curve as a `param.points` node wired into a `curve.spline` (or
     /// `curve.polyline`), placed on the canvas below the selection (else in the middle of the
-    /// canvas), and selects both (one undo step).
+    /// canvas), and selects the curve node alone (one undo step; Delete then removes the curve,
+    /// not its points too).
     pub fn add_curve(&mut self, curve: crate::viewport::DrawnCurve) {
         // Below the selection (the curve drawn before: curves stack up on the left, as
         // parameters do in Grasshopper), else in the middle of the canvas.
@@ -195,8 +196,9 @@ impl EditorApp {
                 "added {}: wire its curve into a construction",
                 created.join(" and ")
             );
-            self.canvas.focused = created.last().cloned();
-            self.canvas.select(created);
+            let curve: Vec<String> = created.last().cloned().into_iter().collect();
+            self.canvas.focused = curve.first().cloned();
+            self.canvas.select(curve);
         }
     }
 

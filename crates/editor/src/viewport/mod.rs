@@ -496,6 +496,13 @@ impl Viewport {
         {
             self.toggle_tool(Tool::Draw(DrawTool::default()));
         }
+        if let Tool::Draw(d) = &mut self.tool {
+            // The kind of curve drawn, while the tool is active (P switches).
+            ui.selectable_value(&mut d.polyline, false, "Spline")
+                .on_hover_text("a smooth curve through the points (P switches)");
+            ui.selectable_value(&mut d.polyline, true, "Polyline")
+                .on_hover_text("straight segments between the points (P switches)");
+        }
         let measuring = matches!(self.tool, Tool::Measure(_));
         if ui
             .selectable_label(measuring, "📏 Measure")
@@ -542,8 +549,10 @@ impl Viewport {
         if let Some(v) = NamedView::pressed(ctx) {
             self.set_view(v);
         }
-        let (c, m, g, f9, f7, shift_f, enter, backspace, esc) = ctx.input_mut(|i| {
+        let drawing = matches!(self.tool, Tool::Draw(_));
+        let (p, c, m, g, f9, f7, shift_f, enter, backspace, esc) = ctx.input_mut(|i| {
             (
+                drawing && i.consume_key(Modifiers::NONE, Key::P),
                 i.consume_key(Modifiers::NONE, Key::C),
                 i.consume_key(Modifiers::NONE, Key::M),
                 i.consume_key(Modifiers::NONE, Key::G),
@@ -555,6 +564,9 @@ impl Viewport {
                 i.key_pressed(Key::Escape),
             )
         });
+        if p && let Tool::Draw(d) = &mut self.tool {
+            d.polyline = !d.polyline;
+        }
         if c {
             self.toggle_tool(Tool::Draw(DrawTool::default()));
         }

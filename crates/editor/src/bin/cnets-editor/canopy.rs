@@ -31,7 +31,7 @@ fn key(k: Key) -> Step {
 }
 
 fn click(t: Target) -> Step {
-    Step::Click(t, Modifiers::NONE)
+    Step::Click(t, PointerButton::Primary, Modifiers::NONE)
 }
 
 /// A world point nudged by a fifth of a grid step on screen (the snap takes it away).

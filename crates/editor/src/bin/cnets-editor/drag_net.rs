@@ -65,7 +65,8 @@ fn grabbable(app: &EditorApp, interior_only: bool) -> Vec<((usize, usize), DVec3
 /// A vertex to drag by [`MOVE`] and one to pin, both grabbable, for which the engine's drag (the
 /// CLI's `cnets drag`) reaches the target with the pin held: the script's claim is that the tool
 /// takes a reachable target, not that every target is reachable. The first pair found, nearest
-/// the view's centre.
+/// the view's centre. Every grabbable vertex is tried (the wheel's zoom, and so the vertices in
+/// view, varies with the machine's load: the nearest few may have no reachable pin).
 type Grabbable = ((usize, usize), DVec3, Pos2);
 fn reachable_pair(
     app: &EditorApp,
@@ -76,7 +77,7 @@ fn reachable_pair(
     let graph = app.doc.eval_graph();
     let ctx = cnets_engine::NodeContext::default();
     let far = |a: &Grabbable, b: &Grabbable| a.0.0.abs_diff(b.0.0) + a.0.1.abs_diff(b.0.1);
-    for grab in grabs.iter().take(6) {
+    for grab in grabs {
         // Pins far from the grabbed vertex first; a pair that needs more than 12 steps is
         // passed over (reachable ones took 7–11 on this net).
         let mut pins: Vec<&Grabbable> = found.iter().filter(|p| far(p, grab) >= 4).collect();
@@ -145,12 +146,21 @@ pub fn drag_net() -> Vec<Step> {
         pinned.clone(),
         pinned.clone(),
     );
+    // Searched once the net is in view (the search solves drags: not again every frame).
+    let searched = Rc::new(Cell::new(false));
     let pin_at: Target = Box::new(move |app: &EditorApp, _: &egui::Context| {
         let found = grabbable(app, false);
         if let (Some(ij), Some(pin)) = (g1.get(), p1.get()) {
             return found.iter().find(|v| v.0 == pin && ij != pin).map(|v| v.2);
         }
-        let (ij, pin) = reachable_pair(app, &grabbable(app, true), &found)?;
+        if found.is_empty() || searched.get() {
+            return None;
+        }
+        searched.set(true);
+        let Some((ij, pin)) = reachable_pair(app, &grabbable(app, true), &found) else {
+            println!("script: failed = no grabbable vertex has a reachable pinned pair in view");
+            std::process::exit(3);
+        };
         g1.set(Some(ij.0));
         p1.set(Some(pin.0));
         Some(pin.2)
@@ -188,7 +198,7 @@ pub fn drag_net() -> Vec<Step> {
         Step::Wait(2),
         print("tool", |app| app.viewport.tool.label().to_string()),
         print("inputs before", inputs),
-        Step::Click(pin_at, Modifiers::SHIFT),
+        Step::Click(pin_at, PointerButton::Primary, Modifiers::SHIFT),
         Step::Wait(2),
         print("grabbed", move |_| format!("{:?}", g4.get())),
         print("pinned", move |_| format!("{:?}", p2.get())),

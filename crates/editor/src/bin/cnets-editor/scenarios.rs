@@ -65,7 +65,7 @@ fn key(k: Key) -> Step {
 }
 
 fn click(t: Target) -> Step {
-    Step::Click(t, Modifiers::NONE)
+    Step::Click(t, PointerButton::Primary, Modifiers::NONE)
 }
 
 /// The grid step and the world size of a screen point, as the tests need them.
@@ -339,6 +339,49 @@ fn folds() -> Vec<Step> {
     ]
 }
 
+/// `rename-menu`: the node `R` of the start-up graph renamed from its context menu by pointer and
+/// keys only — a right-click on its title, a click in the menu's Name field, Ctrl+A, the new name
+/// typed, Enter — as a designer does it (the menu must not close on the click in its field).
+fn rename_menu() -> Vec<Step> {
+    let label = |app: &EditorApp| {
+        app.doc
+            .graph
+            .node("R")
+            .map_or("(none)".to_string(), |n| n.label().to_string())
+    };
+    let title: Target = Box::new(|app: &EditorApp, _: &egui::Context| {
+        app.canvas
+            .node_screen_rect("R")
+            .map(|r| egui::pos2(r.center().x, r.top() + 12.0))
+    });
+    let name_field: Target = Box::new(|_: &EditorApp, ctx: &egui::Context| {
+        ctx.read_response(egui::Id::new(("rename-node", "R")).with("field"))
+            .map(|r| r.rect.center())
+    });
+    vec![
+        Step::Settle,
+        key(Key::Home),
+        Step::Wait(6),
+        print("label before", label),
+        Step::Click(title, PointerButton::Secondary, Modifiers::NONE),
+        Step::Wait(3),
+        click(name_field),
+        Step::Wait(2),
+        Step::Key(Key::A, Modifiers::COMMAND),
+        Step::Text("Radius".into()),
+        key(Key::Enter),
+        Step::Settle,
+        print("label after", label),
+        print("saved", |app| {
+            cnets_engine::file::to_ron(&app.doc.graph, &Default::default())
+                .contains("name: \"Radius\"")
+                .to_string()
+        }),
+        Step::Shot("rename-menu"),
+        Step::Quit,
+    ]
+}
+
 /// The script called `name`.
 pub fn script(name: &str) -> Option<Vec<Step>> {
     Some(match name {
@@ -349,9 +392,10 @@ pub fn script(name: &str) -> Option<Vec<Step>> {
         "canopy" => crate::canopy::canopy(),
         "wire-click" => wire_click(),
         "drag-net" => crate::drag_net::drag_net(),
+        "rename-menu" => rename_menu(),
         _ => return None,
     })
 }
 
 /// The names of the scripts.
-pub const NAMES: &str = "handles, draw, pick, folds, canopy, wire-click, drag-net";
+pub const NAMES: &str = "handles, draw, pick, folds, canopy, wire-click, drag-net, rename-menu";

@@ -28,8 +28,8 @@ pub enum Step {
     Text(String),
     /// Move the pointer.
     Move(Target),
-    /// Click the primary button (with modifiers held).
-    Click(Target, Modifiers),
+    /// Click a button (with modifiers held).
+    Click(Target, PointerButton, Modifiers),
     /// Drag with a button from one target to another in several moves (modifiers held).
     Drag(Target, Target, PointerButton, Modifiers),
     /// Press on a target and move by a step each frame until the check holds, then release (a
@@ -124,7 +124,7 @@ impl Script {
         let phase = self.phase;
         // The modifier keys this step holds (none unless it says).
         let held = match step {
-            Step::Key(_, m) | Step::Click(_, m) | Step::Drag(_, _, _, m) => *m,
+            Step::Key(_, m) | Step::Click(_, _, m) | Step::Drag(_, _, _, m) => *m,
             _ => Modifiers::NONE,
         };
         if held != self.modifiers {
@@ -149,7 +149,7 @@ impl Script {
                     raw.events.push(Event::PointerMoved(p));
                 }
             }
-            Step::Click(target, modifiers) => match phase {
+            Step::Click(target, which, modifiers) => match phase {
                 0 => {
                     if let Some(p) = target(app, ctx) {
                         self.pointer = p;
@@ -166,19 +166,12 @@ impl Script {
                         self.pointer = p;
                         raw.events.push(Event::PointerMoved(p));
                     }
-                    raw.events.push(button(
-                        self.pointer,
-                        PointerButton::Primary,
-                        true,
-                        *modifiers,
-                    ))
+                    raw.events
+                        .push(button(self.pointer, *which, true, *modifiers))
                 }
-                2 => raw.events.push(button(
-                    self.pointer,
-                    PointerButton::Primary,
-                    false,
-                    *modifiers,
-                )),
+                2 => raw
+                    .events
+                    .push(button(self.pointer, *which, false, *modifiers)),
                 _ => {}
             },
             Step::Drag(from, to, which, modifiers) => {
