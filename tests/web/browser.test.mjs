@@ -599,8 +599,11 @@ for (const name of gallery) {
   await page.mouse.move(cx, cy);
   await page.keyboard.press("1");
   await settled(page);
-  // Pictures with the pointer off the view (no hover highlight in them).
+  // Pictures with the pointer off the view (no hover highlight in them); the page reports a
+  // vertex to grab when asked (it picks).
   await page.mouse.move(5, 5);
+  await page.evaluate(() => { window.cnets_report_net_vertex = true; });
+  await until(page, "a vertex of the net to grab", (t) => t.net_vertex !== undefined, 20_000);
   const before = await settled(page);
   const pictured = await shot(page, "13-torus-top-before", before.view);
   assert.ok(before.net_vertex, `a vertex of the net in view: ${JSON.stringify(before.view)}`);

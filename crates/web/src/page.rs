@@ -518,7 +518,10 @@ impl WebApp {
             "drag_worker_answers",
             JsValue::from_f64(self.drag.answered() as f64),
         );
-        set("net_vertex", net_vertex(&self.app));
+        // Only when the test asks (`window.cnets_report_net_vertex = true`): it picks.
+        if test_flag("cnets_report_net_vertex") {
+            set("net_vertex", net_vertex(&self.app));
+        }
         set(
             "net_drag",
             self.app
@@ -530,42 +533,45 @@ impl WebApp {
     }
 }
 
-/// `window.cnets_test.net_vertex`: `[x, y, node, i, j]`, a vertex of the first previewed net the
-/// Drag net tool can grab where the view draws it (not on the net's border, nearest the view's
-/// centre), or null.
+/// `window.cnets_test.net_vertex`: `[x, y, node, i, j]`, a vertex of a previewed net the Drag net
+/// tool can grab where the view draws it (not on the net's border), the nearest the view's centre
+/// of the first 64 tried nearest first, or null.
 fn net_vertex(app: &EditorApp) -> JsValue {
     use cnets_editor::viewport::net_drag::vertex_at;
     let picks = app.viewport.picks();
     let map = app.viewport.screen_map();
     let inner = app.viewport.rect.shrink(60.0);
     let centre = app.viewport.rect.center();
-    let best = picks
-        .meshes
-        .iter()
-        .filter_map(|m| match &m.geometry {
-            cnets_editor::preview::PickGeometry::Grid(g) => Some((m, g)),
-            _ => None,
-        })
-        .flat_map(|(m, g)| {
-            let map = &map;
-            g.vertices.iter().enumerate().filter_map(move |(k, p)| {
-                let (i, j) = (k / g.cols, k % g.cols);
-                if i == 0 || j == 0 || i + 1 == g.rows || j + 1 == g.cols {
-                    return None;
-                }
-                let at = map.to_screen(*p).filter(|s| inner.contains(*s))?;
-                let v = vertex_at(picks, map, at)?;
-                (v.node == m.node && v.vertex == (i, j)).then(|| (at, m.node.clone(), i, j))
-            })
-        })
-        .min_by(|a, b| a.0.distance(centre).total_cmp(&b.0.distance(centre)));
-    let Some((at, node, i, j)) = best else {
+    let mut candidates: Vec<(f32, egui::Pos2, &str, usize, usize)> = Vec::new();
+    for m in &picks.meshes {
+        let cnets_editor::preview::PickGeometry::Grid(g) = &m.geometry else {
+            continue;
+        };
+        for (k, p) in g.vertices.iter().enumerate() {
+            let (i, j) = (k / g.cols, k % g.cols);
+            if i == 0 || j == 0 || i + 1 == g.rows || j + 1 == g.cols {
+                continue;
+            }
+            if let Some(at) = map.to_screen(*p).filter(|s| inner.contains(*s)) {
+                candidates.push((at.distance(centre), at, m.node.as_str(), i, j));
+            }
+        }
+    }
+    candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Drawn there, not hidden behind another face: what a press would grab.
+    let best = candidates
+        .into_iter()
+        .take(64)
+        .find(|&(_, at, node, i, j)| {
+            vertex_at(picks, &map, at).is_some_and(|v| v.node == node && v.vertex == (i, j))
+        });
+    let Some((_, at, node, i, j)) = best else {
         return JsValue::NULL;
     };
     let a = js_sys::Array::new();
     a.push(&JsValue::from_f64(f64::from(at.x)));
     a.push(&JsValue::from_f64(f64::from(at.y)));
-    a.push(&JsValue::from(node.as_str()));
+    a.push(&JsValue::from(node));
     a.push(&JsValue::from_f64(i as f64));
     a.push(&JsValue::from_f64(j as f64));
     a.into()

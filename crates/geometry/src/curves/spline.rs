@@ -142,6 +142,12 @@ impl Spline {
             .partition_point(|&k| k <= t)
             .saturating_sub(1)
             .min(self.knots.len() - 2);
+        self.eval_in(span, t)
+    }
+
+    /// The spline at `t` on span `span` (its knots' interval; `t` clamped by the caller), without
+    /// looking the span up.
+    fn eval_in(&self, span: usize, t: f64) -> DVec3 {
         match self.kind {
             SplineKind::CatmullRom => self.eval_catmull_rom(span, t),
             SplineKind::Natural => self.eval_natural(span, t),
@@ -335,7 +341,15 @@ impl Iterator for ArcWalk<'_> {
         } else {
             t0 + (t1 - t0) * k as f64 / self.per_span as f64
         };
-        let p = self.spline.eval(t);
+        // The span is known (no lookup: a walk over a million spans made 128 million of them);
+        // a span's end is its successor's start, as `eval` takes it.
+        let p = if k == self.per_span && self.span + 2 < knots.len() {
+            self.spline.eval_in(self.span + 1, t)
+        } else if t < t1 || self.span + 2 >= knots.len() {
+            self.spline.eval_in(self.span, t)
+        } else {
+            self.spline.eval(t)
+        };
         self.acc += p.distance(self.prev);
         self.prev = p;
         if k == self.per_span {
