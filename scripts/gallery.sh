@@ -29,5 +29,7 @@ catamaran-hull     iso     plain       --hide apices
 pedestrian-bridge  iso     config      --hide apices
 tube-closure       iso     config      --hide apices
 correction         top     config      --hide apices
+corner-facade      iso     config      --hide apices
+wall-canopy        iso     config      --hide apices
 LIST
 echo "gallery written to docs/gallery/"

@@ -17,6 +17,7 @@ pub mod plane;
 pub mod polygon_mesh;
 pub mod polyline;
 pub mod quad_grid;
+pub mod seam;
 pub mod simd;
 pub mod surface_fit;
 

@@ -24,6 +24,7 @@ pub(crate) fn apex_input(values: Vec<f64>, normalized: bool, scale: Option<f64>)
         values,
         normalized,
         scale,
+        seam: None,
     }
 }
 
@@ -361,6 +362,12 @@ node! {
         /// The plane at an open directrix's last vertex: "perpendicular" to the last edge, or "mirror"
         /// (the plane at X_{M−2} reflected in the last edge's bisector plane: the meridian on an arc).
         end_planes: k::Choice<crate::choices::EndPlanes> = "perpendicular",
+        /// The apex the first strip shares with the net this one continues (wire that net's last
+        /// `apices` item, with its last row as the generatrix): a_1 is set so and the rows run
+        /// straight across the seam when the directrix starts along that net's last edge; where it
+        /// turns, a_1 is the nearest value and `quality.seam_offset` says how far the apex is from
+        /// reach. Empty (or null: an apex at infinity) keeps `apex` as given.
+        seam_apex: Option<k::Point>,
     ) -> (
         /// The cone-net, N rows × M columns.
         mesh: k::QuadMesh,
@@ -390,7 +397,19 @@ node! {
         inputs.assistance.alpha = assistance;
         inputs.assistance.epsilon = epsilon;
         inputs.end_planes = end_planes;
-        Ok(outputs(ctx, conenet::construct_with(&inputs, reports(ctx))?))
+        let seam_offset = match seam_apex {
+            Some(c) if inputs.directrix.points.len() >= 2 => {
+                let x = &inputs.directrix.points;
+                Some(conenet::seam_apex::seam_apex(x[0], x[1], c)?.offset)
+            }
+            _ => None,
+        };
+        inputs.apex.seam = seam_apex;
+        let mut out = outputs(ctx, conenet::construct_with(&inputs, reports(ctx))?);
+        if let Some(offset) = seam_offset.filter(|_| ctx.wants("quality")) {
+            out.6 = out.6.with("seam_offset", offset);
+        }
+        Ok(out)
     }
 }
 

@@ -24,6 +24,7 @@ pub mod mesh_parts;
 pub mod param;
 pub mod quality;
 pub mod reference;
+pub mod seam;
 pub mod vector;
 pub mod view;
 
@@ -46,6 +47,7 @@ pub fn all() -> Vec<NodeDef> {
         quality::nodes(),
         grid::nodes(),
         measure::nodes(),
+        seam::nodes(),
         analysis::nodes(),
         fabrication::nodes(),
         mesh::nodes(),

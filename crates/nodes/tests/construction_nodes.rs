@@ -383,3 +383,68 @@ fn subdivide_rows_keeps_rows_and_counts() {
         assert!(err.contains("count"), "{bad}: {err}");
     }
 }
+
+/// The angle between a's last directrix-direction edge and b's first, largest over the rows.
+fn seam_crease(a: &cnets_geometry::QuadGrid, b: &cnets_geometry::QuadGrid) -> f64 {
+    (0..a.rows)
+        .map(|i| {
+            let before = a.at(i, a.cols - 1) - a.at(i, a.cols - 2);
+            let after = b.at(i, 1) - b.at(i, 0);
+            // atan2 of |a × b| and a · b: acos near 1 resolves only about 1.5e-8 rad.
+            before.cross(after).length().atan2(before.dot(after))
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn a_net_continued_with_the_shared_seam_apex_runs_straight_across_the_seam() {
+    let first = [("apex", Value::Number(0.96))]
+        .into_iter()
+        .chain(torus_inputs(5, 7))
+        .collect::<Vec<_>>();
+    let a_out = run("cnets.construct", &first).unwrap();
+    let Value::QuadMesh(a) = output("cnets.construct", &a_out, "mesh") else {
+        panic!("a mesh")
+    };
+    let apex = match output("cnets.construct", &a_out, "apices")
+        .as_list()
+        .and_then(|l| l.last().cloned())
+    {
+        Some(Value::Point(c)) => c,
+        other => panic!("the last apex: {other:?}"),
+    };
+    // The directrix continues along the arc's last edge, then turns.
+    let d = match &first[1].1 {
+        Value::Polyline(d) => d.points.clone(),
+        _ => unreachable!(),
+    };
+    let (x, e) = (d[d.len() - 1], d[d.len() - 1] - d[d.len() - 2]);
+    let next = Polyline::open(vec![x, x + e, x + 2.0 * e + DVec3::new(0.0, 0.0, 0.4)]);
+    let continued = |seam: Value| {
+        run(
+            "cnets.construct",
+            &[
+                ("directrix", Value::from(next.clone())),
+                ("generatrix", Value::from(a.column(a.cols - 1))),
+                ("seam_apex", seam),
+            ],
+        )
+        .unwrap()
+    };
+    let b_out = continued(Value::Point(apex));
+    let Value::QuadMesh(b) = output("cnets.construct", &b_out, "mesh") else {
+        panic!("a mesh")
+    };
+    assert!(seam_crease(a, b) < 1e-9, "{}", seam_crease(a, b));
+    let Value::Record(q) = output("cnets.construct", &b_out, "quality") else {
+        panic!("a record")
+    };
+    let offset = q.get("seam_offset").and_then(Value::as_f64).unwrap();
+    assert!(offset < 1e-9, "{offset}");
+    // Null (an apex at infinity) keeps the apex as given: the seam creases.
+    let plain = continued(Value::Null);
+    let Value::QuadMesh(c) = output("cnets.construct", &plain, "mesh") else {
+        panic!("a mesh")
+    };
+    assert!(seam_crease(a, c) > 1e-3, "{}", seam_crease(a, c));
+}

@@ -236,6 +236,9 @@ pub struct ConstructAdjoint {
     pub directrix: Option<Vec<DVec3>>,
     /// ∂L/∂ε (nonzero only when the correction turned planes); `None` when not asked for.
     pub epsilon: Option<f64>,
+    /// ∂L/∂ the shared apex ([`super::inputs::ApexInput::seam`]); `None` when not given or when
+    /// neither the apex nor the directrix was asked for.
+    pub seam: Option<DVec3>,
     /// ∂L/∂ the given plane normals of the C-tube construction, in the shape of the input (M−1
     /// shared, or N·(M−1) per vertex, row-major; the Monge planes have none); `None` when not
     /// asked for or not given.
@@ -380,6 +383,9 @@ impl ConstructAdjoint {
         if let (Some(a), Some(b)) = (&mut self.epsilon, o.epsilon) {
             *a += b;
         }
+        if let (Some(a), Some(b)) = (&mut self.seam, o.seam) {
+            *a += b;
+        }
         self
     }
 }
@@ -479,6 +485,7 @@ fn sweep_and_pull_blend(
                 .filter(|_| wrt.directrix)
                 .map(|p| std::mem::take(&mut p.directrix)),
             epsilon: wrt.epsilon.then_some(epsilon),
+            seam: pulled.as_ref().and_then(|p| p.seam),
             normals: normals.then_some(normals_bar),
             ruling_ratios: rho,
             plane_ratios: tau,
@@ -496,6 +503,7 @@ pub(super) fn finite(result: ConstructAdjoint) -> Result<ConstructAdjoint, Geome
         && result.scale.iter().all(finite)
         && result.directrix.iter().flatten().all(|g| g.is_finite())
         && result.epsilon.iter().all(finite)
+        && result.seam.iter().all(|c| c.is_finite())
         && result.normals.iter().flatten().all(|g| g.is_finite())
         && result.ruling_ratios.iter().all(finite)
         && result.plane_ratios.iter().all(finite);
@@ -1022,6 +1030,7 @@ mod tests {
             values,
             normalized,
             scale,
+            seam: None,
         };
         c.end_planes = end;
         c

@@ -15,6 +15,7 @@ use glam::DVec3;
 
 use super::directrix::SweptDirectrix;
 use super::inputs::{ApexInput, ColumnValues, EndPlanes};
+use super::seam_apex::seam_apex_pullback;
 
 /// Cotangents of the per-column quantities (index j; entry 0 of `a`, `e`, `b` unused).
 #[derive(Debug, Clone, PartialEq)]
@@ -64,6 +65,8 @@ pub(crate) struct InputBars {
     pub scale: Option<f64>,
     /// The directrix's stored points' (a closed directrix: without the repeated first point).
     pub directrix: Vec<DVec3>,
+    /// The shared apex's (a net continuing another, [`ApexInput::seam`]); `None` when not given.
+    pub seam: Option<DVec3>,
 }
 
 /// `(I − u uᵀ) v / len`: the pull-back of `u = s / |s|` (len = |s|).
@@ -83,11 +86,20 @@ pub(crate) fn pull_back(
 ) -> InputBars {
     let m = dx.columns();
     let ColumnBars {
-        a: a_bar,
+        a: mut a_bar,
         mut x,
         mut e,
         mut b,
     } = bars;
+    // A shared apex sets a_1 from X_0, X_1 and the apex: its cotangent goes to them, not to the
+    // value given.
+    let seam = apex.seam.map(|c| {
+        let g = std::mem::take(&mut a_bar[0]);
+        let [x0, x1, c_bar] = seam_apex_pullback(dx.points[0], dx.points[1], c, g);
+        x[0] += x0;
+        x[1] += x1;
+        c_bar
+    });
     let mut l_bar = vec![0.0; m];
     // The normalization.
     let (values_bar, scale) = if apex.normalized {
@@ -169,6 +181,7 @@ pub(crate) fn pull_back(
         apex: apex_bar,
         scale,
         directrix,
+        seam,
     }
 }
 
@@ -219,6 +232,7 @@ mod tests {
             values,
             normalized,
             scale,
+            seam: None,
         };
         let mut w = ColumnBars::zeros(m);
         for j in 0..m {

@@ -44,6 +44,7 @@ impl Encoding {
                 values: ColumnValues::List(self.apex.clone()),
                 normalized: false,
                 scale: None,
+                seam: None,
             },
             normals: NormalsInput::PerVertex(self.normals.clone()),
             end_planes: EndPlanes::Perpendicular,

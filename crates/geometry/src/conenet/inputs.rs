@@ -268,6 +268,9 @@ pub struct ApexInput {
     pub normalized: bool,
     /// The scale L of the normalization; `None` = directrix length / 5.
     pub scale: Option<f64>,
+    /// The apex the first strip must share (a net continuing another across a seam): a_1 is set
+    /// so, overriding the value given ([`super::seam_apex`]); `None` = as given.
+    pub seam: Option<glam::DVec3>,
 }
 
 impl Default for ApexInput {
@@ -276,6 +279,7 @@ impl Default for ApexInput {
             values: ColumnValues::Uniform(1.0),
             normalized: false,
             scale: None,
+            seam: None,
         }
     }
 }

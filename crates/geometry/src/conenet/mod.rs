@@ -37,6 +37,7 @@ mod prepare;
 pub mod quality;
 pub mod ratios;
 pub mod result;
+pub mod seam_apex;
 pub mod subdivide;
 mod sweep;
 mod trig;

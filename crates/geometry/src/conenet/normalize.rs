@@ -46,6 +46,16 @@ pub fn resolve_apex(
     input: &ApexInput,
     directrix: &SweptDirectrix,
 ) -> Result<Vec<f64>, GeometryError> {
+    let mut a = resolve_given(input, directrix)?;
+    if let (Some(apex), Some(first)) = (input.seam, a.first_mut()) {
+        let (x0, x1) = (directrix.points[0], directrix.points[1]);
+        *first = super::seam_apex::seam_apex(x0, x1, apex)?.value;
+    }
+    Ok(a)
+}
+
+/// The apex values as given: broadcast, validated, and denormalized when requested.
+fn resolve_given(input: &ApexInput, directrix: &SweptDirectrix) -> Result<Vec<f64>, GeometryError> {
     let columns = directrix.columns() - 1;
     let values = input.values.resolve("apex", columns)?;
     if !input.normalized {

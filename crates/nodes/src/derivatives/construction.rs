@@ -21,7 +21,7 @@ type Product = fn(&VjpArgs<'_>) -> VjpResult;
 const DIFFERENTIATED: [usize; 5] = [0, 1, 2, 3, 7];
 
 /// `cnets.construct`: the backward sweep (`construct_adjoint_for`) for the directrix, generatrix,
-/// apex function, ratios, scale and ε (inputs 0, 1, 2, 3, 6, 7), from the cotangents of the mesh,
+/// apex function, ratios, scale, ε and the shared seam apex (inputs 0, 1, 2, 3, 6, 7, 9), from the cotangents of the mesh,
 /// the apex values used, the apices, the plane normals and the convexity margins (outputs 0, 1,
 /// 2, 3, 7). A run of the assisted correction is differentiated on the piece it took: planes
 /// only, apex only, or a blend (its apex-only sweep differentiated too); a mixed run (a plane fix
@@ -53,8 +53,12 @@ fn construct(args: &VjpArgs<'_>) -> VjpResult {
         Value::Text(t) => t,
         _ => "perpendicular",
     })?;
+    inputs.apex.seam = match args.inputs.get(9) {
+        Some(Value::Point(c)) => Some(*c),
+        _ => None,
+    };
     let wrt = Wrt {
-        apex: wanted(2) || wanted(6),
+        apex: wanted(2) || wanted(6) || wanted(9),
         directrix: wanted(0),
         epsilon: wanted(7),
         normals: false,
@@ -83,6 +87,10 @@ fn construct(args: &VjpArgs<'_>) -> VjpResult {
     }
     if wanted(7) {
         result[7] = adjoint.epsilon.map(|e| vec![e]);
+    }
+    // A shared apex that is not given (null) has no numbers.
+    if wanted(9) {
+        result[9] = adjoint.seam.map(|c| flat(&[c]));
     }
     Ok(result)
 }

@@ -842,8 +842,36 @@ fn construction_products_match_differences() {
     // infinity has no point: the apices output would change its size under finite differences).
     let open_ratios = crate::testing::nums(&[0.47, 0.53, 0.4995, 0.5005, 0.6]);
     let open_apex = crate::testing::nums(&[0.9, 0.95, 1.08, 0.85, 1.05]);
-    let everything = ["directrix", "generatrix", "apex", "ratios", "scale"];
+    let everything = [
+        "directrix",
+        "generatrix",
+        "apex",
+        "ratios",
+        "scale",
+        "seam_apex",
+    ];
+    // A shared seam apex off the first edge's line (a turning directrix: a_1 the nearest value).
+    let seam = Value::Point(DVec3::new(1.6, 9.5, 2.8));
     for (what, named) in [
+        (
+            "open, a shared seam apex",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", open_apex.clone()),
+                ("ratios", open_ratios.clone()),
+                ("seam_apex", seam.clone()),
+            ],
+        ),
+        (
+            "open, normalized, one apex value, a shared seam apex",
+            vec![
+                ("directrix", arc(false)),
+                ("apex", n(0.93)),
+                ("ratios", open_ratios.clone()),
+                ("normalized", Value::Boolean(true)),
+                ("seam_apex", seam.clone()),
+            ],
+        ),
         (
             "open",
             vec![
