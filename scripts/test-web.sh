@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The browser test of cnets in the browser (docs/web.md): installs Debian's Chromium and the npm
-# test tools when missing, builds the site with scripts/web.sh, serves it with python3's
-# http.server on a free loopback port and runs tests/web/browser.test.mjs (playwright-core driving
+# test tools when missing, builds the site with scripts/web.sh, serves it with scripts/serve.py
+# (the compressed copies, as a user serves it) on a free loopback port and runs
+# tests/web/browser.test.mjs (playwright-core driving
 # headless Chromium on software WebGL2). Screenshots and figures go to target/web-test/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,7 +30,7 @@ fi
 # Port 0: the server takes a free port and names it ("Serving HTTP on 127.0.0.1 port N"), so no
 # other process (the Python step's servers run beside) can take a probed one before it binds.
 mkdir -p target
-python3 -u -m http.server --bind 127.0.0.1 --directory "$site" 0 >target/web-server.log 2>&1 &
+python3 -u scripts/serve.py "$site" 0 >target/web-server.log 2>&1 &
 server=$!
 trap 'kill "$server" 2>/dev/null || true' EXIT
 port=""

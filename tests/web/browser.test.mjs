@@ -33,6 +33,21 @@ const context = await chromium.launchPersistentContext(userData, {
 // machine's software rendering can take more than its default 30 s.
 context.setDefaultTimeout(180_000);
 context.setDefaultNavigationTimeout(180_000);
+// What the first visit transfers (the browser's cache is empty: a fresh profile): every response's
+// bytes on the wire (headers and the body as sent, compressed or not), until the first picture.
+const transfers = [];
+let counting = true;
+context.on("requestfinished", async (request) => {
+  if (!counting) return;
+  const sizes = await request.sizes().catch(() => null);
+  const response = await request.response().catch(() => null);
+  if (!sizes) return;
+  transfers.push({
+    url: request.url(),
+    bytes: sizes.responseBodySize + sizes.responseHeadersSize,
+    encoding: response?.headers()["content-encoding"] ?? "",
+  });
+});
 const problems = [];
 function watch(page) {
   page.on("console", (m) => {
@@ -154,6 +169,25 @@ const t1 = await shot(torus.page, "1-torus-monge", view);
 console.log(`torus-monge: first picture after ${figures.first_picture_ms} ms (page load included), ` +
   `${(t1.covered * 100).toFixed(1)} % of the 3D view drawn, ${t1.colours} colours`);
 assert.ok(t1.covered > 0.02 && t1.colours > 16, "the 3D view is not blank");
+// The first visit: compressed delivery (scripts/serve.py sends the .br copies), under 5 MB, and the
+// module's bytes counted by the loader's bar while it was compiled.
+counting = false;
+const firstVisit = transfers.reduce((sum, t) => sum + t.bytes, 0);
+const wasm = transfers.find((t) => t.url.endsWith("/cnets_web_bg.wasm"));
+figures.first_visit = {
+  bytes: firstVisit,
+  requests: transfers.length,
+  wasm_bytes: wasm?.bytes ?? null,
+  wasm_encoding: wasm?.encoding ?? null,
+  loader_counted_bytes: await torus.page.evaluate(() => window.cnets_loaded_bytes ?? null),
+};
+console.log(`first visit: ${(firstVisit / 1e6).toFixed(2)} MB in ${transfers.length} responses ` +
+  `(the module ${((wasm?.bytes ?? 0) / 1e6).toFixed(2)} MB, ${wasm?.encoding || "uncompressed"})`);
+assert.ok(wasm, `the module was fetched: ${JSON.stringify(transfers.map((t) => t.url))}`);
+assert.ok(["br", "gzip"].includes(wasm.encoding), `the module arrives compressed: ${wasm.encoding}`);
+assert.ok(firstVisit < 5e6, `the first visit transfers under 5 MB: ${firstVisit} bytes`);
+assert.ok(figures.first_visit.loader_counted_bytes > 10e6,
+  `the loader counted the module's bytes: ${figures.first_visit.loader_counted_bytes}`);
 
 // 2. Drag the first slider: its value and the picture change.
 /** The slider to drag: the first on the canvas, else the parameter panel's first number slider
