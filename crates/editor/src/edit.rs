@@ -119,6 +119,8 @@ pub enum Edit {
         /// Canvas position of the first `param.points` node.
         at: [f32; 2],
     },
+    /// Keep a named construction plane with the graph (saved in its file; names are unique).
+    AddCPlane(cnets_engine::file::NamedPlane),
 }
 
 /// Canvas spacing of the nodes [`Edit::AddCurves`] places.
@@ -269,6 +271,16 @@ pub fn apply(doc: &mut GraphDocument, edit: Edit) -> Result<Vec<String>, String>
             })?;
             Ok(created)
         }
+        Edit::AddCPlane(plane) => none(doc.edit(None, |_, meta| {
+            if meta.cplanes.iter().any(|p| p.name == plane.name) {
+                return Err(format!(
+                    "a construction plane is already called '{}'",
+                    plane.name
+                ));
+            }
+            meta.cplanes.push(plane);
+            Ok(())
+        })),
     }
 }
 

@@ -79,8 +79,14 @@ pub enum MenuAction {
     ToggleGrid,
     /// Show or hide the size of the previewed geometry.
     ToggleDimensions,
-    /// Set the Perspective view's construction plane.
+    /// Set the Perspective view's construction plane to a world plane.
     PerspectivePlane(CPlane),
+    /// Set it to the graph's construction plane of this name.
+    NamedCPlane(String),
+    /// Start the *CPlane from 3 points* tool.
+    CPlaneFromPoints,
+    /// Fit a construction plane through the selected curve or the clicked row of a net.
+    CPlaneThroughSelection,
 }
 
 /// What the menus need to know.
@@ -111,6 +117,8 @@ pub struct MenuContext<'a> {
     pub view: ViewMenuState,
     /// How many export nodes the graph has (File › Export › Graph's exports runs them).
     pub exports: usize,
+    /// The graph's named construction planes (listed with the world planes).
+    pub cplanes: &'a [cnets_engine::file::NamedPlane],
 }
 
 /// What the View menu shows of the 3D view.
@@ -273,7 +281,8 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                     ui.close();
                 }
             }
-            ui.menu_button("Perspective construction plane", |ui| {
+            let planes = ui.menu_button("Construction plane", |ui| {
+                ui.weak("the Perspective view's:");
                 for p in CPlane::ALL {
                     if ui
                         .radio(mc.view.perspective_plane == p, p.label())
@@ -283,7 +292,31 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                         ui.close();
                     }
                 }
+                for named in mc.cplanes {
+                    let on = CPlane::from_named(named) == Some(mc.view.perspective_plane);
+                    let r = ui.radio(on, named.name.as_str());
+                    crate::probe::record(ui.ctx(), &named.name, r.rect);
+                    if r.clicked() {
+                        pick_plane = Some(MenuAction::NamedCPlane(named.name.clone()));
+                        ui.close();
+                    }
+                }
             });
+            crate::probe::record(ui.ctx(), "Construction plane", planes.response.rect);
+            pick(
+                ui,
+                "CPlane from 3 points",
+                "",
+                MenuAction::CPlaneFromPoints,
+                true,
+            );
+            pick(
+                ui,
+                "CPlane through curve or row",
+                "",
+                MenuAction::CPlaneThroughSelection,
+                true,
+            );
             ui.separator();
             pick(ui, "Frame geometry", "F", MenuAction::Fit, true);
             pick(

@@ -385,6 +385,80 @@ fn a_four_point_curve_drawn_in_the_front_view_becomes_points_and_a_spline_in_the
     assert_eq!(lines["selected"], "spline", "the curve node alone selected");
 }
 
+/// Three points off every world plane, for the construction plane the `cplane` script makes.
+const TRIANGLE: [[f64; 3]; 3] = [[0.5, -0.5, 0.25], [3.5, 0.5, 1.25], [1.0, 2.5, 2.0]];
+
+const TRIANGLE_GRAPH: &str = r#"(
+    version: 1,
+    nodes: {
+        "tri": (
+            type: "param.points",
+            position: (0.0, 0.0),
+            preview: true,
+            inputs: {
+                "points": [(0.5, -0.5, 0.25), (3.5, 0.5, 1.25), (1.0, 2.5, 2.0)],
+            },
+        ),
+        "outline": (type: "curve.polyline", position: (300.0, 0.0)),
+    },
+    edges: ["tri.points -> outline.points"],
+)"#;
+
+#[test]
+fn a_curve_drawn_in_a_cplane_from_3_points_lies_in_that_plane_in_the_real_window() {
+    if skip() {
+        return;
+    }
+    let (lines, _) = run_script("cplane", Some(("triangle.ron", TRIANGLE_GRAPH)), None);
+    assert_eq!(lines["tool"], "CPlane from 3 points", "{lines:?}");
+    let [a, b, c] = TRIANGLE;
+    let sub = |p: [f64; 3], q: [f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let dot = |p: [f64; 3], q: [f64; 3]| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+    let (ab, ac) = (sub(b, a), sub(c, a));
+    let n = [
+        ab[1] * ac[2] - ab[2] * ac[1],
+        ab[2] * ac[0] - ab[0] * ac[2],
+        ab[0] * ac[1] - ab[1] * ac[0],
+    ];
+    let len = dot(n, n).sqrt();
+    let n = n.map(|x| x / len);
+    // The plane the editor made: origin at the first handle (snapped to it exactly), u towards
+    // the second, normal from the three.
+    let plane = points(&lines["plane"]);
+    assert_eq!(plane[0], a, "origin at the first handle");
+    let u_len = dot(ab, ab).sqrt();
+    for k in 0..3 {
+        assert!((plane[1][k] - ab[k] / u_len).abs() < 1e-12, "u: {plane:?}");
+        assert!((plane[3][k] - n[k]).abs() < 1e-12, "normal: {plane:?}");
+    }
+    // Not a world plane.
+    assert!(n.iter().all(|x| x.abs() < 0.95), "{n:?}");
+    assert_eq!(lines["plane name"], "CPlane 1");
+    assert_eq!(lines["cplanes"], "CPlane 1", "kept with the graph");
+    assert_eq!(lines["undo steps"], "1", "one undo step");
+    assert_eq!(lines["saved"], "true", "written in the graph file");
+    assert_eq!(lines["drawn view"], "Perspective");
+    // The curve's four points lie in the plane through the three handles, on its grid.
+    let step: f64 = lines["step"].parse().unwrap();
+    let drawn = points(&lines["drawn"]);
+    assert_eq!(drawn.len(), 4, "{lines:?}");
+    let u = plane[1];
+    let v = plane[2];
+    for p in &drawn {
+        let d = sub(*p, a);
+        let scale = dot(d, d).sqrt().max(u_len);
+        let off = dot(d, n).abs();
+        assert!(off <= 1e-9 * scale, "{p:?} is {off} off the plane");
+        for axis in [u, v] {
+            let k = dot(d, axis) / step;
+            assert!((k - k.round()).abs() < 1e-6, "{p:?}: {k} grid steps");
+        }
+    }
+    for w in drawn.windows(2) {
+        assert_ne!(w[0], w[1], "{drawn:?}");
+    }
+}
+
 #[test]
 fn picking_a_face_names_its_node_and_row_and_column_in_the_real_window() {
     if skip() {

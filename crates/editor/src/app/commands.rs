@@ -168,6 +168,7 @@ impl EditorApp {
             ViewportAction::Message(m) => self.message = m,
             ViewportAction::DragNet(target) => self.drag_net_to(target),
             ViewportAction::DragNetEnd => self.end_net_drag(),
+            ViewportAction::AddCPlane(plane) => self.add_cplane(plane, "from 3 points"),
         }
     }
 
@@ -503,7 +504,12 @@ impl EditorApp {
             MenuAction::ToggleDimensions => {
                 self.viewport.show_dimensions = !self.viewport.show_dimensions
             }
-            MenuAction::PerspectivePlane(p) => self.viewport.perspective_plane = p,
+            MenuAction::PerspectivePlane(p) => {
+                self.viewport.set_perspective_plane(p, p.label());
+            }
+            MenuAction::NamedCPlane(name) => self.choose_cplane(&name),
+            MenuAction::CPlaneFromPoints => self.start_three_point_cplane(),
+            MenuAction::CPlaneThroughSelection => self.cplane_through_selection(),
         }
     }
 

@@ -56,6 +56,7 @@ impl EditorApp {
                     dimensions: self.viewport.show_dimensions,
                     perspective_plane: self.viewport.perspective_plane,
                 },
+                cplanes: &self.doc.meta.cplanes,
                 exports: self
                     .doc
                     .graph

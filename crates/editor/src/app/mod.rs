@@ -1,12 +1,14 @@
 //! The editor: state and one frame of UI, the same in the window (`main.rs`) and in tests.
 //!
 //! One handler a file, as Graphite splits a message from its handler: `files` (open, save,
-//! recovery), `commands` (menu actions, shortcuts, edits, UI requests), `clusters`, `worker` (the
+//! recovery), `commands` (menu actions, shortcuts, edits, UI requests), `clusters`, `cplanes` (the
+//! construction planes kept with the graph), `worker` (the
 //! evaluation glue), `layout` (one frame's panels) and `dialogs`; this file holds the state.
 
 mod arrivals;
 mod clusters;
 mod commands;
+mod cplanes;
 mod dialogs;
 mod exports;
 mod files;

@@ -1,7 +1,8 @@
 //! The ground grid, the world axes and the axis gizmo: orientation and size at a glance.
 //!
 //! The grid lies in the view's construction plane (Top: XY, Front: XZ, Right: YZ, Perspective:
-//! the chosen plane, world XY by default). Its spacing adapts to the zoom — 1, 2 or 5 × 10ⁿ metres,
+//! the chosen plane, world XY by default), around the plane's origin; a plane other than the world
+//! planes also has its own axes drawn through its origin (u reddish, v greenish). Its spacing adapts to the zoom — 1, 2 or 5 × 10ⁿ metres,
 //! the smallest whose cells are at least [`MIN_CELL_POINTS`] on screen — with a major line every
 //! 5 or 10 cells, labelled in metres along the axes. The spacing is also the snap step of every
 //! tool. The world axes are drawn through the origin (x red, y green, z blue) and a small gizmo in
@@ -27,6 +28,10 @@ pub const X_COLOR: Color32 = Color32::from_rgb(0xd0, 0x31, 0x2d);
 pub const Y_COLOR: Color32 = Color32::from_rgb(0x2a, 0x9d, 0x3c);
 /// The z axis colour (blue).
 pub const Z_COLOR: Color32 = Color32::from_rgb(0x1f, 0x5f, 0xd0);
+/// The colour of a construction plane's own u axis (not a world plane's).
+pub const PLANE_U_COLOR: Color32 = Color32::from_rgb(0xe8, 0x80, 0x70);
+/// The colour of a construction plane's own v axis.
+pub const PLANE_V_COLOR: Color32 = Color32::from_rgb(0x70, 0xc0, 0x78);
 
 /// The grid's spacing at a zoom.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -86,6 +91,8 @@ pub struct Grid {
     pub spacing: Spacing,
     /// The construction plane it lies in.
     pub plane: CPlane,
+    /// The plane's name, written in the view's corner (`World XY`, `CPlane 1`).
+    pub name: String,
     /// Grid lines and world axes, for the renderer (depth-tested with the scene).
     pub segments: Vec<Segment>,
     /// Major line positions along the plane's first and second axis, for labels.
@@ -96,16 +103,18 @@ impl Grid {
     /// The grid of `plane` around the camera's target, spaced for the map's zoom.
     pub fn new(map: &ScreenMap, plane: CPlane) -> Grid {
         let spacing = Spacing::for_scale(map.world_per_point());
-        let (u, v, _) = plane.axes();
         // The target projected into the plane, on the major grid.
         let target = map.target();
-        let centre = |axis: DVec3| (target.dot(axis) / spacing.major).round() * spacing.major;
-        let (cu, cv) = (centre(u), centre(v));
+        let local = plane.local(target);
+        let centre = |x: f64| (x / spacing.major).round() * spacing.major;
+        let (cu, cv) = (centre(local.x), centre(local.y));
         let half = spacing.minor * HALF_CELLS as f64;
         let (u0, u1, v0, v1) = (cu - half, cu + half, cv - half, cv + half);
+        let at = |a: f64, b: f64| plane.at(a, b, 0.0);
         let minor = rgba(Color32::from_rgba_unmultiplied(120, 128, 140, 70));
         let major = rgba(Color32::from_rgba_unmultiplied(90, 98, 110, 140));
-        let mut segments = Vec::with_capacity(4 * HALF_CELLS as usize + 8);
+        let world = plane.is_world();
+        let mut segments = Vec::with_capacity(4 * HALF_CELLS as usize + 10);
         let mut majors = (Vec::new(), Vec::new());
         let per_major = (spacing.major / spacing.minor).round() as i64;
         for k in -HALF_CELLS..=HALF_CELLS {
@@ -113,12 +122,23 @@ impl Grid {
             let (color, width) = if is_major { (major, 1.2) } else { (minor, 1.0) };
             let a = snap(cu + k as f64 * spacing.minor, 0.0, spacing.minor);
             let b = snap(cv + k as f64 * spacing.minor, 0.0, spacing.minor);
-            // Lines on the axes are drawn as axes below.
-            if a != 0.0 {
-                segments.push(segment(u * a + v * v0, u * a + v * v1, color, width));
+            // Lines on a world plane's axes are drawn as the world axes below; another plane's
+            // own axes are drawn in their colours.
+            let (a_color, a_width) = if a == 0.0 {
+                (rgba(PLANE_V_COLOR), 1.5)
+            } else {
+                (color, width)
+            };
+            let (b_color, b_width) = if b == 0.0 {
+                (rgba(PLANE_U_COLOR), 1.5)
+            } else {
+                (color, width)
+            };
+            if a != 0.0 || !world {
+                segments.push(segment(at(a, v0), at(a, v1), a_color, a_width));
             }
-            if b != 0.0 {
-                segments.push(segment(u * u0 + v * b, u * u1 + v * b, color, width));
+            if b != 0.0 || !world {
+                segments.push(segment(at(u0, b), at(u1, b), b_color, b_width));
             }
             if is_major {
                 majors.0.push(a);
@@ -137,6 +157,7 @@ impl Grid {
         Grid {
             spacing,
             plane,
+            name: plane.label().to_string(),
             segments,
             majors,
         }
@@ -146,7 +167,7 @@ impl Grid {
     /// spacing in the view's corner. No label is drawn over `keep_out` (the corner figures, the
     /// legend): one that would touch them is left out.
     pub fn paint_labels(&self, painter: &Painter, map: &ScreenMap, keep_out: &[Rect]) {
-        let (u, v, _) = self.plane.axes();
+        let plane = self.plane;
         let font = egui::FontId::proportional(10.5);
         let ink = Color32::from_gray(95);
         let inside = map.rect.shrink(4.0);
@@ -172,22 +193,18 @@ impl Grid {
         };
         for &a in &self.majors.0 {
             if a != 0.0 {
-                label(u * a, metres(a));
+                label(plane.at(a, 0.0, 0.0), metres(a));
             }
         }
         for &b in &self.majors.1 {
             if b != 0.0 {
-                label(v * b, metres(b));
+                label(plane.at(0.0, b, 0.0), metres(b));
             }
         }
         painter.text(
             map.rect.left_bottom() + vec2(76.0, -8.0),
             egui::Align2::LEFT_BOTTOM,
-            format!(
-                "grid {} · {}",
-                metres(self.spacing.minor),
-                self.plane.label()
-            ),
+            format!("grid {} · {}", metres(self.spacing.minor), self.name),
             font,
             ink,
         );

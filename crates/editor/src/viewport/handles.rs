@@ -15,7 +15,7 @@ use cnets_engine::{Graph, NodeInstance, Value, Widget};
 use cnets_geometry::DVec3;
 use egui::{Color32, Painter, Pos2, Rect, Stroke, vec2};
 
-use super::screen::{CPlane, ScreenMap, WorldPlane, snap_along};
+use super::screen::{CPlane, ScreenMap, WorldPlane};
 use crate::edit::Edit;
 use crate::widgets::effective_value;
 
@@ -202,7 +202,7 @@ pub(super) fn dragged_to(
             };
             let hit = plane.hit(&ray)?;
             let p = origin + n * (hit - grab).dot(n);
-            Some(step.map_or(p, |s| snap_along(p, n, s)))
+            Some(step.map_or(p, |s| cplane.snap_normal(p, s)))
         }
     }
 }

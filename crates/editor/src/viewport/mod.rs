@@ -9,6 +9,8 @@
 //!   and `param.points` nodes; hover a mesh for the node, row and column, class and planarity of a
 //!   face or vertex, click it to select its node;
 //! - Draw curve ([`draw`]): click points on the construction plane → `param.points` + a curve;
+//! - CPlane from 3 points ([`cplane_make`]): three clicks snapped to vertices and handles → a new
+//!   construction plane ([`cplane`]) for the Perspective view, kept with the graph;
 //! - Measure ([`measure`]): two clicks snapped to vertices → their distance;
 //! - Drag net ([`net_drag`]): grab a vertex of a cone-net and drag it, the design's inputs solved
 //!   to follow (Shift+click pins).
@@ -18,6 +20,8 @@
 //! "Drawing and editing in the 3D view".
 
 pub mod colors;
+pub mod cplane;
+pub mod cplane_make;
 pub mod distance;
 pub mod draw;
 pub mod gpu;
@@ -42,6 +46,8 @@ use egui::{Color32, Key, Modifiers, PointerButton, Pos2, Rect, Sense, Ui};
 use crate::edit::Edit;
 use crate::preview::{Picks, PreviewOptions, PreviewStats};
 
+pub use cplane::CPlane;
+pub use cplane_make::ThreePointTool;
 pub use draw::{DrawTool, DrawnCurve};
 pub use gpu::GpuTarget;
 use gpu::{Guides, ViewportCallback};
@@ -51,7 +57,7 @@ pub use measure::MeasureTool;
 pub use navigation::NamedView;
 pub use net_drag::{NetDragTarget, NetDragTool, NetVertex};
 use pick::Hit;
-use screen::{CPlane, ScreenMap};
+use screen::ScreenMap;
 
 /// The active tool of the view.
 #[derive(Clone, Debug, PartialEq, Default)]
@@ -65,6 +71,8 @@ pub enum Tool {
     Measure(MeasureTool),
     /// Drag a vertex of a cone-net, the design's inputs solved to follow.
     DragNet(Box<NetDragTool>),
+    /// Make a construction plane from three clicked points.
+    ThreePoint(ThreePointTool),
 }
 
 impl Tool {
@@ -75,6 +83,7 @@ impl Tool {
             Tool::Draw(_) => "Draw curve",
             Tool::Measure(_) => "Measure",
             Tool::DragNet(_) => "Drag net",
+            Tool::ThreePoint(_) => "CPlane from 3 points",
         }
     }
 }
@@ -94,6 +103,9 @@ pub enum ViewportAction {
     DragNet(NetDragTarget),
     /// The net's drag ended (the pointer was released): commit it as one undo step.
     DragNetEnd,
+    /// A construction plane was made in the view: name it, keep it with the graph and make it
+    /// the Perspective view's.
+    AddCPlane(CPlane),
 }
 
 /// What the view needs to know of the rest of the editor each frame.
@@ -152,6 +164,10 @@ pub struct Viewport {
     pub view: NamedView,
     /// The Perspective view's construction plane.
     pub perspective_plane: CPlane,
+    /// Its name (`World XY`, `CPlane 1`: the grid's corner says it).
+    pub perspective_name: String,
+    /// The mesh hit of the last click with the Select tool (a net's row to fit a plane through).
+    pub picked: Option<Hit>,
     /// Grid snap (F9; Alt suspends it while held).
     pub snap: bool,
     /// The grid and axes are drawn (F7).
@@ -202,6 +218,8 @@ impl Default for Viewport {
             rect: egui::Rect::NOTHING,
             view: NamedView::Perspective,
             perspective_plane: CPlane::XY,
+            perspective_name: CPlane::XY.label().to_string(),
+            picked: None,
             snap: true,
             show_grid: true,
             show_dimensions: true,
@@ -271,6 +289,7 @@ impl Viewport {
         self.highlight = Arc::new(Vec::new());
         self.handles = HandleTool::default();
         self.tool = Tool::Select;
+        self.picked = None;
     }
 
     /// How many pictures the GPU has rendered into the view's texture so far. A frame in which
@@ -321,6 +340,29 @@ impl Viewport {
     /// The construction plane of the view shown.
     pub fn cplane(&self) -> CPlane {
         self.view.cplane(self.perspective_plane)
+    }
+
+    /// The name of the construction plane of the view shown.
+    pub fn cplane_name(&self) -> String {
+        match self.view {
+            NamedView::Perspective => self.perspective_name.clone(),
+            v => v.cplane(self.perspective_plane).label().to_string(),
+        }
+    }
+
+    /// Makes `plane`, called `name`, the Perspective view's construction plane.
+    pub fn set_perspective_plane(&mut self, plane: CPlane, name: &str) {
+        self.perspective_plane = plane;
+        self.perspective_name = name.to_string();
+    }
+
+    /// The construction plane fitted through the row of the net last clicked (when its node is
+    /// selected) or the previewed curve of a selected node, and what it went through; an error
+    /// saying what to select.
+    pub fn fit_cplane(&self, selected: &[String]) -> Result<(CPlane, String), String> {
+        let (points, what) = cplane_make::fit_points(&self.picks, self.picked.as_ref(), selected)?;
+        let plane = CPlane::fit(&points).map_err(|e| format!("CPlane through {what}: {e}"))?;
+        Ok((plane, what))
     }
 
     /// Where the last solve of a net drag left the grabbed vertex and its distance to the target
@@ -605,6 +647,17 @@ impl Viewport {
                 }
             }
             Tool::Measure(_) if esc => self.tool = Tool::Select,
+            Tool::ThreePoint(t) => {
+                if backspace {
+                    t.points.pop();
+                }
+                if esc {
+                    self.tool = Tool::Select;
+                    actions.push(ViewportAction::Message(
+                        "CPlane from 3 points cancelled".into(),
+                    ));
+                }
+            }
             Tool::DragNet(d) if esc => {
                 if d.pins.is_empty() {
                     self.tool = Tool::Select;
@@ -687,7 +740,11 @@ impl Viewport {
             1.0
         };
         let map = self.screen_map();
-        let grid = self.show_grid.then(|| Grid::new(&map, self.cplane()));
+        let grid = self.show_grid.then(|| {
+            let mut grid = Grid::new(&map, self.cplane());
+            grid.name = self.cplane_name();
+            grid
+        });
         self.paint_scene(ui, gpu, rect, grid.as_ref());
         let painter = ui.painter_at(rect);
         grid::paint_gizmo(&painter, &map);
@@ -700,6 +757,7 @@ impl Viewport {
             Tool::Draw(d) => d.paint(&painter, &map, self.tool_point),
             Tool::Measure(m) => m.paint(&painter, &map, self.tool_point),
             Tool::DragNet(d) => d.paint(&painter, &map, self.tool_point),
+            Tool::ThreePoint(t) => t.paint(&painter, &map, self.tool_point),
             Tool::Select => {}
         }
         // The figures wrap short of the legend's column.
@@ -863,7 +921,7 @@ impl Viewport {
         // Where the tools would put a point under the pointer.
         self.tool_point = hover.and_then(|at| match &self.tool {
             Tool::Draw(_) => self.plane_point(&map, at, modifiers),
-            Tool::Measure(_) => self.measure_point(&map, at, modifiers),
+            Tool::Measure(_) | Tool::ThreePoint(_) => self.measure_point(&map, at, modifiers),
             Tool::DragNet(d) if !d.dragging() => {
                 net_drag::vertex_at(&self.picks, &map, at).map(|v| v.position)
             }
@@ -907,6 +965,22 @@ impl Viewport {
                     }
                 }
             }
+            Tool::ThreePoint(t) => {
+                if clicked && let Some(p) = self.tool_point {
+                    match t.click(p) {
+                        cplane_make::ThreePointClick::Added => {
+                            actions.push(ViewportAction::Message(t.prompt().into()));
+                        }
+                        cplane_make::ThreePointClick::Made(plane) => {
+                            actions.push(ViewportAction::AddCPlane(plane));
+                            self.tool = Tool::Select;
+                        }
+                        cplane_make::ThreePointClick::Refused(why) => {
+                            actions.push(ViewportAction::Message(why));
+                        }
+                    }
+                }
+            }
             Tool::Select => {
                 if response.double_clicked() {
                     self.fit();
@@ -928,7 +1002,8 @@ impl Viewport {
                             if !modifiers.shift {
                                 self.handles.selected.clear();
                             }
-                            if let Some(hit) = pick::pick(&self.picks, &map, at) {
+                            self.picked = pick::pick(&self.picks, &map, at);
+                            if let Some(hit) = &self.picked {
                                 actions.push(ViewportAction::SelectNode(
                                     self.picks.meshes[hit.mesh()].node.clone(),
                                 ));

@@ -1,5 +1,5 @@
 //! Between the screen and the world: where a world point is drawn in the view, the ray under a
-//! screen point, the construction planes (Top → XY, Front → XZ, Right → YZ) and their grid snap.
+//! screen point, and the planes rays meet (the construction planes are in [`super::cplane`]).
 //! Every viewport tool goes through these, so they agree on what is under the pointer.
 
 use cnets_engine::numbers::snap;
@@ -7,6 +7,8 @@ use cnets_geometry::DVec3;
 use cnets_render::Camera;
 use egui::{Pos2, Rect};
 use glam::Vec3;
+
+pub use super::cplane::{CPlane, snap_along};
 
 /// The view's rectangle on screen and its camera: the mapping between screen points and the world.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -110,87 +112,6 @@ impl WorldPlane {
         let t = (self.origin - ray.origin).dot(self.normal) / denom;
         (t >= 0.0 && t.is_finite()).then(|| ray.at(t))
     }
-}
-
-/// A construction plane: the plane points are drawn on and handles move in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub enum CPlane {
-    /// World XY (the Top view's and, unless set, the Perspective view's).
-    #[default]
-    XY,
-    /// World XZ (the Front view's).
-    XZ,
-    /// World YZ (the Right view's).
-    YZ,
-}
-
-impl CPlane {
-    /// All planes, for menus.
-    pub const ALL: [CPlane; 3] = [CPlane::XY, CPlane::XZ, CPlane::YZ];
-
-    /// Menu label.
-    pub fn label(self) -> &'static str {
-        match self {
-            CPlane::XY => "World XY",
-            CPlane::XZ => "World XZ",
-            CPlane::YZ => "World YZ",
-        }
-    }
-
-    /// The two in-plane axes (right and up on screen in the plane's own view) and the normal.
-    pub fn axes(self) -> (DVec3, DVec3, DVec3) {
-        match self {
-            CPlane::XY => (DVec3::X, DVec3::Y, DVec3::Z),
-            CPlane::XZ => (DVec3::X, DVec3::Z, DVec3::NEG_Y),
-            CPlane::YZ => (DVec3::Y, DVec3::Z, DVec3::X),
-        }
-    }
-
-    /// The unit normal.
-    pub fn normal(self) -> DVec3 {
-        self.axes().2
-    }
-
-    /// The plane through `through` parallel to this one.
-    pub fn through(self, through: DVec3) -> WorldPlane {
-        WorldPlane {
-            origin: through,
-            normal: self.normal(),
-        }
-    }
-
-    /// The world plane itself (through the origin).
-    pub fn world(self) -> WorldPlane {
-        self.through(DVec3::ZERO)
-    }
-
-    /// `p` with its two in-plane coordinates rounded to multiples of `step` (the coordinate along
-    /// the normal kept).
-    pub fn snap(self, p: DVec3, step: f64) -> DVec3 {
-        let (u, v, _) = self.axes();
-        let mut q = p;
-        for axis in [u, v] {
-            q = snap_along(q, axis, step);
-        }
-        q
-    }
-}
-
-/// `p` with its coordinate along the world axis `axis` (±X, ±Y or ±Z) rounded to a multiple of
-/// `step`, as the shortest decimal ([`cnets_engine::numbers::snap`]).
-pub fn snap_along(p: DVec3, axis: DVec3, step: f64) -> DVec3 {
-    let round = |x: f64| snap(x, 0.0, step);
-    let mut q = p;
-    if axis.x != 0.0 {
-        q.x = round(p.x);
-    }
-    if axis.y != 0.0 {
-        q.y = round(p.y);
-    }
-    if axis.z != 0.0 {
-        q.z = round(p.z);
-    }
-    q
 }
 
 /// `k` grid steps as the editor stores them (the shortest decimal: `3 × 0.1` is 0.3).

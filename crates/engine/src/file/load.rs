@@ -24,6 +24,8 @@ pub struct GraphMeta {
     pub description: Option<String>,
     /// A stored optimization setup (see [`crate::optimize`]).
     pub optimization: Option<crate::optimize::Setup>,
+    /// The editor's named construction planes (empty when the file has none).
+    pub cplanes: Vec<super::cplanes::NamedPlane>,
 }
 
 /// A loaded graph file.
@@ -284,10 +286,14 @@ pub(super) fn load_root(
             "name" => document.meta.name = text_field(loader, value, "name"),
             "optimization" => optimization = Some(value),
             "description" => document.meta.description = text_field(loader, value, "description"),
+            "cplanes" => match super::cplanes::parse(value) {
+                Ok(planes) => document.meta.cplanes = planes,
+                Err((pos, message)) => loader.error(pos, format!("cplanes: {message}")),
+            },
             other => loader.error(
                 field.pos,
                 format!(
-                    "unknown field '{other}'; expected version, name, description, nodes, edges, optimization"
+                    "unknown field '{other}'; expected version, name, description, nodes, edges, optimization, cplanes"
                 ),
             ),
         }

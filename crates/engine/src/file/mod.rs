@@ -21,6 +21,7 @@
 //!
 //! Nodes are keyed by id and keep file order; `preview` and `enabled` are written only when false,
 //! a node's preview `color: "#rrggbb"` only when one was picked (files without it load unchanged).
+//! The editor's named construction planes are an optional `cplanes: [..]` list (`cplanes`).
 //! Loading reports every problem with file, line and column; saving is atomic.
 
 //!
@@ -29,6 +30,7 @@
 //! inline graphs (`clusters`), canonical text and atomic saves (`save`).
 
 mod clusters;
+pub mod cplanes;
 mod diagnostics;
 pub mod literal;
 mod load;
@@ -36,6 +38,7 @@ pub mod ron;
 mod save;
 
 pub use clusters::load_cluster_source;
+pub use cplanes::NamedPlane;
 pub use diagnostics::{Diagnostic, LoadError};
 pub use load::{
     Document, GraphMeta, LoadOptions, format_color, load_file, load_file_with, load_str,

@@ -24,6 +24,7 @@ pub fn to_ron(graph: &Graph, meta: &GraphMeta) -> String {
             out.push_str(",\n");
         }
     }
+    super::cplanes::write(&mut out, &meta.cplanes, 1);
     if let Some(setup) = &meta.optimization {
         push_indent(&mut out, 1);
         out.push_str("optimization: ");

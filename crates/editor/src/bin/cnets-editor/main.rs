@@ -26,6 +26,7 @@ use cnets_editor::viewport::GpuTarget;
 
 mod bench;
 mod canopy;
+mod cplane;
 mod drag_net;
 mod drive;
 mod scenarios;

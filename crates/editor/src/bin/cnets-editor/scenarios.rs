@@ -393,9 +393,11 @@ pub fn script(name: &str) -> Option<Vec<Step>> {
         "wire-click" => wire_click(),
         "drag-net" => crate::drag_net::drag_net(),
         "rename-menu" => rename_menu(),
+        "cplane" => crate::cplane::cplane(),
         _ => return None,
     })
 }
 
 /// The names of the scripts.
-pub const NAMES: &str = "handles, draw, pick, folds, canopy, wire-click, drag-net, rename-menu";
+pub const NAMES: &str =
+    "handles, draw, pick, folds, canopy, wire-click, drag-net, rename-menu, cplane";
