@@ -14,6 +14,29 @@ except ImportError as e:  # pragma: no cover - reported to the Rust test
     sys.exit(2)
 
 
+def read_entities(layout):
+    """The LWPOLYLINE and TEXT entities of a layout or block: layer, closed flag, points; text."""
+    polylines = []
+    for e in layout.query("LWPOLYLINE"):
+        polylines.append(
+            {
+                "layer": e.dxf.layer,
+                "closed": bool(e.closed),
+                "points": [[p[0], p[1]] for p in e.get_points("xy")],
+            }
+        )
+    texts = []
+    for e in layout.query("TEXT"):
+        texts.append(
+            {
+                "layer": e.dxf.layer,
+                "text": e.dxf.text,
+                "insert": [e.dxf.insert[0], e.dxf.insert[1]],
+            }
+        )
+    return polylines, texts
+
+
 def main() -> None:
     if len(sys.argv) != 2:
         sys.stderr.write("usage: python3 scripts/read-dxf.py FILE.dxf\n")
@@ -25,24 +48,26 @@ def main() -> None:
         sys.exit(2)
     auditor = doc.audit()
     msp = doc.modelspace()
-    polylines = []
-    for e in msp.query("LWPOLYLINE"):
-        polylines.append(
+    polylines, texts = read_entities(msp)
+    # Named blocks (one per nested sheet) with their entities, and where model space inserts them.
+    blocks = []
+    for block in doc.blocks:
+        if block.name.startswith("*"):
+            continue
+        block_polylines, block_texts = read_entities(block)
+        base = block.block.dxf.base_point
+        blocks.append(
             {
-                "layer": e.dxf.layer,
-                "closed": bool(e.closed),
-                "points": [[p[0], p[1]] for p in e.get_points("xy")],
+                "name": block.name,
+                "base": [base[0], base[1]],
+                "lwpolylines": block_polylines,
+                "texts": block_texts,
             }
         )
-    texts = []
-    for e in msp.query("TEXT"):
-        texts.append(
-            {
-                "layer": e.dxf.layer,
-                "text": e.dxf.text,
-                "insert": [e.dxf.insert[0], e.dxf.insert[1]],
-            }
-        )
+    inserts = [
+        {"name": e.dxf.name, "insert": [e.dxf.insert[0], e.dxf.insert[1]], "layer": e.dxf.layer}
+        for e in msp.query("INSERT")
+    ]
     report = {
         "ezdxf": ezdxf.__version__,
         "dxfversion": doc.dxfversion,
@@ -57,6 +82,8 @@ def main() -> None:
         "entity_types": sorted({e.dxftype() for e in msp}),
         "lwpolylines": polylines,
         "texts": texts,
+        "blocks": blocks,
+        "inserts": inserts,
     }
     sys.stdout.write(json.dumps(report))
 

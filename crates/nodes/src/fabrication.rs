@@ -1,4 +1,5 @@
-//! Supplementary and fabrication tools: apex from widths, node axes, support layers, parallel transform, strips, unrolling.
+//! Supplementary and fabrication tools: apex from widths, node axes, support layers, parallel transform, strips, unrolling,
+//! nesting and the panel schedule.
 //!
 //! Thin wrappers over `cnets_geometry::fabrication` (formulas in `docs/fabrication.md`).
 
@@ -159,6 +160,40 @@ node! {
     }
 }
 
+/// The flat strips of `pq.unroll_strips` before any split: outlines, the largest length error,
+/// labels, label points and the panels. A quad grid arrives converted to a polygon mesh and is
+/// unrolled as the grid it still is.
+type Unrolled = (
+    Vec<Polyline>,
+    f64,
+    Vec<String>,
+    Vec<DVec3>,
+    Vec<fab::StripPanels>,
+);
+
+/// Unrolls the strips of a mesh (a quad grid or a polygon mesh made from one) into panels.
+fn unrolled_panels(
+    mesh: &PolygonMesh,
+    direction: StripDirection,
+    options: UnrollOptions,
+) -> Result<Unrolled, NodeError> {
+    if let Some(grid) = fab::grid_of(mesh) {
+        let u = fab::unroll_strips(&grid, direction, options).map_err(fab_err)?;
+        let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
+        let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
+        let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();
+        let panels = fab::grid_panels(&grid, &u);
+        Ok((outlines, u.max_length_error, labels, points, panels))
+    } else {
+        let u = fab::unroll_mesh_strips(mesh, direction, options).map_err(fab_err)?;
+        let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
+        let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
+        let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();
+        let panels = fab::mesh_panels(mesh, &u);
+        Ok((outlines, u.max_length_error, labels, points, panels))
+    }
+}
+
 node! {
     /// PQ Strip Unroll (paper Sec. 4.4.2): every strip laid flat quad by quad (an isometry per quad,
     /// each quad sharing its rung with the previous one), turned so its minimum-area rectangle is
@@ -222,23 +257,8 @@ node! {
             cnets_engine::budget::bytes_of(mesh.vertices.len() as u128, UNROLL_BYTES_PER_VERTEX),
             &format!("unrolling the strips of a mesh of {} vertices", mesh.vertices.len()),
         )?;
-        // A quad grid arrives converted to a polygon mesh: unrolled as the grid it still is.
         let (mut outlines, max_length_error, mut labels, mut points, mut panels) =
-            if let Some(grid) = fab::grid_of(&mesh) {
-                let u = fab::unroll_strips(&grid, direction, options).map_err(fab_err)?;
-                let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
-                let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
-                let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();
-                let panels = fab::grid_panels(&grid, &u);
-                (outlines, u.max_length_error, labels, points, panels)
-            } else {
-                let u = fab::unroll_mesh_strips(&mesh, direction, options).map_err(fab_err)?;
-                let outlines: Vec<Polyline> = u.strips.iter().map(|s| s.outline.clone()).collect();
-                let labels: Vec<String> = u.strips.iter().map(|s| s.label.clone()).collect();
-                let points: Vec<DVec3> = u.strips.iter().map(|s| s.label_point).collect();
-                let panels = fab::mesh_panels(&mesh, &u);
-                (outlines, u.max_length_error, labels, points, panels)
-            };
+            unrolled_panels(&mesh, direction, options)?;
         let mut joints = Vec::new();
         if let Some(max_length) = max_length {
             let p = fab::split_strips(&panels, max_length, spacing).map_err(fab_err)?;
@@ -328,8 +348,9 @@ node! {
     /// as it can, with `spacing` between outlines and from the sheet edges and `rotations` allowed
     /// orientations (360°/rotations apart). Collision detection by the irregular-nesting engine
     /// jagua-rs; a bottom-left fill that slides every outline into its neighbours' concavities. The
-    /// outlines are moved rigidly; sheet s lies at x = s · (sheet_width + gap). Feed `sheets` to the
-    /// SVG / DXF exports for one group of layers per sheet.
+    /// outlines are moved rigidly; sheet s lies at x = s · (sheet_width + gap). Fold lines and marks
+    /// drawn on the outlines (`pq.unroll_strips`) are moved with the outline they lie on. Feed
+    /// `sheets` to the SVG / DXF exports for one group of layers (SVG) or one block (DXF) per sheet.
     #[node(id = "fab.nest", category = "Fabrication")]
     pub fn nest[ctx](
         /// Closed flat outlines (their x and y are used).
@@ -344,6 +365,10 @@ node! {
         rotations: k::Integer = 4,
         /// One label per outline; empty: `P0`, `P1`, …
         labels: Option<k::List<k::Text>>,
+        /// Fold lines on the outlines (`pq.unroll_strips`), moved with the outline each lies on.
+        folds: Option<k::List<k::Polyline>>,
+        /// Marks on the outlines (`pq.unroll_strips`), moved with the outline each lies on.
+        marks: Option<k::List<k::Polyline>>,
     ) -> (
         /// The placed outlines, in input order.
         #[ui(layer = Fabrication)]
@@ -357,6 +382,12 @@ node! {
         /// A point inside each placed outline.
         #[ui(layer = Fabrication)]
         label_points: k::List<k::Point>,
+        /// The fold lines on the placed outlines, in input order (empty when none were given).
+        #[ui(layer = Fabrication)]
+        folds: k::List<k::Polyline>,
+        /// The marks on the placed outlines, in input order (empty when none were given).
+        #[ui(layer = Fabrication)]
+        marks: k::List<k::Polyline>,
     ) {
         if let Some(l) = &labels
             && l.len() != outlines.len()
@@ -378,7 +409,85 @@ node! {
         let labels = labels
             .unwrap_or_else(|| (0..outlines.len()).map(|k| format!("P{k}")).collect());
         let sheets: Vec<i64> = n.sheets.iter().map(|&s| s as i64).collect();
-        Ok((n.outlines, sheets, n.utilization, labels, n.label_points))
+        let carried = |lines: Option<Vec<std::sync::Arc<Polyline>>>| -> Result<Vec<Polyline>, NodeError> {
+            let lines: Vec<Polyline> = lines.unwrap_or_default().iter().map(|l| (**l).clone()).collect();
+            Ok(fab::carry(&lines, &flat, &n.outlines).map_err(fab_err)?.0)
+        };
+        let (folds, marks) = (carried(folds)?, carried(marks)?);
+        Ok((n.outlines, sheets, n.utilization, labels, n.label_points, folds, marks))
+    }
+}
+
+/// Bytes of the schedule per mesh vertex on top of the unrolling: a row holds its corners (24 each),
+/// edges (8 each), labels and field names (≈ 200 a row, counted, not measured).
+const SCHEDULE_BYTES_PER_VERTEX: usize = 300;
+
+/// One schedule row as a record (the CSV columns, in order).
+fn schedule_record(row: &fab::ScheduleRow) -> Record {
+    let fold = |a: Option<f64>| a.map_or(Value::Null, |a| Value::Number(a.to_degrees()));
+    Record::new()
+        .with("strip", Value::text(&row.label))
+        .with("piece", Value::text(&row.piece))
+        .with("panel", Value::Integer(row.panel as i64))
+        .with("face", Value::text(row.source.to_string()))
+        .with(
+            "corners",
+            Value::list(row.corners.iter().map(|&c| Value::Point(c)).collect()),
+        )
+        .with("area", row.area)
+        .with(
+            "edges",
+            Value::list(row.edges.iter().map(|&e| Value::Number(e)).collect()),
+        )
+        .with("fold_previous_deg", fold(row.fold_previous))
+        .with("fold_next_deg", fold(row.fold_next))
+        .with("planarity", row.planarity)
+}
+
+node! {
+    /// Fabrication Schedule: the panel schedule of the strips `pq.unroll_strips` cuts, one record per
+    /// panel, strip after strip: `strip` (its label, `D4`, `D9 (mirror of D2)`), `piece` (the part
+    /// it is cut on: `D4.2` with `max_length`, else the strip's label), `panel` (its number in the
+    /// strip), `face` (in the mesh), `corners` (3D), `area`, `edges` (edge e from corner e to
+    /// e + 1), `fold_previous_deg` / `fold_next_deg` (the signed fold angles to its neighbours in
+    /// the strip, degrees, mountain positive; empty at a strip's end) and `planarity`. Give it the
+    /// mesh, direction, tolerance and max_length given to `pq.unroll_strips` so the names agree;
+    /// `io.export_csv` writes the table for the quantity surveyor (docs/fabrication.md).
+    #[node(id = "fab.schedule", category = "Fabrication", name = "Panel schedule")]
+    pub fn schedule[ctx](
+        /// The mesh as given to `pq.unroll_strips`: a quad grid, or a polygon mesh made from one.
+        mesh: k::Mesh,
+        /// `"directrix"` or `"generatrix"`.
+        direction: k::Choice<crate::choices::Direction> = "directrix",
+        /// Largest accepted face planarity (libigl measure for quads).
+        tolerance: k::Number = 1e-6,
+        /// Longest piece, as given to `pq.unroll_strips` (names the pieces `D4.1`, `D4.2`, …);
+        /// empty: strips stay whole.
+        max_length: Option<k::Number>,
+    ) -> (
+        /// One record per panel (the columns listed above).
+        table: k::List<k::Record>,
+        /// The sum of the panels' areas.
+        total_area: k::Number,
+    ) {
+        ctx.reserve(
+            cnets_engine::budget::bytes_of(
+                mesh.vertices.len() as u128,
+                UNROLL_BYTES_PER_VERTEX + SCHEDULE_BYTES_PER_VERTEX,
+            ),
+            &format!("the panel schedule of a mesh of {} vertices", mesh.vertices.len()),
+        )?;
+        let options = UnrollOptions { tolerance, spacing: None };
+        let (_, _, _, _, panels) = unrolled_panels(&mesh, direction, options)?;
+        let rows = match max_length {
+            Some(max_length) => {
+                let pieces = fab::split_strips(&panels, max_length, None).map_err(fab_err)?;
+                fab::schedule(&panels, &pieces.pieces)
+            }
+            None => fab::schedule(&panels, &panels),
+        };
+        let total_area: f64 = rows.iter().map(|r| r.area).sum();
+        Ok((rows.iter().map(schedule_record).collect::<Vec<_>>(), total_area))
     }
 }
 
@@ -394,5 +503,6 @@ pub fn nodes() -> Vec<NodeDef> {
         unroll_strips(),
         support_strips(),
         nest(),
+        schedule(),
     ]
 }

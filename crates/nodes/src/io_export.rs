@@ -193,7 +193,8 @@ node! {
     /// `STRIP_<label>` (`SHEET<s>_STRIP_<label>` when nested on sheets), with its label as TEXT on
     /// the same layer. With `folds` or `marks` (from `pq.unroll_strips`) the workshop layers are
     /// used instead: outlines on `CUT`, labels on `TEXT`, fold lines on `FOLDS` each with its
-    /// signed angle as TEXT, marks on `MARKS` with their labels.
+    /// signed angle as TEXT, marks on `MARKS` with their labels. With `sheets` (`fab.nest`) each
+    /// sheet's outlines, labels, folds and marks are one block `SHEET_<s+1>`, inserted at its place.
     #[node(id = "io.export_dxf", category = "Export", flags(Export))]
     pub fn export_dxf[ctx](
         /// File name inside the output directory (`.dxf` is added when missing).
@@ -207,7 +208,7 @@ node! {
         label_points: Option<k::List<k::Point>>,
         /// Millimetres per model unit (1000: the model is in metres).
         scale: k::Number = 1000.0,
-        /// The sheet of each outline (`fab.nest`): one group / layer set per sheet.
+        /// The sheet of each outline (`fab.nest`): one block `SHEET_<s+1>` per sheet.
         sheets: Option<k::List<k::Integer>>,
         /// Fold lines (`pq.unroll_strips`): written on layer `FOLDS`; with folds or marks the
         /// outlines go on `CUT` and their labels on `TEXT`.
@@ -258,13 +259,14 @@ node! {
 node! {
     /// Writes the vertices of points, polylines, lines and meshes as a CSV table
     /// `item,index,row,col,x,y,z` (row/col for quad-mesh vertices), numbers as the runner's JSON
-    /// writes them.
+    /// writes them. Records (a list of them, e.g. `fab.schedule`'s table) are written as a table
+    /// instead: a column per field, a line per record (a point as `x y z`, a list joined by `; `).
     #[node(id = "io.export_csv", category = "Export", flags(Export))]
     pub fn export_csv[ctx](
         /// File name inside the output directory (`.csv` is added when missing).
         #[ui(widget = OutputName)]
         name: k::Text = "vertices.csv",
-        /// The geometry whose vertices are listed (passed whole, lists included).
+        /// The geometry whose vertices are listed (passed whole, lists included), or records.
         value: k::Tree<k::Any>,
     ) -> (
         /// The written file.

@@ -178,7 +178,7 @@ fn without_labels_layers_are_numbered_and_scale_applies() {
 }
 
 #[test]
-fn the_same_input_gives_the_same_bytes_and_nested_sheets_are_layer_groups() {
+fn the_same_input_gives_the_same_bytes_and_nested_sheets_are_blocks() {
     let (outlines, labels, points) = unrolled();
     let n = outlines.as_list().unwrap().len();
     let sheets = Value::list((0..n).map(|k| Value::Integer((k % 2) as i64)).collect());
@@ -209,12 +209,29 @@ fn the_same_input_gives_the_same_bytes_and_nested_sheets_are_layer_groups() {
             let r: serde_json::Value = serde_json::from_str(&report).unwrap();
             assert_eq!(r["audit_errors"], 0);
             assert_eq!(r["audit_fixes"], 0, "{}", r["audit_messages"]);
-            for (k, poly) in r["lwpolylines"].as_array().unwrap().iter().enumerate() {
-                let layer = poly["layer"].as_str().unwrap();
-                assert!(
-                    layer.starts_with(&format!("SHEET{}_STRIP_", k % 2 + 1)),
-                    "{layer}"
-                );
+            // Model space holds one INSERT per sheet; each sheet's outlines are in its block,
+            // on the sheet's layers, inserted at the block's base point.
+            assert!(r["lwpolylines"].as_array().unwrap().is_empty());
+            let blocks = r["blocks"].as_array().unwrap();
+            let names: Vec<&str> = blocks.iter().map(|b| b["name"].as_str().unwrap()).collect();
+            assert_eq!(names, ["SHEET_1", "SHEET_2"]);
+            for (s, block) in blocks.iter().enumerate() {
+                let polys = block["lwpolylines"].as_array().unwrap();
+                assert_eq!(polys.len(), (n + 1 - s) / 2, "{}", block["name"]);
+                for poly in polys {
+                    let layer = poly["layer"].as_str().unwrap();
+                    assert!(
+                        layer.starts_with(&format!("SHEET{}_STRIP_", s + 1)),
+                        "{layer}"
+                    );
+                }
+                assert_eq!(block["texts"].as_array().unwrap().len(), polys.len());
+            }
+            let inserts = r["inserts"].as_array().unwrap();
+            assert_eq!(inserts.len(), 2);
+            for (i, b) in inserts.iter().zip(blocks) {
+                assert_eq!(i["name"], b["name"]);
+                assert_eq!(i["insert"], b["base"]);
             }
         }
         std::fs::remove_dir_all(&dir).unwrap();
@@ -456,4 +473,162 @@ fn the_full_workshop_export_passes_the_ezdxf_audit_on_its_layers() {
     // Coordinates in mm: the first fold line at 1000 × its model coordinates.
     let f0 = &on("lwpolylines", "FOLDS")[0]["points"];
     assert!((f0[0][0].as_f64().unwrap() - 1000.0 * folds[0].points[0].x).abs() < 1e-6);
+}
+
+/// Whether `p` is inside the closed polygon `poly` (even–odd rule).
+fn inside(p: [f64; 2], poly: &[[f64; 2]]) -> bool {
+    let mut odd = false;
+    for k in 0..poly.len() {
+        let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+        if (a[1] > p[1]) != (b[1] > p[1])
+            && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+        {
+            odd = !odd;
+        }
+    }
+    odd
+}
+
+fn points_of(poly: &serde_json::Value) -> Vec<[f64; 2]> {
+    poly["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()])
+        .collect()
+}
+
+#[test]
+fn nested_workshop_sheets_are_one_block_each_with_their_folds_and_marks() {
+    let net = cone_net(4, 14, false);
+    let station = cnets_geometry::Plane::from_normal(DVec3::new(5.0, 0.0, 0.0), DVec3::X).unwrap();
+    let ctx = NodeContext::default();
+    let unrolled = run(
+        &ctx,
+        "pq.unroll_strips",
+        &[
+            ("mesh", net.mesh.clone().into()),
+            ("stations", Value::list(vec![Value::Plane(station.into())])),
+        ],
+    )
+    .unwrap();
+    // Sheets a little longer than the longest strip and too low for two strips: one strip a sheet.
+    let (mut long, mut high) = (0.0f64, 0.0f64);
+    for o in polylines(get(&unrolled, "outlines")) {
+        let (lo, hi) = cnets_geometry::quad_grid::bounds_of(&o.points).unwrap();
+        long = long.max(hi.x - lo.x);
+        high = high.max(hi.y - lo.y);
+    }
+    let nested = run(
+        &ctx,
+        "fab.nest",
+        &[
+            ("outlines", get(&unrolled, "outlines").clone()),
+            ("labels", get(&unrolled, "labels").clone()),
+            ("sheet_width", Value::Number(1.05 * long)),
+            ("sheet_height", Value::Number(1.3 * high)),
+            ("folds", get(&unrolled, "folds").clone()),
+            ("marks", get(&unrolled, "marks").clone()),
+        ],
+    )
+    .unwrap();
+    let sheets: Vec<i64> = get(&nested, "sheets")
+        .as_list()
+        .unwrap()
+        .iter()
+        .map(|s| match s {
+            Value::Integer(s) => *s,
+            other => panic!("a sheet index, got {other:?}"),
+        })
+        .collect();
+    let sheet_count = *sheets.iter().max().unwrap() as usize + 1;
+    assert!(sheet_count >= 2, "{sheets:?}");
+    // The folds and marks moved with their strips: same lengths, each inside a placed outline.
+    let (before, after) = (
+        polylines(get(&unrolled, "folds")),
+        polylines(get(&nested, "folds")),
+    );
+    assert_eq!(before.len(), after.len());
+    for (a, b) in before.iter().zip(&after) {
+        let (la, lb) = (a.length(), b.length());
+        assert!((la - lb).abs() <= 1e-12 * la, "{la} vs {lb}");
+    }
+    let dir = scratch("dxf-nested-workshop");
+    let mut inputs = vec![
+        ("name", Value::text("sheets")),
+        ("sheets", get(&nested, "sheets").clone()),
+        ("fold_angles", get(&unrolled, "fold_angles").clone()),
+        ("mark_labels", get(&unrolled, "mark_labels").clone()),
+    ];
+    for port in ["outlines", "labels", "label_points", "folds", "marks"] {
+        inputs.push((port, get(&nested, port).clone()));
+    }
+    let out = run(&ctx_in(&dir), "io.export_dxf", &inputs).unwrap();
+    let r = ezdxf_report(&out);
+    assert_eq!(r["audit_errors"], 0, "ezdxf audit found errors");
+    assert_eq!(
+        r["audit_fixes"], 0,
+        "ezdxf repaired: {}",
+        r["audit_messages"]
+    );
+    let blocks = r["blocks"].as_array().unwrap();
+    let names: Vec<String> = blocks
+        .iter()
+        .map(|b| b["name"].as_str().unwrap().to_string())
+        .collect();
+    let expected: Vec<String> = (1..=sheet_count).map(|s| format!("SHEET_{s}")).collect();
+    assert_eq!(names, expected);
+    let inserts = r["inserts"].as_array().unwrap();
+    assert_eq!(inserts.len(), sheet_count);
+    let labels = texts(get(&nested, "labels"));
+    let (mut folds_seen, mut marks_seen) = (0, 0);
+    for (s, (block, insert)) in blocks.iter().zip(inserts).enumerate() {
+        assert_eq!(insert["name"], block["name"]);
+        assert_eq!(insert["insert"], block["base"], "inserted at its own place");
+        let on = |kind: &str, layer: &str| -> Vec<serde_json::Value> {
+            block[kind]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|e| e["layer"] == layer)
+                .cloned()
+                .collect()
+        };
+        // This sheet's outlines, closed on CUT, with their labels on TEXT.
+        let here: Vec<String> = labels
+            .iter()
+            .zip(&sheets)
+            .filter(|(_, sh)| **sh == s as i64)
+            .map(|(l, _)| l.clone())
+            .collect();
+        let cut = on("lwpolylines", "CUT");
+        assert_eq!(cut.len(), here.len(), "SHEET_{}", s + 1);
+        assert!(cut.iter().all(|c| c["closed"] == true));
+        let text: Vec<String> = on("texts", "TEXT")
+            .iter()
+            .map(|t| t["text"].as_str().unwrap().to_string())
+            .collect();
+        assert_eq!(text, here);
+        // Every fold and mark of the block lies on one of the block's outlines, with its text.
+        let outlines: Vec<Vec<[f64; 2]>> = cut.iter().map(points_of).collect();
+        for (layer, seen) in [("FOLDS", &mut folds_seen), ("MARKS", &mut marks_seen)] {
+            let lines = on("lwpolylines", layer);
+            assert_eq!(on("texts", layer).len(), lines.len(), "{layer}");
+            for line in &lines {
+                let p = points_of(line);
+                let m = p.len().saturating_sub(1) / 2;
+                let mid = [(p[m][0] + p[m + 1][0]) / 2.0, (p[m][1] + p[m + 1][1]) / 2.0];
+                // Folds are rungs inside their strip, marks ticks and station lines inside it.
+                assert!(
+                    outlines.iter().any(|o| inside(mid, o)),
+                    "{layer} line at {mid:?} on no outline of SHEET_{}",
+                    s + 1
+                );
+            }
+            *seen += lines.len();
+        }
+    }
+    assert_eq!(folds_seen, after.len());
+    assert_eq!(marks_seen, polylines(get(&nested, "marks")).len());
+    std::fs::remove_dir_all(&dir).unwrap();
 }

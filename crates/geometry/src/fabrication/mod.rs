@@ -1,6 +1,6 @@
 //! Supplementary and fabrication tools (paper Sec. 4.4.2, construction notes §7): apex from widths,
 //! torsion-free node axes, conical and parallel support layers, support strips and beams, the parallel (Combescure) transform,
-//! strips and unrolling, and polygon-mesh tools (cut by a plane, mirror, join, weld, per-face
+//! strips and unrolling, the panel schedule, and polygon-mesh tools (cut by a plane, mirror, join, weld, per-face
 //! attributes, triangulation). Every formula is documented in its module and in
 //! `docs/fabrication.md`; errors are typed ([`FabricationError`]) and name the offending indices.
 
@@ -10,6 +10,7 @@
 pub mod apex_graph;
 pub mod axes;
 pub mod boundary;
+pub mod carry;
 pub mod collapsed;
 pub mod conical;
 pub mod cut;
@@ -27,6 +28,7 @@ pub mod panels;
 pub mod parallel_support;
 pub mod parallel_transform;
 pub mod polygon;
+pub mod schedule;
 pub mod split;
 pub mod strips;
 pub mod support_strips;
@@ -34,6 +36,7 @@ pub mod unroll;
 
 pub use apex_graph::{graph_to_apex, graph_to_normalized_apex};
 pub use axes::{directrix_for, torsion_free_axes};
+pub use carry::{carry, owner_of, rigid_motion};
 pub use collapsed::{COLLAPSED_EDGE, CollapsedEdge};
 pub use conical::conical_support;
 pub use cut::{Cut, cut_by_plane};
@@ -53,6 +56,7 @@ pub use panels::{Panel, PanelSource, StripPanels, grid_panels, mesh_panels};
 pub use parallel_support::parallel_support;
 pub use parallel_transform::{ParallelTransform, parallel_transform};
 pub use polygon::triangulate;
+pub use schedule::{ScheduleRow, polygon_area, schedule};
 pub use split::{Pieces, split_strips};
 pub use strips::{Strip, StripDirection, extract_strips, strips};
 pub use support_strips::{beam_strips, directrix_support_strips};

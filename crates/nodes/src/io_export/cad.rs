@@ -20,6 +20,12 @@
 //! `CUT`, their labels on `TEXT`, fold lines on `FOLDS` each with its signed angle (`+12.50`,
 //! degrees, mountain positive) as TEXT at its middle, marks on `MARKS` with their labels as TEXT at
 //! the mark's inner end; the texts run along their lines.
+//!
+//! With sheets (`fab.nest`) every sheet is one block `SHEET_<s+1>` holding that sheet's outlines,
+//! labels, fold lines and marks (each line on the sheet of the outline it lies on), its base point
+//! the lower-left corner of its contents, and the model space holds one INSERT of each block at its
+//! base point, so the drawing shows the nested layout and a CAM program can take one sheet (one
+//! block) at a time. The entities keep their layers inside the blocks.
 
 use std::collections::HashSet;
 use std::fmt::Write;
@@ -181,6 +187,20 @@ pub fn encode_dxf(sheet: &Sheet) -> Result<Vec<u8>, String> {
     let line_handles: Vec<(u64, u64)> = (0..sheet.folds.len() + sheet.marks.len())
         .map(|_| (w.next(), w.next()))
         .collect();
+    // One block per sheet, when the outlines are nested on sheets.
+    let line_sheets = sheet.line_sheets();
+    let sheet_blocks: Vec<SheetBlock> = sheet_contents(sheet, line_sheets.as_deref())
+        .into_iter()
+        .map(|(index, base)| SheetBlock {
+            name: format!("SHEET_{}", index + 1),
+            index,
+            base,
+            record: w.next(),
+            begin: w.next(),
+            end: w.next(),
+            insert: w.next(),
+        })
+        .collect();
     let seed = w.next;
 
     let (lo, hi) = sheet.bounds;
@@ -322,11 +342,13 @@ pub fn encode_dxf(sheet: &Sheet) -> Result<Vec<u8>, String> {
         "Standard",
     );
     w.group(0, "ENDTAB");
-    w.table("BLOCK_RECORD", handle::BLOCK_RECORD, 2);
-    for (h, name, layout) in [
+    w.table("BLOCK_RECORD", handle::BLOCK_RECORD, 2 + sheet_blocks.len());
+    let records = [
         (ms_record, "*Model_Space", ms_layout),
         (ps_record, "*Paper_Space", ps_layout),
-    ] {
+    ];
+    let sheet_records = sheet_blocks.iter().map(|b| (b.record, b.name.as_str(), 0));
+    for (h, name, layout) in records.into_iter().chain(sheet_records) {
         w.record(
             "BLOCK_RECORD",
             "AcDbBlockTableRecord",
@@ -371,47 +393,49 @@ pub fn encode_dxf(sheet: &Sheet) -> Result<Vec<u8>, String> {
         w.group(8, "0");
         w.group(100, "AcDbBlockEnd");
     }
+    let entities = Entities {
+        sheet,
+        layers: &layers,
+        outline_layers: &outline_layers,
+        entity_handles: &entity_handles,
+        line_handles: &line_handles,
+        height,
+    };
+    for b in &sheet_blocks {
+        w.block_begin(b.begin, b.record, &b.name, b.base);
+        let on_sheet = |s: Option<usize>| s == Some(b.index);
+        entities.write(
+            &mut w,
+            b.record,
+            |k| on_sheet(sheet.sheets.as_ref().map(|s| s[k])),
+            |k| on_sheet(line_sheets.as_ref().map(|s| s[k])),
+        );
+        w.group(0, "ENDBLK");
+        w.handle(5, b.end);
+        w.handle(330, b.record);
+        w.group(100, "AcDbEntity");
+        w.group(8, "0");
+        w.group(100, "AcDbBlockEnd");
+    }
     w.group(0, "ENDSEC");
 
     w.group(0, "SECTION");
     w.group(2, "ENTITIES");
-    for (k, ((pts, closed), (label, anchor))) in sheet
-        .paths
-        .iter()
-        .zip(sheet.labels.iter().zip(&sheet.anchors))
-        .enumerate()
-    {
-        let (poly, text) = entity_handles[k];
-        let (line_layer, text_layer) = outline_layers[k];
-        w.lwpolyline(poly, ms_record, &layers[line_layer].name, pts, *closed);
-        if !label.is_empty() {
-            w.text(
-                text,
-                ms_record,
-                &layers[text_layer].name,
-                (label, *anchor, height, 0.0),
-            );
-        }
+    if sheet_blocks.is_empty() {
+        entities.write(&mut w, ms_record, |_| true, |_| true);
     }
-    // Fold lines with their angles on FOLDS, marks with their labels on MARKS: the text at the
-    // line's middle (a fold) or its inner end (a tick), along the line, half the label height.
-    let lines = sheet
-        .folds
-        .iter()
-        .map(|l| (l, 1, true))
-        .chain(sheet.marks.iter().map(|l| (l, 2, false)));
-    for (((pts, label), layer, middle), &(poly, text)) in lines.zip(&line_handles) {
-        let layer = &layers[layer].name;
-        w.lwpolyline(poly, ms_record, layer, pts, false);
-        if !label.is_empty() {
-            let (a, b) = (pts[0], pts[pts.len() - 1]);
-            let at = if middle { (a + b) * 0.5 } else { b };
-            let mut angle = (b - a).y.atan2((b - a).x).to_degrees();
-            if !(-90.0..=90.0).contains(&angle) {
-                angle -= 180.0f64.copysign(angle);
-            }
-            w.text(text, ms_record, layer, (label, at, 0.5 * height, angle));
-        }
+    // Each sheet's block inserted at its base point: the drawing shows the nested layout.
+    for b in &sheet_blocks {
+        w.group(0, "INSERT");
+        w.handle(5, b.insert);
+        w.handle(330, ms_record);
+        w.group(100, "AcDbEntity");
+        w.group(8, "0");
+        w.group(100, "AcDbBlockReference");
+        w.group(2, &b.name);
+        w.real(10, b.base.x);
+        w.real(20, b.base.y);
+        w.real(30, 0.0);
     }
     w.group(0, "ENDSEC");
 
@@ -451,7 +475,132 @@ pub fn encode_dxf(sheet: &Sheet) -> Result<Vec<u8>, String> {
     Ok(w.out.into_bytes())
 }
 
+/// The block of one sheet (`fab.nest`): its name, the sheet index, its base point (the lower-left
+/// corner of what is on the sheet, mm) and its handles.
+struct SheetBlock {
+    name: String,
+    index: usize,
+    base: DVec2,
+    record: u64,
+    begin: u64,
+    end: u64,
+    insert: u64,
+}
+
+/// The sheets that hold something, in order, with the lower-left corner of their contents
+/// (outlines, fold lines and marks). Empty when the outlines are not nested on sheets.
+fn sheet_contents(sheet: &Sheet, line_sheets: Option<&[usize]>) -> Vec<(usize, DVec2)> {
+    let Some(sheets) = &sheet.sheets else {
+        return Vec::new();
+    };
+    let mut corners: std::collections::BTreeMap<usize, DVec2> = std::collections::BTreeMap::new();
+    let mut extend = |s: usize, points: &[DVec2]| {
+        let lo = points
+            .iter()
+            .fold(DVec2::splat(f64::INFINITY), |a, p| a.min(*p));
+        let c = corners.entry(s).or_insert(lo);
+        *c = c.min(lo);
+    };
+    for (k, (pts, _)) in sheet.paths.iter().enumerate() {
+        extend(sheets[k], pts);
+    }
+    if let Some(lines) = line_sheets {
+        for ((pts, _), &s) in sheet.folds.iter().chain(&sheet.marks).zip(lines) {
+            extend(s, pts);
+        }
+    }
+    corners.into_iter().collect()
+}
+
+/// What the entities of a drawing are written from: the sheet, the layers and the handles.
+struct Entities<'a> {
+    sheet: &'a Sheet,
+    layers: &'a [LayerEntry],
+    outline_layers: &'a [(usize, usize)],
+    entity_handles: &'a [(u64, u64)],
+    line_handles: &'a [(u64, u64)],
+    height: f64,
+}
+
+impl Entities<'_> {
+    /// Writes the outlines `keep_outline` keeps with their labels, then the fold lines and marks
+    /// (numbered folds first) `keep_line` keeps with their texts, owned by block record `owner`.
+    fn write(
+        &self,
+        w: &mut Writer,
+        owner: u64,
+        keep_outline: impl Fn(usize) -> bool,
+        keep_line: impl Fn(usize) -> bool,
+    ) {
+        let sheet = self.sheet;
+        let height = self.height;
+        for (k, ((pts, closed), (label, anchor))) in sheet
+            .paths
+            .iter()
+            .zip(sheet.labels.iter().zip(&sheet.anchors))
+            .enumerate()
+        {
+            if !keep_outline(k) {
+                continue;
+            }
+            let (poly, text) = self.entity_handles[k];
+            let (line_layer, text_layer) = self.outline_layers[k];
+            w.lwpolyline(poly, owner, &self.layers[line_layer].name, pts, *closed);
+            if !label.is_empty() {
+                w.text(
+                    text,
+                    owner,
+                    &self.layers[text_layer].name,
+                    (label, *anchor, height, 0.0),
+                );
+            }
+        }
+        // Fold lines with their angles on FOLDS, marks with their labels on MARKS: the text at the
+        // line's middle (a fold) or its inner end (a tick), along the line, half the label height.
+        let lines = sheet
+            .folds
+            .iter()
+            .map(|l| (l, 1, true))
+            .chain(sheet.marks.iter().map(|l| (l, 2, false)));
+        for (k, (((pts, label), layer, middle), &(poly, text))) in
+            lines.zip(self.line_handles).enumerate()
+        {
+            if !keep_line(k) {
+                continue;
+            }
+            let layer = &self.layers[layer].name;
+            w.lwpolyline(poly, owner, layer, pts, false);
+            if !label.is_empty() {
+                let (a, b) = (pts[0], pts[pts.len() - 1]);
+                let at = if middle { (a + b) * 0.5 } else { b };
+                let mut angle = (b - a).y.atan2((b - a).x).to_degrees();
+                if !(-90.0..=90.0).contains(&angle) {
+                    angle -= 180.0f64.copysign(angle);
+                }
+                w.text(text, owner, layer, (label, at, 0.5 * height, angle));
+            }
+        }
+    }
+}
+
 impl Writer {
+    /// The BLOCK entity that opens a block definition on layer 0 with its base point.
+    fn block_begin(&mut self, h: u64, record: u64, name: &str, base: DVec2) {
+        self.group(0, "BLOCK");
+        self.handle(5, h);
+        self.handle(330, record);
+        self.group(100, "AcDbEntity");
+        self.group(8, "0");
+        self.group(100, "AcDbBlockBegin");
+        self.group(2, name);
+        self.group(70, 0);
+        self.real(10, base.x);
+        self.real(20, base.y);
+        self.real(30, 0.0);
+        self.group(3, name);
+        self.group(1, "");
+    }
+
     /// An LWPOLYLINE entity.
     fn lwpolyline(&mut self, h: u64, owner: u64, layer: &str, pts: &[DVec2], closed: bool) {
         self.group(0, "LWPOLYLINE");

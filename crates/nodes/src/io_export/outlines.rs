@@ -185,6 +185,28 @@ impl Sheet {
         Ok(self)
     }
 
+    /// The sheet of every fold line, then of every mark: the sheet of the outline it lies on
+    /// ([`cnets_geometry::fabrication::owner_of`]). `None` when the outlines are not on sheets.
+    pub fn line_sheets(&self) -> Option<Vec<usize>> {
+        let sheets = self.sheets.as_ref()?;
+        let flat = |p: &[DVec2]| -> Vec<DVec3> { p.iter().map(|q| q.extend(0.0)).collect() };
+        let outlines: Vec<Polyline> = self
+            .paths
+            .iter()
+            .map(|(p, _)| Polyline::closed(flat(p)))
+            .collect();
+        Some(
+            self.folds
+                .iter()
+                .chain(&self.marks)
+                .map(|(l, _)| {
+                    cnets_geometry::fabrication::owner_of(&flat(l), &outlines)
+                        .map_or(0, |k| sheets[k])
+                })
+                .collect(),
+        )
+    }
+
     /// Whether the drawing has fold lines or marks: then it is written on the workshop layers
     /// `CUT`, `FOLDS`, `MARKS` and `TEXT`.
     pub fn is_workshop(&self) -> bool {
