@@ -555,6 +555,89 @@ fn pedestrian_bridge_has_planar_frames_and_exports_cutting_sheets() {
     std::fs::remove_dir_all(&out).unwrap();
 }
 
+/// What a Python checker script (`python3 scripts/<script> FILE`) prints, as JSON.
+fn python_report(script: &str, file: &std::path::Path) -> serde_json::Value {
+    let root = cnets_tests::root();
+    let out = std::process::Command::new("python3")
+        .arg(root.join("scripts").join(script))
+        .arg(file)
+        .output()
+        .expect("python3 runs (install the test tools with scripts/install-test-deps.sh)");
+    assert!(
+        out.status.success(),
+        "{script}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("a JSON report")
+}
+
+#[test]
+fn bridge_workshop_file_has_one_block_per_sheet_and_a_panel_schedule() {
+    let out = std::env::temp_dir().join(format!("cnets-bridge-workshop-{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let e = Evaluated::with_output(load("pedestrian-bridge"), &out);
+    let count = |node: &str, port: &str| e.output(node, port).as_list().unwrap().len();
+    let pieces = count("pieces", "labels");
+    let sheet_of: Vec<i64> = e
+        .output("nest", "sheets")
+        .as_list()
+        .unwrap()
+        .iter()
+        .map(|s| match s {
+            Value::Integer(s) => *s,
+            other => panic!("a sheet, got {other:?}"),
+        })
+        .collect();
+    let sheets = *sheet_of.iter().max().unwrap() as usize + 1;
+    let utilization = e.number("nest", "utilization");
+    eprintln!(
+        "bridge workshop: {pieces} pieces on {sheets} sheets ({:.1} %), {} folds, {} marks",
+        100.0 * utilization,
+        count("pieces", "fold_angles"),
+        count("pieces", "marks")
+    );
+    assert_eq!((pieces, sheets), (44, 16));
+    assert!((utilization - 0.632).abs() < 0.001, "{utilization}");
+    // The DXF: ezdxf's audit is clean, one block a sheet inserted at its place, every piece, fold
+    // and mark once over the blocks.
+    let r = python_report("read-dxf.py", &out.join("bridge-strips.dxf"));
+    assert_eq!(
+        (r["audit_errors"].as_u64(), r["audit_fixes"].as_u64()),
+        (Some(0), Some(0))
+    );
+    let blocks = r["blocks"].as_array().unwrap();
+    let names: Vec<&str> = blocks.iter().map(|b| b["name"].as_str().unwrap()).collect();
+    let expected: Vec<String> = (1..=sheets).map(|s| format!("SHEET_{s}")).collect();
+    assert_eq!(names, expected);
+    assert_eq!(r["inserts"].as_array().unwrap().len(), sheets);
+    let on = |layer: &str| -> usize {
+        blocks
+            .iter()
+            .flat_map(|b| b["lwpolylines"].as_array().unwrap())
+            .filter(|p| p["layer"] == layer)
+            .count()
+    };
+    assert_eq!(on("CUT"), pieces);
+    assert_eq!(on("FOLDS"), count("pieces", "folds"));
+    assert_eq!(on("MARKS"), count("pieces", "marks"));
+    // The schedule: one row per panel of the bridge, read by Python's csv module.
+    let rows = python_report("read-csv.py", &out.join("bridge-schedule.csv"));
+    let rows = rows.as_array().unwrap();
+    let faces = {
+        let g = meshes(e.output("bridge", "mesh"))[0];
+        (g.rows - 1) * (g.cols - 1)
+    };
+    assert_eq!(rows.len(), faces + 1);
+    let area: f64 = rows[1..]
+        .iter()
+        .map(|r| r[5].as_str().unwrap().parse::<f64>().unwrap())
+        .sum();
+    let total = e.number("schedule", "total_area");
+    eprintln!("bridge schedule: {faces} panels, {total:.3} m²");
+    assert!((area - total).abs() <= 1e-9 * total);
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
 /// The polylines of an output (a list, possibly nested).
 fn polylines(v: &Value) -> Vec<cnets_geometry::Polyline> {
     match v {
