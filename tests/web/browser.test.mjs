@@ -230,14 +230,42 @@ console.log(`the drag changed ${(changed * 100).toFixed(1)} % of the 3D view`);
 assert.ok(changed > 0.005, "the picture changed after the drag");
 noProblems("torus-monge");
 
-// 3. Autosave: the dragged (unsaved) torus is in the page's local storage, and the next page
-//    offers to restore it, as the desktop editor does after a crash.
+// 3. Autosave: the dragged (unsaved) torus is in the page's local storage. The restore offer
+//    belongs to the document it was saved from: another example opens without it (the torus's
+//    work kept aside, listed in File), and the torus's own page offers to restore it, as the
+//    desktop editor does after a crash.
 const autosaved = await torus.page.evaluate(() => localStorage.getItem("cnets.recovery.ron") ?? "");
 assert.ok(autosaved.includes("torus"), "the edited graph is autosaved in local storage");
 await torus.page.close();
-const offer = await open(`${base}/index.html?example=facade`, true);
-assert.ok(offer.state.restore_offered, "the next page offers to restore it");
-await offer.page.screenshot({ path: path.join(out, "3a-restore-offer.png") });
+const elsewhere = await open(`${base}/index.html?example=facade`, true);
+assert.ok(!elsewhere.state.restore_offered, "no other document's restore offer over the facade");
+assert.match(elsewhere.state.document, /facade/, `the facade is open: ${elsewhere.state.document}`);
+assert.match(elsewhere.state.kept_recovery ?? "", /torus-monge/,
+  `the torus's work is kept and listed: ${elsewhere.state.kept_recovery}`);
+figures.restore_elsewhere = { document: elsewhere.state.document, kept: elsewhere.state.kept_recovery };
+await elsewhere.page.screenshot({ path: path.join(out, "3a-no-offer-over-facade.png") });
+// File ▸ Restore kept work (through the test hook) opens it.
+await elsewhere.page.evaluate(() => { window.cnets_request = "restore_kept"; });
+let restoredKept = null;
+for (let k = 0; k < 100 && !restoredKept; k++) {
+  await elsewhere.page.mouse.move(700 + (k % 2), 850);
+  await elsewhere.page.waitForTimeout(100);
+  const s = await state(elsewhere.page);
+  if (/torus-monge/.test(s?.document ?? "") && s.kept_recovery === null) restoredKept = s;
+}
+assert.ok(restoredKept, `File ▸ Restore kept work opens the torus: ${JSON.stringify(await state(elsewhere.page))}`);
+// Autosaved again as the torus's own recovery (the next page offers it).
+let resaved = "";
+for (let k = 0; k < 100 && !resaved.includes("torus"); k++) {
+  await elsewhere.page.mouse.move(700 + (k % 2), 850);
+  await elsewhere.page.waitForTimeout(100);
+  resaved = await elsewhere.page.evaluate(() => localStorage.getItem("cnets.recovery.ron") ?? "");
+}
+assert.ok(resaved.includes("torus"), "the restored work is autosaved as its own recovery");
+await elsewhere.page.close();
+const offer = await open(`${base}/index.html?example=torus-monge`, true);
+assert.ok(offer.state.restore_offered, "the torus's own page offers to restore it");
+await offer.page.screenshot({ path: path.join(out, "3b-restore-offer.png") });
 await offer.page.close();
 noProblems("autosave");
 

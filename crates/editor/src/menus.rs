@@ -65,6 +65,8 @@ pub enum MenuAction {
     LibraryFolder,
     /// Put a share link of the graph in the address bar and the clipboard (web page only).
     CopyLink,
+    /// Open another document's unsaved work kept aside by the page (File ▸ Restore kept work).
+    RestoreKept,
     /// Close the editor.
     Quit,
     /// Show a named view of the 3D view.
@@ -119,6 +121,8 @@ pub struct MenuContext<'a> {
     pub exports: usize,
     /// The graph's named construction planes (listed with the world planes).
     pub cplanes: &'a [cnets_engine::file::NamedPlane],
+    /// Another document's unsaved work the page kept aside, by name (File ▸ Restore kept work).
+    pub kept_recovery: Option<&'a str>,
 }
 
 /// What the View menu shows of the 3D view.
@@ -217,6 +221,15 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
             });
             crate::probe::record(ui.ctx(), "Export", export.response.rect);
             ui.separator();
+            if let Some(kept) = mc.kept_recovery {
+                pick(
+                    ui,
+                    &format!("Restore kept work: {kept}"),
+                    "",
+                    MenuAction::RestoreKept,
+                    true,
+                );
+            }
             if mc.web {
                 pick(ui, "Copy link", "", MenuAction::CopyLink, true);
             } else {

@@ -231,6 +231,38 @@ impl std::fmt::Debug for Recovery {
 
 const TEXT: &str = "recovery.ron";
 const PATHS: &str = "recovery.path";
+/// The kept pair: another document's recovery, moved aside when the page was asked for a
+/// different document ([`Recovery::hold`]).
+const HELD_TEXT: &str = "held.ron";
+const HELD_PATHS: &str = "held.path";
+
+/// Reads a pair (text, paths) from `store`.
+fn read_pair(store: &dyn RecoveryStore, text: &str, paths: &str) -> Option<Recovered> {
+    let text = store.read(text)?;
+    let paths = store.read(paths).unwrap_or_default();
+    let mut lines = paths.lines().map(str::trim);
+    let mut next = || lines.next().filter(|p| !p.is_empty()).map(PathBuf::from);
+    let path = next();
+    let origin = next();
+    Some(Recovered { text, path, origin })
+}
+
+/// Moves the pair `from` to `to` in `store` (the text first; the source is removed only once
+/// both are written).
+fn move_pair(
+    store: &mut dyn RecoveryStore,
+    from: (&str, &str),
+    to: (&str, &str),
+) -> std::io::Result<()> {
+    let Some(r) = read_pair(store, from.0, from.1) else {
+        return Ok(());
+    };
+    store.write(to.0, &r.text)?;
+    store.write(to.1, &paths_text(r.path.as_deref(), r.origin.as_deref()))?;
+    store.remove(from.0);
+    store.remove(from.1);
+    Ok(())
+}
 
 /// The paths line of the recovery pair: the document's own path, then the example it copies.
 fn paths_text(path: Option<&Path>, origin: Option<&Path>) -> String {
@@ -299,13 +331,32 @@ impl Recovery {
 
     /// The recovery file left by a previous session, if any.
     pub fn find(&self) -> Option<Recovered> {
-        let text = self.store.read(TEXT)?;
-        let paths = self.store.read(PATHS).unwrap_or_default();
-        let mut lines = paths.lines().map(str::trim);
-        let mut next = || lines.next().filter(|p| !p.is_empty()).map(PathBuf::from);
-        let path = next();
-        let origin = next();
-        Some(Recovered { text, path, origin })
+        read_pair(self.store.as_ref(), TEXT, PATHS)
+    }
+
+    /// Keeps the recovery pair aside (the page was asked for another document): it is neither
+    /// offered over that document nor overwritten by its autosave; [`Recovery::held`] reads it
+    /// and File ▸ Restore kept work opens it. One pair is kept: the latest replaces an older one.
+    pub fn hold(&mut self) -> std::io::Result<()> {
+        move_pair(self.store.as_mut(), (TEXT, PATHS), (HELD_TEXT, HELD_PATHS))?;
+        self.saved_version = None;
+        Ok(())
+    }
+
+    /// The kept pair, if any.
+    pub fn held(&self) -> Option<Recovered> {
+        read_pair(self.store.as_ref(), HELD_TEXT, HELD_PATHS)
+    }
+
+    /// Moves the kept pair back as the recovery pair (its own document was asked for again).
+    pub fn unhold(&mut self) -> std::io::Result<()> {
+        move_pair(self.store.as_mut(), (HELD_TEXT, HELD_PATHS), (TEXT, PATHS))
+    }
+
+    /// Removes the kept pair (it was restored).
+    pub fn clear_held(&mut self) {
+        self.store.remove(HELD_TEXT);
+        self.store.remove(HELD_PATHS);
     }
 
     /// Writes the recovery file now (atomically).
@@ -485,6 +536,40 @@ mod tests {
         fn remove(&mut self, name: &str) {
             self.texts.remove(name);
         }
+    }
+
+    #[test]
+    fn another_documents_recovery_is_kept_aside_and_brought_back() {
+        let refuse = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let store = FlakyStore {
+            refuse: refuse.clone(),
+            texts: Default::default(),
+        };
+        let mut r = Recovery::with_store(Path::new("mem"), Box::new(store));
+        let torus = Path::new("graphs/torus-monge.ron");
+        r.write("torus text", None, Some(torus), 4).unwrap();
+        r.hold().unwrap();
+        assert!(r.find().is_none(), "not offered any more");
+        let kept = r.held().unwrap();
+        assert_eq!(
+            (kept.text.as_str(), kept.origin.as_deref()),
+            ("torus text", Some(torus))
+        );
+        // The other document's autosave does not touch the kept pair.
+        r.write("facade text", None, Some(Path::new("graphs/facade.ron")), 1)
+            .unwrap();
+        assert_eq!(r.held().unwrap().text, "torus text");
+        // A refused move keeps the pair where it was.
+        refuse.store(true, std::sync::atomic::Ordering::Relaxed);
+        assert!(r.unhold().is_err());
+        assert_eq!(r.held().unwrap().text, "torus text");
+        refuse.store(false, std::sync::atomic::Ordering::Relaxed);
+        r.unhold().unwrap();
+        assert_eq!(r.find().unwrap().text, "torus text");
+        assert!(r.held().is_none());
+        r.hold().unwrap();
+        r.clear_held();
+        assert!(r.held().is_none() && r.find().is_none());
     }
 
     #[test]

@@ -211,20 +211,25 @@ impl WebApp {
                     self.app.message = format!("cannot open the link: {e}");
                 }
             }
+            // A link is its own document: another one's unsaved work is kept, not offered.
+            self.app.offer_recovery_for(None);
             return;
         }
         let query = location.search().unwrap_or_default();
         let name = crate::link::example_of_query(&query).unwrap_or("torus-monge");
+        let path = PathBuf::from(format!("graphs/{name}.ron"));
         match crate::bundle::example(name) {
             Some(ron) => {
-                self.app
-                    .open_text(ron, &PathBuf::from(format!("graphs/{name}.ron")));
+                self.app.open_text(ron, &path);
             }
             None => {
                 self.app.message =
-                    format!("no example named '{name}': File ▸ Open example lists them")
+                    format!("no example named '{name}': File › Open example lists them")
             }
         }
+        // The restore offer belongs to the document it was saved from: another example's
+        // unsaved work is kept aside (File ▸ Restore kept work), never offered over this one.
+        self.app.offer_recovery_for(Some(&path));
     }
 
     /// Files picked or dropped: a graph opens as the document; other files become readable by
@@ -434,6 +439,13 @@ impl WebApp {
             "restore_offered",
             JsValue::from_bool(self.app.restore_offered()),
         );
+        set(
+            "kept_recovery",
+            self.app
+                .kept_recovery()
+                .map_or(JsValue::NULL, JsValue::from_str),
+        );
+        set("document", JsValue::from_str(&self.app.doc.title()));
         set("message", self.app.message.clone().into());
         set(
             "vertices",
@@ -652,8 +664,8 @@ impl WebApp {
         }
     }
 
-    /// `window.cnets_request = "copy_link"`: the browser test runs File ▸ Copy link (egui menus
-    /// have no DOM to click).
+    /// `window.cnets_request = "copy_link"` (or `"restore_kept"`): the browser test runs File ▸
+    /// Copy link (File ▸ Restore kept work); egui menus have no DOM to click.
     fn test_request(&mut self) {
         let Some(window) = web_sys::window() else {
             return;
@@ -662,10 +674,13 @@ impl WebApp {
         let Ok(v) = js_sys::Reflect::get(&window, &key) else {
             return;
         };
-        if v.as_string().as_deref() == Some("copy_link") {
-            let _ = js_sys::Reflect::delete_property(&window, &key);
-            self.app.run(cnets_editor::menus::MenuAction::CopyLink);
-        }
+        let action = match v.as_string().as_deref() {
+            Some("copy_link") => cnets_editor::menus::MenuAction::CopyLink,
+            Some("restore_kept") => cnets_editor::menus::MenuAction::RestoreKept,
+            _ => return,
+        };
+        let _ = js_sys::Reflect::delete_property(&window, &key);
+        self.app.run(action);
     }
 }
 

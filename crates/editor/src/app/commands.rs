@@ -490,6 +490,7 @@ impl EditorApp {
                 self.dialog = Some(FileDialog::new(Purpose::LibraryFolder, &start));
             }
             MenuAction::Quit => self.request_close(),
+            MenuAction::RestoreKept => self.restore_kept(),
             MenuAction::CopyLink => {
                 self.message = "share links are made by the web page (cnets in the browser)".into()
             }

@@ -4,7 +4,7 @@
 use crate::document::GraphDocument;
 use crate::file_dialog::FileDialog;
 use crate::load_failure::LoadFailure;
-use crate::recovery::Recovery;
+use crate::recovery::{Recovered, Recovery};
 use crate::unsaved::Replace;
 use std::path::Path;
 use std::path::PathBuf;
@@ -64,6 +64,61 @@ impl EditorApp {
     pub fn set_recovery(&mut self, recovery: Recovery) {
         self.offer_restore = recovery.find();
         self.recovery = recovery;
+    }
+
+    /// Offers the recovery only with its own document: the web page calls this once it opened
+    /// what its address asks for (`opened`: an example's path; `None` for a shared link, which
+    /// is never offered another document's work). Another document's recovery is kept aside
+    /// (File ▸ Restore kept work), not offered over this one nor overwritten by its autosave; a
+    /// kept recovery of `opened` itself is brought back and offered.
+    pub fn offer_recovery_for(&mut self, opened: Option<&Path>) {
+        let identity = |r: &Recovered| r.path.clone().or_else(|| r.origin.clone());
+        let belongs = |r: &Recovered| opened.is_some() && identity(r).as_deref() == opened;
+        match &self.offer_restore {
+            Some(r) if !belongs(r) => {
+                self.offer_restore = None;
+                if let Err(e) = self.recovery.hold() {
+                    self.message =
+                        format!("the unsaved work of another page could not be kept: {e}");
+                }
+            }
+            Some(_) => {}
+            None => {
+                if self.recovery.held().is_some_and(|h| belongs(&h))
+                    && self.recovery.unhold().is_ok()
+                {
+                    self.offer_restore = self.recovery.find();
+                }
+            }
+        }
+        self.kept_recovery = self.recovery.held().map(|h| kept_label(&h));
+    }
+
+    /// What File ▸ Restore kept work names, when another document's recovery is kept.
+    pub fn kept_recovery(&self) -> Option<&str> {
+        self.kept_recovery.as_deref()
+    }
+
+    /// File ▸ Restore kept work: opens the kept recovery as the document (unsaved, as a restore
+    /// does). Refused while the document has unsaved changes (save or discard them first: their
+    /// own recovery would be replaced).
+    pub fn restore_kept(&mut self) {
+        if self.doc.is_dirty() {
+            self.message =
+                "save the open document first (File › Save): restoring kept work replaces it"
+                    .into();
+            return;
+        }
+        let Some(kept) = self.recovery.held() else {
+            self.kept_recovery = None;
+            return;
+        };
+        self.offer_restore = Some(kept);
+        self.restore();
+        if self.offer_restore.is_none() {
+            self.recovery.clear_held();
+            self.kept_recovery = None;
+        }
     }
 
     /// Declines the restore and removes the recovery file.
@@ -277,5 +332,19 @@ pub(super) fn user_folder(examples_dir: &Path) -> PathBuf {
         std::env::var_os("HOME").map_or(cwd, PathBuf::from)
     } else {
         cwd
+    }
+}
+
+/// How File ▸ Restore kept work names a kept recovery: its file, the example it copies, or
+/// "untitled".
+fn kept_label(r: &Recovered) -> String {
+    let name = |p: &Path| {
+        p.file_name()
+            .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())
+    };
+    match (&r.path, &r.origin) {
+        (Some(p), _) => name(p),
+        (None, Some(o)) => format!("untitled (copy of {})", name(o)),
+        (None, None) => "untitled".into(),
     }
 }

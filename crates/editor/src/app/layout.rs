@@ -57,6 +57,7 @@ impl EditorApp {
                     perspective_plane: self.viewport.perspective_plane,
                 },
                 cplanes: &self.doc.meta.cplanes,
+                kept_recovery: self.kept_recovery.as_deref(),
                 exports: self
                     .doc
                     .graph

@@ -147,6 +147,8 @@ pub struct EditorApp {
     awaiting_picture: Option<(u64, Instant)>,
     recovery: Recovery,
     offer_restore: Option<Recovered>,
+    /// What File ▸ Restore kept work names: another document's recovery kept aside (the page).
+    kept_recovery: Option<String>,
     /// A large file being read off the UI thread (`loading`).
     loading: Option<loading::Loading>,
     /// A document read elsewhere, waiting for the unsaved-changes question (`arrivals`).
@@ -289,6 +291,7 @@ impl EditorApp {
             awaiting_picture: None,
             recovery,
             offer_restore,
+            kept_recovery: None,
             loading: None,
             waiting: None,
             dialog: None,
