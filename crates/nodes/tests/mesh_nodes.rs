@@ -31,6 +31,8 @@ fn ports_are_documented_contracts() {
                 "spacing",
                 "rotations",
                 "labels",
+                "folds",
+                "marks",
             ],
             &[
                 "outlines",
@@ -38,7 +40,14 @@ fn ports_are_documented_contracts() {
                 "utilization",
                 "labels",
                 "label_points",
+                "folds",
+                "marks",
             ],
+        ),
+        (
+            "fab.schedule",
+            &["mesh", "direction", "tolerance", "max_length"],
+            &["table", "total_area"],
         ),
         ("cnets.subdivide_rows", &["mesh", "count"], &["mesh"]),
         (
