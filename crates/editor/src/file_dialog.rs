@@ -231,7 +231,13 @@ impl FileDialog {
                     }
                 });
             });
-        if !open { Outcome::Cancelled } else { outcome }
+        // Escape cancels, as the Cancel button does.
+        let escape = ctx.input(|i| i.key_pressed(egui::Key::Escape));
+        if !open || (escape && matches!(outcome, Outcome::Open)) {
+            Outcome::Cancelled
+        } else {
+            outcome
+        }
     }
 }
 

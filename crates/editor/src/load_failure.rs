@@ -49,7 +49,7 @@ impl LoadFailure {
     pub fn show(&mut self, ctx: &egui::Context) -> bool {
         let mut open = true;
         let name = self.path.display().to_string();
-        egui::Modal::new(egui::Id::new("cnets-load-failure")).show(ctx, |ui| {
+        let modal = egui::Modal::new(egui::Id::new("cnets-load-failure")).show(ctx, |ui| {
             ui.set_max_width(760.0);
             ui.heading(format!("Cannot open {name}"));
             ui.label(if self.kept_document {
@@ -110,7 +110,8 @@ impl LoadFailure {
                 }
             });
         });
-        open
+        // Escape (or a click beside it) closes it too: it only reports.
+        open && !modal.should_close()
     }
 }
 

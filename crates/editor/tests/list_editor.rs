@@ -495,3 +495,23 @@ fn a_list_of_polylines_is_edited_one_polyline_at_a_time() {
         "one undo step, undone exactly"
     );
 }
+
+/// Escape closes the list window, unless it ends a cell's edit (the window stays then).
+#[test]
+fn escape_closes_the_list_window_but_first_ends_a_cells_edit() {
+    let mut h = open("escape", write_graph("escape", SPLINE));
+    open_editor(&mut h, "curve", "points");
+    type_only(&mut h, "row 1 x", "7");
+    h.key_press(Key::Escape);
+    h.run_steps(3);
+    assert!(
+        h.state().list_editors.is_open("curve", "points"),
+        "the first Escape cancels the cell's edit"
+    );
+    h.key_press(Key::Escape);
+    h.run_steps(3);
+    assert!(
+        !h.state().list_editors.is_open("curve", "points"),
+        "the next closes the window"
+    );
+}

@@ -459,3 +459,63 @@ fn save_in_the_pages_question_downloads_and_goes_on() {
     assert_eq!(h.state().doc.graph.node_count(), 0, "the new graph");
     assert!(!h.state().doc.is_dirty());
 }
+
+/// Every dialog closes on Escape, with its safe answer: the load failure closes, the file dialog
+/// cancels, the unsaved-changes question keeps the document, and the restore offer keeps the
+/// work aside (File › Restore kept work opens it) instead of deleting it.
+#[test]
+fn escape_closes_every_dialog_with_its_safe_answer() {
+    let config = temp_config("escape-dialogs");
+    // Work left by a "previous session".
+    std::fs::write(config.join("recovery.ron"), DEFAULT_GRAPH).unwrap();
+    std::fs::write(config.join("recovery.path"), "\n\n").unwrap();
+    let mut h = harness_with("escape-dialogs", None, config.clone());
+    assert!(h.state().restore_offered(), "the restore offer is shown");
+    h.key_press(Key::Escape);
+    h.run_steps(3);
+    assert!(!h.state().restore_offered(), "Escape closes the offer");
+    assert!(
+        config.join("held.ron").is_file(),
+        "the work is kept aside, not deleted"
+    );
+    assert_eq!(h.state().kept_recovery(), Some("untitled"));
+    // The file dialog.
+    h.state_mut().run(MenuAction::Open);
+    h.run_steps(2);
+    assert!(h.state().dialog().is_some());
+    h.key_press(Key::Escape);
+    h.run_steps(3);
+    assert!(
+        h.state().dialog().is_none(),
+        "Escape cancels the file dialog"
+    );
+    // The unsaved-changes question keeps the document.
+    make_dirty(&mut h, 0.37);
+    let text = h.state().doc.to_ron();
+    h.state_mut().run(MenuAction::New);
+    h.run_steps(2);
+    assert!(
+        h.query_by_label("Don't save").is_some(),
+        "the question is shown"
+    );
+    h.key_press(Key::Escape);
+    h.run_steps(3);
+    assert!(h.query_by_label("Don't save").is_none());
+    assert_eq!(h.state().doc.to_ron(), text, "the document stays");
+    // A load failure's report.
+    h.state_mut().doc.mark_saved();
+    let bad = config.join("bad.ron");
+    std::fs::write(&bad, "(version: 1, nodes: {\"a\": (type: \"no.such\")})").unwrap();
+    h.state_mut().open(&bad);
+    h.run_steps(2);
+    assert!(h.state().load_failure.is_some());
+    h.key_press(Key::Escape);
+    h.run_steps(3);
+    assert!(h.state().load_failure.is_none(), "Escape closes the report");
+    // The kept work comes back from File › Restore kept work.
+    h.state_mut().run(MenuAction::RestoreKept);
+    h.run_steps(3);
+    assert!(h.state().doc.is_dirty(), "restored as unsaved work");
+    assert_eq!(h.state().kept_recovery(), None);
+    assert!(!config.join("held.ron").exists());
+}

@@ -88,7 +88,7 @@ impl EditorApp {
         );
         let mut choice = None;
         let in_browser = self.page.is_some();
-        egui::Modal::new(egui::Id::new("cnets-restore")).show(ctx, |ui| {
+        let modal = egui::Modal::new(egui::Id::new("cnets-restore")).show(ctx, |ui| {
             ui.heading("Restore unsaved work?");
             // In the browser there are no sessions to speak of: the page was closed or reloaded.
             ui.label(if in_browser {
@@ -114,6 +114,9 @@ impl EditorApp {
         match choice {
             Some(true) => self.restore(),
             Some(false) => self.discard_recovery(),
+            // Escape (or a click beside it) decides nothing: the work is kept aside, not
+            // deleted, and File › Restore kept work opens it later.
+            None if modal.should_close() => self.keep_recovery_for_later(),
             None => {}
         }
     }

@@ -63,6 +63,7 @@ impl EditorApp {
     /// storage) and offers to restore what a previous session left there.
     pub fn set_recovery(&mut self, recovery: Recovery) {
         self.offer_restore = recovery.find();
+        self.kept_recovery = recovery.held().map(|h| kept_label(&h));
         self.recovery = recovery;
     }
 
@@ -119,6 +120,19 @@ impl EditorApp {
             self.recovery.clear_held();
             self.kept_recovery = None;
         }
+    }
+
+    /// Closes the restore offer without deciding (Escape): the work is kept aside, listed as
+    /// File › Restore kept work, and not overwritten by this session's autosave.
+    pub fn keep_recovery_for_later(&mut self) {
+        self.offer_restore = None;
+        match self.recovery.hold() {
+            Ok(()) => {
+                self.message = "the unsaved work is kept: File › Restore kept work opens it".into()
+            }
+            Err(e) => self.message = format!("the unsaved work could not be kept aside: {e}"),
+        }
+        self.kept_recovery = self.recovery.held().map(|h| kept_label(&h));
     }
 
     /// Declines the restore and removes the recovery file.
@@ -337,7 +351,7 @@ pub(super) fn user_folder(examples_dir: &Path) -> PathBuf {
 
 /// How File ▸ Restore kept work names a kept recovery: its file, the example it copies, or
 /// "untitled".
-fn kept_label(r: &Recovered) -> String {
+pub(super) fn kept_label(r: &Recovered) -> String {
     let name = |p: &Path| {
         p.file_name()
             .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())

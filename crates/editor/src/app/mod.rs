@@ -225,6 +225,7 @@ impl EditorApp {
         #[cfg(not(target_arch = "wasm32"))]
         let recovery = recovery.in_background(options.wake.clone());
         let offer_restore = recovery.find();
+        let kept_recovery = recovery.held().map(|h| files::kept_label(&h));
         let message = String::new();
         let library_dirs = vec![settings.library_dir(), options.examples_dir.clone()];
         let torus = options.examples_dir.join("torus-monge.ron");
@@ -291,7 +292,7 @@ impl EditorApp {
             awaiting_picture: None,
             recovery,
             offer_restore,
-            kept_recovery: None,
+            kept_recovery,
             loading: None,
             waiting: None,
             dialog: None,

@@ -149,7 +149,7 @@ impl EditorApp {
             .map_or(p.node.as_str(), |n| n.label())
             .to_string();
         let mut answer = None;
-        egui::Modal::new(egui::Id::new("cnets-read-prompt")).show(ctx, |ui| {
+        let modal = egui::Modal::new(egui::Id::new("cnets-read-prompt")).show(ctx, |ui| {
             ui.set_max_width(460.0);
             ui.heading("Read a file outside the graph's folder?");
             ui.label(format!(
@@ -169,6 +169,10 @@ impl EditorApp {
                 }
             });
         });
+        // Escape (or a click beside it) is "Not now": nothing outside the folder is read.
+        if answer.is_none() && modal.should_close() {
+            answer = Some(false);
+        }
         if let Some(allow) = answer {
             self.answer_read_prompt(allow);
         }

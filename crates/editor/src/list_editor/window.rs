@@ -116,9 +116,15 @@ impl EditorWindow {
         requests: Vec<Request>,
     ) -> Shown {
         let id = self.id();
+        let layer = egui::LayerId::new(egui::Order::Middle, id);
         if std::mem::take(&mut self.raise) {
-            ctx.move_to_top(egui::LayerId::new(egui::Order::Middle, id));
+            ctx.move_to_top(layer);
         }
+        // Escape closes the topmost list window, unless it ends a cell's edit (a cell was being
+        // typed in when the frame began: the edit is cancelled, the window stays).
+        let escape = ctx.input(|i| i.key_pressed(egui::Key::Escape))
+            && self.grid.editing.is_none()
+            && ctx.memory(|m| m.areas().top_layer_id(egui::Order::Middle)) == Some(layer);
         let current = widgets::effective_value(node, k);
         let items = item_type(node, k);
         let parts = current.as_ref().and_then(parts);
@@ -162,7 +168,7 @@ impl EditorWindow {
         });
         Shown {
             value,
-            closed: !open,
+            closed: !open || escape,
             layer: response.map(|r| r.response.layer_id),
         }
     }
