@@ -16,6 +16,7 @@ use cnets_render::palette::{self, SequentialMap, ToleranceMap};
 use cnets_render::{Color, FaceColors, LineStyle, MeshStyle, PointStyle, Scene};
 use std::sync::Arc;
 
+use crate::beside;
 use crate::classes::{class_color, face_classes};
 use crate::distance::{
     DistanceFigures, DistanceReference, Measured, distance_reference, is_construction, measure,
@@ -179,6 +180,7 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
         distance_map: None,
         reference: None,
         skip_key: None,
+        flat: Vec::new(),
     };
     // Planarity colours need one range over all meshes: quad grids are collected first.
     let mut meshes: Vec<PendingGrid> = Vec::new();
@@ -281,6 +283,13 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
                 output: port.name.to_string(),
                 item: None,
             };
+            if layer == Layer::Unrolled {
+                // Drawn beside the design once the design is known.
+                if opts.shows(Layer::Unrolled) {
+                    b.flat.push((value.clone(), origin, b.look));
+                }
+                continue;
+            }
             b.collect(value, layer, &configurations, &origin, &mut meshes);
         }
     }
@@ -300,6 +309,7 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
     for (pending, planarity) in meshes.into_iter().zip(planarities) {
         b.add_quad_grid(pending, planarity);
     }
+    b.add_flat_beside();
     b.stats.legend = match opts.color_mode {
         _ if b.stats.faces == 0 || !opts.shows(Layer::Surfaces) => LegendInfo::None,
         ColorMode::Configuration if b.any_classes => LegendInfo::Classes(
@@ -359,6 +369,8 @@ struct Builder {
     reference: Option<DistanceReference>,
     /// The payload address of a mesh already drawn (the reference, drawn first): not drawn again.
     skip_key: Option<usize>,
+    /// The flat fabrication layer's outputs, drawn last, beside the design ([`crate::beside`]).
+    flat: Vec<(Value, Origin, Look)>,
 }
 
 /// Support layers are drawn translucent so the surface they support stays visible.
@@ -574,6 +586,25 @@ impl Builder {
             Value::Point(p) => self.add_points(&[*p], layer),
             _ => {}
         }
+    }
+
+    /// Draws the flat fabrication layer beside what is drawn so far (the design), flagged
+    /// [`cnets_render::FLAG_BESIDE`] so the design's size leaves it out.
+    fn add_flat_beside(&mut self) {
+        let flat = std::mem::take(&mut self.flat);
+        let Some(extent) = beside::bounds_of(flat.iter().map(|(v, _, _)| v)) else {
+            return;
+        };
+        let by = beside::offset_beside(self.scene.bounds(), extent);
+        let (segments, points) = (self.scene.segments().len(), self.scene.points().len());
+        let mut meshes = Vec::new();
+        for (value, origin, look) in flat {
+            self.look = look;
+            let moved = beside::translated(&value, by);
+            self.collect(&moved, Layer::Unrolled, &None, &origin, &mut meshes);
+        }
+        self.scene
+            .flag_since(segments, points, cnets_render::FLAG_BESIDE);
     }
 
     fn line_layer(&self, layer: Layer) -> (Layer, Color) {

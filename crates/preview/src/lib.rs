@@ -9,6 +9,7 @@
 //! are apices, segment sets named `…axes…` are torsion-free axes, anything named `…support…` is
 //! a support layer. Lists (from nodes run per item) are flattened.
 
+mod beside;
 mod build;
 mod classes;
 mod distance;
@@ -82,6 +83,63 @@ mod tests {
                 .map(|_| Value::list(labels.iter().map(Value::text).collect()))
                 .collect(),
         )
+    }
+
+    #[test]
+    fn the_flat_layer_is_drawn_beside_the_design_and_flagged_out_of_its_size() {
+        let mut g = cnets_engine::Graph::new(std::sync::Arc::new(cnets_nodes::registry()));
+        g.add_node("net", "param.list").unwrap();
+        g.set_value("net", "item_type", Value::text("any")).unwrap();
+        // A 4 × 6 sheet bent along its length: its strips unroll over its own plan.
+        let mut bent = grid(4, 6);
+        bent.vertices
+            .iter_mut()
+            .for_each(|p| p.z = 0.3 * (p.x - 2.5).powi(2));
+        g.set_value(
+            "net",
+            "values",
+            Value::list(vec![Value::from(bent.clone())]),
+        )
+        .unwrap();
+        g.add_node("flat", "pq.unroll_strips").unwrap();
+        g.connect("net", "values", "flat", "mesh").unwrap();
+        let mut eval = cnets_engine::Evaluator::new();
+        eval.evaluate_all(&g, &cnets_engine::NodeContext::new(None, None));
+        let mut opts = PreviewOptions::default();
+        opts.set(Layer::Unrolled, true);
+        let preview = build_preview(&g, &eval, &opts);
+        let scene = &preview.scene;
+        let beside: Vec<_> = scene
+            .segments()
+            .iter()
+            .filter(|s| s.flags & cnets_render::FLAG_BESIDE != 0)
+            .collect();
+        assert!(!beside.is_empty(), "the unrolled outlines are drawn");
+        let design_max_x = bent.vertices.iter().map(|p| p.x).fold(f64::MIN, f64::max) as f32;
+        assert!(
+            beside
+                .iter()
+                .all(|s| s.a[0] > design_max_x + 0.5 && s.b[0] > design_max_x + 0.5),
+            "every flat segment lies past the design's +X side"
+        );
+        // The rest (the net's edges) is the design: its box is the net's.
+        let design: Vec<_> = scene
+            .segments()
+            .iter()
+            .filter(|s| s.flags & cnets_render::FLAG_BESIDE == 0)
+            .flat_map(|s| [s.a[0], s.b[0]])
+            .collect();
+        let hi = design.iter().copied().fold(f32::MIN, f32::max);
+        assert!((hi - design_max_x).abs() < 1e-4, "{hi} vs {design_max_x}");
+        // Off (the default), nothing of it is drawn.
+        let plain = build_preview(&g, &eval, &PreviewOptions::default());
+        assert!(
+            plain
+                .scene
+                .segments()
+                .iter()
+                .all(|s| s.flags & cnets_render::FLAG_BESIDE == 0)
+        );
     }
 
     #[test]

@@ -124,8 +124,9 @@ pub use overlay::{LegendBlock, PanelRect, draw_legend};
 pub use palette::{Color, Legend, SequentialMap, ToleranceMap};
 pub use renderer::{COLOR_FORMAT, DEPTH_FORMAT, RendererOptions, SceneRenderer};
 pub use scene::{
-    Bounds, FACE_LAYER_BIAS, FaceColors, FaceVertex, LineStyle, MAX_DEPTH_LAYER, MeshInfo,
-    MeshStyle, PointInstance, PointShape, PointStyle, Scene, SceneParts, SceneStats, Segment,
+    Bounds, FACE_LAYER_BIAS, FLAG_BESIDE, FaceColors, FaceVertex, LineStyle, MAX_DEPTH_LAYER,
+    MeshInfo, MeshStyle, PointInstance, PointShape, PointStyle, Scene, SceneParts, SceneStats,
+    Segment,
 };
 /// The wgpu this crate is built against (30, the one egui-wgpu 0.36 uses).
 pub use wgpu;

@@ -21,6 +21,9 @@ use crate::palette::{self, Color};
 pub const FLAG_ON_TOP: u32 = 1;
 /// Bit of [`PointInstance::flags`]: draw a disc instead of a square.
 pub const FLAG_DISC: u32 = 2;
+/// Bit of [`Segment::flags`] / [`PointInstance::flags`]: drawn beside the design (the flat
+/// fabrication layer), not part of it: left out of the design's size (W × D × H). Drawn as usual.
+pub const FLAG_BESIDE: u32 = 4;
 
 /// One corner of a face as uploaded to the GPU.
 #[repr(C)]
@@ -475,6 +478,19 @@ impl Scene {
         self.points.clear();
         self.bounds = None;
         self.skipped = 0;
+    }
+
+    /// Sets `flag` on the segments and point markers added since there were `segments` and
+    /// `points` of them (e.g. [`FLAG_BESIDE`] on what one part of the preview drew).
+    pub fn flag_since(&mut self, segments: usize, points: usize, flag: u32) {
+        self.segments
+            .iter_mut()
+            .skip(segments)
+            .for_each(|s| s.flags |= flag);
+        self.points
+            .iter_mut()
+            .skip(points)
+            .for_each(|p| p.flags |= flag);
     }
 
     /// True when nothing would be drawn but the background.

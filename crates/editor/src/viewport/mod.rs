@@ -242,7 +242,8 @@ impl Default for Viewport {
     }
 }
 
-/// The box of a scene's surfaces and curves (point markers such as apices can lie far away).
+/// The box of a scene's surfaces and curves (point markers such as apices can lie far away; the
+/// flat fabrication layer drawn beside the design is not part of it).
 fn drawn_bounds(scene: &Scene) -> Option<Bounds> {
     let faces = scene
         .face_vertices()
@@ -251,6 +252,7 @@ fn drawn_bounds(scene: &Scene) -> Option<Bounds> {
     let lines = scene
         .segments()
         .iter()
+        .filter(|s| s.flags & cnets_render::FLAG_BESIDE == 0)
         .flat_map(|s| [glam::Vec3::from(s.a), glam::Vec3::from(s.b)]);
     Bounds::from_points(faces.chain(lines).filter(|p| p.is_finite()))
 }
