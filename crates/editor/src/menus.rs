@@ -81,6 +81,8 @@ pub enum MenuAction {
     ToggleGrid,
     /// Show or hide the size of the previewed geometry.
     ToggleDimensions,
+    /// Draw only the selected nodes' previews, or every previewed node again.
+    ToggleOnlySelected,
     /// Set the Perspective view's construction plane to a world plane.
     PerspectivePlane(CPlane),
     /// Set it to the graph's construction plane of this name.
@@ -136,6 +138,8 @@ pub struct ViewMenuState {
     pub grid: bool,
     /// The size of the geometry is shown.
     pub dimensions: bool,
+    /// Only the selected nodes' previews are drawn.
+    pub only_selected: bool,
     /// The Perspective view's construction plane.
     pub perspective_plane: CPlane,
 }
@@ -388,6 +392,13 @@ pub fn menu_bar(ui: &mut egui::Ui, mc: &MenuContext<'_>) -> Option<MenuAction> {
                 &check(mc.view.dimensions, "Size (W × D × H)"),
                 "",
                 MenuAction::ToggleDimensions,
+                true,
+            );
+            pick(
+                ui,
+                &check(mc.view.only_selected, "Preview only the selected"),
+                "",
+                MenuAction::ToggleOnlySelected,
                 true,
             );
             ui.separator();

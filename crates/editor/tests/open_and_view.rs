@@ -596,3 +596,47 @@ fn a_document_edited_while_a_large_file_is_read_is_not_replaced_without_asking()
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// View › Preview only the selected (Grasshopper's *Only draw selected*): with the construction
+/// selected only its net is drawn and counted; with nothing selected every previewed node again.
+#[test]
+fn preview_only_the_selected_draws_the_selected_nodes_alone() {
+    let mut h = harness("only-selected");
+    let drawn = |h: &Harness<'static, EditorApp>| {
+        let picks = h.state().viewport.picks().clone();
+        let mut nodes: Vec<String> = picks
+            .meshes
+            .iter()
+            .map(|m| m.node.clone())
+            .chain(picks.curves.iter().map(|c| c.node.clone()))
+            .collect();
+        nodes.sort();
+        nodes.dedup();
+        nodes
+    };
+    let all = drawn(&h);
+    assert!(
+        all.len() > 1 && all.contains(&"construct".to_string()),
+        "{all:?}"
+    );
+    let vertices = h.state().viewport.stats.vertices;
+    h.state_mut()
+        .run(cnets_editor::menus::MenuAction::ToggleOnlySelected);
+    h.state_mut().canvas.select(vec!["directrix".into()]);
+    settle(&mut h);
+    assert_eq!(drawn(&h), ["directrix"], "only the selected curve");
+    assert_eq!(h.state().viewport.stats.vertices, 0, "no mesh counted");
+    h.state_mut().canvas.select(vec!["construct".into()]);
+    settle(&mut h);
+    assert_eq!(drawn(&h), ["construct"]);
+    assert_eq!(h.state().viewport.stats.vertices, vertices);
+    // Nothing selected: every previewed node; the toggle off: the same.
+    h.state_mut().canvas.select(Vec::new());
+    settle(&mut h);
+    assert_eq!(drawn(&h), all);
+    h.state_mut()
+        .run(cnets_editor::menus::MenuAction::ToggleOnlySelected);
+    h.state_mut().canvas.select(vec!["construct".into()]);
+    settle(&mut h);
+    assert_eq!(drawn(&h), all, "the toggle off draws every previewed node");
+}

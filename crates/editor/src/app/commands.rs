@@ -505,6 +505,9 @@ impl EditorApp {
             MenuAction::ToggleDimensions => {
                 self.viewport.show_dimensions = !self.viewport.show_dimensions
             }
+            MenuAction::ToggleOnlySelected => {
+                self.viewport.only_selected = !self.viewport.only_selected
+            }
             MenuAction::PerspectivePlane(p) => {
                 self.viewport.set_perspective_plane(p, p.label());
             }

@@ -54,6 +54,7 @@ impl EditorApp {
                     snap: self.viewport.snap,
                     grid: self.viewport.show_grid,
                     dimensions: self.viewport.show_dimensions,
+                    only_selected: self.viewport.only_selected,
                     perspective_plane: self.viewport.perspective_plane,
                 },
                 cplanes: &self.doc.meta.cplanes,

@@ -139,7 +139,9 @@ pub struct EditorApp {
     /// vary from run to run).
     pub show_timings: bool,
     worker: Worker,
-    submitted: Option<(u64, u64, crate::preview::PreviewOptions)>,
+    /// What was sent to the worker last: the document's generation and version, the display
+    /// options and the nodes "Preview only the selected" draws (a hash; 0: all).
+    submitted: Option<(u64, u64, crate::preview::PreviewOptions, u64)>,
     /// The last graph sent to the worker, its generation and folder: a graph of a new
     /// generation takes over from it (the evaluator is kept).
     last_evaluated: Option<(u64, Graph, Option<PathBuf>)>,

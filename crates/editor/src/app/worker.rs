@@ -39,8 +39,20 @@ impl EditorApp {
         self.check_refused_reads();
     }
 
-    /// Sends the graph to the worker when it (or the display options) changed since the last
-    /// submission.
+    /// The nodes "Preview only the selected" draws, sorted: the canvas's selection (else its
+    /// focused node) when the toggle is on at the graph's top level; `None` draws every
+    /// previewed node (the toggle off, nothing selected, or inside an opened cluster).
+    fn previewed_only(&self) -> Option<Vec<String>> {
+        if !self.viewport.only_selected || self.doc.depth() > 0 {
+            return None;
+        }
+        let mut ids = self.canvas.targets();
+        ids.sort();
+        (!ids.is_empty()).then_some(ids)
+    }
+
+    /// Sends the graph to the worker when it (or the display options, or the nodes drawn)
+    /// changed since the last submission.
     pub fn submit_if_changed(&mut self) {
         // An optimization shows its best point live (≤ 10 pictures a second), then its result
         // until Accept or Revert; the document is submitted again afterwards.
@@ -56,10 +68,17 @@ impl EditorApp {
             }
             return;
         }
+        let only = self.previewed_only();
         let key = (
             self.doc.generation(),
             self.doc.version(),
             self.viewport.options,
+            only.as_ref().map_or(0, |ids| {
+                use std::hash::{Hash, Hasher};
+                let mut h = std::collections::hash_map::DefaultHasher::new();
+                ids.hash(&mut h);
+                h.finish() | 1
+            }),
         );
         if self.submitted == Some(key) {
             return;
@@ -81,8 +100,19 @@ impl EditorApp {
                 same_folder: previous_base == base,
             }));
         }
-        let graph = self.doc.eval_graph();
+        let mut graph = self.doc.eval_graph();
         self.last_evaluated = Some((generation, graph.clone(), base.clone()));
+        if let Some(ids) = &only {
+            // Not an edit: a preview flag changes what is drawn (and asked for), no stamp.
+            let hidden: Vec<String> = graph
+                .nodes()
+                .filter(|(_, n)| n.preview && !ids.contains(&n.id))
+                .map(|(_, n)| n.id.clone())
+                .collect();
+            for id in hidden {
+                let _ = graph.set_preview(&id, false);
+            }
+        }
         self.worker.set_allow_read(self.doc.allowed_reads.clone());
         self.worker.submit_view(
             graph,

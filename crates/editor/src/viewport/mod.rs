@@ -174,6 +174,9 @@ pub struct Viewport {
     pub show_grid: bool,
     /// The size of the previewed geometry is shown (W × D × H).
     pub show_dimensions: bool,
+    /// Only the selected nodes' previews are drawn (Grasshopper's *Only draw selected*; with
+    /// nothing selected, every previewed node).
+    pub only_selected: bool,
     /// The active tool.
     pub tool: Tool,
     /// Handle selection and drags.
@@ -223,6 +226,7 @@ impl Default for Viewport {
             snap: true,
             show_grid: true,
             show_dimensions: true,
+            only_selected: false,
             tool: Tool::Select,
             handles: HandleTool::default(),
             handle_list: Vec::new(),
