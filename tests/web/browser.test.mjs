@@ -732,6 +732,71 @@ for (const name of gallery) {
   await page.close();
 }
 
+// 14. Every screen: a laptop (1400 × 860) and a phone (390 × 844, touch) at device pixel ratios
+//     1, 2 and 3 (Chromium's emulated ratio, where the canvas's device-pixel box is not scaled:
+//     the page sets its backing store itself). The editor lays out by CSS size — the laptop gets
+//     the desktop layout, the phone the narrow one — drawn at the device's pixels, and on the
+//     phone a touch drag on a slider changes its value.
+{
+  const browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
+    headless: true,
+    args: ["--headless", "--no-sandbox", "--disable-quic", "--use-gl=angle", "--use-angle=swiftshader",
+      "--enable-unsafe-swiftshader", "--disable-gpu-watchdog"],
+  });
+  figures.screens = {};
+  for (const [device, width, height, touch] of [["laptop", 1400, 860, false], ["phone", 390, 844, true]]) {
+    for (const ratio of [1, 2, 3]) {
+      const ctx = await browser.newContext({
+        viewport: { width, height }, deviceScaleFactor: ratio, hasTouch: touch, isMobile: touch,
+      });
+      ctx.setDefaultTimeout(180_000);
+      const page = watch(await ctx.newPage());
+      await page.goto(`${base}/index.html?example=torus-monge`);
+      await until(page, `${device} at ${ratio}×`, (t) => t.first_picture_ms !== null && t.vertices > 0);
+      const s = await settled(page);
+      const backing = await page.evaluate(() => {
+        const c = document.getElementById("cnets");
+        return [c.width, c.height];
+      });
+      const what = `${device} ${width} × ${height} at ${ratio}×`;
+      assert.ok(Math.abs(s.screen[0] - width) <= 1 && Math.abs(s.screen[1] - height) <= 1,
+        `${what}: the layout is the CSS size, got ${s.screen}`);
+      assert.ok(Math.abs(backing[0] - width * ratio) <= 2 && Math.abs(backing[1] - height * ratio) <= 2,
+        `${what}: the canvas is drawn at the device's pixels, got ${backing}`);
+      assert.equal(s.pixels_per_point, ratio, `${what}: pixels a point`);
+      assert.equal(s.narrow, device === "phone", `${what}: the ${device === "phone" ? "narrow" : "desktop"} layout`);
+      const entry = { screen: s.screen, backing, narrow: s.narrow };
+      if (ratio === 2) await page.screenshot({ path: path.join(out, `14-${device}-at-2x.png`) });
+      if (touch && ratio === 2) {
+        const slider = pickSlider(s, true);
+        const [x0, y0, x1, y1] = slider.rail;
+        assert.ok(y1 <= height && x1 <= width, `${what}: the slider is on the screen: ${slider.rail}`);
+        const y = (y0 + y1) / 2;
+        const cdp = await ctx.newCDPSession(page);
+        const touchAt = (type, x) => cdp.send("Input.dispatchTouchEvent",
+          { type, touchPoints: type === "touchEnd" ? [] : [{ x, y }] });
+        const before = slider.valueOf(s);
+        const [from, to] = [x0 + (x1 - x0) * 0.2, x0 + (x1 - x0) * 0.8];
+        await touchAt("touchStart", from);
+        for (let k = 1; k <= 10; k++) {
+          await touchAt("touchMove", from + ((to - from) * k) / 10);
+          await page.waitForTimeout(30);
+        }
+        await touchAt("touchEnd", to);
+        const after = await until(page, `${what}: the slider's new value`, (t) => slider.valueOf(t) !== before, 20_000);
+        entry.touch_drag = { node: slider.node, before, after: slider.valueOf(after) };
+        console.log(`${what}: a touch drag moved ${slider.node} ${before} → ${slider.valueOf(after)}`);
+      }
+      figures.screens[`${device}@${ratio}`] = entry;
+      noProblems(what);
+      await ctx.close();
+    }
+  }
+  console.log(`screens: ${JSON.stringify(figures.screens)}`);
+  await browser.close();
+}
+
 await context.close();
 fs.rmSync(userData, { recursive: true, force: true });
 fs.writeFileSync(path.join(out, "figures.json"), JSON.stringify(figures, null, 2) + "\n");

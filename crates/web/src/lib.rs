@@ -18,6 +18,7 @@
 //! The native build of this crate is its tests: the links of every gallery graph, the messages
 //! and the worker's answers are checked here without a browser.
 
+pub mod backing;
 pub mod bundle;
 pub mod drag_service;
 pub mod link;

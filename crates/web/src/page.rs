@@ -435,6 +435,16 @@ impl WebApp {
             "narrow",
             JsValue::from_bool(cnets_editor::narrow::is_narrow(&self.ctx)),
         );
+        // The layout's size in points and the pixels a point (the page lays out by CSS size).
+        let screen = self.ctx.content_rect().size();
+        set(
+            "screen",
+            js_sys::Array::of2(&f64::from(screen.x).into(), &f64::from(screen.y).into()).into(),
+        );
+        set(
+            "pixels_per_point",
+            JsValue::from_f64(f64::from(self.ctx.pixels_per_point())),
+        );
         set(
             "restore_offered",
             JsValue::from_bool(self.app.restore_offered()),
@@ -690,6 +700,7 @@ impl eframe::App for WebApp {
         if !picked.is_empty() {
             self.opening.arrive(picked);
         }
+        crate::backing::keep_device_pixels(ui.ctx());
         // (`window.cnets_hold_opening = true`: the browser test keeps the notice up to picture it.)
         let due = if test_flag("cnets_hold_opening") {
             Vec::new()
