@@ -22,6 +22,10 @@ pub struct PreviewContents {
     pub polylines: Vec<Value>,
     /// One name per mesh, then one per polyline.
     pub names: Vec<String>,
+    /// One colour per face of every mesh, in order (linear RGB in [0, 1]): the node's preview
+    /// colour where it has one, else the face's planarity colour (as `io.export_gltf` colours a
+    /// mesh without colours).
+    pub colours: Vec<cnets_geometry::DVec3>,
     /// Per node, in drawing order: its name, meshes, faces and curves.
     pub per_node: Vec<NodeCount>,
 }
@@ -60,6 +64,41 @@ impl NodeCount {
         }
         format!("{}: {}", self.label, parts.join(", "))
     }
+}
+
+/// The planarity above which a face is drawn fully red (`io.export_gltf`'s default).
+const PLANARITY_LIMIT: f64 = 1e-3;
+
+/// An 8-bit sRGB component as linear light (glTF colours are linear).
+fn linear(c: u8) -> f64 {
+    let s = f64::from(c) / 255.0;
+    if s <= 0.04045 {
+        s / 12.92
+    } else {
+        ((s + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// The faces' colours of a drawn mesh: its node's preview colour (8-bit sRGB) on every face, else
+/// each face's planarity colour.
+fn face_colours(
+    geometry: &PickGeometry,
+    node_colour: Option<[u8; 3]>,
+) -> Vec<cnets_geometry::DVec3> {
+    use cnets_geometry::fabrication::face_attributes::{face_planarity, planarity_colour};
+    if let Some([r, g, b]) = node_colour {
+        let c = cnets_geometry::DVec3::new(linear(r), linear(g), linear(b));
+        return vec![c; geometry.face_count()];
+    }
+    let planarity = match geometry {
+        PickGeometry::Grid(g) => face_planarity(&cnets_geometry::PolygonMesh::from(&**g)),
+        PickGeometry::Mesh(m) => face_planarity(m),
+    }
+    .unwrap_or_else(|_| vec![0.0; geometry.face_count()]);
+    planarity
+        .into_iter()
+        .map(|v| planarity_colour(v, PLANARITY_LIMIT))
+        .collect()
 }
 
 /// The previewed meshes and curves of `picks`, named after their nodes in `graph`: a node's only
@@ -109,6 +148,8 @@ pub fn preview_contents(picks: &Picks, graph: &Graph) -> PreviewContents {
             PickGeometry::Grid(g) => Value::QuadMesh(g.clone()),
             PickGeometry::Mesh(p) => Value::Mesh(p.clone()),
         });
+        let node_colour = graph.node(&m.node).and_then(|n| n.color);
+        out.colours.extend(face_colours(&m.geometry, node_colour));
         out.names.push(name(&m.node, &m.output, m.item));
     }
     let mut curve_index: HashMap<(&str, &str), usize> = HashMap::new();
@@ -169,6 +210,14 @@ pub fn export_preview(
             .map_err(|e| format!("{}.{port}: {e}", def.id))
     };
     set(&mut g, "meshes", Value::list(contents.meshes.clone()))?;
+    // The GLB's materials take the nodes' preview colours (the OBJ has no colours).
+    if def.input_index("colours").is_some() && !contents.colours.is_empty() {
+        set(
+            &mut g,
+            "colours",
+            Value::list(contents.colours.iter().map(|&c| Value::Vector(c)).collect()),
+        )?;
+    }
     set(&mut g, "polylines", Value::list(contents.polylines.clone()))?;
     set(
         &mut g,
@@ -217,8 +266,8 @@ mod tests {
         let registry = Arc::new(cnets_nodes::registry());
         let text = include_str!("../../../graphs/editor-default.ron").replace(
             r#""planarity": ("#,
-            r#""wing_b": (type: "cnets.construct", name: "Wing B", inputs: {"apex": 0.9}),
-        "planarity": ("#,
+            r##""wing_b": (type: "cnets.construct", name: "Wing B", color: "#3a6ec8", inputs: {"apex": 0.9}),
+        "planarity": ("##,
         );
         let text = text.replace(
             r#""construct.mesh -> planarity.mesh","#,
@@ -277,6 +326,27 @@ mod tests {
         let json = std::str::from_utf8(&glb[20..20 + json_len]).unwrap();
         assert!(json.contains(r#""name":"Wing B""#) && json.contains(r#""name":"construct""#));
         assert!(!json.contains(r#""name":"mesh 0""#));
+        // Each mesh's material is named after its node; Wing B's base colour is its preview
+        // colour (#3a6ec8 as linear light), the other net (no colour) keeps its faces' colours.
+        let doc: serde_json::Value = serde_json::from_str(json).unwrap();
+        let materials = doc["materials"].as_array().unwrap();
+        let material = |name: &str| {
+            materials
+                .iter()
+                .find(|m| m["name"] == name)
+                .unwrap_or_else(|| panic!("a material named {name}: {materials:?}"))
+        };
+        let base: Vec<f64> = material("Wing B")["pbrMetallicRoughness"]["baseColorFactor"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        let expected = [linear(0x3a), linear(0x6e), linear(0xc8), 1.0];
+        for (got, want) in base.iter().zip(expected) {
+            assert!((got - want).abs() < 1e-6, "{base:?} vs {expected:?}");
+        }
+        assert!(material("construct").get("pbrMetallicRoughness").is_some());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

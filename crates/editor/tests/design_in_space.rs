@@ -511,3 +511,54 @@ fn a_box_selects_handles_arrows_nudge_them_and_the_inspector_takes_a_coordinate(
     let z = points_of(h.state(), "pts")[3].as_vec3().unwrap().z;
     assert_eq!(z, 1.75, "the inspector set z");
 }
+
+/// A selected cut shows its plane and the side it keeps: the side the normal points to, the
+/// other with `flip`; a wired plane is not drawn, nor a cut that is not selected.
+#[test]
+fn a_selected_cut_shows_its_plane_and_the_side_it_keeps() {
+    use cnets_editor::edit::Edit;
+    let mut h = harness_with("cut-plane", None, temp_config("cut-plane"));
+    let id = h
+        .state_mut()
+        .add_node("mesh.cut_by_plane", [900.0, 400.0])
+        .unwrap();
+    let plane = cnets_geometry::Plane::from_normal(DVec3::new(2.0, 0.0, 0.0), DVec3::X).unwrap();
+    assert!(h.state_mut().edit(Edit::SetValue {
+        node: id.clone(),
+        input: "plane".into(),
+        value: Value::Plane(std::sync::Arc::new(plane)),
+    }));
+    // Another node selected.
+    h.state_mut().canvas.select(vec!["construct".into()]);
+    settle(&mut h);
+    assert!(
+        h.state().viewport.cut_overlays().is_empty(),
+        "not selected: not drawn"
+    );
+    h.state_mut().canvas.select(vec![id.clone()]);
+    h.run_steps(3);
+    let cuts = h.state().viewport.cut_overlays().to_vec();
+    assert_eq!(cuts.len(), 1);
+    assert_eq!(cuts[0].origin, DVec3::new(2.0, 0.0, 0.0));
+    assert_eq!(cuts[0].kept, DVec3::X, "the side the normal points to");
+    // The picture, to look at: target/tmp/cut-plane.png.
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../target/tmp");
+    std::fs::create_dir_all(&dir).unwrap();
+    if let Ok(image) = h.render() {
+        image.save(dir.join("cut-plane.png")).unwrap();
+    }
+    assert!(h.state_mut().edit(Edit::SetValue {
+        node: id.clone(),
+        input: "flip".into(),
+        value: Value::Boolean(true),
+    }));
+    h.run_steps(3);
+    assert_eq!(
+        h.state().viewport.cut_overlays()[0].kept,
+        -DVec3::X,
+        "flip keeps the other side"
+    );
+    h.state_mut().canvas.select(vec!["construct".into()]);
+    h.run_steps(3);
+    assert!(h.state().viewport.cut_overlays().is_empty());
+}

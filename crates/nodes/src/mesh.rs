@@ -32,9 +32,11 @@ node! {
     pub fn cut_by_plane(
         /// The mesh (a quad grid converts).
         mesh: k::Mesh,
-        /// The cutting plane.
+        /// The cutting plane (the 3D view draws it, and the side kept, while the node is selected).
+        #[ui(role = CutPlane)]
         plane: k::Plane = Plane::XY,
         /// Keep the side opposite to the plane's normal (default: the side the normal points to).
+        #[ui(role = FlipsSide)]
         flip: k::Boolean = false,
     ) -> (
         /// The kept part.

@@ -22,6 +22,7 @@
 pub mod colors;
 pub mod cplane;
 pub mod cplane_make;
+pub mod cut_plane;
 pub mod distance;
 pub mod draw;
 pub mod gpu;
@@ -197,6 +198,8 @@ pub struct Viewport {
     pub spacing: Spacing,
     /// The legend's fold entry in the last frame (screen).
     pub fold_entry: Option<Rect>,
+    /// The cuts of the selected nodes drawn in the last frame (plane and kept side).
+    cut_overlays: Vec<cut_plane::CutOverlay>,
 }
 
 impl Default for Viewport {
@@ -242,6 +245,7 @@ impl Default for Viewport {
                 major: 5.0,
             },
             fold_entry: None,
+            cut_overlays: Vec::new(),
         }
     }
 }
@@ -328,6 +332,11 @@ impl Viewport {
     /// The box of the previewed surfaces and curves (W × D × H).
     pub fn bounds(&self) -> Option<Bounds> {
         self.bounds
+    }
+
+    /// The cuts of the selected nodes drawn in the last frame: their planes and kept sides.
+    pub fn cut_overlays(&self) -> &[cut_plane::CutOverlay] {
+        &self.cut_overlays
     }
 
     /// The handles shown in the last frame.
@@ -759,6 +768,13 @@ impl Viewport {
             .filter(|p| rect.contains(*p));
         self.handles
             .paint(&painter, &self.handle_list, &map, pointer);
+        // A selected cut's plane and the side it keeps, about half the design's size.
+        self.cut_overlays = cut_plane::selected_cuts(input.graph, input.selected);
+        let half = self
+            .bounds
+            .map_or(5.0, |b| 0.35 * f64::from((b.max - b.min).length()))
+            .max(0.5);
+        cut_plane::paint(&painter, &map, &self.cut_overlays, half);
         match &self.tool {
             Tool::Draw(d) => d.paint(&painter, &map, self.tool_point),
             Tool::Measure(m) => m.paint(&painter, &map, self.tool_point),

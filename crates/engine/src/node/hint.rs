@@ -104,6 +104,12 @@ pub enum Role {
     /// positive exactly when the face is (++)(++) (`cnets_geometry::conenet::margins`). The
     /// optimizer's `convex` constraint keeps them positive and counts the faces that are not.
     FaceMargins,
+    /// The plane of a cut that keeps one side of it: the side its normal points to, the other
+    /// when the node's [`Role::FlipsSide`] input is on. The 3D view draws it, with an arrow to
+    /// the kept side, while the node is selected.
+    CutPlane,
+    /// A boolean that makes the node's [`Role::CutPlane`] keep the side opposite its normal.
+    FlipsSide,
 }
 
 /// The fixed words a choice port accepts, and the rule that accepts a text (aliases and case

@@ -158,6 +158,34 @@ fn primitive(
     }
 }
 
+/// The one colour of every face of a mesh (components clamped to [0, 1]), if they share one.
+fn uniform_colour(colours: &[DVec3]) -> Option<DVec3> {
+    let first = colours.first()?.clamp(DVec3::ZERO, DVec3::ONE);
+    colours
+        .iter()
+        .all(|c| c.clamp(DVec3::ZERO, DVec3::ONE) == first)
+        .then_some(first)
+}
+
+/// A mesh's material: named after the mesh, double-sided, matte; its base colour the mesh's one
+/// colour, else white (the vertex colours then carry the faces' colours).
+fn surface_material(name: String, colour: Option<DVec3>) -> json::Material {
+    let c = colour.unwrap_or(DVec3::ONE);
+    json::Material {
+        name: Some(name),
+        double_sided: true,
+        pbr_metallic_roughness: json::material::PbrMetallicRoughness {
+            base_color_factor: json::material::PbrBaseColorFactor([
+                c.x as f32, c.y as f32, c.z as f32, 1.0,
+            ]),
+            metallic_factor: json::material::StrengthFactor(0.0),
+            roughness_factor: json::material::StrengthFactor(0.8),
+            ..Default::default()
+        },
+        ..Default::default()
+    }
+}
+
 /// Encodes the scene as a binary glTF file. Fails when there is nothing to export or a coordinate
 /// is not finite.
 pub fn encode_glb(scene: &GlbScene<'_>) -> Result<Vec<u8>, String> {
@@ -172,16 +200,6 @@ pub fn encode_glb(scene: &GlbScene<'_>) -> Result<Vec<u8>, String> {
         },
         bin: Vec::new(),
     };
-    let faces = b.root.push(json::Material {
-        name: Some("faces (vertex colours)".into()),
-        double_sided: true,
-        pbr_metallic_roughness: json::material::PbrMetallicRoughness {
-            metallic_factor: json::material::StrengthFactor(0.0),
-            roughness_factor: json::material::StrengthFactor(0.8),
-            ..Default::default()
-        },
-        ..Default::default()
-    });
     let ink = b.root.push(json::Material {
         name: Some("lines".into()),
         pbr_metallic_roughness: json::material::PbrMetallicRoughness {
@@ -200,6 +218,9 @@ pub fn encode_glb(scene: &GlbScene<'_>) -> Result<Vec<u8>, String> {
                 colours.len()
             ));
         }
+        // Each mesh has a material of its own, named after it: a mesh of one colour (a node's
+        // preview colour) has it as the material's base colour; several colours stay per vertex.
+        let uniform = uniform_colour(colours);
         let mut positions = Vec::new();
         let mut normals = Vec::new();
         let mut rgb = Vec::new();
@@ -240,18 +261,16 @@ pub fn encode_glb(scene: &GlbScene<'_>) -> Result<Vec<u8>, String> {
         }
         let pos = b.vec3(&positions, true);
         let nor = b.vec3(&normals, false);
-        let col = b.vec3(&rgb, false);
+        let mut attributes = vec![
+            (json::mesh::Semantic::Positions, pos),
+            (json::mesh::Semantic::Normals, nor),
+        ];
+        if uniform.is_none() {
+            attributes.push((json::mesh::Semantic::Colors(0), b.vec3(&rgb, false)));
+        }
         let idx = b.indices(&indices);
-        let prim = primitive(
-            vec![
-                (json::mesh::Semantic::Positions, pos),
-                (json::mesh::Semantic::Normals, nor),
-                (json::mesh::Semantic::Colors(0), col),
-            ],
-            Some(idx),
-            faces,
-            json::mesh::Mode::Triangles,
-        );
+        let material = b.root.push(surface_material(scene.names.mesh(k), uniform));
+        let prim = primitive(attributes, Some(idx), material, json::mesh::Mode::Triangles);
         children.push(b.node(scene.names.mesh(k), prim));
     }
     for (k, lines) in scene.lines.iter().enumerate() {
