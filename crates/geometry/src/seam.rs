@@ -72,9 +72,22 @@ impl Boundary {
         let mut vertices: Vec<u32> = edges.iter().flatten().copied().collect();
         vertices.sort_unstable();
         vertices.dedup();
+        // The polyline holds the boundary's vertices only (a 1000 × 1000 net: 4 000, not 10⁶).
+        let mut local = vec![u32::MAX; mesh.vertices.len()];
+        for (k, &v) in vertices.iter().enumerate() {
+            local[v as usize] = k as u32;
+        }
         let shape = ParryPolyline::new(
-            mesh.vertices.iter().map(|&p| to_parry(p)).collect(),
-            Some(edges.clone()),
+            vertices
+                .iter()
+                .map(|&v| to_parry(mesh.vertices[v as usize]))
+                .collect(),
+            Some(
+                edges
+                    .iter()
+                    .map(|&[a, b]| [local[a as usize], local[b as usize]])
+                    .collect(),
+            ),
         );
         Ok(Self {
             edges,
