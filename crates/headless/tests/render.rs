@@ -484,3 +484,80 @@ fn distance_colours_the_net_by_its_distance_to_the_reference() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The bounding box `(x0, y0, x1, y1)` of the pixels that are not the background (the first
+/// pixel's colour), leaving out the legend (the box of its white panel's pixels in the top-right quarter).
+fn drawn_box((w, h, pixels): &(u32, u32, Vec<u8>)) -> (u32, u32, u32, u32) {
+    let at = |x: u32, y: u32| {
+        let k = ((y * w + x) * 4) as usize;
+        [pixels[k], pixels[k + 1], pixels[k + 2]]
+    };
+    let background = at(0, 0);
+    let (mut legend, mut drawn) = ((u32::MAX, u32::MAX, 0, 0), (u32::MAX, u32::MAX, 0, 0));
+    let grow = |b: &mut (u32, u32, u32, u32), x: u32, y: u32| {
+        *b = (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y));
+    };
+    for y in 0..*h {
+        for x in 0..*w {
+            if x > w / 2 && y < h / 4 && at(x, y).iter().all(|&c| c >= 250) {
+                grow(&mut legend, x, y);
+            }
+        }
+    }
+    for y in 0..*h {
+        for x in 0..*w {
+            let in_legend =
+                (legend.0..=legend.2).contains(&x) && (legend.1..=legend.3).contains(&y);
+            let differs: u32 = at(x, y)
+                .iter()
+                .zip(background)
+                .map(|(a, b)| u32::from(a.abs_diff(b)))
+                .sum();
+            if !in_legend && differs > 30 {
+                grow(&mut drawn, x, y);
+            }
+        }
+    }
+    drawn
+}
+
+/// `--view side` frames the object centred. The pedestrian bridge is 30 m long and a few metres
+/// wide: seen from its end in perspective its near end is far larger than its far end, and the
+/// picture was framed with the bridge in the right half (its box's centre at x 960 of 1280).
+#[test]
+fn the_side_view_frames_the_object_centred() {
+    let dir = std::env::temp_dir().join(format!("cnets-render-side-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for graph in ["graphs/pedestrian-bridge.ron", "graphs/torus-monge.ron"] {
+        let out = dir.join("side.png");
+        let o = render(&[
+            graph,
+            "--png",
+            out.to_str().unwrap(),
+            "--size",
+            "1280x720",
+            "--view",
+            "side",
+            // The surfaces are what is framed (curves and markers may reach far beyond them).
+            "--hide",
+            "curves",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let image = read_png(&out);
+        let (x0, y0, x1, y1) = drawn_box(&image);
+        assert!(x0 < x1 && y0 < y1, "{graph}: something is drawn");
+        let centre = ((x0 + x1) as f64 / 2.0, (y0 + y1) as f64 / 2.0);
+        println!("{graph}: drawn box x {x0}..{x1}, y {y0}..{y1}, centre {centre:?} of (640, 360)");
+        // Centred to 2 % of the picture's size (a pixel's rounding and the edges' width).
+        assert!(
+            (centre.0 - 640.0).abs() < 0.02 * 1280.0 && (centre.1 - 360.0).abs() < 0.02 * 720.0,
+            "{graph}: the drawn box x {x0}..{x1}, y {y0}..{y1} is off-centre"
+        );
+        // Framed: the object spans most of the picture one way.
+        assert!(
+            (x1 - x0) as f64 > 0.7 * 1280.0 || (y1 - y0) as f64 > 0.7 * 720.0,
+            "{graph}: the drawn box x {x0}..{x1}, y {y0}..{y1} is small"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

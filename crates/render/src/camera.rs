@@ -374,48 +374,54 @@ impl Camera {
         let (tx, ty) = (hx.tan() * FIT_MARGIN, hy.tan() * FIT_MARGIN);
         let (right, up, back) = (self.right(), self.up(), self.back());
         let radius = b.radius();
-        let mut center = b.center();
-        let mut d = 0.0;
-        // A few rounds of: distance that fits every point around `center`, then shift `center` so
-        // the image of the points is centred. Converges quickly; the last round only sets distance.
-        let rounds = if recenter { 12 } else { 1 };
-        for round in 0..rounds {
-            // Point p at image coordinates (x, y), offset z towards the eye, is inside the view at
-            // distance d when |x| <= tx (d - z) and |y| <= ty (d - z).
-            d = 0.0f32;
-            let mut z_max = f32::NEG_INFINITY;
-            for p in points.iter().filter(|p| p.is_finite()) {
+        let center = b.center();
+        // The points in the camera's frame around the box centre: (x, y) across the image, z
+        // towards the eye. The eye sits at (ex, ey, d); a point is in view when
+        // |x - ex| <= tx (d - z) and |y - ey| <= ty (d - z).
+        let frame: Vec<Vec3> = points
+            .iter()
+            .filter(|p| p.is_finite())
+            .map(|p| {
                 let c = *p - center;
-                let (x, y, z) = (c.dot(right), c.dot(up), c.dot(back));
-                d = d.max(z + x.abs() / tx).max(z + y.abs() / ty);
-                z_max = z_max.max(z);
-            }
-            // Keep the near plane (a thousandth of d) well clear of the geometry.
-            d = d
-                .max(z_max + 0.05 * radius)
-                .max(radius * 0.05)
-                .max(MIN_DISTANCE);
-            if round + 1 == rounds {
-                break;
-            }
-            let (mut lo, mut hi) = (
-                glam::Vec2::splat(f32::INFINITY),
-                glam::Vec2::splat(f32::NEG_INFINITY),
-            );
-            for p in points.iter().filter(|p| p.is_finite()) {
-                let c = *p - center;
-                let depth = d - c.dot(back);
-                let ndc = glam::Vec2::new(c.dot(right) / (tx * depth), c.dot(up) / (ty * depth));
-                lo = lo.min(ndc);
-                hi = hi.max(ndc);
-            }
-            let mid = (lo + hi) * 0.5;
-            if !mid.is_finite() || mid.length() < 1e-3 {
-                break;
-            }
-            center += (right * mid.x * tx + up * mid.y * ty) * d;
+                Vec3::new(c.dot(right), c.dot(up), c.dot(back))
+            })
+            .collect();
+        if frame.is_empty() {
+            self.target = center;
+            self.distance = (radius * 3.0).max(MIN_DISTANCE);
+            return;
         }
-        self.target = center;
+        // Each axis alone: the eye where the two outermost rays touch the points (its image
+        // spans the view exactly), at the depth `(hi - lo) / (2 t)` and across at `(hi + lo) / 2`.
+        let wedge = |across: &dyn Fn(&Vec3) -> f32, t: f32| {
+            let hi = frame
+                .iter()
+                .map(|p| across(p) + t * p.z)
+                .fold(f32::NEG_INFINITY, f32::max);
+            let lo = frame
+                .iter()
+                .map(|p| across(p) - t * p.z)
+                .fold(f32::INFINITY, f32::min);
+            (hi - lo) / (2.0 * t)
+        };
+        let z_max = frame.iter().map(|p| p.z).fold(f32::NEG_INFINITY, f32::max);
+        // The axis that needs the farther eye decides; the near plane (a thousandth of d) is
+        // kept well clear of the geometry.
+        let d = wedge(&|p| p.x, tx)
+            .max(wedge(&|p| p.y, ty))
+            .max(z_max + 0.05 * radius)
+            .max(radius * 0.05)
+            .max(MIN_DISTANCE);
+        let (ex, ey) = if recenter {
+            (
+                centred_across(&frame, d, |p| p.x),
+                centred_across(&frame, d, |p| p.y),
+            )
+        } else {
+            (0.0, 0.0)
+        };
+        // The target straight ahead of the eye, at the depth of the box's centre.
+        self.target = center + right * ex + up * ey;
         self.distance = d;
     }
 
@@ -530,4 +536,41 @@ fn safe_aspect(aspect: f32) -> f32 {
     } else {
         1.0
     }
+}
+
+/// Where across the image (along one axis of the camera's frame) the eye at depth `d` sees the
+/// points centred: the offset where the largest image coordinate of a point equals minus the
+/// smallest. Each point's image coordinate `(across - e) / (d - z)` falls as `e` grows, so the
+/// balance does too; bisection between the points' extremes (where it is ≥ 0 and ≤ 0) finds it
+/// whatever the depths — a long object seen end-on is centred as exactly as a flat one.
+fn centred_across(frame: &[Vec3], d: f32, across: impl Fn(&Vec3) -> f32) -> f32 {
+    let balance = |e: f32| {
+        let (lo, hi) = frame
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
+                let u = (across(p) - e) / (d - p.z).max(f32::MIN_POSITIVE);
+                (lo.min(u), hi.max(u))
+            });
+        hi + lo
+    };
+    let (mut lo, mut hi) = frame
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(across(p)), hi.max(across(p)))
+        });
+    if !(lo.is_finite() && hi.is_finite()) {
+        return 0.0;
+    }
+    for _ in 0..64 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if balance(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
 }

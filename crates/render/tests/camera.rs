@@ -99,6 +99,53 @@ fn fit_points_frames_points_tightly_and_centred() {
     }
 }
 
+/// A long object seen end-on in perspective (a bridge 30 m long and 4 m wide from its side): the
+/// near end's image is far larger than the far end's, and the framing still centres the image.
+#[test]
+fn a_long_object_seen_end_on_is_framed_centred() {
+    let points: Vec<Vec3> = (0..300)
+        .flat_map(|k| {
+            let x = k as f32 / 299.0 * 30.0;
+            let y = 2.0 * (x / 30.0 * std::f32::consts::TAU).sin() + 5.0;
+            [
+                Vec3::new(x, y - 2.0, 1.0),
+                Vec3::new(x, y + 2.0, 1.0),
+                Vec3::new(x, y, -0.5),
+            ]
+        })
+        .collect();
+    for (view, aspect) in [
+        (View::Side, 16.0 / 9.0),
+        (View::Front, 1.0),
+        (View::Iso, 0.6),
+    ] {
+        let mut camera = Camera::new(view);
+        camera.fit_points(&points, aspect);
+        let ndc: Vec<Vec3> = points
+            .iter()
+            .map(|&p| camera.project(p, aspect).unwrap())
+            .collect();
+        let (lo_x, hi_x) = ndc
+            .iter()
+            .fold((f32::MAX, f32::MIN), |(l, h), p| (l.min(p.x), h.max(p.x)));
+        let (lo_y, hi_y) = ndc
+            .iter()
+            .fold((f32::MAX, f32::MIN), |(l, h), p| (l.min(p.y), h.max(p.y)));
+        assert!(
+            lo_x >= -1.0 && hi_x <= 1.0 && lo_y >= -1.0 && hi_y <= 1.0,
+            "{view}: in view: x {lo_x}..{hi_x}, y {lo_y}..{hi_y}"
+        );
+        assert!(
+            (hi_x - lo_x).max(hi_y - lo_y) > 1.7,
+            "{view}: tight: x {lo_x}..{hi_x}, y {lo_y}..{hi_y}"
+        );
+        assert!(
+            (hi_x + lo_x).abs() < 0.01 && (hi_y + lo_y).abs() < 0.01,
+            "{view}: off-centre: x {lo_x}..{hi_x}, y {lo_y}..{hi_y}"
+        );
+    }
+}
+
 #[test]
 fn presets_orient_the_image_like_rhino() {
     let aspect = 1.0;
