@@ -77,10 +77,16 @@ class QuadMesh:
 
 class PolygonMesh:
     """A general polygon mesh: ``vertices`` a (V, 3) array, ``faces`` a list of vertex-index
-    lists."""
+    lists. A structure joined from several nets (``mesh.join``) names its parts: ``parts`` the
+    names, ``face_parts`` the part of every face (an index into ``parts``); both ``None`` for a
+    mesh of one net."""
 
-    def __init__(self, vertices: Any, faces: List[List[int]]) -> None:
+    def __init__(self, vertices: Any, faces: List[List[int]],
+                 parts: Optional[List[str]] = None,
+                 face_parts: Optional[List[int]] = None) -> None:
         self.vertices = _point_array(vertices, "vertices", 2)
+        self.parts = None if parts is None else [str(p) for p in parts]
+        self.face_parts = None if face_parts is None else [_index(i) for i in face_parts]
         try:
             self.faces = [[_index(i) for i in f] for f in faces]
         except (TypeError, ValueError) as e:
@@ -91,6 +97,14 @@ class PolygonMesh:
             if len(f) < 3 or any(not 0 <= i < count for i in f):
                 raise _cnets.CnetsError(
                     f"faces[{k}]: a face needs 3 or more vertex indices in 0..{count - 1}, got {f}")
+        if (self.parts is None) != (self.face_parts is None):
+            raise _cnets.CnetsError("parts and face_parts go together: give both or neither")
+        if self.parts is not None and (
+                len(self.face_parts) != len(self.faces)
+                or any(not 0 <= p < len(self.parts) for p in self.face_parts)):
+            raise _cnets.CnetsError(
+                f"face_parts: one index into parts (0..{len(self.parts) - 1}) a face "
+                f"({len(self.faces)} faces), got {len(self.face_parts)}")
 
     def to_compas(self) -> Any:
         """A ``compas.datastructures.Mesh`` with these vertices (keys 0…V−1, the same doubles)

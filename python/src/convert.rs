@@ -244,11 +244,33 @@ impl In<'_> {
                         indices.push(i as u32);
                     }
                 }
-                Ok(Value::from(PolygonMesh {
+                let mut mesh = PolygonMesh {
                     vertices: vec3s(&data),
                     indices,
                     face_starts,
-                }))
+                    parts: Default::default(),
+                };
+                let names: Option<Vec<String>> = obj
+                    .getattr("parts")
+                    .ok()
+                    .filter(|p| !p.is_none())
+                    .map(|p| p.extract())
+                    .transpose()
+                    .map_err(|_| "parts must be a list of names".to_string())?;
+                if let Some(names) = names {
+                    let of_face: Vec<u32> = obj
+                        .getattr("face_parts")
+                        .and_then(|p| p.extract())
+                        .map_err(|_| "face_parts must be a list of part indices".to_string())?;
+                    mesh.parts = cnets_geometry::MeshParts { names, of_face };
+                    if !mesh.parts.fits(mesh.face_count()) {
+                        return Err(format!(
+                            "face_parts: one index into parts a face ({} faces)",
+                            mesh.face_count()
+                        ));
+                    }
+                }
+                Ok(Value::from(mesh))
             }
             _ => Err(format!(
                 "vertices: expected shape (N, M, 3) or (V, 3), got {shape:?}"
@@ -443,7 +465,16 @@ pub fn to_py<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, PyAny>>
                 let face = m.indices.get(start..end).unwrap_or_default();
                 faces.append(PyList::new(py, face)?)?;
             }
-            types(py, "PolygonMesh")?.call1((points_array(py, &m.vertices)?, faces))?
+            if m.parts.is_empty() {
+                types(py, "PolygonMesh")?.call1((points_array(py, &m.vertices)?, faces))?
+            } else {
+                types(py, "PolygonMesh")?.call1((
+                    points_array(py, &m.vertices)?,
+                    faces,
+                    m.parts.names.clone(),
+                    m.parts.of_face.clone(),
+                ))?
+            }
         }
         Value::Record(r) => {
             let d = PyDict::new(py);

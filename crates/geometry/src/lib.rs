@@ -10,6 +10,7 @@ pub mod error;
 pub mod fabrication;
 pub mod line;
 pub mod measure;
+pub mod mesh_parts;
 pub mod mesh_query;
 pub mod mesh_weld;
 pub mod objectives;
@@ -28,6 +29,7 @@ pub use conenet::{
 pub use error::GeometryError;
 pub use glam::DVec3;
 pub use line::Line;
+pub use mesh_parts::MeshParts;
 pub use plane::Plane;
 pub use polygon_mesh::PolygonMesh;
 pub use polyline::Polyline;

@@ -127,7 +127,8 @@ pub fn weld(mesh: &PolygonMesh, tolerance: f64) -> Result<PolygonMesh, GeometryE
         ..PolygonMesh::default()
     };
     let mut corners: Vec<u32> = Vec::new();
-    for face in mesh.faces() {
+    let mut sources = Vec::with_capacity(mesh.face_count());
+    for (k, face) in mesh.faces().enumerate() {
         corners.clear();
         for &v in face {
             let w = map[v as usize];
@@ -140,8 +141,10 @@ pub fn weld(mesh: &PolygonMesh, tolerance: f64) -> Result<PolygonMesh, GeometryE
         }
         if corners.len() >= 3 {
             welded.push_face(&corners)?;
+            sources.push(k as u32);
         }
     }
+    welded.parts = mesh.parts.for_faces(&sources);
     Ok(compact(&welded))
 }
 
@@ -167,6 +170,7 @@ pub fn compact(mesh: &PolygonMesh) -> PolygonMesh {
         vertices,
         indices: mesh.indices.iter().map(|&v| used[v as usize]).collect(),
         face_starts: mesh.face_starts.clone(),
+        parts: mesh.parts.clone(),
     }
 }
 

@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::{GeometryError, QuadGrid};
+use crate::{GeometryError, MeshParts, QuadGrid};
 
 /// A polygon mesh: shared vertices and faces given as vertex-index loops, stored flat.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -13,6 +13,8 @@ pub struct PolygonMesh {
     pub indices: Vec<u32>,
     /// Start of each face in `indices`; face k spans `face_starts[k]..face_starts[k + 1]` (or the end).
     pub face_starts: Vec<u32>,
+    /// The named parts the faces belong to (empty: one unnamed part); see [`MeshParts`].
+    pub parts: MeshParts,
 }
 
 impl PolygonMesh {
@@ -104,11 +106,23 @@ impl PolygonMesh {
                 });
             }
         }
+        if !self.parts.fits(self.face_count()) {
+            return Err(GeometryError::InvalidFace {
+                face: 0,
+                reason: format!(
+                    "the mesh's parts name {} faces of its {}",
+                    self.parts.of_face.len(),
+                    self.face_count()
+                ),
+            });
+        }
         Ok(())
     }
 
-    /// Appends all vertices and faces of `other`.
+    /// Appends all vertices and faces of `other`. Named parts are merged by name; when only one of
+    /// the two has parts, the other's faces join a part named `unnamed`.
     pub fn append(&mut self, other: &PolygonMesh) {
+        self.append_parts(&other.parts, other.face_count());
         let offset = self.vertices.len() as u32;
         let index_offset = self.indices.len() as u32;
         self.vertices.extend_from_slice(&other.vertices);
@@ -116,6 +130,42 @@ impl PolygonMesh {
             .extend(other.indices.iter().map(|&v| v + offset));
         self.face_starts
             .extend(other.face_starts.iter().map(|&s| s + index_offset));
+    }
+
+    /// Appends `other`'s `faces` faces to this mesh's parts (before the faces are appended).
+    fn append_parts(&mut self, other: &MeshParts, faces: usize) {
+        if self.parts.is_empty() && other.is_empty() {
+            return;
+        }
+        let own = self.face_count();
+        if self.parts.is_empty() && own > 0 {
+            self.parts = MeshParts::single("unnamed", own);
+        }
+        let index_of = |parts: &mut MeshParts, name: &str| -> u32 {
+            match parts.names.iter().position(|n| n == name) {
+                Some(k) => k as u32,
+                None => {
+                    parts.names.push(name.to_string());
+                    (parts.names.len() - 1) as u32
+                }
+            }
+        };
+        if other.is_empty() {
+            let k = index_of(&mut self.parts, "unnamed");
+            self.parts.of_face.extend(std::iter::repeat_n(k, faces));
+        } else {
+            let map: Vec<u32> = other
+                .names
+                .iter()
+                .map(|n| index_of(&mut self.parts, n))
+                .collect();
+            self.parts.of_face.extend(
+                other
+                    .of_face
+                    .iter()
+                    .map(|&p| map.get(p as usize).copied().unwrap_or(0)),
+            );
+        }
     }
 }
 
@@ -125,6 +175,7 @@ impl From<&QuadGrid> for PolygonMesh {
             vertices: grid.vertices.clone(),
             indices: Vec::with_capacity(grid.quad_count() * 4),
             face_starts: Vec::with_capacity(grid.quad_count()),
+            parts: MeshParts::default(),
         };
         for i in 0..grid.quad_rows() {
             for j in 0..grid.quad_cols() {

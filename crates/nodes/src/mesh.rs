@@ -5,6 +5,7 @@
 
 use cnets_engine::prelude::*;
 use cnets_geometry::fabrication as fab;
+use cnets_geometry::{MeshParts, PolygonMesh};
 
 use crate::fabrication::fab_err;
 
@@ -71,18 +72,49 @@ node! {
 
 node! {
     /// Joins meshes into one (vertices and faces appended in list order). With `weld`, vertices closer
-    /// than that distance are merged and faces that collapse are dropped.
+    /// than that distance are merged and faces that collapse are dropped. Each mesh becomes a named
+    /// part of the result, so figures, strip labels and GLB meshes say which net a face came from:
+    /// the name given in `names`, else the parts the mesh already has (a joined structure), else a
+    /// letter by its place in the list (`A`, `B`, … `Z`, `AA`, …).
     #[node(id = "mesh.join", category = "Mesh")]
     pub fn join(
         /// The meshes (quad grids convert).
         meshes: k::List<k::Mesh>,
         /// Weld distance in model units (≥ 0); empty: no welding.
         weld: Option<k::Number>,
+        /// A part name for each mesh, in list order (an empty text keeps the mesh's own parts or
+        /// letter); empty: letters.
+        names: Option<k::List<k::Text>>,
     ) -> (
         /// The joined mesh.
         mesh: k::Mesh,
     ) {
-        let refs: Vec<&PolygonMesh> = meshes.iter().map(|m| &**m).collect();
+        let names = names.unwrap_or_default();
+        if names.len() > meshes.len() {
+            return Err(format!(
+                "names: {} names for {} meshes (one name a mesh, in list order)",
+                names.len(),
+                meshes.len()
+            )
+            .into());
+        }
+        let named: Vec<PolygonMesh> = meshes
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let given = names.get(k).map(|n| n.trim()).filter(|n| !n.is_empty());
+                let mut part = (**m).clone();
+                match given {
+                    Some(name) => part.parts = MeshParts::single(name, m.face_count()),
+                    None if m.parts.is_empty() => {
+                        part.parts = MeshParts::single(part_letter(k), m.face_count())
+                    }
+                    None => {}
+                }
+                part
+            })
+            .collect();
+        let refs: Vec<&PolygonMesh> = named.iter().collect();
         let joined = fab::join(&refs).map_err(fab_err)?;
         Ok((match weld {
             Some(t) => fab::weld(&joined, t).map_err(fab_err)?,
@@ -91,7 +123,36 @@ node! {
     }
 }
 
+/// The letter naming the `k`-th joined mesh (0 → `A`, 25 → `Z`, 26 → `AA`), as spreadsheet
+/// columns are named.
+fn part_letter(mut k: usize) -> String {
+    let mut letters = Vec::new();
+    loop {
+        letters.push(b'A' + (k % 26) as u8);
+        if k < 26 {
+            break;
+        }
+        k = k / 26 - 1;
+    }
+    letters.reverse();
+    String::from_utf8(letters).unwrap_or_default()
+}
+
 /// Every node of this module.
 pub fn nodes() -> Vec<NodeDef> {
     vec![to_polygons(), cut_by_plane(), mirror(), join()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::part_letter;
+
+    #[test]
+    fn parts_are_lettered_as_spreadsheet_columns() {
+        let names: Vec<String> = [0, 1, 25, 26, 27, 51, 52, 701, 702]
+            .into_iter()
+            .map(part_letter)
+            .collect();
+        assert_eq!(names, ["A", "B", "Z", "AA", "AB", "AZ", "BA", "ZZ", "AAA"]);
+    }
 }

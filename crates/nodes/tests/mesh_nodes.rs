@@ -56,7 +56,7 @@ fn ports_are_documented_contracts() {
             &["mesh", "section"],
         ),
         ("mesh.mirror", &["mesh", "plane", "tolerance"], &["mesh"]),
-        ("mesh.join", &["meshes", "weld"], &["mesh"]),
+        ("mesh.join", &["meshes", "weld", "names"], &["mesh"]),
         (
             "analysis.face_planarity",
             &["mesh", "limit"],

@@ -11,7 +11,7 @@ use cnets_engine::value::Access;
 use cnets_engine::{Evaluator, Graph, Layer as HintLayer, PortDef, Value, ValueType};
 use cnets_geometry::conenet::quad_planarity;
 use cnets_geometry::fabrication::{FaceClass, face_planarity};
-use cnets_geometry::{DVec3, QuadGrid};
+use cnets_geometry::{DVec3, PolygonMesh, QuadGrid};
 use cnets_render::palette::{self, SequentialMap, ToleranceMap};
 use cnets_render::{Color, FaceColors, LineStyle, MeshStyle, PointStyle, Scene};
 use std::sync::Arc;
@@ -420,6 +420,29 @@ impl Builder {
         });
     }
 
+    /// Notes the figures of each named part of a joined mesh (`node.output: part`), so the figures
+    /// say which net a face came from.
+    fn note_parts(&mut self, origin: &Origin, mesh: &PolygonMesh, planarity: &[f64]) {
+        for (name, faces) in mesh.parts.names.iter().zip(mesh.parts.faces_of_each()) {
+            if faces.is_empty() {
+                continue;
+            }
+            let mut corners: Vec<u32> = faces
+                .iter()
+                .flat_map(|&f| mesh.face(f).iter().copied())
+                .collect();
+            corners.sort_unstable();
+            corners.dedup();
+            let part_planarity: Vec<f64> = faces.iter().map(|&f| planarity[f]).collect();
+            let part = Origin {
+                node: origin.node.clone(),
+                output: format!("{}: {name}", origin.output),
+                item: origin.item,
+            };
+            self.note_mesh(self.kind, &part, corners.len(), &part_planarity);
+        }
+    }
+
     /// Orders the meshes' figures (cone-nets, other meshes, the reference) and takes the headline
     /// planarity from the cone-nets, or without any from the other meshes: never the reference's.
     fn headline(&mut self) {
@@ -529,7 +552,11 @@ impl Builder {
                 // Every polygon mesh counts in the planarity figure and is coloured by it in that
                 // mode (an imported reference, a cut and mirrored net), not only quad grids.
                 let planarity = face_planarity(mesh).unwrap_or_default();
-                self.note_mesh(self.kind, origin, mesh.vertices.len(), &planarity);
+                if mesh.parts.is_empty() || planarity.len() != mesh.face_count() {
+                    self.note_mesh(self.kind, origin, mesh.vertices.len(), &planarity);
+                } else {
+                    self.note_parts(origin, mesh, &planarity);
+                }
                 if show {
                     let color = self.uniform_color(layer);
                     let colors: Option<Vec<Color>> = (self.opts.color_mode == ColorMode::Planarity

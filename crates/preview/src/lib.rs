@@ -17,6 +17,8 @@ mod distance;
 mod distance_tests;
 mod legend;
 mod options;
+#[cfg(test)]
+mod parts_tests;
 mod picks;
 
 pub use build::{

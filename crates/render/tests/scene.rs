@@ -198,6 +198,7 @@ fn wrong_colour_count_and_bad_geometry_are_errors() {
         vertices: vec![DVec3::ZERO; 3],
         indices: vec![0, 1, 7],
         face_starts: vec![0],
+        parts: Default::default(),
     };
     assert!(matches!(
         scene.add_polygon_mesh(&bad_mesh, FaceColors::default()),

@@ -47,6 +47,7 @@ pub(super) fn same(a: &Value, b: &Value) -> bool {
             Arc::ptr_eq(x, y)
                 || (x.indices == y.indices
                     && x.face_starts == y.face_starts
+                    && x.parts == y.parts
                     && same_points(&x.vertices, &y.vertices))
         }
         (List(x), List(y)) => Items::ptr_eq(x, y) || same_items(x, y),
@@ -177,6 +178,14 @@ fn hash_into(value: &Value, h: &mut FxHasher) {
             h.write_usize(m.face_starts.len());
             for &s in &m.face_starts {
                 h.write_u32(s);
+            }
+            h.write_usize(m.parts.names.len());
+            for name in &m.parts.names {
+                h.write(name.as_bytes());
+                h.write_u8(0xff);
+            }
+            for &p in &m.parts.of_face {
+                h.write_u32(p);
             }
         }
         List(items) => {

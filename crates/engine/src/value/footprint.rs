@@ -212,7 +212,9 @@ fn payload(v: &Value) -> Option<(usize, usize, u64)> {
         Value::QuadMesh(m) => of(m, m.vertices.capacity() * P),
         Value::Mesh(m) => of(
             m,
-            m.vertices.capacity() * P + (m.indices.capacity() + m.face_starts.capacity()) * 4,
+            m.vertices.capacity() * P
+                + (m.indices.capacity() + m.face_starts.capacity() + m.parts.of_face.capacity())
+                    * 4,
         ),
         _ => return None,
     })

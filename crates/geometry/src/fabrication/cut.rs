@@ -139,24 +139,25 @@ pub fn cut_by_plane(
         sources: Vec::new(),
     };
     let mut faces: Vec<Vec<u32>> = Vec::with_capacity(mesh.face_count());
+    // The mesh face every kept face came from (for the mesh's named parts).
+    let mut face_sources: Vec<u32> = Vec::with_capacity(mesh.face_count());
     let mut section = Vec::new();
-    for face in mesh.faces() {
+    for (k, face) in mesh.faces().enumerate() {
         let below = face.iter().any(|&v| d[v as usize] < 0.0);
         let above = face.iter().any(|&v| d[v as usize] > 0.0);
         if !below {
             faces.push(face.iter().map(|&v| b.keep(v)).collect());
-            continue;
+        } else if above {
+            split_face(face, &d, &mut b, normal, &mut faces, &mut section);
         }
-        if !above {
-            continue;
-        }
-        split_face(face, &d, &mut b, normal, &mut faces, &mut section);
+        face_sources.resize(faces.len(), k as u32);
     }
     // Drop repeated corners, faces with fewer than three, and unused vertices.
     let mut used = vec![false; b.out.len()];
     let mut result = PolygonMesh::new();
     let mut kept_faces = Vec::with_capacity(faces.len());
-    for mut f in faces {
+    let mut kept_sources = Vec::with_capacity(faces.len());
+    for (mut f, source) in faces.into_iter().zip(face_sources) {
         f.dedup();
         while f.len() > 1 && f.first() == f.last() {
             f.pop();
@@ -166,6 +167,7 @@ pub fn cut_by_plane(
                 used[v as usize] = true;
             }
             kept_faces.push(f);
+            kept_sources.push(source);
         }
     }
     let mut remap = vec![u32::MAX; b.out.len()];
@@ -180,6 +182,7 @@ pub fn cut_by_plane(
         let f: Vec<u32> = f.iter().map(|&v| remap[v as usize]).collect();
         result.push_face(&f)?;
     }
+    result.parts = mesh.parts.for_faces(&kept_sources);
     Ok(Cut {
         mesh: result,
         section,

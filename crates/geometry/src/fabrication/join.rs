@@ -45,7 +45,8 @@ pub fn weld(mesh: &PolygonMesh, tolerance: f64) -> Result<PolygonMesh, Fabricati
     let mut out = PolygonMesh::new();
     let mut remap = vec![u32::MAX; reps.len()];
     let mut faces = Vec::with_capacity(mesh.face_count());
-    for face in mesh.faces() {
+    let mut sources = Vec::with_capacity(mesh.face_count());
+    for (k, face) in mesh.faces().enumerate() {
         let mut f: Vec<u32> = face.iter().map(|&v| map[v as usize]).collect();
         f.dedup();
         while f.len() > 1 && f.first() == f.last() {
@@ -53,6 +54,7 @@ pub fn weld(mesh: &PolygonMesh, tolerance: f64) -> Result<PolygonMesh, Fabricati
         }
         if f.len() >= 3 {
             faces.push(f);
+            sources.push(k as u32);
         }
     }
     for f in &mut faces {
@@ -66,5 +68,6 @@ pub fn weld(mesh: &PolygonMesh, tolerance: f64) -> Result<PolygonMesh, Fabricati
     for f in faces {
         out.push_face(&f)?;
     }
+    out.parts = mesh.parts.for_faces(&sources);
     Ok(out)
 }

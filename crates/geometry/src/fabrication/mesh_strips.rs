@@ -73,6 +73,9 @@ pub struct MeshStrip {
     pub rungs: Vec<(u32, u32)>,
     /// Whether the last face is joined to the first (a wrapped strip, opened at that rung).
     pub closed: bool,
+    /// Its name: `D<n>` or `G<n>`, numbered within its part and prefixed by the part's name
+    /// (`wall-D3`) in a mesh of named parts ([`crate::MeshParts`]).
+    pub name: String,
 }
 
 /// The family of local edge `t` of a face of `n` corners with parity `p`.
@@ -146,6 +149,8 @@ pub fn mesh_strips(
             ),
         ));
     }
+    // The named part of every face: strips and edge families stay within one part (one net).
+    let part = |f: usize| mesh.parts.of_face.get(f).copied();
     let neighbour = |f: usize, t: usize| -> Option<(usize, usize)> {
         let face = faces[f];
         let key = edge_key(face[t], face[(t + 1) % face.len()]);
@@ -170,6 +175,9 @@ pub fn mesh_strips(
                 let Some((g, s)) = neighbour(f, t) else {
                     continue;
                 };
+                if part(g) != part(f) {
+                    continue;
+                }
                 let m = faces[g].len();
                 if family(m, s, 0) == Family::Cut {
                     continue;
@@ -216,6 +224,9 @@ pub fn mesh_strips(
                 .filter(|&t| family(n, t, p) == rung_family)
                 .filter_map(|t| {
                     let (g, s) = neighbour(f, t)?;
+                    if part(g) != part(f) {
+                        return None;
+                    }
                     // A mirror seam: strips end there, as they end at the cut.
                     let seam = mirror_pair(&mesh.vertices, face, t, faces[g], s, size);
                     (!seam).then_some((g, (face[t], face[(t + 1) % n])))
@@ -283,13 +294,28 @@ pub fn mesh_strips(
             faces: chain,
             rungs,
             closed,
+            name: String::new(),
         });
     }
     out.sort_by_key(|s| s.faces.iter().copied().min().unwrap_or(0));
+    let mut numbers = vec![0usize; mesh.parts.names.len().max(1)];
     for (k, s) in out.iter_mut().enumerate() {
         s.index = k;
+        let owner = part(s.faces[0]).unwrap_or(0) as usize;
+        let number = numbers[owner];
+        numbers[owner] += 1;
+        s.name = match mesh.parts.names.get(owner) {
+            Some(name) => format!("{}-{}{number}", label_word(name), direction.prefix()),
+            None => format!("{}{number}", direction.prefix()),
+        };
     }
     Ok(out)
+}
+
+/// A part's name as one word of a label (labels are split at white space for their short name):
+/// white space becomes `_`.
+fn label_word(name: &str) -> String {
+    name.split_whitespace().collect::<Vec<_>>().join("_")
 }
 
 /// One strip of a polygon mesh laid flat in the XY plane.
@@ -367,7 +393,7 @@ fn flatten(
         let degenerate = |reason: &str| FabricationError::DegenerateFace {
             what: "unroll",
             face: f,
-            reason: format!("mesh face {f} of strip {}: {reason}", strip.index),
+            reason: format!("mesh face {f} of strip {}: {reason}", strip.name),
         };
         let n = newell(&corners).ok_or_else(|| degenerate("it has no area"))?;
         // The rung this face is placed by, and where its ends already are.
@@ -442,7 +468,7 @@ fn flatten(
         return Err(FabricationError::DegenerateFace {
             what: "unroll",
             face: strip.faces[0],
-            reason: format!("strip {}: the unrolled strip overflows", strip.index),
+            reason: format!("strip {}: the unrolled strip overflows", strip.name),
         });
     }
     // The outline: directed boundary edges (counter-clockwise faces), shared rungs cancelled.
@@ -569,7 +595,6 @@ pub fn unroll_mesh_strips(
         .unwrap_or_else(|| layout::default_gap(&shapes));
     let maps = layout::stack(&mut shapes, gap);
     let to3 = |p: DVec2| DVec3::new(p.x, p.y, 0.0);
-    let prefix = direction.prefix();
     let mut strips = Vec::with_capacity(list.len());
     let (mut max_length_error, mut max_planarity) = (0.0f64, 0.0f64);
     for (((strip, flat), (shape, (angle, shift))), (mirror_of, copy_of)) in list
@@ -583,11 +608,11 @@ pub fn unroll_mesh_strips(
         let label_point = mid.iter().map(|p| moved(*p)).sum::<DVec3>() / mid.len() as f64;
         max_length_error = max_length_error.max(flat.max_length_error);
         max_planarity = max_planarity.max(flat.max_planarity);
-        let mut label = format!("{prefix}{}", strip.index);
+        let mut label = strip.name.clone();
         if let Some(a) = mirror_of {
-            label.push_str(&format!(" (mirror of {prefix}{a})"));
+            label.push_str(&format!(" (mirror of {})", list[a].name));
         } else if let Some(a) = copy_of {
-            label.push_str(&format!(" (copy of {prefix}{a})"));
+            label.push_str(&format!(" (copy of {})", list[a].name));
         }
         strips.push(UnrolledMeshStrip {
             index: strip.index,

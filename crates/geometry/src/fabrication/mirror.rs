@@ -49,15 +49,18 @@ pub fn mirror(
             out.push_vertex(*p - n * (2.0 * (*p - plane.origin).dot(n)))
         });
     }
+    let mut sources: Vec<u32> = (0..mesh.face_count() as u32).collect();
     for face in mesh.faces() {
         out.push_face(face)?;
     }
-    for face in mesh.faces() {
+    for (k, face) in mesh.faces().enumerate() {
         if face.iter().all(|&v| on[v as usize]) {
             continue;
         }
         let reversed: Vec<u32> = face.iter().rev().map(|&v| image[v as usize]).collect();
         out.push_face(&reversed)?;
+        sources.push(k as u32);
     }
+    out.parts = mesh.parts.for_faces(&sources);
     Ok(out)
 }

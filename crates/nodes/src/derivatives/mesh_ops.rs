@@ -173,7 +173,7 @@ fn join(args: &VjpArgs<'_>) -> VjpResult {
             "a welded join has no exact derivative (vertices merge)",
         ));
     }
-    Ok(vec![Some(args.cotangent(0)), None])
+    Ok(vec![Some(args.cotangent(0)), None, None])
 }
 
 /// The transform of `mesh.transform` and `curve.transform` (inputs 1–6).

@@ -120,6 +120,73 @@ impl Builder {
         })
     }
 
+    /// Writes faces `faces` of mesh `k` as one glTF node and mesh named `name`, with a material of
+    /// its own named after it (`None` when no face has area).
+    fn surface(
+        &mut self,
+        k: usize,
+        name: String,
+        mesh: &PolygonMesh,
+        colours: &[DVec3],
+        faces: &[usize],
+    ) -> Result<Option<json::Index<json::Node>>, String> {
+        // Each mesh has a material of its own, named after it: a mesh of one colour (a node's
+        // preview colour) has it as the material's base colour; several colours stay per vertex.
+        let uniform = uniform_colour(&faces.iter().map(|&f| colours[f]).collect::<Vec<_>>());
+        let mut positions = Vec::new();
+        let mut normals = Vec::new();
+        let mut rgb = Vec::new();
+        let mut indices = Vec::new();
+        let mut corners = Vec::new();
+        for &f in faces {
+            let face = mesh.face(f);
+            corners.clear();
+            corners.extend(face.iter().map(|&v| mesh.vertices[v as usize]));
+            if corners.iter().any(|p| !p.is_finite()) {
+                return Err(format!("mesh {k}, face {f} has a non-finite vertex"));
+            }
+            let Some(n) = newell(&corners) else {
+                continue; // no area: nothing to draw
+            };
+            let c = colours[f].clamp(DVec3::ZERO, DVec3::ONE);
+            let base = positions.len() as u32;
+            let tris: Vec<[usize; 3]> = triangulate(&corners)
+                .into_iter()
+                .filter(|t| {
+                    let (a, b2, c2) = (corners[t[0]], corners[t[1]], corners[t[2]]);
+                    (b2 - a).cross(c2 - a).length() > 0.0
+                })
+                .collect();
+            if tris.is_empty() {
+                continue;
+            }
+            for p in &corners {
+                positions.push(f32x3(*p));
+                normals.push(f32x3(n));
+                rgb.push(f32x3(c));
+            }
+            for t in tris {
+                indices.extend(t.map(|v| base + v as u32));
+            }
+        }
+        if indices.is_empty() {
+            return Ok(None);
+        }
+        let pos = self.vec3(&positions, true);
+        let nor = self.vec3(&normals, false);
+        let mut attributes = vec![
+            (json::mesh::Semantic::Positions, pos),
+            (json::mesh::Semantic::Normals, nor),
+        ];
+        if uniform.is_none() {
+            attributes.push((json::mesh::Semantic::Colors(0), self.vec3(&rgb, false)));
+        }
+        let idx = self.indices(&indices);
+        let material = self.root.push(surface_material(name.clone(), uniform));
+        let prim = primitive(attributes, Some(idx), material, json::mesh::Mode::Triangles);
+        Ok(Some(self.node(name, prim)))
+    }
+
     /// A mesh with one primitive, and a node showing it.
     fn node(&mut self, name: String, primitive: json::mesh::Primitive) -> json::Index<json::Node> {
         let mesh = self.root.push(json::Mesh {
@@ -218,60 +285,24 @@ pub fn encode_glb(scene: &GlbScene<'_>) -> Result<Vec<u8>, String> {
                 colours.len()
             ));
         }
-        // Each mesh has a material of its own, named after it: a mesh of one colour (a node's
-        // preview colour) has it as the material's base colour; several colours stay per vertex.
-        let uniform = uniform_colour(colours);
-        let mut positions = Vec::new();
-        let mut normals = Vec::new();
-        let mut rgb = Vec::new();
-        let mut indices = Vec::new();
-        let mut corners = Vec::new();
-        for (f, face) in mesh.faces().enumerate() {
-            corners.clear();
-            corners.extend(face.iter().map(|&v| mesh.vertices[v as usize]));
-            if corners.iter().any(|p| !p.is_finite()) {
-                return Err(format!("mesh {k}, face {f} has a non-finite vertex"));
-            }
-            let Some(n) = newell(&corners) else {
-                continue; // no area: nothing to draw
-            };
-            let c = colours[f].clamp(DVec3::ZERO, DVec3::ONE);
-            let base = positions.len() as u32;
-            let tris: Vec<[usize; 3]> = triangulate(&corners)
-                .into_iter()
-                .filter(|t| {
-                    let (a, b2, c2) = (corners[t[0]], corners[t[1]], corners[t[2]]);
-                    (b2 - a).cross(c2 - a).length() > 0.0
-                })
-                .collect();
-            if tris.is_empty() {
-                continue;
-            }
-            for p in &corners {
-                positions.push(f32x3(*p));
-                normals.push(f32x3(n));
-                rgb.push(f32x3(c));
-            }
-            for t in tris {
-                indices.extend(t.map(|v| base + v as u32));
+        // A joined structure is written as one glTF mesh a part (`structure: wall`), so a viewer
+        // lists the nets it was joined from.
+        let name = scene.names.mesh(k);
+        let groups: Vec<(String, Vec<usize>)> = if mesh.parts.is_empty() {
+            vec![(name, (0..mesh.face_count()).collect())]
+        } else {
+            mesh.parts
+                .names
+                .iter()
+                .zip(mesh.parts.faces_of_each())
+                .map(|(part, faces)| (format!("{name}: {part}"), faces))
+                .collect()
+        };
+        for (name, faces) in groups {
+            if let Some(child) = b.surface(k, name, mesh, colours, &faces)? {
+                children.push(child);
             }
         }
-        if indices.is_empty() {
-            continue;
-        }
-        let pos = b.vec3(&positions, true);
-        let nor = b.vec3(&normals, false);
-        let mut attributes = vec![
-            (json::mesh::Semantic::Positions, pos),
-            (json::mesh::Semantic::Normals, nor),
-        ];
-        if uniform.is_none() {
-            attributes.push((json::mesh::Semantic::Colors(0), b.vec3(&rgb, false)));
-        }
-        let idx = b.indices(&indices);
-        let material = b.root.push(surface_material(scene.names.mesh(k), uniform));
-        let prim = primitive(attributes, Some(idx), material, json::mesh::Mode::Triangles);
-        children.push(b.node(scene.names.mesh(k), prim));
     }
     for (k, lines) in scene.lines.iter().enumerate() {
         if lines.is_empty() {

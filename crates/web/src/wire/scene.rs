@@ -355,6 +355,7 @@ pub(super) fn read_picks(r: &mut Reader) -> Res<Picks> {
                     vertices,
                     indices,
                     face_starts,
+                    parts: Default::default(),
                 }))
             }
             _ => return Err(WireError("unknown mesh kind")),

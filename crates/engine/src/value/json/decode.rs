@@ -291,7 +291,38 @@ fn decode_mesh(mut o: Fields) -> Result<PolygonMesh, JsonError> {
                 })
         })
         .collect::<Result<Vec<Vec<u32>>, JsonError>>()?;
-    Ok(PolygonMesh::from_faces(vertices, &faces)?)
+    let mut mesh = PolygonMesh::from_faces(vertices, &faces)?;
+    // Named parts (a joined structure): optional `parts` (names) and `face_parts` (a part a face).
+    if let Some(names) = o.shift_remove("parts") {
+        let names = names
+            .into_items()
+            .and_then(|items| {
+                items
+                    .map(|d| match d {
+                        Document::Text(t) => Some(t),
+                        _ => None,
+                    })
+                    .collect::<Option<Vec<String>>>()
+            })
+            .ok_or_else(|| malformed("mesh \"parts\" must be an array of names".into()))?;
+        let of_face = take_field(&mut o, "face_parts", "mesh with parts")?
+            .into_items()
+            .and_then(|ix| {
+                ix.map(|i| as_index(&i).and_then(|i| u32::try_from(i).ok()))
+                    .collect::<Option<Vec<u32>>>()
+            })
+            .ok_or_else(|| {
+                malformed("mesh \"face_parts\" must be an array of part indices".into())
+            })?;
+        mesh.parts = cnets_geometry::MeshParts { names, of_face };
+        if !mesh.parts.fits(mesh.face_count()) {
+            return Err(malformed(format!(
+                "mesh \"face_parts\" must name a part of \"parts\" for each of its {} faces",
+                mesh.face_count()
+            )));
+        }
+    }
+    Ok(mesh)
 }
 
 fn decode_record(o: Fields) -> Result<Record, JsonError> {

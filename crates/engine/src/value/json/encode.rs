@@ -36,9 +36,15 @@ pub fn to_json(value: &Value) -> Json {
             "wrap_cols": g.wrap_cols,
             "vertices": points(&g.vertices),
         }),
+        Value::Mesh(m) if m.parts.is_empty() => json!({
+            "vertices": points(&m.vertices),
+            "faces": m.faces().map(|f| json!(f)).collect::<Vec<_>>(),
+        }),
         Value::Mesh(m) => json!({
             "vertices": points(&m.vertices),
             "faces": m.faces().map(|f| json!(f)).collect::<Vec<_>>(),
+            "parts": m.parts.names,
+            "face_parts": m.parts.of_face,
         }),
         Value::List(items) => match items.as_packed() {
             // Item by item, without building the values first.
@@ -137,9 +143,14 @@ impl serde::Serialize for JsonOut<'_> {
                         s.collect_seq(self.0.faces())
                     }
                 }
-                let mut m = s.serialize_map(Some(2))?;
+                let named = !mesh.parts.is_empty();
+                let mut m = s.serialize_map(Some(if named { 4 } else { 2 }))?;
                 m.serialize_entry("vertices", &PointsOut(&mesh.vertices))?;
                 m.serialize_entry("faces", &Faces(mesh))?;
+                if named {
+                    m.serialize_entry("parts", &mesh.parts.names)?;
+                    m.serialize_entry("face_parts", &mesh.parts.of_face)?;
+                }
                 m.end()
             }
             Value::List(items) => match items.as_packed() {
