@@ -581,3 +581,20 @@ def test_the_drawing_advice_holds():
         cnets.construct_coplanar(d, on, apex=0.9, ruling_ratios=0.4, plane_ratios=0.6)
     with pytest.raises(cnets.CnetsError, match=r"coincides with X_0"):
         cnets.eval("cnets.torsion_free_axes", directrix=d, mesh=cnets.construct(d, on, apex=0.95))
+
+
+def test_a_joined_structure_keeps_its_parts_through_python():
+    grid = np.array([[[x, y, 0.0] for x in range(3)] for y in range(3)], dtype=float)
+    wall = cnets.QuadMesh(grid)
+    roof = cnets.QuadMesh(grid + np.array([2.0, 0.0, 0.0]))
+    joined = cnets.eval("mesh.join", meshes=[wall, roof], weld=1e-9, names=["wall", "roof"])["mesh"]
+    assert isinstance(joined, cnets.PolygonMesh)
+    assert joined.parts == ["wall", "roof"]
+    assert joined.face_parts == [0] * 4 + [1] * 4
+    assert len(joined.vertices) == 15
+    # Back in, the parts name the strips.
+    labels = cnets.eval("pq.unroll_strips", mesh=joined, direction="generatrix")["labels"]
+    assert [str(l).split()[0] for l in labels] == ["wall-G0", "wall-G1", "roof-G0", "roof-G1"]
+    with pytest.raises(cnets.CnetsError) as e:
+        cnets.PolygonMesh(joined.vertices, joined.faces, ["wall"], [0, 1])
+    assert "face_parts" in str(e.value)
