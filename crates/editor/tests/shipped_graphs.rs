@@ -6,7 +6,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use cnets_editor::canvas::MIN_TEXT_PX;
+use cnets_editor::canvas::{MIN_TEXT_PX, MIN_ZOOM};
 use cnets_editor::menus::MenuAction;
 use common::{graphs_dir, harness_with, settle, temp_config};
 
@@ -154,9 +154,14 @@ fn canvas_text_sizes(
         .collect()
 }
 
+/// Every shipped graph opens framed in the canvas beside the 3D view: the whole graph, no node
+/// cut off by the 3D view, when it fits at [`MIN_ZOOM`] or more (node text at least 10 px when it
+/// fits at the readable zoom); a graph too wide for that opens on its sources (the top-left node
+/// in view) with node text at least 10 px.
 #[test]
-fn every_shipped_graph_opens_framed_with_node_text_at_least_10_px() {
+fn every_shipped_graph_opens_framed_beside_the_3d_view() {
     let mut bad = Vec::new();
+    let mut whole_count = 0;
     for path in shipped() {
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
         let mut h = harness_with(
@@ -169,45 +174,77 @@ fn every_shipped_graph_opens_framed_with_node_text_at_least_10_px() {
         assert!(!sizes.is_empty(), "{name}: text is drawn on the canvas");
         let smallest = sizes.iter().map(|s| s.1).fold(f32::INFINITY, f32::min);
         let app = h.state();
-        // Framed: the whole graph when it fits at that zoom, else its top-left corner (the
-        // first node in reading order is in view).
         let view = app.canvas.screen_rect();
-        let rects: Vec<egui::Rect> = app
+        let zoom = app.canvas.zoom();
+        let rects: Vec<(String, egui::Rect)> = app
             .doc
             .graph
             .nodes()
-            .filter_map(|(_, n)| app.canvas.node_rect(&n.id))
-            .map(|r| app.canvas.to_screen(r.min).to_vec2())
-            .zip(
-                app.doc
-                    .graph
-                    .nodes()
-                    .filter_map(|(_, n)| app.canvas.node_rect(&n.id)),
-            )
-            .map(|(min, r)| egui::Rect::from_min_size(min.to_pos2(), r.size() * app.canvas.zoom()))
+            .filter_map(|(_, n)| {
+                let r = app.canvas.node_rect(&n.id)?;
+                let min = app.canvas.to_screen(r.min);
+                Some((
+                    n.id.clone(),
+                    egui::Rect::from_min_size(min, r.size() * zoom),
+                ))
+            })
             .collect();
-        let all = rects.iter().fold(egui::Rect::NOTHING, |a, r| a.union(*r));
-        let first = rects
-            .iter()
-            .min_by(|a, b| (a.min.x + a.min.y).total_cmp(&(b.min.x + b.min.y)))
-            .copied()
-            .unwrap();
-        let fits = view.contains_rect(all);
-        eprintln!(
-            "{name}: zoom {:.3}, smallest node text {smallest:.2} px, whole graph in view: {fits}",
-            app.canvas.zoom()
+        assert_eq!(
+            rects.len(),
+            app.doc.graph.node_count(),
+            "{name}: every node measured"
         );
-        if smallest < MIN_TEXT_PX - 1e-3 {
-            bad.push(format!(
-                "{name}: node text {smallest:.2} px at zoom {}",
-                app.canvas.zoom()
-            ));
+        // The canvas ends where the 3D view begins.
+        assert!(
+            view.right() <= app.viewport.rect.left() + 1.0,
+            "{name}: canvas {view:?}, 3D view {:?}",
+            app.viewport.rect
+        );
+        // The graph's size on the canvas (canvas units) and the largest zoom showing it whole.
+        let all = rects
+            .iter()
+            .fold(egui::Rect::NOTHING, |a, (_, r)| a.union(*r));
+        let size = all.size() / zoom + egui::vec2(60.0, 60.0);
+        let fits = (view.width() / size.x).min(view.height() / size.y);
+        let readable = cnets_editor::canvas::readable_zoom(&h.ctx.style_of(h.ctx.theme()));
+        let whole = fits >= MIN_ZOOM;
+        eprintln!(
+            "{name}: zoom {zoom:.3}, smallest node text {smallest:.2} px, fits whole at \
+             {fits:.3}: {}",
+            if whole {
+                "framed whole"
+            } else {
+                "opens on its sources"
+            }
+        );
+        if whole {
+            whole_count += 1;
+            for (id, r) in &rects {
+                if !view.contains_rect(*r) {
+                    bad.push(format!(
+                        "{name}: node {id} {r:?} is not wholly in the canvas {view:?}"
+                    ));
+                }
+            }
+            if zoom < MIN_ZOOM - 1e-4 {
+                bad.push(format!("{name}: zoom {zoom} below {MIN_ZOOM}"));
+            }
+        } else {
+            let first = rects
+                .iter()
+                .map(|(_, r)| *r)
+                .min_by(|a, b| (a.min.x + a.min.y).total_cmp(&(b.min.x + b.min.y)))
+                .unwrap();
+            if !view.contains_rect(first) {
+                bad.push(format!(
+                    "{name}: the top-left node {first:?} is not in view {view:?}"
+                ));
+            }
         }
-        if !view.contains_rect(first) {
-            bad.push(format!(
-                "{name}: the top-left node {first:?} is not in view {view:?}"
-            ));
+        if (!whole || fits >= readable) && smallest < MIN_TEXT_PX - 1e-3 {
+            bad.push(format!("{name}: node text {smallest:.2} px at zoom {zoom}"));
         }
     }
+    eprintln!("{whole_count} graphs open framed whole");
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }

@@ -70,7 +70,7 @@ pub struct Canvas {
     /// Frames to wait before framing (the nodes grow when their first results arrive).
     fit_delay: u8,
     /// The pending framing shows the whole graph (down to [`MIN_ZOOM`]: Home, View › Frame
-    /// graph, after Arrange) rather than opening it at a readable zoom ([`readable_zoom`]).
+    /// graph, after Arrange) rather than opening it ([`Canvas::opening`]).
     fit_whole: bool,
     /// Screen rectangle of the canvas in the last frame.
     ui_rect: Rect,
@@ -189,7 +189,8 @@ impl Canvas {
 
     /// Frames the graph as it opens, after six more frames (once nodes have their new sizes,
     /// e.g. when the first results of a newly shown graph arrive): the whole graph when it fits
-    /// at a readable zoom, else its top-left corner at that zoom ([`Canvas::framing`]).
+    /// at [`MIN_ZOOM`] or more (no node left under the 3D view), else its top-left corner at a
+    /// readable zoom ([`Canvas::opening`]).
     pub fn fit_later(&mut self) {
         self.fit_pending = true;
         self.fit_whole = false;
@@ -245,6 +246,20 @@ impl Canvas {
     /// Screen rectangle of the canvas in the last frame.
     pub fn screen_rect(&self) -> Rect {
         self.ui_rect
+    }
+
+    /// The transform a graph opens with ([`Canvas::fit_later`]): the whole of canvas rectangle
+    /// `bb` in screen rectangle `ui` when it fits at [`MIN_ZOOM`] or more, at most zoom 1 (as
+    /// Home frames it); a graph too large for that opens on its top-left corner (the sources) at
+    /// the `readable` zoom instead, since part of it is out of view whatever the zoom.
+    pub fn opening(bb: Rect, ui: Rect, readable: f32) -> Option<TSTransform> {
+        let framed = bb.expand(30.0);
+        let fits = (ui.width() / framed.width()).min(ui.height() / framed.height());
+        if fits >= MIN_ZOOM {
+            Self::framing(bb, ui, MIN_ZOOM)
+        } else {
+            Self::framing(bb, ui, readable)
+        }
     }
 
     /// The transform that frames canvas rectangle `bb` in screen rectangle `ui`: the whole graph
@@ -546,12 +561,11 @@ impl Canvas {
             && self.rects.len() == graph.node_count()
         {
             let bb = self.rects.values().fold(Rect::NOTHING, |a, r| a.union(*r));
-            let readable = if self.fit_whole {
-                MIN_ZOOM
+            fit = if self.fit_whole {
+                Self::framing(bb, self.ui_rect, MIN_ZOOM)
             } else {
-                readable_zoom(ui.style())
+                Self::opening(bb, self.ui_rect, readable_zoom(ui.style()))
             };
-            fit = Self::framing(bb, self.ui_rect, readable);
             self.fit_pending = false;
         } else if self.fit_pending && graph.node_count() == 0 {
             self.fit_pending = false;
