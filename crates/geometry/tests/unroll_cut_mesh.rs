@@ -229,3 +229,73 @@ fn a_mesh_that_is_no_grid_is_refused_with_its_faces_named() {
         "{err}"
     );
 }
+
+/// The cut net closed along the plane by one face through every vertex on it (a transom).
+fn with_transom() -> (PolygonMesh, usize) {
+    let (mut mesh, plane) = cut_net();
+    let on = |v: u32| plane.signed_distance(mesh.vertices[v as usize]).abs() < 1e-9;
+    // The boundary edges on the plane, chained from an end of the section.
+    let mut count = std::collections::HashMap::new();
+    for face in mesh.faces() {
+        for k in 0..face.len() {
+            let (a, b) = (face[k], face[(k + 1) % face.len()]);
+            *count.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    let edges: Vec<(u32, u32)> = count
+        .into_iter()
+        .filter(|&((a, b), n)| n == 1 && on(a) && on(b))
+        .map(|(e, _)| e)
+        .collect();
+    let mut degree = std::collections::HashMap::new();
+    for &(a, b) in &edges {
+        *degree.entry(a).or_insert(0) += 1;
+        *degree.entry(b).or_insert(0) += 1;
+    }
+    let mut chain = vec![*degree.iter().find(|(_, d)| **d == 1).unwrap().0];
+    while chain.len() <= edges.len() {
+        let here = *chain.last().unwrap();
+        let next = edges.iter().find_map(|&(a, b)| {
+            let other = if a == here {
+                b
+            } else if b == here {
+                a
+            } else {
+                return None;
+            };
+            (!chain.contains(&other)).then_some(other)
+        });
+        match next {
+            Some(v) => chain.push(v),
+            None => break,
+        }
+    }
+    assert_eq!(chain.len(), edges.len() + 1, "one open section");
+    mesh.push_face(&chain).unwrap();
+    (mesh, chain.len())
+}
+
+#[test]
+fn a_transom_closing_the_cut_is_unrolled_as_a_panel_of_its_own() {
+    let (mesh, corners) = with_transom();
+    assert!(corners > 5, "{corners} corners");
+    let transom = mesh.face_count() - 1;
+    for direction in [StripDirection::Directrix, StripDirection::Generatrix] {
+        // Every face once, lengths and angles kept, nothing overlapping (`check`).
+        let (count, _) = check(&mesh, direction);
+        let u = unroll_mesh_strips(&mesh, direction, UnrollOptions::default()).unwrap();
+        assert_eq!(count, u.strips.len());
+        let panel = u
+            .strips
+            .iter()
+            .find(|s| s.mesh_faces.contains(&transom))
+            .unwrap();
+        assert_eq!(panel.mesh_faces, [transom], "the transom alone");
+        assert_eq!(panel.label.split_whitespace().next(), Some("P0"));
+        assert_eq!(panel.faces[0].len(), corners);
+        // The strips are those of the cut net without it.
+        let (without, _) = cut_net();
+        let strips = mesh_strips(&without, direction).unwrap();
+        assert_eq!(u.strips.len(), strips.len() + 1);
+    }
+}

@@ -201,8 +201,9 @@ node! {
     /// than `tolerance` are an error naming the strip and quad; `max_length_error` reports the largest
     /// relative edge-length change (≤ 1e-9 for a planar mesh). A polygon mesh — a cone-net cut by a
     /// plane, mirrored or joined — is unrolled by its strips found from the faces (trimmed panels
-    /// included; strips end at the cut and at a mirror seam), and the mirrored half's strips are
-    /// labelled `D9 (mirror of D2)`. In a structure joined from several nets (`mesh.join`) strips
+    /// included; strips end at the cut and at a mirror seam; a face of more than five corners — a
+    /// transom — is a panel of its own, `P0`), and the mirrored half's strips are labelled `D9
+    /// (mirror of D2)`. In a structure joined from several nets (`mesh.join`) strips
     /// stay within their net, numbered within it and named after it (`wall-D3`; docs/fabrication.md).
     #[node(id = "pq.unroll_strips", category = "PQ", name = "Unroll strips")]
     pub fn unroll_strips[ctx](

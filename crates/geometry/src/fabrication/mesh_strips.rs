@@ -32,6 +32,10 @@
 //! way along the rung as its predecessor's, in a mesh not consistently oriented, is turned over). The
 //! outline is the boundary of the placed faces; the strips are laid out as the grid strips are.
 //!
+//! **Panels of their own.** A face of more than five corners is neither a quad nor a quad the cut
+//! trimmed: a transom, a panel closing a cut. It is in no chain (edge families and strips pass it
+//! by) and is laid flat alone, named `P<k>` (numbered apart from the strips), in either direction.
+//!
 //! **Copies.** A strip whose outline is congruent to an earlier one's (edge lengths and turning angles
 //! equal within 1e-7 of the strip's size) is labelled with it: `D7 (mirror of D2)` when it is the mirror
 //! image — the mirrored half of a hull — or `D7 (copy of D2)` when it is the same part.
@@ -77,6 +81,10 @@ pub struct MeshStrip {
     /// (`wall-D3`) in a mesh of named parts ([`crate::MeshParts`]).
     pub name: String,
 }
+
+/// The most corners a face of a strip has: a quad the cut trimmed keeps at most three of its
+/// corners and adds two on the plane. A face with more is a panel of its own (`P<k>`).
+const MAX_TRIMMED_CORNERS: usize = 5;
 
 /// The family of local edge `t` of a face of `n` corners with parity `p`.
 fn family(n: usize, t: usize, p: u8) -> Family {
@@ -151,6 +159,9 @@ pub fn mesh_strips(
     }
     // The named part of every face: strips and edge families stay within one part (one net).
     let part = |f: usize| mesh.parts.of_face.get(f).copied();
+    // A face of more than five corners is no quad, nor a quad the cut trimmed (a transom, a
+    // closing panel): a panel of its own, in no chain.
+    let loose = |f: usize| faces[f].len() > MAX_TRIMMED_CORNERS;
     let neighbour = |f: usize, t: usize| -> Option<(usize, usize)> {
         let face = faces[f];
         let key = edge_key(face[t], face[(t + 1) % face.len()]);
@@ -160,7 +171,7 @@ pub fn mesh_strips(
     let mut parity: Vec<Option<u8>> = vec![None; faces.len()];
     let mut queue = std::collections::VecDeque::new();
     for seed in 0..faces.len() {
-        if parity[seed].is_some() {
+        if parity[seed].is_some() || loose(seed) {
             continue;
         }
         parity[seed] = Some(0);
@@ -175,7 +186,7 @@ pub fn mesh_strips(
                 let Some((g, s)) = neighbour(f, t) else {
                     continue;
                 };
-                if part(g) != part(f) {
+                if part(g) != part(f) || loose(g) {
                     continue;
                 }
                 let m = faces[g].len();
@@ -219,12 +230,15 @@ pub fn mesh_strips(
         .iter()
         .enumerate()
         .map(|(f, face)| {
+            if loose(f) {
+                return Vec::new();
+            }
             let (n, p) = (face.len(), parity[f].unwrap_or(0));
             (0..n)
                 .filter(|&t| family(n, t, p) == rung_family)
                 .filter_map(|t| {
                     let (g, s) = neighbour(f, t)?;
-                    if part(g) != part(f) {
+                    if part(g) != part(f) || loose(g) {
                         return None;
                     }
                     // A mirror seam: strips end there, as they end at the cut.
@@ -298,15 +312,22 @@ pub fn mesh_strips(
         });
     }
     out.sort_by_key(|s| s.faces.iter().copied().min().unwrap_or(0));
-    let mut numbers = vec![0usize; mesh.parts.names.len().max(1)];
+    // Strips and loose panels are numbered apart, within each part.
+    let mut numbers = vec![(0usize, 0usize); mesh.parts.names.len().max(1)];
     for (k, s) in out.iter_mut().enumerate() {
         s.index = k;
         let owner = part(s.faces[0]).unwrap_or(0) as usize;
-        let number = numbers[owner];
-        numbers[owner] += 1;
+        let (strips, panels) = &mut numbers[owner];
+        let short = if loose(s.faces[0]) {
+            *panels += 1;
+            format!("P{}", *panels - 1)
+        } else {
+            *strips += 1;
+            format!("{}{}", direction.prefix(), *strips - 1)
+        };
         s.name = match mesh.parts.names.get(owner) {
-            Some(name) => format!("{}-{}{number}", label_word(name), direction.prefix()),
-            None => format!("{}{number}", direction.prefix()),
+            Some(name) => format!("{}-{short}", label_word(name)),
+            None => short,
         };
     }
     Ok(out)
