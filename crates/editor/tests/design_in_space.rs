@@ -562,3 +562,88 @@ fn a_selected_cut_shows_its_plane_and_the_side_it_keeps() {
     h.run_steps(3);
     assert!(h.state().viewport.cut_overlays().is_empty());
 }
+
+/// The screen rectangles of `ids` on the canvas, each asserted to lie wholly inside the canvas
+/// (not under the 3D view beside it).
+fn assert_in_canvas(h: &Harness<'static, EditorApp>, ids: &[String], what: &str) {
+    let app = h.state();
+    let view = app.canvas.screen_rect();
+    assert!(!ids.is_empty(), "{what}: nodes were added");
+    for id in ids {
+        let r = app
+            .canvas
+            .node_screen_rect(id)
+            .unwrap_or_else(|| panic!("{what}: {id} is drawn"));
+        assert!(
+            view.contains_rect(r),
+            "{what}: {id} at {r:?} is not wholly in the canvas {view:?} (the 3D view starts at {})",
+            app.viewport.rect.left()
+        );
+    }
+}
+
+/// New nodes go where they can be seen: a curve drawn with the right-most node of the graph
+/// selected (its nodes go below the selection) and a node added from Add › Node… with it selected
+/// (right of the selection) both land wholly inside the canvas, not half under the 3D view.
+#[test]
+fn new_nodes_are_placed_in_the_visible_canvas() {
+    let mut h = harness_with(
+        "new-nodes-in-view",
+        Some(graphs_dir().join("editor-default.ron")),
+        temp_config("new-nodes-in-view"),
+    );
+    settle(&mut h);
+    let right_most = |h: &Harness<'static, EditorApp>| {
+        let app = h.state();
+        app.doc
+            .graph
+            .nodes()
+            .filter_map(|(_, n)| Some((n.id.clone(), app.canvas.node_screen_rect(&n.id)?)))
+            .max_by(|a, b| a.1.right().total_cmp(&b.1.right()))
+            .map(|(id, _)| id)
+            .unwrap()
+    };
+    let before: Vec<String> = h
+        .state()
+        .doc
+        .graph
+        .nodes()
+        .map(|(_, n)| n.id.clone())
+        .collect();
+    let added = |h: &Harness<'static, EditorApp>| -> Vec<String> {
+        h.state()
+            .doc
+            .graph
+            .nodes()
+            .map(|(_, n)| n.id.clone())
+            .filter(|id| !before.contains(id))
+            .collect()
+    };
+    // A drawn curve with the right-most node selected.
+    let id = right_most(&h);
+    h.state_mut().canvas.select(vec![id]);
+    h.run_steps(2);
+    h.state_mut().add_curve(cnets_editor::viewport::DrawnCurve {
+        points: vec![
+            DVec3::ZERO,
+            DVec3::new(2.0, 1.0, 0.0),
+            DVec3::new(4.0, 0.0, 0.0),
+        ],
+        closed: false,
+        spline: true,
+    });
+    settle(&mut h);
+    h.run_steps(4);
+    let curve_nodes = added(&h);
+    assert_eq!(curve_nodes.len(), 2, "points and a spline: {curve_nodes:?}");
+    assert_in_canvas(&h, &curve_nodes, "a drawn curve");
+    // A node from Add › Node… with the right-most node selected.
+    let id = right_most(&h);
+    h.state_mut().canvas.select(vec![id]);
+    h.run_steps(2);
+    let at = h.state_mut().new_node_place();
+    let node = h.state_mut().add_node("math.add", at).unwrap();
+    settle(&mut h);
+    h.run_steps(4);
+    assert_in_canvas(&h, &[node], "Add › Node…");
+}

@@ -20,6 +20,13 @@ use std::path::Path;
 use super::EditorApp;
 use super::files::user_folder;
 
+/// The canvas room kept for a new node (canvas units).
+const NEW_NODES_SIZE: egui::Vec2 = egui::vec2(460.0, 140.0);
+
+/// The canvas room of a drawn curve's nodes: its `param.points` and, 270 units right of it, the
+/// curve node (about 380 wide once its output summary shows).
+const CURVE_NODES_SIZE: egui::Vec2 = egui::vec2(660.0, 150.0);
+
 impl EditorApp {
     /// Adds a node of type `type_id` at a canvas position; returns its id.
     pub fn add_node(&mut self, type_id: &str, at: [f32; 2]) -> Option<String> {
@@ -181,13 +188,12 @@ impl EditorApp {
         // parameters do in Grasshopper), else in the middle of the canvas.
         let at = match self.canvas.bounds_of(&self.canvas.targets()) {
             Some(r) => {
-                let p = self.canvas.free_spot(
-                    egui::pos2(r.left(), r.bottom() + 40.0),
-                    egui::vec2(460.0, 140.0),
-                );
-                [p.x, p.y]
+                self.place_in_view(egui::pos2(r.left(), r.bottom() + 40.0), CURVE_NODES_SIZE)
             }
-            None => self.new_node_place(),
+            None => {
+                let centre = self.canvas.to_canvas(self.canvas.screen_rect().center());
+                self.place_in_view(centre - CURVE_NODES_SIZE / 2.0, CURVE_NODES_SIZE)
+            }
         };
         if let Some(created) = self.edit_created(Edit::AddCurves {
             curves: vec![curve],
@@ -262,12 +268,43 @@ impl EditorApp {
 
     /// Where new nodes go on the canvas: right of the selected (or focused) nodes, else the
     /// middle of the visible canvas — moved down past any node there.
-    pub fn new_node_place(&self) -> [f32; 2] {
+    pub fn new_node_place(&mut self) -> [f32; 2] {
         let start = match self.canvas.bounds_of(&self.canvas.targets()) {
             Some(r) => egui::pos2(r.right() + 60.0, r.top()),
-            None => self.canvas.to_canvas(self.canvas.screen_rect().center()),
+            None => {
+                // Centred in the visible canvas.
+                self.canvas.to_canvas(self.canvas.screen_rect().center()) - NEW_NODES_SIZE / 2.0
+            }
         };
-        let p = self.canvas.free_spot(start, egui::vec2(460.0, 140.0));
+        self.place_in_view(start, NEW_NODES_SIZE)
+    }
+
+    /// The first free place at or below `start` (canvas coordinates) for new nodes of about
+    /// `size`, moved into the visible part of the canvas (never under the 3D view beside it);
+    /// when the free place is out of view (the view is full of nodes) the canvas pans to it.
+    pub fn place_in_view(&mut self, start: egui::Pos2, size: egui::Vec2) -> [f32; 2] {
+        let screen = self.canvas.screen_rect();
+        if !screen.is_positive() {
+            // Not drawn yet (a narrow layout's hidden canvas): where it was asked.
+            let p = self.canvas.free_spot(start, size);
+            return [p.x, p.y];
+        }
+        let margin = egui::vec2(20.0, 20.0) / self.canvas.zoom().max(1e-3);
+        let view = egui::Rect::from_min_max(
+            self.canvas.to_canvas(screen.min),
+            self.canvas.to_canvas(screen.max),
+        )
+        .shrink2(margin);
+        // The box inside the view: its right and bottom edges first, then its left and top
+        // (a box larger than the view keeps its top-left corner in view).
+        let mut p = start;
+        p.x = p.x.min(view.right() - size.x).max(view.left());
+        p.y = p.y.min(view.bottom() - size.y).max(view.top());
+        let p = self.canvas.free_spot(p, size);
+        if !view.contains_rect(egui::Rect::from_min_size(p, size)) {
+            let centre = p + size / 2.0;
+            self.canvas.zoom_to(self.canvas.zoom(), Some(centre));
+        }
         [p.x, p.y]
     }
 
