@@ -445,18 +445,20 @@ for (const name of gallery) {
     fire("pointerdown", x0 + 4, 1);
     const held = await editorFrames(1, (t) => t.dragging);
     const t0 = performance.now();
+    const pictures0 = editor().pictures ?? 0;
     for (let k = 1; k <= steps; k++) {
       await new Promise((r) => setTimeout(r, 16));
       fire("mousemove", x0 + 4 + ((x1 - x0 - 8) * k) / steps, 1);
       handled.push(performance.now());
     }
     const t1 = performance.now();
+    const pictures1 = editor().pictures ?? 0;
     await editorFrames(1);
     fire("pointerup", x1 - 4, 0);
     go = false;
     let gap = 0;
     for (let k = 1; k < handled.length; k++) gap = Math.max(gap, handled[k] - handled[k - 1]);
-    return { seconds: (t1 - t0) / 1000, events: handled.length, gap, held,
+    return { seconds: (t1 - t0) / 1000, events: handled.length, gap, held, pictures: pictures1 - pictures0,
       raf: raf.filter((t) => t >= t0 && t <= t1).length };
   }, slider.rail);
   const after = await settled(page);
@@ -465,6 +467,9 @@ for (const name of gallery) {
   figures.drag_facade = {
     seconds: +drag.seconds.toFixed(2), input_hz: +inputHz.toFixed(1),
     longest_input_gap_ms: Math.round(drag.gap), held: drag.held, raf_hz: +(drag.raf / drag.seconds).toFixed(1),
+    // New pictures of the worker's scenes drawn while the pointer moved (the slider has 7 values,
+    // so at most 6 changes in the drag: reported, not a rate the drag can reach).
+    pictures_during_drag: drag.pictures, pictures_hz: +(drag.pictures / drag.seconds).toFixed(1),
     editor_frames: after.frames - before.frames, requests: after.worker_sent - before.worker_sent,
     answers: after.worker_answers - before.worker_answers,
     slider: slider.node, rail: slider.rail.map(Math.round),
