@@ -315,3 +315,35 @@ fn long_port_names_end_in_an_ellipsis_with_the_whole_name_on_hover() {
         h.run_steps(10);
     }
 }
+
+/// "The flip checkbox needed two clicks (the first only selected the node)": one click on an
+/// unselected node's checkbox toggles it.
+#[test]
+fn the_first_click_on_a_checkbox_of_an_unselected_node_toggles_it() {
+    let mut h = harness("checkbox-first-click");
+    let id = h
+        .state_mut()
+        .add_node("mesh.cut_by_plane", [0.0, 720.0])
+        .unwrap();
+    settle(&mut h);
+    show_node(&mut h, &id);
+    h.state_mut().canvas.select(Vec::new());
+    h.run_steps(2);
+    let flip = |h: &H| {
+        h.state()
+            .doc
+            .graph
+            .node(&id)
+            .unwrap()
+            .value_of("flip")
+            .cloned()
+    };
+    assert_ne!(flip(&h), Some(cnets_engine::Value::Boolean(true)));
+    let boxed = h.state().canvas.editor_screen_rect(&id, "flip").unwrap();
+    click(&mut h, boxed.left_center() + egui::vec2(6.0, 0.0));
+    assert_eq!(
+        flip(&h),
+        Some(cnets_engine::Value::Boolean(true)),
+        "one click turned flip on"
+    );
+}
