@@ -100,8 +100,11 @@ pub struct Grid {
 }
 
 impl Grid {
-    /// The grid of `plane` around the camera's target, spaced for the map's zoom.
-    pub fn new(map: &ScreenMap, plane: CPlane) -> Grid {
+    /// The grid of `plane` around the camera's target, spaced for the map's zoom: up to
+    /// [`HALF_CELLS`] cells each way, and no farther than `around` (the geometry shown, when
+    /// given) reaches past its edges by [`around_margin`] — a perspective view of a 50 m design
+    /// shows a grid about as large as the design, not 120 m of it.
+    pub fn new(map: &ScreenMap, plane: CPlane, around: Option<&cnets_render::Bounds>) -> Grid {
         let spacing = Spacing::for_scale(map.world_per_point());
         // The target projected into the plane, on the major grid.
         let target = map.target();
@@ -109,7 +112,15 @@ impl Grid {
         let centre = |x: f64| (x / spacing.major).round() * spacing.major;
         let (cu, cv) = (centre(local.x), centre(local.y));
         let half = spacing.minor * HALF_CELLS as f64;
-        let (u0, u1, v0, v1) = (cu - half, cu + half, cv - half, cv + half);
+        let (mut u0, mut u1, mut v0, mut v1) = (cu - half, cu + half, cv - half, cv + half);
+        if let Some((a0, a1, b0, b1)) = around.and_then(|b| extent_in_plane(b, plane, spacing)) {
+            let (c0, c1, d0, d1) = (u0.max(a0), u1.min(a1), v0.max(b0), v1.min(b1));
+            // The geometry out of reach of the target's grid (panned far away): the target's.
+            if c0 < c1 && d0 < d1 {
+                (u0, u1, v0, v1) = (c0, c1, d0, d1);
+            }
+        }
+        let within = |x: f64, lo: f64, hi: f64| x >= lo - 1e-9 * half && x <= hi + 1e-9 * half;
         let at = |a: f64, b: f64| plane.at(a, b, 0.0);
         let minor = rgba(Color32::from_rgba_unmultiplied(120, 128, 140, 70));
         let major = rgba(Color32::from_rgba_unmultiplied(90, 98, 110, 140));
@@ -134,14 +145,17 @@ impl Grid {
             } else {
                 (color, width)
             };
-            if a != 0.0 || !world {
+            let (a_in, b_in) = (within(a, u0, u1), within(b, v0, v1));
+            if a_in && (a != 0.0 || !world) {
                 segments.push(segment(at(a, v0), at(a, v1), a_color, a_width));
             }
-            if b != 0.0 || !world {
+            if b_in && (b != 0.0 || !world) {
                 segments.push(segment(at(u0, b), at(u1, b), b_color, b_width));
             }
-            if is_major {
+            if is_major && a_in {
                 majors.0.push(a);
+            }
+            if is_major && b_in {
                 majors.1.push(b);
             }
         }
@@ -211,6 +225,49 @@ impl Grid {
     }
 }
 
+/// How far the grid reaches past the geometry it is sized to: two major cells, or a quarter of
+/// the geometry's larger side in the plane when that is more.
+pub fn around_margin(width: f64, depth: f64, spacing: Spacing) -> f64 {
+    (2.0 * spacing.major).max(0.25 * width.max(depth))
+}
+
+/// The rectangle `(u0, u1, v0, v1)` of the plane's coordinates a grid sized to `bounds` covers:
+/// the box's corners in the plane, widened by [`around_margin`] and out to major lines. `None`
+/// for a box that is not finite.
+fn extent_in_plane(
+    bounds: &cnets_render::Bounds,
+    plane: CPlane,
+    spacing: Spacing,
+) -> Option<(f64, f64, f64, f64)> {
+    let (lo, hi) = (bounds.min.as_dvec3(), bounds.max.as_dvec3());
+    if !(lo.is_finite() && hi.is_finite()) {
+        return None;
+    }
+    let (mut u0, mut u1, mut v0, mut v1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for k in 0..8 {
+        let corner = DVec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        );
+        let l = plane.local(corner);
+        (u0, u1, v0, v1) = (u0.min(l.x), u1.max(l.x), v0.min(l.y), v1.max(l.y));
+    }
+    let margin = around_margin(u1 - u0, v1 - v0, spacing);
+    let major = spacing.major;
+    Some((
+        ((u0 - margin) / major).floor() * major,
+        ((u1 + margin) / major).ceil() * major,
+        ((v0 - margin) / major).floor() * major,
+        ((v1 + margin) / major).ceil() * major,
+    ))
+}
+
 /// Paints the axis gizmo in the view's bottom-left corner: the world axes as the camera sees them.
 pub fn paint_gizmo(painter: &Painter, map: &ScreenMap) {
     let centre = map.rect.left_bottom() + vec2(36.0, -40.0);
@@ -246,6 +303,68 @@ pub fn paint_gizmo(painter: &Painter, map: &ScreenMap) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The grid lines' extent in the XY plane (the world axes left out): (u0, u1, v0, v1).
+    fn line_extent(grid: &Grid) -> (f64, f64, f64, f64) {
+        grid.segments
+            .iter()
+            .filter(|s| s.width < 1.55)
+            .flat_map(|s| [s.a, s.b])
+            .fold(
+                (
+                    f64::INFINITY,
+                    f64::NEG_INFINITY,
+                    f64::INFINITY,
+                    f64::NEG_INFINITY,
+                ),
+                |(u0, u1, v0, v1), p| {
+                    let (x, y) = (f64::from(p[0]), f64::from(p[1]));
+                    (u0.min(x), u1.max(x), v0.min(y), v1.max(y))
+                },
+            )
+    }
+
+    /// The perspective view of a design 49 m × 48.5 m (torus-monge's three surfaces), framed on
+    /// it: the grid covers the design and reaches past it by its margin only (it reached 120 m
+    /// each way from the target, 60 cells of 2 m).
+    #[test]
+    fn a_grid_sized_to_the_geometry_covers_it_and_little_more() {
+        let bounds = cnets_render::Bounds::new(
+            glam::Vec3::new(10.0, 0.0, 0.0),
+            glam::Vec3::new(59.0, 48.5, 8.2),
+        );
+        let mut camera = cnets_render::Camera::new(cnets_render::View::Iso);
+        let rect = Rect::from_min_size(Pos2::ZERO, vec2(630.0, 770.0));
+        camera.fit(Some(bounds), rect.width() / rect.height());
+        let map = ScreenMap { rect, camera };
+        let free = Grid::new(&map, CPlane::XY, None);
+        let sized = Grid::new(&map, CPlane::XY, Some(&bounds));
+        let spacing = sized.spacing;
+        let (u0, u1, v0, v1) = line_extent(&sized);
+        let (f0, f1, g0, g1) = line_extent(&free);
+        let margin = around_margin(49.0, 48.5, spacing) + spacing.major;
+        assert!(
+            u0 <= 10.0 && u1 >= 59.0 && v0 <= 0.0 && v1 >= 48.5,
+            "covers the design: {u0}..{u1} × {v0}..{v1}"
+        );
+        assert!(
+            u0 >= 10.0 - margin && u1 <= 59.0 + margin && v0 >= -margin && v1 <= 48.5 + margin,
+            "within {margin} m of it: {u0}..{u1} × {v0}..{v1} (grid {spacing:?})"
+        );
+        assert!(
+            (f1 - f0) > 1.5 * (u1 - u0) && (g1 - g0) > 1.5 * (v1 - v0),
+            "smaller than the grid around the target: {f0}..{f1} × {g0}..{g1}"
+        );
+        // Labels only on the lines drawn.
+        assert!(sized.majors.0.iter().all(|&a| (u0..=u1).contains(&a)));
+        assert!(sized.majors.1.iter().all(|&b| (v0..=v1).contains(&b)));
+        // Geometry out of the target's reach (panned far away): the target's grid.
+        let far = cnets_render::Bounds::new(glam::Vec3::splat(1e5), glam::Vec3::splat(1e5 + 1.0));
+        assert_eq!(
+            line_extent(&Grid::new(&map, CPlane::XY, Some(&far))),
+            (f0, f1, g0, g1)
+        );
+    }
 
     #[test]
     fn the_spacing_is_one_two_or_five_and_cells_stay_readable() {

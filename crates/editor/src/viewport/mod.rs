@@ -756,7 +756,13 @@ impl Viewport {
         };
         let map = self.screen_map();
         let grid = self.show_grid.then(|| {
-            let mut grid = Grid::new(&map, self.cplane());
+            // The perspective view's grid is sized to the geometry shown (the named views are
+            // drafting paper: their grid fills the view).
+            let around = match self.view {
+                NamedView::Perspective => self.bounds.as_ref(),
+                _ => None,
+            };
+            let mut grid = Grid::new(&map, self.cplane(), around);
             grid.name = self.cplane_name();
             grid
         });
