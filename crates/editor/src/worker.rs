@@ -635,7 +635,7 @@ pub fn statuses(
                             .enumerate()
                             .map(|(k, v)| match out.computed(k) {
                                 Some(_) => describe(v),
-                                None => "not computed (not wired or previewed)".into(),
+                                None => "not computed (not wired, previewed or asked for)".into(),
                             })
                             .collect(),
                         time_ms: evaluator

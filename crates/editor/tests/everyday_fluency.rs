@@ -347,3 +347,61 @@ fn the_first_click_on_a_checkbox_of_an_unselected_node_toggles_it() {
         "one click turned flip on"
     );
 }
+
+/// "An output's label grows when its data arrives, which moves the port": the output's summary
+/// has a slot of its own width, so the pin is where it was before the result came; a wire drag
+/// started beside the pin (within its grab margin) before the result, with the result arriving
+/// mid-drag, connects.
+#[test]
+fn an_output_pin_stays_put_when_its_result_arrives_and_a_drag_beside_it_takes_it() {
+    let mut h = harness("pin-stays");
+    let id = h
+        .state_mut()
+        .add_node("math.multiply", [0.0, 720.0])
+        .unwrap();
+    let target = h.state_mut().add_node("math.add", [360.0, 720.0]).unwrap();
+    settle(&mut h);
+    show_node(&mut h, &id);
+    let result = {
+        let def = &h.state().doc.graph.node(&id).unwrap().def;
+        def.output_index("result").unwrap()
+    };
+    let a = h
+        .state()
+        .doc
+        .graph
+        .node(&target)
+        .unwrap()
+        .def
+        .input_index("a")
+        .unwrap();
+    let with_result = h.state().canvas.pin_screen_pos(&id, false, result).unwrap();
+    assert!(!output_summary(&h, &id, result).is_empty());
+    // The same frame without the node's result (as before it arrives).
+    let status = h.state_mut().statuses.remove(&id).unwrap();
+    h.run_steps(4);
+    let without = h.state().canvas.pin_screen_pos(&id, false, result).unwrap();
+    assert!(
+        (without - with_result).length() < 0.5,
+        "the pin moved from {without:?} to {with_result:?} when the result arrived"
+    );
+    // A press 6 points right of the pin takes it; the result arrives mid-drag; the drop on the
+    // input connects.
+    let wires = h.state().doc.graph.wires().len();
+    let start = without + egui::vec2(6.0, 0.0);
+    h.hover_at(start);
+    h.run_steps(2);
+    h.drag_at(start);
+    h.run_steps(2);
+    h.state_mut().statuses.insert(id.clone(), status);
+    let end = h.state().canvas.pin_screen_pos(&target, true, a).unwrap();
+    for t in [0.25, 0.5, 0.75, 1.0] {
+        h.hover_at(start + (end - start) * t);
+        h.run_steps(2);
+    }
+    let end = h.state().canvas.pin_screen_pos(&target, true, a).unwrap();
+    h.drop_at(end);
+    h.run_steps(3);
+    let graph = &h.state().doc.graph;
+    assert_eq!(graph.wires().len(), wires + 1, "connected");
+}

@@ -30,13 +30,15 @@ fn right_click(h: &mut Harness<'static, EditorApp>, at: Pos2) {
 }
 
 /// Screen centre of the label `name` drawn inside node `node` on its input (left) or output
-/// (right) side.
+/// (right) side. An input's name is drawn beside its pin at the node's left edge; an output's
+/// name left of its summary's slot, so further in than a quarter of the node's width.
 fn port_label(h: &Harness<'static, EditorApp>, node: &str, name: &str, input: bool) -> Pos2 {
     let canvas = &h.state().canvas;
     let rect = canvas.node_screen_rect(node).expect("the node is drawn");
+    let quarter = rect.left() + rect.width() / 4.0;
     h.get_all_by_label(name)
         .map(|l| canvas.to_screen(l.rect().center()))
-        .find(|p| rect.contains(*p) && ((p.x < rect.center().x) == input))
+        .find(|p| rect.contains(*p) && ((p.x < quarter) == input))
         .unwrap_or_else(|| panic!("label {name} of {node}"))
 }
 

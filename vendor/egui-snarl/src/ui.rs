@@ -568,6 +568,10 @@ pub struct SnarlStyle {
     pub _non_exhaustive: (),
 }
 
+/// cnets: how far beyond a pin's shape (outward from the node, and half as far above and below)
+/// a press still takes the pin, in points.
+const PIN_GRAB_MARGIN: f32 = 8.0;
+
 impl SnarlStyle {
     fn get_node_layout(&self) -> NodeLayout {
         self.node_layout.unwrap_or_default()
@@ -1590,7 +1594,13 @@ where
             // Interact with pin shape.
             pin_ui.set_clip_rect(snarl_clip_rect);
 
-            let r = pin_ui.interact(pin_rect, pin_ui.next_auto_id(), Sense::click_and_drag());
+            // cnets: the pin is grabbed within a margin around it, outward from the node (a
+            // press near a pin takes it instead of panning the canvas).
+            let grab_rect = Rect::from_min_max(
+                pin_rect.min - vec2(PIN_GRAB_MARGIN, PIN_GRAB_MARGIN / 2.0),
+                pin_rect.max + vec2(0.0, PIN_GRAB_MARGIN / 2.0),
+            );
+            let r = pin_ui.interact(grab_rect, pin_ui.next_auto_id(), Sense::click_and_drag());
 
             pin_ui.skip_ahead_auto_ids(1);
 
@@ -1624,7 +1634,7 @@ where
                 drag_released = true;
             }
 
-            let mut visual_pin_rect = r.rect;
+            let mut visual_pin_rect = pin_rect;
 
             if r.contains_pointer() {
                 if snarl_state.has_new_wires_in() {
@@ -1752,7 +1762,12 @@ where
 
             pin_ui.set_clip_rect(snarl_clip_rect);
 
-            let r = pin_ui.interact(pin_rect, pin_ui.next_auto_id(), Sense::click_and_drag());
+            // cnets: grabbed within a margin around the pin, outward from the node.
+            let grab_rect = Rect::from_min_max(
+                pin_rect.min - vec2(0.0, PIN_GRAB_MARGIN / 2.0),
+                pin_rect.max + vec2(PIN_GRAB_MARGIN, PIN_GRAB_MARGIN / 2.0),
+            );
+            let r = pin_ui.interact(grab_rect, pin_ui.next_auto_id(), Sense::click_and_drag());
 
             pin_ui.skip_ahead_auto_ids(1);
 
@@ -1787,7 +1802,7 @@ where
                 drag_released = true;
             }
 
-            let mut visual_pin_rect = r.rect;
+            let mut visual_pin_rect = pin_rect;
 
             if r.contains_pointer() {
                 if snarl_state.has_new_wires_out() {

@@ -40,6 +40,26 @@ pub(super) fn pin_info(port: &PortDef) -> PinInfo {
         .with_fill(type_color(&port.ty))
 }
 
+/// The width of the slot an output's summary (`12 × 9 quad mesh`) is drawn in, in points: the
+/// same before and after its data arrives, so the output's pin stays where it is; a longer
+/// summary ends in "…" and the hover gives it whole.
+pub const SUMMARY_WIDTH: f32 = 110.0;
+
+/// Draws an output's summary right-aligned in a slot of [`SUMMARY_WIDTH`] (empty before its
+/// data arrives), cut with "…" to fit.
+pub(super) fn summary_slot(ui: &mut Ui, summary: Option<&str>) {
+    let height = ui.spacing().interact_size.y;
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(SUMMARY_WIDTH, height), egui::Sense::hover());
+    if let Some(text) = summary {
+        let builder = egui::UiBuilder::new()
+            .max_rect(rect)
+            .layout(egui::Layout::right_to_left(egui::Align::Center));
+        // A child that does not allocate in the row: the slot above is all the row gets.
+        let mut slot = ui.new_child(builder);
+        slot.add(egui::Label::new(egui::RichText::new(text).weak()).truncate());
+    }
+}
+
 /// The widest a port's name is drawn on a node, in points: longer names (a cluster's port can be
 /// named anything) end in "…" and the hover gives the whole name. Every name of the node library
 /// fits (the longest, `from_reference_max`, is about 115 points).

@@ -20,7 +20,7 @@ use crate::worker::{NodeStatus, PANEL_TYPE};
 use crate::{list_editor, mapper, widgets};
 
 use super::action::{CanvasAction, CanvasNode};
-use super::pins::{PinKey, RecordingPin, fitted_port_name, pin_info};
+use super::pins::{PinKey, RecordingPin, fitted_port_name, pin_info, summary_slot};
 
 /// The readout of a `view.panel` node: its text (selectable, monospace, every line) in a
 /// scrolling box the designer resizes by its bottom-right corner (the size is kept per node for
@@ -510,9 +510,13 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
             Some(NodeStatus::Ok { outputs, .. }) => outputs.get(pin.id.output).cloned(),
             _ => None,
         };
+        let exported = self
+            .graph
+            .node(&id)
+            .is_some_and(|n| n.def.has_flag(NodeFlag::Export));
         ui.horizontal(|ui| {
-            if let Some(s) = summary {
-                ui.weak(s);
+            if !exported {
+                summary_slot(ui, summary.as_deref());
             }
             let (shown, full) = fitted_port_name(ui, &port.name);
             let label = ui
