@@ -496,6 +496,11 @@ for (const name of gallery) {
   assert.ok(s.narrow, "the narrow layout is used");
   const [vx0, vy0, vx1, vy1] = s.view;
   assert.ok(vx1 - vx0 > 300 && vy1 - vy0 > 200 && vx1 <= 390 && vy1 <= 844, `the 3D view is shown: ${s.view}`);
+  // The 3D view takes most of the phone's screen (its controls in one row above it).
+  const viewShare = (vy1 - vy0) / 844;
+  figures.phone_view_share = +viewShare.toFixed(3);
+  console.log(`phone: the 3D view is ${(viewShare * 100).toFixed(1)} % of the screen's height`);
+  assert.ok(viewShare >= 0.6, `the 3D view covers at least 60 % of the phone's height: ${(viewShare * 100).toFixed(1)} %`);
   assert.ok(s.parameters, "the parameters are shown");
   const [px0, py0, px1, py1] = s.parameters;
   assert.ok(py0 >= vy1 - 1 && py1 - py0 > 100 && px1 <= 390, `the parameters sit below the view: ${s.parameters} / ${s.view}`);

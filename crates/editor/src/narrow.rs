@@ -9,6 +9,10 @@ use crate::app::EditorApp;
 /// Below this width (points) the editor stacks the 3D view over the parameters.
 pub const NARROW_WIDTH: f32 = 720.0;
 
+/// The share of the height below the tabs that the 3D view (with its one row of controls) takes in
+/// a narrow layout; the parameters get the rest.
+pub const NARROW_VIEW_SHARE: f32 = 0.76;
+
 /// The tab shown in a narrow layout.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 enum Tab {
@@ -54,7 +58,9 @@ pub fn panels(app: &mut EditorApp, ui: &mut Ui) {
     ctx.data_mut(|d| d.insert_temp(tab_id(), tab));
     match tab {
         Tab::Design => {
-            let height = (ui.available_height() * 0.55).max(160.0);
+            // The 3D view takes most of the screen (its controls one row); the parameters
+            // scroll below it.
+            let height = (ui.available_height() * NARROW_VIEW_SHARE).max(160.0);
             egui::Panel::top("cnets-narrow-view")
                 .exact_size(height)
                 .resizable(false)

@@ -640,3 +640,31 @@ fn preview_only_the_selected_draws_the_selected_nodes_alone() {
     settle(&mut h);
     assert_eq!(drawn(&h), all, "the toggle off draws every previewed node");
 }
+
+/// A phone (390 × 844 points): the 3D view takes at least 60 % of the screen's height, its
+/// controls in one row above it, and the parameters stay below it.
+#[test]
+fn on_a_phone_the_3d_view_takes_most_of_the_screen() {
+    let mut h = harness("phone-view");
+    h.set_size(egui::vec2(390.0, 844.0));
+    settle(&mut h);
+    h.run_steps(4);
+    let view = h.state().viewport.rect;
+    let share = view.height() / 844.0;
+    eprintln!(
+        "phone: 3D view {view:?}, {:.0} % of the height",
+        share * 100.0
+    );
+    assert!(
+        share >= 0.6,
+        "the 3D view is {:.0} % of the screen",
+        share * 100.0
+    );
+    assert!(view.width() >= 360.0, "{view:?}");
+    let parameters = h.state().parameters_rect.expect("the parameters are shown");
+    assert!(
+        parameters.top() >= view.bottom() - 1.0,
+        "{parameters:?} under {view:?}"
+    );
+    assert!(parameters.height() >= 100.0, "{parameters:?}");
+}

@@ -290,46 +290,63 @@ impl EditorApp {
         actions
     }
 
+    /// The colour mode, the planarity scale's top (in that mode) and Fit: the 3D view's first
+    /// controls.
+    fn view_mode_controls(&mut self, ui: &mut Ui) {
+        let mut o = self.viewport.options;
+        egui::ComboBox::from_id_salt("color-mode")
+            .selected_text(o.color_mode.label())
+            .show_ui(ui, |ui| {
+                for m in crate::preview::ColorMode::ALL {
+                    ui.selectable_value(&mut o.color_mode, m, m.label());
+                }
+            });
+        if o.color_mode == crate::preview::ColorMode::Planarity {
+            // The top of the scale (planar below 1e-9 stays the anchor).
+            let (lo, hi) = crate::preview::PLANARITY_LIMIT_RANGE;
+            let mut limit = o.planarity_limit();
+            let r = ui
+                .add(
+                    egui::Slider::new(&mut limit, lo..=hi)
+                        .logarithmic(true)
+                        .text("not planar from")
+                        .custom_formatter(|v, _| format!("{v:.0e}")),
+                )
+                .on_hover_text(
+                    "the top of the planarity colour scale: faces from this relative \
+                     planarity up are not planar (saved with the editor settings)",
+                );
+            if r.changed() && o.set_planarity_limit(limit) && !r.dragged() {
+                self.settings.set_planarity_limit(o.planarity_limit());
+            }
+            if r.drag_stopped() {
+                self.settings.set_planarity_limit(o.planarity_limit());
+            }
+        }
+        if ui.button("Fit (F)").clicked() {
+            self.viewport.fit();
+        }
+        self.viewport.options = o;
+    }
+
     /// The 3D view with its toolbar, and what it asked for carried out. `canvas_shown`: the
     /// canvas is on screen too (else every failed node's error is listed in the view).
     pub(crate) fn viewport_contents(&mut self, ui: &mut Ui, canvas_shown: bool) {
-        ui.horizontal(|ui| {
-            let mut o = self.viewport.options;
-            egui::ComboBox::from_id_salt("color-mode")
-                .selected_text(o.color_mode.label())
-                .show_ui(ui, |ui| {
-                    for m in crate::preview::ColorMode::ALL {
-                        ui.selectable_value(&mut o.color_mode, m, m.label());
-                    }
+        if crate::narrow::is_narrow(ui.ctx()) {
+            // A phone: the view's controls in one row that scrolls sideways, so the 3D view keeps
+            // the height three wrapped rows would take.
+            egui::ScrollArea::horizontal()
+                .id_salt("cnets-narrow-view-toolbar")
+                .show(ui, |ui| {
+                    ui.horizontal(|ui| {
+                        self.view_mode_controls(ui);
+                        self.viewport.toolbar(ui);
+                    })
                 });
-            if o.color_mode == crate::preview::ColorMode::Planarity {
-                // The top of the scale (planar below 1e-9 stays the anchor).
-                let (lo, hi) = crate::preview::PLANARITY_LIMIT_RANGE;
-                let mut limit = o.planarity_limit();
-                let r = ui
-                    .add(
-                        egui::Slider::new(&mut limit, lo..=hi)
-                            .logarithmic(true)
-                            .text("not planar from")
-                            .custom_formatter(|v, _| format!("{v:.0e}")),
-                    )
-                    .on_hover_text(
-                        "the top of the planarity colour scale: faces from this relative \
-                         planarity up are not planar (saved with the editor settings)",
-                    );
-                if r.changed() && o.set_planarity_limit(limit) && !r.dragged() {
-                    self.settings.set_planarity_limit(o.planarity_limit());
-                }
-                if r.drag_stopped() {
-                    self.settings.set_planarity_limit(o.planarity_limit());
-                }
-            }
-            if ui.button("Fit (F)").clicked() {
-                self.viewport.fit();
-            }
-            self.viewport.options = o;
-        });
-        ui.horizontal_wrapped(|ui| self.viewport.toolbar(ui));
+        } else {
+            ui.horizontal(|ui| self.view_mode_controls(ui));
+            ui.horizontal_wrapped(|ui| self.viewport.toolbar(ui));
+        }
         let selected = self.canvas.targets();
         let input = ViewportInput {
             graph: &self.doc.graph,
