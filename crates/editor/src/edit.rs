@@ -123,8 +123,9 @@ pub enum Edit {
     AddCPlane(cnets_engine::file::NamedPlane),
 }
 
-/// Canvas spacing of the nodes [`Edit::AddCurves`] places.
-const CURVE_NODE_STEP: [f32; 2] = [270.0, 150.0];
+/// Canvas spacing of the nodes [`Edit::AddCurves`] places: a curve node clear of its
+/// `param.points` (about 460 wide with its output summary's slot) and the next curve below.
+pub const CURVE_NODE_STEP: [f32; 2] = [500.0, 150.0];
 
 /// Sets several nodes' input values as one step of the gesture `key` (a drag's edits merge).
 fn set_inputs(

@@ -273,6 +273,19 @@ fn run_script(
     std::collections::HashMap<String, String>,
     std::path::PathBuf,
 ) {
+    run_script_into(name, graph, example, &shots_dir())
+}
+
+/// [`run_script`] with the screenshots saved into `shots`.
+fn run_script_into(
+    name: &str,
+    graph: Option<(&str, &str)>,
+    example: Option<&str>,
+    shots: &std::path::Path,
+) -> (
+    std::collections::HashMap<String, String>,
+    std::path::PathBuf,
+) {
     let dir = std::env::temp_dir().join(format!("cnets-script-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
@@ -293,7 +306,7 @@ fn run_script(
         .arg(env!("CARGO_BIN_EXE_cnets-editor"))
         .arg(&file)
         .args(["--drive-script", name, "--drive-out"])
-        .arg(shots_dir())
+        .arg(shots)
         .args(["--size", "1400x860"])
         .current_dir(&dir)
         .env("CNETS_EDITOR_HOME", dir.join("home"))
@@ -752,6 +765,135 @@ fn dragging_the_net_moves_the_vertex_holds_the_pin_and_undoes_in_one_step() {
         "drag-net: UI thread a frame while dragging: median {} ms, p90 {} ms, max {} ms ({} frames); \
          the release frame waited {} ms for the last answer",
         ui[0], ui[1], ui[2], ui[3], ui[4]
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The screenshots of docs/tutorial.md, in the order of its steps.
+const TUTORIAL_SHOTS: [&str; 6] = [
+    "tutorial-1-new",
+    "tutorial-2-directrix",
+    "tutorial-3-generatrix",
+    "tutorial-4-cone-net",
+    "tutorial-5-repaired",
+    "tutorial-6-exported",
+];
+
+/// docs/tutorial.md played in the real window with pointer events and keys (the `tutorial`
+/// script): File › New, a directrix drawn in the Top view and a generatrix in the Front view, a
+/// CNets Construct wired by its pins, the assistance dragged until no face folds, then GLB and
+/// DXF exported. The outcomes are checked (the points where they were drawn, the wires, no fold
+/// left, a GLB holding the net at its size, a DXF of outlines), and the six screenshots are
+/// written to `target/tmp/tutorial`. A screenshot under the software rasterizer is not stable
+/// to the pixel, so they are not compared: `UPDATE_TUTORIAL=1` copies them into docs/tutorial/
+/// (look at them before committing); without it, the test only checks that docs/tutorial/ holds
+/// every picture the tutorial shows.
+#[test]
+fn the_tutorial_is_played_in_the_real_window_and_its_screenshots_written() {
+    if skip() {
+        return;
+    }
+    let started = std::time::Instant::now();
+    let shots = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("tutorial");
+    let _ = std::fs::remove_dir_all(&shots);
+    std::fs::create_dir_all(&shots).unwrap();
+    let (lines, dir) = run_script_into(
+        "tutorial",
+        Some(("start.ron", "(version: 1, nodes: {}, edges: [])")),
+        None,
+        &shots,
+    );
+    eprintln!(
+        "tutorial: scripted steps {} s, whole run {:.1} s; screenshots in {}",
+        lines["seconds"],
+        started.elapsed().as_secs_f64(),
+        shots.display()
+    );
+    assert_eq!(lines["nodes after new"], "0", "File › New: an empty graph");
+    for key in ["top step", "front step"] {
+        let step: f64 = lines[key].parse().unwrap();
+        assert!(
+            (1.0 / step - (1.0 / step).round()).abs() < 1e-9,
+            "{key}: a grid of {step} m holds whole metres"
+        );
+    }
+    // The curves' points where they were clicked (snapped to the grid).
+    assert_eq!(
+        points(&lines["directrix points"]),
+        [
+            [0.0, 0.0, 0.0],
+            [1.0, 2.0, 0.0],
+            [-1.0, 4.0, 0.0],
+            [0.0, 6.0, 0.0]
+        ]
+    );
+    assert_eq!(
+        points(&lines["generatrix points"]),
+        [
+            [-5.0, 0.0, 0.0],
+            [-3.0, 0.0, 3.0],
+            [0.0, 0.0, 4.0],
+            [3.0, 0.0, 3.0],
+            [5.0, 0.0, 0.0]
+        ]
+    );
+    assert!(
+        lines["wires"].contains("spline.curve->construct.directrix"),
+        "{lines:?}"
+    );
+    assert!(
+        lines["wires"].contains("spline_2.curve->construct.generatrix"),
+        "{lines:?}"
+    );
+    let size = points(&lines["mesh size"])[0];
+    assert!(
+        (size[2] - 4.0).abs() < 0.01,
+        "the arch's 4 m height: {size:?}"
+    );
+    let alpha: f64 = lines["assistance"].parse().unwrap();
+    assert!((0.45..0.6).contains(&alpha), "assistance {alpha}");
+    assert_eq!(lines["folds after"], "0", "no face folds after step 5");
+    // Exported next to the working folder, under the name the dialog offers.
+    let glb = dir.join("cone-net.glb");
+    let dxf = dir.join("cone-net.dxf");
+    assert!(glb.is_file() && dxf.is_file(), "{lines:?}");
+    let exported = glb_size(&glb, "construct");
+    let shown = points(&lines["mesh size after"])[0];
+    for k in 0..3 {
+        assert!(
+            (exported[k] - shown[k]).abs() < 1e-3,
+            "GLB {exported:?} vs shown {shown:?}"
+        );
+    }
+    let dxf_text = std::fs::read_to_string(&dxf).unwrap();
+    assert!(
+        dxf_text.starts_with("0\nSECTION") || dxf_text.starts_with("  0\nSECTION"),
+        "a DXF file"
+    );
+    assert!(dxf_text.contains("LWPOLYLINE"), "outlines in the DXF");
+    assert!(dxf_text.trim_end().ends_with("EOF"), "a complete DXF");
+    // The screenshots: written here; copied into the docs when asked.
+    let docs =
+        std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/tutorial"));
+    let update = std::env::var_os("UPDATE_TUTORIAL").is_some_and(|v| v == "1");
+    if update {
+        std::fs::create_dir_all(&docs).unwrap();
+    }
+    let mut missing = Vec::new();
+    for shot in TUTORIAL_SHOTS {
+        let made = shots.join(format!("{shot}.png"));
+        assert!(made.is_file(), "{} was not written", made.display());
+        let kept = docs.join(format!("{shot}.png"));
+        if update {
+            std::fs::copy(&made, &kept).unwrap();
+        } else if !kept.is_file() {
+            missing.push(kept.display().to_string());
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "docs/tutorial/ lacks {missing:?}: run UPDATE_TUTORIAL=1 cargo test -p cnets-editor \
+         --test window the_tutorial, look at the pictures, and commit them"
     );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -23,9 +23,9 @@ use super::files::user_folder;
 /// The canvas room kept for a new node (canvas units).
 const NEW_NODES_SIZE: egui::Vec2 = egui::vec2(460.0, 140.0);
 
-/// The canvas room of a drawn curve's nodes: its `param.points` and, 270 units right of it, the
-/// curve node (about 380 wide once its output summary shows).
-const CURVE_NODES_SIZE: egui::Vec2 = egui::vec2(660.0, 150.0);
+/// The canvas room of a drawn curve's nodes: its `param.points` and, right of it
+/// ([`crate::edit::CURVE_NODE_STEP`]), the curve node (about 390 wide with its output summary).
+const CURVE_NODES_SIZE: egui::Vec2 = egui::vec2(crate::edit::CURVE_NODE_STEP[0] + 390.0, 150.0);
 
 impl EditorApp {
     /// Adds a node of type `type_id` at a canvas position; returns its id.
@@ -281,7 +281,8 @@ impl EditorApp {
 
     /// The first free place at or below `start` (canvas coordinates) for new nodes of about
     /// `size`, moved into the visible part of the canvas (never under the 3D view beside it);
-    /// when the free place is out of view (the view is full of nodes) the canvas pans to it.
+    /// when the free place is out of view (the view is full of nodes) or larger than the view,
+    /// the canvas pans to it and zooms out until it shows it whole.
     pub fn place_in_view(&mut self, start: egui::Pos2, size: egui::Vec2) -> [f32; 2] {
         let screen = self.canvas.screen_rect();
         if !screen.is_positive() {
@@ -301,9 +302,14 @@ impl EditorApp {
         p.x = p.x.min(view.right() - size.x).max(view.left());
         p.y = p.y.min(view.bottom() - size.y).max(view.top());
         let p = self.canvas.free_spot(p, size);
-        if !view.contains_rect(egui::Rect::from_min_size(p, size)) {
-            let centre = p + size / 2.0;
-            self.canvas.zoom_to(self.canvas.zoom(), Some(centre));
+        let placed = egui::Rect::from_min_size(p, size);
+        if !view.contains_rect(placed) {
+            // Out of view, or larger than the view: centre it, zooming out as far as it must
+            // (down to the canvas's smallest zoom).
+            let room = screen.shrink(20.0).size();
+            let fits = (room.x / size.x).min(room.y / size.y);
+            let zoom = self.canvas.zoom().min(fits).max(crate::canvas::MIN_ZOOM);
+            self.canvas.zoom_to(zoom, Some(placed.center()));
         }
         [p.x, p.y]
     }

@@ -22,20 +22,20 @@ pub const S_CURVE: [(f64, f64); 4] = [(0.0, 0.0), (1.0, 2.0), (-1.0, 4.0), (0.0,
 /// The arch's control points in the Front view (x, z in metres).
 pub const ARCH: [(f64, f64); 5] = [(-5.0, 0.0), (-3.0, 3.0), (0.0, 4.0), (3.0, 3.0), (5.0, 0.0)];
 
-fn print(key: &'static str, f: impl Fn(&EditorApp) -> String + 'static) -> Step {
+pub(crate) fn print(key: &'static str, f: impl Fn(&EditorApp) -> String + 'static) -> Step {
     Step::Print(key, Box::new(f))
 }
 
-fn key(k: Key) -> Step {
+pub(crate) fn key(k: Key) -> Step {
     Step::Key(k, Modifiers::NONE)
 }
 
-fn click(t: Target) -> Step {
+pub(crate) fn click(t: Target) -> Step {
     Step::Click(t, PointerButton::Primary, Modifiers::NONE)
 }
 
 /// A world point nudged by a fifth of a grid step on screen (the snap takes it away).
-fn near(p: DVec3) -> Target {
+pub(crate) fn near(p: DVec3) -> Target {
     Box::new(move |app: &EditorApp, ctx: &egui::Context| {
         let s = app.viewport.spacing.minor;
         let px = (s / app.viewport.screen_map().world_per_point()) as f32;
@@ -44,12 +44,12 @@ fn near(p: DVec3) -> Target {
 }
 
 /// A control drawn under `label` (menus, dialog buttons, palette entries).
-fn control(label: &'static str) -> Target {
+pub(crate) fn control(label: &'static str) -> Target {
     Box::new(move |_: &EditorApp, ctx: &egui::Context| probe::rect(ctx, label).map(|r| r.center()))
 }
 
 /// A pin of a node on the canvas.
-fn pin(node: &'static str, input: bool, port: &'static str) -> Target {
+pub(crate) fn pin(node: &'static str, input: bool, port: &'static str) -> Target {
     Box::new(move |app: &EditorApp, _: &egui::Context| {
         let def = &app.doc.graph.node(node)?.def;
         let k = if input {
@@ -62,12 +62,12 @@ fn pin(node: &'static str, input: bool, port: &'static str) -> Target {
 }
 
 /// The middle of the view, for the wheel.
-fn view_centre() -> Target {
+pub(crate) fn view_centre() -> Target {
     Box::new(|app: &EditorApp, _: &egui::Context| Some(app.viewport.rect.center()))
 }
 
 /// The box of the construction's mesh: (W, D, H).
-fn mesh_size(app: &EditorApp) -> Option<DVec3> {
+pub(crate) fn mesh_size(app: &EditorApp) -> Option<DVec3> {
     let picks = app.viewport.picks();
     let mesh = picks.meshes.iter().find(|m| m.node == "construct")?;
     let PickGeometry::Grid(g) = &mesh.geometry else {
@@ -91,7 +91,7 @@ fn directrix_width(app: &EditorApp) -> Option<f64> {
     Some(hi - lo)
 }
 
-fn assistance(app: &EditorApp) -> f64 {
+pub(crate) fn assistance(app: &EditorApp) -> f64 {
     app.doc
         .graph
         .node("construct")
@@ -100,12 +100,12 @@ fn assistance(app: &EditorApp) -> f64 {
         .unwrap_or(f64::NAN)
 }
 
-fn folds(app: &EditorApp) -> String {
+pub(crate) fn folds(app: &EditorApp) -> String {
     app.viewport.picks().folded_faces().len().to_string()
 }
 
 /// Draws a curve through `points` with the Draw curve tool and Enter.
-fn draw(points: impl IntoIterator<Item = DVec3>) -> Vec<Step> {
+pub(crate) fn draw(points: impl IntoIterator<Item = DVec3>) -> Vec<Step> {
     let mut steps = vec![key(Key::C)];
     steps.extend(points.into_iter().map(|p| click(near(p))));
     steps.extend([key(Key::Enter), Step::Settle]);
@@ -114,7 +114,7 @@ fn draw(points: impl IntoIterator<Item = DVec3>) -> Vec<Step> {
 
 /// Exports through File ▸ Export ▸ `entry` into the document's folder, under the name the
 /// dialog offers (the document's), and closes the list of what was written.
-fn export(entry: &'static str) -> Vec<Step> {
+pub(crate) fn export(entry: &'static str) -> Vec<Step> {
     vec![
         click(control("File")),
         Step::Wait(2),

@@ -31,6 +31,7 @@ mod drag_net;
 mod drive;
 mod scenarios;
 mod script;
+mod tutorial;
 
 use bench::{Bench, Motion};
 use drive::{Drive, slider_values};

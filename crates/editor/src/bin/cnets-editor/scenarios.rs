@@ -390,6 +390,7 @@ pub fn script(name: &str) -> Option<Vec<Step>> {
         "pick" => pick(),
         "folds" => folds(),
         "canopy" => crate::canopy::canopy(),
+        "tutorial" => crate::tutorial::tutorial(),
         "wire-click" => wire_click(),
         "drag-net" => crate::drag_net::drag_net(),
         "rename-menu" => rename_menu(),
@@ -400,4 +401,4 @@ pub fn script(name: &str) -> Option<Vec<Step>> {
 
 /// The names of the scripts.
 pub const NAMES: &str =
-    "handles, draw, pick, folds, canopy, wire-click, drag-net, rename-menu, cplane";
+    "handles, draw, pick, folds, canopy, tutorial, wire-click, drag-net, rename-menu, cplane";
