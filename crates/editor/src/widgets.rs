@@ -17,24 +17,38 @@ pub fn effective_value(node: &NodeInstance, k: usize) -> Option<Value> {
         .or_else(|| node.def.inputs.get(k).and_then(|p| p.default.clone()))
 }
 
-/// Slider range of a `param.number` node: its `min`, `max` and `step` values (defaults 0, 1, 0).
-pub fn slider_range(node: &NodeInstance) -> (f64, f64, f64) {
-    slider_range_or(node, 0.0, 1.0)
-}
-
-/// A node's `min`, `max` (ordered) and `step` values, with the defaults given.
-fn slider_range_or(node: &NodeInstance, min_default: f64, max_default: f64) -> (f64, f64, f64) {
-    let get = |name: &str, fallback: f64| {
+/// Slider range and step of input `k` of a node, as its port declares them: read from the inputs
+/// the port names as holding them (`range_inputs`, `step_input`: a `param.number`'s `min`, `max`
+/// and `step`), else the port's declared range (`soft_range`, else `hard_range`) and step, else 0
+/// to 1 without a step. A reversed range is put in order.
+pub fn slider_range(node: &NodeInstance, k: usize) -> (f64, f64, f64) {
+    let Some(port) = node.def.inputs.get(k) else {
+        return (0.0, 1.0, 0.0);
+    };
+    let read = |name: &str| {
         node.def
             .input_index(name)
-            .and_then(|k| effective_value(node, k))
+            .and_then(|i| effective_value(node, i))
             .and_then(|v| v.as_f64())
             .filter(|v| v.is_finite())
-            .unwrap_or(fallback)
     };
-    let (min, max) = (get("min", min_default), get("max", max_default));
+    let (lo, hi) = port
+        .hint
+        .soft_range
+        .or(port.hint.hard_range)
+        .unwrap_or((0.0, 1.0));
+    let (min, max) = match port.hint.range_inputs {
+        Some((a, b)) => (read(a).unwrap_or(lo), read(b).unwrap_or(hi)),
+        None => (lo, hi),
+    };
     let (min, max) = if min <= max { (min, max) } else { (max, min) };
-    (min, max, get("step", 0.0).max(0.0))
+    let step = port
+        .hint
+        .step_input
+        .and_then(read)
+        .or(port.hint.step)
+        .unwrap_or(0.0);
+    (min, max, step.max(0.0))
 }
 
 /// The options of a `param.choice` node, when its `options` input holds a literal list of texts.
@@ -166,7 +180,7 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
         ValueType::Number => {
             let mut x = current.as_ref().and_then(Value::as_f64).unwrap_or(0.0);
             let changed = if port.widget() == Widget::Slider {
-                let (min, max, step) = slider_range(node);
+                let (min, max, step) = slider_range(node, k);
                 let mut slider =
                     egui::Slider::new(&mut x, min..=max).clamping(egui::SliderClamping::Never);
                 if step > 0.0 {
@@ -198,7 +212,7 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
             if port.widget() == Widget::Slider {
                 // An integer slider (Grasshopper's): its value stays in its own `min`..`max`
                 // (the node would clamp it anyway, with a warning), whole numbers only.
-                let (min, max, _) = slider_range_or(node, 0.0, 10.0);
+                let (min, max, _) = slider_range(node, k);
                 let slider = egui::Slider::new(&mut i, min as i64..=max as i64)
                     .clamping(egui::SliderClamping::Always);
                 return (ui.add(slider).changed() && !secondary_button(ui))
@@ -429,11 +443,12 @@ mod tests {
     fn slider_range_comes_from_the_node() {
         let mut g = Graph::new(Arc::new(cnets_nodes::registry()));
         g.add_node("n", "param.number").unwrap();
-        assert_eq!(slider_range(g.node("n").unwrap()), (0.0, 1.0, 0.0));
+        let k = g.node("n").unwrap().def.input_index("value").unwrap();
+        assert_eq!(slider_range(g.node("n").unwrap(), k), (0.0, 1.0, 0.0));
         g.set_value("n", "min", Value::Number(2.0)).unwrap();
         g.set_value("n", "max", Value::Number(-1.0)).unwrap();
         g.set_value("n", "step", Value::Number(0.5)).unwrap();
-        assert_eq!(slider_range(g.node("n").unwrap()), (-1.0, 2.0, 0.5));
+        assert_eq!(slider_range(g.node("n").unwrap(), k), (-1.0, 2.0, 0.5));
     }
 
     #[test]

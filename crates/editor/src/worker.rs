@@ -477,7 +477,7 @@ pub fn evaluate(
         .map(|(k, n)| {
             // The reference of the distance colours is needed by the preview too.
             let shown = (n.preview && n.enabled)
-                || n.def.id == PANEL_TYPE
+                || readout_output(&n.def).is_some()
                 || request.options.distance_to == Some(n.uid());
             let mask = if shown {
                 OutputMask::ALL
@@ -611,8 +611,13 @@ fn upstream(
     seen
 }
 
-/// The node type whose text output is shown inside the node (Grasshopper's Panel).
-pub const PANEL_TYPE: &str = "view.panel";
+/// The output whose text is shown inside the node (Grasshopper's Panel): the one its port
+/// declares as the node's readout ([`cnets_engine::Role::Readout`]).
+pub fn readout_output(def: &cnets_engine::NodeDef) -> Option<usize> {
+    def.outputs
+        .iter()
+        .position(|p| p.hint.role == cnets_engine::Role::Readout)
+}
 
 /// The status of every node of `graph` after an evaluation with `evaluator`.
 pub fn statuses(
@@ -641,12 +646,10 @@ pub fn statuses(
                         time_ms: evaluator
                             .time(graph, &n.id)
                             .map_or(0.0, |t| t.as_secs_f64() * 1e3),
-                        readout: (n.def.id == PANEL_TYPE)
-                            .then(|| match out.values.first() {
-                                Some(Value::Text(t)) => Some(t.to_string()),
-                                _ => None,
-                            })
-                            .flatten(),
+                        readout: readout_output(&n.def).and_then(|k| match out.values.get(k) {
+                            Some(Value::Text(t)) => Some(t.to_string()),
+                            _ => None,
+                        }),
                         ran_on: crate::mapper::is_mapper(n)
                             .then(|| evaluator.inputs_of(graph, k, ctx).ok())
                             .flatten(),

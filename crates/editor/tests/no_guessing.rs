@@ -22,6 +22,10 @@ const GUESSES: &[&str] = &[
     "POINT_PARAMS",
     "INTEGER_TYPE",
     "CHOICE_TYPE",
+    "PANEL_TYPE",
+    "output_index(\"configurations\")",
+    "output_index(\"mesh\")",
+    "Some(\"param.points\")",
 ];
 
 fn sources(dir: &Path, out: &mut Vec<PathBuf>) {

@@ -303,6 +303,7 @@ node! {
         /// Plane normals P_ij: N lists of M−1 vectors.
         planes: k::Tree<k::Vector>,
         /// Configurations c_ij (j = 0 … M−2, one per support-strip quad): N lists of M−1 labels "++", "--", "+-", "-+".
+        #[ui(role = Configurations)]
         configurations: k::Tree<k::Text>,
         /// Corrections made (none for this construction).
         corrections: k::List<k::Text>,
@@ -379,6 +380,7 @@ node! {
         /// Plane normals P_ij: N lists of M−1 vectors.
         planes: k::Tree<k::Vector>,
         /// Configurations c_ij (j = 0 … M−2, one per support-strip quad): N lists of M−1 labels "++", "--", "+-", "-+".
+        #[ui(role = Configurations)]
         configurations: k::Tree<k::Text>,
         /// Every correction made: column, row, old → new.
         corrections: k::List<k::Text>,
@@ -451,6 +453,7 @@ node! {
         /// Plane normals P_ij: N lists of M−1 vectors (equal along each column).
         planes: k::Tree<k::Vector>,
         /// Configurations c_ij (j = 0 … M−2, one per support-strip quad): N lists of M−1 labels "++", "--", "+-", "-+".
+        #[ui(role = Configurations)]
         configurations: k::Tree<k::Text>,
         /// Every correction made: column, old → new.
         corrections: k::List<k::Text>,

@@ -64,7 +64,7 @@ node! {
     #[node(id = "param.integer", category = "Params", name = "Integer slider", flags(Parameter))]
     pub fn integer[ctx](
         /// The value.
-        #[ui(widget = Slider)]
+        #[ui(widget = Slider, range_inputs = ("min", "max"))]
         value: k::Integer = 1,
         /// Slider minimum.
         min: k::Integer = 0,

@@ -190,6 +190,7 @@ node! {
         value: k::Tree<k::Any>,
     ) -> (
         /// The text shown.
+        #[ui(role = Readout)]
         text: k::Text,
     ) {
         Ok((panel_text(&value),))

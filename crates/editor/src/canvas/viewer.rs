@@ -16,7 +16,7 @@ use rustc_hash::FxHashMap;
 
 use crate::edit::Edit;
 use crate::request::UiRequest;
-use crate::worker::{NodeStatus, PANEL_TYPE};
+use crate::worker::{NodeStatus, readout_output};
 use crate::{list_editor, mapper, widgets};
 
 use super::action::{CanvasAction, CanvasNode};
@@ -558,7 +558,7 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
     fn has_body(&mut self, node: &CanvasNode) -> bool {
         self.graph
             .node(&node.id)
-            .is_some_and(|n| mapper::is_mapper(n) || n.def.id == PANEL_TYPE)
+            .is_some_and(|n| mapper::is_mapper(n) || readout_output(&n.def).is_some())
     }
 
     fn show_body(
@@ -572,7 +572,11 @@ impl SnarlViewer<CanvasNode> for Viewer<'_> {
         let Some(id) = node_id(snarl, node) else {
             return;
         };
-        if self.graph.node(&id).is_some_and(|n| n.def.id == PANEL_TYPE) {
+        if self
+            .graph
+            .node(&id)
+            .is_some_and(|n| readout_output(&n.def).is_some())
+        {
             let text = match self.statuses.get(&id) {
                 Some(NodeStatus::Ok { readout, .. }) => readout.clone(),
                 _ => None,

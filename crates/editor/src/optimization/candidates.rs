@@ -102,9 +102,20 @@ pub fn variable_candidates(node: &NodeInstance, k: usize) -> Vec<Candidate> {
         .into_iter()
         .filter(|(indices, _)| !is_handles || indices.last() != Some(&2))
         .map(|(indices, x)| {
+            // The range the port declares (a slider's `min` and `max` inputs, a declared soft or
+            // hard range); a mapper's handles lie in the unit square; else around the value.
+            let declared = port
+                .hint
+                .soft_range
+                .or(port.hint.hard_range.filter(|&(a, b)| {
+                    // An open bound (a step's 0 to f64::MAX) is no range to search.
+                    a.abs() < 1e300 && b.abs() < 1e300
+                }));
             let (min, max) = if slider {
-                let (lo, hi, _) = slider_range(node);
+                let (lo, hi, _) = slider_range(node, k);
                 (lo, hi)
+            } else if let Some(range) = declared {
+                range
             } else if is_handles {
                 (0.0, 1.0)
             } else {
@@ -220,6 +231,21 @@ pub fn variable_menu(ui: &mut Ui, candidates: &[Candidate]) -> Option<UiRequest>
 mod tests {
     use super::*;
     use crate::optimization::tests::graph;
+
+    #[test]
+    fn a_declared_range_bounds_the_candidates() {
+        // `curve.arc`'s radius with a declared range: the variable offers that range, not ±50 %.
+        let nodes = cnets_nodes::registry();
+        let mut arc = (**nodes.get("curve.arc").unwrap()).clone();
+        let k = arc.input_index("radius").unwrap();
+        arc.inputs[k].hint.soft_range = Some((1.0, 9.0));
+        let mut registry = cnets_engine::Registry::new();
+        registry.register(arc);
+        let mut g = cnets_engine::Graph::new(std::sync::Arc::new(registry));
+        g.add_node("arc", "curve.arc").unwrap();
+        let c = variable_candidates(g.node("arc").unwrap(), k);
+        assert_eq!((c[0].min, c[0].max), (1.0, 9.0));
+    }
 
     #[test]
     fn candidates_have_sensible_bounds() {

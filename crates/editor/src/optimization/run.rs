@@ -292,8 +292,8 @@ pub fn isolated(graph: &Graph) -> Graph {
     g
 }
 
-/// Warnings about a fitted design: every construction (a node with `mesh` and `configurations`
-/// outputs) whose net has faces that are not (++)(++) — folded or concave, which a fit to a
+/// Warnings about a fitted design: every construction (a node with a quad-mesh output and one of
+/// role [`cnets_engine::Role::Configurations`]) whose net has faces that are not (++)(++) — folded or concave, which a fit to a
 /// distance alone may leave — with their count.
 pub fn fold_warnings(graph: &Graph, ctx: &NodeContext) -> Vec<String> {
     let mut request = Vec::new();
@@ -301,9 +301,14 @@ pub fn fold_warnings(graph: &Graph, ctx: &NodeContext) -> Vec<String> {
         if !node.enabled {
             continue;
         }
+        let outputs = &node.def.outputs;
         if let (Some(m), Some(c)) = (
-            node.def.output_index("mesh"),
-            node.def.output_index("configurations"),
+            outputs
+                .iter()
+                .position(|p| p.ty == cnets_engine::ValueType::QuadMesh),
+            outputs
+                .iter()
+                .position(|p| p.hint.role == cnets_engine::Role::Configurations),
         ) {
             let mut mask = OutputMask::one(m);
             mask.insert(c);

@@ -1072,9 +1072,17 @@ impl Viewport {
         ui.scope_builder(egui::UiBuilder::new().max_rect(area), |ui| {
             egui::Frame::popup(ui.style()).show(ui, |ui| {
                 ui.horizontal(|ui| {
-                    let name = match graph.node(&key.node).map(|n| n.def.id.as_ref()) {
-                        Some("param.points") => format!("{} [{}]", key.node, key.index),
-                        _ => key.node.clone(),
+                    // A handle of a list of points is named with its index.
+                    let listed = graph.node(&key.node).is_some_and(|n| {
+                        n.def.inputs.iter().any(|p| {
+                            p.widget() == cnets_engine::Widget::PointHandles
+                                && p.access != cnets_engine::Access::Item
+                        })
+                    });
+                    let name = if listed {
+                        format!("{} [{}]", key.node, key.index)
+                    } else {
+                        key.node.clone()
                     };
                     ui.label(name);
                     for (axis, value) in [("x", &mut p.x), ("y", &mut p.y), ("z", &mut p.z)] {

@@ -110,6 +110,11 @@ pub enum Role {
     CutPlane,
     /// A boolean that makes the node's [`Role::CutPlane`] keep the side opposite its normal.
     FlipsSide,
+    /// A construction's support-strip configurations (`++`, `--`, `+-`, `-+`): N lists of M−1
+    /// labels, read with the node's quad-mesh output for the face classes and fold warnings.
+    Configurations,
+    /// A text the editor shows inside the node (a panel's readout).
+    Readout,
 }
 
 /// The fixed words a choice port accepts, and the rule that accepts a text (aliases and case

@@ -144,7 +144,13 @@ impl Bench {
             return;
         };
         let node = app.doc.graph.node(&id).expect("the node");
-        let (min, max, _) = cnets_editor::widgets::slider_range(node);
+        let k = node
+            .def
+            .inputs
+            .iter()
+            .position(|p| p.widget() == cnets_engine::Widget::Slider)
+            .unwrap_or(0);
+        let (min, max, _) = cnets_editor::widgets::slider_range(node, k);
         let value = min + (max - min) * (0.5 + 0.4 * (t * std::f64::consts::TAU).sin());
         let _ = cnets_editor::edit::apply(
             &mut app.doc,
