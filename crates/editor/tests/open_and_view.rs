@@ -668,3 +668,74 @@ fn on_a_phone_the_3d_view_takes_most_of_the_screen() {
     );
     assert!(parameters.height() >= 100.0, "{parameters:?}");
 }
+
+/// A touch on the 3D view at `at`: finger `finger` in `phase`.
+fn touch(h: &Harness<'static, EditorApp>, finger: u64, phase: egui::TouchPhase, at: egui::Pos2) {
+    h.event(egui::Event::Touch {
+        device_id: egui::TouchDeviceId(1),
+        id: egui::TouchId(finger),
+        phase,
+        pos: at,
+        force: None,
+    });
+}
+
+/// The camera's distance from its target.
+fn dist(c: &cnets_render::Camera) -> f32 {
+    (c.eye() - c.target).length()
+}
+
+/// Two fingers on the 3D view: spreading them zooms in, moving them together pans (a phone's
+/// pinch and two-finger drag).
+#[test]
+fn two_fingers_on_the_3d_view_pinch_zoom_and_pan() {
+    let mut h = harness("pinch");
+    settle(&mut h);
+    h.run_steps(2);
+    let centre = h.state().viewport.rect.center();
+    let before = h.state().viewport.camera;
+    let apart = |d: f32| (centre - egui::vec2(d, 0.0), centre + egui::vec2(d, 0.0));
+    let (a, b) = apart(40.0);
+    // A browser's first finger also moves the pointer (egui starts a gesture where it is).
+    h.hover_at(a);
+    h.run_steps(1);
+    touch(&h, 0, egui::TouchPhase::Start, a);
+    touch(&h, 1, egui::TouchPhase::Start, b);
+    h.run_steps(2);
+    for d in [50.0, 60.0, 70.0, 80.0] {
+        let (a, b) = apart(d);
+        touch(&h, 0, egui::TouchPhase::Move, a);
+        touch(&h, 1, egui::TouchPhase::Move, b);
+        h.run_steps(1);
+    }
+    let zoomed = h.state().viewport.camera;
+    assert!(
+        dist(&zoomed) < 0.7 * dist(&before),
+        "spread to twice apart: distance {} → {}",
+        dist(&before),
+        dist(&zoomed)
+    );
+    // Both fingers move 60 points to the right together: the view pans (its target moves).
+    let (a, b) = apart(80.0);
+    for k in 1..=4 {
+        let by = egui::vec2(15.0 * k as f32, 0.0);
+        touch(&h, 0, egui::TouchPhase::Move, a + by);
+        touch(&h, 1, egui::TouchPhase::Move, b + by);
+        h.run_steps(1);
+    }
+    let by = egui::vec2(60.0, 0.0);
+    touch(&h, 0, egui::TouchPhase::End, a + by);
+    touch(&h, 1, egui::TouchPhase::End, b + by);
+    h.run_steps(2);
+    let panned = h.state().viewport.camera;
+    assert!(
+        (panned.target - zoomed.target).length() > 1e-3 * dist(&zoomed),
+        "the target moved: {:?} → {:?}",
+        zoomed.target,
+        panned.target
+    );
+    assert!(
+        (dist(&panned) - dist(&zoomed)).abs() < 0.05 * dist(&zoomed),
+        "a common move does not zoom"
+    );
+}

@@ -836,6 +836,20 @@ impl Viewport {
         actions
     }
 
+    /// A two-finger gesture: zooms by `zoom` (> 1: the fingers spread, in) about `centre` and
+    /// pans by the fingers' common move `moved` (screen points).
+    pub fn pinch(&mut self, zoom: f32, moved: egui::Vec2, centre: egui::Pos2) {
+        if zoom.is_finite() && zoom > 0.0 && (zoom - 1.0).abs() > 1e-6 {
+            let r = self.rect;
+            let ndc_x = 2.0 * (centre.x - r.left()) / r.width().max(1.0) - 1.0;
+            let ndc_y = 1.0 - 2.0 * (centre.y - r.top()) / r.height().max(1.0);
+            self.camera.zoom_at(1.0 / zoom, ndc_x, ndc_y, self.aspect);
+        }
+        if moved != egui::Vec2::ZERO {
+            self.camera.pan(moved.x, moved.y, self.rect.height());
+        }
+    }
+
     /// The pointer: handle drags and box selection, tool clicks, orbit / pan / zoom, hover picks.
     fn pointer(
         &mut self,
@@ -845,14 +859,22 @@ impl Viewport {
         actions: &mut Vec<ViewportAction>,
     ) {
         let map = self.screen_map();
-        let (modifiers, scroll, press_origin, hover) = ui.input(|i| {
+        let (modifiers, scroll, press_origin, hover, touches) = ui.input(|i| {
             (
                 i.modifiers,
                 i.smooth_scroll_delta.y,
                 i.pointer.press_origin(),
                 i.pointer.hover_pos(),
+                i.multi_touch(),
             )
         });
+        // Two fingers on the view: a pinch zooms about their centre and their common move pans
+        // (one finger orbits, as a primary drag does); nothing else moves meanwhile.
+        if let Some(t) = touches.filter(|t| t.num_touches >= 2 && self.rect.contains(t.center_pos))
+        {
+            self.pinch(t.zoom_delta, t.translation_delta, t.center_pos);
+            return;
+        }
         let hover = hover.filter(|p| self.rect.contains(*p));
         let primary = response.dragged_by(PointerButton::Primary);
         let ortho = self.view.is_orthographic();
