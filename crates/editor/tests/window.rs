@@ -636,7 +636,7 @@ const WIRE_CLICK_GRAPH: &str = r#"(
     version: 1,
     nodes: {
         "apex": (type: "param.number", position: (0.0, 0.0), inputs: {"value": 1.5, "min": 0.0, "max": 3.0}),
-        "times": (type: "math.multiply", position: (360.0, 0.0), inputs: {"b": 2.0}),
+        "times": (type: "math.multiply", position: (560.0, 0.0), inputs: {"b": 2.0}),
         "site": (type: "io.read_polylines", position: (0.0, 260.0)),
     },
     edges: [],

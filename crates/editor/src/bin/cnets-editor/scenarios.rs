@@ -352,7 +352,9 @@ fn rename_menu() -> Vec<Step> {
     let title: Target = Box::new(|app: &EditorApp, _: &egui::Context| {
         app.canvas
             .node_screen_rect("R")
-            .map(|r| egui::pos2(r.center().x, r.top() + 12.0))
+            // On the title's words, left of the header's buttons (the eye and the enable
+            // toggle sit near the middle of a wide node).
+            .map(|r| egui::pos2(r.left() + 0.3 * r.width(), r.top() + 12.0))
     });
     let name_field: Target = Box::new(|_: &EditorApp, ctx: &egui::Context| {
         ctx.read_response(egui::Id::new(("rename-node", "R")).with("field"))
