@@ -647,3 +647,76 @@ fn new_nodes_are_placed_in_the_visible_canvas() {
     h.run_steps(4);
     assert_in_canvas(&h, &[node], "Add › Node…");
 }
+
+/// The first 3D view of torus-monge (three surfaces over a box of 49 m × 48.5 m) is framed on
+/// the surfaces — every vertex in view, their picture centred and spanning most of the view one
+/// way — and its grid is sized to them: it reaches no farther than two major cells (or a quarter
+/// of the design) beyond the drawn box, where it reached 60 cells around the target (to 120 m).
+#[test]
+fn torus_monge_opens_framed_on_its_surfaces_with_a_grid_of_their_size() {
+    let mut h = harness_with(
+        "torus-first-view",
+        Some(graphs_dir().join("torus-monge.ron")),
+        temp_config("torus-first-view"),
+    );
+    settle(&mut h);
+    h.run_steps(4);
+    let app = h.state();
+    let view = app.viewport.rect;
+    let map = app.viewport.screen_map();
+    let picks = app.viewport.picks();
+    let mut drawn = egui::Rect::NOTHING;
+    for mesh in &picks.meshes {
+        for p in mesh.geometry.vertices() {
+            let at = map.to_screen(*p).expect("in front of the camera");
+            assert!(
+                view.contains(at),
+                "{} vertex {p} at {at:?} out of {view:?}",
+                mesh.node
+            );
+            drawn = drawn.union(egui::Rect::from_min_max(at, at));
+        }
+    }
+    assert_eq!(picks.meshes.len(), 3, "the three surfaces");
+    let spans = (drawn.width() / view.width()).max(drawn.height() / view.height());
+    assert!(
+        spans > 0.7,
+        "the surfaces span {spans:.2} of the view: {drawn:?} in {view:?}"
+    );
+    let off = drawn.center() - view.center();
+    assert!(
+        off.x.abs() < 0.05 * view.width() && off.y.abs() < 0.1 * view.height(),
+        "the surfaces' picture {drawn:?} is off the view's centre {:?}",
+        view.center()
+    );
+    // The grid drawn now, in the world XY plane: within the margin of the drawn box.
+    let bounds = app.viewport.bounds().expect("something is drawn");
+    let grid = cnets_editor::viewport::grid::Grid::new(
+        &map,
+        cnets_editor::viewport::screen::CPlane::XY,
+        Some(&bounds),
+    );
+    let size = bounds.max - bounds.min;
+    let reach = cnets_editor::viewport::grid::around_margin(
+        f64::from(size.x),
+        f64::from(size.y),
+        grid.spacing,
+    ) + grid.spacing.major;
+    for s in grid.segments.iter().filter(|s| s.width < 1.55) {
+        for p in [s.a, s.b] {
+            let (x, y) = (f64::from(p[0]), f64::from(p[1]));
+            assert!(
+                x >= f64::from(bounds.min.x) - reach
+                    && x <= f64::from(bounds.max.x) + reach
+                    && y >= f64::from(bounds.min.y) - reach
+                    && y <= f64::from(bounds.max.y) + reach,
+                "a grid line reaches ({x}, {y}), beyond {reach} m of {bounds:?}"
+            );
+        }
+    }
+    println!(
+        "torus-monge's first view: the surfaces span {spans:.2} of the view, W × D {:.1} × {:.1} m, \
+         grid {} m",
+        size.x, size.y, grid.spacing.minor
+    );
+}
