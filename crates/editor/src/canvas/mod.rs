@@ -105,6 +105,15 @@ pub const MIN_ZOOM: f32 = 0.5;
 /// The smallest height, in screen pixels, of node text when a graph opens.
 pub const MIN_TEXT_PX: f32 = 10.0;
 
+/// How far below the readable zoom a graph too large to show whole may open, so that the 3D
+/// view's edge falls between nodes instead of through one ([`Canvas::opening`]): node text of
+/// at least 75 % of [`MIN_TEXT_PX`].
+pub const OPENING_TEXT_SHARE: f32 = 0.75;
+
+/// The largest zoom a graph too large to show whole opens at when the 3D view's edge is moved
+/// before the nodes it would cut ([`Canvas::opening`]).
+pub const OPENING_MAX_ZOOM: f32 = 1.5;
+
 /// The zoom a graph opens at when it does not fit: the smallest text the nodes use (egui's
 /// body, button and monospace styles — 13 points by default) at [`MIN_TEXT_PX`] on screen
 /// (a little above, so that rounding never brings it below).
@@ -248,18 +257,88 @@ impl Canvas {
         self.ui_rect
     }
 
-    /// The transform a graph opens with ([`Canvas::fit_later`]): the whole of canvas rectangle
-    /// `bb` in screen rectangle `ui` when it fits at [`MIN_ZOOM`] or more, at most zoom 1 (as
-    /// Home frames it); a graph too large for that opens on its top-left corner (the sources) at
-    /// the `readable` zoom instead, since part of it is out of view whatever the zoom.
-    pub fn opening(bb: Rect, ui: Rect, readable: f32) -> Option<TSTransform> {
+    /// The transform a graph of node rectangles `nodes` (canvas coordinates) opens with
+    /// ([`Canvas::fit_later`]): the whole graph in screen rectangle `ui` when it fits at
+    /// [`MIN_ZOOM`] or more, at most zoom 1 (as Home frames it). A graph too large for that
+    /// opens on its top-left corner (the sources) at about the `readable` zoom, adjusted so that
+    /// the view's right edge — where the 3D view begins — falls between nodes: every node is
+    /// either wholly in view or wholly beyond it, none cut in half. The edge moves right past the
+    /// nodes it would cut (zooming out) or left before them (zooming in, at most to
+    /// [`OPENING_MAX_ZOOM`]), whichever
+    /// keeps the zoom nearer the readable one — preferably no lower than [`OPENING_TEXT_SHARE`]
+    /// of it, never below [`MIN_ZOOM`].
+    pub fn opening(nodes: &[Rect], ui: Rect, readable: f32) -> Option<TSTransform> {
+        let bb = nodes.iter().fold(Rect::NOTHING, |a, r| a.union(*r));
+        if !(bb.is_positive() && ui.is_positive()) {
+            return None;
+        }
         let framed = bb.expand(30.0);
         let fits = (ui.width() / framed.width()).min(ui.height() / framed.height());
         if fits >= MIN_ZOOM {
-            Self::framing(bb, ui, MIN_ZOOM)
-        } else {
-            Self::framing(bb, ui, readable)
+            return Self::framing(bb, ui, MIN_ZOOM);
         }
+        let t = Self::framing(bb, ui, readable)?;
+        if framed.width() * t.scaling <= ui.width() {
+            return Some(t);
+        }
+        // The canvas x of the view's left edge, and of its right edge moved past every node it
+        // would cut (each move may cut another: repeat until none is).
+        let left = framed.left();
+        let start = left + ui.width() / t.scaling;
+        let settle = |outward: bool| {
+            let mut edge = start;
+            for _ in 0..nodes.len() + 1 {
+                let cut = nodes
+                    .iter()
+                    .filter(|r| r.left() < edge && r.right() > edge)
+                    .map(|r| {
+                        if outward {
+                            r.right() + 20.0
+                        } else {
+                            r.left() - 20.0
+                        }
+                    });
+                let next = if outward {
+                    cut.reduce(f32::max)
+                } else {
+                    cut.reduce(f32::min)
+                };
+                match next {
+                    Some(e) => edge = e,
+                    None => return Some(edge),
+                }
+            }
+            None
+        };
+        let scale_to = |edge: f32| ui.width() / (edge - left).max(1.0);
+        // Of the two, the zoom nearest the readable one — within the text share when one is.
+        let lowest = (readable * OPENING_TEXT_SHARE).max(MIN_ZOOM);
+        let candidates: Vec<f32> = [settle(true), settle(false)]
+            .into_iter()
+            .flatten()
+            .map(scale_to)
+            .filter(|z| (MIN_ZOOM..=OPENING_MAX_ZOOM).contains(z))
+            .collect();
+        let distance = |z: &f32| (z / readable).ln().abs();
+        let nearest = |within: bool| {
+            candidates
+                .iter()
+                .copied()
+                .filter(|z| !within || *z >= lowest)
+                .min_by(|a, b| distance(a).total_cmp(&distance(b)))
+        };
+        let Some(scale) = nearest(true).or_else(|| nearest(false)) else {
+            return Some(t);
+        };
+        let y = if framed.height() * scale <= ui.height() {
+            ui.center().y - framed.center().y * scale
+        } else {
+            ui.top() - framed.top() * scale
+        };
+        Some(TSTransform::new(
+            egui::vec2(ui.left() - left * scale, y),
+            scale,
+        ))
     }
 
     /// The transform that frames canvas rectangle `bb` in screen rectangle `ui`: the whole graph
@@ -564,7 +643,8 @@ impl Canvas {
             fit = if self.fit_whole {
                 Self::framing(bb, self.ui_rect, MIN_ZOOM)
             } else {
-                Self::opening(bb, self.ui_rect, readable_zoom(ui.style()))
+                let nodes: Vec<Rect> = self.rects.values().copied().collect();
+                Self::opening(&nodes, self.ui_rect, readable_zoom(ui.style()))
             };
             self.fit_pending = false;
         } else if self.fit_pending && graph.node_count() == 0 {
