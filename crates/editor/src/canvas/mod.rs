@@ -190,7 +190,8 @@ impl Canvas {
     }
 
     /// Frames the whole graph on the next frames, zooming out as far as [`MIN_ZOOM`] if needed
-    /// (Home, View › Frame graph).
+    /// (Home, View › Frame graph); a graph larger than that shows its top-left part with the 3D
+    /// view's edge between nodes ([`Canvas::opening`] at the smallest zoom).
     pub fn fit(&mut self) {
         self.fit_pending = true;
         self.fit_whole = true;
@@ -639,13 +640,15 @@ impl Canvas {
             && !self.rects.is_empty()
             && self.rects.len() == graph.node_count()
         {
-            let bb = self.rects.values().fold(Rect::NOTHING, |a, r| a.union(*r));
-            fit = if self.fit_whole {
-                Self::framing(bb, self.ui_rect, MIN_ZOOM)
+            // Home frames as much as the smallest zoom shows, a graph opens near the readable
+            // zoom; either way no node is left cut in half by the 3D view's edge.
+            let readable = if self.fit_whole {
+                MIN_ZOOM
             } else {
-                let nodes: Vec<Rect> = self.rects.values().copied().collect();
-                Self::opening(&nodes, self.ui_rect, readable_zoom(ui.style()))
+                readable_zoom(ui.style())
             };
+            let nodes: Vec<Rect> = self.rects.values().copied().collect();
+            fit = Self::opening(&nodes, self.ui_rect, readable);
             self.fit_pending = false;
         } else if self.fit_pending && graph.node_count() == 0 {
             self.fit_pending = false;
