@@ -157,7 +157,8 @@ fn canvas_text_sizes(
 /// Every shipped graph opens framed in the canvas beside the 3D view: the whole graph, no node
 /// cut off by the 3D view, when it fits at [`MIN_ZOOM`] or more (node text at least 10 px when it
 /// fits at the readable zoom); a graph too wide for that opens on its sources (the top-left node
-/// in view) at about the readable zoom and no node cut in half by the 3D view's edge.
+/// in view) at about the readable zoom and no node cut in half by the 3D view's edge; after Home
+/// no node is cut either.
 #[test]
 fn every_shipped_graph_opens_framed_beside_the_3d_view() {
     let mut bad = Vec::new();
@@ -266,6 +267,24 @@ fn every_shipped_graph_opens_framed_beside_the_3d_view() {
         }
         if whole && fits >= readable && smallest < MIN_TEXT_PX - 1e-3 {
             bad.push(format!("{name}: node text {smallest:.2} px at zoom {zoom}"));
+        }
+        // Home: as much as zoom 0.5 shows, again no node cut by the 3D view's edge.
+        h.key_press(egui::Key::Home);
+        h.run_steps(4);
+        let app = h.state();
+        let view = app.canvas.screen_rect();
+        for (_, n) in app.doc.graph.nodes() {
+            let r = app.canvas.node_screen_rect(&n.id).unwrap();
+            if r.left() < view.right() - 0.5 && r.right() > view.right() + 0.5 {
+                bad.push(format!(
+                    "{name}: after Home, node {} {r:?} is cut by the canvas's right edge {}",
+                    n.id,
+                    view.right()
+                ));
+            }
+        }
+        if app.canvas.zoom() < MIN_ZOOM - 1e-4 {
+            bad.push(format!("{name}: Home zooms to {}", app.canvas.zoom()));
         }
     }
     eprintln!("{whole_count} graphs open framed whole");
