@@ -739,3 +739,39 @@ fn two_fingers_on_the_3d_view_pinch_zoom_and_pan() {
         "a common move does not zoom"
     );
 }
+
+/// The figures drawn over the 3D view (statistics, legend, picker, axes, size, the grid's name)
+/// never overlap, on a phone and on a desktop, in every colour mode.
+#[test]
+fn the_figures_over_the_3d_view_never_overlap() {
+    for (width, height) in [(390.0, 844.0), (1280.0, 800.0)] {
+        let mut h = harness("overlays");
+        h.set_size(egui::vec2(width, height));
+        h.state_mut().viewport.show_dimensions = true;
+        for mode in cnets_editor::preview::ColorMode::ALL {
+            h.state_mut().viewport.options.color_mode = mode;
+            settle(&mut h);
+            h.run_steps(3);
+            let overlays = h.state().viewport.overlays.clone();
+            let names: Vec<&str> = overlays.iter().map(|(n, _)| *n).collect();
+            assert!(
+                ["statistics", "axes", "grid", "size"]
+                    .iter()
+                    .all(|n| names.contains(n)),
+                "{width} × {height}, {mode:?}: {names:?}"
+            );
+            for (k, (a, ra)) in overlays.iter().enumerate() {
+                assert!(
+                    h.state().viewport.rect.expand(1.0).contains_rect(*ra),
+                    "{a} {ra:?}"
+                );
+                for (b, rb) in &overlays[k + 1..] {
+                    assert!(
+                        !ra.intersects(*rb),
+                        "{width} × {height}, {mode:?}: {a} {ra:?} overlaps {b} {rb:?}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -49,12 +49,17 @@ pub fn ensure_reference(
     Some(NO_REFERENCE.to_string())
 }
 
+/// The room the picker takes from the view's right edge (points).
+const PICKER_WIDTH: f32 = 240.0;
+
 /// Draws the picker at `top` along the view's right edge (the reference, and which side is
-/// coloured); returns the rectangle it covers (`Rect::NOTHING` outside the mode).
+/// coloured), below `clear_of` (the statistics) too where the view is too narrow to hold both
+/// side by side; returns the rectangle it covers (`Rect::NOTHING` outside the mode).
 pub fn picker(
     ui: &mut Ui,
     rect: Rect,
     top: f32,
+    clear_of: Rect,
     options: &mut PreviewOptions,
     graph: &Graph,
 ) -> Rect {
@@ -66,7 +71,13 @@ pub fn picker(
         .distance_to
         .and_then(|uid| list.iter().find(|(u, _)| *u == uid))
         .map_or("(none: pick a mesh)".to_string(), |(_, id)| id.clone());
-    let at = egui::pos2(rect.right() - 240.0, top + 6.0);
+    let left = rect.right() - PICKER_WIDTH;
+    let top = if clear_of.is_positive() && left < clear_of.right() {
+        top.max(clear_of.bottom())
+    } else {
+        top
+    };
+    let at = egui::pos2(left, top + 6.0);
     let response = egui::Area::new(egui::Id::new("cnets-distance-reference"))
         .fixed_pos(at)
         .order(egui::Order::Foreground)

@@ -179,8 +179,9 @@ impl Grid {
 
     /// Labels the major lines in metres where they cross the plane's axes, and names the
     /// spacing in the view's corner. No label is drawn over `keep_out` (the corner figures, the
-    /// legend): one that would touch them is left out.
-    pub fn paint_labels(&self, painter: &Painter, map: &ScreenMap, keep_out: &[Rect]) {
+    /// legend, the gizmo, W × D × H): one that would touch them is left out, and the spacing's
+    /// name moves up above what it would touch. Returns the rectangle of the spacing's name.
+    pub fn paint_labels(&self, painter: &Painter, map: &ScreenMap, keep_out: &[Rect]) -> Rect {
         let plane = self.plane;
         let font = egui::FontId::proportional(10.5);
         let ink = Color32::from_gray(95);
@@ -215,13 +216,22 @@ impl Grid {
                 label(plane.at(0.0, b, 0.0), metres(b));
             }
         }
-        painter.text(
-            map.rect.left_bottom() + vec2(76.0, -8.0),
-            egui::Align2::LEFT_BOTTOM,
+        let caption = painter.layout_no_wrap(
             format!("grid {} · {}", metres(self.spacing.minor), self.name),
             font,
             ink,
         );
+        let mut at = map.rect.left_bottom() + vec2(76.0, -8.0 - caption.size().y);
+        let clear = |r: Rect| !keep_out.iter().any(|o| o.is_positive() && o.intersects(r));
+        for _ in 0..4 {
+            if clear(Rect::from_min_size(at, caption.size())) {
+                break;
+            }
+            at.y -= caption.size().y + 4.0;
+        }
+        let r = Rect::from_min_size(at, caption.size());
+        painter.galley(at, caption, ink);
+        r
     }
 }
 
@@ -269,7 +279,8 @@ fn extent_in_plane(
 }
 
 /// Paints the axis gizmo in the view's bottom-left corner: the world axes as the camera sees them.
-pub fn paint_gizmo(painter: &Painter, map: &ScreenMap) {
+/// Returns the square it covers.
+pub fn paint_gizmo(painter: &Painter, map: &ScreenMap) -> Rect {
     let centre = map.rect.left_bottom() + vec2(36.0, -40.0);
     let cam = map.camera;
     let (right, up) = (cam.right(), cam.up());
@@ -298,6 +309,7 @@ pub fn paint_gizmo(painter: &Painter, map: &ScreenMap) {
             color,
         );
     }
+    Rect::from_center_size(centre, vec2(60.0, 60.0))
 }
 
 #[cfg(test)]

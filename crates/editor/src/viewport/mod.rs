@@ -161,6 +161,9 @@ pub struct Viewport {
     pub render_scale: f32,
     /// Where the view was drawn in the last frame (screen points).
     pub rect: egui::Rect,
+    /// The figures drawn over the view in the last frame, by name (statistics, legend, distance
+    /// picker, axes, size, grid): they never overlap (tests read them).
+    pub overlays: Vec<(&'static str, Rect)>,
     /// The named view shown.
     pub view: NamedView,
     /// The Perspective view's construction plane.
@@ -222,6 +225,7 @@ impl Default for Viewport {
             last_change: f64::NEG_INFINITY,
             render_scale: 1.0,
             rect: egui::Rect::NOTHING,
+            overlays: Vec::new(),
             view: NamedView::Perspective,
             perspective_plane: CPlane::XY,
             perspective_name: CPlane::XY.label().to_string(),
@@ -768,7 +772,7 @@ impl Viewport {
         });
         self.paint_scene(ui, gpu, rect, grid.as_ref());
         let painter = ui.painter_at(rect);
-        grid::paint_gizmo(&painter, &map);
+        let gizmo = grid::paint_gizmo(&painter, &map);
         let pointer = ui
             .input(|i| i.pointer.hover_pos())
             .filter(|p| rect.contains(*p));
@@ -802,21 +806,45 @@ impl Viewport {
         {
             actions.push(ViewportAction::Message(message));
         }
-        let picker = distance::picker(ui, rect, legend.bottom, &mut self.options, input.graph);
+        let picker = distance::picker(
+            ui,
+            rect,
+            legend.bottom,
+            stats,
+            &mut self.options,
+            input.graph,
+        );
         self.labels_bottom = self.labels_bottom.max(picker.bottom());
-        // The grid's labels last, clear of the corner figures, the legend and the picker.
-        if let Some(grid) = &grid {
-            let keep_out = [stats, legend.covers, picker];
-            grid.paint_labels(&painter, &map, &keep_out);
-        }
+        let dimensions = if self.show_dimensions {
+            overlay::paint_dimensions(ui, rect, self.bounds.as_ref())
+        } else {
+            Rect::NOTHING
+        };
+        // The grid's labels last, clear of the corner figures, the legend, the picker, the gizmo
+        // and W × D × H.
+        let caption = match &grid {
+            Some(grid) => {
+                let keep_out = [stats, legend.covers, picker, gizmo, dimensions];
+                grid.paint_labels(&painter, &map, &keep_out)
+            }
+            None => Rect::NOTHING,
+        };
+        self.overlays = [
+            ("statistics", stats),
+            ("legend", legend.covers),
+            ("distance picker", picker),
+            ("axes", gizmo),
+            ("size", dimensions),
+            ("grid", caption),
+        ]
+        .into_iter()
+        .filter(|(_, r)| r.is_positive())
+        .collect();
         if legend.clicked {
             self.show_folds();
             actions.push(ViewportAction::Message(format!(
                 "{folds} faces are not (++)(++): framed and outlined (Esc clears)"
             )));
-        }
-        if self.show_dimensions {
-            overlay::paint_dimensions(ui, rect, self.bounds.as_ref());
         }
         if let Some(edit) = self.inspector(ui, rect, input.graph) {
             actions.push(ViewportAction::Edit(edit));

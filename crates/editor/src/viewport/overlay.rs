@@ -239,9 +239,12 @@ pub fn dimensions(b: &Bounds) -> String {
     format!("W {} × D {} × H {} m", f(s.x), f(s.y), f(s.z))
 }
 
-/// Paints the size of the previewed geometry in the bottom-right corner.
-pub fn paint_dimensions(ui: &Ui, rect: Rect, bounds: Option<&Bounds>) {
-    let Some(b) = bounds else { return };
+/// Paints the size of the previewed geometry in the bottom-right corner; returns the rectangle
+/// it covers (`Rect::NOTHING` without geometry).
+pub fn paint_dimensions(ui: &Ui, rect: Rect, bounds: Option<&Bounds>) -> Rect {
+    let Some(b) = bounds else {
+        return Rect::NOTHING;
+    };
     let painter = ui.painter_at(rect);
     let text = dimensions(b);
     let galley = painter.layout_no_wrap(text, font(), INK);
@@ -249,6 +252,7 @@ pub fn paint_dimensions(ui: &Ui, rect: Rect, bounds: Option<&Bounds>) {
     let r = Rect::from_min_size(at, galley.size()).expand(3.0);
     painter.rect_filled(r, 3.0, Color32::from_rgba_unmultiplied(255, 255, 255, 210));
     painter.galley(at, galley, INK);
+    r
 }
 
 #[cfg(test)]
