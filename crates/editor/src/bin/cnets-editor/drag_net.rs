@@ -18,6 +18,10 @@ use crate::script::{Step, Target};
 
 /// The net dragged.
 const NET: &str = "varying_ratios";
+/// How many times the pair to drag and pin is searched for before the script gives up, and the
+/// frames between searches.
+const SEARCHES: u32 = 5;
+const SEARCH_EVERY: u32 = 10;
 /// The move asked for, in metres (the Top view's plane).
 const MOVE: DVec3 = DVec3::new(0.6, 0.2, 0.0);
 
@@ -82,7 +86,7 @@ fn reachable_pair(
         // passed over (reachable ones took 7–11 on this net).
         let mut pins: Vec<&Grabbable> = found.iter().filter(|p| far(p, grab) >= 4).collect();
         pins.sort_by_key(|p| std::cmp::Reverse(far(p, grab)));
-        for pin in pins.into_iter().take(6) {
+        for pin in pins.into_iter().take(10) {
             let mut request = DragRequest::new(NET, grab.0, grab.1 + MOVE);
             request.pins = vec![pin.0];
             request.max_iter = 12;
@@ -146,20 +150,41 @@ pub fn drag_net() -> Vec<Step> {
         pinned.clone(),
         pinned.clone(),
     );
-    // Searched once the net is in view (the search solves drags: not again every frame).
-    let searched = Rc::new(Cell::new(false));
+    // Searched once the net is in view, again every [`SEARCH_EVERY`] frames while no pair is
+    // found (the picture the picks come from may still be catching up with the zoom on a busy
+    // machine), at most [`SEARCHES`] times: the search solves drags, not every frame.
+    let frames = Rc::new(Cell::new(0u32));
     let pin_at: Target = Box::new(move |app: &EditorApp, _: &egui::Context| {
         let found = grabbable(app, false);
         if let (Some(ij), Some(pin)) = (g1.get(), p1.get()) {
             return found.iter().find(|v| v.0 == pin && ij != pin).map(|v| v.2);
         }
-        if found.is_empty() || searched.get() {
+        let frame = frames.get();
+        frames.set(frame + 1);
+        if found.is_empty() || !frame.is_multiple_of(SEARCH_EVERY) {
             return None;
         }
-        searched.set(true);
-        let Some((ij, pin)) = reachable_pair(app, &grabbable(app, true), &found) else {
-            println!("script: failed = no grabbable vertex has a reachable pinned pair in view");
-            std::process::exit(3);
+        let interior = grabbable(app, true);
+        println!(
+            "script: in view = {} vertices, {} interior, {:.4} m a point",
+            found.len(),
+            interior.len(),
+            app.viewport.screen_map().world_per_point()
+        );
+        let Some((ij, pin)) = reachable_pair(app, &interior, &found) else {
+            println!(
+                "script: search {} = {} vertices in view, {} interior, no reachable pair",
+                frame / SEARCH_EVERY + 1,
+                found.len(),
+                interior.len()
+            );
+            if frame / SEARCH_EVERY + 1 >= SEARCHES {
+                println!(
+                    "script: failed = no grabbable vertex has a reachable pinned pair in view"
+                );
+                std::process::exit(3);
+            }
+            return None;
         };
         g1.set(Some(ij.0));
         p1.set(Some(pin.0));
