@@ -249,6 +249,7 @@ impl In<'_> {
                     indices,
                     face_starts,
                     parts: Default::default(),
+                    classes: Vec::new(),
                 };
                 let names: Option<Vec<String>> = obj
                     .getattr("parts")

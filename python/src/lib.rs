@@ -199,6 +199,7 @@ fn quad_faces<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let (rows, cols) = (args::count(rows, "rows")?, args::count(cols, "cols")?);
     let grid = cnets_geometry::QuadGrid {
+        classes: Vec::new(),
         rows,
         cols,
         wrap_rows: args::flag(wrap_rows, "wrap_rows")?,

@@ -8,6 +8,7 @@ pub mod conenet;
 pub mod curves;
 pub mod error;
 pub mod fabrication;
+pub mod face_class;
 pub mod line;
 pub mod measure;
 pub mod mesh_parts;
@@ -27,6 +28,7 @@ pub use conenet::{
     construct_ctube, encode,
 };
 pub use error::GeometryError;
+pub use face_class::FaceClass;
 pub use glam::DVec3;
 pub use line::Line;
 pub use mesh_parts::MeshParts;

@@ -144,7 +144,7 @@ pub fn weld(mesh: &PolygonMesh, tolerance: f64) -> Result<PolygonMesh, GeometryE
             sources.push(k as u32);
         }
     }
-    welded.parts = mesh.parts.for_faces(&sources);
+    welded.carry_faces_from(mesh, &sources);
     Ok(compact(&welded))
 }
 
@@ -171,6 +171,7 @@ pub fn compact(mesh: &PolygonMesh) -> PolygonMesh {
         indices: mesh.indices.iter().map(|&v| used[v as usize]).collect(),
         face_starts: mesh.face_starts.clone(),
         parts: mesh.parts.clone(),
+        classes: mesh.classes.clone(),
     }
 }
 

@@ -279,6 +279,7 @@ mod tests {
             }
         }
         QuadGrid {
+            classes: Vec::new(),
             rows: 3,
             cols: 4,
             wrap_rows: false,
@@ -299,6 +300,7 @@ mod tests {
         let f = |v: &[DVec3]| {
             seam_tangents(
                 &QuadGrid {
+                    classes: Vec::new(),
                     vertices: v.to_vec(),
                     ..m.clone()
                 },
@@ -319,6 +321,7 @@ mod tests {
         let f = |v: &[DVec3]| {
             mesh_fairness(
                 &QuadGrid {
+                    classes: Vec::new(),
                     vertices: v.to_vec(),
                     ..m.clone()
                 },

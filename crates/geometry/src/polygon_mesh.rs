@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::{GeometryError, MeshParts, QuadGrid};
+use crate::{FaceClass, GeometryError, MeshParts, QuadGrid};
 
 /// A polygon mesh: shared vertices and faces given as vertex-index loops, stored flat.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -15,6 +15,9 @@ pub struct PolygonMesh {
     pub face_starts: Vec<u32>,
     /// The named parts the faces belong to (empty: one unnamed part); see [`MeshParts`].
     pub parts: MeshParts,
+    /// The configuration class of every face, carried from the cone-net it came from (empty: not
+    /// known); see [`FaceClass`].
+    pub classes: Vec<FaceClass>,
 }
 
 impl PolygonMesh {
@@ -123,6 +126,7 @@ impl PolygonMesh {
     /// the two has parts, the other's faces join a part named `unnamed`.
     pub fn append(&mut self, other: &PolygonMesh) {
         self.append_parts(&other.parts, other.face_count());
+        self.append_classes(other);
         let offset = self.vertices.len() as u32;
         let index_offset = self.indices.len() as u32;
         self.vertices.extend_from_slice(&other.vertices);
@@ -130,6 +134,52 @@ impl PolygonMesh {
             .extend(other.indices.iter().map(|&v| v + offset));
         self.face_starts
             .extend(other.face_starts.iter().map(|&s| s + index_offset));
+    }
+
+    /// Appends `other`'s face classes (before the faces are appended); when only one of the two
+    /// knows its classes, the other's faces are [`FaceClass::Unclassified`].
+    fn append_classes(&mut self, other: &PolygonMesh) {
+        let (own, theirs) = (
+            self.face_classes().is_some(),
+            other.face_classes().is_some(),
+        );
+        if !own && !theirs {
+            self.classes.clear();
+            return;
+        }
+        if !own {
+            self.classes = vec![FaceClass::Unclassified; self.face_count()];
+        }
+        match other.face_classes() {
+            Some(c) => self.classes.extend_from_slice(c),
+            None => self.classes.extend(std::iter::repeat_n(
+                FaceClass::Unclassified,
+                other.face_count(),
+            )),
+        }
+    }
+
+    /// The faces' classes when they are known and fit the mesh (one per face).
+    pub fn face_classes(&self) -> Option<&[FaceClass]> {
+        (!self.classes.is_empty() && self.classes.len() == self.face_count())
+            .then_some(self.classes.as_slice())
+    }
+
+    /// Gives this mesh, made from `source` with face `k` from face `sources[k]` of it (a cut, a
+    /// weld, a mirror image), the parts and classes of those faces.
+    pub fn carry_faces_from(&mut self, source: &PolygonMesh, sources: &[u32]) {
+        self.parts = source.parts.for_faces(sources);
+        self.classes = match source.face_classes() {
+            Some(c) => sources
+                .iter()
+                .map(|&f| {
+                    c.get(f as usize)
+                        .copied()
+                        .unwrap_or(FaceClass::Unclassified)
+                })
+                .collect(),
+            None => Vec::new(),
+        };
     }
 
     /// Appends `other`'s `faces` faces to this mesh's parts (before the faces are appended).
@@ -176,6 +226,10 @@ impl From<&QuadGrid> for PolygonMesh {
             indices: Vec::with_capacity(grid.quad_count() * 4),
             face_starts: Vec::with_capacity(grid.quad_count()),
             parts: MeshParts::default(),
+            classes: grid
+                .face_classes()
+                .map(<[FaceClass]>::to_vec)
+                .unwrap_or_default(),
         };
         for i in 0..grid.quad_rows() {
             for j in 0..grid.quad_cols() {

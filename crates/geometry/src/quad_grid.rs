@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::{GeometryError, Polyline};
+use crate::{FaceClass, GeometryError, Polyline};
 
 /// A regular `rows × cols` quad mesh. Vertex (i, j) is `vertices[i * cols + j]`; rows run along the
 /// generatrix (index i), columns along the directrix (index j).
@@ -21,6 +21,10 @@ pub struct QuadGrid {
     pub wrap_cols: bool,
     /// Row-major vertices, `rows * cols` of them.
     pub vertices: Vec<DVec3>,
+    /// The configuration class of every quad in quad order (row after row), as the construction
+    /// that made the net found them; empty when not known (a grid made otherwise, or moved off its
+    /// cones). Carried into the polygon meshes made from the grid.
+    pub classes: Vec<FaceClass>,
 }
 
 impl QuadGrid {
@@ -41,7 +45,14 @@ impl QuadGrid {
             wrap_rows: false,
             wrap_cols: false,
             vertices,
+            classes: Vec::new(),
         })
+    }
+
+    /// The faces' classes when they are known and fit the grid (one per quad).
+    pub fn face_classes(&self) -> Option<&[FaceClass]> {
+        (!self.classes.is_empty() && self.classes.len() == self.quad_count())
+            .then_some(self.classes.as_slice())
     }
 
     /// Sets the wrap flags (builder style).

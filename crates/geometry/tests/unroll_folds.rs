@@ -152,6 +152,7 @@ fn a_flat_strip_has_zero_fold_angles() {
         .flat_map(|i| (0..5).map(move |j| DVec3::new(j as f64, i as f64 * 0.7, 0.0)))
         .collect();
     let flat = QuadGrid {
+        classes: Vec::new(),
         rows: 3,
         cols: 5,
         wrap_rows: false,
@@ -186,6 +187,7 @@ fn collapsed_plate() -> QuadGrid {
         })
         .collect();
     QuadGrid {
+        classes: Vec::new(),
         rows: 4,
         cols: 5,
         wrap_rows: false,

@@ -182,9 +182,11 @@ fn reports(ctx: &NodeContext) -> Reports {
 
 /// The node's outputs from a construction; outputs not asked for ([`NodeContext::wants`]) are
 /// left empty.
-fn outputs(ctx: &NodeContext, net: ConeNet) -> Outputs {
+fn outputs(ctx: &NodeContext, mut net: ConeNet) -> Outputs {
     // Every sweep step fails on a non-finite vertex (`GeometryError::NonFiniteOutput`).
     ctx.vouch_finite("mesh");
+    // The mesh keeps its faces' classes (one byte a face), through cuts, mirrors and joins.
+    net.mesh.classes = net.configurations.face_classes(&net.mesh);
     let margins = if ctx.wants("margins") {
         conenet::margins::face_margins(&net)
     } else {
@@ -249,7 +251,8 @@ fn outputs(ctx: &NodeContext, net: ConeNet) -> Outputs {
 }
 
 /// Bytes a construction needs per mesh vertex: the vertex (24), its plane normal (24), its
-/// configuration label (1) and the kernel's working rows (15).
+/// configuration label (1) and the kernel's working rows (15); the faces' classes the mesh keeps
+/// (a byte a face) are inside that estimate's margin.
 const CONSTRUCTION_BYTES_PER_VERTEX: usize = 64;
 
 /// Checks, before anything is allocated, that a construction sweeping `generatrix` along

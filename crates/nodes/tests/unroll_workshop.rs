@@ -99,6 +99,7 @@ fn collapsed_edges_are_reported_by_strip_and_panel() {
         DVec3::new(2.1, 0.0, -0.2),
     ];
     let plate = QuadGrid {
+        classes: Vec::new(),
         rows: 3,
         cols: 4,
         wrap_rows: false,

@@ -559,13 +559,22 @@ impl Builder {
                 }
                 if show {
                     let color = self.uniform_color(layer);
-                    let colors: Option<Vec<Color>> = (self.opts.color_mode == ColorMode::Planarity
-                        && layer != Layer::Supports
-                        && planarity.len() == mesh.face_count())
-                    .then(|| {
-                        let map = self.opts.planarity_map();
-                        planarity.iter().map(|&v| map.color(v)).collect()
-                    });
+                    // The classes the faces kept from their cone-net (through cuts, mirrors and
+                    // joins).
+                    let classes = match layer {
+                        Layer::Supports => None,
+                        _ => mesh.face_classes().map(<[FaceClass]>::to_vec),
+                    };
+                    let colors: Option<Vec<Color>> = match self.opts.color_mode {
+                        ColorMode::Configuration => self.class_colors(classes.as_deref()),
+                        ColorMode::Planarity
+                            if layer != Layer::Supports && planarity.len() == mesh.face_count() =>
+                        {
+                            let map = self.opts.planarity_map();
+                            Some(planarity.iter().map(|&v| map.color(v)).collect())
+                        }
+                        _ => None,
+                    };
                     let key = Arc::as_ptr(mesh) as usize;
                     let by_distance = match layer {
                         Layer::Supports => None,
@@ -585,7 +594,7 @@ impl Builder {
                             output: origin.output.clone(),
                             item: origin.item,
                             geometry: PickGeometry::Mesh(mesh.clone()),
-                            classes: None,
+                            classes,
                             planarity: Vec::new(),
                         });
                     }
@@ -700,6 +709,16 @@ impl Builder {
         self.scene.add_points(points, style);
     }
 
+    /// The faces' colours by class (counted for the legend), when the classes are known.
+    fn class_colors(&mut self, classes: Option<&[FaceClass]>) -> Option<Vec<Color>> {
+        let classes = classes?;
+        self.any_classes = true;
+        for class in classes {
+            self.class_counts[class.index()] += 1;
+        }
+        Some(classes.iter().copied().map(class_color).collect())
+    }
+
     fn add_quad_grid(&mut self, pending: PendingGrid, planarity: Vec<f64>) {
         let PendingGrid {
             grid,
@@ -715,19 +734,17 @@ impl Builder {
         if !self.opts.shows(layer) {
             return;
         }
+        // The construction's configurations beside the net, else the classes the net kept.
         let classes = match layer {
             Layer::Supports => None,
-            _ => configurations.as_ref().and_then(|c| face_classes(&grid, c)),
+            _ => configurations
+                .as_ref()
+                .and_then(|c| face_classes(&grid, c))
+                .or_else(|| grid.face_classes().map(<[FaceClass]>::to_vec)),
         };
         let colors: Option<Vec<Color>> = match (self.opts.color_mode, layer) {
             (_, Layer::Supports) => None,
-            (ColorMode::Configuration, _) => classes.as_ref().map(|classes| {
-                self.any_classes = true;
-                for class in classes {
-                    self.class_counts[class.index()] += 1;
-                }
-                classes.iter().copied().map(class_color).collect()
-            }),
+            (ColorMode::Configuration, _) => self.class_colors(classes.as_deref()),
             (ColorMode::Planarity, _) => {
                 let map = self.planarity_range.unwrap_or(self.opts.planarity_map());
                 Some(planarity.iter().map(|&v| map.color(v)).collect())

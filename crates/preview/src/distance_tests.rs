@@ -22,6 +22,7 @@ fn plane(rows: usize, cols: usize, (x0, x1): (f64, f64), (y0, y1): (f64, f64), z
         })
         .collect();
     QuadGrid {
+        classes: Vec::new(),
         rows,
         cols,
         wrap_rows: false,

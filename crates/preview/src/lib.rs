@@ -12,6 +12,8 @@
 mod beside;
 mod build;
 mod classes;
+#[cfg(test)]
+mod classes_tests;
 mod distance;
 #[cfg(test)]
 mod distance_tests;
@@ -71,6 +73,7 @@ mod tests {
             .flat_map(|i| (0..cols).map(move |j| DVec3::new(j as f64, i as f64, 0.0)))
             .collect();
         QuadGrid {
+            classes: Vec::new(),
             rows,
             cols,
             wrap_rows: false,

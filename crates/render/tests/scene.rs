@@ -185,6 +185,7 @@ fn wrong_colour_count_and_bad_geometry_are_errors() {
         "{err}"
     );
     let bad = QuadGrid {
+        classes: Vec::new(),
         rows: 3,
         cols: 3,
         vertices: vec![DVec3::ZERO; 5],
@@ -199,6 +200,7 @@ fn wrong_colour_count_and_bad_geometry_are_errors() {
         indices: vec![0, 1, 7],
         face_starts: vec![0],
         parts: Default::default(),
+        classes: Vec::new(),
     };
     assert!(matches!(
         scene.add_polygon_mesh(&bad_mesh, FaceColors::default()),

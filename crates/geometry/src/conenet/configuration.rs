@@ -11,6 +11,7 @@ use std::ops::Range;
 use glam::DVec3;
 
 use super::lanes::{F, LANES};
+use crate::{FaceClass, QuadGrid};
 
 /// The stand-in for the missing plane Π_{i,0} in the first configuration c_{i,0}: the unit normal of
 /// the plane through `x0` = X_0 and `g` = G_{i,0} perpendicular to the support plane of strip i,
@@ -190,6 +191,30 @@ impl Configurations {
     /// Where row i's configurations are in the table [`Configurations::codes`] returns.
     pub fn row_range(&self, i: usize) -> Range<usize> {
         i * self.stride..i * self.stride + self.cols
+    }
+
+    /// The class of every face of `mesh` (the net these configurations were found for), in quad
+    /// order: face (i, j) from c_{i,j} and c_{i+1,j}; faces beyond the table are
+    /// [`FaceClass::Unclassified`]. Empty when the table does not have the mesh's rows.
+    pub fn face_classes(&self, mesh: &QuadGrid) -> Vec<FaceClass> {
+        if self.rows != mesh.rows {
+            return Vec::new();
+        }
+        let signs = |c: Configuration| match c {
+            Configuration::PlusPlus => (true, true),
+            Configuration::MinusMinus => (false, false),
+            Configuration::PlusMinus => (true, false),
+            Configuration::MinusPlus => (false, true),
+        };
+        let mut out = Vec::with_capacity(mesh.quad_count());
+        for i in 0..mesh.quad_rows() {
+            let (a, b) = (self.row(i), self.row((i + 1) % mesh.rows));
+            out.extend((0..mesh.quad_cols()).map(|j| match (a.get(j), b.get(j)) {
+                (Some(&a), Some(&b)) => FaceClass::of_signs(signs(a), signs(b)),
+                _ => FaceClass::Unclassified,
+            }));
+        }
+        out
     }
 
     /// Every configuration as its code (`c as u8`, the index in [`Configuration::ALL`]), in the

@@ -176,6 +176,7 @@ impl Raw {
         };
         Self {
             mesh: QuadGrid {
+                classes: Vec::new(),
                 rows: n,
                 cols: m,
                 wrap_rows,
@@ -214,6 +215,7 @@ impl Raw {
         };
         Self {
             mesh: QuadGrid {
+                classes: Vec::new(),
                 rows: n,
                 cols: m,
                 wrap_rows: prep.wrap_rows,

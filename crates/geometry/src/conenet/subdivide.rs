@@ -83,6 +83,7 @@ pub fn subdivide_rows(mesh: &QuadGrid, count: usize) -> Result<QuadGrid, Geometr
             });
     fine?;
     Ok(QuadGrid {
+        classes: Vec::new(),
         rows: fine_rows,
         cols: m,
         wrap_rows: mesh.wrap_rows,

@@ -98,6 +98,7 @@ pub fn conical_support(
         });
     }
     Ok(QuadGrid {
+        classes: Vec::new(),
         rows: mesh.rows,
         cols: m,
         wrap_rows: mesh.wrap_rows,

@@ -182,7 +182,7 @@ pub fn cut_by_plane(
         let f: Vec<u32> = f.iter().map(|&v| remap[v as usize]).collect();
         result.push_face(&f)?;
     }
-    result.parts = mesh.parts.for_faces(&kept_sources);
+    result.carry_faces_from(mesh, &kept_sources);
     Ok(Cut {
         mesh: result,
         section,

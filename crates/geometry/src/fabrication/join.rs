@@ -68,6 +68,6 @@ pub fn weld(mesh: &PolygonMesh, tolerance: f64) -> Result<PolygonMesh, Fabricati
     for f in faces {
         out.push_face(&f)?;
     }
-    out.parts = mesh.parts.for_faces(&sources);
+    out.carry_faces_from(mesh, &sources);
     Ok(out)
 }

@@ -674,6 +674,7 @@ pub fn grid_of(mesh: &PolygonMesh) -> Option<QuadGrid> {
     let rows = mesh.vertices.len() / cols;
     for (wrap_rows, wrap_cols) in [(false, false), (false, true), (true, false), (true, true)] {
         let grid = QuadGrid {
+            classes: Vec::new(),
             rows,
             cols,
             wrap_rows,

@@ -61,6 +61,6 @@ pub fn mirror(
         out.push_face(&reversed)?;
         sources.push(k as u32);
     }
-    out.parts = mesh.parts.for_faces(&sources);
+    out.carry_faces_from(mesh, &sources);
     Ok(out)
 }

@@ -87,6 +87,7 @@ pub fn parallel_support(
         }
     }
     Ok(QuadGrid {
+        classes: Vec::new(),
         rows: mesh.rows,
         cols: m,
         wrap_rows: mesh.wrap_rows,

@@ -116,6 +116,7 @@ pub fn parallel_transform(
         }
     }
     let mut out = QuadGrid {
+        classes: Vec::new(),
         rows: n,
         cols: m,
         wrap_rows: mesh.wrap_rows,

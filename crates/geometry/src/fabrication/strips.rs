@@ -167,6 +167,7 @@ pub fn extract_strips(
                     wrap_rows: false,
                     wrap_cols: s.closed,
                     vertices: a.chain(b).collect(),
+                    classes: Vec::new(),
                 },
                 StripDirection::Generatrix => QuadGrid {
                     rows: s.rungs.len(),
@@ -174,6 +175,7 @@ pub fn extract_strips(
                     wrap_rows: s.closed,
                     wrap_cols: false,
                     vertices: a.zip(b).flat_map(|(p, q)| [p, q]).collect::<Vec<DVec3>>(),
+                    classes: Vec::new(),
                 },
             }
         })

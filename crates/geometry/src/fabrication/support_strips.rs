@@ -32,6 +32,7 @@ pub fn directrix_support_strips(
             vertices.extend_from_slice(&x);
             vertices.extend_from_slice(&mesh.vertices[i * m..(i + 1) * m]);
             QuadGrid {
+                classes: Vec::new(),
                 rows: 2,
                 cols: m,
                 wrap_rows: false,
@@ -67,6 +68,7 @@ pub fn beam_strips(
         let mut vertices = points(mesh);
         vertices.extend(points(layer));
         QuadGrid {
+            classes: Vec::new(),
             rows: 2,
             cols: vertices.len() / 2,
             wrap_rows: false,

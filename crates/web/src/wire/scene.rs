@@ -338,6 +338,7 @@ pub(super) fn read_picks(r: &mut Reader) -> Res<Picks> {
                     wrap_rows,
                     wrap_cols,
                     vertices,
+                    classes: Vec::new(),
                 }))
             }
             1 => {
@@ -356,6 +357,7 @@ pub(super) fn read_picks(r: &mut Reader) -> Res<Picks> {
                     indices,
                     face_starts,
                     parts: Default::default(),
+                    classes: Vec::new(),
                 }))
             }
             _ => return Err(WireError("unknown mesh kind")),
