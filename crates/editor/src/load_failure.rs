@@ -18,6 +18,8 @@ pub struct LoadFailure {
     /// What the dialog says of the document: kept (a file failed over an open document), or
     /// none opened in its place (the web page's link at start).
     pub kept_document: bool,
+    /// Where the dialog was drawn in the last frame (screen points; the page's test reads it).
+    pub shown_at: Option<egui::Rect>,
 }
 
 impl LoadFailure {
@@ -29,6 +31,7 @@ impl LoadFailure {
             text: None,
             scroll_pending: false,
             kept_document: true,
+            shown_at: None,
         }
     }
 
@@ -110,6 +113,7 @@ impl LoadFailure {
                 }
             });
         });
+        self.shown_at = Some(modal.response.rect);
         // Escape (or a click beside it) closes it too: it only reports.
         open && !modal.should_close()
     }

@@ -361,6 +361,21 @@ impl WebApp {
             document().map_or(String::new(), |d| d.title()).into(),
         );
         set("welcome", self.welcome_rect.map_or(JsValue::NULL, rect));
+        // The failed load's dialog, where it was drawn.
+        set(
+            "dialog",
+            self.app
+                .load_failure
+                .as_ref()
+                .and_then(|f| f.shown_at)
+                .map_or(JsValue::NULL, rect),
+        );
+        // The figures over the 3D view: [name, [left, top, right, bottom]] each.
+        let overlays = js_sys::Array::new();
+        for (name, r) in &self.app.viewport.overlays {
+            overlays.push(&js_sys::Array::of2(&JsValue::from_str(name), &rect(*r)).into());
+        }
+        set("overlays", overlays.into());
         set(
             "parameters",
             self.app.parameters_rect.map_or(JsValue::NULL, rect),
@@ -766,7 +781,9 @@ impl eframe::App for WebApp {
             ui.ctx().request_repaint();
         }
         self.welcome_rect = None;
-        if self.welcome {
+        // The hint waits while a dialog asks or reports something: it would cover it.
+        let dialog = self.app.load_failure.is_some() || self.app.unsaved_question.is_some();
+        if self.welcome && !dialog {
             let shown = cnets_editor::welcome::show(
                 ui.ctx(),
                 self.app.viewport.rect,
