@@ -4,9 +4,9 @@
 //! the page's first drag of the net; each solve answered as it arrives).
 //!
 //! Latest change wins: a message only files the newest request; the evaluation loop takes it
-//! when it is free. After a request's first phase (the 3D view's answer) the loop lets the
-//! worker's queued messages in; when a newer request came meanwhile, the rest of the stale one
-//! is dropped.
+//! when it is free. After a request's first phase (the 3D view's answer) the loop waits up to
+//! 300 ms for a newer request; when one comes, the rest of the stale one is dropped, so a drag's
+//! pictures never wait for a slow node that is not previewed.
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -98,9 +98,19 @@ async fn run(inbox: Rc<RefCell<Inbox>>, service: Rc<RefCell<Service>>) {
         let (messages, rest) = service.borrow_mut().begin(job);
         messages.iter().for_each(|m| post(m));
         let Some(rest) = rest else { continue };
-        yield_now().await;
-        if inbox.borrow().newest.is_some() {
-            // Stale: a newer request came while the 3D view was answered; its rest never runs.
+        // The rest (the nodes not previewed: a nest, the exports) can take seconds, and the
+        // worker sees no newer request while it runs: during a drag it would hold every later
+        // picture back. So it waits a moment for a newer request first; one that comes makes
+        // this request stale and its rest never runs.
+        let mut stale = false;
+        for _ in 0..REST_GRACE_STEPS {
+            sleep_ms(REST_GRACE_STEP_MS).await;
+            if inbox.borrow().newest.is_some() {
+                stale = true;
+                break;
+            }
+        }
+        if stale {
             continue;
         }
         let messages = service.borrow_mut().finish(rest);
@@ -108,10 +118,20 @@ async fn run(inbox: Rc<RefCell<Inbox>>, service: Rc<RefCell<Service>>) {
     }
 }
 
+/// How long a request's rest waits for a newer request after its first phase: steps of
+/// [`REST_GRACE_STEP_MS`] (300 ms in all, longer than the pause between a drag's changes).
+const REST_GRACE_STEPS: u32 = 12;
+const REST_GRACE_STEP_MS: i32 = 25;
+
 /// Returns to the worker's event loop once (its queued messages are delivered meanwhile).
 async fn yield_now() {
+    sleep_ms(0).await;
+}
+
+/// Returns to the worker's event loop for `ms` milliseconds.
+async fn sleep_ms(ms: i32) {
     let promise = js_sys::Promise::new(&mut |resolve, _| {
-        let _ = scope().set_timeout_with_callback_and_timeout_and_arguments_0(&resolve, 0);
+        let _ = scope().set_timeout_with_callback_and_timeout_and_arguments_0(&resolve, ms);
     });
     let _ = wasm_bindgen_futures::JsFuture::from(promise).await;
 }
