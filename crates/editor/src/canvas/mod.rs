@@ -99,7 +99,7 @@ impl Default for Canvas {
 /// fall between pixel centres and not be drawn at all — which is how the minus sign of `-1`
 /// (Ubuntu Light's hyphen is the thinnest glyph the canvas draws: a 2-pixel-tall bitmap at
 /// 14 px) disappeared at some zoom levels while the digits stayed. At this zoom and above every
-/// glyph quad is at least one pixel tall (`tests/glyphs.rs` checks it for the fonts in use).
+/// glyph quad is at least one pixel tall (`tests/it/glyphs.rs` checks it for the fonts in use).
 pub const MIN_ZOOM: f32 = 0.5;
 
 /// The smallest height, in screen pixels, of node text when a graph opens.

@@ -2,7 +2,7 @@
 //! it, open it in place and come back, the library in the palette, cluster files reloaded when
 //! they change on disk.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 //! preview colour picked from its eye (issue 32) and a node renamed from its title (issue 26).
 //! Widgets on the canvas have canvas coordinates, so the clicks go to their places on the screen.
 
-mod common;
+use crate::common;
 
 use cnets_editor::EditorApp;
 use common::{harness, settle};

@@ -3,7 +3,7 @@
 //! the list, goes with undo and is saved in the graph file; with nothing suitable selected the
 //! editor says what to select.
 
-mod common;
+use crate::common;
 
 use cnets_editor::app::EditorApp;
 use cnets_editor::menus::MenuAction;

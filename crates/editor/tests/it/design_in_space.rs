@@ -5,7 +5,7 @@
 //! vertices, the named views are one key away, and a curve read from a file is internalised as
 //! editable points.
 
-mod common;
+use crate::common;
 
 use cnets_editor::app::EditorApp;
 use cnets_editor::viewport::pick::Hit;

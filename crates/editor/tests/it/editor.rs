@@ -1,7 +1,7 @@
 //! The editor driven through egui_kittest, rendered with wgpu (in CI: the software Vulkan driver,
 //! lavapipe): snapshot images and interactions.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

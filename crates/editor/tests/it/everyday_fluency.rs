@@ -2,7 +2,7 @@
 //! digits and never clipped, labels ellipsised with the full text in a tooltip, the first click
 //! after a wire drag, and the hit area of a triangle pin.
 
-mod common;
+use crate::common;
 
 use cnets_editor::EditorApp;
 use cnets_editor::worker::NodeStatus;

@@ -4,7 +4,7 @@
 //! (kept with the editor's per-document settings, not in the graph file), and nodes get display
 //! names that the canvas and the parameter panel show.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 
@@ -31,7 +31,7 @@ fn folder(name: &str) -> PathBuf {
 
 /// The editor's default graph with `extra` nodes and `wires` added.
 fn graph_with(extra: &str, wires: &str) -> String {
-    let text = include_str!("../../../graphs/editor-default.ron");
+    let text = include_str!("../../../../graphs/editor-default.ron");
     let text = text.replacen("    nodes: {\n", &format!("    nodes: {{\n{extra}"), 1);
     text.replacen("    edges: [\n", &format!("    edges: [\n{wires}"), 1)
 }

@@ -1,7 +1,7 @@
 //! A file an importing node reads, re-saved by another program while the graph is open, is read
 //! again: the editor's watch sees it changed and the worker re-runs the reader and its dependents.
 
-mod common;
+use crate::common;
 
 use cnets_editor::app::EditorApp;
 use cnets_editor::worker::NodeStatus;

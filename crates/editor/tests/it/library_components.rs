@@ -2,7 +2,7 @@
 //! folder `graphs/` lists every reusable cluster of its `library` subfolder, and one inserts as a
 //! cluster node with the graph's documented ports.
 
-mod common;
+use crate::common;
 
 use cnets_engine::cluster::Cluster;
 use common::{graphs_dir, harness_on, temp_config};

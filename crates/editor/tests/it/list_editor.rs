@@ -3,7 +3,7 @@
 //! undo step, undone exactly, the window following), pasted tab-separated rows, a `param.list`
 //! table keeping rows × columns, a wired input read-only, and a picture of the window.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 

@@ -3,7 +3,7 @@
 //! node's own output at its sample points, wired kinds and handle trees included), and dragging
 //! any handle by one pixel keeps the stored value's nesting and item counts exactly.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

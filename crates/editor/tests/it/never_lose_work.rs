@@ -1,9 +1,9 @@
 //! The editor never loses a designer's work: the unsaved-changes guard on every path that
 //! replaces or closes the document, examples opened as untitled copies, and a file that fails to
 //! load shown with its diagnostics while the document stays. (Recovery after SIGKILL in the real
-//! window: `tests/window.rs`.)
+//! window: `tests/it/window.rs`.)
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -1,6 +1,6 @@
 //! Opening keeps the evaluator; graphs open readable; values are readable in place (issue 14).
 
-mod common;
+use crate::common;
 
 use std::collections::{HashSet, VecDeque};
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! the canvas's context menus, a run on `graphs/tube-closure.ron` (live plot, objective down),
 //! Stop, Accept (one undo step) and Revert.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -1,7 +1,7 @@
 //! The parameter panel (View › Parameters, Ctrl+P): the graph's sliders in one docked list,
 //! editable there.
 
-mod common;
+use crate::common;
 
 use cnets_editor::canvas::CanvasAction;
 use cnets_editor::edit::Edit;

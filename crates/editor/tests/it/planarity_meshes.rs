@@ -2,7 +2,7 @@
 //! mirrored cone-net — not only quad grids, and the header names the mesh its max planarity is
 //! for when several are previewed (issue 32).
 
-mod common;
+use crate::common;
 
 use cnets_editor::preview::{ColorMode, LegendInfo};
 use common::{graphs_dir, harness_with, settle, temp_config};

@@ -2,7 +2,7 @@
 //! the nodes in view, keeps every node's rectangle and pins (wires to nodes out of view are still
 //! drawn), and a slider drag edits the graph as on a small one.
 
-mod common;
+use crate::common;
 
 use common::{harness_with, settle, temp_config};
 

@@ -2,7 +2,7 @@
 //! nodes are drawn with their results. `tidy_shipped_graphs` (ignored; run it with `--ignored`)
 //! rewrote the stored positions of those whose nodes overlapped with View › Arrange graph.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! slider step is drawn as soon as the previewed nodes are done, while the nest still runs; the
 //! nest shows that it runs and how long it took last, and catches up after the last step.
 
-mod common;
+use crate::common;
 
 use std::time::{Duration, Instant};
 

@@ -2,7 +2,7 @@
 //! node's text inside the node (multi-line, resizable), a `param.choice` node as a drop-down of
 //! its options.
 
-mod common;
+use crate::common;
 
 use cnets_editor::worker::NodeStatus;
 use cnets_engine::Value;

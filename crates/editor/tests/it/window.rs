@@ -643,7 +643,7 @@ const WIRE_CLICK_GRAPH: &str = r#"(
 )"#;
 
 /// Issue 26, point 5: "the first click on a field right after a wire drag does nothing" (the
-/// kittest harness could not reproduce it, tests/everyday_fluency.rs). In the real window: a wire
+/// kittest harness could not reproduce it, tests/it/everyday_fluency.rs). In the real window: a wire
 /// connected, then at once one click on another input's field and a number typed; a wire dragged
 /// out and dropped on the background, then the same. Both first clicks edit the field.
 #[test]

@@ -7,7 +7,7 @@
 //! of a wire is not drawn when every point along it (sampled at most a cell apart in x and y) in view
 //! lies in a cell that an earlier drawn wire of the same colour and width passes through. Such a run lies within
 //! √2 · ½ ≈ 0.71 of a wire's width of a drawn wire of the same stroke everywhere, so the picture
-//! is the same band. (Tested by the editor: `crates/editor/tests/wire_coverage.rs`.)
+//! is the same band. (Tested by the editor: `crates/editor/tests/it/wire_coverage.rs`.)
 
 use egui::{Pos2, Rect, Stroke};
 

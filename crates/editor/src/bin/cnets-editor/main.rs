@@ -7,7 +7,7 @@
 //! Started with a FILE while a window with the same settings folder is open, it hands the file
 //! to that window (which asks about unsaved changes first) and exits.
 //!
-//! Test modes (the real window under Xvfb, `tests/window.rs`): `--drive-drag` drags the first
+//! Test modes (the real window under Xvfb, `tests/it/window.rs`): `--drive-drag` drags the first
 //! `param.number` slider with injected pointer events (press, moves, release), prints the values
 //! shown once released, then `drive-drag: autosaved N ms after the release` once autosave has
 //! written them, and keeps running (the test kills it); `--restore-and-print` accepts the

@@ -1,5 +1,5 @@
 //! The scripted sessions `--drive-script NAME` plays (see [`crate::script`]), each a design
-//! gesture of issue 25 made with pointer events and keys only. `tests/window.rs` runs them in the
+//! gesture of issue 25 made with pointer events and keys only. `tests/it/window.rs` runs them in the
 //! real window under Xvfb and checks what they print.
 
 use cnets_editor::app::EditorApp;

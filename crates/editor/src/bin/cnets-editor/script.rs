@@ -1,7 +1,7 @@
 //! `--drive-script NAME [--drive-out DIR]`: plays a scripted design session in the real window —
 //! pointer moves, presses, drags, wheel turns and keys injected into the window's raw input (the
 //! path a mouse takes after winit) — printing what the editor then holds (`script: key = value`
-//! lines) and saving screenshots into DIR. The window tests (`tests/window.rs`) run the scripts of
+//! lines) and saving screenshots into DIR. The window tests (`tests/it/window.rs`) run the scripts of
 //! [`crate::scenarios`] under Xvfb and check the lines.
 //!
 //! Targets are computed from the editor's state of the previous frame (where the 3D view draws a

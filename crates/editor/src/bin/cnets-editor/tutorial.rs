@@ -3,7 +3,7 @@
 //! in the Front view, a CNets Construct added from the palette and wired by its pins, the
 //! assistance dragged until no face folds, File › Export › GLB and DXF — with a screenshot after
 //! each step (`tutorial-N-….png`). It prints what the steps made: the drawn points, the wires,
-//! the net's size, the folds, what was exported. `tests/window.rs` checks the lines and keeps
+//! the net's size, the folds, what was exported. `tests/it/window.rs` checks the lines and keeps
 //! the screenshots (`UPDATE_TUTORIAL=1` copies them into docs/tutorial/).
 
 use cnets_editor::app::EditorApp;

@@ -11,9 +11,15 @@ use cnets_editor::viewport::GpuTarget;
 use egui_kittest::Harness;
 use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
 
-/// A fresh, empty settings folder for one test.
+/// A fresh, empty settings folder for one test (numbered: two modules' tests may share a name,
+/// and they run in one process).
 pub fn temp_config(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("cnets-editor-test-{}-{name}", std::process::id()));
+    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!(
+        "cnets-editor-test-{}-{name}-{k}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir

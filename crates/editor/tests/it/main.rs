@@ -1,0 +1,30 @@
+//! The editor's integration tests, one test binary (one link of egui and wgpu instead of one a
+//! file): each module is what was a `tests/<name>.rs` binary. Run one module's tests with
+//! `cargo test -p cnets-editor --test it <module>::` (e.g. `window::`); snapshots stay in
+//! `tests/snapshots/`, test data in `tests/data/`.
+
+mod clusters;
+mod common;
+mod context_menus;
+mod cplanes;
+mod design_in_space;
+mod editor;
+mod everyday_fluency;
+mod files_and_names;
+mod glyphs;
+mod imported_files;
+mod library_components;
+mod list_editor;
+mod mapper_truth;
+mod never_lose_work;
+mod no_guessing;
+mod open_and_view;
+mod optimization;
+mod parameters;
+mod planarity_meshes;
+mod project_size;
+mod shipped_graphs;
+mod slow_node;
+mod toolbox_nodes;
+mod window;
+mod wire_coverage;
