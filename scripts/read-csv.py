@@ -1,6 +1,6 @@
 """Reads a CSV file with Python's standard `csv` module and prints its rows as JSON.
 
-Used by the Rust export tests (crates/nodes/tests/panel_schedule.rs) to prove that a standard CSV
+Used by the Rust export tests (crates/nodes/tests/it/panel_schedule.rs) to prove that a standard CSV
 reader (the one spreadsheets and scripts use) reads the tables cnets writes: quoting, empty cells
 and numbers. Usage: python3 scripts/read-csv.py FILE.csv
 Exit 0 with a JSON list of rows (each a list of strings); exit 2 when the file cannot be read.

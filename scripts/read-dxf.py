@@ -1,6 +1,6 @@
 """Reads a DXF file with the independent `ezdxf` reader and prints what it found as JSON.
 
-Used by the Rust export tests (crates/nodes/tests/export_dxf_ezdxf.rs) to prove that other tools open
+Used by the Rust export tests (crates/nodes/tests/it/export_dxf_ezdxf.rs) to prove that other tools open
 the DXF files cnets writes. Usage: python3 scripts/read-dxf.py FILE.dxf
 Exit 0 with the JSON report; exit 2 when ezdxf is missing or the file cannot be read.
 """

@@ -79,7 +79,7 @@ wait_for_installs
 echo "== cargo test"
 cargo test --workspace
 ./scripts/test-limits.sh  # issue 27 §2: the memory cases under ulimit -v (target/debug/cnets)
-# The test executables (~2.5 GB) are not used again: on a small disk the Python and wasm builds
+# The test executables (1.2 GB: one integration-test binary a crate) are not used again: on a small disk the Python and wasm builds
 # need the room (a CI run once stopped with "No space left on device" in the wasm build). The
 # libraries stay, so the Python build reuses them. CNETS_KEEP_TESTS=1 keeps them.
 if [ -z "${CNETS_KEEP_TESTS:-}" ]; then

@@ -2,7 +2,7 @@
 `io.read_polylines` reads (LINE, LWPOLYLINE with a bulge, 3D POLYLINE, ARC, CIRCLE, ELLIPSE, SPLINE,
 and an ARC in a tilted object coordinate system), plus a TEXT that is not a curve.
 
-Used by crates/nodes/tests/read_polylines_dxf.rs. Usage: python3 scripts/write-dxf.py OUT.dxf
+Used by crates/nodes/tests/it/read_polylines_dxf.rs. Usage: python3 scripts/write-dxf.py OUT.dxf
 Exit 2 when ezdxf is missing.
 """
 import math

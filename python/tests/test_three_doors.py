@@ -1,6 +1,6 @@
 """One answer through every door (issue 27 §1), the Python door.
 
-``crates/headless/tests/three_doors.rs`` evaluates every node type on random inputs through a
+``crates/headless/tests/it/three_doors.rs`` evaluates every node type on random inputs through a
 graph file's RON, ``cnets eval`` JSON (the ``cnets`` binary included) and packed lists, and writes
 its cases with the ``cnets eval`` answers to ``<target>/tmp/three_doors_cases.json``. Here each
 case's JSON inputs are given to ``cnets.eval`` as a Python user would write them (lists, floats and
