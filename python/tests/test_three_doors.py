@@ -59,7 +59,7 @@ def to_python(v, base: str):
             return cnets.Polyline(points, v.get("closed", False))
         if "faces" in v:
             vertices = np.asarray(v["vertices"], dtype=np.float64).reshape(-1, 3)
-            return cnets.PolygonMesh(vertices, v["faces"])
+            return cnets.PolygonMesh(vertices, v["faces"], v.get("parts"), v.get("face_parts"))
         if base == "plane":
             return dict(v)
         return {k: to_python(x, "any") for k, x in v.items()}
@@ -82,7 +82,12 @@ def from_python(v):
     if isinstance(v, cnets.Polyline):
         return {"points": from_python(v.points), "closed": v.closed}
     if isinstance(v, cnets.PolygonMesh):
-        return {"vertices": from_python(v.vertices), "faces": [list(f) for f in v.faces]}
+        mesh = {"vertices": from_python(v.vertices), "faces": [list(f) for f in v.faces]}
+        if v.parts is not None:
+            # A joined structure's named parts, as the JSON carries them.
+            mesh["parts"] = list(v.parts)
+            mesh["face_parts"] = [int(p) for p in v.face_parts]
+        return mesh
     if isinstance(v, dict):
         return {k: from_python(x) for k, x in v.items()}
     if isinstance(v, (list, tuple)):

@@ -772,6 +772,9 @@ impl eframe::App for WebApp {
             // egui paints on events only: give the framing its frames.
             ui.ctx().request_repaint();
         }
+        // A drag's requests keep their slow rest in the worker until the pointer is released.
+        self.remote
+            .set_held(ui.ctx().input(|i| i.pointer.any_down()));
         self.app.ui(ui);
         if let Some(notice) = self.opening.notice() {
             cnets_editor::opening_notice::show(ui.ctx(), &notice.title, &notice.detail);

@@ -76,6 +76,9 @@ struct Shared {
     notice: Option<String>,
     figures: Figures,
     ctx: egui::Context,
+    /// The page's pointer is held (a drag), and whether the last request posted was made so.
+    held: bool,
+    sent_held: bool,
 }
 
 /// The evaluation worker (cheap to clone: the page and the editor's `Worker` share it).
@@ -97,6 +100,8 @@ impl WebWorker {
             files: Vec::new(),
             changed_at: HashMap::new(),
             last_seq: 0,
+            held: false,
+            sent_held: false,
             open: Vec::new(),
             responses: Vec::new(),
             preview: (
@@ -157,6 +162,17 @@ impl WebWorker {
     /// A message for the designer, once (the worker stopped, or did not load a graph).
     pub fn take_notice(&self) -> Option<String> {
         self.0.borrow_mut().notice.take()
+    }
+
+    /// Tells the worker whether the page's pointer is held (called every frame): when a drag
+    /// that made requests ends, the last request's rest may run.
+    pub fn set_held(&self, held: bool) {
+        let mut s = self.0.borrow_mut();
+        if s.held && !held && s.sent_held {
+            s.sent_held = false;
+            s.post_or_queue(wire::encode_to_worker(&ToWorker::Released));
+        }
+        s.held = held;
     }
 
     /// The worker's figures so far.
@@ -347,7 +363,9 @@ impl Remote for WebWorker {
             options: request.options,
             literals: split.refs,
             forget: split.forget,
+            held: s.held,
         };
+        s.sent_held = s.held;
         let message = wire::encode_to_worker(&ToWorker::Evaluate(job));
         let ms = started.elapsed().as_secs_f64() * 1e3;
         s.figures.send_ms = (ms, s.figures.send_ms.1.max(ms));

@@ -211,6 +211,7 @@ mod tests {
             options: PreviewOptions::default(),
             literals: Vec::new(),
             forget: Vec::new(),
+            held: false,
         }
     }
 

@@ -4,9 +4,10 @@
 //! the page's first drag of the net; each solve answered as it arrives).
 //!
 //! Latest change wins: a message only files the newest request; the evaluation loop takes it
-//! when it is free. After a request's first phase (the 3D view's answer) the loop waits up to
-//! 300 ms for a newer request; when one comes, the rest of the stale one is dropped, so a drag's
-//! pictures never wait for a slow node that is not previewed.
+//! when it is free. After a request's first phase (the 3D view's answer) the loop waits for a
+//! newer request — while the page's pointer is held, until it is released; otherwise up to
+//! 300 ms — and when one comes, the rest of the stale one is dropped, so a drag's pictures never
+//! wait for a slow node that is not previewed.
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -25,6 +26,8 @@ use crate::wire::{self, Job, ToWorker};
 struct Inbox {
     newest: Option<Job>,
     running: bool,
+    /// The page released the pointer held during the last request (its rest may run).
+    released: bool,
 }
 
 fn scope() -> DedicatedWorkerGlobalScope {
@@ -62,6 +65,7 @@ pub fn worker_start() {
             }
             Ok(ToWorker::Literal { key, value }) => service.borrow_mut().remember(key, value),
             Ok(ToWorker::Parse(job)) => post(&service.borrow_mut().parse(job)),
+            Ok(ToWorker::Released) => inbox.borrow_mut().released = true,
             Ok(ToWorker::DragStart(job)) => drag.borrow_mut().start(&job),
             Ok(ToWorker::DragAim { target, steps }) => post(&drag.borrow_mut().aim(target, steps)),
             Ok(ToWorker::Evaluate(job)) => {
@@ -70,6 +74,7 @@ pub fn worker_start() {
                 service.borrow_mut().forget(&job.forget);
                 let start = {
                     let mut inbox = inbox.borrow_mut();
+                    inbox.released = false;
                     inbox.newest = Some(job);
                     !std::mem::replace(&mut inbox.running, true)
                 };
@@ -95,21 +100,32 @@ async fn run(inbox: Rc<RefCell<Inbox>>, service: Rc<RefCell<Service>>) {
             inbox.borrow_mut().running = false;
             return;
         };
+        let held = job.held;
         let (messages, rest) = service.borrow_mut().begin(job);
         messages.iter().for_each(|m| post(m));
         let Some(rest) = rest else { continue };
         // The rest (the nodes not previewed: a nest, the exports) can take seconds, and the
         // worker sees no newer request while it runs: during a drag it would hold every later
-        // picture back. So it waits a moment for a newer request first; one that comes makes
-        // this request stale and its rest never runs.
-        let mut stale = false;
-        for _ in 0..REST_GRACE_STEPS {
-            sleep_ms(REST_GRACE_STEP_MS).await;
-            if inbox.borrow().newest.is_some() {
-                stale = true;
-                break;
+        // picture back. So it waits for a newer request first — while the page's pointer is
+        // held (a drag), until it is released; otherwise a moment — and a newer request makes
+        // this one stale: its rest never runs.
+        let mut waited = 0;
+        let stale = loop {
+            sleep_ms(REST_WAIT_STEP_MS).await;
+            waited += REST_WAIT_STEP_MS;
+            let inbox = inbox.borrow();
+            if inbox.newest.is_some() {
+                break true;
             }
-        }
+            let due = if held {
+                inbox.released || waited >= HELD_REST_LIMIT_MS
+            } else {
+                waited >= REST_GRACE_MS
+            };
+            if due {
+                break false;
+            }
+        };
         if stale {
             continue;
         }
@@ -118,10 +134,12 @@ async fn run(inbox: Rc<RefCell<Inbox>>, service: Rc<RefCell<Service>>) {
     }
 }
 
-/// How long a request's rest waits for a newer request after its first phase: steps of
-/// [`REST_GRACE_STEP_MS`] (300 ms in all, longer than the pause between a drag's changes).
-const REST_GRACE_STEPS: u32 = 12;
-const REST_GRACE_STEP_MS: i32 = 25;
+/// How long a request's rest waits for a newer request after its first phase (milliseconds),
+/// looking every [`REST_WAIT_STEP_MS`]; a request made while the pointer was held waits for its
+/// release instead, at most [`HELD_REST_LIMIT_MS`] (a press held still).
+const REST_GRACE_MS: i32 = 300;
+const REST_WAIT_STEP_MS: i32 = 25;
+const HELD_REST_LIMIT_MS: i32 = 10_000;
 
 /// Returns to the worker's event loop once (its queued messages are delivered meanwhile).
 async fn yield_now() {

@@ -45,6 +45,10 @@ pub struct Job {
     pub literals: Vec<LiteralRef>,
     /// Large literals no request refers to any more (the worker drops them on receipt).
     pub forget: Vec<u64>,
+    /// The pointer was held (a drag) when the request was made: the worker keeps the request's
+    /// rest (the nodes not previewed) until a newer request comes or the page says the pointer
+    /// was released ([`ToWorker::Released`]).
+    pub held: bool,
 }
 
 /// A message from the page to the worker.
@@ -52,6 +56,8 @@ pub struct Job {
 pub enum ToWorker {
     /// Evaluate a graph (the newest one wins).
     Evaluate(Job),
+    /// The pointer held during the last request was released: its rest may run.
+    Released,
     /// A file opened on the page, readable by nodes under its name.
     Provide {
         /// The file's name.
@@ -161,6 +167,7 @@ const TO_LITERAL: u8 = 3;
 const TO_PARSE: u8 = 4;
 const TO_DRAG_START: u8 = 5;
 const TO_DRAG_AIM: u8 = 6;
+const TO_RELEASED: u8 = 7;
 const FROM_READY: u8 = 10;
 const FROM_ANSWER: u8 = 11;
 const FROM_FAILED: u8 = 12;
@@ -187,7 +194,9 @@ pub fn encode_to_worker(message: &ToWorker) -> Vec<u8> {
             }
             w.len(job.forget.len());
             job.forget.iter().for_each(|&k| w.u64(k));
+            w.bool(job.held);
         }
+        ToWorker::Released => w.u8(TO_RELEASED),
         ToWorker::Provide { name, bytes } => {
             w.u8(TO_PROVIDE);
             w.str(name);
@@ -244,7 +253,9 @@ pub fn decode_to_worker(bytes: &[u8]) -> Res<ToWorker> {
                 let n = r.len(8)?;
                 (0..n).map(|_| r.u64()).collect::<Res<_>>()?
             },
+            held: r.bool()?,
         }),
+        TO_RELEASED => ToWorker::Released,
         TO_PROVIDE => ToWorker::Provide {
             name: r.string()?,
             bytes: r.bytes()?.to_vec(),

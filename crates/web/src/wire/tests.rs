@@ -36,8 +36,10 @@ fn requests_round_trip() {
             key: 7,
         }],
         forget: vec![3, 5],
+        held: true,
     });
     assert_eq!(round_trip(&job), job);
+    assert_eq!(round_trip(&ToWorker::Released), ToWorker::Released);
     let literal = ToWorker::Literal {
         key: 7,
         value: Value::list(vec![
