@@ -42,6 +42,7 @@ Curves: a polyline curve gives its vertices; any other Rhino curve (NURBS, arc�
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import logging
 import math
@@ -868,12 +869,38 @@ def _port(port: str, nickname: str, description: str, kind: str, access: str = I
     return Param(_hops_name(port), nickname, description, kind, access, default, optional)
 
 
+_DECLARED = object()
+
+
+@functools.lru_cache(maxsize=1)
+def _declared_ports() -> Dict[Tuple[str, str, str], Dict[str, Any]]:
+    """Every node type's ports by (node id, "in" or "out", port name), as the nodes declare them."""
+    ports: Dict[Tuple[str, str, str], Dict[str, Any]] = {}
+    for node in _cnets.node_types():
+        for side in ("inputs", "outputs"):
+            for p in node[side]:
+                ports[(node["id"], "in" if side == "inputs" else "out", p["name"])] = p
+    return ports
+
+
+def _node_port(node: str, port: str, nickname: str, kind: str, access: str = ITEM, *,
+               output: bool = False, default: Any = _DECLARED, optional: bool = False,
+               note: str = "") -> Param:
+    """The Hops parameter of a node type's port, its description (and an input's default) read
+    from the node's own declaration, so the built-in components say what the nodes say; ``note``
+    adds what Hops does beside (NURBS curves are sampled), ``default`` overrides where Hops needs
+    a value the node leaves empty."""
+    declared = _declared_ports()[(node, "out" if output else "in", port)]
+    doc = declared["doc"] + (f" {note[:1].upper()}{note[1:]}." if note else "")
+    if default is _DECLARED:
+        default = None if output else declared["default"]
+    return _port(port, nickname, doc, kind, access, default, optional)
+
+
 def _builtin_components(server: HopsServer) -> List[Component]:
     construct_outputs = [
-        _port("mesh", "M", "The cone-net: a quad mesh, N rows (generatrix points) × M columns",
-              "Mesh"),
-        _port("apex", "A", "The apex values a_j used (M−1), after normalization and correction",
-              "Number", LIST),
+        _node_port("cnets.construct", "mesh", "M", "Mesh", output=True),
+        _node_port("cnets.construct", "apex", "A", "Number", LIST, output=True),
         _port("quality", "Q", "The largest planarity defect of a face (0: every face planar)",
               "Number"),
     ]
@@ -896,10 +923,10 @@ def _builtin_components(server: HopsServer) -> List[Component]:
             ]
         return solve
 
+    curves_sampled = "any curve; NURBS curves are sampled"
     curve_in = [
-        _port("directrix", "X", "Directrix X (any curve; NURBS curves are sampled)", "Curve"),
-        _port("generatrix", "G", "Generatrix G, drawn from a point off the directrix (closed: the "
-              "mesh wraps)", "Curve"),
+        _node_port("cnets.construct", "directrix", "X", "Curve", note=curves_sampled),
+        _node_port("cnets.construct", "generatrix", "G", "Curve", note=curves_sampled),
     ]
     components = [
         Component(
@@ -908,12 +935,9 @@ def _builtin_components(server: HopsServer) -> List[Component]:
             "directrix; ratios pick each plane's ruling; assistance repairs folded configurations.",
             "Cone-nets",
             curve_in + [
-                _port("apex", "A", "Apex function a_j: one number or one per directrix edge",
-                      "Number", LIST, default=1.0),
-                _port("ratios", "R", "Ratios r_ij: one number, a list of M−1, or a tree of N "
-                      "branches of M−1", "Number", TREE, default=0.5),
-                _port("assistance", "α", "Assisted correction: negative off, 0 planes, 1 apex",
-                      "Number", default=-1.0),
+                _node_port("cnets.construct", "apex", "A", "Number", LIST),
+                _node_port("cnets.construct", "ratios", "R", "Number", TREE),
+                _node_port("cnets.construct", "assistance", "α", "Number"),
             ],
             construct_outputs,
             construction("cnets.construct", "CNets Construct", ["ratios"]),
@@ -924,11 +948,10 @@ def _builtin_components(server: HopsServer) -> List[Component]:
             "polyline is planar.",
             "Cone-nets",
             curve_in + [
-                _port("apex", "A", "Apex function a_j", "Number", LIST, default=1.0),
-                _port("ruling_ratios", "ρ", "Ruling ratios ρ_j", "Number", LIST, default=0.5),
-                _port("plane_ratios", "τ", "Plane-rotation ratios τ_j", "Number", LIST,
-                      default=0.5),
-                _port("assistance", "α", "Assisted correction", "Number", default=-1.0),
+                _node_port("cnets.construct_coplanar", "apex", "A", "Number", LIST),
+                _node_port("cnets.construct_coplanar", "ruling_ratios", "ρ", "Number", LIST),
+                _node_port("cnets.construct_coplanar", "plane_ratios", "τ", "Number", LIST),
+                _node_port("cnets.construct_coplanar", "assistance", "α", "Number"),
             ],
             [_port("mesh", "M", "The cone-net; every column is planar", "Mesh"),
              construct_outputs[1], construct_outputs[2]],
@@ -937,7 +960,7 @@ def _builtin_components(server: HopsServer) -> List[Component]:
         ),
     ]
 
-    apex_out = _port("apex", "A", "The apex values (M−1)", "Number", LIST)
+    apex_out = _node_port("cnets.graph_to_apex", "apex", "A", "Number", LIST, output=True)
 
     def graph_to_apex(inputs: Dict[str, Any]) -> List[List[Dict[str, str]]]:
         values: Dict[str, Any] = {"widths": inputs["Widths"] or [],
@@ -953,21 +976,20 @@ def _builtin_components(server: HopsServer) -> List[Component]:
         "The widths y_j of the support strips give the apex function a_j = y_j / y_{j−1}.",
         "Cone-nets",
         [
-            _port("widths", "Y", "Widths y_0 … y_{M−1} (> 0), one per directrix point", "Number",
-                  LIST),
-            _port("normalized", "N", "Output the normalized apex function", "Boolean",
-                  default=False),
-            _port("directrix", "X", "The directrix (needed when normalized)", "Curve",
-                  optional=True),
-            _port("scale", "L", "Normalization scale L (0: directrix length / 5)", "Number",
-                  default=0.0),
+            _node_port("cnets.graph_to_apex", "widths", "Y", "Number", LIST),
+            _node_port("cnets.graph_to_apex", "normalized", "N", "Boolean"),
+            _node_port("cnets.graph_to_apex", "directrix", "X", "Curve", optional=True,
+                       note=curves_sampled),
+            # Hops has no empty number: 0 stands for the node's empty scale.
+            _node_port("cnets.graph_to_apex", "scale", "L", "Number", default=0.0,
+                       note="in Hops, 0 stands for empty"),
         ],
         [apex_out],
         graph_to_apex,
     ))
 
     support_out = [
-        _port("axes", "Ax", "The node axes X_j → G_ij, one line per vertex", "Curve", LIST),
+        _node_port("cnets.torsion_free_axes", "axes", "Ax", "Curve", LIST, output=True),
         # Named for what it is: cnets.conical_support's port is "mesh".
         Param("Support", "S", "The conical support layer", "Mesh"),
     ]
@@ -990,11 +1012,12 @@ def _builtin_components(server: HopsServer) -> List[Component]:
         "with the same apices, its first column scaled by Factor about X_0).",
         "Cone-nets",
         [
-            _port("directrix", "X", "The directrix the mesh was built from", "Curve"),
-            _port("mesh", "M", "The cone-net (the Mesh output of CNets Construct)", "Mesh"),
-            _port("apex", "A", "The Apex output of CNets Construct", "Number", LIST),
-            _port("factor", "λ", "Scale of the support's first column about X_0", "Number",
-                  default=0.8),
+            _node_port("cnets.conical_support", "directrix", "X", "Curve", note=curves_sampled),
+            _node_port("cnets.conical_support", "mesh", "M", "Mesh",
+                       note="the Mesh output of CNets Construct"),
+            _node_port("cnets.conical_support", "apex", "A", "Number", LIST,
+                       note="the Apex output of CNets Construct"),
+            _node_port("cnets.conical_support", "factor", "λ", "Number"),
         ],
         support_out,
         support,

@@ -542,3 +542,30 @@ def test_library_components_name_their_ports_as_the_builtins(tmp_path):
             _param("Ratio", _number_items([0.4]))]}), 400, "'Ratio'", "Profile, Path, Apex, Ratios")
     finally:
         hops.stop()
+
+
+def test_the_built_in_components_say_what_the_nodes_declare():
+    """The built-in components' inputs take their descriptions and defaults from the nodes'
+    declarations (``cnets.node_types()``), so a node's documentation reaches Hops unchanged."""
+    import re
+
+    from cnets import hops
+
+    declared = {(n["id"], p["name"]): p for n in cnets.node_types() for p in n["inputs"]}
+    node_of = {
+        "/cnets_construct": "cnets.construct",
+        "/cnets_construct_coplanar": "cnets.construct_coplanar",
+        "/cnets_graph_to_apex": "cnets.graph_to_apex",
+        "/cnets_support": "cnets.conical_support",
+    }
+    checked = 0
+    for component in hops._builtin_components(object()):
+        node = node_of[component.uri]
+        for param in component.inputs:
+            port = re.sub(r"(?<!^)([A-Z])", r"_\1", param.name).lower()
+            d = declared[(node, port)]
+            assert param.description.startswith(d["doc"]), (node, port, param.description)
+            if (node, port) != ("cnets.graph_to_apex", "scale"):  # Hops: 0 stands for empty
+                assert param.default == d["default"], (node, port, param.default)
+            checked += 1
+    assert checked == 19
