@@ -13,6 +13,10 @@ class CnetsError(ValueError):
     """An error of cnets, with the engine's message (file:line:col for graph files); a bad
     argument's message names the argument."""
 
+class NoInterfaceError(CnetsError):
+    """A graph file named as a node (``cluster:…``) has no ``graph.input`` or ``graph.output``
+    node: a graph, not a component."""
+
 class CnetsWarning(UserWarning):
     """A warning of a node that ran (a value clamped to a slider's range…)."""
 
@@ -154,7 +158,8 @@ def node_interface(
     allow_read: Union[_Path, Sequence[_Path], None] = None,
 ) -> Dict[str, Any]:
     """One node type by id, or a graph file's interface (``cluster:<path>``), as a dict (as
-    ``node_types``)."""
+    ``node_types``); a graph file without ``graph.input`` or ``graph.output`` nodes raises
+    ``NoInterfaceError``."""
     ...
 def parse_size(text: str) -> int:
     """Bytes of a size text (``"64MB"``, ``"2G"``, ``"1.5GiB"``, a plain number of bytes), as

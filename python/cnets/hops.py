@@ -1094,10 +1094,8 @@ def _library_component(server: HopsServer, path: Path, url: str) -> Optional[Com
     node_type = f"cluster:{path}"
     try:
         interface = _cnets.node_interface(node_type, server.library or None)
-    except _cnets.CnetsError as e:
-        if "no graph.input or graph.output" in str(e):
-            return None
-        raise
+    except _cnets.NoInterfaceError:
+        return None
     ins = [_port_param(p, n) for p, n in zip(interface["inputs"],
                                               _hops_names(interface["inputs"]))]
     outs = [_port_param(p, n) for p, n in zip(interface["outputs"],

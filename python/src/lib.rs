@@ -40,6 +40,14 @@ create_exception!(
      unknown node type, input or value."
 );
 
+create_exception!(
+    cnets,
+    NoInterfaceError,
+    CnetsError,
+    "A graph file named as a node (`cluster:…`) has no graph.input or graph.output node: a \
+     graph, not a component."
+);
+
 /// The module's allocator, as the `cnets` binary's: mimalloc keeps freed memory for reuse, where
 /// glibc's malloc hands the large buffers of a construction and of the arrays handed to numpy back
 /// to the kernel and faults them in again on the next call (at 100 × 100 that was a third of the
@@ -304,7 +312,10 @@ fn node_interface<'py>(
         .with_allow_read(args::paths(allow_read, "allow_read")?);
     let node = session
         .resolve(&node_type_arg(node_type)?, registry())
-        .map_err(|e| error(e.to_string()))?;
+        .map_err(|e| match e {
+            cnets_host::HostError::NoInterface { .. } => NoInterfaceError::new_err(e.to_string()),
+            e => error(e.to_string()),
+        })?;
     def_dict(py, node.def())
 }
 
@@ -315,6 +326,7 @@ use numpy::PyArrayMethods;
 fn _cnets(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("CnetsError", m.py().get_type::<CnetsError>())?;
     m.add("CnetsWarning", m.py().get_type::<CnetsWarning>())?;
+    m.add("NoInterfaceError", m.py().get_type::<NoInterfaceError>())?;
     m.add_function(wrap_pyfunction!(eval, m)?)?;
     m.add_function(wrap_pyfunction!(last_eval_seconds, m)?)?;
     m.add_function(wrap_pyfunction!(quad_faces, m)?)?;

@@ -172,3 +172,18 @@ def test_the_command_line_runs_a_library_component(cnets_bin, tmp_path):
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "out" / "strips.svg").is_file()
     assert 0 < json.loads(result.stdout)["utilization"] <= 1
+
+
+def test_a_graph_without_an_interface_is_no_component():
+    """A graph file with no graph.input or graph.output node is told apart by its error's type
+    (Hops leaves it out of its component list by that type, not by the message's words)."""
+    from cnets import _cnets
+
+    with pytest.raises(_cnets.NoInterfaceError) as e:
+        _cnets.node_interface(f"cluster:{REPO / 'graphs' / 'torus-monge.ron'}")
+    assert isinstance(e.value, cnets.CnetsError)
+    assert "no graph.input or graph.output" in str(e.value)
+    # A graph that does not load is a plain CnetsError, not this one.
+    with pytest.raises(cnets.CnetsError) as e:
+        _cnets.node_interface(f"cluster:{REPO / 'graphs' / 'no-such-graph.ron'}")
+    assert not isinstance(e.value, _cnets.NoInterfaceError)

@@ -56,6 +56,7 @@ impl From<cnets_host::HostError> for Failure {
     fn from(e: cnets_host::HostError) -> Self {
         match e {
             cnets_host::HostError::Usage(m) => Self::usage(m),
+            e @ cnets_host::HostError::NoInterface { .. } => Self::usage(e.to_string()),
             cnets_host::HostError::Load(e) => e.into(),
         }
     }

@@ -13,6 +13,15 @@ pub enum HostError {
     /// A graph file could not be loaded: every problem, with `file:line:col`.
     #[error("{0}")]
     Load(#[from] LoadError),
+    /// A graph file named as a node (`cluster:…`) has no `graph.input` or `graph.output` node: it
+    /// is a graph, not a component (Hops lists it as none).
+    #[error(
+        "{written}: the graph has no graph.input or graph.output nodes, so it cannot be used as a node"
+    )]
+    NoInterface {
+        /// The file as it was written.
+        written: String,
+    },
 }
 
 impl HostError {

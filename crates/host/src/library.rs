@@ -180,9 +180,9 @@ fn interface_cluster(
     )
     .map_err(|e| HostError::usage(format!("{written}: {e}")))?;
     if cluster.interface.is_empty() {
-        return Err(HostError::usage(format!(
-            "{written}: the graph has no graph.input or graph.output nodes, so it cannot be used as a node"
-        )));
+        return Err(HostError::NoInterface {
+            written: written.to_string(),
+        });
     }
     Ok(cluster)
 }
