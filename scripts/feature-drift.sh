@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-RUSTC_BOOTSTRAP=1 cargo test -q --workspace --all-targets --no-run -Z unstable-options --unit-graph >"$tmp/workspace.json"
+RUSTC_BOOTSTRAP=1 cargo test -q --workspace --features cnets-editor/drivers --all-targets --no-run -Z unstable-options --unit-graph >"$tmp/workspace.json"
 RUSTC_BOOTSTRAP=1 cargo build -q -p cnets-python --lib -Z unstable-options --unit-graph >"$tmp/python.json"
 python3 - "$tmp/workspace.json" "$tmp/python.json" <<'PY'
 import json, sys

@@ -73,11 +73,14 @@ trap 'kill -- -"$building_site" 2>/dev/null || true' EXIT
 # cargo command of the Rust and Python steps keeps these variables, so nothing is rebuilt.
 export RUSTC_WORKSPACE_WRAPPER="$(rustc --print sysroot)/bin/clippy-driver"
 export CLIPPY_ARGS="-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__"
+# The editor's test kit (feature `drivers`: the benchmarks and scripted sessions its window tests
+# play) is built for the tests only; the release editor leaves it out.
+tests=(--workspace --features cnets-editor/drivers)
 echo "== cargo clippy and the test build (clippy-driver as the workspace wrapper, -D warnings)"
-cargo test --workspace --all-targets --no-run
+cargo test "${tests[@]}" --all-targets --no-run
 wait_for_installs
 echo "== cargo test"
-cargo test --workspace
+cargo test "${tests[@]}"
 ./scripts/test-limits.sh  # issue 27 §2: the memory cases under ulimit -v (target/debug/cnets)
 # The test executables (1.2 GB: one integration-test binary a crate) are not used again: on a small disk the Python and wasm builds
 # need the room (a CI run once stopped with "No space left on device" in the wasm build). The

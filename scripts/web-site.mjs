@@ -29,6 +29,8 @@ export async function openSite(dir, query) {
     args: ["--headless", "--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
   });
   const page = await browser.newPage({ viewport: { width: 1400, height: 860 } });
+  // The page keeps its test state (window.cnets_test) only when asked, before its module starts.
+  await page.addInitScript(() => { window.cnets_testing = true; });
   await page.goto(`http://127.0.0.1:${server.address().port}/index.html${query}`);
   const close = async () => {
     await browser.close();

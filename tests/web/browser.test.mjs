@@ -33,6 +33,9 @@ const context = await chromium.launchPersistentContext(userData, {
 // machine's software rendering can take more than its default 30 s.
 context.setDefaultTimeout(180_000);
 context.setDefaultNavigationTimeout(180_000);
+// The page keeps its test state (window.cnets_test) only when asked, before its module starts.
+const testing = () => { window.cnets_testing = true; };
+await context.addInitScript(testing);
 // What the first visit transfers (the browser's cache is empty: a fresh profile): every response's
 // bytes on the wire (headers and the body as sent, compressed or not), until the first picture.
 const transfers = [];
@@ -804,6 +807,7 @@ for (const name of gallery) {
         viewport: { width, height }, deviceScaleFactor: ratio, hasTouch: touch, isMobile: touch,
       });
       ctx.setDefaultTimeout(180_000);
+      await ctx.addInitScript(testing);
       const page = watch(await ctx.newPage());
       await page.goto(`${base}/index.html?example=torus-monge`);
       await until(page, `${device} at ${ratio}×`, (t) => t.first_picture_ms !== null && t.vertices > 0);

@@ -101,7 +101,8 @@ impl EditorApp {
     /// Called once a frame: asks about the waiting document once no other question is up, and
     /// lets it go once the question was answered without opening it (Cancel).
     pub(super) fn poll_waiting(&mut self) {
-        let question_up = self.unsaved_question.is_some() || self.after_save.is_some();
+        let question_up =
+            self.modals.unsaved_question().is_some() || self.modals.after_save.is_some();
         let Some(waiting) = &mut self.waiting else {
             return;
         };
@@ -114,7 +115,9 @@ impl EditorApp {
             self.message = format!("{path} was not opened: the document stays");
         } else {
             waiting.asked = true;
-            self.unsaved_question = Some(Replace::Loaded(waiting.arrived.path.clone()));
+            self.modals.open(super::Modal::Unsaved(Replace::Loaded(
+                waiting.arrived.path.clone(),
+            )));
         }
     }
 

@@ -73,7 +73,7 @@ impl EditorApp {
                         bytes: ron.into_bytes(),
                     });
                 }
-                if let Some(r) = self.after_save.take() {
+                if let Some(r) = self.modals.after_save.take() {
                     self.perform(r);
                 }
                 return true;
@@ -406,7 +406,8 @@ impl EditorApp {
                     .as_deref()
                     .and_then(Path::parent)
                     .map_or_else(|| self.examples_dir.clone(), Path::to_path_buf);
-                self.dialog = Some(FileDialog::new(Purpose::Open, &start));
+                self.modals
+                    .open(super::Modal::File(FileDialog::new(Purpose::Open, &start)));
             }
             MenuAction::OpenPath(p) => self.request(Replace::Open(p)),
             MenuAction::OpenExample(p) => self.request(Replace::Example(p)),
@@ -426,7 +427,8 @@ impl EditorApp {
                         .map_or_else(|| "untitled.ron".into(), |n| n.to_os_string());
                     user_folder(&self.examples_dir).join(name)
                 });
-                self.dialog = Some(FileDialog::new(Purpose::SaveAs, &start));
+                self.modals
+                    .open(super::Modal::File(FileDialog::new(Purpose::SaveAs, &start)));
             }
             MenuAction::Export(format) => {
                 if export::export_node(&self.registry, format).is_none() {
@@ -436,13 +438,17 @@ impl EditorApp {
                     );
                 } else {
                     // Asks for the name, starting with the document's (no fixed names).
-                    self.export_report = None;
+                    self.modals
+                        .remove(|m| matches!(m, super::Modal::ExportReport(_)));
                     let start = self.export_folder().join(format!(
                         "{}.{}",
                         self.export_name(),
                         format.extension()
                     ));
-                    self.dialog = Some(FileDialog::new(Purpose::ExportFile(format), &start));
+                    self.modals.open(super::Modal::File(FileDialog::new(
+                        Purpose::ExportFile(format),
+                        &start,
+                    )));
                 }
             }
             MenuAction::RunExports => {
@@ -450,8 +456,12 @@ impl EditorApp {
                     self.message = "this graph has no export nodes".into();
                 } else {
                     let start = self.export_folder();
-                    self.export_report = None;
-                    self.dialog = Some(FileDialog::new(Purpose::RunExports, &start));
+                    self.modals
+                        .remove(|m| matches!(m, super::Modal::ExportReport(_)));
+                    self.modals.open(super::Modal::File(FileDialog::new(
+                        Purpose::RunExports,
+                        &start,
+                    )));
                 }
             }
             MenuAction::Undo => {
@@ -530,7 +540,10 @@ impl EditorApp {
             MenuAction::ToggleParameters => self.parameters_open = !self.parameters_open,
             MenuAction::LibraryFolder => {
                 let start = self.settings.library_dir();
-                self.dialog = Some(FileDialog::new(Purpose::LibraryFolder, &start));
+                self.modals.open(super::Modal::File(FileDialog::new(
+                    Purpose::LibraryFolder,
+                    &start,
+                )));
             }
             MenuAction::Quit => self.request_close(),
             MenuAction::RestoreKept => self.restore_kept(),
@@ -597,7 +610,7 @@ impl EditorApp {
         if depth > 0
             && !typing
             && !self.palette.open
-            && self.dialog.is_none()
+            && self.modals.file_dialog().is_none()
             && ctx.input(|i| i.key_pressed(Key::Escape))
         {
             actions.push(MenuAction::LeaveTo(depth - 1));

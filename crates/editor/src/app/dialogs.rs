@@ -1,5 +1,6 @@
-//! The dialogs the editor shows over everything: the file dialog's outcome, the unsaved-changes
-//! question and the restore offer.
+//! The dialogs the editor shows over everything ([`Modals`], one at a time): the file dialog's
+//! outcome, the unsaved-changes question and the restore offer (the read prompt's is in
+//! `reads.rs`), and the read-only queries tests and the page ask of them.
 
 use crate::file_dialog::Outcome;
 use crate::file_dialog::Purpose;
@@ -8,11 +9,40 @@ use crate::unsaved;
 use crate::unsaved::Answer;
 use crate::unsaved::Replace;
 
-use super::EditorApp;
+use super::{EditorApp, Modal, Modals};
 
 impl EditorApp {
-    pub(super) fn show_dialog(&mut self, ctx: &egui::Context) {
-        let Some(dialog) = &mut self.dialog else {
+    /// Shows the dialog at the front of [`Modals`] and carries out its answer.
+    pub(super) fn show_modal(&mut self, ctx: &egui::Context) {
+        // The reports close themselves; the others are answered in their handlers.
+        let report_open = match self.modals.shown_mut() {
+            None => return,
+            Some(Modal::ExportReport(report)) => report.show(ctx),
+            Some(Modal::LoadFailure(failure)) => failure.show(ctx),
+            Some(Modal::File(_)) => {
+                self.show_file_dialog(ctx);
+                return;
+            }
+            Some(Modal::Unsaved(_)) => {
+                self.show_unsaved_question(ctx);
+                return;
+            }
+            Some(Modal::Restore(_)) => {
+                self.show_restore(ctx);
+                return;
+            }
+            Some(Modal::ReadPrompt(_)) => {
+                self.show_read_prompt(ctx);
+                return;
+            }
+        };
+        if !report_open {
+            self.modals.close_shown();
+        }
+    }
+
+    fn show_file_dialog(&mut self, ctx: &egui::Context) {
+        let Some(Modal::File(dialog)) = self.modals.shown_mut() else {
             return;
         };
         match dialog.show(ctx) {
@@ -20,13 +50,13 @@ impl EditorApp {
             Outcome::Cancelled => {
                 if dialog.purpose == Purpose::SaveAs {
                     // "Save" in the unsaved-changes question, then Cancel here: nothing happens.
-                    self.after_save = None;
+                    self.modals.after_save = None;
                 }
-                self.dialog = None;
+                self.modals.close_shown();
             }
             Outcome::Chosen(path) => {
                 let purpose = dialog.purpose;
-                self.dialog = None;
+                self.modals.close_shown();
                 match purpose {
                     Purpose::Open => self.request(Replace::Open(path)),
                     Purpose::LibraryFolder => {
@@ -49,15 +79,15 @@ impl EditorApp {
         }
     }
 
-    pub(super) fn show_unsaved_question(&mut self, ctx: &egui::Context) {
-        let Some(pending) = &self.unsaved_question else {
+    fn show_unsaved_question(&mut self, ctx: &egui::Context) {
+        let Some(Modal::Unsaved(pending)) = self.modals.shown() else {
             return;
         };
         let title = self.doc.title().trim_end_matches(" *").to_string();
         let Some(answer) = unsaved::ask(ctx, &title, pending) else {
             return;
         };
-        let Some(pending) = self.unsaved_question.take() else {
+        let Some(Modal::Unsaved(pending)) = self.modals.close_shown() else {
             return;
         };
         match answer {
@@ -69,7 +99,7 @@ impl EditorApp {
                     }
                 }
                 None => {
-                    self.after_save = Some(pending);
+                    self.modals.after_save = Some(pending);
                     self.run(MenuAction::SaveAs);
                 }
             },
@@ -78,8 +108,8 @@ impl EditorApp {
         }
     }
 
-    pub(super) fn show_restore(&mut self, ctx: &egui::Context) {
-        let Some(r) = &self.offer_restore else {
+    fn show_restore(&mut self, ctx: &egui::Context) {
+        let Some(Modal::Restore(r)) = self.modals.shown() else {
             return;
         };
         let what = r.path.as_ref().map_or_else(
@@ -119,5 +149,42 @@ impl EditorApp {
             None if modal.should_close() => self.keep_recovery_for_later(),
             None => {}
         }
+    }
+}
+
+impl EditorApp {
+    /// The dialogs asked for (the one shown first).
+    pub fn modals(&self) -> &Modals {
+        &self.modals
+    }
+
+    /// The unsaved-changes question, when asked.
+    pub fn unsaved_question(&self) -> Option<&Replace> {
+        self.modals.unsaved_question()
+    }
+
+    /// The report of a graph file that failed to load, when shown or waiting.
+    pub fn load_failure(&self) -> Option<&crate::load_failure::LoadFailure> {
+        self.modals.load_failure()
+    }
+
+    /// The failed file's report, to add to it (the web page: what the link held).
+    pub fn load_failure_mut(&mut self) -> Option<&mut crate::load_failure::LoadFailure> {
+        self.modals.load_failure_mut()
+    }
+
+    /// Shows a failed file's report (the web page's link that does not load).
+    pub fn show_load_failure(&mut self, failure: crate::load_failure::LoadFailure) {
+        self.modals.open(Modal::LoadFailure(failure));
+    }
+
+    /// The "Allow reading this folder" prompt, when asked.
+    pub fn read_prompt(&self) -> Option<&super::ReadPrompt> {
+        self.modals.read_prompt()
+    }
+
+    /// What the last export wrote, while its report is open.
+    pub fn export_report(&self) -> Option<&crate::export::ExportReport> {
+        self.modals.export_report()
     }
 }

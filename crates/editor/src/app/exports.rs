@@ -99,6 +99,6 @@ impl EditorApp {
         {
             self.message = format!("export failed: {e}");
         }
-        self.export_report = Some(report);
+        self.modals.open(super::Modal::ExportReport(report));
     }
 }

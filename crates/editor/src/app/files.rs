@@ -9,22 +9,27 @@ use crate::unsaved::Replace;
 use std::path::Path;
 use std::path::PathBuf;
 
-use super::EditorApp;
+use super::{EditorApp, Modal};
 
 impl EditorApp {
     /// The file dialog being shown, if any (tests type a path into it).
     pub fn dialog_mut(&mut self) -> Option<&mut FileDialog> {
-        self.dialog.as_mut()
+        self.modals.file_dialog_mut()
     }
 
     /// The file dialog being shown, if any.
     pub fn dialog(&self) -> Option<&FileDialog> {
-        self.dialog.as_ref()
+        self.modals.file_dialog()
     }
 
     /// Whether a restore from a previous session's recovery file is being offered.
     pub fn restore_offered(&self) -> bool {
-        self.offer_restore.is_some()
+        self.modals.restore_offer().is_some()
+    }
+
+    /// Takes the restore offer out of the dialogs (answered, or put aside).
+    fn take_restore_offer(&mut self) -> Option<Modal> {
+        self.modals.remove(|m| matches!(m, Modal::Restore(_)))
     }
 
     /// Whether autosave has written the document as it is now (its version) to the recovery file.
@@ -34,7 +39,7 @@ impl EditorApp {
 
     /// Restores the recovery file (the crash-restore dialog's "Restore").
     pub fn restore(&mut self) {
-        if let Some(r) = self.offer_restore.take() {
+        if let Some(Modal::Restore(r)) = self.take_restore_offer() {
             let resolve = r.path.as_deref().or(r.origin.as_deref());
             let options = cnets_host::document_options(resolve, &self.library.dirs);
             match GraphDocument::from_text_with(
@@ -62,7 +67,10 @@ impl EditorApp {
     /// Keeps the recovery texts in `recovery` from now on (the web page: the browser's local
     /// storage) and offers to restore what a previous session left there.
     pub fn set_recovery(&mut self, recovery: Recovery) {
-        self.offer_restore = recovery.find();
+        self.take_restore_offer();
+        if let Some(offer) = recovery.find() {
+            self.modals.open(Modal::Restore(offer));
+        }
         self.kept_recovery = recovery.held().map(|h| kept_label(&h));
         self.recovery = recovery;
     }
@@ -75,9 +83,9 @@ impl EditorApp {
     pub fn offer_recovery_for(&mut self, opened: Option<&Path>) {
         let identity = |r: &Recovered| r.path.clone().or_else(|| r.origin.clone());
         let belongs = |r: &Recovered| opened.is_some() && identity(r).as_deref() == opened;
-        match &self.offer_restore {
+        match self.modals.restore_offer() {
             Some(r) if !belongs(r) => {
-                self.offer_restore = None;
+                self.take_restore_offer();
                 if let Err(e) = self.recovery.hold() {
                     self.message =
                         format!("the unsaved work of another page could not be kept: {e}");
@@ -87,8 +95,9 @@ impl EditorApp {
             None => {
                 if self.recovery.held().is_some_and(|h| belongs(&h))
                     && self.recovery.unhold().is_ok()
+                    && let Some(offer) = self.recovery.find()
                 {
-                    self.offer_restore = self.recovery.find();
+                    self.modals.open(Modal::Restore(offer));
                 }
             }
         }
@@ -114,9 +123,9 @@ impl EditorApp {
             self.kept_recovery = None;
             return;
         };
-        self.offer_restore = Some(kept);
+        self.modals.open(Modal::Restore(kept));
         self.restore();
-        if self.offer_restore.is_none() {
+        if self.modals.restore_offer().is_none() {
             self.recovery.clear_held();
             self.kept_recovery = None;
         }
@@ -125,7 +134,7 @@ impl EditorApp {
     /// Closes the restore offer without deciding (Escape): the work is kept aside, listed as
     /// File › Restore kept work, and not overwritten by this session's autosave.
     pub fn keep_recovery_for_later(&mut self) {
-        self.offer_restore = None;
+        self.take_restore_offer();
         match self.recovery.hold() {
             Ok(()) => {
                 self.message = "the unsaved work is kept: File › Restore kept work opens it".into()
@@ -137,7 +146,7 @@ impl EditorApp {
 
     /// Declines the restore and removes the recovery file.
     pub fn discard_recovery(&mut self) {
-        self.offer_restore = None;
+        self.take_restore_offer();
         self.recovery.clear();
     }
 
@@ -145,7 +154,7 @@ impl EditorApp {
     /// else after the Save / Don't save / Cancel question (see [`crate::unsaved`]).
     pub fn request(&mut self, r: Replace) {
         if self.doc.is_dirty() && !(r == Replace::Quit && self.close_confirmed) {
-            self.unsaved_question = Some(r);
+            self.modals.open(Modal::Unsaved(r));
         } else {
             self.perform(r);
         }
@@ -235,7 +244,8 @@ impl EditorApp {
 
     pub(super) fn fail_load(&mut self, path: &Path, error: &str) {
         self.message = format!("cannot open {}: the document is unchanged", path.display());
-        self.load_failure = Some(LoadFailure::new(path, error));
+        self.modals
+            .open(Modal::LoadFailure(LoadFailure::new(path, error)));
     }
 
     /// Receives graph files to open from elsewhere (`cnets-editor FILE` started while this
@@ -259,7 +269,7 @@ impl EditorApp {
             Err(e) => self.message = e,
         }
         if !self.doc.is_dirty()
-            && let Some(r) = self.after_save.take()
+            && let Some(r) = self.modals.after_save.take()
         {
             self.perform(r);
         }

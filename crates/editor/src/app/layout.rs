@@ -173,14 +173,6 @@ impl EditorApp {
         if let Some((node, input)) = crate::widgets::take_browse_request(&ctx) {
             self.browse(&node, &input);
         }
-        self.show_dialog(&ctx);
-        self.show_restore(&ctx);
-        self.show_read_prompt(&ctx);
-        if let Some(report) = &self.export_report
-            && !report.show(&ctx)
-        {
-            self.export_report = None;
-        }
 
         // A gesture ends when the pointer is released and no text field is being typed in (so a
         // drag, or typing a name, is one undo step); a released drag of the net whose last answer
@@ -219,12 +211,7 @@ impl EditorApp {
         }
         self.poll_loading(&ctx);
         self.poll_waiting();
-        self.show_unsaved_question(&ctx);
-        if let Some(f) = &mut self.load_failure
-            && !f.show(&ctx)
-        {
-            self.load_failure = None;
-        }
+        self.show_modal(&ctx);
         if self.doc.version() != version_before && self.pending_change.is_none() {
             self.pending_change = Some(Instant::now());
         }

@@ -14,11 +14,13 @@ mod exports;
 mod files;
 mod layout;
 mod loading;
+mod modals;
 mod net_drag;
 mod reads;
 mod worker;
 
 pub use arrivals::Arrived;
+pub use modals::{Modal, Modals};
 pub use net_drag::NetDragFigures;
 pub use reads::ReadPrompt;
 
@@ -28,7 +30,6 @@ pub use loading::LARGE_GRAPH_BYTES;
 use crate::canvas::Canvas;
 use crate::clipboard::Clipboard;
 use crate::document::GraphDocument;
-use crate::file_dialog::FileDialog;
 use crate::library::ClusterWatch;
 use crate::library::Library;
 use crate::list_editor::ListEditors;
@@ -36,10 +37,8 @@ use crate::load_failure::LoadFailure;
 use crate::menus;
 use crate::optimization::OptimizationPanel;
 use crate::palette::PaletteState;
-use crate::recovery::Recovered;
 use crate::recovery::Recovery;
 use crate::settings::Settings;
-use crate::unsaved::Replace;
 use crate::viewport::Viewport;
 use crate::worker::NodeStatus;
 use crate::worker::Worker;
@@ -118,15 +117,11 @@ pub struct EditorApp {
     /// Whether the window should close (set by File › Quit and after the unsaved-changes
     /// question; the window closes when it sees it).
     pub quit: bool,
-    /// The unsaved-changes question being asked: what replaces or closes the document once the
-    /// designer answers (see [`crate::unsaved`]).
-    pub unsaved_question: Option<Replace>,
-    /// Carried out once the Save As dialog opened by the question's "Save" has saved.
-    after_save: Option<Replace>,
+    /// The dialogs over the editor, one shown at a time (the unsaved-changes question, the
+    /// restore offer, a failed file, the read prompt, the export report, the file dialog).
+    modals: Modals,
     /// The designer answered the question: closing is allowed now.
     close_confirmed: bool,
-    /// A graph file that failed to load, shown with its diagnostics.
-    pub load_failure: Option<LoadFailure>,
     /// Graph files sent by `cnets-editor FILE` started while this window is open.
     inbox: Option<std::sync::mpsc::Receiver<PathBuf>>,
     last_title: String,
@@ -148,14 +143,12 @@ pub struct EditorApp {
     pending_change: Option<Instant>,
     awaiting_picture: Option<(u64, Instant)>,
     recovery: Recovery,
-    offer_restore: Option<Recovered>,
     /// What File ▸ Restore kept work names: another document's recovery kept aside (the page).
     kept_recovery: Option<String>,
     /// A large file being read off the UI thread (`loading`).
     loading: Option<loading::Loading>,
     /// A document read elsewhere, waiting for the unsaved-changes question (`arrivals`).
     waiting: Option<arrivals::Waiting>,
-    dialog: Option<FileDialog>,
     clipboard: Clipboard,
     gpu: Option<GpuTarget>,
     examples: Vec<PathBuf>,
@@ -193,12 +186,8 @@ pub struct EditorApp {
     pub page: Option<crate::page::Page>,
     /// The path input whose Browse… dialog is open (node id, input name).
     browse_target: Option<(String, String)>,
-    /// A read refused as outside the graph's folder, asked about ("Allow reading this folder").
-    pub read_prompt: Option<ReadPrompt>,
     /// Files whose prompt the designer declined (not asked again for this document).
     declined_reads: Vec<PathBuf>,
-    /// What the last File › Export wrote, shown in a dialog until it is closed.
-    pub export_report: Option<crate::export::ExportReport>,
     /// Called when a result is ready off the UI thread (requests a repaint).
     wake: Arc<dyn Fn() + Send + Sync>,
     /// A drag of the net in progress (the Drag net tool).
@@ -226,12 +215,14 @@ impl EditorApp {
         // Written on a thread of its own: a large design's text does not stop the window.
         #[cfg(not(target_arch = "wasm32"))]
         let recovery = recovery.in_background(options.wake.clone());
-        let offer_restore = recovery.find();
+        let mut modals = Modals::default();
+        if let Some(offer) = recovery.find() {
+            modals.open(Modal::Restore(offer));
+        }
         let kept_recovery = recovery.held().map(|h| files::kept_label(&h));
         let message = String::new();
         let library_dirs = vec![settings.library_dir(), options.examples_dir.clone()];
         let torus = options.examples_dir.join("torus-monge.ron");
-        let mut load_failure = None;
         // The start-up graph: the file given (an untitled copy when it is a shipped example), else
         // an untitled copy of the gallery's torus-monge.ron, else the built-in default.
         let (start, copy) = match &options.file {
@@ -256,7 +247,7 @@ impl EditorApp {
                 Ok(d) => Some(d),
                 Err(e) => {
                     // Not the default graph in its place: that would look like the file.
-                    load_failure = Some(LoadFailure::new(path, &e));
+                    modals.open(Modal::LoadFailure(LoadFailure::new(path, &e)));
                     Some(GraphDocument::new(registry.clone()))
                 }
             },
@@ -278,10 +269,8 @@ impl EditorApp {
             settings,
             latency: Latency::default(),
             quit: false,
-            unsaved_question: None,
-            after_save: None,
+            modals,
             close_confirmed: false,
-            load_failure,
             inbox: None,
             last_title: String::new(),
             check_overlaps: true,
@@ -293,11 +282,9 @@ impl EditorApp {
             pending_change: Some(Instant::now()),
             awaiting_picture: None,
             recovery,
-            offer_restore,
             kept_recovery,
             loading: None,
             waiting: None,
-            dialog: None,
             clipboard: Clipboard::default(),
             gpu: options.gpu,
             examples: menus::examples_in(&options.examples_dir),
@@ -325,9 +312,7 @@ impl EditorApp {
             refit_on_results: true,
             page: None,
             browse_target: None,
-            read_prompt: None,
             declined_reads: Vec::new(),
-            export_report: None,
         };
         if let Some(p) = app.doc.path.clone() {
             app.doc.allowed_reads = app.settings.allowed_reads(&p);
@@ -343,7 +328,9 @@ impl EditorApp {
             match loaded {
                 Ok(d) if copy => app.replace_doc(d.into_untitled_copy()),
                 Ok(d) => app.replace_doc(d),
-                Err(e) => app.load_failure = Some(LoadFailure::new(path, &e)),
+                Err(e) => app
+                    .modals
+                    .open(Modal::LoadFailure(LoadFailure::new(path, &e))),
             }
         }
         app.watch.changed(&app.doc.graph);
@@ -396,7 +383,7 @@ impl EditorApp {
         if let Some(p) = self.doc.path.clone() {
             self.doc.allowed_reads = self.settings.allowed_reads(&p);
         }
-        self.read_prompt = None;
+        self.modals.remove(|m| matches!(m, Modal::ReadPrompt(_)));
         self.declined_reads.clear();
         // A new document is a new evaluation generation (fresh evaluator).
         self.doc.start_after(previous);

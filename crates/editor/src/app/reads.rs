@@ -62,7 +62,10 @@ impl EditorApp {
             .filter(|p| p.parent().is_some_and(Path::is_dir))
             .unwrap_or(base);
         self.browse_target = Some((node.to_string(), input.to_string()));
-        self.dialog = Some(FileDialog::new(Purpose::BrowseInput, &start));
+        self.modals.open(super::Modal::File(FileDialog::new(
+            Purpose::BrowseInput,
+            &start,
+        )));
     }
 
     /// The file picked with Browse…: it stays readable for the document when it lies outside the
@@ -99,7 +102,7 @@ impl EditorApp {
     /// After an evaluation: a node refused a file outside the graph's folder (and the designer
     /// has not declined it) opens the "Allow reading this folder" prompt.
     pub(super) fn check_refused_reads(&mut self) {
-        if self.read_prompt.is_some() || self.page.is_some() {
+        if self.modals.read_prompt().is_some() || self.page.is_some() {
             return;
         }
         let mut refused: Vec<(String, PathBuf)> = self
@@ -116,14 +119,18 @@ impl EditorApp {
             let folder = path
                 .parent()
                 .map_or_else(|| path.clone(), Path::to_path_buf);
-            self.read_prompt = Some(ReadPrompt { node, path, folder });
+            self.modals
+                .open(super::Modal::ReadPrompt(ReadPrompt { node, path, folder }));
         }
     }
 
     /// Answers the prompt: `allow` lets the document read the file's folder from now on; else
     /// the file is not asked about again for this document.
     pub fn answer_read_prompt(&mut self, allow: bool) {
-        let Some(p) = self.read_prompt.take() else {
+        let Some(super::Modal::ReadPrompt(p)) = self
+            .modals
+            .remove(|m| matches!(m, super::Modal::ReadPrompt(_)))
+        else {
             return;
         };
         if allow {
@@ -139,7 +146,7 @@ impl EditorApp {
 
     /// The prompt itself: which node, which file, and the two answers.
     pub(super) fn show_read_prompt(&mut self, ctx: &egui::Context) {
-        let Some(p) = &self.read_prompt else {
+        let Some(super::Modal::ReadPrompt(p)) = self.modals.shown() else {
             return;
         };
         let label = self

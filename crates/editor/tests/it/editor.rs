@@ -463,12 +463,12 @@ fn closing_with_unsaved_changes_asks_first() {
     h.state_mut().request_close();
     h.run_steps(2);
     assert!(
-        !h.state().quit && h.state().unsaved_question.is_some(),
+        !h.state().quit && h.state().unsaved_question().is_some(),
         "asks first"
     );
     h.get_by_label("Cancel").click();
     h.run_steps(2);
-    assert!(!h.state().quit && h.state().unsaved_question.is_none());
+    assert!(!h.state().quit && h.state().unsaved_question().is_none());
     h.state_mut().request_close();
     h.run_steps(2);
     h.get_by_label("Don't save").click();

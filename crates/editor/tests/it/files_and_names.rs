@@ -90,8 +90,8 @@ fn file_export_runs_the_graphs_own_export_nodes() {
     let svg = out.join("panels.svg");
     let report = h
         .state()
-        .export_report
-        .clone()
+        .export_report()
+        .cloned()
         .expect("what was written is listed");
     assert_eq!(report.files(), vec![svg.clone()]);
     assert_eq!(report.runs[0].node, "sheet");
@@ -104,7 +104,7 @@ fn file_export_runs_the_graphs_own_export_nodes() {
     // The list closes; the graph's settings change the file: half the scale, other bytes.
     h.get_by_label("Close").click();
     h.run_steps(2);
-    assert!(h.state().export_report.is_none());
+    assert!(h.state().export_report().is_none());
     assert!(h.state_mut().edit(Edit::SetValue {
         node: "sheet".into(),
         input: "scale".into(),
@@ -116,7 +116,7 @@ fn file_export_runs_the_graphs_own_export_nodes() {
     assert_ne!(first, second, "the export follows the node's settings");
     // As the command line writes it: `cnets run --out` of the saved graph.
     assert_eq!(
-        h.state().export_report.as_ref().unwrap().files(),
+        h.state().export_report().as_ref().unwrap().files(),
         vec![svg.clone()]
     );
     std::fs::remove_dir_all(&dir).ok();
@@ -144,7 +144,7 @@ fn a_quick_export_of_the_preview_asks_for_the_name() {
     let obj = dir.join("exports").join("my canopy.obj");
     assert!(obj.is_file(), "{}", h.state().message);
     assert_eq!(
-        h.state().export_report.as_ref().unwrap().files(),
+        h.state().export_report().as_ref().unwrap().files(),
         vec![obj.clone()]
     );
     std::fs::remove_dir_all(&dir).ok();
@@ -204,7 +204,7 @@ fn a_browse_picked_file_outside_the_graphs_folder_is_read() {
         Some(&Value::text(csv.display().to_string()))
     );
     assert!(
-        h.state().read_prompt.is_none(),
+        h.state().read_prompt().is_none(),
         "no prompt for a picked file"
     );
     // Kept with the document's settings, not in the graph file.
@@ -224,7 +224,7 @@ fn a_browse_picked_file_outside_the_graphs_folder_is_read() {
     drop(h);
     let h = harness_with("browse-again", Some(graph.clone()), config);
     assert!(site_status(&h).error().is_none(), "{:?}", site_status(&h));
-    assert!(h.state().read_prompt.is_none());
+    assert!(h.state().read_prompt().is_none());
     // Another document is not allowed: the permission is the document's.
     let other = project.join("other.ron");
     std::fs::write(&other, reader_graph(&csv.display().to_string())).unwrap();
@@ -251,8 +251,8 @@ fn a_refused_read_asks_to_allow_its_folder() {
     let mut h = harness_with("prompt", Some(graph.clone()), config.clone());
     let prompt = h
         .state()
-        .read_prompt
-        .clone()
+        .read_prompt()
+        .cloned()
         .expect("the refused read asks");
     assert_eq!(prompt.path, csv);
     assert_eq!(prompt.folder, elsewhere);
@@ -260,7 +260,7 @@ fn a_refused_read_asks_to_allow_its_folder() {
     h.run_steps(2);
     settle(&mut h);
     assert!(site_status(&h).error().is_none(), "{:?}", site_status(&h));
-    assert!(h.state().read_prompt.is_none());
+    assert!(h.state().read_prompt().is_none());
     assert_eq!(
         Settings::load(&config).allowed_reads(&graph),
         vec![elsewhere.clone()]
@@ -269,12 +269,15 @@ fn a_refused_read_asks_to_allow_its_folder() {
     let other = project.join("other.ron");
     std::fs::write(&other, reader_graph(&csv.display().to_string())).unwrap();
     let mut h = harness_with("prompt-no", Some(other), temp_config("prompt-no"));
-    assert!(h.state().read_prompt.is_some());
+    assert!(h.state().read_prompt().is_some());
     h.get_by_label("Not now").click();
     h.run_steps(2);
     h.state_mut().reevaluate();
     settle(&mut h);
-    assert!(h.state().read_prompt.is_none(), "declined: not asked again");
+    assert!(
+        h.state().read_prompt().is_none(),
+        "declined: not asked again"
+    );
     assert!(site_status(&h).error().is_some());
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -145,7 +145,7 @@ fn every_path_that_replaces_or_closes_the_document_asks_first() {
         trigger(&mut h);
         h.run_steps(3);
         assert_eq!(
-            h.state().unsaved_question.as_ref(),
+            h.state().unsaved_question(),
             Some(expected),
             "{name}: asks before replacing"
         );
@@ -154,7 +154,7 @@ fn every_path_that_replaces_or_closes_the_document_asks_first() {
         h.get_by_label("Cancel").click();
         h.run_steps(2);
         assert!(
-            h.state().unsaved_question.is_none(),
+            h.state().unsaved_question().is_none(),
             "{name}: question gone"
         );
         assert_eq!(
@@ -322,8 +322,8 @@ fn a_file_that_fails_to_load_shows_its_diagnostics_and_keeps_the_document() {
     assert!(h.state().doc.is_dirty(), "and keeps its unsaved changes");
     let failure = h
         .state()
-        .load_failure
-        .clone()
+        .load_failure()
+        .cloned()
         .expect("the failure is shown");
     let all = failure.diagnostics.join("\n");
     assert!(
@@ -337,7 +337,7 @@ fn a_file_that_fails_to_load_shows_its_diagnostics_and_keeps_the_document() {
     h.run_steps(6);
     assert!(
         h.state()
-            .load_failure
+            .load_failure()
             .as_ref()
             .unwrap()
             .text
@@ -349,14 +349,14 @@ fn a_file_that_fails_to_load_shows_its_diagnostics_and_keeps_the_document() {
     h.run_steps(6);
     h.get_by_label("Close").click();
     h.run_steps(2);
-    assert!(h.state().load_failure.is_none());
+    assert!(h.state().load_failure().is_none());
     // At start-up: an empty untitled document under the dialog, not the default graph.
     let h = harness_with(
         "badfile-start",
         Some(bad.clone()),
         temp_config("badfile-start"),
     );
-    assert!(h.state().load_failure.is_some());
+    assert!(h.state().load_failure().is_some());
     assert_eq!(
         h.state().doc.graph.node_count(),
         0,
@@ -404,8 +404,8 @@ fn a_graph_dropped_on_the_page_asks_before_it_replaces_unsaved_work() {
     assert_eq!(h.state().doc.to_ron(), mine, "not replaced yet");
     h.run_steps(2);
     assert_eq!(
-        h.state().unsaved_question,
-        Some(Replace::Loaded(PathBuf::from("dropped.ron")))
+        h.state().unsaved_question(),
+        Some(&Replace::Loaded(PathBuf::from("dropped.ron")))
     );
     h.get_by_label("Cancel").click();
     h.run_steps(3);
@@ -434,8 +434,8 @@ fn a_graph_dropped_on_the_page_asks_before_it_replaces_unsaved_work() {
             .receive_text("(version: 1, nodes: {", Path::new("bad.ron"))
     );
     h.run_steps(2);
-    assert_eq!(h.state().unsaved_question, None);
-    assert!(h.state().load_failure.is_some());
+    assert_eq!(h.state().unsaved_question(), None);
+    assert!(h.state().load_failure().is_some());
     assert_eq!(h.state().doc.to_ron(), mine);
 }
 
@@ -508,10 +508,13 @@ fn escape_closes_every_dialog_with_its_safe_answer() {
     std::fs::write(&bad, "(version: 1, nodes: {\"a\": (type: \"no.such\")})").unwrap();
     h.state_mut().open(&bad);
     h.run_steps(2);
-    assert!(h.state().load_failure.is_some());
+    assert!(h.state().load_failure().is_some());
     h.key_press(Key::Escape);
     h.run_steps(3);
-    assert!(h.state().load_failure.is_none(), "Escape closes the report");
+    assert!(
+        h.state().load_failure().is_none(),
+        "Escape closes the report"
+    );
     // The kept work comes back from File › Restore kept work.
     h.state_mut().run(MenuAction::RestoreKept);
     h.run_steps(3);

@@ -29,7 +29,7 @@ fn open(h: &mut Harness<'static, EditorApp>, path: &Path) {
         Some(path),
         "{}: {:?}",
         h.state().message,
-        h.state().load_failure.as_ref().map(|f| &f.diagnostics)
+        h.state().load_failure().as_ref().map(|f| &f.diagnostics)
     );
 }
 
@@ -573,13 +573,13 @@ fn a_document_edited_while_a_large_file_is_read_is_not_replaced_without_asking()
         assert_eq!(h.state().doc.to_ron(), edited, "not replaced yet");
         h.run_steps(2);
         assert_eq!(
-            h.state().unsaved_question,
-            Some(Replace::Loaded(big.clone())),
+            h.state().unsaved_question(),
+            Some(&Replace::Loaded(big.clone())),
             "the unsaved-changes question is asked"
         );
         h.get_by_label(answer).click();
         h.run_steps(3);
-        assert_eq!(h.state().unsaved_question, None);
+        assert_eq!(h.state().unsaved_question(), None);
         assert_eq!(h.state().loading(), None, "{answer}: nothing left reading");
         assert_eq!(h.state().waiting(), None, "{answer}: nothing left waiting");
         if opens {

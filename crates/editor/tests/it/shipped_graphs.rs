@@ -51,7 +51,7 @@ fn no_two_node_rectangles_overlap_in_any_shipped_graph() {
             temp_config(&format!("tidy-{name}")),
         );
         settle(&mut h);
-        assert!(h.state().load_failure.is_none(), "{name} loads");
+        assert!(h.state().load_failure().is_none(), "{name} loads");
         let o = overlaps(h.state());
         if !o.is_empty() {
             bad.push(format!("{name}: {o:?}"));

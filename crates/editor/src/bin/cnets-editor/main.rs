@@ -7,14 +7,9 @@
 //! Started with a FILE while a window with the same settings folder is open, it hands the file
 //! to that window (which asks about unsaved changes first) and exits.
 //!
-//! Test modes (the real window under Xvfb, `tests/it/window.rs`): `--drive-drag` drags the first
-//! `param.number` slider with injected pointer events (press, moves, release), prints the values
-//! shown once released, then `drive-drag: autosaved N ms after the release` once autosave has
-//! written them, and keeps running (the test kills it); `--restore-and-print` accepts the
-//! recovery file's restore, prints the values and quits; `--drive-script NAME [--drive-out DIR]`
-//! plays a scripted design session (`scenarios.rs`: handles, draw, pick, folds, canopy) with
-//! injected pointer events and keys, printing `script: key = value` lines and saving screenshots
-//! into DIR.
+//! The test kit (the benchmarks and the scripted sessions the window tests play) is in
+//! `drivers/`, built only with the feature `drivers` (`cargo test` in `scripts/test.sh` enables
+//! it; the release build does not); without it `no_drivers.rs` stands in.
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -24,18 +19,13 @@ use anyhow::{Context as _, bail};
 use cnets_editor::app::{AppOptions, EditorApp};
 use cnets_editor::viewport::GpuTarget;
 
-mod bench;
-mod canopy;
-mod cplane;
-mod drag_net;
-mod drive;
-mod scenarios;
-mod script;
-mod tutorial;
+#[cfg(feature = "drivers")]
+mod drivers;
+#[cfg(not(feature = "drivers"))]
+#[path = "no_drivers.rs"]
+mod drivers;
 
-use bench::{Bench, Motion};
-use drive::{Drive, slider_values};
-use script::Script;
+use drivers::{DriverArgs, Drivers};
 
 /// The process allocator: mimalloc keeps freed memory for reuse, where glibc's malloc hands large
 /// freed blocks (a 1000 × 1000 construction's 49 MB) back to the kernel and page-faults them in again
@@ -45,49 +35,25 @@ static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 struct Args {
     file: Option<PathBuf>,
-    bench_drag: Option<u32>,
-    bench_pan: Option<u32>,
     screenshot: Option<PathBuf>,
     quit_after: u32,
     size: [f32; 2],
-    drive_drag: bool,
-    restore_and_print: bool,
-    drive_script: Option<String>,
-    drive_out: PathBuf,
+    drivers: DriverArgs,
 }
 
 fn parse_args() -> anyhow::Result<Args> {
     let mut args = Args {
         file: None,
-        bench_drag: None,
-        bench_pan: None,
         screenshot: None,
         quit_after: 10,
         size: [1400.0, 860.0],
-        drive_drag: false,
-        restore_and_print: false,
-        drive_script: None,
-        drive_out: PathBuf::from("."),
+        drivers: DriverArgs::default(),
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         match a.as_str() {
             "--screenshot" => {
                 args.screenshot = Some(it.next().context("--screenshot needs a path")?.into())
-            }
-            "--bench-drag" => {
-                args.bench_drag = Some(
-                    it.next()
-                        .context("--bench-drag needs a frame count")?
-                        .parse()?,
-                )
-            }
-            "--bench-pan" => {
-                args.bench_pan = Some(
-                    it.next()
-                        .context("--bench-pan needs a frame count")?
-                        .parse()?,
-                )
             }
             "--quit-after-frames" => {
                 args.quit_after = it
@@ -100,25 +66,14 @@ fn parse_args() -> anyhow::Result<Args> {
                 let (w, h) = s.split_once('x').context("--size needs WxH")?;
                 args.size = [w.parse()?, h.parse()?];
             }
-            "--drive-drag" => args.drive_drag = true,
-            "--drive-script" => {
-                let name = it.next().context("--drive-script needs a name")?;
-                if scenarios::script(&name).is_none() {
-                    bail!("unknown script {name} (known: {})", scenarios::NAMES);
-                }
-                args.drive_script = Some(name);
-            }
-            "--drive-out" => {
-                args.drive_out = it.next().context("--drive-out needs a folder")?.into()
-            }
-            "--restore-and-print" => args.restore_and_print = true,
             "-h" | "--help" => {
                 println!(
-                    "cnets-editor [FILE] [--screenshot OUT.png] [--quit-after-frames N] [--size WxH] \
-                     [--bench-drag N] [--bench-pan N]"
+                    "cnets-editor [FILE] [--screenshot OUT.png] [--quit-after-frames N] [--size WxH] {}",
+                    drivers::HELP
                 );
                 std::process::exit(0);
             }
+            s if args.drivers.take(s, &mut it)? => {}
             s if s.starts_with('-') => bail!("unknown option {s}"),
             _ => args.file = Some(a.into()),
         }
@@ -134,10 +89,7 @@ struct Window {
     frames: u32,
     requested: bool,
     result: Arc<Mutex<Option<anyhow::Result<()>>>>,
-    bench: Option<Bench>,
-    drive: Option<Drive>,
-    script: Option<Script>,
-    restore_and_print: bool,
+    drivers: Drivers,
     config_dir: PathBuf,
     /// When the window was made.
     opened: std::time::Instant,
@@ -159,43 +111,12 @@ impl eframe::App for Window {
             // Show the evaluated graph in the picture, not the first empty frame.
             self.app.wait_for_worker(Duration::from_secs(60));
         }
-        if self
-            .bench
-            .as_ref()
-            .is_some_and(|b| b.done == 0 && b.last_frame.is_none())
-        {
-            self.app.wait_for_worker(Duration::from_secs(60));
-        }
-        if std::mem::take(&mut self.restore_and_print) {
-            if self.app.restore_offered() {
-                self.app.restore();
-                self.app.wait_for_worker(Duration::from_secs(60));
-                println!("restored: {}", self.app.message);
-                println!("{}", slider_values(&self.app));
-            } else {
-                println!("restored: nothing to restore");
-            }
-            println!("restored: end");
-            // Quit without the unsaved-changes question, keeping the recovery file.
-            std::process::exit(0);
-        }
+        self.drivers.before_frame(&mut self.app);
         let started = std::time::Instant::now();
         self.app.ui(ui);
         let ctx = ui.ctx().clone();
-        if let Some(d) = &mut self.drive {
-            d.locate(&self.app);
-            d.report(&self.app);
-            if d.needs_frames() {
-                ctx.request_repaint();
-            }
-        }
-        if let Some(b) = &mut self.bench {
-            b.uis.push(started.elapsed().as_secs_f64() * 1e3);
-            b.step(&mut self.app, &ctx);
-        }
-        if let Some(s) = &mut self.script {
-            s.after_frame(&mut self.app, &ctx);
-        }
+        let ui_ms = started.elapsed().as_secs_f64() * 1e3;
+        self.drivers.after_frame(&mut self.app, &ctx, ui_ms);
         if self.app.quit {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
@@ -244,25 +165,9 @@ impl eframe::App for Window {
     }
 
     fn raw_input_hook(&mut self, ctx: &egui::Context, raw_input: &mut egui::RawInput) {
-        if self.drive.is_some() || self.script.is_some() {
-            // Only the injected pointer: the X server's own (moved over the window as it maps)
-            // would break a scripted click or drag.
-            raw_input.events.retain(|e| {
-                !matches!(
-                    e,
-                    egui::Event::PointerMoved(_)
-                        | egui::Event::PointerButton { .. }
-                        | egui::Event::PointerGone
-                )
-            });
-        }
+        self.drivers.filter_input(raw_input);
         self.app.raw_input(raw_input);
-        if let Some(d) = &mut self.drive {
-            d.inject(raw_input);
-        }
-        if let Some(s) = &mut self.script {
-            s.inject(&self.app, ctx, raw_input);
-        }
+        self.drivers.inject(&self.app, ctx, raw_input);
     }
 
     fn on_exit(&mut self) {
@@ -306,14 +211,9 @@ fn check_not_blank(image: &cnets_render::Image) -> anyhow::Result<()> {
 
 fn main() -> anyhow::Result<()> {
     let launched = std::time::Instant::now();
-    let args = parse_args()?;
+    let mut args = parse_args()?;
     let config_dir = cnets_editor::settings::config_dir();
-    let test_mode = args.screenshot.is_some()
-        || args.bench_drag.is_some()
-        || args.bench_pan.is_some()
-        || args.drive_drag
-        || args.drive_script.is_some()
-        || args.restore_and_print;
+    let test_mode = args.screenshot.is_some() || args.drivers.any();
     if !test_mode
         && let Some(file) = &args.file
         && cnets_editor::instance::hand_over(&config_dir, file)
@@ -334,6 +234,8 @@ fn main() -> anyhow::Result<()> {
     let result = Arc::new(Mutex::new(None));
     let result2 = result.clone();
     let screenshot = args.screenshot.clone();
+    let injects_pointer = args.drivers.injects_pointer();
+    let drivers = std::mem::take(&mut args.drivers);
     eframe::run_native(
         "cnets editor",
         options,
@@ -358,7 +260,7 @@ fn main() -> anyhow::Result<()> {
                 // The screenshot, benchmark and scripted modes start on the file given, read.
                 app.wait_for_loading(Duration::from_secs(600));
             }
-            if args.drive_drag || args.drive_script.is_some() {
+            if injects_pointer {
                 // A scripted click is a click however long its frame took on a busy machine
                 // (egui's real-window clock would call a press held over 0.8 s a long press).
                 cc.egui_ctx
@@ -371,18 +273,7 @@ fn main() -> anyhow::Result<()> {
                 frames: 0,
                 requested: false,
                 result: result2,
-                bench: match (args.bench_drag, args.bench_pan) {
-                    (Some(frames), _) => Some(Bench::new(frames, Motion::Slider, launched)),
-                    (None, Some(frames)) => Some(Bench::new(frames, Motion::PanZoom, launched)),
-                    (None, None) => None,
-                },
-                drive: args.drive_drag.then(Drive::new),
-                script: args
-                    .drive_script
-                    .as_deref()
-                    .and_then(scenarios::script)
-                    .map(|steps| Script::new(steps, args.drive_out.clone())),
-                restore_and_print: args.restore_and_print,
+                drivers: drivers.start(launched),
                 config_dir: config_dir.clone(),
                 opened: std::time::Instant::now(),
             }))

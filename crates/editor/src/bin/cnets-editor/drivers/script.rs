@@ -2,7 +2,7 @@
 //! pointer moves, presses, drags, wheel turns and keys injected into the window's raw input (the
 //! path a mouse takes after winit) — printing what the editor then holds (`script: key = value`
 //! lines) and saving screenshots into DIR. The window tests (`tests/it/window.rs`) run the scripts of
-//! [`crate::scenarios`] under Xvfb and check the lines.
+//! [`super::scenarios`] under Xvfb and check the lines.
 //!
 //! Targets are computed from the editor's state of the previous frame (where the 3D view draws a
 //! world point, where the canvas draws a pin), so a script says "drag this handle three grid steps

@@ -14,7 +14,7 @@ use cnets_geometry::DVec3;
 use cnets_preview::PickGeometry;
 use egui::{Key, Modifiers, PointerButton, Pos2};
 
-use crate::script::{Step, Target};
+use super::script::{Step, Target};
 
 /// The net dragged.
 const NET: &str = "varying_ratios";

@@ -1,4 +1,4 @@
-//! The scripted sessions `--drive-script NAME` plays (see [`crate::script`]), each a design
+//! The scripted sessions `--drive-script NAME` plays (see [`super::script`]), each a design
 //! gesture of issue 25 made with pointer events and keys only. `tests/it/window.rs` runs them in the
 //! real window under Xvfb and checks what they print.
 
@@ -7,7 +7,7 @@ use cnets_engine::Value;
 use cnets_geometry::DVec3;
 use egui::{Key, Modifiers, PointerButton, vec2};
 
-use crate::script::{Step, Target};
+use super::script::{Step, Target};
 
 /// Where the 3D view draws a world point.
 pub fn world(p: DVec3) -> Target {
@@ -391,12 +391,12 @@ pub fn script(name: &str) -> Option<Vec<Step>> {
         "draw" => draw(),
         "pick" => pick(),
         "folds" => folds(),
-        "canopy" => crate::canopy::canopy(),
-        "tutorial" => crate::tutorial::tutorial(),
+        "canopy" => super::canopy::canopy(),
+        "tutorial" => super::tutorial::tutorial(),
         "wire-click" => wire_click(),
-        "drag-net" => crate::drag_net::drag_net(),
+        "drag-net" => super::drag_net::drag_net(),
         "rename-menu" => rename_menu(),
-        "cplane" => crate::cplane::cplane(),
+        "cplane" => super::cplane::cplane(),
         _ => return None,
     })
 }

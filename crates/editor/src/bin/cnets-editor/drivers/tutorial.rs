@@ -10,12 +10,12 @@ use cnets_editor::app::EditorApp;
 use cnets_geometry::DVec3;
 use egui::{Key, Modifiers, PointerButton, vec2};
 
-use crate::canopy::{
+use super::canopy::{
     ARCH, S_CURVE, assistance, click, control, draw, export, folds, key, mesh_size, pin, print,
     view_centre,
 };
-use crate::scenarios::points_text;
-use crate::script::Step;
+use super::scenarios::points_text;
+use super::script::Step;
 
 /// The size of the construction's net as `W,D,H` (or `none`).
 fn size_text(app: &EditorApp) -> String {

@@ -5,7 +5,7 @@
 
 use cnets_editor::app::EditorApp;
 
-use crate::drive::first_slider;
+use super::drive::first_slider;
 
 /// What the benchmark changes every frame.
 #[derive(Clone, Copy, PartialEq, Eq)]

@@ -9,8 +9,8 @@ use cnets_editor::probe;
 use cnets_geometry::DVec3;
 use egui::{Key, Modifiers, PointerButton, vec2};
 
-use crate::scenarios::points_text;
-use crate::script::{Step, Target};
+use super::scenarios::points_text;
+use super::script::{Step, Target};
 
 /// The new plane's grid points the curve is drawn through, in grid steps along its u and v.
 pub const CURVE_STEPS: [(f64, f64); 4] = [(1.0, 1.0), (3.0, 2.0), (5.0, 1.0), (6.0, 3.0)];

@@ -14,8 +14,8 @@ use cnets_geometry::DVec3;
 use cnets_preview::PickGeometry;
 use egui::{Key, Modifiers, PointerButton, vec2};
 
-use crate::scenarios::{points_text, world};
-use crate::script::{Step, Target};
+use super::scenarios::{points_text, world};
+use super::script::{Step, Target};
 
 /// The directrix's control points in the Top view (metres).
 pub const S_CURVE: [(f64, f64); 4] = [(0.0, 0.0), (1.0, 2.0), (-1.0, 4.0), (0.0, 6.0)];
