@@ -6,6 +6,28 @@ use cnets_host::LibraryEntry;
 use web_time::Instant;
 
 use super::EditorApp;
+use crate::import_watch::ImportWatch;
+use crate::library::ClusterWatch;
+
+/// The files the graph being edited reads, watched for changes on disk.
+pub(super) struct Watching {
+    /// Files the graph's nodes import.
+    pub(super) import_watch: ImportWatch,
+    /// The graph's cluster files.
+    pub(super) watch: ClusterWatch,
+    /// When they were last checked (about once a second).
+    pub(super) last_watch: Instant,
+}
+
+impl Default for Watching {
+    fn default() -> Self {
+        Self {
+            import_watch: ImportWatch::default(),
+            watch: ClusterWatch::default(),
+            last_watch: Instant::now(),
+        }
+    }
+}
 
 impl EditorApp {
     /// The first cluster node among the nodes commands act on (selection, else focus).
@@ -83,7 +105,7 @@ impl EditorApp {
         match r {
             Ok(()) => {
                 self.canvas.focused = Some(id.clone());
-                self.watch.changed(&self.doc.graph);
+                self.watching.watch.changed(&self.doc.graph);
                 Some(id)
             }
             Err(e) => {
@@ -97,8 +119,8 @@ impl EditorApp {
     /// changed (new definition, wires kept where the ports still exist; no undo step: the graph's
     /// text does not change). Returns whether anything was reloaded.
     pub fn check_cluster_files(&mut self) -> bool {
-        self.last_watch = Instant::now();
-        let changed = self.watch.changed(&self.doc.graph);
+        self.watching.last_watch = Instant::now();
+        let changed = self.watching.watch.changed(&self.doc.graph);
         if changed.is_empty() {
             return false;
         }

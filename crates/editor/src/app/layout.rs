@@ -30,7 +30,7 @@ impl EditorApp {
         // An active list editor window takes pasted text, Copy and Delete before the shortcuts.
         self.list_editors.claim_input(&ctx, &self.doc.view_path());
         self.shortcuts(&ctx);
-        if self.last_watch.elapsed() >= WATCH_INTERVAL {
+        if self.watching.last_watch.elapsed() >= WATCH_INTERVAL {
             self.check_cluster_files();
             self.check_imported_files();
         }
@@ -84,12 +84,14 @@ impl EditorApp {
                 ui.label(self.doc.title());
                 ui.separator();
                 if self.show_timings {
-                    if self.worker.busy() {
+                    if self.evaluation.worker.busy() {
                         ui.spinner();
                     }
                     ui.weak(format!(
                         "eval {:.1} ms · scene {:.1} ms · change-to-picture {:.1} ms",
-                        self.latency.eval_ms, self.latency.scene_ms, self.latency.last_ms
+                        self.evaluation.latency.eval_ms,
+                        self.evaluation.latency.scene_ms,
+                        self.evaluation.latency.last_ms
                     ));
                 }
                 ui.separator();
@@ -212,19 +214,22 @@ impl EditorApp {
         self.poll_loading(&ctx);
         self.poll_waiting();
         self.show_modal(&ctx);
-        if self.doc.version() != version_before && self.pending_change.is_none() {
-            self.pending_change = Some(Instant::now());
+        if self.doc.version() != version_before && self.evaluation.pending_change.is_none() {
+            self.evaluation.pending_change = Some(Instant::now());
         }
         self.submit_if_changed();
         // The frame that hands a new scene to the GPU closes a change-to-picture measurement.
-        if let Some((version, changed_at)) = self.awaiting_picture
+        if let Some((version, changed_at)) = self.evaluation.awaiting_picture
             && self.viewport.drawn_version >= version
         {
-            self.latency.last_ms = changed_at.elapsed().as_secs_f64() * 1e3;
-            if self.latency.samples.len() < 10_000 {
-                self.latency.samples.push(self.latency.last_ms);
+            self.evaluation.latency.last_ms = changed_at.elapsed().as_secs_f64() * 1e3;
+            if self.evaluation.latency.samples.len() < 10_000 {
+                self.evaluation
+                    .latency
+                    .samples
+                    .push(self.evaluation.latency.last_ms);
             }
-            self.awaiting_picture = None;
+            self.evaluation.awaiting_picture = None;
         }
         // Autosave: a committed edit (no gesture in progress) at once, a gesture within 1 s.
         let committed = !self.doc.history.in_gesture();
@@ -254,7 +259,7 @@ impl EditorApp {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.last_title = title;
         }
-        if self.worker.busy() {
+        if self.evaluation.worker.busy() {
             ctx.request_repaint_after(Duration::from_millis(30));
         }
         let base = self.doc.base_dir();
@@ -272,7 +277,7 @@ impl EditorApp {
         self.parameters_rect = Some(ui.clip_rect().intersect(ui.max_rect()));
         ui.heading("Parameters");
         let (actions, rects) =
-            crate::parameters::show_with_rects(ui, &self.doc.graph, &self.statuses);
+            crate::parameters::show_with_rects(ui, &self.doc.graph, &self.evaluation.statuses);
         self.parameter_editors = rects;
         actions
     }
@@ -345,16 +350,19 @@ impl EditorApp {
             self.apply_view(a);
         }
         let on_canvas = |id: &str| canvas_shown && crate::view_errors::in_view(&self.canvas, id);
-        self.view_errors_shown =
-            crate::view_errors::hidden_failures(&self.doc.graph, &self.statuses, &on_canvas)
-                .into_iter()
-                .map(|(id, message)| format!("{id}: {message}"))
-                .collect();
+        self.view_errors_shown = crate::view_errors::hidden_failures(
+            &self.doc.graph,
+            &self.evaluation.statuses,
+            &on_canvas,
+        )
+        .into_iter()
+        .map(|(id, message)| format!("{id}: {message}"))
+        .collect();
         if let Some(id) = crate::view_errors::show(
             ui,
             self.viewport.rect,
             &self.doc.graph,
-            &self.statuses,
+            &self.evaluation.statuses,
             &on_canvas,
         ) {
             self.show_node(ui.ctx(), &id);
@@ -388,8 +396,8 @@ impl EditorApp {
         }
         // Statuses of another level (the worker has not answered yet) are not shown.
         let none = HashMap::new();
-        let statuses = if self.statuses_view == self.canvas_view {
-            &self.statuses
+        let statuses = if self.evaluation.statuses_view == self.canvas_view {
+            &self.evaluation.statuses
         } else {
             &none
         };
@@ -399,7 +407,7 @@ impl EditorApp {
         }
         if self.page.is_some()
             && let Some(at) =
-                crate::overview::show(ui, &self.canvas, &self.doc.graph, &self.statuses)
+                crate::overview::show(ui, &self.canvas, &self.doc.graph, &self.evaluation.statuses)
         {
             self.canvas.zoom_to(self.canvas.zoom(), Some(at));
         }

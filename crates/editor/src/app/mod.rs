@@ -10,6 +10,7 @@ mod clusters;
 mod commands;
 mod cplanes;
 mod dialogs;
+mod evaluation;
 mod exports;
 mod files;
 mod layout;
@@ -20,8 +21,12 @@ mod reads;
 mod worker;
 
 pub use arrivals::Arrived;
+use clusters::Watching;
+use evaluation::Evaluation;
+pub use evaluation::Latency;
 pub use modals::{Modal, Modals};
 pub use net_drag::NetDragFigures;
+use net_drag::NetDrags;
 pub use reads::ReadPrompt;
 
 pub use files::is_example;
@@ -30,7 +35,6 @@ pub use loading::LARGE_GRAPH_BYTES;
 use crate::canvas::Canvas;
 use crate::clipboard::Clipboard;
 use crate::document::GraphDocument;
-use crate::library::ClusterWatch;
 use crate::library::Library;
 use crate::list_editor::ListEditors;
 use crate::load_failure::LoadFailure;
@@ -40,11 +44,8 @@ use crate::palette::PaletteState;
 use crate::recovery::Recovery;
 use crate::settings::Settings;
 use crate::viewport::Viewport;
-use crate::worker::NodeStatus;
 use crate::worker::Worker;
-use cnets_engine::Graph;
 use cnets_engine::Registry;
-use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 use web_time::Duration;
@@ -69,26 +70,6 @@ pub struct AppOptions {
     pub wake: Arc<dyn Fn() + Send + Sync>,
 }
 
-/// Change-to-picture latency figures: from a graph edit to the frame that hands the resulting
-/// scene to the GPU.
-#[derive(Clone, Debug, Default)]
-pub struct Latency {
-    /// The last measurement, in milliseconds.
-    pub last_ms: f64,
-    /// All measurements (capped at 10 000).
-    pub samples: Vec<f64>,
-    /// The last evaluation time (nodes only), in milliseconds.
-    pub eval_ms: f64,
-    /// The last scene build time, in milliseconds.
-    pub scene_ms: f64,
-    /// Nodes that ran in the last evaluation (the evaluation counter: an edit re-runs its
-    /// downstream cone, a reopened file nothing).
-    pub ran: usize,
-    /// Pictures the 3D view took before the rest of the graph (nodes not previewed, or slow)
-    /// had finished: how often a slow node did not hold the view back.
-    pub early_pictures: usize,
-}
-
 /// The status bar's hint when a document's nodes overlap (shown while they do).
 pub const OVERLAP_HINT: &str = "nodes overlap: View › Arrange graph (Ctrl+L) lays them out";
 
@@ -104,16 +85,10 @@ pub struct EditorApp {
     pub viewport: Viewport,
     /// The node palette.
     pub palette: PaletteState,
-    /// Status of every node after the last finished evaluation.
-    pub statuses: HashMap<String, NodeStatus>,
-    /// The opened clusters `statuses` belong to.
-    statuses_view: Vec<String>,
     /// The message in the status bar (e.g. why a wire was refused).
     pub message: String,
     /// Recent files.
     pub settings: Settings,
-    /// Latency figures.
-    pub latency: Latency,
     /// Whether the window should close (set by File › Quit and after the unsaved-changes
     /// question; the window closes when it sees it).
     pub quit: bool,
@@ -133,15 +108,9 @@ pub struct EditorApp {
     /// Show timings and the busy spinner in the status bar (snapshot tests turn them off: they
     /// vary from run to run).
     pub show_timings: bool,
-    worker: Worker,
-    /// What was sent to the worker last: the document's generation and version, the display
-    /// options and the nodes "Preview only the selected" draws (a hash; 0: all).
-    submitted: Option<(u64, u64, crate::preview::PreviewOptions, u64)>,
-    /// The last graph sent to the worker, its generation and folder: a graph of a new
-    /// generation takes over from it (the evaluator is kept).
-    last_evaluated: Option<(u64, Graph, Option<PathBuf>)>,
-    pending_change: Option<Instant>,
-    awaiting_picture: Option<(u64, Instant)>,
+    /// The evaluation session: the worker, what was sent to it, the statuses it answered and
+    /// the latency figures.
+    evaluation: Evaluation,
     recovery: Recovery,
     /// What File ▸ Restore kept work names: another document's recovery kept aside (the page).
     kept_recovery: Option<String>,
@@ -155,10 +124,8 @@ pub struct EditorApp {
     examples_dir: PathBuf,
     /// The user library (and the examples folder), listed in the palette.
     pub library: Library,
-    /// Cluster files of the graph being edited, checked about once a second.
-    import_watch: crate::import_watch::ImportWatch,
-    watch: ClusterWatch,
-    last_watch: Instant,
+    /// The files the graph reads (imports, clusters), checked about once a second.
+    watching: Watching,
     /// The optimization panel.
     pub optimization: OptimizationPanel,
     /// Whether the parameter panel (View › Parameters) is shown.
@@ -190,17 +157,9 @@ pub struct EditorApp {
     declined_reads: Vec<PathBuf>,
     /// Called when a result is ready off the UI thread (requests a repaint).
     wake: Arc<dyn Fn() + Send + Sync>,
-    /// A drag of the net in progress (the Drag net tool).
-    net_drag: Option<crate::net_drag::NetDragSession>,
-    /// A released drag whose last answer is still being solved in the drag worker (the web
-    /// page): its undo step closes when the answer arrives.
-    net_drag_closing: Option<(crate::net_drag::NetDragSession, f64)>,
-    /// Where drags of the net are solved when not on a thread (the web page's drag worker).
-    net_drag_remote: Option<Box<dyn crate::net_drag::RemoteDrag>>,
-    /// What the last drag of the net measured.
-    pub last_net_drag: Option<NetDragFigures>,
-    /// The UI thread's frame times of the drag running (ms), for its figures.
-    net_drag_frames: Vec<f64>,
+    /// The Drag net tool's drags: the one running, the one closing, where they are solved and
+    /// what the last one measured.
+    net_drags: NetDrags,
 }
 
 /// How often cluster files are checked for changes.
@@ -263,11 +222,8 @@ impl EditorApp {
             canvas: Canvas::new(),
             viewport: Viewport::default(),
             palette: PaletteState::default(),
-            statuses: HashMap::new(),
-            statuses_view: Vec::new(),
             message,
             settings,
-            latency: Latency::default(),
             quit: false,
             modals,
             close_confirmed: false,
@@ -276,11 +232,7 @@ impl EditorApp {
             check_overlaps: true,
             overlap_hint: false,
             show_timings: true,
-            worker: Worker::spawn(options.wake.clone()),
-            submitted: None,
-            last_evaluated: None,
-            pending_change: Some(Instant::now()),
-            awaiting_picture: None,
+            evaluation: Evaluation::new(Worker::spawn(options.wake.clone())),
             recovery,
             kept_recovery,
             loading: None,
@@ -290,16 +242,10 @@ impl EditorApp {
             examples: menus::examples_in(&options.examples_dir),
             examples_dir: options.examples_dir,
             library: Library::new(library_dirs),
-            import_watch: crate::import_watch::ImportWatch::default(),
-            watch: ClusterWatch::default(),
-            last_watch: Instant::now(),
+            watching: Watching::default(),
             optimization: OptimizationPanel::new(options.wake.clone()),
             wake: options.wake,
-            net_drag: None,
-            net_drag_closing: None,
-            net_drag_remote: None,
-            last_net_drag: None,
-            net_drag_frames: Vec::new(),
+            net_drags: NetDrags::default(),
             parameters_open: false,
             parameters_rect: None,
             parameter_editors: Vec::new(),
@@ -333,7 +279,7 @@ impl EditorApp {
                     .open(Modal::LoadFailure(LoadFailure::new(path, &e))),
             }
         }
-        app.watch.changed(&app.doc.graph);
+        app.watching.watch.changed(&app.doc.graph);
         app.submit_if_changed();
         app
     }
@@ -392,14 +338,14 @@ impl EditorApp {
         self.check_overlaps = true;
         self.overlap_hint = false;
         self.refit_on_results = true;
-        self.statuses.clear();
+        self.evaluation.statuses.clear();
         self.viewport.reset();
-        self.pending_change = Some(Instant::now());
+        self.evaluation.pending_change = Some(Instant::now());
         self.optimization.reset();
         self.list_editors.close_all();
-        self.watch.clear();
-        self.import_watch.clear();
-        self.watch.changed(&self.doc.graph);
+        self.watching.watch.clear();
+        self.watching.import_watch.clear();
+        self.watching.watch.changed(&self.doc.graph);
     }
 
     /// The folders library graphs come from: the user library, then the examples folder.

@@ -20,19 +20,45 @@ const FINISH_WAIT: Duration = Duration::from_millis(500);
 /// How long a released drag waits for the drag worker's last answer before it closes anyway.
 const CLOSING_WAIT: Duration = Duration::from_secs(5);
 
+/// The Drag net tool's state.
+#[derive(Default)]
+pub(super) struct NetDrags {
+    /// The drag in progress.
+    pub(super) running: Option<NetDragSession>,
+    /// A released drag whose last answer is still being solved in the drag worker (the web
+    /// page): its undo step closes when the answer arrives (with the release's time, ms).
+    pub(super) closing: Option<(NetDragSession, f64)>,
+    /// Where drags are solved when not on a thread (the web page's drag worker).
+    pub(super) remote: Option<Box<dyn RemoteDrag>>,
+    /// What the last drag measured.
+    pub(super) last: Option<NetDragFigures>,
+    /// The UI thread's frame times of the drag running (ms), for its figures.
+    pub(super) frames: Vec<f64>,
+}
+
 impl EditorApp {
+    /// What the last drag of the net measured.
+    pub fn last_net_drag(&self) -> Option<&NetDragFigures> {
+        self.net_drags.last.as_ref()
+    }
+
     /// Drags of the net are solved by `remote` (the web page's drag worker) instead of a thread.
     pub fn set_net_drag_remote(&mut self, remote: Box<dyn RemoteDrag>) {
-        self.net_drag_remote = Some(remote);
+        self.net_drags.remote = Some(remote);
     }
 
     /// The pointer asks for the grabbed vertex at `target`: starts the drag's solver at the
     /// first target of a press, then hands it the newest.
     pub(super) fn drag_net_to(&mut self, target: NetDragTarget) {
-        if self.net_drag.as_ref().is_none_or(|s| !s.is_for(&target)) {
+        if self
+            .net_drags
+            .running
+            .as_ref()
+            .is_none_or(|s| !s.is_for(&target))
+        {
             self.close_released_net_drag(true);
-            self.net_drag = None;
-            self.net_drag_frames.clear();
+            self.net_drags.running = None;
+            self.net_drags.frames.clear();
             if !self.doc.view_path().is_empty() {
                 self.message = "the net can be dragged at the top level of the graph: close the \
                                 cluster first"
@@ -61,16 +87,16 @@ impl EditorApp {
             };
             let mut ctx = cnets_engine::NodeContext::new(None, self.doc.base_dir());
             ctx.allow_read = self.doc.allowed_reads.clone();
-            self.net_drag = Some(NetDragSession::start(
+            self.net_drags.running = Some(NetDragSession::start(
                 &graph,
                 &target,
                 free,
                 ctx,
                 self.wake.clone(),
-                self.net_drag_remote.as_ref().map(|r| r.handle()),
+                self.net_drags.remote.as_ref().map(|r| r.handle()),
             ));
         }
-        if let Some(session) = &mut self.net_drag {
+        if let Some(session) = &mut self.net_drags.running {
             session.aim(target.target);
         }
     }
@@ -78,21 +104,22 @@ impl EditorApp {
     /// Counts a frame's UI-thread time (`started`: the frame's start) in the drag's figures while
     /// a drag runs.
     pub(super) fn time_net_drag_frame(&mut self, started: web_time::Instant) {
-        if self.net_drag.is_some() && self.net_drag_frames.len() < 100_000 {
-            self.net_drag_frames
+        if self.net_drags.running.is_some() && self.net_drags.frames.len() < 100_000 {
+            self.net_drags
+                .frames
                 .push(started.elapsed().as_secs_f64() * 1e3);
         }
     }
 
     /// A released drag of the net waits for the drag worker's last answer (its undo step open).
     pub(super) fn net_drag_closing(&self) -> bool {
-        self.net_drag_closing.is_some()
+        self.net_drags.closing.is_some()
     }
 
     /// Takes the drag's newest answer, if one arrived (every frame), and closes a released one
     /// whose last answer came.
     pub(super) fn poll_net_drag(&mut self) {
-        if let Some(answer) = self.net_drag.as_mut().and_then(|s| s.poll()) {
+        if let Some(answer) = self.net_drags.running.as_mut().and_then(|s| s.poll()) {
             self.take_solved(answer);
         }
         self.close_released_net_drag(false);
@@ -101,7 +128,7 @@ impl EditorApp {
     /// A released drag still solving in the drag worker: takes its answers and, once the last
     /// came (or `now`, or after [`CLOSING_WAIT`]), closes its undo step.
     fn close_released_net_drag(&mut self, now: bool) {
-        let Some((mut session, release_ms)) = self.net_drag_closing.take() else {
+        let Some((mut session, release_ms)) = self.net_drags.closing.take() else {
             return;
         };
         if let Some(answer) = session.poll() {
@@ -111,13 +138,13 @@ impl EditorApp {
         if now || session.closed() || waited > CLOSING_WAIT.as_secs_f64() * 1e3 {
             self.close_net_drag(session, 0.0);
         } else {
-            self.net_drag_closing = Some((session, release_ms));
+            self.net_drags.closing = Some((session, release_ms));
         }
     }
 
     /// The pointer was released: the answer to its last position, then the drag is one step.
     pub(super) fn end_net_drag(&mut self) {
-        let Some(mut session) = self.net_drag.take() else {
+        let Some(mut session) = self.net_drags.running.take() else {
             return;
         };
         let release = web_time::Instant::now();
@@ -129,7 +156,7 @@ impl EditorApp {
         if !session.closed() {
             // The drag worker solves the release's target: the gesture stays open until then.
             let at = session.started.elapsed().as_secs_f64() * 1e3;
-            self.net_drag_closing = Some((session, at));
+            self.net_drags.closing = Some((session, at));
             return;
         }
         self.close_net_drag(session, release_ms);
@@ -146,7 +173,7 @@ impl EditorApp {
             solves: session.solves,
             seconds: session.started.elapsed().as_secs_f64(),
             solve_ms: session.solve_ms / session.solves.max(1) as f64,
-            ui_frame_ms: std::mem::take(&mut self.net_drag_frames),
+            ui_frame_ms: std::mem::take(&mut self.net_drags.frames),
             release_ms,
         };
         let (i, j) = figures.vertex;
@@ -164,7 +191,7 @@ impl EditorApp {
             figures.solves,
             figures.rate()
         );
-        self.last_net_drag = Some(figures);
+        self.net_drags.last = Some(figures);
     }
 
     /// Writes an answer into the document (the drag's gesture) and the view.

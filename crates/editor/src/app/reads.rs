@@ -37,8 +37,8 @@ impl EditorApp {
         }
         let generation = self.doc.generation();
         self.doc.start_after(generation);
-        self.last_evaluated = None;
-        self.submitted = None;
+        self.evaluation.last_evaluated = None;
+        self.evaluation.submitted = None;
         true
     }
 
@@ -106,7 +106,7 @@ impl EditorApp {
             return;
         }
         let mut refused: Vec<(String, PathBuf)> = self
-            .statuses
+            .statuses()
             .iter()
             .filter_map(|(id, s)| {
                 Some((id.clone(), cnets_engine::files::refused_read(s.error()?)?))

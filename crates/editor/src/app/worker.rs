@@ -2,39 +2,56 @@
 //! response path for the frame's poll and the tests' wait).
 
 use crate::worker::Carry;
+use crate::worker::NodeStatus;
 use crate::worker::Worker;
+use std::collections::HashMap;
 use std::sync::Arc;
 use web_time::Duration;
 use web_time::Instant;
 
-use super::EditorApp;
+use super::{EditorApp, Latency};
 
 impl EditorApp {
+    /// Every node's status after the last finished evaluation.
+    pub fn statuses(&self) -> &HashMap<String, NodeStatus> {
+        &self.evaluation.statuses
+    }
+
+    /// The statuses shown, to hold one back (a test of a result that arrives mid-gesture).
+    pub fn statuses_mut(&mut self) -> &mut HashMap<String, NodeStatus> {
+        &mut self.evaluation.statuses
+    }
+
+    /// The change-to-picture figures.
+    pub fn latency(&self) -> &Latency {
+        &self.evaluation.latency
+    }
+
     pub(super) fn poll_worker(&mut self) {
-        if let Some(r) = self.worker.poll() {
+        if let Some(r) = self.evaluation.worker.poll() {
             self.take_response(r);
         }
     }
 
     /// Takes an evaluation's results: node statuses, the scene and its figures.
     pub(super) fn take_response(&mut self, r: crate::worker::EvalResponse) {
-        self.statuses = r.statuses;
-        if r.view != self.statuses_view || std::mem::take(&mut self.refit_on_results) {
+        self.evaluation.statuses = r.statuses;
+        if r.view != self.evaluation.statuses_view || std::mem::take(&mut self.refit_on_results) {
             // The first results of a document or of another graph level: frame it once they are
             // drawn.
             self.canvas.fit_later();
         }
-        self.statuses_view = r.view;
-        self.latency.eval_ms = r.eval_ms;
-        self.latency.scene_ms = r.stats.build_ms;
-        self.latency.ran = r.ran;
+        self.evaluation.statuses_view = r.view;
+        self.evaluation.latency.eval_ms = r.eval_ms;
+        self.evaluation.latency.scene_ms = r.stats.build_ms;
+        self.evaluation.latency.ran = r.ran;
         // The rest of the graph finished after the preview: the same scene, nothing to upload.
         if !Arc::ptr_eq(&r.scene, self.viewport.scene()) {
             self.viewport.set_scene(r.scene, r.stats, r.picks);
             if !r.complete {
-                self.latency.early_pictures += 1;
+                self.evaluation.latency.early_pictures += 1;
             }
-            self.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
+            self.evaluation.awaiting_picture = Some((self.viewport.scene_version(), r.changed_at));
         }
         self.check_refused_reads();
     }
@@ -62,9 +79,15 @@ impl EditorApp {
                 // and again for the document's afterwards (whose stamps are older than the run's).
                 let (view, generation) = (self.doc.view_path(), self.doc.generation() ^ (1 << 63));
                 let (options, base) = (self.viewport.options, self.doc.base_dir());
-                self.worker
-                    .submit_view(graph, view, generation, options, base, Instant::now());
-                self.submitted = None;
+                self.evaluation.worker.submit_view(
+                    graph,
+                    view,
+                    generation,
+                    options,
+                    base,
+                    Instant::now(),
+                );
+                self.evaluation.submitted = None;
             }
             return;
         }
@@ -80,13 +103,18 @@ impl EditorApp {
                 h.finish() | 1
             }),
         );
-        if self.submitted == Some(key) {
+        if self.evaluation.submitted == Some(key) {
             return;
         }
-        let changed_at = self.pending_change.take().unwrap_or_else(Instant::now);
+        let changed_at = self
+            .evaluation
+            .pending_change
+            .take()
+            .unwrap_or_else(Instant::now);
         let base = self.doc.base_dir();
         let generation = self.doc.generation();
         if let Some((from, previous, previous_base)) = self
+            .evaluation
             .last_evaluated
             .take()
             .filter(|(g, ..)| *g != generation)
@@ -94,14 +122,14 @@ impl EditorApp {
             // Another document (or this one replaced wholesale): it continues the graph the
             // worker evaluated last, which keeps its evaluator and the results of shared nodes.
             let continued = self.doc.take_over(&previous);
-            self.worker.set_carry(Some(Carry {
+            self.evaluation.worker.set_carry(Some(Carry {
                 from_generation: from,
                 continued: Arc::new(continued),
                 same_folder: previous_base == base,
             }));
         }
         let mut graph = self.doc.eval_graph();
-        self.last_evaluated = Some((generation, graph.clone(), base.clone()));
+        self.evaluation.last_evaluated = Some((generation, graph.clone(), base.clone()));
         if let Some(ids) = &only {
             // Not an edit: a preview flag changes what is drawn (and asked for), no stamp.
             let hidden: Vec<String> = graph
@@ -113,8 +141,10 @@ impl EditorApp {
                 let _ = graph.set_preview(&id, false);
             }
         }
-        self.worker.set_allow_read(self.doc.allowed_reads.clone());
-        self.worker.submit_view(
+        self.evaluation
+            .worker
+            .set_allow_read(self.doc.allowed_reads.clone());
+        self.evaluation.worker.submit_view(
             graph,
             self.doc.view_path(),
             generation,
@@ -122,27 +152,27 @@ impl EditorApp {
             base,
             changed_at,
         );
-        self.submitted = Some(key);
+        self.evaluation.submitted = Some(key);
     }
 
     /// Evaluates with `worker` from now on (the web page: its Web Worker, [`Worker::remote`]);
     /// the graph is submitted to it at the next frame.
     pub fn set_worker(&mut self, worker: Worker) {
-        self.worker = worker;
-        self.submitted = None;
-        self.last_evaluated = None;
+        self.evaluation.worker = worker;
+        self.evaluation.submitted = None;
+        self.evaluation.last_evaluated = None;
     }
 
     /// Whether an evaluation is in progress.
     pub fn busy(&self) -> bool {
-        self.worker.busy()
+        self.evaluation.worker.busy()
     }
 
     /// Waits (up to `timeout`) for the worker to answer the latest submission and takes the
     /// result, as the next frame would. For tests and the screenshot mode.
     pub fn wait_for_worker(&mut self, timeout: Duration) {
         self.submit_if_changed();
-        if let Some(r) = self.worker.wait(timeout) {
+        if let Some(r) = self.evaluation.worker.wait(timeout) {
             self.take_response(r);
         }
     }
@@ -150,7 +180,7 @@ impl EditorApp {
     /// Evaluates the graph again at the next frame (the web page: after a file was opened that a
     /// node imports).
     pub fn reevaluate(&mut self) {
-        self.submitted = None;
+        self.evaluation.submitted = None;
     }
 
     /// Checks the files the graph's importing nodes read; when one changed, submits the graph
@@ -158,9 +188,12 @@ impl EditorApp {
     /// Returns whether a file changed.
     pub fn check_imported_files(&mut self) -> bool {
         let base = self.doc.base_dir();
-        let changed = self.import_watch.changed(&self.doc.graph, base.as_deref());
+        let changed = self
+            .watching
+            .import_watch
+            .changed(&self.doc.graph, base.as_deref());
         if changed {
-            self.submitted = None;
+            self.evaluation.submitted = None;
         }
         changed
     }

@@ -126,9 +126,9 @@ fn make_cluster_keeps_the_mesh_undo_restores_the_text_explode_restores_the_nodes
     }
     assert_eq!(app.doc.history.undo_len(), steps + 1, "one undo step");
     assert!(
-        matches!(app.statuses["cluster"], NodeStatus::Ok { .. }),
+        matches!(app.statuses()["cluster"], NodeStatus::Ok { .. }),
         "{:?}",
-        app.statuses["cluster"]
+        app.statuses()["cluster"]
     );
     assert_eq!(
         face_positions(app),
@@ -188,9 +188,9 @@ fn open_a_cluster_edit_inside_and_go_back_changes_the_outer_result_undo_crosses_
     assert_eq!(app.doc.breadcrumbs(), ["main", "cluster (inline)"]);
     // The inner nodes ran on the values the cluster receives (the graph inputs have no default).
     assert!(
-        matches!(app.statuses["construct"], NodeStatus::Ok { .. }),
+        matches!(app.statuses()["construct"], NodeStatus::Ok { .. }),
         "{:?}",
-        app.statuses.get("construct")
+        app.statuses().get("construct")
     );
     assert!(h.query_by_label("main").is_some(), "the breadcrumb bar");
     h.remove_cursor();
@@ -275,7 +275,7 @@ fn nested_clusters_open_with_breadcrumbs_of_any_depth() {
         app.doc.breadcrumbs(),
         ["main", "cluster_2 (inline)", "cluster (inline)"]
     );
-    assert!(matches!(app.statuses["apex"], NodeStatus::Ok { .. }));
+    assert!(matches!(app.statuses()["apex"], NodeStatus::Ok { .. }));
     h.state_mut().apply(CanvasAction::Edit(Edit::SetValue {
         node: "apex".into(),
         input: "value".into(),
@@ -314,7 +314,7 @@ fn library(name: &str) -> PathBuf {
 }
 
 fn output_of(app: &EditorApp, id: &str) -> Vec<String> {
-    match &app.statuses[id] {
+    match &app.statuses()[id] {
         NodeStatus::Ok { outputs, .. } => outputs.clone(),
         other => panic!("{id}: {other:?}"),
     }

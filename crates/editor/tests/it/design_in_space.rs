@@ -175,7 +175,7 @@ fn a_curve_drawn_in_the_front_view_becomes_points_and_a_spline() {
     );
     assert!(
         matches!(
-            app.statuses.get(&spline),
+            app.statuses().get(&spline),
             Some(cnets_editor::worker::NodeStatus::Ok { .. })
         ),
         "the spline evaluates"

@@ -61,7 +61,7 @@ fn snapshot_default_graph_shows_canvas_and_mesh() {
     );
     assert_eq!(app.viewport.stats.vertices, 11 * 19);
     assert!(app.viewport.stats.max_planarity.unwrap() < 1e-9);
-    assert!(matches!(app.statuses["construct"], NodeStatus::Ok { .. }));
+    assert!(matches!(app.statuses()["construct"], NodeStatus::Ok { .. }));
     h.snapshot("editor_default");
 }
 
@@ -103,12 +103,12 @@ fn snapshot_node_in_error_with_message_on_hover() {
         })
         .unwrap();
     settle(&mut h);
-    let message = h.state().statuses["generatrix"]
+    let message = h.state().statuses()["generatrix"]
         .error()
         .expect("generatrix fails")
         .to_string();
     assert!(matches!(
-        h.state().statuses["construct"],
+        h.state().statuses()["construct"],
         NodeStatus::Blocked(_)
     ));
     let badge = h
@@ -437,9 +437,9 @@ fn dragging_a_graph_mapper_handle_edits_its_handles_in_one_step() {
         "one undo step for the drag"
     );
     assert!(
-        matches!(app.statuses[&id], NodeStatus::Ok { .. }),
+        matches!(app.statuses()[&id], NodeStatus::Ok { .. }),
         "{:?}",
-        app.statuses[&id]
+        app.statuses()[&id]
     );
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.run_steps(2);

@@ -39,7 +39,7 @@ fn on_screen(h: &H, canvas: Rect) -> Rect {
 }
 
 fn output_summary(h: &H, node: &str, k: usize) -> String {
-    match &h.state().statuses[node] {
+    match &h.state().statuses()[node] {
         NodeStatus::Ok { outputs, .. } => outputs[k].clone(),
         other => panic!("{other:?}"),
     }
@@ -378,7 +378,7 @@ fn an_output_pin_stays_put_when_its_result_arrives_and_a_drag_beside_it_takes_it
     let with_result = h.state().canvas.pin_screen_pos(&id, false, result).unwrap();
     assert!(!output_summary(&h, &id, result).is_empty());
     // The same frame without the node's result (as before it arrives).
-    let status = h.state_mut().statuses.remove(&id).unwrap();
+    let status = h.state_mut().statuses_mut().remove(&id).unwrap();
     h.run_steps(4);
     let without = h.state().canvas.pin_screen_pos(&id, false, result).unwrap();
     assert!(
@@ -393,7 +393,7 @@ fn an_output_pin_stays_put_when_its_result_arrives_and_a_drag_beside_it_takes_it
     h.run_steps(2);
     h.drag_at(start);
     h.run_steps(2);
-    h.state_mut().statuses.insert(id.clone(), status);
+    h.state_mut().statuses_mut().insert(id.clone(), status);
     let end = h.state().canvas.pin_screen_pos(&target, true, a).unwrap();
     for t in [0.25, 0.5, 0.75, 1.0] {
         h.hover_at(start + (end - start) * t);

@@ -168,7 +168,7 @@ fn reader_graph(path: &str) -> String {
 }
 
 fn site_status(h: &H) -> NodeStatus {
-    h.state().statuses["site"].clone()
+    h.state().statuses()["site"].clone()
 }
 
 /// Two polylines in a CSV file.

@@ -18,7 +18,7 @@ const GRAPH: &str = r#"(
 )"#;
 
 fn output_of(app: &EditorApp, id: &str) -> Vec<String> {
-    match &app.statuses[id] {
+    match &app.statuses()[id] {
         NodeStatus::Ok { outputs, .. } => outputs.clone(),
         other => panic!("{id}: {other:?}"),
     }

@@ -66,7 +66,7 @@ fn open_keeps_the_evaluator_and_reruns_only_what_differs() {
     open(&mut h, &a);
     let all = h.state().doc.graph.node_count();
     assert_eq!(
-        h.state().latency.ran,
+        h.state().latency().ran,
         all,
         "from an empty graph every node runs"
     );
@@ -75,7 +75,11 @@ fn open_keeps_the_evaluator_and_reruns_only_what_differs() {
 
     // Reopening the same file recomputes nothing and shows the same design.
     open(&mut h, &a);
-    assert_eq!(h.state().latency.ran, 0, "nothing recomputed on reopening");
+    assert_eq!(
+        h.state().latency().ran,
+        0,
+        "nothing recomputed on reopening"
+    );
     assert_eq!(face_positions(h.state()), mesh_a);
 
     // A file that differs in one slider re-runs only that slider's downstream cone.
@@ -83,7 +87,7 @@ fn open_keeps_the_evaluator_and_reruns_only_what_differs() {
     let cone = downstream(h.state(), "ratio");
     assert!(cone < all, "the test needs nodes outside the cone");
     assert_eq!(
-        h.state().latency.ran,
+        h.state().latency().ran,
         cone,
         "only the changed slider's cone"
     );
@@ -94,12 +98,12 @@ fn open_keeps_the_evaluator_and_reruns_only_what_differs() {
     h.state_mut().request(Replace::New);
     settle(&mut h);
     open(&mut h, &b);
-    assert_eq!(h.state().latency.ran, all);
+    assert_eq!(h.state().latency().ran, all);
     assert_eq!(face_positions(h.state()), mesh_b);
 
     // Edits after an open stay incremental, and undo keeps the evaluator.
     open(&mut h, &a);
-    assert_eq!(h.state().latency.ran, cone);
+    assert_eq!(h.state().latency().ran, cone);
     h.state_mut()
         .doc
         .edit(None, |g, _| {
@@ -108,10 +112,10 @@ fn open_keeps_the_evaluator_and_reruns_only_what_differs() {
         })
         .unwrap();
     settle(&mut h);
-    assert_eq!(h.state().latency.ran, cone);
+    assert_eq!(h.state().latency().ran, cone);
     assert!(h.state_mut().doc.undo());
     settle(&mut h);
-    assert_eq!(h.state().latency.ran, cone);
+    assert_eq!(h.state().latency().ran, cone);
     assert_eq!(face_positions(h.state()), mesh_a);
 }
 

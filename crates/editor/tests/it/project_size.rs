@@ -82,7 +82,7 @@ fn only_the_nodes_in_view_are_laid_out_and_every_node_keeps_its_place() {
     });
     settle(&mut h);
     assert!(matches!(
-        h.state().statuses.get(last),
+        h.state().statuses().get(last),
         Some(cnets_editor::worker::NodeStatus::Ok { .. })
     ));
 }

@@ -40,10 +40,10 @@ fn every_slider_step_is_drawn_before_the_slow_nest_below_it_finishes() {
     std::fs::write(&file, slow_nest()).unwrap();
     let mut h = harness_with("slow-node", Some(file), temp_config("slow-node"));
     settle(&mut h);
-    let first_nest_ms = nest_ms(&h.state().statuses["nest"]);
+    let first_nest_ms = nest_ms(&h.state().statuses()["nest"]);
     let mut times: Vec<(String, f64)> = h
         .state()
-        .statuses
+        .statuses()
         .iter()
         .filter_map(|(id, s)| match s {
             NodeStatus::Ok { time_ms, .. } if *time_ms >= 1.0 => Some((id.clone(), *time_ms)),
@@ -56,7 +56,7 @@ fn every_slider_step_is_drawn_before_the_slow_nest_below_it_finishes() {
     let mut running_seen = 0;
     for k in 0..steps {
         let before = h.state().viewport.scene().clone();
-        let pictures = h.state().latency.samples.len();
+        let pictures = h.state().latency().samples.len();
         let value = 0.86 + 0.01 * f64::from(k);
         apply(
             &mut h.state_mut().doc,
@@ -70,7 +70,7 @@ fn every_slider_step_is_drawn_before_the_slow_nest_below_it_finishes() {
         // Frames as the window runs them, until this step's picture is drawn (the limit only
         // keeps a broken build from hanging: a picture comes within a second or two).
         let limit = Instant::now() + Duration::from_secs(120);
-        while h.state().latency.samples.len() == pictures {
+        while h.state().latency().samples.len() == pictures {
             assert!(Instant::now() < limit, "step {k}: no picture in 120 s");
             h.step();
             std::thread::sleep(Duration::from_millis(2));
@@ -81,12 +81,12 @@ fn every_slider_step_is_drawn_before_the_slow_nest_below_it_finishes() {
                 && before.face_vertices() != app.viewport.scene().face_vertices(),
             "step {k}: the surface in the view follows the slider"
         );
-        if let Some(NodeStatus::Running { last_ms }) = app.statuses.get("nest") {
+        if let Some(NodeStatus::Running { last_ms }) = app.statuses().get("nest") {
             assert!(*last_ms > 0.0, "the running nest shows its last time");
             running_seen += 1;
         }
     }
-    let early = h.state().latency.early_pictures;
+    let early = h.state().latency().early_pictures;
     println!(
         "{early} of {steps} slider steps drawn before the nest ({first_nest_ms:.0} ms) finished; \
          the nest shown running at {running_seen}"
@@ -99,5 +99,5 @@ fn every_slider_step_is_drawn_before_the_slow_nest_below_it_finishes() {
     // The nest catches up with the last step.
     settle(&mut h);
     assert!(!h.state().busy());
-    nest_ms(&h.state().statuses["nest"]);
+    nest_ms(&h.state().statuses()["nest"]);
 }

@@ -41,7 +41,7 @@ fn a_panel_node_shows_its_text_inside_and_resizes() {
     connect(&mut h, "construct", "apices", &id, "value");
     settle(&mut h);
     show_node(&mut h, &id);
-    let readout = match &h.state().statuses[&id] {
+    let readout = match &h.state().statuses()[&id] {
         NodeStatus::Ok { readout, .. } => readout.clone().expect("the panel's text"),
         other => panic!("{other:?}"),
     };
@@ -134,7 +134,7 @@ fn a_choice_node_is_a_drop_down_of_its_options() {
     let node = h.state().doc.graph.node(&id).unwrap();
     assert_eq!(node.value_of("index"), Some(&Value::Integer(1)));
     assert_eq!(h.state().doc.history.undo_len(), steps + 1, "one undo step");
-    match &h.state().statuses[&id] {
+    match &h.state().statuses()[&id] {
         NodeStatus::Ok { outputs, .. } => assert!(outputs[0].contains("arched"), "{outputs:?}"),
         other => panic!("{other:?}"),
     }

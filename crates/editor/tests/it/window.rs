@@ -704,6 +704,10 @@ fn dragging_the_net_moves_the_vertex_holds_the_pin_and_undoes_in_one_step() {
         // The script found no pair to drag and pin (it printed what it tried): reported, and
         // the rest of the test not run (see drag_net.rs).
         eprintln!("drag-net skipped: {why}\n{lines:?}");
+        // Kept where scripts/test.sh prints it after the tests (a passing test's output is not
+        // shown): the cause of this skip has not been found yet.
+        let note = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("skipped-tests.txt");
+        let _ = std::fs::write(&note, format!("drag-net skipped: {why}\n{lines:?}\n"));
         std::fs::remove_dir_all(&dir).ok();
         return;
     }
@@ -716,11 +720,16 @@ fn dragging_the_net_moves_the_vertex_holds_the_pin_and_undoes_in_one_step() {
         .map(|k| (target[k] - before[k]).powi(2))
         .sum::<f64>()
         .sqrt();
-    // The pointer asked for 0.6 m in x and 0.2 m in y in the Top view's plane (to a fraction of
-    // a screen point).
+    // The pointer asked for the move the script chose (±0.6 m in x and ±0.2 m in y, in the Top
+    // view's plane), to a fraction of a screen point.
+    let step = points(&lines["move"])[0];
     assert!(
-        (target[0] - before[0] - 0.6).abs() < 0.01
-            && (target[1] - before[1] - 0.2).abs() < 0.01
+        (step[0].abs() - 0.6).abs() < 1e-12 && (step[1].abs() - 0.2).abs() < 1e-12,
+        "{step:?}"
+    );
+    assert!(
+        (target[0] - before[0] - step[0]).abs() < 0.01
+            && (target[1] - before[1] - step[1]).abs() < 0.01
             && (target[2] - before[2]).abs() < 1e-9,
         "target {target:?} from {before:?} ({moved} m)"
     );
@@ -756,7 +765,7 @@ fn dragging_the_net_moves_the_vertex_holds_the_pin_and_undoes_in_one_step() {
     let solves: usize = figures[4].parse().unwrap();
     assert!(solves >= 1, "{figures:?}");
     println!(
-        "drag-net: moved {moved:.3} m, {left:.2e} m left, pin drift {drift:.1e} m, {solves} solves in {} s (mean solve {} ms)",
+        "drag-net: moved {moved:.3} m ({step:?}), {left:.2e} m left, pin drift {drift:.1e} m, {solves} solves in {} s (mean solve {} ms)",
         figures[5], figures[6]
     );
     // The UI thread's time a frame while dragging (CPU side; the solves run on their thread).

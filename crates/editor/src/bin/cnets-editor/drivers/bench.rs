@@ -83,16 +83,16 @@ impl Bench {
             self.intervals.push((now - t).as_secs_f64() * 1e3);
         }
         self.last_frame = Some(now);
-        if app.latency.samples.len() > self.seen {
-            self.seen = app.latency.samples.len();
-            self.evals.push(app.latency.eval_ms);
-            self.scenes.push(app.latency.scene_ms);
+        if app.latency().samples.len() > self.seen {
+            self.seen = app.latency().samples.len();
+            self.evals.push(app.latency().eval_ms);
+            self.scenes.push(app.latency().scene_ms);
         }
         if self.done >= self.frames {
             if std::mem::replace(&mut self.reported, true) {
                 return;
             }
-            let mut lat = app.latency.samples.clone();
+            let mut lat = app.latency().samples.clone();
             println!(
                 "opened: {:.0} ms from launch to the first frame with the evaluated graph \
                  ({} nodes)",
@@ -107,7 +107,7 @@ impl Bench {
                 },
                 self.frames,
                 lat.len(),
-                app.latency.early_pictures
+                app.latency().early_pictures
             );
             println!(
                 "  change-to-picture (CPU side, up to the frame handing the scene to wgpu): {}",

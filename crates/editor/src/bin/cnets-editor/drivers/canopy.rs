@@ -238,7 +238,7 @@ pub fn canopy() -> Vec<Step> {
         print("mesh size after", |app| {
             mesh_size(app).map_or("none".into(), |s| format!("{:?},{:?},{:?}", s.x, s.y, s.z))
         }),
-        print("corrections", |app| match app.statuses.get("construct") {
+        print("corrections", |app| match app.statuses().get("construct") {
             Some(cnets_editor::worker::NodeStatus::Ok { outputs, .. }) => outputs
                 .get(
                     app.doc
