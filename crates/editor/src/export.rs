@@ -14,9 +14,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use cnets_engine::{
-    Evaluator, Graph, Layer, NodeContext, NodeDef, NodeFlag, NodeResult, Registry, ValueType,
-};
+use cnets_engine::{Evaluator, Graph, Layer, NodeDef, NodeFlag, NodeResult, Registry, ValueType};
 
 /// An export format of the File menu.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -288,12 +286,11 @@ pub fn run_exports(
                 .into(),
         );
     }
-    // (In the browser the export node's files are kept in memory: no folder to make.)
-    #[cfg(not(target_arch = "wasm32"))]
-    std::fs::create_dir_all(folder)
-        .map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
-    let mut ctx = NodeContext::new(Some(folder.to_path_buf()), base_dir);
-    ctx.allow_read = allow_read.to_vec();
+    let ctx = cnets_host::Session::new()
+        .with_allow_read(allow_read.iter().cloned())
+        .with_out_dir(Some(folder.to_path_buf()))
+        .export_context(base_dir, true)
+        .map_err(|e| e.to_string())?;
     let mut eval = Evaluator::new();
     let indices = ids
         .iter()
@@ -354,12 +351,11 @@ pub fn export(
         g.set_value(&id, &file_port.name, cnets_engine::Value::text(file))
             .map_err(|e| e.to_string())?;
     }
-    // (In the browser the export node's files are kept in memory: no folder to make.)
-    #[cfg(not(target_arch = "wasm32"))]
-    std::fs::create_dir_all(folder)
-        .map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
-    let mut ctx = NodeContext::new(Some(folder.to_path_buf()), base_dir);
-    ctx.allow_read = allow_read.to_vec();
+    let ctx = cnets_host::Session::new()
+        .with_allow_read(allow_read.iter().cloned())
+        .with_out_dir(Some(folder.to_path_buf()))
+        .export_context(base_dir, true)
+        .map_err(|e| e.to_string())?;
     let mut eval = Evaluator::new();
     let index = g.index(&id).map_err(|e| e.to_string())?;
     eval.evaluate(&g, &[index], &ctx, &mut |_, _| {});

@@ -7,7 +7,7 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use cnets_engine::{Evaluator, Graph, NodeContext, NodeResult, Value, Widget};
+use cnets_engine::{Evaluator, Graph, NodeResult, Value, Widget};
 
 use crate::export::{ExportFormat, export_node};
 use crate::preview::{PickGeometry, Picks};
@@ -238,11 +238,11 @@ pub fn export_preview(
         let file = format!("{name}.{}", format.extension());
         set(&mut g, &file_port.name, Value::text(file))?;
     }
-    #[cfg(not(target_arch = "wasm32"))]
-    std::fs::create_dir_all(folder)
-        .map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
-    let mut ctx = NodeContext::new(Some(folder.to_path_buf()), base_dir);
-    ctx.allow_read = allow_read.to_vec();
+    let ctx = cnets_host::Session::new()
+        .with_allow_read(allow_read.iter().cloned())
+        .with_out_dir(Some(folder.to_path_buf()))
+        .export_context(base_dir, true)
+        .map_err(|e| e.to_string())?;
     let mut eval = Evaluator::new();
     let index = g.index(id).map_err(|e| e.to_string())?;
     eval.evaluate(&g, &[index], &ctx, &mut |_, _| {});
@@ -282,7 +282,12 @@ mod tests {
     fn picks_of(graph: &Graph) -> Picks {
         let mut eval = Evaluator::new();
         let all: Vec<_> = graph.nodes().map(|(k, _)| k).collect();
-        eval.evaluate(graph, &all, &NodeContext::default(), &mut |_, _| {});
+        eval.evaluate(
+            graph,
+            &all,
+            &cnets_engine::NodeContext::default(),
+            &mut |_, _| {},
+        );
         build_preview(graph, &eval, &PreviewOptions::default()).picks
     }
 

@@ -463,9 +463,10 @@ pub fn evaluate(
     send: &mut dyn FnMut(EvalResponse),
 ) {
     let graph = &request.graph;
-    let mut ctx = NodeContext::new(None, request.base_dir.clone());
-    ctx.allow_read = request.allow_read.clone();
-    ctx.cancel = request.cancel.clone();
+    let session = cnets_host::Session::new()
+        .with_allow_read(request.allow_read.iter().cloned())
+        .with_cancel(request.cancel.clone());
+    let ctx = session.context(request.base_dir.clone());
     let cancelled = || request.cancel.load(Ordering::Relaxed);
     // Previewed nodes and panels are asked for all their outputs, the others only for what is
     // wired from them (lazy outputs). Every node runs (its status shows).
@@ -549,10 +550,10 @@ pub fn evaluate(
                     .map(|(k, _)| k)
                     .collect();
                 // Relative paths inside resolve against the cluster's own folder, as when it runs.
-                let mut inner = NodeContext::new(None, cluster.base_dir.clone());
-                inner.allow_read = request.allow_read.clone();
-                inner.allow_read.extend(request.base_dir.clone());
-                inner.cancel = request.cancel.clone();
+                let inner = session
+                    .clone()
+                    .with_allow_read(request.base_dir.clone())
+                    .context(cluster.base_dir.clone());
                 ev.evaluate(g, &wanted, &inner, &mut |_, _| {});
                 statuses(g, ev, &inner)
             })

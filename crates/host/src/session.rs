@@ -290,6 +290,11 @@ pub fn check_outputs(def: &NodeDef, names: &[String]) -> Result<(), HostError> {
 
 /// Creates the folder exports write into, with its parents; says when a file is in the way.
 fn create_out_dir(dir: &Path) -> Result<(), SessionError> {
+    // The browser has no folders: its export nodes' files are kept in memory (the page offers
+    // them as downloads).
+    if cfg!(target_arch = "wasm32") {
+        return Ok(());
+    }
     std::fs::create_dir_all(dir).map_err(|e| SessionError::OutDir {
         dir: dir.to_path_buf(),
         in_the_way: std::fs::symlink_metadata(dir).is_ok_and(|m| !m.is_dir()),

@@ -217,7 +217,7 @@ impl EditorApp {
     pub fn internalise(&mut self, id: &str) -> Result<String, String> {
         let graph = self.doc.eval_graph();
         let index = graph.index(id).map_err(|e| e.to_string())?;
-        let ctx = cnets_engine::NodeContext::new(None, self.doc.base_dir());
+        let ctx = self.session().context(self.doc.base_dir());
         let mut evaluator = cnets_engine::Evaluator::new();
         evaluator.evaluate(&graph, &[index], &ctx, &mut |_, _| {});
         let result = evaluator

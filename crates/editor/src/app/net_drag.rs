@@ -85,8 +85,7 @@ impl EditorApp {
                     return;
                 }
             };
-            let mut ctx = cnets_engine::NodeContext::new(None, self.doc.base_dir());
-            ctx.allow_read = self.doc.allowed_reads.clone();
+            let ctx = self.session().context(self.doc.base_dir());
             self.net_drags.running = Some(NetDragSession::start(
                 &graph,
                 &target,

@@ -24,6 +24,14 @@ pub struct ReadPrompt {
 }
 
 impl EditorApp {
+    /// What an evaluation of the document may use ([`cnets_host::Session`], as every door makes
+    /// its contexts): the folders it was allowed to read and the library folders.
+    pub(super) fn session(&self) -> cnets_host::Session {
+        cnets_host::Session::new()
+            .with_allow_read(self.doc.allowed_reads.iter().cloned())
+            .with_library(self.library.dirs.iter().cloned())
+    }
+
     /// Lets the document's nodes read `path` (a file or a folder) from now on: kept with the
     /// document's settings when it has a file (else once it is saved), and the graph is evaluated
     /// afresh (a refused read left no trace to re-run from). Returns whether it was new.

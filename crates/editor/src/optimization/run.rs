@@ -115,8 +115,9 @@ impl OptimizationPanel {
         let thread = std::thread::Builder::new()
             .name("cnets-optimize".into())
             .spawn(move || {
-                let mut ctx = NodeContext::new(None, base_dir);
-                ctx.cancel = flag;
+                let ctx = cnets_host::Session::new()
+                    .with_cancel(flag)
+                    .context(base_dir);
                 let options = optimize::Options::default();
                 let result = optimize::optimize(&graph, &run_setup, &options, &ctx, &mut |it| {
                     let _ = tx.send(Message::Iteration(it.clone()));

@@ -41,10 +41,10 @@ impl WebApp {
             self.first_picture_ms
                 .map_or(JsValue::NULL, JsValue::from_f64),
         );
-        set("latency_ms", JsValue::from_f64(self.app.latency.last_ms));
+        set("latency_ms", JsValue::from_f64(self.app.latency().last_ms));
         set(
             "latencies",
-            JsValue::from_f64(self.app.latency.samples.len() as f64),
+            JsValue::from_f64(self.app.latency().samples.len() as f64),
         );
         set(
             "busy",
@@ -96,7 +96,7 @@ impl WebApp {
         // Failed nodes: {id, message, in_view} (in view: the node's badge is on the canvas).
         let failed = js_sys::Array::new();
         for (_, n) in self.app.doc.graph.nodes() {
-            let Some(message) = self.app.statuses.get(&n.id).and_then(|s| s.error()) else {
+            let Some(message) = self.app.statuses().get(&n.id).and_then(|s| s.error()) else {
                 continue;
             };
             let f = js_sys::Object::new();
@@ -257,8 +257,7 @@ impl WebApp {
         set(
             "net_drag",
             self.app
-                .last_net_drag
-                .as_ref()
+                .last_net_drag()
                 .map_or(JsValue::NULL, net_drag_object),
         );
         let _ = js_sys::Reflect::set(&window, &"cnets_test".into(), &o);
