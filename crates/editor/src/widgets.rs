@@ -51,9 +51,17 @@ pub fn slider_range(node: &NodeInstance, k: usize) -> (f64, f64, f64) {
     (min, max, step.max(0.0))
 }
 
-/// The options of a `param.choice` node, when its `options` input holds a literal list of texts.
+/// The input of `node` that holds the options its choice index picks from (the index port's
+/// `options_input` hint: a Value list's `options`).
+fn options_input(node: &NodeInstance) -> Option<usize> {
+    let name = node.def.inputs.iter().find_map(|p| p.hint.options_input)?;
+    node.def.input_index(name)
+}
+
+/// The options a choice index of `node` picks from, when the input its hint names holds a
+/// literal list of texts.
 pub fn choice_options(node: &NodeInstance) -> Option<Vec<String>> {
-    let k = node.def.input_index("options")?;
+    let k = options_input(node)?;
     let items = effective_value(node, k)?;
     let list = items.as_list()?;
     list.iter()
@@ -168,7 +176,9 @@ fn editor_body(ui: &mut egui::Ui, node: &NodeInstance, k: usize, port: &PortDef)
                 return choice_editor(ui, &options, current.as_ref());
             }
         }
-        Widget::MultilineText => return options_editor(ui, node),
+        Widget::MultilineText if options_input(node) == Some(k) => {
+            return options_editor(ui, node);
+        }
         _ => {}
     }
     if let Some(choices) = &port.choices

@@ -179,7 +179,7 @@ node! {
         #[ui(widget = MultilineText)]
         options: k::List<k::Text>,
         /// Index of the chosen option (0 = first).
-        #[ui(widget = Choice)]
+        #[ui(widget = Choice, options_input = "options")]
         index: k::Integer = 0,
     ) -> (
         /// The chosen option.
@@ -337,6 +337,7 @@ node! {
     #[node(id = "param.list", category = "Params", name = "List of numbers", flags(Parameter))]
     pub fn list(
         /// The items (a list, possibly nested).
+        #[ui(item_type_input = "item_type")]
         values: k::Tree<k::Any> = Value::list(vec![]),
         /// The item type: number, integer, boolean, text, point, vector or any.
         item_type: k::Choice<crate::choices::ListItemType> = "number",

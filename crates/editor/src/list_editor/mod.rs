@@ -31,9 +31,6 @@ pub use table::{ItemType, Layout, Table};
 pub use window::PasteMode;
 use window::{EditorWindow, Request};
 
-/// The node whose `item_type` input names the kind of its `values`.
-const PARAM_LIST: &str = "param.list";
-
 /// Which input a window edits: the graph level (opened clusters), the node and the input.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct EditorKey {
@@ -107,8 +104,9 @@ pub fn parts(value: &Value) -> Option<usize> {
     (!list.is_empty() && each_points).then_some(list.len())
 }
 
-/// The item type of input `k` for rows its value does not show: the port's type (for
-/// `param.list`'s `values`: its `item_type`), and whether it takes tables.
+/// The item type of input `k` for rows its value does not show: the port's type (or the type
+/// its `item_type_input` hint's sibling names: a list of numbers' `item_type`), and whether it
+/// takes tables.
 pub fn item_type(node: &NodeInstance, k: usize) -> ItemType {
     let Some(port) = node.def.inputs.get(k) else {
         return ItemType {
@@ -117,11 +115,10 @@ pub fn item_type(node: &NodeInstance, k: usize) -> ItemType {
         };
     };
     let mut item = port.ty.clone();
-    if node.def.id.as_ref() == PARAM_LIST
-        && port.name.as_ref() == "values"
+    if let Some(name) = port.hint.item_type_input
         && let Some(Value::Text(t)) = node
             .def
-            .input_index("item_type")
+            .input_index(name)
             .and_then(|i| widgets::effective_value(node, i))
     {
         item = ValueType::parse(&t.trim().to_ascii_lowercase()).unwrap_or(ValueType::Any);

@@ -26,6 +26,11 @@ const GUESSES: &[&str] = &[
     "output_index(\"configurations\")",
     "output_index(\"mesh\")",
     "Some(\"param.points\")",
+    "PARAM_LIST",
+    "name.as_ref() == \"",
+    "input_index(\"options\")",
+    "input_index(\"item_type\")",
+    "input_index(\"values\")",
 ];
 
 fn sources(dir: &Path, out: &mut Vec<PathBuf>) {

@@ -165,6 +165,13 @@ pub struct PortHint {
     /// with a positive step the value moves in whole steps, which a continuous solve (dragging
     /// the net) cannot take.
     pub step_input: Option<&'static str>,
+    /// The input of the same node that holds the options a [`Widget::Choice`] index picks from
+    /// (a Value list's `options`): the editor's drop-down lists them, and edits them in that
+    /// input's own field.
+    pub options_input: Option<&'static str>,
+    /// The input of the same node that names the item type of this list input (a list of
+    /// numbers' `item_type`): the list editor's new rows take that type.
+    pub item_type_input: Option<&'static str>,
 }
 
 /// Builder of a [`PortHint`], fed by `#[ui(key = value, …)]` in `node!`.
@@ -210,6 +217,16 @@ impl HintBuilder {
     /// `step_input = "step"`: the sibling input that holds the step this input snaps to.
     pub fn step_input(&mut self, name: &'static str) {
         self.0.step_input = Some(name);
+    }
+
+    /// `options_input = "options"`: the sibling input that holds a choice's options.
+    pub fn options_input(&mut self, name: &'static str) {
+        self.0.options_input = Some(name);
+    }
+
+    /// `item_type_input = "item_type"`: the sibling input that names a list's item type.
+    pub fn item_type_input(&mut self, name: &'static str) {
+        self.0.item_type_input = Some(name);
     }
 
     /// `role = FaceMargins`: what an output means to the engine's tools.
