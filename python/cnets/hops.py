@@ -627,9 +627,9 @@ class HopsServer:
                                outputs=outputs, max_memory=self.max_memory,
                                library=self.library or None)
         except _cnets.CnetsError as e:
-            message = str(e)
-            if message.startswith(node_type + ": "):
-                message = message[len(node_type) + 2:]
+            # A node's failure carries its reason apart from the node type (CnetsError.reason);
+            # other errors (a bad input, the memory budget) are said as they are.
+            message = getattr(e, "reason", None) or str(e)
             raise HopsError(f"{title or node_type}: {message}") from None
 
     def curve(self, name: str, value: Any, required: bool = True) -> Optional[Polyline]:

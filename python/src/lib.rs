@@ -70,6 +70,30 @@ pub(crate) fn error(message: impl Into<String>) -> PyErr {
     CnetsError::new_err(cnets_engine::files::short_quotes(&message.into(), 200))
 }
 
+/// A `CnetsError` for a session's failure. A node's failure carries its parts as attributes:
+/// `node_type`, `reason` (its error without the node type in front) and `kind`
+/// (`NodeError::kind`: `message`, `geometry`, `io`, `convert`, `json`, `memory`, `file`, `panic`),
+/// so a caller (the Hops server) never takes the message's text apart.
+fn session_error(py: Python<'_>, e: cnets_host::SessionError) -> PyErr {
+    let err = error(e.to_string());
+    if let cnets_host::SessionError::Node {
+        node_type,
+        error: node_error,
+    } = &e
+    {
+        let value = err.value(py);
+        let reason = cnets_engine::files::short_quotes(&node_error.to_string(), 200);
+        let set = value
+            .setattr("node_type", node_type.as_str())
+            .and_then(|()| value.setattr("reason", reason))
+            .and_then(|()| value.setattr("kind", node_error.kind()));
+        if let Err(failed) = set {
+            return failed;
+        }
+    }
+    err
+}
+
 /// Evaluates one node type on inputs (a dict by input name) and returns its outputs by name.
 /// `label_tables`: lists of label rows (configurations) come back as `(codes, labels)`.
 /// `option_prefix` is how the caller spells the options in messages (`cnets.eval` takes them as
@@ -130,7 +154,7 @@ fn eval<'py>(
         .detach(|| session.eval_node(&def, &values, outputs.as_deref(), base))
         .map_err(|e| error(e.to_string()))?;
     LAST_EVAL_NANOS.store(run.elapsed.as_nanos() as u64, Ordering::Relaxed);
-    let outputs_of = run.into_outputs().map_err(|e| error(e.to_string()))?;
+    let outputs_of = run.into_outputs().map_err(|e| session_error(py, e))?;
     for w in &outputs_of.warnings {
         warn(py, &format!("{}: {w}", def.id))?;
     }

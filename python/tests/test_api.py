@@ -172,6 +172,20 @@ def test_errors_are_cnets_errors_with_the_engines_message(tmp_path):
             "cnets.construct", directrix=arc(1000), generatrix=profile(1000), _max_memory="1MB")
 
 
+def test_a_nodes_failure_carries_its_node_type_reason_and_kind():
+    # The Hops server reads these instead of taking the message's text apart.
+    with pytest.raises(cnets.CnetsError) as caught:
+        cnets.eval("cnets.construct", directrix=arc(1000), generatrix=profile(1000),
+                   _max_memory="1MB")
+    e = caught.value
+    assert (e.node_type, e.kind) == ("cnets.construct", "memory")
+    assert "needs" in e.reason and str(e) == f"cnets.construct: {e.reason}"
+    # An error before the node runs (a usage error) has no node parts.
+    with pytest.raises(cnets.CnetsError) as caught:
+        cnets.eval("math.add", nope=1)
+    assert not hasattr(caught.value, "reason")
+
+
 def test_hostile_grid_sizes():
     assert cnets._cnets.quad_faces(0, 0, False, False).shape == (0, 4)
     assert cnets._cnets.quad_faces(1, 5, True, False).shape == (0, 4)

@@ -11,7 +11,7 @@ use cnets_geometry::DVec3;
 use web_time::Instant;
 
 /// What one solve reached.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Solved {
     /// Every input the drag changed so far, with its value now: (node, input, value).
     pub values: Vec<(String, String, Value)>,

@@ -29,7 +29,7 @@ use petgraph::stable_graph::NodeIndex;
 use crate::preview::{Picks, Preview, PreviewOptions, PreviewStats, build_preview};
 
 /// The state of one node after an evaluation, for badges and pin labels.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum NodeStatus {
     /// Ran; warnings (if any) and a short description of each output value.
     Ok {

@@ -52,6 +52,22 @@ impl NodeError {
     pub fn new(message: impl Into<String>) -> Self {
         Self::Message(message.into())
     }
+
+    /// What kind of failure this is, as a word a front end can match instead of the message's
+    /// text: `message`, `geometry`, `io`, `convert`, `json`, `memory`, `file` (a place in a
+    /// file) or `panic`. The Python package's `CnetsError.kind`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            NodeError::Message(_) => "message",
+            NodeError::Geometry(_) => "geometry",
+            NodeError::Io(_) => "io",
+            NodeError::Convert(_) => "convert",
+            NodeError::Json(_) => "json",
+            NodeError::Budget(_) => "memory",
+            NodeError::Located { .. } => "file",
+            NodeError::Panicked(_) => "panic",
+        }
+    }
 }
 
 impl From<String> for NodeError {

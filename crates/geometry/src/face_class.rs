@@ -7,7 +7,7 @@ use glam::DVec3;
 
 /// The configuration class of a cone-net face (i, j) from the configurations c_{i,j} and c_{i+1,j} of
 /// its two support-strip quads (paper Sec. 4.2.1, Fig. 5b).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum FaceClass {
     /// ((++), (++)): convex and properly aligned (the desired case).
     Convex,

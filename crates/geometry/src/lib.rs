@@ -20,6 +20,7 @@ pub mod polygon_mesh;
 pub mod polyline;
 pub mod quad_grid;
 pub mod seam;
+pub mod serial;
 pub mod simd;
 pub mod surface_fit;
 

@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 /// A line segment from `start` to `end`.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Line {
     /// First end point.
     pub start: DVec3,

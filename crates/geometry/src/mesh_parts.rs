@@ -7,7 +7,7 @@
 
 /// Named parts of a mesh: a part for every face and the parts' names. Empty: the mesh is one
 /// unnamed part (every mesh made by one net).
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub struct MeshParts {
     /// The parts' names, in the order they were joined.
     pub names: Vec<String>,

@@ -5,7 +5,7 @@ use glam::DVec3;
 use crate::GeometryError;
 
 /// A plane with an origin and a right-handed orthonormal frame (`x_axis`, `y_axis`, `normal`).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Plane {
     /// A point on the plane.
     pub origin: DVec3,

@@ -5,7 +5,7 @@ use glam::DVec3;
 use crate::{FaceClass, GeometryError, MeshParts, QuadGrid};
 
 /// A polygon mesh: shared vertices and faces given as vertex-index loops, stored flat.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct PolygonMesh {
     /// Vertex positions.
     pub vertices: Vec<DVec3>,

@@ -6,7 +6,7 @@ use crate::error::{GeometryError, check_finite_points};
 
 /// A polyline. Each point is stored once; a closed polyline has an implicit edge from the last point
 /// back to the first.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Polyline {
     /// The vertices, in order.
     pub points: Vec<DVec3>,

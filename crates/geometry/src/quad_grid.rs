@@ -9,7 +9,7 @@ use crate::{FaceClass, GeometryError, Polyline};
 ///
 /// `wrap_rows` means the last row connects back to the first (a closed generatrix: quads between rows
 /// `rows − 1` and `0` exist); `wrap_cols` likewise for columns.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct QuadGrid {
     /// Number of rows (points along the generatrix).
     pub rows: usize,

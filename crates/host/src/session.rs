@@ -51,13 +51,13 @@ pub enum SessionError {
     /// The evaluation was cancelled (the session's cancel flag was set).
     #[error("cancelled")]
     Cancelled,
-    /// The node ran and failed: `<node type>: <message>`.
-    #[error("{node_type}: {message}")]
+    /// The node ran and failed: `<node type>: <its error>`.
+    #[error("{node_type}: {error}")]
     Node {
         /// The node type's id.
         node_type: String,
-        /// The node's error.
-        message: String,
+        /// The node's error, typed (its kind, a file's line and column).
+        error: NodeError,
     },
 }
 
@@ -77,9 +77,9 @@ pub struct NodeRun {
 impl NodeRun {
     /// The outputs, or the node's failure as [`SessionError::Node`].
     pub fn into_outputs(self) -> Result<NodeOutputs, SessionError> {
-        self.result.map_err(|e| SessionError::Node {
+        self.result.map_err(|error| SessionError::Node {
             node_type: self.node_type,
-            message: e.to_string(),
+            error,
         })
     }
 }

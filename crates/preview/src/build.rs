@@ -64,7 +64,7 @@ struct Look {
 }
 
 /// What a previewed mesh is to the figures.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum MeshKind {
     /// A cone-net: a mesh output of a construction (a node declaring its faces' convexity margins,
     /// [`cnets_engine::Role::FaceMargins`], and with them the configurations).
@@ -87,7 +87,7 @@ impl MeshKind {
 }
 
 /// The figures of one previewed mesh.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MeshFigures {
     /// `node.output`, with `[item]` for an item of a list.
     pub name: String,
@@ -102,7 +102,7 @@ pub struct MeshFigures {
 }
 
 /// Figures about the previewed geometry.
-#[derive(Clone, Debug, PartialEq, Default)]
+#[derive(Clone, Debug, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct PreviewStats {
     /// Vertices of all previewed meshes.
     pub vertices: usize,

@@ -19,7 +19,7 @@ use crate::options::{DistanceSide, Layer};
 /// The figures of the distance mode: the symmetric, area-weighted distance between the net (every
 /// previewed mesh but the reference's, taken as one surface) and the reference, each direction on
 /// its own, and what the colours show.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DistanceFigures {
     /// The reference node.
     pub reference: String,

@@ -8,7 +8,7 @@ use cnets_render::palette;
 use crate::classes::class_color;
 
 /// The legend to draw next to the viewport.
-#[derive(Clone, Debug, PartialEq, Default)]
+#[derive(Clone, Debug, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub enum LegendInfo {
     /// Nothing coloured.
     #[default]

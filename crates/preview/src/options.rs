@@ -3,7 +3,7 @@
 use cnets_render::ToleranceMap;
 
 /// How surfaces are coloured.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum ColorMode {
     /// By face class (paper Fig. 5b: the configurations of a face's two support-strip quads) from
     /// the construction node's `configurations` output; plain when the node has none.
@@ -43,7 +43,7 @@ impl ColorMode {
 }
 
 /// Which side [`ColorMode::Distance`] colours.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum DistanceSide {
     /// The net (every previewed mesh but the reference), each vertex by its distance to the
     /// reference: where the net strays from the reference.
@@ -66,7 +66,7 @@ impl DistanceSide {
 }
 
 /// A toggleable group of preview geometry.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Layer {
     /// Meshes.
     Surfaces,
@@ -146,7 +146,7 @@ impl Layer {
 }
 
 /// Display options of the viewport: colour mode and visible layers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct PreviewOptions {
     /// Surface colouring.
     pub color_mode: ColorMode,
@@ -158,7 +158,8 @@ pub struct PreviewOptions {
     pub distance_side: DistanceSide,
     layers: u8,
     /// The top of the planarity scale (see [`PreviewOptions::planarity_limit`]), as `f64` bits
-    /// so the options stay `Eq`.
+    /// so the options stay `Eq`; read through serde only within [`PLANARITY_LIMIT_RANGE`].
+    #[serde(deserialize_with = "limit_in_range")]
     planarity_limit: u64,
 }
 
@@ -180,6 +181,21 @@ impl Default for PreviewOptions {
 /// The smallest and largest planarity limit a designer can set (the scale's bottom, 1e-9
 /// relative, stays the anchor).
 pub const PLANARITY_LIMIT_RANGE: (f64, f64) = (1e-8, 1.0);
+
+/// Reads a planarity limit's bits, refusing a limit outside [`PLANARITY_LIMIT_RANGE`].
+fn limit_in_range<'de, D: serde::Deserializer<'de>>(d: D) -> Result<u64, D::Error> {
+    use serde::Deserialize as _;
+    use serde::de::Error as _;
+    let bits = u64::deserialize(d)?;
+    if PreviewOptions::default().set_planarity_limit(f64::from_bits(bits)) {
+        Ok(bits)
+    } else {
+        Err(D::Error::custom(format!(
+            "a planarity limit of {} is outside {PLANARITY_LIMIT_RANGE:?}",
+            f64::from_bits(bits)
+        )))
+    }
+}
 
 impl PreviewOptions {
     /// The user-set top of the planarity colour scale: faces from this relative planarity up are

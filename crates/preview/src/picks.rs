@@ -10,12 +10,12 @@ use cnets_geometry::fabrication::FaceClass;
 use cnets_geometry::{DVec3, PolygonMesh, Polyline, QuadGrid};
 
 /// A previewed mesh's geometry.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub enum PickGeometry {
     /// A regular quad grid: faces and vertices have a row and a column.
-    Grid(Arc<QuadGrid>),
+    Grid(#[serde(deserialize_with = "cnets_geometry::serial::checked")] Arc<QuadGrid>),
     /// A general polygon mesh: faces and vertices have an index.
-    Mesh(Arc<PolygonMesh>),
+    Mesh(#[serde(deserialize_with = "cnets_geometry::serial::checked")] Arc<PolygonMesh>),
 }
 
 impl PickGeometry {
@@ -76,7 +76,7 @@ impl PickGeometry {
 }
 
 /// A previewed mesh and where it came from.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct PickMesh {
     /// The node that made it.
     pub node: String,
@@ -93,7 +93,7 @@ pub struct PickMesh {
 }
 
 /// A previewed curve and where it came from.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct PickCurve {
     /// The node that made it.
     pub node: String,
@@ -104,7 +104,7 @@ pub struct PickCurve {
 }
 
 /// Everything the preview drew that the pointer can point at.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct Picks {
     /// Previewed meshes (the surfaces layer and support layers, as drawn).
     pub meshes: Vec<PickMesh>,

@@ -114,6 +114,7 @@ pub mod overlay;
 pub mod palette;
 pub mod renderer;
 pub mod scene;
+mod scene_bytes;
 
 pub use blit::{BlitSource, Blitter};
 pub use camera::{Camera, ORTHO_DEPTH, ParseViewError, Projection, Ray, View};

@@ -8,7 +8,19 @@ use bytemuck::{Pod, Zeroable};
 
 /// An sRGB-encoded RGBA colour, 8 bits per channel (alpha 255 = opaque).
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Pod, Zeroable)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    Default,
+    Pod,
+    Zeroable,
+    serde::Serialize,
+    serde::Deserialize,
+)]
 pub struct Color(pub [u8; 4]);
 
 impl Color {
@@ -229,7 +241,7 @@ impl ToleranceMap {
 }
 
 /// What a colour legend shows: a title, the value range and colour stops from min to max.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Legend {
     /// E.g. "planarity".
     pub title: String,

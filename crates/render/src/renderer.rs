@@ -296,7 +296,7 @@ impl SceneRenderer {
             segments: scene.segments().len(),
             points: scene.points().len(),
         };
-        self.background = scene.background;
+        self.background = scene.background();
         self.last = None;
     }
 

@@ -27,7 +27,7 @@ pub const FLAG_BESIDE: u32 = 4;
 
 /// One corner of a face as uploaded to the GPU.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable, serde::Serialize, serde::Deserialize)]
 pub struct FaceVertex {
     /// World position.
     pub position: [f32; 3],
@@ -42,7 +42,7 @@ pub struct FaceVertex {
 
 /// One line segment, drawn as a screen-space quad of `width` pixels.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable, serde::Serialize, serde::Deserialize)]
 pub struct Segment {
     /// First end (world).
     pub a: [f32; 3],
@@ -58,7 +58,7 @@ pub struct Segment {
 
 /// One point marker, drawn as a screen-facing square or disc of `size` pixels.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable, serde::Serialize, serde::Deserialize)]
 pub struct PointInstance {
     /// World position.
     pub position: [f32; 3],
@@ -71,7 +71,7 @@ pub struct PointInstance {
 }
 
 /// An axis-aligned bounding box in `f32` world coordinates.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Bounds {
     /// Smallest corner.
     pub min: Vec3,
@@ -375,18 +375,23 @@ pub struct SceneStats {
     pub skipped: usize,
 }
 
-/// The buffers of a [`Scene`], for [`Scene::from_parts`].
-#[derive(Clone, Debug, Default, PartialEq)]
+/// The buffers of a [`Scene`], for [`Scene::from_parts`] and [`Scene::parts`]; in serde's data
+/// model the GPU buffers are their bytes (`crate::scene_bytes`).
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SceneParts {
     /// Background (clear) colour.
     pub background: Color,
     /// Face corners.
+    #[serde(with = "crate::scene_bytes")]
     pub face_vertices: Vec<FaceVertex>,
     /// Triangle indices into `face_vertices`.
+    #[serde(with = "crate::scene_bytes")]
     pub face_indices: Vec<u32>,
     /// Line segments.
+    #[serde(with = "crate::scene_bytes")]
     pub segments: Vec<Segment>,
     /// Point markers.
+    #[serde(with = "crate::scene_bytes")]
     pub points: Vec<PointInstance>,
     /// The box of everything drawn.
     pub bounds: Option<Bounds>,
@@ -397,14 +402,8 @@ pub struct SceneParts {
 /// A renderable scene: GPU-ready buffers plus the background colour. See the module docs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
-    /// Background (clear) colour of the image.
-    pub background: Color,
-    face_vertices: Vec<FaceVertex>,
-    face_indices: Vec<u32>,
-    segments: Vec<Segment>,
-    points: Vec<PointInstance>,
-    bounds: Option<Bounds>,
-    skipped: usize,
+    /// What is drawn: the background and the buffers.
+    parts: SceneParts,
     /// Scratch: a mesh's vertices converted to f32 (NaN where not representable).
     scratch: Vec<Vec3>,
     /// Scratch: edge keys of a polygon mesh for de-duplication.
@@ -428,13 +427,10 @@ impl Scene {
     /// An empty scene with the default background.
     pub fn new() -> Self {
         Self {
-            background: palette::BACKGROUND,
-            face_vertices: Vec::new(),
-            face_indices: Vec::new(),
-            segments: Vec::new(),
-            points: Vec::new(),
-            bounds: None,
-            skipped: 0,
+            parts: SceneParts {
+                background: palette::BACKGROUND,
+                ..SceneParts::default()
+            },
             scratch: Vec::new(),
             edge_keys: Vec::new(),
         }
@@ -452,42 +448,48 @@ impl Scene {
             return None;
         }
         Some(Self {
-            background: parts.background,
-            face_vertices: parts.face_vertices,
-            face_indices: parts.face_indices,
-            segments: parts.segments,
-            points: parts.points,
-            bounds: parts.bounds,
-            skipped: parts.skipped,
+            parts,
             scratch: Vec::new(),
             edge_keys: Vec::new(),
         })
     }
 
+    /// Background (clear) colour of the image.
+    pub fn background(&self) -> Color {
+        self.parts.background
+    }
+
+    /// What is drawn: the background and the buffers (what [`Scene::from_parts`] takes back).
+    pub fn parts(&self) -> &SceneParts {
+        &self.parts
+    }
+
     /// The same scene with another background colour.
     pub fn with_background(mut self, background: Color) -> Self {
-        self.background = background;
+        self.parts.background = background;
         self
     }
 
     /// Removes all content, keeping the background and the allocated capacity.
     pub fn clear(&mut self) {
-        self.face_vertices.clear();
-        self.face_indices.clear();
-        self.segments.clear();
-        self.points.clear();
-        self.bounds = None;
-        self.skipped = 0;
+        self.parts.face_vertices.clear();
+        self.parts.face_indices.clear();
+        self.parts.segments.clear();
+        self.parts.points.clear();
+        self.parts.bounds = None;
+        self.parts.skipped = 0;
     }
 
     /// Sets `flag` on the segments and point markers added since there were `segments` and
     /// `points` of them (e.g. [`FLAG_BESIDE`] on what one part of the preview drew).
     pub fn flag_since(&mut self, segments: usize, points: usize, flag: u32) {
-        self.segments
+        self.parts
+            .segments
             .iter_mut()
             .skip(segments)
             .for_each(|s| s.flags |= flag);
-        self.points
+        self.parts
+            .points
             .iter_mut()
             .skip(points)
             .for_each(|p| p.flags |= flag);
@@ -495,70 +497,74 @@ impl Scene {
 
     /// True when nothing would be drawn but the background.
     pub fn is_empty(&self) -> bool {
-        self.face_indices.is_empty() && self.segments.is_empty() && self.points.is_empty()
+        self.parts.face_indices.is_empty()
+            && self.parts.segments.is_empty()
+            && self.parts.points.is_empty()
     }
 
     /// Bounding box of everything drawn; `None` for an empty scene.
     pub fn bounds(&self) -> Option<Bounds> {
-        self.bounds
+        self.parts.bounds
     }
 
     /// Face corners, as uploaded.
     pub fn face_vertices(&self) -> &[FaceVertex] {
-        &self.face_vertices
+        &self.parts.face_vertices
     }
 
     /// Triangle indices into [`Scene::face_vertices`], three per triangle.
     pub fn face_indices(&self) -> &[u32] {
-        &self.face_indices
+        &self.parts.face_indices
     }
 
     /// All line segments (mesh edges, polylines, segments), as uploaded.
     pub fn segments(&self) -> &[Segment] {
-        &self.segments
+        &self.parts.segments
     }
 
     /// All point markers, as uploaded.
     pub fn points(&self) -> &[PointInstance] {
-        &self.points
+        &self.parts.points
     }
 
     /// All drawn positions: face corners, segment ends and points (e.g. for tight framing).
     pub fn positions(&self) -> impl Iterator<Item = Vec3> + '_ {
-        self.face_vertices
+        self.parts
+            .face_vertices
             .iter()
             .map(|v| Vec3::from(v.position))
             .chain(
-                self.segments
+                self.parts
+                    .segments
                     .iter()
                     .flat_map(|s| [Vec3::from(s.a), Vec3::from(s.b)]),
             )
-            .chain(self.points.iter().map(|p| Vec3::from(p.position)))
+            .chain(self.parts.points.iter().map(|p| Vec3::from(p.position)))
     }
 
     /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
-        self.face_indices.len() / 3
+        self.parts.face_indices.len() / 3
     }
 
     /// Number of items left out because of non-finite coordinates.
     pub fn skipped(&self) -> usize {
-        self.skipped
+        self.parts.skipped
     }
 
     /// Counts of what the scene holds.
     pub fn stats(&self) -> SceneStats {
         SceneStats {
             triangles: self.triangle_count(),
-            segments: self.segments.len(),
-            points: self.points.len(),
-            skipped: self.skipped,
+            segments: self.parts.segments.len(),
+            points: self.parts.points.len(),
+            skipped: self.parts.skipped,
         }
     }
 
     fn grow_bounds(&mut self, lo: Vec3, hi: Vec3) {
         let b = Bounds { min: lo, max: hi };
-        self.bounds = Some(self.bounds.map_or(b, |old| old.union(b)));
+        self.parts.bounds = Some(self.parts.bounds.map_or(b, |old| old.union(b)));
     }
 
     /// Adds a quad grid: each quad two triangles, edges along the grid lines (each drawn once).
@@ -586,8 +592,8 @@ impl Scene {
         let mut info = MeshInfo::default();
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
 
-        self.face_vertices.reserve(quad_count * 4);
-        self.face_indices.reserve(quad_count * 6);
+        self.parts.face_vertices.reserve(quad_count * 4);
+        self.parts.face_indices.reserve(quad_count * 6);
         for i in 0..qr {
             for j in 0..qc {
                 let idx = grid.quad_indices(i, j);
@@ -602,18 +608,18 @@ impl Scene {
                     .cross(p[3] - p[1])
                     .normalize_or_zero()
                     .as_vec3();
-                let base = self.face_vertices.len() as u32;
+                let base = self.parts.face_vertices.len() as u32;
                 for (q, &k) in c.into_iter().zip(&idx) {
                     lo = lo.min(q);
                     hi = hi.max(q);
-                    self.face_vertices.push(FaceVertex {
+                    self.parts.face_vertices.push(FaceVertex {
                         position: q.to_array(),
                         normal: n.to_array(),
                         color: corner_color(&style.faces, i * qc + j, k),
                         depth_layer: style.depth_layer.min(MAX_DEPTH_LAYER),
                     });
                 }
-                self.face_indices.extend_from_slice(&[
+                self.parts.face_indices.extend_from_slice(&[
                     base,
                     base + 1,
                     base + 2,
@@ -633,7 +639,7 @@ impl Scene {
                 edge_style.flags(),
             );
             let cols = grid.cols;
-            let before = self.segments.len();
+            let before = self.parts.segments.len();
             let push = |a: usize, b: usize, segs: &mut Vec<Segment>| {
                 let (pa, pb) = (verts[a], verts[b]);
                 if pa.is_finite() && pb.is_finite() {
@@ -649,7 +655,11 @@ impl Scene {
             if qr > 0 {
                 for i in 0..grid.rows {
                     for j in 0..qc {
-                        push(i * cols + j, i * cols + (j + 1) % cols, &mut self.segments);
+                        push(
+                            i * cols + j,
+                            i * cols + (j + 1) % cols,
+                            &mut self.parts.segments,
+                        );
                     }
                 }
             }
@@ -659,14 +669,14 @@ impl Scene {
                         push(
                             i * cols + j,
                             ((i + 1) % grid.rows) * cols + j,
-                            &mut self.segments,
+                            &mut self.parts.segments,
                         );
                     }
                 }
             }
-            info.edges = self.segments.len() - before;
+            info.edges = self.parts.segments.len() - before;
             // Edges of skipped faces may still be drawn when both ends are finite: extend bounds.
-            for s in &self.segments[before..] {
+            for s in &self.parts.segments[before..] {
                 for q in [Vec3::from(s.a), Vec3::from(s.b)] {
                     lo = lo.min(q);
                     hi = hi.max(q);
@@ -677,7 +687,7 @@ impl Scene {
         if lo.cmple(hi).all() {
             self.grow_bounds(lo, hi);
         }
-        self.skipped += info.skipped_faces;
+        self.parts.skipped += info.skipped_faces;
         Ok(info)
     }
 
@@ -706,7 +716,7 @@ impl Scene {
         let mut keys = std::mem::take(&mut self.edge_keys);
         keys.clear();
 
-        self.face_vertices.reserve(mesh.indices.len());
+        self.parts.face_vertices.reserve(mesh.indices.len());
         for (k, face) in mesh.faces().enumerate() {
             if !face.iter().all(|&v| verts[v as usize].is_finite()) {
                 info.skipped_faces += 1;
@@ -721,12 +731,12 @@ impl Scene {
                 n += a.cross(b);
             }
             let n = n.normalize_or_zero().as_vec3().to_array();
-            let base = self.face_vertices.len() as u32;
+            let base = self.parts.face_vertices.len() as u32;
             for &v in face {
                 let q = verts[v as usize];
                 lo = lo.min(q);
                 hi = hi.max(q);
-                self.face_vertices.push(FaceVertex {
+                self.parts.face_vertices.push(FaceVertex {
                     position: q.to_array(),
                     normal: n,
                     color: corner_color(&style.faces, k, v as usize),
@@ -734,7 +744,8 @@ impl Scene {
                 });
             }
             for w in 1..face.len() as u32 - 1 {
-                self.face_indices
+                self.parts
+                    .face_indices
                     .extend_from_slice(&[base, base + w, base + w + 1]);
             }
             info.faces += 1;
@@ -758,13 +769,13 @@ impl Scene {
                 edge_style.pixel_width(),
                 edge_style.flags(),
             );
-            self.segments.reserve(keys.len());
+            self.parts.segments.reserve(keys.len());
             for &key in &keys {
                 let (pa, pb) = (
                     verts[(key >> 32) as usize],
                     verts[(key & 0xffff_ffff) as usize],
                 );
-                self.segments.push(Segment {
+                self.parts.segments.push(Segment {
                     a: pa.to_array(),
                     b: pb.to_array(),
                     color,
@@ -779,7 +790,7 @@ impl Scene {
         if lo.cmple(hi).all() {
             self.grow_bounds(lo, hi);
         }
-        self.skipped += info.skipped_faces;
+        self.parts.skipped += info.skipped_faces;
         Ok(info)
     }
 
@@ -800,14 +811,14 @@ impl Scene {
         style: LineStyle,
     ) -> usize {
         let (color, width, flags) = (style.color, style.pixel_width(), style.flags());
-        let before = self.segments.len();
+        let before = self.parts.segments.len();
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
         for (a, b) in it {
             match (to_f32(a), to_f32(b)) {
                 (Some(a), Some(b)) => {
                     lo = lo.min(a).min(b);
                     hi = hi.max(a).max(b);
-                    self.segments.push(Segment {
+                    self.parts.segments.push(Segment {
                         a: a.to_array(),
                         b: b.to_array(),
                         color,
@@ -815,13 +826,13 @@ impl Scene {
                         flags,
                     });
                 }
-                _ => self.skipped += 1,
+                _ => self.parts.skipped += 1,
             }
         }
         if lo.cmple(hi).all() {
             self.grow_bounds(lo, hi);
         }
-        self.segments.len() - before
+        self.parts.segments.len() - before
     }
 
     /// Adds point markers (e.g. cone apices). Returns the number of points added.
@@ -835,27 +846,27 @@ impl Scene {
         if style.shape == PointShape::Disc {
             flags |= FLAG_DISC;
         }
-        let before = self.points.len();
+        let before = self.parts.points.len();
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
         for &p in points {
             match to_f32(p) {
                 Some(q) => {
                     lo = lo.min(q);
                     hi = hi.max(q);
-                    self.points.push(PointInstance {
+                    self.parts.points.push(PointInstance {
                         position: q.to_array(),
                         color: style.color,
                         size,
                         flags,
                     });
                 }
-                None => self.skipped += 1,
+                None => self.parts.skipped += 1,
             }
         }
         if lo.cmple(hi).all() {
             self.grow_bounds(lo, hi);
         }
-        self.points.len() - before
+        self.parts.points.len() - before
     }
 }
 

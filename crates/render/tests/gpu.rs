@@ -98,7 +98,7 @@ fn quad_grid_is_drawn_with_faces_and_edges() {
             (W, H, (W * H * 4) as usize)
         );
 
-        let bg = background_fraction(&image, scene.background);
+        let bg = background_fraction(&image, scene.background());
         assert!(bg < 0.5, "image is mostly background ({:.0}%)", bg * 100.0);
         assert!(
             bg > 0.05,
@@ -240,7 +240,7 @@ fn nan_geometry_renders_without_error() {
         scene.add_quad_grid(&grid, FaceColors::default()).unwrap();
         scene.add_points(&[DVec3::splat(f64::NAN)], PointStyle::default());
         let image = gpu.render_view(&scene, View::Iso, W, H).unwrap();
-        assert!(background_fraction(&image, scene.background) < 0.9);
+        assert!(background_fraction(&image, scene.background()) < 0.9);
     });
 }
 
@@ -475,7 +475,7 @@ fn blitter_copies_the_scene_into_egui_like_passes() {
         );
         queue.submit([encoder.finish()]);
         let reference = read_texture(&device, &queue, renderer.color_texture().unwrap()).unwrap();
-        assert!(background_fraction(&reference, scene.background) < 0.9);
+        assert!(background_fraction(&reference, scene.background()) < 0.9);
         // Same as the Offscreen path.
         assert!(reference == gpu.render(&scene, &camera, W, H).unwrap());
 

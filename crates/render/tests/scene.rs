@@ -297,7 +297,7 @@ fn lines_points_and_bounds() {
     scene.clear();
     assert!(scene.is_empty());
     assert_eq!(scene.bounds(), None);
-    assert_eq!(scene.background, background, "clear keeps the background");
+    assert_eq!(scene.background(), background, "clear keeps the background");
 }
 
 #[test]

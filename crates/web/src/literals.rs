@@ -28,7 +28,7 @@ const MAX_DEPTH: usize = 32;
 pub const WORKER_KEYS: u64 = 1 << 63;
 
 /// An input whose literal value the worker holds under `key`.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct LiteralRef {
     /// The node's id.
     pub node: String,

@@ -229,8 +229,8 @@ impl WebWorker {
             }
             Ok(FromWorker::Answer(a)) => {
                 let a = *a;
-                if let Some((scene, stats, picks)) = a.preview {
-                    s.preview = (Arc::new(scene), stats, Arc::new(picks));
+                if let Some(preview) = a.preview {
+                    s.preview = preview;
                 }
                 s.statuses = a.statuses.clone();
                 s.figures.answers += 1;

@@ -8,6 +8,7 @@ pub mod leaves;
 mod list;
 mod plane;
 mod record;
+mod serial;
 mod types;
 pub(crate) mod walk;
 
@@ -17,6 +18,7 @@ pub use footprint::{Footprint, footprint};
 pub use list::{Items, Packed};
 pub use plane::{is_orthonormal_frame, plane_from_fields};
 pub use record::Record;
+pub use serial::MAX_NESTING;
 pub use types::{Access, ValueType};
 
 use std::sync::Arc;
@@ -25,7 +27,7 @@ use cnets_geometry::{Line, Plane, PolygonMesh, Polyline, QuadGrid};
 use glam::DVec3;
 
 /// A value on a wire or an input. Cheap to clone: big payloads are shared behind `Arc`.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub enum Value {
     /// No value (an optional input left empty, an apex at infinity).
     #[default]
@@ -49,13 +51,13 @@ pub enum Value {
     /// A polyline: points stored once plus a `closed` flag.
     Polyline(Arc<Polyline>),
     /// A regular quad-grid mesh.
-    QuadMesh(Arc<QuadGrid>),
+    QuadMesh(#[serde(deserialize_with = "cnets_geometry::serial::checked")] Arc<QuadGrid>),
     /// A general polygon mesh.
-    Mesh(Arc<PolygonMesh>),
+    Mesh(#[serde(deserialize_with = "cnets_geometry::serial::checked")] Arc<PolygonMesh>),
     /// An ordered list (lists may nest).
-    List(Items),
+    List(#[serde(deserialize_with = "serial::nested")] Items),
     /// Named fields, e.g. a quality report.
-    Record(Arc<Record>),
+    Record(#[serde(deserialize_with = "serial::nested")] Arc<Record>),
 }
 
 impl Value {

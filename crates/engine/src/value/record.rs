@@ -3,7 +3,7 @@
 use super::Value;
 
 /// Named fields in insertion order (the order they are shown and encoded in).
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Record {
     fields: Vec<(String, Value)>,
 }

@@ -229,21 +229,80 @@ fn malformed_messages_are_errors_not_panics() {
     for cut in 0..job.len() {
         assert!(decode_to_worker(&job[..cut]).is_err(), "cut at {cut}");
     }
+    let mut longer = job.clone();
+    longer.push(0);
+    let err = decode_to_worker(&longer).unwrap_err().to_string();
+    assert!(err.contains("1 bytes past its end"), "{err}");
     // A count far past the message is refused before anything is allocated.
-    let mut huge = vec![TO_PROVIDE];
-    huge.extend_from_slice(&u64::MAX.to_le_bytes());
+    let provide = encode_to_worker(&ToWorker::Provide {
+        name: String::new(),
+        bytes: vec![],
+    })[0];
+    let mut huge = vec![provide];
+    huge.extend_from_slice(&[0xff; 9]);
+    huge.push(0x01);
     assert!(decode_to_worker(&huge).is_err());
     assert!(decode_from_worker(&[99]).is_err());
     assert!(decode_from_worker(&[]).is_err());
+}
+
+#[test]
+fn values_nested_past_the_limit_are_an_error_not_a_stack_overflow() {
+    let literal = |value| encode_to_worker(&ToWorker::Literal { key: 7, value });
+    let null = literal(Value::Null);
+    let list = literal(Value::list(vec![Value::Null]));
+    // `list` is `null` with the list's tag and its length 1 before the null's tag.
+    let (prefix, one_level) = (
+        &null[..null.len() - 1],
+        &list[null.len() - 1..list.len() - 1],
+    );
+    let nested = |levels: usize| {
+        let mut bytes = prefix.to_vec();
+        for _ in 0..levels {
+            bytes.extend_from_slice(one_level);
+        }
+        bytes.push(*null.last().unwrap());
+        decode_to_worker(&bytes)
+    };
+    assert!(nested(cnets_engine::value::MAX_NESTING).is_ok());
+    // One level more is refused (postcard keeps no message), and far more does not overflow.
+    assert!(nested(cnets_engine::value::MAX_NESTING + 1).is_err());
+    assert!(nested(100_000).is_err());
+}
+
+#[test]
+fn a_scene_or_mesh_breaking_its_invariants_is_refused() {
     // A triangle index past the vertices.
-    let mut w = Writer::default();
-    w.u8(FROM_ANSWER);
-    w.u64(1);
-    w.strs(&[]);
-    w.len(0);
-    w.bool(true);
-    w.raw(&[0, 0, 0, 255]);
-    w.pods::<cnets_render::FaceVertex>(&[]);
-    w.pods(&[0u32, 1, 2]);
-    assert!(decode_from_worker(&w.0).is_err());
+    let parts = cnets_render::SceneParts {
+        face_indices: vec![0, 1, 2],
+        ..Default::default()
+    };
+    let bytes = postcard::to_allocvec(&parts).unwrap();
+    assert!(postcard::from_bytes::<Scene>(&bytes).is_err());
+    // A buffer that is not a whole number of items.
+    let parts = cnets_render::SceneParts {
+        face_indices: vec![7],
+        ..Default::default()
+    };
+    let mut bytes = postcard::to_allocvec(&parts).unwrap();
+    let at = bytes
+        .iter()
+        .position(|&b| b == 4)
+        .expect("the indices' byte count");
+    bytes[at] = 3;
+    bytes.remove(at + 1);
+    assert!(postcard::from_bytes::<Scene>(&bytes).is_err());
+    // A grid whose vertices are not rows × columns, as a literal value.
+    let grid = QuadGrid {
+        rows: 3,
+        cols: 2,
+        vertices: vec![DVec3::ZERO; 4],
+        ..QuadGrid::default()
+    };
+    let message = encode_to_worker(&ToWorker::Literal {
+        key: 1,
+        value: Value::QuadMesh(Arc::new(grid)),
+    });
+    let err = decode_to_worker(&message).unwrap_err().to_string();
+    assert!(err.contains("malformed"), "{err}");
 }
