@@ -29,7 +29,8 @@ def cases_path() -> Path:
     path = target / "tmp" / "three_doors_cases.json"
     if not path.exists():
         subprocess.run(
-            ["cargo", "test", "-p", "cnets", "--test", "three_doors"], cwd=ROOT, check=True
+            ["cargo", "test", "-p", "cnets", "--test", "it", "three_doors::"], cwd=ROOT,
+            check=True
         )
     return path
 
