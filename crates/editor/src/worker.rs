@@ -656,8 +656,8 @@ pub fn statuses(
                             .flatten(),
                     },
                     Some(NodeResult::Failed(e)) => NodeStatus::Error(failure_text(e)),
-                    Some(NodeResult::Invalid(m)) => NodeStatus::Error(m.clone()),
-                    Some(NodeResult::Blocked(m)) => NodeStatus::Blocked(m.clone()),
+                    Some(NodeResult::Invalid(m)) => NodeStatus::Error(m.to_string()),
+                    Some(NodeResult::Blocked(m)) => NodeStatus::Blocked(m.to_string()),
                     Some(NodeResult::Disabled) => NodeStatus::Disabled,
                     None => NodeStatus::Idle,
                 }

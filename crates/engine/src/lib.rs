@@ -26,7 +26,7 @@ pub mod value;
 
 pub use budget::MemoryBudget;
 pub use error::NodeError;
-pub use eval::{EvalSummary, Evaluator, NodeOutputs, NodeResult};
+pub use eval::{Blocked, EvalSummary, Evaluator, InvalidInput, NodeOutputs, NodeResult};
 pub use graph::{Continued, Graph, GraphError, NodeInstance, Revision, WireRef};
 pub use kinds::{ChoiceEnum, IntoPort, PortKind};
 pub use node::{

@@ -4,6 +4,7 @@
 
 use petgraph::stable_graph::NodeIndex;
 
+use super::not_run::{Blocked, InvalidInput};
 use super::{Evaluator, NodeResult};
 use crate::graph::{Graph, NodeInstance};
 use crate::node::NodeContext;
@@ -32,30 +33,35 @@ impl Evaluator {
                 Some(NodeResult::Ok(outputs)) => match outputs.computed(wire.from_output) {
                     Some(v) => wired[wire.to_input].push(v.clone()),
                     None if wire.from_output < outputs.values.len() => {
-                        return Err(NodeResult::Blocked(format!(
-                            "input '{port}': '{source_id}' did not compute this output"
-                        )));
+                        return Err(NodeResult::Blocked(Blocked::NotComputed {
+                            port: port.to_string(),
+                            upstream: source_id.to_string(),
+                        }));
                     }
                     None => {
-                        return Err(NodeResult::Blocked(format!(
-                            "input '{port}': '{source_id}' has no such output"
-                        )));
+                        return Err(NodeResult::Blocked(Blocked::NoSuchOutput {
+                            port: port.to_string(),
+                            upstream: source_id.to_string(),
+                        }));
                     }
                 },
                 Some(NodeResult::Disabled) => {
-                    return Err(NodeResult::Blocked(format!(
-                        "input '{port}' comes from '{source_id}', which is disabled"
-                    )));
+                    return Err(NodeResult::Blocked(Blocked::UpstreamDisabled {
+                        port: port.to_string(),
+                        upstream: source_id.to_string(),
+                    }));
                 }
                 Some(_) => {
-                    return Err(NodeResult::Blocked(format!(
-                        "input '{port}' comes from '{source_id}', which failed"
-                    )));
+                    return Err(NodeResult::Blocked(Blocked::UpstreamFailed {
+                        port: port.to_string(),
+                        upstream: source_id.to_string(),
+                    }));
                 }
                 None => {
-                    return Err(NodeResult::Blocked(format!(
-                        "input '{port}': '{source_id}' was not evaluated"
-                    )));
+                    return Err(NodeResult::Blocked(Blocked::NotEvaluated {
+                        port: port.to_string(),
+                        upstream: source_id.to_string(),
+                    }));
                 }
             }
         }
@@ -65,10 +71,9 @@ impl Evaluator {
                     Some(v) => v.clone(),
                     None if port.optional => Value::Null,
                     None => {
-                        return Err(NodeResult::Invalid(format!(
-                            "input '{}' is required: connect it or set a value",
-                            port.name
-                        )));
+                        return Err(NodeResult::Invalid(InvalidInput::Required {
+                            port: port.name.to_string(),
+                        }));
                     }
                 },
                 1 => values.pop().unwrap_or_default(),

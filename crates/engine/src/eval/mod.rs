@@ -28,6 +28,7 @@ mod execute;
 mod inputs;
 mod mapping;
 mod memo;
+mod not_run;
 mod panic_guard;
 mod plan;
 mod query;
@@ -41,6 +42,7 @@ pub use crate::node::FileStamp;
 pub use crate::node::OutputMask;
 pub use execute::{evaluate_node, evaluate_node_outputs};
 pub use mapping::run_mapped;
+pub use not_run::{Blocked, InvalidInput};
 pub use result::{NodeOutputs, NodeResult};
 
 use petgraph::stable_graph::NodeIndex;

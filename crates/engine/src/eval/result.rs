@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use super::OutputMask;
+use super::not_run::{Blocked, InvalidInput};
 use crate::error::NodeError;
 use crate::value::{Footprint, Value};
 
@@ -40,11 +41,11 @@ pub enum NodeResult {
     /// fields of [`NodeError::Located`]).
     Failed(NodeError),
     /// An upstream node failed or is disabled; the node did not run.
-    Blocked(String),
+    Blocked(Blocked),
     /// The node is disabled.
     Disabled,
-    /// A required input is missing or a value does not fit: the node could not start.
-    Invalid(String),
+    /// A required input is missing: the node could not start.
+    Invalid(InvalidInput),
 }
 
 impl NodeResult {
@@ -60,7 +61,8 @@ impl NodeResult {
     pub fn error(&self) -> Option<Cow<'_, str>> {
         match self {
             NodeResult::Failed(e) => Some(Cow::Owned(e.to_string())),
-            NodeResult::Blocked(m) | NodeResult::Invalid(m) => Some(Cow::Borrowed(m)),
+            NodeResult::Blocked(b) => Some(Cow::Owned(b.to_string())),
+            NodeResult::Invalid(i) => Some(Cow::Owned(i.to_string())),
             NodeResult::Disabled => Some(Cow::Borrowed("disabled")),
             NodeResult::Ok(_) => None,
         }
@@ -79,7 +81,7 @@ impl NodeResult {
         matches!(self, NodeResult::Failed(_) | NodeResult::Invalid(_))
     }
 
-    /// Equality used for early cutoff: outputs compared bitwise, messages as text.
+    /// Equality used for early cutoff: outputs compared bitwise, errors by value.
     pub(crate) fn same_as(&self, other: &NodeResult) -> bool {
         match (self, other) {
             (NodeResult::Ok(a), NodeResult::Ok(b)) => {
@@ -88,8 +90,8 @@ impl NodeResult {
                         && a.values.iter().zip(&b.values).all(|(x, y)| x.same_as(y)))
             }
             (NodeResult::Failed(a), NodeResult::Failed(b)) => a == b,
-            (NodeResult::Blocked(a), NodeResult::Blocked(b))
-            | (NodeResult::Invalid(a), NodeResult::Invalid(b)) => a == b,
+            (NodeResult::Blocked(a), NodeResult::Blocked(b)) => a == b,
+            (NodeResult::Invalid(a), NodeResult::Invalid(b)) => a == b,
             (NodeResult::Disabled, NodeResult::Disabled) => true,
             _ => false,
         }

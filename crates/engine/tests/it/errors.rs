@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use cnets_engine::{Evaluator, NodeContext, NodeResult, Value};
+use cnets_engine::{Blocked, Evaluator, NodeContext, NodeResult, Value};
 
 fn setup(kind: &str) -> cnets_engine::Graph {
     let mut g = common::graph();
@@ -29,7 +29,11 @@ fn errors_are_isolated_and_dependents_blocked() {
         other => panic!("expected failure, got {other:?}"),
     }
     match ev.result(&g, "after").unwrap() {
-        NodeResult::Blocked(m) => assert!(m.contains("'bad'") && m.contains("failed"), "{m}"),
+        NodeResult::Blocked(b) => {
+            assert_eq!(b.upstream(), "bad");
+            assert!(matches!(b, Blocked::UpstreamFailed { .. }), "{b:?}");
+            assert_eq!(b.to_string(), "input 'a' comes from 'bad', which failed");
+        }
         other => panic!("expected blocked, got {other:?}"),
     }
     assert_eq!(ev.runs(&g, "after"), 0, "a blocked node does not run");
