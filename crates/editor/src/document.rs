@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use cnets_engine::cluster::{Cluster, ClusterSource};
-use cnets_engine::file::{self, GraphMeta, LoadOptions};
+use cnets_engine::file::{self, GraphMeta, LoadError, LoadOptions};
 use cnets_engine::{Graph, Registry, WireRef};
 
 use crate::cluster_ports::Renames;
@@ -211,8 +211,8 @@ impl GraphDocument {
         }
     }
 
-    /// Loads a graph file. The error text lists every diagnostic (`file:line:col: message`).
-    pub fn open(path: &Path, registry: &Arc<Registry>) -> Result<Self, String> {
+    /// Loads a graph file. The error has every problem, each with its place in the file.
+    pub fn open(path: &Path, registry: &Arc<Registry>) -> Result<Self, LoadError> {
         Self::open_with(path, registry, &LoadOptions::for_file(path))
     }
 
@@ -221,8 +221,8 @@ impl GraphDocument {
         path: &Path,
         registry: &Arc<Registry>,
         options: &LoadOptions,
-    ) -> Result<Self, String> {
-        let doc = file::load_file_with(path, registry, options).map_err(|e| e.to_string())?;
+    ) -> Result<Self, LoadError> {
+        let doc = file::load_file_with(path, registry, options)?;
         Ok(Self::from_parts(
             doc.graph,
             doc.meta,
@@ -236,7 +236,7 @@ impl GraphDocument {
         name: &str,
         path: Option<PathBuf>,
         registry: &Arc<Registry>,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, LoadError> {
         Self::from_text_with(text, name, path, registry, &LoadOptions::default())
     }
 
@@ -247,8 +247,8 @@ impl GraphDocument {
         path: Option<PathBuf>,
         registry: &Arc<Registry>,
         options: &LoadOptions,
-    ) -> Result<Self, String> {
-        let doc = file::load_str_with(text, name, registry, options).map_err(|e| e.to_string())?;
+    ) -> Result<Self, LoadError> {
+        let doc = file::load_str_with(text, name, registry, options)?;
         Ok(Self::from_parts(doc.graph, doc.meta, path))
     }
 

@@ -4,13 +4,15 @@
 
 use std::path::{Path, PathBuf};
 
+use cnets_engine::file::LoadError;
+
 /// A failed load being shown.
 #[derive(Clone, Debug)]
 pub struct LoadFailure {
     /// The file that was being opened.
     pub path: PathBuf,
-    /// One line per problem, as the loader reported them.
-    pub diagnostics: Vec<String>,
+    /// The problems, as the loader reported them (each with its place in the file, if any).
+    pub error: LoadError,
     /// The file's text, once the designer asked to see it (`None`: not asked, or unreadable).
     pub text: Option<String>,
     /// Scroll the text to the first problem in the next frame.
@@ -23,11 +25,11 @@ pub struct LoadFailure {
 }
 
 impl LoadFailure {
-    /// The failure of loading `path` with the loader's error text (one diagnostic a line).
-    pub fn new(path: &Path, error: &str) -> Self {
+    /// The failure of loading `path` with the loader's error.
+    pub fn new(path: &Path, error: &LoadError) -> Self {
         Self {
             path: path.to_path_buf(),
-            diagnostics: error.lines().map(str::to_string).collect(),
+            error: error.clone(),
             text: None,
             scroll_pending: false,
             kept_document: true,
@@ -35,17 +37,9 @@ impl LoadFailure {
         }
     }
 
-    /// The 1-based line of the first diagnostic that names one (`file:line:col: …`).
+    /// The 1-based line of the first problem that has a place in the file.
     pub fn first_line(&self) -> Option<usize> {
-        self.diagnostics.iter().find_map(|d| {
-            // The file name may itself contain ':'; the position is the first `:N:N:` run.
-            let parts: Vec<&str> = d.split(':').collect();
-            parts.windows(2).find_map(|w| {
-                let line = w[0].trim().parse::<usize>().ok()?;
-                w[1].trim().parse::<usize>().ok()?;
-                Some(line)
-            })
-        })
+        self.error.first_line()
     }
 
     /// Shows the dialog; returns false once it is closed.
@@ -65,10 +59,10 @@ impl LoadFailure {
                 .id_salt("diagnostics")
                 .max_height(180.0)
                 .show(ui, |ui| {
-                    for d in &self.diagnostics {
+                    for d in &self.error.diagnostics {
                         ui.add(
                             egui::Label::new(
-                                egui::RichText::new(d)
+                                egui::RichText::new(d.to_string())
                                     .monospace()
                                     .color(ui.visuals().error_fg_color),
                             )
@@ -124,15 +118,22 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_first_diagnostic_with_a_position_gives_the_line() {
-        let f = LoadFailure::new(
-            Path::new("/a/b.ron"),
-            "/a/b.ron: 2 problems\n/a/b.ron:7:18: unknown node type 'curve.arcc' (did you mean curve.arc?)",
-        );
-        assert_eq!(f.diagnostics.len(), 2);
-        assert_eq!(f.first_line(), Some(7));
+    fn the_first_problem_with_a_place_gives_the_line() {
+        let registry = std::sync::Arc::new(cnets_engine::Registry::new());
+        let text =
+            "(\n    version: 1,\n    nodes: {\n        \"a\": (type: \"curve.arcc\"),\n    },\n)\n";
+        let error = cnets_engine::file::load_str_with(
+            text,
+            "/a/b.ron",
+            &registry,
+            &cnets_engine::file::LoadOptions::default(),
+        )
+        .expect_err("an unknown node type");
+        let f = LoadFailure::new(Path::new("/a/b.ron"), &error);
+        assert_eq!(f.first_line(), Some(4), "{}", f.error);
+        let unplaced = LoadError::message("the link does not decode");
         assert_eq!(
-            LoadFailure::new(Path::new("x"), "x: unreadable").first_line(),
+            LoadFailure::new(Path::new("x"), &unplaced).first_line(),
             None
         );
     }

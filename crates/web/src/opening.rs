@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use cnets_editor::document::GraphDocument;
 use cnets_engine::Registry;
+use cnets_engine::file::LoadError;
 
 use crate::wire::Parsed;
 
@@ -166,15 +167,14 @@ pub fn document_of(
     origin: &Path,
     registry: &Arc<Registry>,
     library: &[PathBuf],
-) -> Result<GraphDocument, String> {
+) -> Result<GraphDocument, LoadError> {
     let options = cnets_host::document_options(Some(origin), library);
     let name = origin.display().to_string();
-    let mut doc = cnets_engine::file::load_str_with(&parsed.skeleton, &name, registry, &options)
-        .map_err(|e| e.to_string())?;
+    let mut doc = cnets_engine::file::load_str_with(&parsed.skeleton, &name, registry, &options)?;
     for (at, value) in parsed.literals {
         doc.graph
             .set_value(&at.node, &at.input, value)
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| LoadError::message(format!("{name}: {e}")))?;
     }
     Ok(GraphDocument::from_parts(doc.graph, doc.meta, None))
 }

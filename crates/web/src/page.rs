@@ -211,8 +211,10 @@ impl WebApp {
                 }
                 Err(e) => {
                     self.app.open_empty(&format!("{SHARED} (not opened)"));
-                    let mut failure =
-                        LoadFailure::new(Path::new("the shared link"), &format!("{e}."));
+                    let mut failure = LoadFailure::new(
+                        Path::new("the shared link"),
+                        &cnets_engine::file::LoadError::message(format!("{e}.")),
+                    );
                     failure.kept_document = false;
                     self.app.show_load_failure(failure);
                     self.app.message = format!("cannot open the link: {e}");

@@ -15,7 +15,7 @@ use std::sync::Arc;
 use cnets_editor::preview::{Picks, PreviewStats};
 use cnets_editor::remote::Remote;
 use cnets_editor::worker::{EvalRequest, EvalResponse, NodeStatus};
-use cnets_engine::file::{GraphMeta, to_ron};
+use cnets_engine::file::{GraphMeta, LoadError, to_ron};
 use cnets_render::Scene;
 use wasm_bindgen::JsCast as _;
 use wasm_bindgen::prelude::*;
@@ -56,7 +56,7 @@ struct Shared {
     queued: Vec<Vec<u8>>,
     /// Files the worker reads for the page, not yet answered (their tokens), and the answers.
     reading: Vec<u64>,
-    read: Vec<(u64, Result<Parsed, String>)>,
+    read: Vec<(u64, Result<Parsed, LoadError>)>,
     next_token: u64,
     /// The large literal values the worker holds.
     literals: LiteralCache,
@@ -149,7 +149,7 @@ impl WebWorker {
     }
 
     /// The files the worker has read since the last call, by token.
-    pub fn take_read(&self) -> Vec<(u64, Result<Parsed, String>)> {
+    pub fn take_read(&self) -> Vec<(u64, Result<Parsed, LoadError>)> {
         std::mem::take(&mut self.0.borrow_mut().read)
     }
 
@@ -301,7 +301,7 @@ impl WebWorker {
             ));
             for token in std::mem::take(&mut s.reading) {
                 let why = format!("the worker reading it stopped ({message})");
-                s.read.push((token, Err(why)));
+                s.read.push((token, Err(LoadError::message(why))));
             }
             let seq = s.last_seq;
             let done = s.answer_unchanged(seq);

@@ -77,9 +77,8 @@ impl Service {
         let options = cnets_host::document_options(Some(&origin), &library);
         let text = String::from_utf8_lossy(&job.text);
         let name = origin.display().to_string();
-        let result = cnets_engine::file::load_str_with(&text, &name, &self.registry, &options)
-            .map_err(|e| e.to_string())
-            .map(|doc| {
+        let result =
+            cnets_engine::file::load_str_with(&text, &name, &self.registry, &options).map(|doc| {
                 let mut graph = doc.graph;
                 let literals = self.literals.take_out(&mut graph);
                 Parsed {
@@ -397,7 +396,10 @@ mod tests {
         }
         // A file that does not load says why, as the page's own reading would.
         match decode_from_worker(&s.parse(read("(nodes: {\"a\": (type: \"no.such\")})"))).unwrap() {
-            FromWorker::Parsed { result: Err(e), .. } => assert!(e.contains("no.such"), "{e}"),
+            FromWorker::Parsed { result: Err(e), .. } => {
+                assert!(e.to_string().contains("no.such"), "{e}");
+                assert!(e.first_line().is_some(), "the place crosses typed: {e:?}");
+            }
             _ => panic!("expected the load error"),
         }
     }

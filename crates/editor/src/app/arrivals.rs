@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use super::EditorApp;
 use crate::document::GraphDocument;
 use crate::unsaved::Replace;
+use cnets_engine::file::LoadError;
 
 /// A document read elsewhere, to replace the one being edited.
 pub struct Arrived {
@@ -61,7 +62,7 @@ impl EditorApp {
     /// Like [`EditorApp::receive_text`] for a document read elsewhere (the page's worker).
     pub fn receive_document(
         &mut self,
-        loaded: Result<GraphDocument, String>,
+        loaded: Result<GraphDocument, LoadError>,
         origin: &Path,
     ) -> bool {
         match loaded {

@@ -6,6 +6,7 @@ use crate::file_dialog::FileDialog;
 use crate::load_failure::LoadFailure;
 use crate::recovery::{Recovered, Recovery};
 use crate::unsaved::Replace;
+use cnets_engine::file::LoadError;
 use std::path::Path;
 use std::path::PathBuf;
 
@@ -242,7 +243,7 @@ impl EditorApp {
         }
     }
 
-    pub(super) fn fail_load(&mut self, path: &Path, error: &str) {
+    pub(super) fn fail_load(&mut self, path: &Path, error: &LoadError) {
         self.message = format!("cannot open {}: the document is unchanged", path.display());
         self.modals
             .open(Modal::LoadFailure(LoadFailure::new(path, error)));
@@ -286,7 +287,7 @@ impl EditorApp {
 
     /// Reads graph text that came from `origin` (its relative imports resolve against its
     /// folder) with the library's clusters.
-    pub(super) fn read_text(&self, text: &str, origin: &Path) -> Result<GraphDocument, String> {
+    pub(super) fn read_text(&self, text: &str, origin: &Path) -> Result<GraphDocument, LoadError> {
         let options = cnets_host::document_options(Some(origin), &self.library.dirs);
         let name = origin.display().to_string();
         GraphDocument::from_text_with(text, &name, None, &self.registry, &options)
@@ -294,7 +295,7 @@ impl EditorApp {
 
     /// Opens a loaded document as [`EditorApp::open_text`] opens text: untitled, or the
     /// diagnostics shown when it did not load. Returns whether it opened.
-    fn open_loaded(&mut self, loaded: Result<GraphDocument, String>, origin: &Path) -> bool {
+    fn open_loaded(&mut self, loaded: Result<GraphDocument, LoadError>, origin: &Path) -> bool {
         let name = origin.display().to_string();
         match loaded {
             Ok(mut d) => {

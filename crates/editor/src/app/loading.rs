@@ -12,7 +12,7 @@ use std::sync::Arc;
 use std::sync::mpsc::{Receiver, RecvTimeoutError, TryRecvError, channel};
 
 use cnets_engine::Registry;
-use cnets_engine::file::LoadOptions;
+use cnets_engine::file::{LoadError, LoadOptions};
 use web_time::{Duration, Instant};
 
 use super::EditorApp;
@@ -29,7 +29,7 @@ pub(crate) struct Loading {
     path: PathBuf,
     bytes: u64,
     since: Instant,
-    result: Receiver<Result<GraphDocument, String>>,
+    result: Receiver<Result<GraphDocument, LoadError>>,
     /// The document's [`GraphDocument::version`] when the read began: an edit made while the
     /// file was read is not dropped without asking.
     version_at_start: u64,
@@ -170,7 +170,7 @@ impl EditorApp {
 
     /// The reader's answer: the document opens (through [`EditorApp::open_arrived`]: asked about
     /// first when the document was edited while the file was read), or its diagnostics show.
-    fn file_read(&mut self, result: Result<GraphDocument, String>) {
+    fn file_read(&mut self, result: Result<GraphDocument, LoadError>) {
         let Some(loading) = self.loading.take() else {
             return;
         };
@@ -209,6 +209,9 @@ impl EditorApp {
 
     fn reader_stopped(&mut self) {
         let path = self.loading.take().map(|l| l.path).unwrap_or_default();
-        self.fail_load(&path, "the file could not be read (its reader stopped)");
+        self.fail_load(
+            &path,
+            &LoadError::message("the file could not be read (its reader stopped)"),
+        );
     }
 }

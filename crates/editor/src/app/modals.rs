@@ -140,7 +140,10 @@ mod tests {
     use std::path::PathBuf;
 
     fn failure(name: &str) -> Modal {
-        Modal::LoadFailure(LoadFailure::new(&PathBuf::from(name), "bad"))
+        Modal::LoadFailure(LoadFailure::new(
+            &PathBuf::from(name),
+            &cnets_engine::file::LoadError::message("bad"),
+        ))
     }
 
     #[test]

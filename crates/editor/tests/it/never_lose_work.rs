@@ -325,7 +325,7 @@ fn a_file_that_fails_to_load_shows_its_diagnostics_and_keeps_the_document() {
         .load_failure()
         .cloned()
         .expect("the failure is shown");
-    let all = failure.diagnostics.join("\n");
+    let all = failure.error.to_string();
     assert!(
         all.contains("bad.ron:") && all.contains("did you mean"),
         "{all}"

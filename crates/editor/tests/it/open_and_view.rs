@@ -29,7 +29,7 @@ fn open(h: &mut Harness<'static, EditorApp>, path: &Path) {
         Some(path),
         "{}: {:?}",
         h.state().message,
-        h.state().load_failure().as_ref().map(|f| &f.diagnostics)
+        h.state().load_failure().as_ref().map(|f| &f.error)
     );
 }
 

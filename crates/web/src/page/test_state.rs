@@ -124,7 +124,7 @@ impl WebApp {
             "load_failure",
             self.app
                 .load_failure()
-                .map_or(JsValue::NULL, |f| f.diagnostics.join("\n").into()),
+                .map_or(JsValue::NULL, |f| f.error.to_string().into()),
         );
         let worker = self.remote.figures();
         set("worker_sent", JsValue::from_f64(worker.sent as f64));

@@ -22,6 +22,7 @@ use cnets_editor::net_drag::Solved;
 use cnets_editor::preview::{Picks, PreviewOptions, PreviewStats};
 use cnets_editor::worker::{EvalResponse, NodeStatus};
 use cnets_engine::Value;
+use cnets_engine::file::LoadError;
 use cnets_render::Scene;
 use serde::{Deserialize, Serialize};
 
@@ -146,7 +147,7 @@ pub enum FromWorker {
         /// The request's token.
         token: u64,
         /// The graph, or the load error (as the page's own reading would have said it).
-        result: Result<Parsed, String>,
+        result: Result<Parsed, LoadError>,
     },
     /// What a drag's solve reached, or why it failed.
     Dragged(Result<Solved, String>),
@@ -202,7 +203,7 @@ pub fn encode_failed(seq: u64, message: &str) -> Vec<u8> {
 }
 
 /// The message answering the file read for `token`.
-pub fn encode_parsed(token: u64, result: &Result<Parsed, String>) -> Vec<u8> {
+pub fn encode_parsed(token: u64, result: &Result<Parsed, LoadError>) -> Vec<u8> {
     encode(&FromWorker::Parsed {
         token,
         result: result.clone(),

@@ -207,7 +207,15 @@ fn read_files_round_trip_with_their_literals_or_their_error() {
             Value::list(vec![Value::Number(0.5), Value::Number(-2.0)]),
         )],
     };
-    for result in [Ok(parsed), Err("big.ron:3:7: expected ')'".to_string())] {
+    let registry = std::sync::Arc::new(cnets_engine::Registry::new());
+    let error = cnets_engine::file::load_str_with(
+        "(nodes: {\"a\": (type: \"no.such\")})",
+        "big.ron",
+        &registry,
+        &Default::default(),
+    )
+    .expect_err("an unknown node type");
+    for result in [Ok(parsed), Err(error)] {
         match decode_from_worker(&encode_parsed(9, &result)).expect("decodes") {
             FromWorker::Parsed {
                 token,
