@@ -187,6 +187,12 @@ def _gets_while(url, future, pause=0.3):
     return answers
 
 
+def _none_waited(gets, slow_ended):
+    """No GET waited for the slow request: each arrived before it ended, or — one sent just as it
+    ended, which may arrive after it — quickly."""
+    return all(arrived < slow_ended or latency < 1.0 for latency, arrived in gets)
+
+
 def test_a_slow_decode_is_stopped_at_the_time_limit_while_gets_are_answered(start):
     server = start("--workers", "1", "--timeout", "4")
     slow = _in_background(_request, server.url + "/cnets_construct", SPIN)
@@ -198,7 +204,7 @@ def test_a_slow_decode_is_stopped_at_the_time_limit_while_gets_are_answered(star
     # GETs went on while the worker spun holding its interpreter lock: several answered, every
     # one of them before the slow solve ended, each in well under a second.
     assert len(gets) >= 3, gets
-    assert all(arrived < slow_ended for _, arrived in gets)
+    assert _none_waited(gets, slow_ended), gets
     latencies = sorted(latency for latency, _ in gets)
     assert latencies[len(latencies) // 2] < 1.0, latencies
     print(f"GET latency while a solve spins: median {latencies[len(latencies) // 2] * 1000:.1f} "
@@ -235,7 +241,7 @@ def test_the_hostile_rhino_archive_does_not_stall_the_server(start):
         _one_error(status, response, 503, "time limit of 3 s")
     else:  # a rhino3dm that decodes it quickly says it is no curve
         _one_error(status, response, 400, "Directrix", "could not be decoded")
-    assert all(arrived < slow_ended for _, arrived in gets)
+    assert _none_waited(gets, slow_ended), gets
     assert all(latency < 5 for latency, _ in gets), gets
 
 

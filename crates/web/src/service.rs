@@ -86,7 +86,7 @@ impl Service {
                     literals,
                 }
             });
-        wire::encode_parsed(job.token, &result)
+        wire::encode_parsed(job.token, result)
     }
 
     /// Drops large literal values no request names any more.

@@ -202,12 +202,9 @@ pub fn encode_failed(seq: u64, message: &str) -> Vec<u8> {
     })
 }
 
-/// The message answering the file read for `token`.
-pub fn encode_parsed(token: u64, result: &Result<Parsed, LoadError>) -> Vec<u8> {
-    encode(&FromWorker::Parsed {
-        token,
-        result: result.clone(),
-    })
+/// The message answering the file read for `token` (taken, not copied: a large file's text).
+pub fn encode_parsed(token: u64, result: Result<Parsed, LoadError>) -> Vec<u8> {
+    encode(&FromWorker::Parsed { token, result })
 }
 
 /// The message carrying a drag's answer.

@@ -216,7 +216,7 @@ fn read_files_round_trip_with_their_literals_or_their_error() {
     )
     .expect_err("an unknown node type");
     for result in [Ok(parsed), Err(error)] {
-        match decode_from_worker(&encode_parsed(9, &result)).expect("decodes") {
+        match decode_from_worker(&encode_parsed(9, result.clone())).expect("decodes") {
             FromWorker::Parsed {
                 token,
                 result: back,
