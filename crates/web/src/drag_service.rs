@@ -66,7 +66,7 @@ impl DragService {
             Ok(solver) => solver.solve(DVec3::from_array(target), steps),
             Err(e) => Err(e.clone()),
         };
-        wire::encode_dragged(&answer)
+        wire::encode_dragged(answer)
     }
 }
 

@@ -207,9 +207,9 @@ pub fn encode_parsed(token: u64, result: Result<Parsed, LoadError>) -> Vec<u8> {
     encode(&FromWorker::Parsed { token, result })
 }
 
-/// The message carrying a drag's answer.
-pub fn encode_dragged(answer: &Result<Solved, String>) -> Vec<u8> {
-    encode(&FromWorker::Dragged(answer.clone()))
+/// The message carrying a drag's answer (taken, not copied: it is sent once per solve).
+pub fn encode_dragged(answer: Result<Solved, String>) -> Vec<u8> {
+    encode(&FromWorker::Dragged(answer))
 }
 
 /// The message saying that the worker stopped (its last words).
