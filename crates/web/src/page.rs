@@ -385,7 +385,7 @@ impl eframe::App for WebApp {
                 self.app.canvas.fit_later();
                 self.app.viewport.fit();
             }
-            let view = self.app.viewport.rect;
+            let view = self.app.viewport.rect();
             let scene = self.app.viewport.scene_version();
             if view != self.last_view || (scene != self.framed_scene && self.frames < 60) {
                 self.last_view = view;
@@ -414,8 +414,8 @@ impl eframe::App for WebApp {
         if self.welcome && !dialog {
             let shown = cnets_editor::welcome::show(
                 ui.ctx(),
-                self.app.viewport.rect,
-                self.app.viewport.labels_bottom,
+                self.app.viewport.rect(),
+                self.app.viewport.last_frame().labels_bottom,
             );
             self.welcome_rect = Some(shown.rect);
             if shown.dismissed {

@@ -515,7 +515,7 @@ impl EditorApp {
                     self.canvas.fit();
                 }
             }
-            MenuAction::SetPreview(o) => self.viewport.options = o,
+            MenuAction::SetPreview(o) => self.viewport.display_mut().options = o,
             MenuAction::MakeCluster => {
                 let targets = self.canvas.targets();
                 if targets.is_empty() {
@@ -556,13 +556,13 @@ impl EditorApp {
                 self.viewport.frame_selection(&targets);
             }
             MenuAction::Tool(t) => self.viewport.toggle_tool(t),
-            MenuAction::ToggleSnap => self.viewport.snap = !self.viewport.snap,
-            MenuAction::ToggleGrid => self.viewport.show_grid = !self.viewport.show_grid,
+            MenuAction::ToggleSnap => toggle(&mut self.viewport.display_mut().snap),
+            MenuAction::ToggleGrid => toggle(&mut self.viewport.display_mut().show_grid),
             MenuAction::ToggleDimensions => {
-                self.viewport.show_dimensions = !self.viewport.show_dimensions
+                toggle(&mut self.viewport.display_mut().show_dimensions)
             }
             MenuAction::ToggleOnlySelected => {
-                self.viewport.only_selected = !self.viewport.only_selected
+                toggle(&mut self.viewport.display_mut().only_selected)
             }
             MenuAction::PerspectivePlane(p) => {
                 self.viewport.set_perspective_plane(p, p.label());
@@ -631,4 +631,9 @@ impl EditorApp {
             self.run(a);
         }
     }
+}
+
+/// Flips a display toggle.
+fn toggle(flag: &mut bool) {
+    *flag = !*flag;
 }

@@ -22,7 +22,7 @@ impl EditorApp {
         let name = self.next_cplane_name();
         if self.edit(Edit::AddCPlane(plane.named(&name))) {
             self.viewport.set_perspective_plane(plane, &name);
-            if self.viewport.view != NamedView::Perspective {
+            if self.viewport.framing().view != NamedView::Perspective {
                 self.viewport.set_view(NamedView::Perspective);
             }
             self.message = format!(
@@ -48,7 +48,7 @@ impl EditorApp {
     pub fn start_three_point_cplane(&mut self) {
         let tool = crate::viewport::ThreePointTool::default();
         self.message = tool.prompt().to_string();
-        self.viewport.tool = Tool::ThreePoint(tool);
+        self.viewport.set_tool(Tool::ThreePoint(tool));
     }
 
     /// Fits a construction plane through the selected node's previewed curve or the clicked row

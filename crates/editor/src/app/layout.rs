@@ -43,19 +43,19 @@ impl EditorApp {
                 can_undo: self.doc.history.can_undo(),
                 can_redo: self.doc.history.can_redo(),
                 can_paste: !self.clipboard.is_empty(),
-                preview: self.viewport.options,
+                preview: self.viewport.display().options,
                 depth: self.doc.depth(),
                 optimization: self.optimization.open,
                 parameters: self.parameters_open,
                 library: &self.library.dirs[0],
                 web: self.page.is_some(),
                 view: menus::ViewMenuState {
-                    view: self.viewport.view,
-                    snap: self.viewport.snap,
-                    grid: self.viewport.show_grid,
-                    dimensions: self.viewport.show_dimensions,
-                    only_selected: self.viewport.only_selected,
-                    perspective_plane: self.viewport.perspective_plane,
+                    view: self.viewport.framing().view,
+                    snap: self.viewport.display().snap,
+                    grid: self.viewport.display().show_grid,
+                    dimensions: self.viewport.display().show_dimensions,
+                    only_selected: self.viewport.display().only_selected,
+                    perspective_plane: self.viewport.framing().perspective_plane,
                 },
                 cplanes: &self.doc.meta.cplanes,
                 kept_recovery: self.kept_recovery.as_deref(),
@@ -220,7 +220,7 @@ impl EditorApp {
         self.submit_if_changed();
         // The frame that hands a new scene to the GPU closes a change-to-picture measurement.
         if let Some((version, changed_at)) = self.evaluation.awaiting_picture
-            && self.viewport.drawn_version >= version
+            && self.viewport.handed_version() >= version
         {
             self.evaluation.latency.last_ms = changed_at.elapsed().as_secs_f64() * 1e3;
             if self.evaluation.latency.samples.len() < 10_000 {
@@ -285,7 +285,7 @@ impl EditorApp {
     /// The colour mode, the planarity scale's top (in that mode) and Fit: the 3D view's first
     /// controls.
     fn view_mode_controls(&mut self, ui: &mut Ui) {
-        let mut o = self.viewport.options;
+        let mut o = self.viewport.display().options;
         egui::ComboBox::from_id_salt("color-mode")
             .selected_text(o.color_mode.label())
             .show_ui(ui, |ui| {
@@ -318,7 +318,7 @@ impl EditorApp {
         if ui.button("Fit (F)").clicked() {
             self.viewport.fit();
         }
-        self.viewport.options = o;
+        self.viewport.display_mut().options = o;
     }
 
     /// The 3D view with its toolbar, and what it asked for carried out. `canvas_shown`: the
@@ -360,7 +360,7 @@ impl EditorApp {
         .collect();
         if let Some(id) = crate::view_errors::show(
             ui,
-            self.viewport.rect,
+            self.viewport.rect(),
             &self.doc.graph,
             &self.evaluation.statuses,
             &on_canvas,

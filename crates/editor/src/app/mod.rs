@@ -264,7 +264,10 @@ impl EditorApp {
             app.doc.allowed_reads = app.settings.allowed_reads(&p);
         }
         if let Some(limit) = app.settings.planarity_limit() {
-            app.viewport.options.set_planarity_limit(limit);
+            app.viewport
+                .display_mut()
+                .options
+                .set_planarity_limit(limit);
         }
         if let Some((path, bytes, options)) = read_later
             && !app.open_at_start_in_background(path, bytes, options.clone(), copy)

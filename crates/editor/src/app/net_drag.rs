@@ -201,7 +201,7 @@ impl EditorApp {
                     self.edit(Edit::SetDragged(s.values.clone()));
                 }
                 self.viewport.set_net_reached(s.reached, s.distance_left);
-                let mut text = match &self.viewport.tool {
+                let mut text = match self.viewport.tool() {
                     crate::viewport::Tool::DragNet(d) => d.status().unwrap_or_default(),
                     _ => String::new(),
                 };

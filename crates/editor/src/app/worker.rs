@@ -60,7 +60,7 @@ impl EditorApp {
     /// focused node) when the toggle is on at the graph's top level; `None` draws every
     /// previewed node (the toggle off, nothing selected, or inside an opened cluster).
     fn previewed_only(&self) -> Option<Vec<String>> {
-        if !self.viewport.only_selected || self.doc.depth() > 0 {
+        if !self.viewport.display().only_selected || self.doc.depth() > 0 {
             return None;
         }
         let mut ids = self.canvas.targets();
@@ -74,11 +74,14 @@ impl EditorApp {
         // An optimization shows its best point live (≤ 10 pictures a second), then its result
         // until Accept or Revert; the document is submitted again afterwards.
         if self.optimization.shows_live_view() {
-            if let Some(graph) = self.optimization.live_graph(self.viewport.options) {
+            if let Some(graph) = self
+                .optimization
+                .live_graph(self.viewport.display().options)
+            {
                 // Its own generation: the worker starts a fresh evaluator for the run's graphs
                 // and again for the document's afterwards (whose stamps are older than the run's).
                 let (view, generation) = (self.doc.view_path(), self.doc.generation() ^ (1 << 63));
-                let (options, base) = (self.viewport.options, self.doc.base_dir());
+                let (options, base) = (self.viewport.display().options, self.doc.base_dir());
                 self.evaluation.worker.submit_view(
                     graph,
                     view,
@@ -95,7 +98,7 @@ impl EditorApp {
         let key = (
             self.doc.generation(),
             self.doc.version(),
-            self.viewport.options,
+            self.viewport.display().options,
             only.as_ref().map_or(0, |ids| {
                 use std::hash::{Hash, Hasher};
                 let mut h = std::collections::hash_map::DefaultHasher::new();
@@ -148,7 +151,7 @@ impl EditorApp {
             graph,
             self.doc.view_path(),
             generation,
-            self.viewport.options,
+            self.viewport.display().options,
             base,
             changed_at,
         );

@@ -15,6 +15,11 @@
 //! - Drag net ([`net_drag`]): grab a vertex of a cone-net and drag it, the design's inputs solved
 //!   to follow (Shift+click pins).
 //!
+//! The view's state is five owned parts: [`framing`] (where it looks from), [`drawn`] (the scene
+//! and what was handed to the GPU), [`display`] (the designer's toggles), [`tools`] (the active
+//! tool and what the pointer is over) and [`last_frame`] (where the overlays went). Others read
+//! them through [`Viewport::framing`] and its siblings and change them through the view's methods.
+//!
 //! The overlay ([`overlay`]) shows counts, the legend with its fold entry, and the size of the
 //! previewed geometry. The same code runs in the web build. Keys and mouse: docs/editor/3d-view.md,
 //! "Drawing and editing in the 3D view".
@@ -23,42 +28,50 @@ pub mod colors;
 pub mod cplane;
 pub mod cplane_make;
 pub mod cut_plane;
+pub mod display;
 pub mod distance;
 pub mod draw;
+pub mod drawn;
+pub mod framing;
 pub mod gpu;
 pub mod grid;
 pub mod handles;
+pub mod last_frame;
 pub mod measure;
 pub mod navigation;
 pub mod net_drag;
 pub mod overlay;
 pub mod pick;
 pub mod screen;
+pub mod tools;
 
 use std::sync::Arc;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use cnets_engine::{Graph, NodeInstance};
 use cnets_geometry::DVec3;
-use cnets_render::{Bounds, Camera, Color, Scene, Segment, View};
+use cnets_render::{Bounds, Scene, Segment};
 use eframe::egui_wgpu;
 use egui::{Color32, Key, Modifiers, PointerButton, Pos2, Rect, Sense, Ui};
 
 use crate::edit::Edit;
-use crate::preview::{Picks, PreviewOptions, PreviewStats};
+use crate::preview::{Picks, PreviewStats};
 
 pub use cplane::CPlane;
 pub use cplane_make::ThreePointTool;
+pub use display::Display;
 pub use draw::{DrawTool, DrawnCurve};
+pub use drawn::Drawn;
+pub use framing::Framing;
 pub use gpu::GpuTarget;
 use gpu::{Guides, ViewportCallback};
 use grid::{Grid, Spacing};
-use handles::{DragPlane, Handle, HandleTool};
+use handles::{DragPlane, Handle};
+pub use last_frame::LastFrame;
 pub use measure::MeasureTool;
 pub use navigation::NamedView;
 pub use net_drag::{NetDragTarget, NetDragTool, NetVertex};
-use pick::Hit;
 use screen::ScreenMap;
+pub use tools::ViewTools;
 
 /// The active tool of the view.
 #[derive(Clone, Debug, PartialEq, Default)]
@@ -129,165 +142,59 @@ pub const LABEL_BAND: f32 = 40.0;
 /// Screen distance (points) within which a measured point snaps to a drawn vertex.
 pub const SNAP_RADIUS: f32 = 10.0;
 
-/// The viewport's state.
+/// The viewport's state, in parts that own their fields.
+#[derive(Default)]
 pub struct Viewport {
-    /// The camera.
-    pub camera: Camera,
-    /// Display options (colour mode, layers).
-    pub options: PreviewOptions,
-    scene: Arc<Scene>,
-    scene_version: u64,
-    /// Figures of the current scene.
-    pub stats: PreviewStats,
-    picks: Arc<Picks>,
-    /// The box of the drawn surfaces and curves (markers such as apices left out).
-    bounds: Option<Bounds>,
-    fit_pending: bool,
-    /// The lower edge of the labels in the view's top corners (statistics, legend) in the last
-    /// frame: what sits below is free (the web page's first-visit hint goes there).
-    pub labels_bottom: f32,
-    /// The distance mode found no reference and the status bar said so (said once).
-    no_reference_said: bool,
-    fitted_once: bool,
-    aspect: f32,
-    /// Scene versions handed to the GPU (one per frame at most): the app reads it to know when a
-    /// change reached the picture.
-    pub drawn_version: u64,
-    /// Pictures rendered by the GPU (see [`Viewport::pictures_rendered`]).
-    pictures: Arc<AtomicU64>,
-    /// egui time of the last change of scene or camera.
-    last_change: f64,
-    /// Resolution factor of the last frame (1 or [`INTERACTIVE_SCALE`]).
-    pub render_scale: f32,
-    /// Where the view was drawn in the last frame (screen points).
-    pub rect: egui::Rect,
-    /// The figures drawn over the view in the last frame, by name (statistics, legend, distance
-    /// picker, axes, size, grid): they never overlap (tests read them).
-    pub overlays: Vec<(&'static str, Rect)>,
-    /// The named view shown.
-    pub view: NamedView,
-    /// The Perspective view's construction plane.
-    pub perspective_plane: CPlane,
-    /// Its name (`World XY`, `CPlane 1`: the grid's corner says it).
-    pub perspective_name: String,
-    /// The mesh hit of the last click with the Select tool (a net's row to fit a plane through).
-    pub picked: Option<Hit>,
-    /// Grid snap (F9; Alt suspends it while held).
-    pub snap: bool,
-    /// The grid and axes are drawn (F7).
-    pub show_grid: bool,
-    /// The size of the previewed geometry is shown (W × D × H).
-    pub show_dimensions: bool,
-    /// Only the selected nodes' previews are drawn (Grasshopper's *Only draw selected*; with
-    /// nothing selected, every previewed node).
-    pub only_selected: bool,
-    /// The active tool.
-    pub tool: Tool,
-    /// Handle selection and drags.
-    pub handles: HandleTool,
-    /// The handles of the last frame.
-    handle_list: Vec<Handle>,
-    /// What the pointer was over in the last frame.
-    pub hover: Option<Hit>,
-    hover_at: Option<Pos2>,
-    /// Where a tool would put a point under the pointer (snapped).
-    tool_point: Option<DVec3>,
-    /// The folded faces are outlined (the legend's fold entry).
-    pub folds_shown: bool,
-    highlight: Arc<Vec<Segment>>,
-    guides: Guides,
-    guides_key: Option<(Camera, [u32; 2], bool, CPlane, usize)>,
-    /// The grid spacing of the last frame (the snap step).
-    pub spacing: Spacing,
-    /// The legend's fold entry in the last frame (screen).
-    pub fold_entry: Option<Rect>,
-    /// The cuts of the selected nodes drawn in the last frame (plane and kept side).
-    cut_overlays: Vec<cut_plane::CutOverlay>,
+    /// The camera and the named view.
+    framing: Framing,
+    /// The scene shown and what was handed to the GPU.
+    drawn: Drawn,
+    /// The designer's display choices.
+    display: Display,
+    /// The active tool, the handles and what the pointer is over.
+    tools: ViewTools,
+    /// Where the last frame put its overlays.
+    last_frame: LastFrame,
 }
-
-impl Default for Viewport {
-    fn default() -> Self {
-        Self {
-            camera: Camera::new(View::Iso),
-            options: PreviewOptions::default(),
-            scene: Arc::new(Scene::new()),
-            scene_version: 0,
-            stats: PreviewStats::default(),
-            picks: Arc::new(Picks::default()),
-            bounds: None,
-            fit_pending: false,
-            labels_bottom: 0.0,
-            no_reference_said: false,
-            fitted_once: false,
-            aspect: 1.0,
-            drawn_version: 0,
-            pictures: Arc::default(),
-            last_change: f64::NEG_INFINITY,
-            render_scale: 1.0,
-            rect: egui::Rect::NOTHING,
-            overlays: Vec::new(),
-            view: NamedView::Perspective,
-            perspective_plane: CPlane::XY,
-            perspective_name: CPlane::XY.label().to_string(),
-            picked: None,
-            snap: true,
-            show_grid: true,
-            show_dimensions: true,
-            only_selected: false,
-            tool: Tool::Select,
-            handles: HandleTool::default(),
-            handle_list: Vec::new(),
-            hover: None,
-            hover_at: None,
-            tool_point: None,
-            folds_shown: false,
-            highlight: Arc::new(Vec::new()),
-            guides: Guides::default(),
-            guides_key: None,
-            spacing: Spacing {
-                minor: 1.0,
-                major: 5.0,
-            },
-            fold_entry: None,
-            cut_overlays: Vec::new(),
-        }
-    }
-}
-
-/// The box of a scene's surfaces and curves (point markers such as apices can lie far away; the
-/// flat fabrication layer drawn beside the design is not part of it).
-fn drawn_bounds(scene: &Scene) -> Option<Bounds> {
-    let faces = scene
-        .face_vertices()
-        .iter()
-        .map(|v| glam::Vec3::from(v.position));
-    let lines = scene
-        .segments()
-        .iter()
-        .filter(|s| s.flags & cnets_render::FLAG_BESIDE == 0)
-        .flat_map(|s| [glam::Vec3::from(s.a), glam::Vec3::from(s.b)]);
-    Bounds::from_points(faces.chain(lines).filter(|p| p.is_finite()))
-}
-
-/// The colour of fold outlines.
-const FOLD_OUTLINE: Color = Color::rgb(0xff, 0x6a, 0x00);
 
 impl Viewport {
+    /// The camera and the named view (read-only: the view's methods change them).
+    pub fn framing(&self) -> &Framing {
+        &self.framing
+    }
+
+    /// The scene shown, its figures and what was handed to the GPU.
+    pub fn drawn(&self) -> &Drawn {
+        &self.drawn
+    }
+
+    /// The designer's display choices.
+    pub fn display(&self) -> &Display {
+        &self.display
+    }
+
+    /// The display choices, to change (the menus and the layout file).
+    pub fn display_mut(&mut self) -> &mut Display {
+        &mut self.display
+    }
+
+    /// The active tool, the handles and what the pointer is over.
+    pub fn tools(&self) -> &ViewTools {
+        &self.tools
+    }
+
+    /// Where the last frame put its overlays (the grid step, the labels, the fold entry).
+    pub fn last_frame(&self) -> &LastFrame {
+        &self.last_frame
+    }
+
     /// Replaces the scene (from a finished evaluation) and what was drawn in it.
     pub fn set_scene(&mut self, scene: Arc<Scene>, stats: PreviewStats, picks: Arc<Picks>) {
-        self.bounds = drawn_bounds(&scene);
-        self.scene = scene;
-        self.stats = stats;
-        self.picks = picks;
-        self.scene_version += 1;
-        self.last_change = f64::NAN; // stamped with egui's time in the next `show`
-        self.hover = None;
-        self.hover_at = None;
-        if self.folds_shown {
-            self.highlight = Arc::new(self.fold_outlines());
-        }
-        if !self.fitted_once && !self.scene.is_empty() {
-            self.fit_pending = true;
+        self.drawn.set(scene, stats, picks);
+        self.framing.last_change = f64::NAN; // stamped with egui's time in the next `show`
+        self.tools.forget_hover();
+        if !self.framing.fitted_once && !self.drawn.scene.is_empty() {
+            self.framing.fit_pending = true;
         }
     }
 
@@ -298,88 +205,105 @@ impl Viewport {
             PreviewStats::default(),
             Arc::new(Picks::default()),
         );
-        self.fitted_once = false;
-        self.folds_shown = false;
-        self.highlight = Arc::new(Vec::new());
-        self.handles = HandleTool::default();
-        self.tool = Tool::Select;
-        self.picked = None;
+        self.framing.fitted_once = false;
+        self.drawn.clear_folds();
+        self.tools = ViewTools::default();
     }
 
     /// How many pictures the GPU has rendered into the view's texture so far. A frame in which
     /// the scene, guides, camera and size are unchanged only blits the last one and is not
     /// counted (panning the canvas, typing in a field).
     pub fn pictures_rendered(&self) -> u64 {
-        self.pictures.load(Ordering::Relaxed)
+        self.drawn.pictures_rendered()
     }
 
     /// The scene shown.
     pub fn scene(&self) -> &Arc<Scene> {
-        &self.scene
+        &self.drawn.scene
     }
 
     /// What the scene drew, by node.
     pub fn picks(&self) -> &Arc<Picks> {
-        &self.picks
+        &self.drawn.picks
     }
 
     /// The figures and legend of the scene shown.
     pub fn stats(&self) -> &PreviewStats {
-        &self.stats
+        &self.drawn.stats
     }
 
     /// Version of the scene (bumped by [`Viewport::set_scene`]).
     pub fn scene_version(&self) -> u64 {
-        self.scene_version
+        self.drawn.version
+    }
+
+    /// The newest scene version handed to the GPU: the picture shows a change once this reaches
+    /// its [`Viewport::scene_version`].
+    pub fn handed_version(&self) -> u64 {
+        self.drawn.handed_version
     }
 
     /// The box of the previewed surfaces and curves (W × D × H).
     pub fn bounds(&self) -> Option<Bounds> {
-        self.bounds
+        self.drawn.bounds
     }
 
     /// The cuts of the selected nodes drawn in the last frame: their planes and kept sides.
     pub fn cut_overlays(&self) -> &[cut_plane::CutOverlay] {
-        &self.cut_overlays
+        &self.last_frame.cut_overlays
     }
 
     /// The handles shown in the last frame.
     pub fn handle_list(&self) -> &[Handle] {
-        &self.handle_list
+        &self.tools.handle_list
+    }
+
+    /// The active tool.
+    pub fn tool(&self) -> &Tool {
+        &self.tools.tool
+    }
+
+    /// Makes `tool` the active one.
+    pub fn set_tool(&mut self, tool: Tool) {
+        self.tools.tool = tool;
     }
 
     /// The screen mapping of the last frame.
     pub fn screen_map(&self) -> ScreenMap {
-        ScreenMap {
-            rect: self.rect,
-            camera: self.camera,
-        }
+        self.framing.screen_map()
+    }
+
+    /// Where the view was drawn in the last frame (screen points).
+    pub fn rect(&self) -> Rect {
+        self.framing.rect
+    }
+
+    /// The grid step of the last frame (the snap step), in metres.
+    pub fn grid_step(&self) -> f64 {
+        self.last_frame.spacing.minor
     }
 
     /// The construction plane of the view shown.
     pub fn cplane(&self) -> CPlane {
-        self.view.cplane(self.perspective_plane)
+        self.framing.cplane()
     }
 
     /// The name of the construction plane of the view shown.
     pub fn cplane_name(&self) -> String {
-        match self.view {
-            NamedView::Perspective => self.perspective_name.clone(),
-            v => v.cplane(self.perspective_plane).label().to_string(),
-        }
+        self.framing.cplane_name()
     }
 
     /// Makes `plane`, called `name`, the Perspective view's construction plane.
     pub fn set_perspective_plane(&mut self, plane: CPlane, name: &str) {
-        self.perspective_plane = plane;
-        self.perspective_name = name.to_string();
+        self.framing.set_perspective_plane(plane, name);
     }
 
     /// The construction plane fitted through the row of the net last clicked (when its node is
     /// selected) or the previewed curve of a selected node, and what it went through; an error
     /// saying what to select.
     pub fn fit_cplane(&self, selected: &[String]) -> Result<(CPlane, String), String> {
-        let (points, what) = cplane_make::fit_points(&self.picks, self.picked.as_ref(), selected)?;
+        let (points, what) =
+            cplane_make::fit_points(&self.drawn.picks, self.tools.picked.as_ref(), selected)?;
         let plane = CPlane::fit(&points).map_err(|e| format!("CPlane through {what}: {e}"))?;
         Ok((plane, what))
     }
@@ -387,37 +311,51 @@ impl Viewport {
     /// Where the last solve of a net drag left the grabbed vertex and its distance to the target
     /// (drawn as a line to the target when it stopped short).
     pub fn set_net_reached(&mut self, reached: DVec3, distance_left: f64) {
-        if let Tool::DragNet(d) = &mut self.tool {
+        if let Tool::DragNet(d) = &mut self.tools.tool {
             d.reached = Some((reached, distance_left));
         }
     }
 
+    /// Zooms the camera out by `factor` (in below 1), about the point it looks at.
+    pub fn zoom(&mut self, factor: f32) {
+        self.framing.camera.zoom(factor);
+    }
+
+    /// Turns the camera about the point it looks at by `yaw` and `pitch` (radians).
+    pub fn orbit(&mut self, yaw: f32, pitch: f32) {
+        self.framing.camera.orbit(yaw, pitch);
+    }
+
     /// Frames everything on the next frame (the F key).
     pub fn fit(&mut self) {
-        self.fit_pending = true;
+        self.framing.fit_pending = true;
     }
 
     /// Shows a named view, framing the previewed geometry.
     pub fn set_view(&mut self, view: NamedView) {
-        self.view = view;
-        navigation::turn_to(&mut self.camera, view);
-        self.fit();
+        self.framing.set_view(view);
+    }
+
+    /// A two-finger gesture: zooms by `zoom` (> 1: the fingers spread, in) about `centre` and
+    /// pans by the fingers' common move `moved` (screen points).
+    pub fn pinch(&mut self, zoom: f32, moved: egui::Vec2, centre: egui::Pos2) {
+        self.framing.pinch(zoom, moved, centre);
     }
 
     /// Points the camera at the surfaces (apices and other markers can lie far away, even near
     /// infinity, and would shrink the mesh to a dot), or at everything when there are none; with
     /// nothing at all, at 20 m around the origin. Handles are included.
     fn frame_geometry(&mut self) {
-        let mut points: Vec<glam::Vec3> = self
-            .scene
+        let scene = &self.drawn.scene;
+        let mut points: Vec<glam::Vec3> = scene
             .face_vertices()
             .iter()
             .map(|v| glam::Vec3::from(v.position))
             .collect();
         if points.is_empty() {
-            points.extend(self.scene.positions());
+            points.extend(scene.positions());
         }
-        points.extend(self.handle_list.iter().map(|h| h.position.as_vec3()));
+        points.extend(self.tools.handle_list.iter().map(|h| h.position.as_vec3()));
         if points.is_empty() {
             let b = Bounds::new(
                 glam::Vec3::new(-10.0, -10.0, 0.0),
@@ -425,24 +363,13 @@ impl Viewport {
             );
             points.extend(b.corners());
         }
-        self.camera.fit_points(&points, self.aspect);
-        self.clear_labels();
-    }
-
-    /// Zooms out after a fit so the geometry clears the labels along the view's top (the
-    /// statistics) and bottom (grid, axes, W × D × H): [`LABEL_BAND`] points each.
-    fn clear_labels(&mut self) {
-        let height = self.rect.height();
-        let bands = 2.0 * LABEL_BAND;
-        if height.is_finite() && height > 3.0 * bands {
-            self.camera.zoom(height / (height - bands));
-        }
+        self.framing.frame_points(&points);
     }
 
     /// Frames the geometry of the nodes `ids` (their previewed meshes and curves, their handles)
     /// and the selected handles; everything when there is none.
     pub fn frame_selection(&mut self, ids: &[String]) {
-        let picks = self.picks.clone();
+        let picks = &self.drawn.picks;
         let mut points: Vec<glam::Vec3> = Vec::new();
         for m in picks.meshes.iter().filter(|m| ids.contains(&m.node)) {
             points.extend(m.geometry.vertices().iter().map(|p| p.as_vec3()));
@@ -450,41 +377,21 @@ impl Viewport {
         for c in picks.curves.iter().filter(|c| ids.contains(&c.node)) {
             points.extend(c.polyline.points.iter().map(|p| p.as_vec3()));
         }
-        for h in &self.handle_list {
-            if ids.contains(&h.key.node) || self.handles.selected.contains(&h.key) {
+        for h in &self.tools.handle_list {
+            if ids.contains(&h.key.node) || self.tools.handles.selected.contains(&h.key) {
                 points.push(h.position.as_vec3());
             }
         }
         if points.is_empty() {
             self.fit();
         } else {
-            self.camera.fit_points(&points, self.aspect);
-            self.clear_labels();
+            self.framing.frame_points(&points);
         }
-    }
-
-    /// Outlines of the faces that are not (++)(++), drawn on top.
-    fn fold_outlines(&self) -> Vec<Segment> {
-        let f = |p: DVec3| [p.x as f32, p.y as f32, p.z as f32];
-        let mut segments = Vec::new();
-        for (m, face) in self.picks.folded_faces() {
-            let corners = self.picks.meshes[m].geometry.face_corners(face);
-            for k in 0..corners.len() {
-                segments.push(Segment {
-                    a: f(corners[k]),
-                    b: f(corners[(k + 1) % corners.len()]),
-                    color: FOLD_OUTLINE,
-                    width: 2.5,
-                    flags: cnets_render::scene::FLAG_ON_TOP,
-                });
-            }
-        }
-        segments
     }
 
     /// The legend's fold entry: frames the faces that are not (++)(++) and outlines them.
     pub fn show_folds(&mut self) {
-        let picks = self.picks.clone();
+        let picks = &self.drawn.picks;
         let corners: Vec<glam::Vec3> = picks
             .folded_faces()
             .into_iter()
@@ -494,19 +401,20 @@ impl Viewport {
         if corners.is_empty() {
             return;
         }
-        self.camera.fit_points(&corners, self.aspect);
-        self.folds_shown = true;
-        self.highlight = Arc::new(self.fold_outlines());
+        self.framing
+            .camera
+            .fit_points(&corners, self.framing.aspect);
+        self.drawn.outline_folds();
     }
 
     /// The outline segments drawn for the folds (empty unless shown).
     pub fn highlight(&self) -> &[Segment] {
-        &self.highlight
+        &self.drawn.highlight
     }
 
     /// The snap step, or none while snapping is off or Alt is held.
     fn snap_step(&self, modifiers: Modifiers) -> Option<f64> {
-        (self.snap && !modifiers.alt).then_some(self.spacing.minor)
+        (self.display.snap && !modifiers.alt).then_some(self.last_frame.spacing.minor)
     }
 
     /// Where the pointer at `at` puts a point on the construction plane, snapped to the grid.
@@ -516,16 +424,16 @@ impl Viewport {
         Some(match self.snap_step(modifiers) {
             Some(step) => plane.snap(hit, step),
             // Unsnapped: a hundredth of the grid step is resolution enough.
-            None => plane.snap(hit, self.spacing.minor / 100.0),
+            None => plane.snap(hit, self.last_frame.spacing.minor / 100.0),
         })
     }
 
     /// Where a measured point at `at` lands: the nearest drawn vertex or handle within
     /// [`SNAP_RADIUS`], else the construction plane.
     fn measure_point(&self, map: &ScreenMap, at: Pos2, modifiers: Modifiers) -> Option<DVec3> {
-        let handle = handles::handle_at(&self.handle_list, map, at).map(|h| h.position);
+        let handle = handles::handle_at(&self.tools.handle_list, map, at).map(|h| h.position);
         handle
-            .or_else(|| pick::nearest_vertex(&self.picks, map, at, SNAP_RADIUS))
+            .or_else(|| pick::nearest_vertex(&self.drawn.picks, map, at, SNAP_RADIUS))
             .or_else(|| self.plane_point(map, at, modifiers))
     }
 
@@ -538,7 +446,7 @@ impl Viewport {
                 v.label()
             };
             if ui
-                .selectable_label(self.view == v, label)
+                .selectable_label(self.framing.view == v, label)
                 .on_hover_text(format!("{} view ({})", v.label(), v.shortcut()))
                 .clicked()
             {
@@ -546,7 +454,7 @@ impl Viewport {
             }
         }
         ui.separator();
-        let drawing = matches!(self.tool, Tool::Draw(_));
+        let drawing = matches!(self.tools.tool, Tool::Draw(_));
         if ui
             .selectable_label(drawing, "✏ Draw curve")
             .on_hover_text(
@@ -557,14 +465,14 @@ impl Viewport {
         {
             self.toggle_tool(Tool::Draw(DrawTool::default()));
         }
-        if let Tool::Draw(d) = &mut self.tool {
+        if let Tool::Draw(d) = &mut self.tools.tool {
             // The kind of curve drawn, while the tool is active (P switches).
             ui.selectable_value(&mut d.polyline, false, "Spline")
                 .on_hover_text("a smooth curve through the points (P switches)");
             ui.selectable_value(&mut d.polyline, true, "Polyline")
                 .on_hover_text("straight segments between the points (P switches)");
         }
-        let measuring = matches!(self.tool, Tool::Measure(_));
+        let measuring = matches!(self.tools.tool, Tool::Measure(_));
         if ui
             .selectable_label(measuring, "📏 Measure")
             .on_hover_text("click two points (snapping to vertices) for their distance (M)")
@@ -572,7 +480,7 @@ impl Viewport {
         {
             self.toggle_tool(Tool::Measure(MeasureTool::default()));
         }
-        let dragging_net = matches!(self.tool, Tool::DragNet(_));
+        let dragging_net = matches!(self.tools.tool, Tool::DragNet(_));
         if ui
             .selectable_label(dragging_net, "✋ Drag net")
             .on_hover_text(
@@ -584,16 +492,15 @@ impl Viewport {
             self.toggle_tool(Tool::DragNet(Box::default()));
         }
         ui.separator();
-        ui.toggle_value(&mut self.snap, "Snap")
+        ui.toggle_value(&mut self.display.snap, "Snap")
             .on_hover_text("grid snap (F9); hold Alt to suspend it");
-        ui.toggle_value(&mut self.show_dimensions, "W×D×H")
+        ui.toggle_value(&mut self.display.show_dimensions, "W×D×H")
             .on_hover_text("the size of the previewed geometry in the view's corner");
     }
 
     /// Switches to `tool`, or back to Select when it is the active one.
     pub fn toggle_tool(&mut self, tool: Tool) {
-        let same = std::mem::discriminant(&self.tool) == std::mem::discriminant(&tool);
-        self.tool = if same { Tool::Select } else { tool };
+        self.tools.toggle(tool);
     }
 
     /// The keys of the view (when no text field has the keyboard): named views, tools, snap,
@@ -610,7 +517,7 @@ impl Viewport {
         if let Some(v) = NamedView::pressed(ctx) {
             self.set_view(v);
         }
-        let drawing = matches!(self.tool, Tool::Draw(_));
+        let drawing = matches!(self.tools.tool, Tool::Draw(_));
         let (p, c, m, g, f9, f7, shift_f, enter, backspace, esc) = ctx.input_mut(|i| {
             (
                 drawing && i.consume_key(Modifiers::NONE, Key::P),
@@ -625,7 +532,7 @@ impl Viewport {
                 i.key_pressed(Key::Escape),
             )
         });
-        if p && let Tool::Draw(d) = &mut self.tool {
+        if p && let Tool::Draw(d) = &mut self.tools.tool {
             d.polyline = !d.polyline;
         }
         if c {
@@ -638,40 +545,40 @@ impl Viewport {
             self.toggle_tool(Tool::DragNet(Box::default()));
         }
         if f9 {
-            self.snap = !self.snap;
+            self.display.snap = !self.display.snap;
             actions.push(ViewportAction::Message(format!(
                 "grid snap {}",
-                if self.snap { "on" } else { "off" }
+                if self.display.snap { "on" } else { "off" }
             )));
         }
         if f7 {
-            self.show_grid = !self.show_grid;
+            self.display.show_grid = !self.display.show_grid;
         }
         if shift_f {
             self.frame_selection(input.selected);
         }
-        match &mut self.tool {
+        match &mut self.tools.tool {
             Tool::Draw(d) => {
                 if enter && let Some(curve) = d.finish() {
                     actions.push(ViewportAction::AddCurve(curve));
                     // As a Rhino command ends with its curve.
-                    self.tool = Tool::Select;
+                    self.tools.tool = Tool::Select;
                     return;
                 }
                 if backspace {
                     d.undo_point();
                 }
                 if esc {
-                    self.tool = Tool::Select;
+                    self.tools.tool = Tool::Select;
                 }
             }
-            Tool::Measure(_) if esc => self.tool = Tool::Select,
+            Tool::Measure(_) if esc => self.tools.tool = Tool::Select,
             Tool::ThreePoint(t) => {
                 if backspace {
                     t.points.pop();
                 }
                 if esc {
-                    self.tool = Tool::Select;
+                    self.tools.tool = Tool::Select;
                     actions.push(ViewportAction::Message(
                         "CPlane from 3 points cancelled".into(),
                     ));
@@ -679,24 +586,23 @@ impl Viewport {
             }
             Tool::DragNet(d) if esc => {
                 if d.pins.is_empty() {
-                    self.tool = Tool::Select;
+                    self.tools.tool = Tool::Select;
                 } else {
                     d.pins.clear();
                     actions.push(ViewportAction::Message("pins cleared".into()));
                 }
             }
             _ if esc => {
-                self.handles.selected.clear();
-                self.folds_shown = false;
-                self.highlight = Arc::new(Vec::new());
+                self.tools.handles.selected.clear();
+                self.drawn.clear_folds();
             }
             _ => {}
         }
         // Arrow keys nudge the selected handles one grid step in the view's plane (Page Up /
         // Page Down along its normal).
-        if !self.handles.selected.is_empty() {
+        if !self.tools.handles.selected.is_empty() {
             let (u, v, n) = self.cplane().axes();
-            let step = self.spacing.minor;
+            let step = self.last_frame.spacing.minor;
             let delta = ctx.input_mut(|i| {
                 let mut d = DVec3::ZERO;
                 for (key, dir) in [
@@ -714,7 +620,10 @@ impl Viewport {
                 d
             });
             if delta != DVec3::ZERO
-                && let Some(edit) = self.handles.nudge(input.graph, &self.handle_list, delta)
+                && let Some(edit) =
+                    self.tools
+                        .handles
+                        .nudge(input.graph, &self.tools.handle_list, delta)
             {
                 actions.push(ViewportAction::Edit(edit));
             }
@@ -731,26 +640,25 @@ impl Viewport {
         let mut actions = Vec::new();
         let rect = ui.available_rect_before_wrap();
         let response = ui.allocate_rect(rect, Sense::click_and_drag());
-        self.rect = rect;
-        self.aspect = rect.width().max(1.0) / rect.height().max(1.0);
+        self.framing.place(rect);
         let shown = |n: &NodeInstance| (n.preview && n.enabled) || input.selected.contains(&n.id);
-        self.handle_list = handles::collect(input.graph, shown);
-        self.handles.retain_existing(&self.handle_list);
-        if self.fit_pending {
+        self.tools.handle_list = handles::collect(input.graph, shown);
+        self.tools.handles.retain_existing(&self.tools.handle_list);
+        if self.framing.fit_pending {
             self.frame_geometry();
-            self.fit_pending = false;
-            self.fitted_once = !self.scene.is_empty();
+            self.framing.fit_pending = false;
+            self.framing.fitted_once = !self.drawn.scene.is_empty();
         }
-        self.spacing = Spacing::for_scale(self.screen_map().world_per_point());
-        let camera_before = self.camera;
+        self.last_frame.spacing = Spacing::for_scale(self.screen_map().world_per_point());
+        let camera_before = self.framing.camera;
         self.keys(ui.ctx(), input, &mut actions);
         self.pointer(ui, &response, input, &mut actions);
         let now = ui.input(|i| i.time);
-        if self.camera != camera_before || self.last_change.is_nan() {
-            self.last_change = now;
+        if self.framing.camera != camera_before || self.framing.last_change.is_nan() {
+            self.framing.last_change = now;
         }
-        let changing = now - self.last_change < SETTLE_SECONDS;
-        self.render_scale = if changing && gpu.is_some_and(|g| g.software) {
+        let changing = now - self.framing.last_change < SETTLE_SECONDS;
+        self.framing.render_scale = if changing && gpu.is_some_and(|g| g.software) {
             // Come back for the full-resolution picture once things settle.
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_secs_f64(SETTLE_SECONDS));
@@ -759,11 +667,11 @@ impl Viewport {
             1.0
         };
         let map = self.screen_map();
-        let grid = self.show_grid.then(|| {
+        let grid = self.display.show_grid.then(|| {
             // The perspective view's grid is sized to the geometry shown (the named views are
             // drafting paper: their grid fills the view).
-            let around = match self.view {
-                NamedView::Perspective => self.bounds.as_ref(),
+            let around = match self.framing.view {
+                NamedView::Perspective => self.drawn.bounds.as_ref(),
                 _ => None,
             };
             let mut grid = Grid::new(&map, self.cplane(), around);
@@ -776,34 +684,38 @@ impl Viewport {
         let pointer = ui
             .input(|i| i.pointer.hover_pos())
             .filter(|p| rect.contains(*p));
-        self.handles
-            .paint(&painter, &self.handle_list, &map, pointer);
+        self.tools
+            .handles
+            .paint(&painter, &self.tools.handle_list, &map, pointer);
         // A selected cut's plane and the side it keeps, about half the design's size.
-        self.cut_overlays = cut_plane::selected_cuts(input.graph, input.selected);
+        self.last_frame.cut_overlays = cut_plane::selected_cuts(input.graph, input.selected);
         let half = self
+            .drawn
             .bounds
             .map_or(5.0, |b| 0.35 * f64::from((b.max - b.min).length()))
             .max(0.5);
-        cut_plane::paint(&painter, &map, &self.cut_overlays, half);
-        match &self.tool {
-            Tool::Draw(d) => d.paint(&painter, &map, self.tool_point),
-            Tool::Measure(m) => m.paint(&painter, &map, self.tool_point),
-            Tool::DragNet(d) => d.paint(&painter, &map, self.tool_point),
-            Tool::ThreePoint(t) => t.paint(&painter, &map, self.tool_point),
+        cut_plane::paint(&painter, &map, &self.last_frame.cut_overlays, half);
+        match &self.tools.tool {
+            Tool::Draw(d) => d.paint(&painter, &map, self.tools.tool_point),
+            Tool::Measure(m) => m.paint(&painter, &map, self.tools.tool_point),
+            Tool::DragNet(d) => d.paint(&painter, &map, self.tools.tool_point),
+            Tool::ThreePoint(t) => t.paint(&painter, &map, self.tools.tool_point),
             Tool::Select => {}
         }
         // The figures wrap short of the legend's column.
         let stats_width = rect.width() - overlay::LEGEND_WIDTH - 28.0;
-        let stats = overlay::paint_stats(ui, rect, &self.stats, stats_width);
-        let folds = self.picks.folded_faces().len();
-        let legend = overlay::legend(ui, rect, stats, &self.stats, folds);
-        self.fold_entry = legend.fold_entry;
-        self.labels_bottom = legend.bottom.max(stats.bottom());
+        let stats = overlay::paint_stats(ui, rect, &self.drawn.stats, stats_width);
+        let folds = self.drawn.picks.folded_faces().len();
+        let legend = overlay::legend(ui, rect, stats, &self.drawn.stats, folds);
+        self.last_frame.fold_entry = legend.fold_entry;
+        self.last_frame.labels_bottom = legend.bottom.max(stats.bottom());
         // Colour by distance: which mesh the others are measured against, and which side is
         // coloured.
-        if let Some(message) =
-            distance::ensure_reference(&mut self.options, input.graph, &mut self.no_reference_said)
-        {
+        if let Some(message) = distance::ensure_reference(
+            &mut self.display.options,
+            input.graph,
+            &mut self.display.no_reference_said,
+        ) {
             actions.push(ViewportAction::Message(message));
         }
         let picker = distance::picker(
@@ -811,12 +723,12 @@ impl Viewport {
             rect,
             legend.bottom,
             stats,
-            &mut self.options,
+            &mut self.display.options,
             input.graph,
         );
-        self.labels_bottom = self.labels_bottom.max(picker.bottom());
-        let dimensions = if self.show_dimensions {
-            overlay::paint_dimensions(ui, rect, self.bounds.as_ref())
+        self.last_frame.labels_bottom = self.last_frame.labels_bottom.max(picker.bottom());
+        let dimensions = if self.display.show_dimensions {
+            overlay::paint_dimensions(ui, rect, self.drawn.bounds.as_ref())
         } else {
             Rect::NOTHING
         };
@@ -829,7 +741,7 @@ impl Viewport {
             }
             None => Rect::NOTHING,
         };
-        self.overlays = [
+        self.last_frame.overlays = [
             ("statistics", stats),
             ("legend", legend.covers),
             ("distance picker", picker),
@@ -849,10 +761,10 @@ impl Viewport {
         if let Some(edit) = self.inspector(ui, rect, input.graph) {
             actions.push(ViewportAction::Edit(edit));
         }
-        if let (Tool::Select, Some(hit), Some(at)) = (&self.tool, &self.hover, pointer)
-            && !self.handles.dragging()
+        if let (Tool::Select, Some(hit), Some(at)) = (&self.tools.tool, &self.tools.hover, pointer)
+            && !self.tools.handles.dragging()
         {
-            let text = pick::describe(&self.picks, hit, input.graph);
+            let text = pick::describe(&self.drawn.picks, hit, input.graph);
             egui::Tooltip::always_open(
                 ui.ctx().clone(),
                 ui.layer_id(),
@@ -862,20 +774,6 @@ impl Viewport {
             .show(|ui| ui.label(text));
         }
         actions
-    }
-
-    /// A two-finger gesture: zooms by `zoom` (> 1: the fingers spread, in) about `centre` and
-    /// pans by the fingers' common move `moved` (screen points).
-    pub fn pinch(&mut self, zoom: f32, moved: egui::Vec2, centre: egui::Pos2) {
-        if zoom.is_finite() && zoom > 0.0 && (zoom - 1.0).abs() > 1e-6 {
-            let r = self.rect;
-            let ndc_x = 2.0 * (centre.x - r.left()) / r.width().max(1.0) - 1.0;
-            let ndc_y = 1.0 - 2.0 * (centre.y - r.top()) / r.height().max(1.0);
-            self.camera.zoom_at(1.0 / zoom, ndc_x, ndc_y, self.aspect);
-        }
-        if moved != egui::Vec2::ZERO {
-            self.camera.pan(moved.x, moved.y, self.rect.height());
-        }
     }
 
     /// The pointer: handle drags and box selection, tool clicks, orbit / pan / zoom, hover picks.
@@ -898,14 +796,15 @@ impl Viewport {
         });
         // Two fingers on the view: a pinch zooms about their centre and their common move pans
         // (one finger orbits, as a primary drag does); nothing else moves meanwhile.
-        if let Some(t) = touches.filter(|t| t.num_touches >= 2 && self.rect.contains(t.center_pos))
+        if let Some(t) =
+            touches.filter(|t| t.num_touches >= 2 && self.framing.rect.contains(t.center_pos))
         {
             self.pinch(t.zoom_delta, t.translation_delta, t.center_pos);
             return;
         }
-        let hover = hover.filter(|p| self.rect.contains(*p));
+        let hover = hover.filter(|p| self.framing.rect.contains(*p));
         let primary = response.dragged_by(PointerButton::Primary);
-        let ortho = self.view.is_orthographic();
+        let ortho = self.framing.view.is_orthographic();
         let cplane = self.cplane();
         // A primary drag starting on a handle moves it; on empty space it box-selects in the
         // orthographic views (or with Ctrl in Perspective), else orbits (Shift: pans).
@@ -922,38 +821,43 @@ impl Viewport {
         if response.drag_started_by(PointerButton::Primary)
             && let Some(p0) = press_origin
         {
-            match &mut self.tool {
+            match &mut self.tools.tool {
                 Tool::Select => {
-                    let grabbed =
-                        self.handles
-                            .press(&self.handle_list, &map, p0, how, modifiers.shift);
+                    let grabbed = self.tools.handles.press(
+                        &self.tools.handle_list,
+                        &map,
+                        p0,
+                        how,
+                        modifiers.shift,
+                    );
                     if !grabbed && (ortho || modifiers.command) && !modifiers.shift {
-                        self.handles.boxing = Some(p0);
+                        self.tools.handles.boxing = Some(p0);
                     }
                 }
                 Tool::DragNet(d) if !modifiers.shift => {
-                    d.press(&self.picks, &map, p0, how);
+                    d.press(&self.drawn.picks, &map, p0, how);
                 }
                 _ => {}
             }
         }
-        let net_dragging = matches!(&self.tool, Tool::DragNet(d) if d.dragging());
+        let net_dragging = matches!(&self.tools.tool, Tool::DragNet(d) if d.dragging());
         if primary && net_dragging {
-            if let Tool::DragNet(d) = &mut self.tool
+            if let Tool::DragNet(d) = &mut self.tools.tool
                 && let Some(at) = response.interact_pointer_pos()
                 && let Some(target) = d.drag_to(&map, at)
             {
                 actions.push(ViewportAction::DragNet(target));
             }
-        } else if primary && self.handles.dragging() {
+        } else if primary && self.tools.handles.dragging() {
             if let Some(at) = response.interact_pointer_pos()
                 && let Some(edit) =
-                    self.handles
+                    self.tools
+                        .handles
                         .drag_to(input.graph, &map, at, self.snap_step(modifiers))
             {
                 actions.push(ViewportAction::Edit(edit));
             }
-        } else if primary && self.handles.boxing.is_some() {
+        } else if primary && self.tools.handles.boxing.is_some() {
             // The box is painted with the handles.
         } else {
             let delta = response.drag_delta();
@@ -962,58 +866,61 @@ impl Viewport {
             if orbiting {
                 if ortho {
                     // Orbiting leaves the named orthographic view for Perspective.
-                    self.view = NamedView::Perspective;
-                    self.camera.projection = cnets_render::Projection::Perspective;
+                    self.framing.view = NamedView::Perspective;
+                    self.framing.camera.projection = cnets_render::Projection::Perspective;
                 }
-                navigation::orbit(&mut self.camera, delta);
+                navigation::orbit(&mut self.framing.camera, delta);
             } else if response.dragged_by(PointerButton::Secondary)
                 || response.dragged_by(PointerButton::Middle)
                 || (primary && modifiers.shift)
             {
-                self.camera.pan(delta.x, delta.y, self.rect.height());
+                self.framing
+                    .camera
+                    .pan(delta.x, delta.y, self.framing.rect.height());
             }
         }
         if response.drag_stopped() {
-            if let Tool::DragNet(d) = &mut self.tool
+            if let Tool::DragNet(d) = &mut self.tools.tool
                 && d.dragging()
             {
                 d.release();
                 actions.push(ViewportAction::DragNetEnd);
             }
-            self.handles.release();
-            if self.handles.boxing.is_some()
+            self.tools.handles.release();
+            if self.tools.handles.boxing.is_some()
                 && let Some(at) = response.interact_pointer_pos().or(hover)
             {
-                self.handles
-                    .select_box(&self.handle_list, &map, at, modifiers.shift);
+                self.tools
+                    .handles
+                    .select_box(&self.tools.handle_list, &map, at, modifiers.shift);
             }
-            self.handles.boxing = None;
+            self.tools.handles.boxing = None;
         }
         if response.hovered() && scroll != 0.0 {
-            let at = hover.unwrap_or(self.rect.center());
+            let at = hover.unwrap_or(self.framing.rect.center());
             let mut m = map;
             navigation::wheel(&mut m, scroll, at);
-            self.camera = m.camera;
+            self.framing.camera = m.camera;
         }
         let map = self.screen_map();
         // Where the tools would put a point under the pointer.
-        self.tool_point = hover.and_then(|at| match &self.tool {
+        self.tools.tool_point = hover.and_then(|at| match &self.tools.tool {
             Tool::Draw(_) => self.plane_point(&map, at, modifiers),
             Tool::Measure(_) | Tool::ThreePoint(_) => self.measure_point(&map, at, modifiers),
             Tool::DragNet(d) if !d.dragging() => {
-                net_drag::vertex_at(&self.picks, &map, at).map(|v| v.position)
+                net_drag::vertex_at(&self.drawn.picks, &map, at).map(|v| v.position)
             }
             Tool::DragNet(_) | Tool::Select => None,
         });
         let clicked = response.clicked_by(PointerButton::Primary);
         let at = response.interact_pointer_pos().or(hover);
-        match &mut self.tool {
+        match &mut self.tools.tool {
             Tool::Draw(d) => {
                 let finished = if response.double_clicked() {
                     d.finish()
                 } else if clicked
                     && let Some(at) = at
-                    && let Some(p) = self.tool_point
+                    && let Some(p) = self.tools.tool_point
                     && let draw::Click::Finished(curve) = d.click(&map, at, p)
                 {
                     Some(curve)
@@ -1023,20 +930,20 @@ impl Viewport {
                 if let Some(curve) = finished {
                     actions.push(ViewportAction::AddCurve(curve));
                     // As a Rhino command ends with its curve.
-                    self.tool = Tool::Select;
+                    self.tools.tool = Tool::Select;
                 }
             }
             Tool::DragNet(d) => {
                 if clicked
                     && modifiers.shift
                     && let Some(at) = at
-                    && let Some(text) = d.toggle_pin(&self.picks, &map, at)
+                    && let Some(text) = d.toggle_pin(&self.drawn.picks, &map, at)
                 {
                     actions.push(ViewportAction::Message(text));
                 }
             }
             Tool::Measure(m) => {
-                if clicked && let Some(p) = self.tool_point {
+                if clicked && let Some(p) = self.tools.tool_point {
                     m.click(p);
                     if let Some(text) = m.text() {
                         actions.push(ViewportAction::Message(text));
@@ -1044,14 +951,14 @@ impl Viewport {
                 }
             }
             Tool::ThreePoint(t) => {
-                if clicked && let Some(p) = self.tool_point {
+                if clicked && let Some(p) = self.tools.tool_point {
                     match t.click(p) {
                         cplane_make::ThreePointClick::Added => {
                             actions.push(ViewportAction::Message(t.prompt().into()));
                         }
                         cplane_make::ThreePointClick::Made(plane) => {
                             actions.push(ViewportAction::AddCPlane(plane));
-                            self.tool = Tool::Select;
+                            self.tools.tool = Tool::Select;
                         }
                         cplane_make::ThreePointClick::Refused(why) => {
                             actions.push(ViewportAction::Message(why));
@@ -1063,43 +970,43 @@ impl Viewport {
                 if response.double_clicked() {
                     self.fit();
                 } else if clicked && let Some(at) = at {
-                    match handles::handle_at(&self.handle_list, &map, at) {
+                    match handles::handle_at(&self.tools.handle_list, &map, at) {
                         Some(h) => {
                             let key = h.key.clone();
-                            if modifiers.shift && self.handles.selected.contains(&key) {
-                                self.handles.selected.remove(&key);
+                            if modifiers.shift && self.tools.handles.selected.contains(&key) {
+                                self.tools.handles.selected.remove(&key);
                             } else {
                                 if !modifiers.shift {
-                                    self.handles.selected.clear();
+                                    self.tools.handles.selected.clear();
                                 }
-                                self.handles.selected.insert(key.clone());
+                                self.tools.handles.selected.insert(key.clone());
                             }
                             actions.push(ViewportAction::SelectNode(key.node));
                         }
                         None => {
                             if !modifiers.shift {
-                                self.handles.selected.clear();
+                                self.tools.handles.selected.clear();
                             }
-                            self.picked = pick::pick(&self.picks, &map, at);
-                            if let Some(hit) = &self.picked {
+                            self.tools.picked = pick::pick(&self.drawn.picks, &map, at);
+                            if let Some(hit) = &self.tools.picked {
                                 actions.push(ViewportAction::SelectNode(
-                                    self.picks.meshes[hit.mesh()].node.clone(),
+                                    self.drawn.picks.meshes[hit.mesh()].node.clone(),
                                 ));
                             }
                         }
                     }
                 }
                 // Hover: what is under the pointer (recomputed when it moves).
-                self.handles.hovered = hover
-                    .and_then(|p| handles::handle_at(&self.handle_list, &map, p))
+                self.tools.handles.hovered = hover
+                    .and_then(|p| handles::handle_at(&self.tools.handle_list, &map, p))
                     .map(|h| h.key.clone());
                 let busy = ui.input(|i| i.pointer.any_down());
-                if busy || self.handles.hovered.is_some() {
-                    self.hover = None;
-                    self.hover_at = None;
-                } else if hover != self.hover_at {
-                    self.hover_at = hover;
-                    self.hover = hover.and_then(|p| pick::pick(&self.picks, &map, p));
+                if busy || self.tools.handles.hovered.is_some() {
+                    self.tools.hover = None;
+                    self.tools.hover_at = None;
+                } else if hover != self.tools.hover_at {
+                    self.tools.hover_at = hover;
+                    self.tools.hover = hover.and_then(|p| pick::pick(&self.drawn.picks, &map, p));
                 }
             }
         }
@@ -1107,17 +1014,22 @@ impl Viewport {
 
     /// The inspector of the one selected handle: its coordinates, typed or dragged.
     fn inspector(&mut self, ui: &mut Ui, rect: Rect, graph: &Graph) -> Option<Edit> {
-        if self.handles.selected.len() != 1 || self.handles.dragging() {
+        if self.tools.handles.selected.len() != 1 || self.tools.handles.dragging() {
             return None;
         }
-        let key = self.handles.selected.iter().next()?.clone();
-        let handle = self.handle_list.iter().find(|h| h.key == key)?.clone();
+        let key = self.tools.handles.selected.iter().next()?.clone();
+        let handle = self
+            .tools
+            .handle_list
+            .iter()
+            .find(|h| h.key == key)?
+            .clone();
         let area = Rect::from_min_size(
             rect.left_top() + egui::vec2(8.0, 44.0),
             egui::vec2(330.0, 26.0),
         );
         let mut p = handle.position;
-        let speed = self.spacing.minor / 10.0;
+        let speed = self.last_frame.spacing.minor / 10.0;
         let mut changed = false;
         ui.scope_builder(egui::UiBuilder::new().max_rect(area), |ui| {
             egui::Frame::popup(ui.style()).show(ui, |ui| {
@@ -1157,43 +1069,43 @@ impl Viewport {
         rect: Rect,
         grid: Option<&Grid>,
     ) {
-        let ppp = ui.ctx().pixels_per_point() * self.render_scale;
+        let ppp = ui.ctx().pixels_per_point() * self.framing.render_scale;
         let size_px = [
             (rect.width() * ppp).round().max(1.0) as u32,
             (rect.height() * ppp).round().max(1.0) as u32,
         ];
         let key = (
-            self.camera,
+            self.framing.camera,
             size_px,
             grid.is_some(),
             self.cplane(),
-            Arc::as_ptr(&self.highlight) as usize,
+            Arc::as_ptr(&self.drawn.highlight) as usize,
         );
-        if self.guides_key != Some(key) {
+        if self.drawn.guides_key != Some(key) {
             let mut segments = grid.map(|g| g.segments.clone()).unwrap_or_default();
-            segments.extend(self.highlight.iter().copied());
-            self.guides = Guides {
+            segments.extend(self.drawn.highlight.iter().copied());
+            self.drawn.guides = Guides {
                 segments: Arc::new(segments),
                 points: Arc::new(Vec::new()),
-                version: self.guides.version + 1,
+                version: self.drawn.guides.version + 1,
             };
-            self.guides_key = Some(key);
+            self.drawn.guides_key = Some(key);
         }
         match gpu {
             Some(target) => {
                 ui.painter().add(egui_wgpu::Callback::new_paint_callback(
                     rect,
                     ViewportCallback {
-                        scene: self.scene.clone(),
-                        version: self.scene_version,
-                        guides: self.guides.clone(),
-                        camera: self.camera,
+                        scene: self.drawn.scene.clone(),
+                        version: self.drawn.version,
+                        guides: self.drawn.guides.clone(),
+                        camera: self.framing.camera,
                         size_px,
                         target: *target,
-                        pictures: self.pictures.clone(),
+                        pictures: self.drawn.pictures.clone(),
                     },
                 ));
-                self.drawn_version = self.scene_version;
+                self.drawn.handed_version = self.drawn.version;
             }
             None => {
                 ui.painter().rect_filled(rect, 0.0, Color32::from_gray(60));

@@ -57,7 +57,7 @@ fn widget_in_node(h: &H, id: &str, label: &str) -> Rect {
 fn the_eyes_right_click_menu_picks_the_nodes_preview_colour() {
     let mut h = harness("colour-menu");
     // Plain colours (the default mode colours the faces by their class).
-    let mut o = h.state().viewport.options;
+    let mut o = h.state().viewport.display().options;
     o.color_mode = cnets_editor::preview::ColorMode::Plain;
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::SetPreview(o));

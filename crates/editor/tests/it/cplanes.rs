@@ -53,14 +53,14 @@ fn a_plane_fitted_through_the_selected_curve_is_named_chosen_undone_and_saved() 
     h.state_mut().run(MenuAction::CPlaneThroughSelection);
     let app = h.state();
     assert_eq!(names(app), ["CPlane 1"], "{}", app.message);
-    assert_eq!(app.viewport.perspective_name, "CPlane 1");
-    assert_eq!(app.viewport.view, NamedView::Perspective);
+    assert_eq!(app.viewport.framing().perspective_name, "CPlane 1");
+    assert_eq!(app.viewport.framing().view, NamedView::Perspective);
     assert!(
         app.message.contains("the curve of outline"),
         "{}",
         app.message
     );
-    let plane = app.viewport.perspective_plane;
+    let plane = app.viewport.framing().perspective_plane;
     let n = DVec3::new(1.0, 1.0, 2.0).normalize();
     assert!(plane.normal.dot(n).abs() > 1.0 - 1e-12, "{plane:?}");
     for p in [
@@ -78,7 +78,7 @@ fn a_plane_fitted_through_the_selected_curve_is_named_chosen_undone_and_saved() 
     // World XY and back to the graph's plane from the list.
     h.state_mut().run(MenuAction::PerspectivePlane(CPlane::XY));
     assert_eq!(h.state().viewport.cplane(), CPlane::XY);
-    assert_eq!(h.state().viewport.perspective_name, "World XY");
+    assert_eq!(h.state().viewport.framing().perspective_name, "World XY");
     h.state_mut()
         .run(MenuAction::NamedCPlane("CPlane 1".into()));
     assert_eq!(h.state().viewport.cplane(), plane);
@@ -109,8 +109,12 @@ fn with_nothing_suitable_selected_the_editor_says_what_to_select() {
         "{}",
         app.message
     );
-    assert_eq!(app.viewport.perspective_plane, CPlane::XY, "unchanged");
+    assert_eq!(
+        app.viewport.framing().perspective_plane,
+        CPlane::XY,
+        "unchanged"
+    );
     h.state_mut().run(MenuAction::CPlaneFromPoints);
-    assert_eq!(h.state().viewport.tool.label(), "CPlane from 3 points");
+    assert_eq!(h.state().viewport.tool().label(), "CPlane from 3 points");
     assert!(h.state().message.contains("click its origin"));
 }

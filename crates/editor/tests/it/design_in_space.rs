@@ -98,7 +98,7 @@ fn a_handle_dragged_in_the_top_view_moves_by_the_snapped_amount_and_undo_restore
     let before = points_of(h.state(), "pts");
     let text_before = h.state().doc.to_ron();
     assert_eq!(h.state().viewport.handle_list().len(), 4, "four handles");
-    let step = h.state().viewport.spacing.minor;
+    let step = h.state().viewport.grid_step();
     let wpp = h.state().viewport.screen_map().world_per_point();
     // Three grid steps right and two down (−y in the Top view), plus a third of a step of slack
     // that the snap takes away.
@@ -137,7 +137,7 @@ fn a_curve_drawn_in_the_front_view_becomes_points_and_a_spline() {
     h.state_mut()
         .viewport
         .toggle_tool(Tool::Draw(Default::default()));
-    let step = h.state().viewport.spacing.minor;
+    let step = h.state().viewport.grid_step();
     let wpp = h.state().viewport.screen_map().world_per_point();
     // Four clicks on XZ, each a little off the grid (less than half a step).
     let clicks: Vec<DVec3> = [(0.0, 0.0), (2.0, 3.0), (5.0, 3.0), (7.0, 0.0)]
@@ -189,19 +189,19 @@ fn the_draw_tool_offers_a_polyline_on_the_toolbar_and_p_switches() {
     let mut h = open("draw-polyline", POINTS_GRAPH);
     view(&mut h, NamedView::Front);
     // The pointer over the 3D view, nothing typed.
-    let centre = h.state().viewport.rect.center();
+    let centre = h.state().viewport.rect().center();
     h.hover_at(centre);
     h.key_press(Key::C);
     h.run_steps(2);
     assert!(
-        matches!(h.state().viewport.tool, Tool::Draw(_)),
+        matches!(h.state().viewport.tool(), Tool::Draw(_)),
         "C: Draw curve"
     );
     // The toolbar's Polyline, clicked with the pointer.
     let toggle = h.get_by_label("Polyline").rect().center();
     click(&mut h, toggle);
     h.run_steps(1);
-    let polyline = |h: &Harness<'static, EditorApp>| match &h.state().viewport.tool {
+    let polyline = |h: &Harness<'static, EditorApp>| match &h.state().viewport.tool() {
         Tool::Draw(d) => d.polyline,
         other => panic!("still drawing: {}", other.label()),
     };
@@ -214,7 +214,7 @@ fn the_draw_tool_offers_a_polyline_on_the_toolbar_and_p_switches() {
     h.key_press(Key::P);
     h.run_steps(2);
     assert!(polyline(&h), "P again: a polyline");
-    let step = h.state().viewport.spacing.minor;
+    let step = h.state().viewport.grid_step();
     for (x, z) in [(0.0, 0.0), (4.0, 0.0), (4.0, 3.0)] {
         let at = screen_of(&h, DVec3::new(steps(x, step), 0.0, steps(z, step)));
         click(&mut h, at);
@@ -263,7 +263,7 @@ fn picking_a_face_names_its_node_and_row_and_column_and_a_click_selects_the_node
                 .viewport
                 .screen_map()
                 .to_screen(centre)
-                .is_some_and(|s| h.state().viewport.rect.shrink(40.0).contains(s))
+                .is_some_and(|s| h.state().viewport.rect().shrink(40.0).contains(s))
         })
         .max_by(|a, b| {
             let z = |c: &Vec<DVec3>| c.iter().map(|p| p.z).sum::<f64>();
@@ -277,6 +277,7 @@ fn picking_a_face_names_its_node_and_row_and_column_and_a_click_selects_the_node
     let hit = h
         .state()
         .viewport
+        .tools()
         .hover
         .clone()
         .expect("something under the pointer");
@@ -319,21 +320,22 @@ fn the_fold_entry_of_the_legend_frames_the_folded_faces() {
     let entry = h
         .state()
         .viewport
+        .last_frame()
         .fold_entry
         .expect("the legend's fold entry");
     click(&mut h, entry.center());
     h.run_steps(3);
     let app = h.state();
-    assert!(app.viewport.folds_shown);
+    assert!(app.viewport.drawn().folds_shown);
     let picks = app.viewport.picks().clone();
     let map = app.viewport.screen_map();
     for (m, f) in &folds {
         for p in picks.meshes[*m].geometry.face_corners(*f) {
             let s = map.to_screen(p).expect("in front");
             assert!(
-                app.viewport.rect.expand(1.0).contains(s),
+                app.viewport.rect().expand(1.0).contains(s),
                 "fold corner {p} at {s:?} is framed in {:?}",
-                app.viewport.rect
+                app.viewport.rect()
             );
         }
     }
@@ -363,7 +365,7 @@ fn the_measure_tool_snaps_to_vertices_and_reports_their_distance() {
     let (sa, sb) = (screen_of(&h, a), screen_of(&h, b));
     click(&mut h, sa + vec2(3.0, -2.0));
     click(&mut h, sb + vec2(-2.0, 3.0));
-    let Tool::Measure(m) = &h.state().viewport.tool else {
+    let Tool::Measure(m) = &h.state().viewport.tool() else {
         panic!("still measuring")
     };
     let d = m.distance().expect("two points");
@@ -385,17 +387,20 @@ fn named_views_are_one_key_away_and_orthographic() {
         (Key::Num4, NamedView::Perspective),
     ] {
         // The pointer over the 3D view, nothing typed.
-        let centre = h.state().viewport.rect.center();
+        let centre = h.state().viewport.rect().center();
         h.hover_at(centre);
         h.key_press(key);
         h.run_steps(3);
         let vp = &h.state().viewport;
-        assert_eq!(vp.view, v);
-        assert_eq!(vp.camera.is_orthographic(), v != NamedView::Perspective);
+        assert_eq!(vp.framing().view, v);
+        assert_eq!(
+            vp.framing().camera.is_orthographic(),
+            v != NamedView::Perspective
+        );
         // Each frames the previewed geometry: every handle is in view.
         for handle in vp.handle_list() {
             let s = vp.screen_map().to_screen(handle.position).unwrap();
-            assert!(vp.rect.contains(s), "{v:?}: {handle:?} at {s:?}");
+            assert!(vp.rect().contains(s), "{v:?}: {handle:?} at {s:?}");
         }
     }
 }
@@ -448,9 +453,9 @@ fn a_box_selects_handles_arrows_nudge_them_and_the_inspector_takes_a_coordinate(
     let mut h = open("box", POINTS_GRAPH);
     view(&mut h, NamedView::Top);
     // Zoomed out, so the box's corners are in the view.
-    h.state_mut().viewport.camera.distance *= 2.0;
+    h.state_mut().viewport.zoom(2.0);
     h.run_steps(2);
-    let step = h.state().viewport.spacing.minor;
+    let step = h.state().viewport.grid_step();
     // A box around the first three points (the fourth, at x = 6, stays out).
     let a = screen_of(&h, DVec3::new(-0.5, 1.5, 0.0));
     let b = screen_of(&h, DVec3::new(4.5, -1.5, 0.0));
@@ -458,6 +463,7 @@ fn a_box_selects_handles_arrows_nudge_them_and_the_inspector_takes_a_coordinate(
     let selected: Vec<usize> = h
         .state()
         .viewport
+        .tools()
         .handles
         .selected
         .iter()
@@ -470,7 +476,7 @@ fn a_box_selects_handles_arrows_nudge_them_and_the_inspector_takes_a_coordinate(
     );
     let before = points_of(h.state(), "pts");
     // The arrow keys move the selected handles one grid step in the view's plane.
-    let centre = h.state().viewport.rect.center();
+    let centre = h.state().viewport.rect().center();
     h.hover_at(centre);
     h.key_press(Key::ArrowRight);
     h.run_steps(2);
@@ -488,9 +494,9 @@ fn a_box_selects_handles_arrows_nudge_them_and_the_inspector_takes_a_coordinate(
     // One handle selected: the inspector shows its coordinates and takes a typed one.
     let at = screen_of(&h, after[3].as_vec3().unwrap());
     click(&mut h, at);
-    assert_eq!(h.state().viewport.handles.selected.len(), 1);
+    assert_eq!(h.state().viewport.tools().handles.selected.len(), 1);
     h.run_steps(2);
-    let view_rect = h.state().viewport.rect;
+    let view_rect = h.state().viewport.rect();
     let z_field = h
         .get_all_by_role(egui::accesskit::Role::SpinButton)
         .map(|n| n.rect().center())
@@ -577,7 +583,7 @@ fn assert_in_canvas(h: &Harness<'static, EditorApp>, ids: &[String], what: &str)
         assert!(
             view.contains_rect(r),
             "{what}: {id} at {r:?} is not wholly in the canvas {view:?} (the 3D view starts at {})",
-            app.viewport.rect.left()
+            app.viewport.rect().left()
         );
     }
 }
@@ -662,7 +668,7 @@ fn torus_monge_opens_framed_on_its_surfaces_with_a_grid_of_their_size() {
     settle(&mut h);
     h.run_steps(4);
     let app = h.state();
-    let view = app.viewport.rect;
+    let view = app.viewport.rect();
     let map = app.viewport.screen_map();
     let picks = app.viewport.picks();
     let mut drawn = egui::Rect::NOTHING;

@@ -59,8 +59,8 @@ fn snapshot_default_graph_shows_canvas_and_mesh() {
         app.viewport.scene().triangle_count() > 0,
         "the cone-net is in the scene"
     );
-    assert_eq!(app.viewport.stats.vertices, 11 * 19);
-    assert!(app.viewport.stats.max_planarity.unwrap() < 1e-9);
+    assert_eq!(app.viewport.stats().vertices, 11 * 19);
+    assert!(app.viewport.stats().max_planarity.unwrap() < 1e-9);
     assert!(matches!(app.statuses()["construct"], NodeStatus::Ok { .. }));
     h.snapshot("editor_default");
 }
@@ -518,9 +518,9 @@ fn viewport_orbits_pans_zooms_fits_and_switches_colours_and_layers() {
     let view = h.state().canvas.screen_rect();
     // The viewport is the panel right of the canvas.
     let center = Pos2::new(view.right() + 300.0, view.center().y);
-    let camera = h.state().viewport.camera;
+    let camera = h.state().viewport.framing().camera;
     drag(&mut h, center, center + egui::vec2(80.0, 30.0));
-    let orbited = h.state().viewport.camera;
+    let orbited = h.state().viewport.framing().camera;
     assert!((orbited.yaw - camera.yaw).abs() > 0.1, "left-drag orbits");
     assert_eq!(orbited.distance, camera.distance);
     h.hover_at(center);
@@ -532,22 +532,22 @@ fn viewport_orbits_pans_zooms_fits_and_switches_colours_and_layers() {
     });
     h.run_steps(10);
     assert!(
-        h.state().viewport.camera.distance < orbited.distance,
+        h.state().viewport.framing().camera.distance < orbited.distance,
         "the wheel zooms in"
     );
     h.key_press(Key::F);
     h.run_steps(2);
     assert!(
-        h.state().viewport.camera != orbited,
+        h.state().viewport.framing().camera != orbited,
         "F frames the geometry again"
     );
 
-    let mut o = h.state().viewport.options;
+    let mut o = h.state().viewport.display().options;
     o.color_mode = ColorMode::Planarity;
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::SetPreview(o));
     settle(&mut h);
-    match &h.state().viewport.stats.legend {
+    match &h.state().viewport.stats().legend {
         LegendInfo::Planarity(l) => {
             assert!(
                 l.labels[0].starts_with("planar"),
@@ -582,7 +582,7 @@ fn viewport_orbits_pans_zooms_fits_and_switches_colours_and_layers() {
 fn a_changing_view_renders_at_half_resolution_on_software_then_settles() {
     let mut h = harness("scale");
     assert_eq!(
-        h.state().viewport.render_scale,
+        h.state().viewport.framing().render_scale,
         1.0,
         "settled: full resolution"
     );
@@ -604,13 +604,13 @@ fn a_changing_view_renders_at_half_resolution_on_software_then_settles() {
         1.0
     };
     assert_eq!(
-        h.state().viewport.render_scale,
+        h.state().viewport.framing().render_scale,
         expected,
         "software rasterizer: {software}"
     );
     h.run_steps(30);
     assert_eq!(
-        h.state().viewport.render_scale,
+        h.state().viewport.framing().render_scale,
         1.0,
         "back to full resolution"
     );

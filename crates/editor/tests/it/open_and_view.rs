@@ -383,7 +383,7 @@ fn the_planarity_limit_is_set_in_the_viewport_and_kept_in_the_settings() {
         h.query_by_label("not planar from").is_none(),
         "only in planarity mode"
     );
-    h.state_mut().viewport.options.color_mode = ColorMode::Planarity;
+    h.state_mut().viewport.display_mut().options.color_mode = ColorMode::Planarity;
     settle(&mut h);
     let top = |h: &Harness<'static, EditorApp>| match &h.state().viewport.stats().legend {
         LegendInfo::Planarity(l) => l.labels.last().cloned().unwrap_or_default(),
@@ -400,14 +400,17 @@ fn the_planarity_limit_is_set_in_the_viewport_and_kept_in_the_settings() {
     h.key_press(egui::Key::ArrowLeft);
     h.run_steps(2);
     settle(&mut h);
-    let limit = h.state().viewport.options.planarity_limit();
+    let limit = h.state().viewport.display().options.planarity_limit();
     assert!(limit < 1e-3, "the slider lowered the limit: {limit}");
     assert_eq!(h.state().settings.planarity_limit(), Some(limit), "saved");
     assert!(!top(&h).contains("1e-3"), "the legend follows: {}", top(&h));
     // A new session in the same settings folder starts with it.
     drop(h);
     let h = common::harness_with("planarity-limit-2", None, config);
-    assert_eq!(h.state().viewport.options.planarity_limit(), limit);
+    assert_eq!(
+        h.state().viewport.display().options.planarity_limit(),
+        limit
+    );
 }
 
 /// A graph file of `n` numbers (a `param.list`) written to `dir`.
@@ -623,17 +626,17 @@ fn preview_only_the_selected_draws_the_selected_nodes_alone() {
         all.len() > 1 && all.contains(&"construct".to_string()),
         "{all:?}"
     );
-    let vertices = h.state().viewport.stats.vertices;
+    let vertices = h.state().viewport.stats().vertices;
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::ToggleOnlySelected);
     h.state_mut().canvas.select(vec!["directrix".into()]);
     settle(&mut h);
     assert_eq!(drawn(&h), ["directrix"], "only the selected curve");
-    assert_eq!(h.state().viewport.stats.vertices, 0, "no mesh counted");
+    assert_eq!(h.state().viewport.stats().vertices, 0, "no mesh counted");
     h.state_mut().canvas.select(vec!["construct".into()]);
     settle(&mut h);
     assert_eq!(drawn(&h), ["construct"]);
-    assert_eq!(h.state().viewport.stats.vertices, vertices);
+    assert_eq!(h.state().viewport.stats().vertices, vertices);
     // Nothing selected: every previewed node; the toggle off: the same.
     h.state_mut().canvas.select(Vec::new());
     settle(&mut h);
@@ -653,7 +656,7 @@ fn on_a_phone_the_3d_view_takes_most_of_the_screen() {
     h.set_size(egui::vec2(390.0, 844.0));
     settle(&mut h);
     h.run_steps(4);
-    let view = h.state().viewport.rect;
+    let view = h.state().viewport.rect();
     let share = view.height() / 844.0;
     eprintln!(
         "phone: 3D view {view:?}, {:.0} % of the height",
@@ -696,8 +699,8 @@ fn two_fingers_on_the_3d_view_pinch_zoom_and_pan() {
     let mut h = harness("pinch");
     settle(&mut h);
     h.run_steps(2);
-    let centre = h.state().viewport.rect.center();
-    let before = h.state().viewport.camera;
+    let centre = h.state().viewport.rect().center();
+    let before = h.state().viewport.framing().camera;
     let apart = |d: f32| (centre - egui::vec2(d, 0.0), centre + egui::vec2(d, 0.0));
     let (a, b) = apart(40.0);
     // A browser's first finger also moves the pointer (egui starts a gesture where it is).
@@ -712,7 +715,7 @@ fn two_fingers_on_the_3d_view_pinch_zoom_and_pan() {
         touch(&h, 1, egui::TouchPhase::Move, b);
         h.run_steps(1);
     }
-    let zoomed = h.state().viewport.camera;
+    let zoomed = h.state().viewport.framing().camera;
     assert!(
         dist(&zoomed) < 0.7 * dist(&before),
         "spread to twice apart: distance {} → {}",
@@ -731,7 +734,7 @@ fn two_fingers_on_the_3d_view_pinch_zoom_and_pan() {
     touch(&h, 0, egui::TouchPhase::End, a + by);
     touch(&h, 1, egui::TouchPhase::End, b + by);
     h.run_steps(2);
-    let panned = h.state().viewport.camera;
+    let panned = h.state().viewport.framing().camera;
     assert!(
         (panned.target - zoomed.target).length() > 1e-3 * dist(&zoomed),
         "the target moved: {:?} → {:?}",
@@ -751,12 +754,12 @@ fn the_figures_over_the_3d_view_never_overlap() {
     for (width, height) in [(390.0, 844.0), (1280.0, 800.0)] {
         let mut h = harness("overlays");
         h.set_size(egui::vec2(width, height));
-        h.state_mut().viewport.show_dimensions = true;
+        h.state_mut().viewport.display_mut().show_dimensions = true;
         for mode in cnets_editor::preview::ColorMode::ALL {
-            h.state_mut().viewport.options.color_mode = mode;
+            h.state_mut().viewport.display_mut().options.color_mode = mode;
             settle(&mut h);
             h.run_steps(3);
-            let overlays = h.state().viewport.overlays.clone();
+            let overlays = h.state().viewport.last_frame().overlays.clone();
             let names: Vec<&str> = overlays.iter().map(|(n, _)| *n).collect();
             assert!(
                 ["statistics", "axes", "grid", "size"]
@@ -766,7 +769,7 @@ fn the_figures_over_the_3d_view_never_overlap() {
             );
             for (k, (a, ra)) in overlays.iter().enumerate() {
                 assert!(
-                    h.state().viewport.rect.expand(1.0).contains_rect(*ra),
+                    h.state().viewport.rect().expand(1.0).contains_rect(*ra),
                     "{a} {ra:?}"
                 );
                 for (b, rb) in &overlays[k + 1..] {

@@ -108,7 +108,7 @@ fn panning_the_canvas_blits_the_3d_view_without_rendering_it_again() {
         first,
         "12 frames of canvas pan and zoom rendered the 3D view again"
     );
-    h.state_mut().viewport.camera.orbit(0.3, 0.1);
+    h.state_mut().viewport.orbit(0.3, 0.1);
     h.run_steps(1);
     h.render().expect("a picture");
     assert!(

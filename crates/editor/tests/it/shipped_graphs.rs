@@ -197,9 +197,9 @@ fn every_shipped_graph_opens_framed_beside_the_3d_view() {
         );
         // The canvas ends where the 3D view begins.
         assert!(
-            view.right() <= app.viewport.rect.left() + 1.0,
+            view.right() <= app.viewport.rect().left() + 1.0,
             "{name}: canvas {view:?}, 3D view {:?}",
-            app.viewport.rect
+            app.viewport.rect()
         );
         // The graph's size on the canvas (canvas units) and the largest zoom showing it whole.
         let all = rects

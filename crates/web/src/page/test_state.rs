@@ -11,7 +11,7 @@ impl WebApp {
     /// picture's time, the last change-to-picture latency, where the 3D view and the first slider
     /// are, in CSS pixels).
     pub(super) fn report(&mut self) {
-        let drawn = self.app.viewport.drawn_version;
+        let drawn = self.app.viewport.handed_version();
         if drawn > 0 && self.first_picture_ms.is_none() && !self.app.viewport.scene().is_empty() {
             self.first_picture_ms = Some(now_ms());
         }
@@ -52,7 +52,7 @@ impl WebApp {
         );
         // The worker has not answered the newest submission completely yet.
         set("evaluating", JsValue::from_bool(self.app.busy()));
-        set("view", rect(self.app.viewport.rect));
+        set("view", rect(self.app.viewport.rect()));
         set("title", self.app.doc.title().into());
         set(
             "tab_title",
@@ -69,7 +69,7 @@ impl WebApp {
         );
         // The figures over the 3D view: [name, [left, top, right, bottom]] each.
         let overlays = js_sys::Array::new();
-        for (name, r) in &self.app.viewport.overlays {
+        for (name, r) in &self.app.viewport.last_frame().overlays {
             overlays.push(&js_sys::Array::of2(&JsValue::from_str(name), &rect(*r)).into());
         }
         set("overlays", overlays.into());
@@ -169,7 +169,7 @@ impl WebApp {
         set("message", self.app.message.clone().into());
         set(
             "vertices",
-            JsValue::from_f64(self.app.viewport.stats.vertices as f64),
+            JsValue::from_f64(self.app.viewport.stats().vertices as f64),
         );
         // The first number slider on the canvas (in view), else the first integer one there,
         // else the first number slider of the graph.
@@ -290,8 +290,8 @@ fn net_vertex(app: &EditorApp) -> JsValue {
     use cnets_editor::viewport::net_drag::vertex_at;
     let picks = app.viewport.picks();
     let map = app.viewport.screen_map();
-    let inner = app.viewport.rect.shrink(60.0);
-    let centre = app.viewport.rect.center();
+    let inner = app.viewport.rect().shrink(60.0);
+    let centre = app.viewport.rect().center();
     let mut candidates: Vec<(f32, egui::Pos2, &str, usize, usize)> = Vec::new();
     for m in &picks.meshes {
         let cnets_editor::preview::PickGeometry::Grid(g) = &m.geometry else {

@@ -101,7 +101,7 @@ const SCREENSHOT_PATIENCE: Duration = Duration::from_secs(300);
 impl Window {
     /// The evaluation is done and its picture drawn.
     fn settled(&self) -> bool {
-        !self.app.busy() && self.app.viewport.drawn_version >= self.app.viewport.scene_version()
+        !self.app.busy() && self.app.viewport.handed_version() >= self.app.viewport.scene_version()
     }
 }
 
@@ -153,7 +153,7 @@ impl eframe::App for Window {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         } else if self.frames >= self.quit_after
             && !self.requested
-            && self.app.viewport.render_scale >= 1.0
+            && self.app.viewport.framing().render_scale >= 1.0
             && (self.settled() || self.opened.elapsed() > SCREENSHOT_PATIENCE)
         {
             // (On a software rasterizer the view renders at full resolution once it settles; a

@@ -123,7 +123,7 @@ impl Bench {
             );
             println!("  evaluation (worker): {}", stats(&mut self.evals));
             println!("  scene build (worker): {}", stats(&mut self.scenes));
-            println!("  vertices: {}", app.viewport.stats.vertices);
+            println!("  vertices: {}", app.viewport.stats().vertices);
             // Quit without the unsaved-changes question.
             app.quit = true;
             ctx.request_repaint();

@@ -37,7 +37,7 @@ pub(crate) fn click(t: Target) -> Step {
 /// A world point nudged by a fifth of a grid step on screen (the snap takes it away).
 pub(crate) fn near(p: DVec3) -> Target {
     Box::new(move |app: &EditorApp, ctx: &egui::Context| {
-        let s = app.viewport.spacing.minor;
+        let s = app.viewport.grid_step();
         let px = (s / app.viewport.screen_map().world_per_point()) as f32;
         world(p)(app, ctx).map(|q| q + vec2(0.2, -0.2) * px)
     })
@@ -63,7 +63,7 @@ pub(crate) fn pin(node: &'static str, input: bool, port: &'static str) -> Target
 
 /// The middle of the view, for the wheel.
 pub(crate) fn view_centre() -> Target {
-    Box::new(|app: &EditorApp, _: &egui::Context| Some(app.viewport.rect.center()))
+    Box::new(|app: &EditorApp, _: &egui::Context| Some(app.viewport.rect().center()))
 }
 
 /// The box of the construction's mesh: (W, D, H).
@@ -137,9 +137,7 @@ pub fn canopy() -> Vec<Step> {
         // The Top view of an empty design frames 20 m around the origin.
         key(Key::Num1),
         Step::Settle,
-        print("top step", |app| {
-            format!("{:?}", app.viewport.spacing.minor)
-        }),
+        print("top step", |app| format!("{:?}", app.viewport.grid_step())),
     ];
     steps.extend(draw(S_CURVE.map(|(x, y)| DVec3::new(x, y, 0.0))));
     steps.extend([
@@ -154,12 +152,12 @@ pub fn canopy() -> Vec<Step> {
             Box::new(|app| {
                 let map = app.viewport.screen_map();
                 let half_width = map.world_per_point() * f64::from(map.rect.width()) / 2.0;
-                half_width > 7.0 && app.viewport.spacing.minor <= 1.0
+                half_width > 7.0 && app.viewport.grid_step() <= 1.0
             }),
         ),
         Step::Wait(3),
         print("front step", |app| {
-            format!("{:?}", app.viewport.spacing.minor)
+            format!("{:?}", app.viewport.grid_step())
         }),
     ]);
     steps.extend(draw(ARCH.map(|(x, z)| DVec3::new(x, 0.0, z))));
@@ -217,7 +215,7 @@ pub fn canopy() -> Vec<Step> {
         Step::Shot("canopy-3-constructed"),
         // The legend's fold entry frames and outlines the folds.
         click(Box::new(|app: &EditorApp, _: &egui::Context| {
-            app.viewport.fold_entry.map(|r| r.center())
+            app.viewport.last_frame().fold_entry.map(|r| r.center())
         })),
         Step::Wait(4),
         print("outlined", |app| app.viewport.highlight().len().to_string()),

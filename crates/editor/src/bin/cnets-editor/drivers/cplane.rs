@@ -44,10 +44,14 @@ fn beside_handle(node: &'static str, index: usize) -> Target {
 /// tenth of a step (the snap takes it away).
 fn on_plane(a: f64, b: f64) -> Target {
     Box::new(move |app: &EditorApp, _: &egui::Context| {
-        let s = app.viewport.spacing.minor;
+        let s = app.viewport.grid_step();
         let map = app.viewport.screen_map();
         let px = (s / map.world_per_point()) as f32;
-        let p = app.viewport.perspective_plane.at(a * s, b * s, 0.0);
+        let p = app
+            .viewport
+            .framing()
+            .perspective_plane
+            .at(a * s, b * s, 0.0);
         map.to_screen(p).map(|q| q + vec2(0.1, -0.1) * px)
     })
 }
@@ -60,10 +64,12 @@ fn vector(p: DVec3) -> String {
 pub fn cplane() -> Vec<Step> {
     let mut steps = vec![
         Step::Settle,
-        print("view", |app| app.viewport.view.label().to_string()),
+        print("view", |app| {
+            app.viewport.framing().view.label().to_string()
+        }),
         click(control("View")),
         click(control("CPlane from 3 points")),
-        print("tool", |app| app.viewport.tool.label().to_string()),
+        print("tool", |app| app.viewport.tool().label().to_string()),
     ];
     for k in 0..3 {
         steps.push(click(beside_handle("tri", k)));
@@ -71,10 +77,12 @@ pub fn cplane() -> Vec<Step> {
     steps.extend([
         Step::Settle,
         print("plane", |app| {
-            let p = app.viewport.perspective_plane;
+            let p = app.viewport.framing().perspective_plane;
             [p.origin, p.u, p.v, p.normal].map(vector).join(" ")
         }),
-        print("plane name", |app| app.viewport.perspective_name.clone()),
+        print("plane name", |app| {
+            app.viewport.framing().perspective_name.clone()
+        }),
         print("cplanes", |app| {
             let names: Vec<&str> = app
                 .doc
@@ -87,7 +95,7 @@ pub fn cplane() -> Vec<Step> {
         }),
         print("undo steps", |app| app.doc.history.undo_len().to_string()),
         Step::Key(Key::C, Modifiers::NONE),
-        print("step", |app| format!("{:?}", app.viewport.spacing.minor)),
+        print("step", |app| format!("{:?}", app.viewport.grid_step())),
     ]);
     for (a, b) in CURVE_STEPS {
         steps.push(click(on_plane(a, b)));
@@ -95,7 +103,9 @@ pub fn cplane() -> Vec<Step> {
     steps.extend([
         Step::Key(Key::Enter, Modifiers::NONE),
         Step::Settle,
-        print("drawn view", |app| app.viewport.view.label().to_string()),
+        print("drawn view", |app| {
+            app.viewport.framing().view.label().to_string()
+        }),
         print("drawn", |app| points_text(app, "points")),
         print("saved", |app| {
             let text = cnets_engine::file::to_ron(&app.doc.graph, &app.doc.meta);

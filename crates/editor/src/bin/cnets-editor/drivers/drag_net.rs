@@ -44,7 +44,7 @@ fn print(key: &'static str, f: impl Fn(&EditorApp) -> String + 'static) -> Step 
 fn grabbable(app: &EditorApp, interior_only: bool) -> Vec<((usize, usize), DVec3, Pos2)> {
     let picks = app.viewport.picks();
     let map = app.viewport.screen_map();
-    let inner = app.viewport.rect.shrink(60.0);
+    let inner = app.viewport.rect().shrink(60.0);
     let Some(PickGeometry::Grid(g)) = picks
         .meshes
         .iter()
@@ -65,7 +65,7 @@ fn grabbable(app: &EditorApp, interior_only: bool) -> Vec<((usize, usize), DVec3
             (interior && v.node == NET && v.vertex == ij).then_some((ij, *p, at))
         })
         .collect();
-    let centre = app.viewport.rect.center();
+    let centre = app.viewport.rect().center();
     let middle = g.rows / 2;
     found.sort_by(|a, b| {
         (a.0.0.abs_diff(middle), a.2.distance(centre))
@@ -274,13 +274,13 @@ pub fn drag_net() -> Vec<Step> {
         Step::Settle,
         Step::Key(Key::G, Modifiers::NONE),
         Step::Wait(2),
-        print("tool", |app| app.viewport.tool.label().to_string()),
+        print("tool", |app| app.viewport.tool().label().to_string()),
         print("inputs before", inputs),
         Step::Click(pin_at, PointerButton::Primary, Modifiers::SHIFT),
         Step::Wait(2),
         print("grabbed", move |_| format!("{:?}", g4.get())),
         print("pinned", move |_| format!("{:?}", p2.get())),
-        print("pins", |app| match &app.viewport.tool {
+        print("pins", |app| match &app.viewport.tool() {
             cnets_editor::viewport::Tool::DragNet(d) => d.pins.len().to_string(),
             _ => "no tool".into(),
         }),

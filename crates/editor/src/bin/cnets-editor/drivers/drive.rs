@@ -66,7 +66,7 @@ impl Drive {
             return;
         }
         self.frames += 1;
-        let settled = !app.busy() && app.viewport.drawn_version >= app.viewport.scene_version();
+        let settled = !app.busy() && app.viewport.handed_version() >= app.viewport.scene_version();
         self.settled_frames = if settled { self.settled_frames + 1 } else { 0 };
         if self.frames < 30 || self.settled_frames < 4 {
             return;

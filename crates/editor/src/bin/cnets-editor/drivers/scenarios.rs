@@ -18,7 +18,7 @@ pub fn world(p: DVec3) -> Target {
 /// displaced by a fraction of a step on screen (the snap takes it away).
 fn grid_point(steps: DVec3, slack: egui::Vec2) -> Target {
     Box::new(move |app: &EditorApp, _: &egui::Context| {
-        let s = app.viewport.spacing.minor;
+        let s = app.viewport.grid_step();
         let map = app.viewport.screen_map();
         let px = (s / map.world_per_point()) as f32;
         map.to_screen(steps * s).map(|p| p + slack * px)
@@ -71,8 +71,10 @@ fn click(t: Target) -> Step {
 /// The grid step and the world size of a screen point, as the tests need them.
 fn scale_lines() -> Vec<Step> {
     vec![
-        print("step", |app| format!("{:?}", app.viewport.spacing.minor)),
-        print("view", |app| app.viewport.view.label().to_string()),
+        print("step", |app| format!("{:?}", app.viewport.grid_step())),
+        print("view", |app| {
+            app.viewport.framing().view.label().to_string()
+        }),
     ]
 }
 
@@ -87,7 +89,7 @@ fn handles() -> Vec<Step> {
         Step::Drag(
             handle("pts", 1, vec2(0.0, 0.0)),
             Box::new(|app: &EditorApp, ctx: &egui::Context| {
-                let s = app.viewport.spacing.minor;
+                let s = app.viewport.grid_step();
                 let px = (s / app.viewport.screen_map().world_per_point()) as f32;
                 let h = handle("pts", 1, vec2(0.0, 0.0))(app, ctx)?;
                 Some(h + vec2(3.3 * px, 1.7 * px))
@@ -262,7 +264,7 @@ fn top_face(app: &EditorApp) -> Option<(String, usize, DVec3)> {
         })
         .filter(|(_, c)| {
             map.to_screen(*c)
-                .is_some_and(|s| app.viewport.rect.shrink(40.0).contains(s))
+                .is_some_and(|s| app.viewport.rect().shrink(40.0).contains(s))
         })
         .max_by(|a, b| a.1.z.total_cmp(&b.1.z))
         .map(|(f, c)| (mesh.node.clone(), f, c))
@@ -293,6 +295,7 @@ fn pick() -> Vec<Step> {
         Step::Wait(3),
         print("hover", |app| {
             app.viewport
+                .tools()
                 .hover
                 .as_ref()
                 .map(|h| {
@@ -319,7 +322,7 @@ fn folds() -> Vec<Step> {
             app.viewport.picks().folded_faces().len().to_string()
         }),
         click(Box::new(|app: &EditorApp, _: &egui::Context| {
-            app.viewport.fold_entry.map(|r| r.center())
+            app.viewport.last_frame().fold_entry.map(|r| r.center())
         })),
         Step::Wait(3),
         print("framed", |app| {
@@ -328,7 +331,7 @@ fn folds() -> Vec<Step> {
             let inside = picks.folded_faces().iter().all(|(m, f)| {
                 picks.meshes[*m].geometry.face_corners(*f).iter().all(|p| {
                     map.to_screen(*p)
-                        .is_some_and(|s| app.viewport.rect.expand(1.0).contains(s))
+                        .is_some_and(|s| app.viewport.rect().expand(1.0).contains(s))
                 })
             });
             inside.to_string()

@@ -38,9 +38,7 @@ pub fn tutorial() -> Vec<Step> {
         // Step 2: the directrix, drawn in the Top view.
         key(Key::Num1),
         Step::Settle,
-        print("top step", |app| {
-            format!("{:?}", app.viewport.spacing.minor)
-        }),
+        print("top step", |app| format!("{:?}", app.viewport.grid_step())),
     ];
     steps.extend(draw(S_CURVE.map(|(x, y)| DVec3::new(x, y, 0.0))));
     steps.extend([
@@ -55,12 +53,12 @@ pub fn tutorial() -> Vec<Step> {
             Box::new(|app| {
                 let map = app.viewport.screen_map();
                 let half_width = map.world_per_point() * f64::from(map.rect.width()) / 2.0;
-                half_width > 7.0 && app.viewport.spacing.minor <= 1.0
+                half_width > 7.0 && app.viewport.grid_step() <= 1.0
             }),
         ),
         Step::Wait(3),
         print("front step", |app| {
-            format!("{:?}", app.viewport.spacing.minor)
+            format!("{:?}", app.viewport.grid_step())
         }),
     ]);
     steps.extend(draw(ARCH.map(|(x, z)| DVec3::new(x, 0.0, z))));
