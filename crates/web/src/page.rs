@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 use cnets_editor::app::{AppOptions, EditorApp};
 use cnets_editor::load_failure::LoadFailure;
-use cnets_editor::page::{Page, PageRequest};
+use cnets_editor::page::PageRequest;
 use cnets_editor::recovery::{LimitedStore, Recovery, RecoveryStore};
 use cnets_editor::viewport::GpuTarget;
 use cnets_editor::worker::Worker;
@@ -142,10 +142,10 @@ impl WebApp {
             examples_dir: PathBuf::from("graphs"),
             wake,
         });
-        app.page = Some(Page::default());
+        app.in_page();
         // The parameter panel docked at the start: a visitor finds the graph's sliders, toggles,
         // value lists and mappers in one place (narrow windows show it under the 3D view).
-        app.parameters_open = true;
+        app.show_parameters(true);
         // Evaluation in a Web Worker: the page answers input while a graph evaluates.
         let remote = WebWorker::start(ctx.clone());
         app.set_worker(Worker::remote(Box::new(remote.clone())));
@@ -199,8 +199,8 @@ impl WebApp {
             match shared {
                 Ok(ron) => {
                     if self.app.open_text(&ron, Path::new("shared-link.ron")) {
-                        self.app.doc.name = Some(SHARED.into());
-                        self.app.message = "opened the shared design of the link".into();
+                        self.app.name_document(SHARED);
+                        self.app.set_message("opened the shared design of the link");
                     } else {
                         // The dialog lists the graph's problems; no other graph stands in.
                         self.app.open_empty(&format!("{SHARED} (not opened)"));
@@ -217,7 +217,7 @@ impl WebApp {
                     );
                     failure.kept_document = false;
                     self.app.show_load_failure(failure);
-                    self.app.message = format!("cannot open the link: {e}");
+                    self.app.set_message(format!("cannot open the link: {e}"));
                 }
             }
             // A link is its own document: another one's unsaved work is kept, not offered.
@@ -231,10 +231,9 @@ impl WebApp {
             Some(ron) => {
                 self.app.open_text(ron, &path);
             }
-            None => {
-                self.app.message =
-                    format!("no example named '{name}': File › Open example lists them")
-            }
+            None => self.app.set_message(format!(
+                "no example named '{name}': File › Open example lists them"
+            )),
         }
         // The restore offer belongs to the document it was saved from: another example's
         // unsaved work is kept aside (File ▸ Restore kept work), never offered over this one.
@@ -247,7 +246,7 @@ impl WebApp {
         for (name, bytes) in files {
             if crate::opening::is_large_graph(&name, bytes.len()) {
                 // Read by the worker: the page keeps answering (docs/web.md, "Large files").
-                let library = self.app.library.dirs.iter();
+                let library = self.app.library().dirs.iter();
                 let library = library.map(|d| d.to_string_lossy().into_owned()).collect();
                 let len = bytes.len();
                 let token = self.remote.read_file(&name, library, bytes);
@@ -265,8 +264,9 @@ impl WebApp {
                 self.remote.provide(&name, bytes.clone());
                 cnets_engine::files::memory::provide(&name, bytes);
                 self.app.reevaluate();
-                self.app.message =
-                    format!("{name} ({len} bytes) is readable by the nodes that import it");
+                self.app.set_message(format!(
+                    "{name} ({len} bytes) is readable by the nodes that import it"
+                ));
             }
         }
     }
@@ -287,8 +287,8 @@ impl WebApp {
             let Some(name) = name else { continue };
             let origin = PathBuf::from(&name);
             let loaded = result.and_then(|parsed| {
-                let library = &self.app.library.dirs;
-                crate::opening::document_of(parsed, &origin, &self.app.registry, library)
+                let library = &self.app.library().dirs;
+                crate::opening::document_of(parsed, &origin, self.app.registry(), library)
             });
             self.app.receive_document(loaded, &origin);
             if let Some(large) = self.opening.last_large.as_mut() {
@@ -305,16 +305,16 @@ impl WebApp {
                 let fragment = crate::link::fragment(&ron);
                 copy_link(&fragment).map(|url| {
                     // The whole link's length, as the address bar shows it.
-                    self.app.message = format!(
+                    self.app.set_message(format!(
                         "link copied ({} characters): it is in the address bar too",
                         url.chars().count()
-                    );
+                    ));
                 })
             }
         };
         if let Err(e) = done {
             let text = e.as_string().unwrap_or_else(|| format!("{e:?}"));
-            self.app.message = format!("the browser refused: {text}");
+            self.app.set_message(format!("the browser refused: {text}"));
         }
     }
 }
@@ -322,7 +322,7 @@ impl WebApp {
 impl WebApp {
     /// The browser tab's title follows the document's ("facade.ron * — cnets").
     fn mirror_title(&mut self) {
-        let title = format!("{} — cnets", self.app.doc.title());
+        let title = format!("{} — cnets", self.app.doc().title());
         if title != self.tab_title
             && let Some(d) = document()
         {
@@ -359,18 +359,18 @@ impl eframe::App for WebApp {
                 .collect()
         });
         for file in dropped {
-            self.app.message = format!(
+            self.app.set_message(format!(
                 "reading {} ({})…",
                 file.name(),
                 size_text(file.size() as usize)
-            );
+            ));
             read_into(file, self.inbox.clone(), self.ctx.clone());
         }
         if self.testing {
             self.test_request();
         }
         if let Some(notice) = self.remote.take_notice() {
-            self.app.message = notice;
+            self.app.set_message(notice);
         }
         // The canvas element gets its CSS size, and the panels theirs, over the first frames:
         // frame the graph and the geometry again while the page settles (and when the first
@@ -382,15 +382,14 @@ impl eframe::App for WebApp {
         if !self.touched {
             if size != self.last_size {
                 self.last_size = size;
-                self.app.canvas.fit_later();
-                self.app.viewport.fit();
+                self.app.frame_again();
             }
-            let view = self.app.viewport.rect();
-            let scene = self.app.viewport.scene_version();
+            let view = self.app.viewport().rect();
+            let scene = self.app.viewport().scene_version();
             if view != self.last_view || (scene != self.framed_scene && self.frames < 60) {
                 self.last_view = view;
                 self.framed_scene = scene;
-                self.app.viewport.fit();
+                self.app.viewport_mut().fit();
             }
         }
         if !self.touched && self.frames < 60 {
@@ -403,7 +402,7 @@ impl eframe::App for WebApp {
         self.app.ui(ui);
         if let Some(notice) = self.opening.notice() {
             cnets_editor::opening_notice::show(ui.ctx(), &notice.title, &notice.detail);
-            self.app.message = notice.sentence();
+            self.app.set_message(notice.sentence());
         }
         if self.opening.pending() {
             ui.ctx().request_repaint();
@@ -414,8 +413,8 @@ impl eframe::App for WebApp {
         if self.welcome && !dialog {
             let shown = cnets_editor::welcome::show(
                 ui.ctx(),
-                self.app.viewport.rect(),
-                self.app.viewport.last_frame().labels_bottom,
+                self.app.viewport().rect(),
+                self.app.viewport().last_frame().labels_bottom,
             );
             self.welcome_rect = Some(shown.rect);
             if shown.dismissed {
@@ -424,7 +423,7 @@ impl eframe::App for WebApp {
             }
         }
         self.mirror_title();
-        let requests = self.app.page.as_mut().map(Page::take).unwrap_or_default();
+        let requests = self.app.take_page_requests();
         for r in requests {
             self.carry_out(r);
         }

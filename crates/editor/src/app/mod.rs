@@ -8,6 +8,7 @@
 mod arrivals;
 mod clusters;
 mod commands;
+mod control;
 mod cplanes;
 mod dialogs;
 mod evaluation;
@@ -17,6 +18,7 @@ mod layout;
 mod loading;
 mod modals;
 mod net_drag;
+mod queries;
 mod reads;
 mod worker;
 
@@ -76,22 +78,22 @@ pub const OVERLAP_HINT: &str = "nodes overlap: View › Arrange graph (Ctrl+L) l
 /// The editor.
 pub struct EditorApp {
     /// Node types.
-    pub registry: Arc<Registry>,
+    registry: Arc<Registry>,
     /// The document being edited.
-    pub doc: GraphDocument,
+    doc: GraphDocument,
     /// The node canvas.
-    pub canvas: Canvas,
+    canvas: Canvas,
     /// The 3D viewport.
-    pub viewport: Viewport,
+    viewport: Viewport,
     /// The node palette.
-    pub palette: PaletteState,
+    palette: PaletteState,
     /// The message in the status bar (e.g. why a wire was refused).
-    pub message: String,
+    message: String,
     /// Recent files.
-    pub settings: Settings,
+    settings: Settings,
     /// Whether the window should close (set by File › Quit and after the unsaved-changes
     /// question; the window closes when it sees it).
-    pub quit: bool,
+    quit: bool,
     /// The dialogs over the editor, one shown at a time (the unsaved-changes question, the
     /// restore offer, a failed file, the read prompt, the export report, the file dialog).
     modals: Modals,
@@ -104,10 +106,10 @@ pub struct EditorApp {
     check_overlaps: bool,
     /// The status bar shows [`OVERLAP_HINT`]: the document opened with overlapping nodes and they
     /// still overlap.
-    pub overlap_hint: bool,
+    overlap_hint: bool,
     /// Show timings and the busy spinner in the status bar (snapshot tests turn them off: they
     /// vary from run to run).
-    pub show_timings: bool,
+    show_timings: bool,
     /// The evaluation session: the worker, what was sent to it, the statuses it answered and
     /// the latency figures.
     evaluation: Evaluation,
@@ -123,22 +125,22 @@ pub struct EditorApp {
     examples: Vec<PathBuf>,
     examples_dir: PathBuf,
     /// The user library (and the examples folder), listed in the palette.
-    pub library: Library,
+    library: Library,
     /// The files the graph reads (imports, clusters), checked about once a second.
     watching: Watching,
     /// The optimization panel.
-    pub optimization: OptimizationPanel,
+    optimization: OptimizationPanel,
     /// Whether the parameter panel (View › Parameters) is shown.
-    pub parameters_open: bool,
+    parameters_open: bool,
     /// The failed nodes' errors the 3D view listed in the last frame (`id: message`): those off
     /// the canvas's view (crate::view_errors).
-    pub view_errors_shown: Vec<String>,
+    view_errors_shown: Vec<String>,
     /// Where the parameter panel was drawn in the last frame (`None`: not shown), in points.
-    pub parameters_rect: Option<egui::Rect>,
+    parameters_rect: Option<egui::Rect>,
     /// Where the parameter panel drew each value editor in the last frame: (node id, rectangle).
-    pub parameter_editors: Vec<(String, egui::Rect)>,
+    parameter_editors: Vec<(String, egui::Rect)>,
     /// The open table windows of literal lists (a node's **Edit…**).
-    pub list_editors: ListEditors,
+    list_editors: ListEditors,
     /// The pointer's last position seen by [`EditorApp::raw_input`].
     pointer: Option<egui::Pos2>,
     /// The opened clusters the canvas was showing in the last frame.
@@ -150,7 +152,7 @@ pub struct EditorApp {
     /// when their outputs get summaries).
     refit_on_results: bool,
     /// In a web page: the requests for the page (see [`crate::page`]); `None` on the desktop.
-    pub page: Option<crate::page::Page>,
+    page: Option<crate::page::Page>,
     /// The path input whose Browse… dialog is open (node id, input name).
     browse_target: Option<(String, String)>,
     /// Files whose prompt the designer declined (not asked again for this document).

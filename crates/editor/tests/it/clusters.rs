@@ -20,7 +20,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
 fn face_positions(app: &EditorApp) -> Vec<[u32; 3]> {
-    app.viewport
+    app.viewport()
         .scene()
         .face_vertices()
         .iter()
@@ -29,7 +29,7 @@ fn face_positions(app: &EditorApp) -> Vec<[u32; 3]> {
 }
 
 fn wires(app: &EditorApp) -> BTreeSet<String> {
-    app.doc
+    app.doc()
         .graph
         .wires()
         .iter()
@@ -38,7 +38,7 @@ fn wires(app: &EditorApp) -> BTreeSet<String> {
 }
 
 fn node_ids(app: &EditorApp) -> BTreeSet<String> {
-    app.doc.graph.nodes().map(|(_, n)| n.id.clone()).collect()
+    app.doc().graph.nodes().map(|(_, n)| n.id.clone()).collect()
 }
 
 /// Presses and releases the primary button twice at `at`.
@@ -61,7 +61,7 @@ fn double_click(h: &mut Harness<'static, EditorApp>, at: Pos2) {
 /// The screen centre of the title label of node `id` (labels on the canvas have canvas
 /// coordinates).
 fn title(h: &Harness<'static, EditorApp>, id: &str) -> Pos2 {
-    let canvas = &h.state().canvas;
+    let canvas = &h.state().canvas();
     let node = canvas.node_screen_rect(id).expect("the node is drawn");
     h.get_all_by_label(id)
         .map(|l| canvas.to_screen(l.rect().center()))
@@ -72,7 +72,7 @@ fn title(h: &Harness<'static, EditorApp>, id: &str) -> Pos2 {
 /// Selects nodes with Shift+click on their frames (as the designer does).
 fn select(h: &mut Harness<'static, EditorApp>, ids: &[&str]) {
     for id in ids {
-        let rect = h.state().canvas.node_screen_rect(id).expect("drawn");
+        let rect = h.state().canvas().node_screen_rect(id).expect("drawn");
         let at = Pos2::new(rect.center().x, rect.bottom() - 4.0);
         h.hover_at(at);
         h.event(egui::Event::ModifiersChanged(Modifiers::SHIFT));
@@ -87,7 +87,7 @@ fn select(h: &mut Harness<'static, EditorApp>, ids: &[&str]) {
         h.event(egui::Event::ModifiersChanged(Modifiers::NONE));
         h.run_steps(2);
     }
-    let selected: BTreeSet<String> = h.state().canvas.selected.iter().cloned().collect();
+    let selected: BTreeSet<String> = h.state().canvas().selected.iter().cloned().collect();
     let wanted: BTreeSet<String> = ids.iter().map(|s| s.to_string()).collect();
     assert_eq!(selected, wanted, "Shift+click selects");
 }
@@ -102,29 +102,29 @@ fn make_cluster(h: &mut Harness<'static, EditorApp>, ids: &[&str]) {
 #[test]
 fn make_cluster_keeps_the_mesh_undo_restores_the_text_explode_restores_the_nodes() {
     let mut h = harness("make-cluster");
-    let before_text = h.state().doc.to_ron();
+    let before_text = h.state().doc().to_ron();
     let before_mesh = face_positions(h.state());
     let before_wires = wires(h.state());
     let before_nodes = node_ids(h.state());
     assert!(!before_mesh.is_empty());
-    let steps = h.state().doc.history.undo_len();
+    let steps = h.state().doc().history.undo_len();
 
     make_cluster(&mut h, &["apex", "ratio", "construct"]);
     let app = h.state();
     let node = app
-        .doc
+        .doc()
         .graph
         .node("cluster")
-        .unwrap_or_else(|| panic!("a cluster node: {}", app.message));
+        .unwrap_or_else(|| panic!("a cluster node: {}", app.message()));
     let inputs: Vec<&str> = node.def.inputs.iter().map(|p| p.name.as_ref()).collect();
     let outputs: Vec<&str> = node.def.outputs.iter().map(|p| p.name.as_ref()).collect();
     assert_eq!(inputs, ["directrix", "generatrix"], "the wires coming in");
     assert_eq!(outputs, ["mesh"], "the wire going out");
     assert!(Cluster::of(&node.def).is_some());
     for gone in ["apex", "ratio", "construct"] {
-        assert!(app.doc.graph.node(gone).is_none());
+        assert!(app.doc().graph.node(gone).is_none());
     }
-    assert_eq!(app.doc.history.undo_len(), steps + 1, "one undo step");
+    assert_eq!(app.doc().history.undo_len(), steps + 1, "one undo step");
     assert!(
         matches!(app.statuses()["cluster"], NodeStatus::Ok { .. }),
         "{:?}",
@@ -139,7 +139,7 @@ fn make_cluster_keeps_the_mesh_undo_restores_the_text_explode_restores_the_nodes
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     settle(&mut h);
     assert_eq!(
-        h.state().doc.to_ron(),
+        h.state().doc().to_ron(),
         before_text,
         "undo restores the text"
     );
@@ -147,19 +147,19 @@ fn make_cluster_keeps_the_mesh_undo_restores_the_text_explode_restores_the_nodes
 
     h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
     settle(&mut h);
-    assert!(h.state().doc.graph.node("cluster").is_some(), "redo");
-    h.state_mut().canvas.focused = Some("cluster".into());
-    h.state_mut().canvas.selected.clear();
+    assert!(h.state().doc().graph.node("cluster").is_some(), "redo");
+    h.state_mut().focus_node(Some("cluster".into()));
+    h.state_mut().select_nodes(Vec::new());
     h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::G);
     settle(&mut h);
     let app = h.state();
     assert_eq!(node_ids(app), before_nodes, "explode gives the nodes back");
     assert_eq!(wires(app), before_wires, "and the wires");
-    for (id, n) in app.doc.graph.nodes().map(|(_, n)| (n.id.clone(), n)) {
+    for (id, n) in app.doc().graph.nodes().map(|(_, n)| (n.id.clone(), n)) {
         let ours: Vec<_> = (0..n.def.inputs.len())
             .map(|k| n.value(k).cloned())
             .collect();
-        let original = cnets_engine::file::load_str(&before_text, "before", &app.registry)
+        let original = cnets_engine::file::load_str(&before_text, "before", app.registry())
             .unwrap()
             .graph;
         let o = original.node(&id).unwrap();
@@ -175,7 +175,7 @@ fn make_cluster_keeps_the_mesh_undo_restores_the_text_explode_restores_the_nodes
 fn open_a_cluster_edit_inside_and_go_back_changes_the_outer_result_undo_crosses_levels() {
     let mut h = harness("open-cluster");
     make_cluster(&mut h, &["apex", "ratio", "construct"]);
-    let made = h.state().doc.to_ron();
+    let made = h.state().doc().to_ron();
     let outer_mesh = face_positions(h.state());
 
     // Double-click the cluster's title: the canvas shows the subgraph.
@@ -183,9 +183,9 @@ fn open_a_cluster_edit_inside_and_go_back_changes_the_outer_result_undo_crosses_
     double_click(&mut h, at);
     settle(&mut h);
     let app = h.state();
-    assert_eq!(app.doc.depth(), 1, "{}", app.message);
-    assert!(app.doc.graph.node("construct").is_some(), "the subgraph");
-    assert_eq!(app.doc.breadcrumbs(), ["main", "cluster (inline)"]);
+    assert_eq!(app.doc().depth(), 1, "{}", app.message());
+    assert!(app.doc().graph.node("construct").is_some(), "the subgraph");
+    assert_eq!(app.doc().breadcrumbs(), ["main", "cluster (inline)"]);
     // The inner nodes ran on the values the cluster receives (the graph inputs have no default).
     assert!(
         matches!(app.statuses()["construct"], NodeStatus::Ok { .. }),
@@ -198,16 +198,16 @@ fn open_a_cluster_edit_inside_and_go_back_changes_the_outer_result_undo_crosses_
     h.snapshot("editor_cluster_breadcrumbs");
 
     // Change a value inside: the live evaluation follows at once.
-    let steps = h.state().doc.history.undo_len();
+    let steps = h.state().doc().history.undo_len();
     assert!(h.state_mut().apply(CanvasAction::Edit(Edit::SetValue {
         node: "ratio".into(),
         input: "value".into(),
         value: Value::Number(0.3),
     })));
-    h.state_mut().doc.history.end_gesture();
+    h.state_mut().end_gesture();
     settle(&mut h);
     assert_ne!(
-        h.state().doc.to_ron(),
+        h.state().doc().to_ron(),
         made,
         "the document text includes the edit"
     );
@@ -216,10 +216,10 @@ fn open_a_cluster_edit_inside_and_go_back_changes_the_outer_result_undo_crosses_
     h.key_press(Key::Escape);
     settle(&mut h);
     let app = h.state();
-    assert_eq!(app.doc.depth(), 0);
-    assert!(app.doc.graph.node("planarity").is_some());
+    assert_eq!(app.doc().depth(), 0);
+    assert!(app.doc().graph.node("planarity").is_some());
     assert!(
-        app.doc
+        app.doc()
             .graph
             .wires()
             .iter()
@@ -227,9 +227,9 @@ fn open_a_cluster_edit_inside_and_go_back_changes_the_outer_result_undo_crosses_
         "the cluster keeps its wires"
     );
     assert_ne!(face_positions(app), outer_mesh, "the outer mesh changed");
-    assert!(app.doc.to_ron().contains("0.3"), "saved inline");
+    assert!(app.doc().to_ron().contains("0.3"), "saved inline");
     assert_eq!(
-        app.doc.history.undo_len(),
+        app.doc().history.undo_len(),
         steps + 2,
         "the edit and the leave"
     );
@@ -237,23 +237,23 @@ fn open_a_cluster_edit_inside_and_go_back_changes_the_outer_result_undo_crosses_
     // Undo across levels: back inside with the edit, then without it.
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     settle(&mut h);
-    assert_eq!(h.state().doc.depth(), 1, "undo returns inside");
+    assert_eq!(h.state().doc().depth(), 1, "undo returns inside");
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     settle(&mut h);
     let value = h
         .state()
-        .doc
+        .doc()
         .graph
         .node("ratio")
         .and_then(|n| n.value_of("value"))
         .and_then(Value::as_f64);
     assert_eq!(value, Some(0.5));
-    assert_eq!(h.state().doc.to_ron(), made, "the text before the edit");
+    assert_eq!(h.state().doc().to_ron(), made, "the text before the edit");
     h.key_press(Key::Escape);
     settle(&mut h);
-    assert_eq!(h.state().doc.depth(), 0);
+    assert_eq!(h.state().doc().depth(), 0);
     assert_eq!(
-        h.state().doc.to_ron(),
+        h.state().doc().to_ron(),
         made,
         "leaving unchanged changes nothing"
     );
@@ -265,14 +265,14 @@ fn nested_clusters_open_with_breadcrumbs_of_any_depth() {
     let mut h = harness("nested");
     make_cluster(&mut h, &["apex", "ratio"]);
     make_cluster(&mut h, &["cluster", "construct"]);
-    let outer = h.state().doc.to_ron();
+    let outer = h.state().doc().to_ron();
     h.state_mut().open_cluster("cluster_2");
     h.state_mut().open_cluster("cluster");
     settle(&mut h);
     let app = h.state();
-    assert_eq!(app.doc.depth(), 2);
+    assert_eq!(app.doc().depth(), 2);
     assert_eq!(
-        app.doc.breadcrumbs(),
+        app.doc().breadcrumbs(),
         ["main", "cluster_2 (inline)", "cluster (inline)"]
     );
     assert!(matches!(app.statuses()["apex"], NodeStatus::Ok { .. }));
@@ -286,9 +286,9 @@ fn nested_clusters_open_with_breadcrumbs_of_any_depth() {
     h.get_by_label("main").click();
     settle(&mut h);
     let app = h.state();
-    assert_eq!(app.doc.depth(), 0, "{}", app.message);
-    assert_ne!(app.doc.to_ron(), outer);
-    assert!(app.doc.to_ron().contains("1.2"));
+    assert_eq!(app.doc().depth(), 0, "{}", app.message());
+    assert_ne!(app.doc().to_ron(), outer);
+    assert!(app.doc().to_ron().contains("1.2"));
 }
 
 const TWICE: &str = r#"(
@@ -327,7 +327,7 @@ fn a_library_graph_appears_in_the_palette_and_inserts_a_working_cluster() {
     let config = temp_config("library");
     std::fs::write(config.join("library.txt"), format!("{}\n", lib.display())).unwrap();
     let mut h = harness_with("library", None, config);
-    h.state_mut().palette.open_at([900.0, 700.0]);
+    h.state_mut().open_palette_at([900.0, 700.0]);
     h.run_steps(2);
     // The palette's search field has the focus (node editors have text fields too).
     h.get_by(|n| n.role() == egui::accesskit::Role::TextInput && n.is_focused())
@@ -335,13 +335,18 @@ fn a_library_graph_appears_in_the_palette_and_inserts_a_working_cluster() {
     h.run_steps(3);
     h.get_by_label("twice (cluster)").click();
     h.run_steps(3);
-    let id = h.state().canvas.focused.clone().expect("a node was added");
+    let id = h
+        .state()
+        .canvas()
+        .focused
+        .clone()
+        .expect("a node was added");
     assert_eq!(id, "twice");
-    let node = h.state().doc.graph.node(&id).unwrap();
+    let node = h.state().doc().graph.node(&id).unwrap();
     let cluster = Cluster::of(&node.def).expect("a cluster node");
     assert_eq!(cluster.label(), "twice.ron");
     assert!(
-        h.state().doc.to_ron().contains("source: \"twice.ron\""),
+        h.state().doc().to_ron().contains("source: \"twice.ron\""),
         "resolved through the library folder"
     );
     h.state_mut().apply(CanvasAction::Edit(Edit::SetValue {
@@ -355,7 +360,8 @@ fn a_library_graph_appears_in_the_palette_and_inserts_a_working_cluster() {
     let saved = lib.join("uses-twice.ron");
     h.state_mut().save_as(&saved);
     let options = cnets_host::document_options(Some(&saved), std::slice::from_ref(&lib));
-    cnets_engine::file::load_file_with(&saved, &h.state().registry, &options).expect("loads again");
+    cnets_engine::file::load_file_with(&saved, h.state().registry(), &options)
+        .expect("loads again");
     std::fs::remove_dir_all(&lib).unwrap();
 }
 
@@ -382,7 +388,7 @@ fn a_cluster_file_changed_on_disk_is_reloaded() {
     let main = write(&dir, "main.ron", MAIN);
     let mut h = harness_with("watch", Some(main), temp_config("watch"));
     assert_eq!(output_of(h.state(), "after"), ["9"], "4 · 2 + 1");
-    let steps = h.state().doc.history.undo_len();
+    let steps = h.state().doc().history.undo_len();
     write(
         &dir,
         "twice.ron",
@@ -393,10 +399,10 @@ fn a_cluster_file_changed_on_disk_is_reloaded() {
     h.run_steps(2);
     settle(&mut h);
     let app = h.state();
-    assert!(app.message.contains("reloaded 't'"), "{}", app.message);
+    assert!(app.message().contains("reloaded 't'"), "{}", app.message());
     assert_eq!(output_of(app, "after"), ["13"], "4 · 3 + 1");
-    assert_eq!(app.doc.history.undo_len(), steps, "not an undo step");
-    assert!(!app.doc.is_dirty(), "the graph's text did not change");
+    assert_eq!(app.doc().history.undo_len(), steps, "not an undo step");
+    assert!(!app.doc().is_dirty(), "the graph's text did not change");
     // A renamed output drops the wire and says so.
     write(
         &dir,
@@ -407,10 +413,10 @@ fn a_cluster_file_changed_on_disk_is_reloaded() {
     settle(&mut h);
     let app = h.state();
     assert!(
-        app.message.contains("dropped wires: t.y -> after.a"),
+        app.message().contains("dropped wires: t.y -> after.a"),
         "{}",
-        app.message
+        app.message()
     );
-    assert!(!app.doc.graph.wires().iter().any(|w| w.from == "t"));
+    assert!(!app.doc().graph.wires().iter().any(|w| w.from == "t"));
     std::fs::remove_dir_all(&dir).unwrap();
 }

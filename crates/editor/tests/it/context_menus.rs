@@ -15,15 +15,15 @@ type H = Harness<'static, EditorApp>;
 
 /// A widget's rectangle on the screen (widgets on the canvas have canvas coordinates).
 fn on_screen(h: &H, canvas: Rect) -> Rect {
-    let c = &h.state().canvas;
+    let c = &h.state().canvas();
     Rect::from_min_max(c.to_screen(canvas.min), c.to_screen(canvas.max))
 }
 
 /// Zooms the canvas to 1 around a node, so its widgets are drawn at their size.
 fn show_node(h: &mut H, id: &str) {
     h.run_steps(2);
-    let centre = h.state().canvas.node_rect(id).expect("drawn").center();
-    h.state_mut().canvas.zoom_to(1.0, Some(centre));
+    let centre = h.state().canvas().node_rect(id).expect("drawn").center();
+    h.state_mut().zoom_canvas(1.0, Some(centre));
     h.run_steps(4);
 }
 
@@ -45,7 +45,7 @@ fn click_with(h: &mut H, at: Pos2, button: egui::PointerButton) {
 
 /// The screen rectangle of the widget labelled `label` inside node `id` on the canvas.
 fn widget_in_node(h: &H, id: &str, label: &str) -> Rect {
-    let node = h.state().canvas.node_rect(id).expect("drawn");
+    let node = h.state().canvas().node_rect(id).expect("drawn");
     h.get_all_by_label(label)
         .map(|n| n.rect())
         .find(|r| node.contains(r.center()))
@@ -57,13 +57,13 @@ fn widget_in_node(h: &H, id: &str, label: &str) -> Rect {
 fn the_eyes_right_click_menu_picks_the_nodes_preview_colour() {
     let mut h = harness("colour-menu");
     // Plain colours (the default mode colours the faces by their class).
-    let mut o = h.state().viewport.display().options;
+    let mut o = h.state().viewport().display().options;
     o.color_mode = cnets_editor::preview::ColorMode::Plain;
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::SetPreview(o));
     settle(&mut h);
     show_node(&mut h, "construct");
-    assert_eq!(h.state().doc.graph.node("construct").unwrap().color, None);
+    assert_eq!(h.state().doc().graph.node("construct").unwrap().color, None);
     let eye = widget_in_node(&h, "construct", "👁");
     click_with(&mut h, eye.center(), egui::PointerButton::Secondary);
     let title = h.get_by_label("Preview colour").rect();
@@ -81,7 +81,7 @@ fn the_eyes_right_click_menu_picks_the_nodes_preview_colour() {
     click_with(&mut h, swatches[1].center(), egui::PointerButton::Primary);
     settle(&mut h);
     assert_eq!(
-        h.state().doc.graph.node("construct").unwrap().color,
+        h.state().doc().graph.node("construct").unwrap().color,
         Some([0xe0, 0x8a, 0x2c])
     );
     assert!(
@@ -91,7 +91,7 @@ fn the_eyes_right_click_menu_picks_the_nodes_preview_colour() {
     // The surface in the 3D view takes the colour (shaded: its hue stays orange).
     let orange = h
         .state()
-        .viewport
+        .viewport()
         .scene()
         .face_vertices()
         .iter()
@@ -100,21 +100,21 @@ fn the_eyes_right_click_menu_picks_the_nodes_preview_colour() {
             r > g && g > b && u16::from(r) > u16::from(b) + 60
         })
         .count();
-    let all = h.state().viewport.scene().face_vertices().len();
+    let all = h.state().viewport().scene().face_vertices().len();
     assert!(orange * 10 >= all * 9, "{orange} of {all} vertices orange");
     // One undo step brings the default back; the file keeps the colour.
-    let text = cnets_engine::file::to_ron(&h.state().doc.graph, &Default::default());
+    let text = cnets_engine::file::to_ron(&h.state().doc().graph, &Default::default());
     assert!(text.contains("color: \"#e08a2c\""), "{text}");
     h.state_mut().run(cnets_editor::menus::MenuAction::Undo);
     settle(&mut h);
-    assert_eq!(h.state().doc.graph.node("construct").unwrap().color, None);
+    assert_eq!(h.state().doc().graph.node("construct").unwrap().color, None);
 }
 
 #[test]
 fn a_node_is_renamed_from_its_titles_right_click_menu() {
     let mut h = harness("rename-menu");
     show_node(&mut h, "apex");
-    let node = on_screen(&h, h.state().canvas.node_rect("apex").unwrap());
+    let node = on_screen(&h, h.state().canvas().node_rect("apex").unwrap());
     // The title bar: the top strip of the node.
     let title = egui::pos2(node.center().x, node.top() + 12.0);
     click_with(&mut h, title, egui::PointerButton::Secondary);
@@ -131,7 +131,7 @@ fn a_node_is_renamed_from_its_titles_right_click_menu() {
     let button = h.get_by_label("Rename node").rect();
     click_with(&mut h, button.center(), egui::PointerButton::Primary);
     settle(&mut h);
-    let graph = &h.state().doc.graph;
+    let graph = &h.state().doc().graph;
     assert_eq!(graph.node("apex").unwrap().label(), "Apex height");
     // The title shows the name; the id stays (wires and `--set` use it).
     assert!(h.query_by_label("Apex height").is_some());
@@ -146,21 +146,34 @@ fn a_node_is_renamed_from_its_titles_right_click_menu() {
 fn a_right_click_on_a_slider_toggles_locked_for_dragging() {
     let mut h = harness("slider-lock");
     show_node(&mut h, "apex");
-    let before = h.state().doc.graph.node("apex").unwrap().value(0).cloned();
+    let before = h
+        .state()
+        .doc()
+        .graph
+        .node("apex")
+        .unwrap()
+        .value(0)
+        .cloned();
     let slider = h
         .state()
-        .canvas
+        .canvas()
         .editor_screen_rect("apex", "value")
         .expect("the apex slider is drawn");
-    assert!(!h.state().canvas.drag_locked.contains("apex"));
+    assert!(!h.state().canvas().drag_locked.contains("apex"));
     click_with(&mut h, slider.center(), egui::PointerButton::Secondary);
     assert!(
-        h.state().canvas.drag_locked.contains("apex"),
+        h.state().canvas().drag_locked.contains("apex"),
         "locked after one right-click: {:?}",
-        h.state().canvas.drag_locked
+        h.state().canvas().drag_locked
     );
     assert_eq!(
-        h.state().doc.graph.node("apex").unwrap().value(0).cloned(),
+        h.state()
+            .doc()
+            .graph
+            .node("apex")
+            .unwrap()
+            .value(0)
+            .cloned(),
         before,
         "the right-click did not move the slider"
     );
@@ -169,5 +182,5 @@ fn a_right_click_on_a_slider_toggles_locked_for_dragging() {
         "the node says it is locked"
     );
     click_with(&mut h, slider.center(), egui::PointerButton::Secondary);
-    assert!(h.state().canvas.drag_locked.is_empty(), "unlocked again");
+    assert!(h.state().canvas().drag_locked.is_empty(), "unlocked again");
 }

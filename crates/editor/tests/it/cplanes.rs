@@ -38,7 +38,7 @@ fn open(name: &str) -> Harness<'static, EditorApp> {
 }
 
 fn names(app: &EditorApp) -> Vec<String> {
-    app.doc
+    app.doc()
         .meta
         .cplanes
         .iter()
@@ -49,18 +49,18 @@ fn names(app: &EditorApp) -> Vec<String> {
 #[test]
 fn a_plane_fitted_through_the_selected_curve_is_named_chosen_undone_and_saved() {
     let mut h = open("cplane-fit");
-    h.state_mut().canvas.select(vec!["outline".into()]);
+    h.state_mut().select_nodes(vec!["outline".into()]);
     h.state_mut().run(MenuAction::CPlaneThroughSelection);
     let app = h.state();
-    assert_eq!(names(app), ["CPlane 1"], "{}", app.message);
-    assert_eq!(app.viewport.framing().perspective_name, "CPlane 1");
-    assert_eq!(app.viewport.framing().view, NamedView::Perspective);
+    assert_eq!(names(app), ["CPlane 1"], "{}", app.message());
+    assert_eq!(app.viewport().framing().perspective_name, "CPlane 1");
+    assert_eq!(app.viewport().framing().view, NamedView::Perspective);
     assert!(
-        app.message.contains("the curve of outline"),
+        app.message().contains("the curve of outline"),
         "{}",
-        app.message
+        app.message()
     );
-    let plane = app.viewport.framing().perspective_plane;
+    let plane = app.viewport().framing().perspective_plane;
     let n = DVec3::new(1.0, 1.0, 2.0).normalize();
     assert!(plane.normal.dot(n).abs() > 1.0 - 1e-12, "{plane:?}");
     for p in [
@@ -71,22 +71,22 @@ fn a_plane_fitted_through_the_selected_curve_is_named_chosen_undone_and_saved() 
         assert!(plane.local(p).z.abs() < 1e-12, "{p} off the plane");
     }
     assert_eq!(
-        app.viewport.cplane(),
+        app.viewport().cplane(),
         plane,
         "the Perspective view draws in it"
     );
     // World XY and back to the graph's plane from the list.
     h.state_mut().run(MenuAction::PerspectivePlane(CPlane::XY));
-    assert_eq!(h.state().viewport.cplane(), CPlane::XY);
-    assert_eq!(h.state().viewport.framing().perspective_name, "World XY");
+    assert_eq!(h.state().viewport().cplane(), CPlane::XY);
+    assert_eq!(h.state().viewport().framing().perspective_name, "World XY");
     h.state_mut()
         .run(MenuAction::NamedCPlane("CPlane 1".into()));
-    assert_eq!(h.state().viewport.cplane(), plane);
+    assert_eq!(h.state().viewport().cplane(), plane);
     // Saved in the file and read back exactly.
-    let text = cnets_engine::file::to_ron(&h.state().doc.graph, &h.state().doc.meta);
-    let registry = h.state().doc.graph.registry().clone();
+    let text = cnets_engine::file::to_ron(&h.state().doc().graph, &h.state().doc().meta);
+    let registry = h.state().doc().graph.registry().clone();
     let again = cnets_engine::file::load_str(&text, "again.ron", &registry).unwrap();
-    assert_eq!(again.meta.cplanes, h.state().doc.meta.cplanes);
+    assert_eq!(again.meta.cplanes, h.state().doc().meta.cplanes);
     assert_eq!(CPlane::from_named(&again.meta.cplanes[0]), Some(plane));
     // A second plane gets the next name; undo takes it away again.
     h.state_mut().run(MenuAction::CPlaneThroughSelection);
@@ -98,23 +98,23 @@ fn a_plane_fitted_through_the_selected_curve_is_named_chosen_undone_and_saved() 
 #[test]
 fn with_nothing_suitable_selected_the_editor_says_what_to_select() {
     let mut h = open("cplane-none");
-    h.state_mut().canvas.select(Vec::new());
-    h.state_mut().canvas.focused = None;
+    h.state_mut().select_nodes(Vec::new());
+    h.state_mut().focus_node(None);
     h.state_mut().run(MenuAction::CPlaneThroughSelection);
     let app = h.state();
     assert!(names(app).is_empty());
     assert!(
-        app.message
+        app.message()
             .contains("select a node whose curve is previewed"),
         "{}",
-        app.message
+        app.message()
     );
     assert_eq!(
-        app.viewport.framing().perspective_plane,
+        app.viewport().framing().perspective_plane,
         CPlane::XY,
         "unchanged"
     );
     h.state_mut().run(MenuAction::CPlaneFromPoints);
-    assert_eq!(h.state().viewport.tool().label(), "CPlane from 3 points");
-    assert!(h.state().message.contains("click its origin"));
+    assert_eq!(h.state().viewport().tool().label(), "CPlane from 3 points");
+    assert!(h.state().message().contains("click its origin"));
 }

@@ -46,7 +46,7 @@ fn open(name: &str, text: &str) -> Harness<'static, EditorApp> {
 }
 
 fn points_of(app: &EditorApp, node: &str) -> Vec<Value> {
-    app.doc
+    app.doc()
         .graph
         .node(node)
         .and_then(|n| n.value_of("points"))
@@ -57,13 +57,13 @@ fn points_of(app: &EditorApp, node: &str) -> Vec<Value> {
 
 /// Shows a named view and lets it settle.
 fn view(h: &mut Harness<'static, EditorApp>, v: NamedView) {
-    h.state_mut().viewport.set_view(v);
+    h.state_mut().viewport_mut().set_view(v);
     h.run_steps(3);
 }
 
 fn screen_of(h: &Harness<'static, EditorApp>, p: DVec3) -> Pos2 {
     h.state()
-        .viewport
+        .viewport()
         .screen_map()
         .to_screen(p)
         .expect("in front of the camera")
@@ -96,10 +96,10 @@ fn a_handle_dragged_in_the_top_view_moves_by_the_snapped_amount_and_undo_restore
     let mut h = open("handles", POINTS_GRAPH);
     view(&mut h, NamedView::Top);
     let before = points_of(h.state(), "pts");
-    let text_before = h.state().doc.to_ron();
-    assert_eq!(h.state().viewport.handle_list().len(), 4, "four handles");
-    let step = h.state().viewport.grid_step();
-    let wpp = h.state().viewport.screen_map().world_per_point();
+    let text_before = h.state().doc().to_ron();
+    assert_eq!(h.state().viewport().handle_list().len(), 4, "four handles");
+    let step = h.state().viewport().grid_step();
+    let wpp = h.state().viewport().screen_map().world_per_point();
     // Three grid steps right and two down (−y in the Top view), plus a third of a step of slack
     // that the snap takes away.
     let from = screen_of(&h, DVec3::new(2.0, 1.0, 0.0));
@@ -107,7 +107,7 @@ fn a_handle_dragged_in_the_top_view_moves_by_the_snapped_amount_and_undo_restore
         ((3.0 + 0.3) * step / wpp) as f32,
         ((2.0 - 0.3) * step / wpp) as f32,
     );
-    let steps = h.state().doc.history.undo_len();
+    let steps = h.state().doc().history.undo_len();
     drag(&mut h, from, from + by);
     settle(&mut h);
     let after = points_of(h.state(), "pts");
@@ -121,10 +121,14 @@ fn a_handle_dragged_in_the_top_view_moves_by_the_snapped_amount_and_undo_restore
     for k in [0, 2, 3] {
         assert_eq!(after[k], before[k], "point {k} is untouched, bit for bit");
     }
-    assert_eq!(h.state().doc.history.undo_len(), steps + 1, "one undo step");
-    assert!(h.state_mut().doc.undo());
     assert_eq!(
-        h.state().doc.to_ron(),
+        h.state().doc().history.undo_len(),
+        steps + 1,
+        "one undo step"
+    );
+    assert!(h.state_mut().undo());
+    assert_eq!(
+        h.state().doc().to_ron(),
         text_before,
         "undo restores the text"
     );
@@ -135,10 +139,10 @@ fn a_curve_drawn_in_the_front_view_becomes_points_and_a_spline() {
     let mut h = open("draw", POINTS_GRAPH);
     view(&mut h, NamedView::Front);
     h.state_mut()
-        .viewport
+        .viewport_mut()
         .toggle_tool(Tool::Draw(Default::default()));
-    let step = h.state().viewport.grid_step();
-    let wpp = h.state().viewport.screen_map().world_per_point();
+    let step = h.state().viewport().grid_step();
+    let wpp = h.state().viewport().screen_map().world_per_point();
     // Four clicks on XZ, each a little off the grid (less than half a step).
     let clicks: Vec<DVec3> = [(0.0, 0.0), (2.0, 3.0), (5.0, 3.0), (7.0, 0.0)]
         .iter()
@@ -154,13 +158,13 @@ fn a_curve_drawn_in_the_front_view_becomes_points_and_a_spline() {
     settle(&mut h);
     let app = h.state();
     let spline = app
-        .doc
+        .doc()
         .graph
         .nodes()
         .find(|(_, n)| n.def.id == "curve.spline" && n.id != "curve")
         .map(|(_, n)| n.id.clone())
         .expect("a new curve.spline");
-    let wires = app.doc.graph.wires();
+    let wires = app.doc().graph.wires();
     let source = wires
         .iter()
         .find(|w| w.to == spline && w.input == "points")
@@ -169,7 +173,7 @@ fn a_curve_drawn_in_the_front_view_becomes_points_and_a_spline() {
     let got: Vec<DVec3> = points.iter().filter_map(Value::as_vec3).collect();
     assert_eq!(got, clicks, "the snapped clicks, on the XZ plane");
     assert_eq!(
-        app.canvas.selected,
+        app.canvas().selected,
         vec![spline.clone()],
         "the curve node alone is selected (Delete removes the curve, not its points too)"
     );
@@ -189,19 +193,19 @@ fn the_draw_tool_offers_a_polyline_on_the_toolbar_and_p_switches() {
     let mut h = open("draw-polyline", POINTS_GRAPH);
     view(&mut h, NamedView::Front);
     // The pointer over the 3D view, nothing typed.
-    let centre = h.state().viewport.rect().center();
+    let centre = h.state().viewport().rect().center();
     h.hover_at(centre);
     h.key_press(Key::C);
     h.run_steps(2);
     assert!(
-        matches!(h.state().viewport.tool(), Tool::Draw(_)),
+        matches!(h.state().viewport().tool(), Tool::Draw(_)),
         "C: Draw curve"
     );
     // The toolbar's Polyline, clicked with the pointer.
     let toggle = h.get_by_label("Polyline").rect().center();
     click(&mut h, toggle);
     h.run_steps(1);
-    let polyline = |h: &Harness<'static, EditorApp>| match &h.state().viewport.tool() {
+    let polyline = |h: &Harness<'static, EditorApp>| match &h.state().viewport().tool() {
         Tool::Draw(d) => d.polyline,
         other => panic!("still drawing: {}", other.label()),
     };
@@ -214,7 +218,7 @@ fn the_draw_tool_offers_a_polyline_on_the_toolbar_and_p_switches() {
     h.key_press(Key::P);
     h.run_steps(2);
     assert!(polyline(&h), "P again: a polyline");
-    let step = h.state().viewport.grid_step();
+    let step = h.state().viewport().grid_step();
     for (x, z) in [(0.0, 0.0), (4.0, 0.0), (4.0, 3.0)] {
         let at = screen_of(&h, DVec3::new(steps(x, step), 0.0, steps(z, step)));
         click(&mut h, at);
@@ -224,7 +228,7 @@ fn the_draw_tool_offers_a_polyline_on_the_toolbar_and_p_switches() {
     settle(&mut h);
     let app = h.state();
     let made: Vec<String> = app
-        .doc
+        .doc()
         .graph
         .nodes()
         .filter(|(_, n)| n.def.id == "curve.polyline")
@@ -232,7 +236,8 @@ fn the_draw_tool_offers_a_polyline_on_the_toolbar_and_p_switches() {
         .collect();
     assert_eq!(made.len(), 1, "one curve.polyline drawn: {made:?}");
     assert_eq!(
-        app.canvas.selected, made,
+        app.canvas().selected,
+        made,
         "the curve node alone is selected"
     );
 }
@@ -246,7 +251,7 @@ fn picking_a_face_names_its_node_and_row_and_column_and_a_click_selects_the_node
     );
     view(&mut h, NamedView::Top);
     settle(&mut h);
-    let picks = h.state().viewport.picks().clone();
+    let picks = h.state().viewport().picks().clone();
     let (m, mesh) = picks
         .meshes
         .iter()
@@ -260,10 +265,10 @@ fn picking_a_face_names_its_node_and_row_and_column_and_a_click_selects_the_node
         .filter(|(_, c)| {
             let centre = c.iter().copied().sum::<DVec3>() / c.len() as f64;
             h.state()
-                .viewport
+                .viewport()
                 .screen_map()
                 .to_screen(centre)
-                .is_some_and(|s| h.state().viewport.rect().shrink(40.0).contains(s))
+                .is_some_and(|s| h.state().viewport().rect().shrink(40.0).contains(s))
         })
         .max_by(|a, b| {
             let z = |c: &Vec<DVec3>| c.iter().map(|p| p.z).sum::<f64>();
@@ -276,7 +281,7 @@ fn picking_a_face_names_its_node_and_row_and_column_and_a_click_selects_the_node
     h.run_steps(2);
     let hit = h
         .state()
-        .viewport
+        .viewport()
         .tools()
         .hover
         .clone()
@@ -286,7 +291,7 @@ fn picking_a_face_names_its_node_and_row_and_column_and_a_click_selects_the_node
     };
     // The topmost face under the pointer: the one chosen, or one drawn over it at that point.
     let (i, j) = picks.meshes[hm].geometry.face_row_col(face).unwrap();
-    let graph = &h.state().doc.graph;
+    let graph = &h.state().doc().graph;
     let text = cnets_editor::viewport::pick::describe(&picks, &hit, graph);
     assert!(text.contains(&format!("face (i {i}, j {j})")), "{text}");
     assert!(text.contains(&picks.meshes[hm].node), "{text}");
@@ -301,7 +306,7 @@ fn picking_a_face_names_its_node_and_row_and_column_and_a_click_selects_the_node
     }
     click(&mut h, at);
     assert_eq!(
-        h.state().canvas.focused.as_deref(),
+        h.state().canvas().focused.as_deref(),
         Some(picks.meshes[hm].node.as_str()),
         "clicking selects the node"
     );
@@ -315,27 +320,27 @@ fn the_fold_entry_of_the_legend_frames_the_folded_faces() {
         temp_config("folds"),
     );
     settle(&mut h);
-    let folds = h.state().viewport.picks().folded_faces();
+    let folds = h.state().viewport().picks().folded_faces();
     assert!(!folds.is_empty(), "correction.ron shows folding inputs");
     let entry = h
         .state()
-        .viewport
+        .viewport()
         .last_frame()
         .fold_entry
         .expect("the legend's fold entry");
     click(&mut h, entry.center());
     h.run_steps(3);
     let app = h.state();
-    assert!(app.viewport.drawn().folds_shown);
-    let picks = app.viewport.picks().clone();
-    let map = app.viewport.screen_map();
+    assert!(app.viewport().drawn().folds_shown);
+    let picks = app.viewport().picks().clone();
+    let map = app.viewport().screen_map();
     for (m, f) in &folds {
         for p in picks.meshes[*m].geometry.face_corners(*f) {
             let s = map.to_screen(p).expect("in front");
             assert!(
-                app.viewport.rect().expand(1.0).contains(s),
+                app.viewport().rect().expand(1.0).contains(s),
                 "fold corner {p} at {s:?} is framed in {:?}",
-                app.viewport.rect()
+                app.viewport().rect()
             );
         }
     }
@@ -343,11 +348,15 @@ fn the_fold_entry_of_the_legend_frames_the_folded_faces() {
         .iter()
         .map(|(m, f)| picks.meshes[*m].geometry.face_corners(*f).len())
         .sum();
-    assert_eq!(app.viewport.highlight().len(), edges, "every fold outlined");
+    assert_eq!(
+        app.viewport().highlight().len(),
+        edges,
+        "every fold outlined"
+    );
     h.key_press(Key::Escape);
     h.run_steps(2);
     assert!(
-        h.state().viewport.highlight().is_empty(),
+        h.state().viewport().highlight().is_empty(),
         "Esc clears the outline"
     );
 }
@@ -357,7 +366,7 @@ fn the_measure_tool_snaps_to_vertices_and_reports_their_distance() {
     let mut h = open("measure", POINTS_GRAPH);
     view(&mut h, NamedView::Top);
     h.state_mut()
-        .viewport
+        .viewport_mut()
         .toggle_tool(Tool::Measure(Default::default()));
     let a = DVec3::new(0.0, 0.0, 0.0);
     let b = DVec3::new(6.0, 0.5, 0.25);
@@ -365,15 +374,15 @@ fn the_measure_tool_snaps_to_vertices_and_reports_their_distance() {
     let (sa, sb) = (screen_of(&h, a), screen_of(&h, b));
     click(&mut h, sa + vec2(3.0, -2.0));
     click(&mut h, sb + vec2(-2.0, 3.0));
-    let Tool::Measure(m) = &h.state().viewport.tool() else {
+    let Tool::Measure(m) = &h.state().viewport().tool() else {
         panic!("still measuring")
     };
     let d = m.distance().expect("two points");
     assert!((d - (b - a).length()).abs() < 1e-12, "{d}");
     assert!(
-        h.state().message.starts_with("distance "),
+        h.state().message().starts_with("distance "),
         "{}",
-        h.state().message
+        h.state().message()
     );
 }
 
@@ -387,11 +396,11 @@ fn named_views_are_one_key_away_and_orthographic() {
         (Key::Num4, NamedView::Perspective),
     ] {
         // The pointer over the 3D view, nothing typed.
-        let centre = h.state().viewport.rect().center();
+        let centre = h.state().viewport().rect().center();
         h.hover_at(centre);
         h.key_press(key);
         h.run_steps(3);
-        let vp = &h.state().viewport;
+        let vp = &h.state().viewport();
         assert_eq!(vp.framing().view, v);
         assert_eq!(
             vp.framing().camera.is_orthographic(),
@@ -427,7 +436,7 @@ fn a_curve_read_from_a_file_is_internalised_as_editable_points() {
     settle(&mut h);
     let app = h.state();
     let points = app
-        .doc
+        .doc()
         .graph
         .nodes()
         .find(|(_, n)| n.def.id == "param.points")
@@ -439,7 +448,7 @@ fn a_curve_read_from_a_file_is_internalised_as_editable_points() {
         .collect();
     assert_eq!(got.len(), 3, "{got:?}");
     assert!(
-        app.doc
+        app.doc()
             .graph
             .wires()
             .iter()
@@ -453,16 +462,16 @@ fn a_box_selects_handles_arrows_nudge_them_and_the_inspector_takes_a_coordinate(
     let mut h = open("box", POINTS_GRAPH);
     view(&mut h, NamedView::Top);
     // Zoomed out, so the box's corners are in the view.
-    h.state_mut().viewport.zoom(2.0);
+    h.state_mut().viewport_mut().zoom(2.0);
     h.run_steps(2);
-    let step = h.state().viewport.grid_step();
+    let step = h.state().viewport().grid_step();
     // A box around the first three points (the fourth, at x = 6, stays out).
     let a = screen_of(&h, DVec3::new(-0.5, 1.5, 0.0));
     let b = screen_of(&h, DVec3::new(4.5, -1.5, 0.0));
     drag(&mut h, a, b);
     let selected: Vec<usize> = h
         .state()
-        .viewport
+        .viewport()
         .tools()
         .handles
         .selected
@@ -476,7 +485,7 @@ fn a_box_selects_handles_arrows_nudge_them_and_the_inspector_takes_a_coordinate(
     );
     let before = points_of(h.state(), "pts");
     // The arrow keys move the selected handles one grid step in the view's plane.
-    let centre = h.state().viewport.rect().center();
+    let centre = h.state().viewport().rect().center();
     h.hover_at(centre);
     h.key_press(Key::ArrowRight);
     h.run_steps(2);
@@ -494,9 +503,9 @@ fn a_box_selects_handles_arrows_nudge_them_and_the_inspector_takes_a_coordinate(
     // One handle selected: the inspector shows its coordinates and takes a typed one.
     let at = screen_of(&h, after[3].as_vec3().unwrap());
     click(&mut h, at);
-    assert_eq!(h.state().viewport.tools().handles.selected.len(), 1);
+    assert_eq!(h.state().viewport().tools().handles.selected.len(), 1);
     h.run_steps(2);
-    let view_rect = h.state().viewport.rect();
+    let view_rect = h.state().viewport().rect();
     let z_field = h
         .get_all_by_role(egui::accesskit::Role::SpinButton)
         .map(|n| n.rect().center())
@@ -535,15 +544,15 @@ fn a_selected_cut_shows_its_plane_and_the_side_it_keeps() {
         value: Value::Plane(std::sync::Arc::new(plane)),
     }));
     // Another node selected.
-    h.state_mut().canvas.select(vec!["construct".into()]);
+    h.state_mut().select_nodes(vec!["construct".into()]);
     settle(&mut h);
     assert!(
-        h.state().viewport.cut_overlays().is_empty(),
+        h.state().viewport().cut_overlays().is_empty(),
         "not selected: not drawn"
     );
-    h.state_mut().canvas.select(vec![id.clone()]);
+    h.state_mut().select_nodes(vec![id.clone()]);
     h.run_steps(3);
-    let cuts = h.state().viewport.cut_overlays().to_vec();
+    let cuts = h.state().viewport().cut_overlays().to_vec();
     assert_eq!(cuts.len(), 1);
     assert_eq!(cuts[0].origin, DVec3::new(2.0, 0.0, 0.0));
     assert_eq!(cuts[0].kept, DVec3::X, "the side the normal points to");
@@ -560,30 +569,30 @@ fn a_selected_cut_shows_its_plane_and_the_side_it_keeps() {
     }));
     h.run_steps(3);
     assert_eq!(
-        h.state().viewport.cut_overlays()[0].kept,
+        h.state().viewport().cut_overlays()[0].kept,
         -DVec3::X,
         "flip keeps the other side"
     );
-    h.state_mut().canvas.select(vec!["construct".into()]);
+    h.state_mut().select_nodes(vec!["construct".into()]);
     h.run_steps(3);
-    assert!(h.state().viewport.cut_overlays().is_empty());
+    assert!(h.state().viewport().cut_overlays().is_empty());
 }
 
 /// The screen rectangles of `ids` on the canvas, each asserted to lie wholly inside the canvas
 /// (not under the 3D view beside it).
 fn assert_in_canvas(h: &Harness<'static, EditorApp>, ids: &[String], what: &str) {
     let app = h.state();
-    let view = app.canvas.screen_rect();
+    let view = app.canvas().screen_rect();
     assert!(!ids.is_empty(), "{what}: nodes were added");
     for id in ids {
         let r = app
-            .canvas
+            .canvas()
             .node_screen_rect(id)
             .unwrap_or_else(|| panic!("{what}: {id} is drawn"));
         assert!(
             view.contains_rect(r),
             "{what}: {id} at {r:?} is not wholly in the canvas {view:?} (the 3D view starts at {})",
-            app.viewport.rect().left()
+            app.viewport().rect().left()
         );
     }
 }
@@ -601,24 +610,24 @@ fn new_nodes_are_placed_in_the_visible_canvas() {
     settle(&mut h);
     let right_most = |h: &Harness<'static, EditorApp>| {
         let app = h.state();
-        app.doc
+        app.doc()
             .graph
             .nodes()
-            .filter_map(|(_, n)| Some((n.id.clone(), app.canvas.node_screen_rect(&n.id)?)))
+            .filter_map(|(_, n)| Some((n.id.clone(), app.canvas().node_screen_rect(&n.id)?)))
             .max_by(|a, b| a.1.right().total_cmp(&b.1.right()))
             .map(|(id, _)| id)
             .unwrap()
     };
     let before: Vec<String> = h
         .state()
-        .doc
+        .doc()
         .graph
         .nodes()
         .map(|(_, n)| n.id.clone())
         .collect();
     let added = |h: &Harness<'static, EditorApp>| -> Vec<String> {
         h.state()
-            .doc
+            .doc()
             .graph
             .nodes()
             .map(|(_, n)| n.id.clone())
@@ -627,7 +636,7 @@ fn new_nodes_are_placed_in_the_visible_canvas() {
     };
     // A drawn curve with the right-most node selected.
     let id = right_most(&h);
-    h.state_mut().canvas.select(vec![id]);
+    h.state_mut().select_nodes(vec![id]);
     h.run_steps(2);
     h.state_mut().add_curve(cnets_editor::viewport::DrawnCurve {
         points: vec![
@@ -645,7 +654,7 @@ fn new_nodes_are_placed_in_the_visible_canvas() {
     assert_in_canvas(&h, &curve_nodes, "a drawn curve");
     // A node from Add › Node… with the right-most node selected.
     let id = right_most(&h);
-    h.state_mut().canvas.select(vec![id]);
+    h.state_mut().select_nodes(vec![id]);
     h.run_steps(2);
     let at = h.state_mut().new_node_place();
     let node = h.state_mut().add_node("math.add", at).unwrap();
@@ -668,9 +677,9 @@ fn torus_monge_opens_framed_on_its_surfaces_with_a_grid_of_their_size() {
     settle(&mut h);
     h.run_steps(4);
     let app = h.state();
-    let view = app.viewport.rect();
-    let map = app.viewport.screen_map();
-    let picks = app.viewport.picks();
+    let view = app.viewport().rect();
+    let map = app.viewport().screen_map();
+    let picks = app.viewport().picks();
     let mut drawn = egui::Rect::NOTHING;
     for mesh in &picks.meshes {
         for p in mesh.geometry.vertices() {
@@ -696,7 +705,7 @@ fn torus_monge_opens_framed_on_its_surfaces_with_a_grid_of_their_size() {
         view.center()
     );
     // The grid drawn now, in the world XY plane: within the margin of the drawn box.
-    let bounds = app.viewport.bounds().expect("something is drawn");
+    let bounds = app.viewport().bounds().expect("something is drawn");
     let grid = cnets_editor::viewport::grid::Grid::new(
         &map,
         cnets_editor::viewport::screen::CPlane::XY,

@@ -16,8 +16,7 @@ type H = Harness<'static, EditorApp>;
 
 fn set_number(h: &mut H, node: &str, input: &str, x: f64) {
     h.state_mut()
-        .doc
-        .edit(None, |g, _| {
+        .edit_graph(|g, _| {
             g.set_value(node, input, cnets_engine::Value::Number(x))
                 .map(|_| ())
                 .map_err(|e| e.to_string())
@@ -27,14 +26,14 @@ fn set_number(h: &mut H, node: &str, input: &str, x: f64) {
 
 fn show_node(h: &mut H, id: &str) {
     h.run_steps(2);
-    let centre = h.state().canvas.node_rect(id).expect("drawn").center();
-    h.state_mut().canvas.zoom_to(1.0, Some(centre));
+    let centre = h.state().canvas().node_rect(id).expect("drawn").center();
+    h.state_mut().zoom_canvas(1.0, Some(centre));
     h.run_steps(4);
 }
 
 /// A widget's rectangle on the screen (widgets on the canvas have canvas coordinates).
 fn on_screen(h: &H, canvas: Rect) -> Rect {
-    let c = &h.state().canvas;
+    let c = &h.state().canvas();
     Rect::from_min_max(c.to_screen(canvas.min), c.to_screen(canvas.max))
 }
 
@@ -67,7 +66,7 @@ fn numbers_show_their_significant_digits_unclipped() {
     set_number(&mut h, &id, "b", 1e-6);
     settle(&mut h);
     show_node(&mut h, &id);
-    let node = h.state().canvas.node_screen_rect(&id).unwrap();
+    let node = h.state().canvas().node_screen_rect(&id).unwrap();
     // The output's summary, whole and inside the node.
     let product = output_summary(&h, &id, 0);
     assert_eq!(product, "1.124e-22");
@@ -103,7 +102,7 @@ fn numbers_show_their_significant_digits_unclipped() {
                 .any(|n| n.value().as_deref() == Some(text)),
             "a drag value showing {text}"
         );
-        let node = h.state().canvas.node_screen_rect(&id).unwrap();
+        let node = h.state().canvas().node_screen_rect(&id).unwrap();
         let label = h
             .query_all_by_label(text)
             .find(|n| n.accesskit_node().role() != Role::SpinButton)
@@ -137,7 +136,7 @@ fn numbers_show_their_significant_digits_unclipped() {
     h.key_press(egui::Key::Enter);
     h.run_steps(2);
     settle(&mut h);
-    let a = h.state().doc.graph.node(&id).unwrap().value(0).cloned();
+    let a = h.state().doc().graph.node(&id).unwrap().value(0).cloned();
     assert_eq!(a, Some(cnets_engine::Value::Number(2.5e-7)));
     assert_eq!(output_summary(&h, &id, 0), "2.5e-7");
 }
@@ -160,7 +159,7 @@ fn drag(h: &mut H, a: Pos2, b: Pos2) {
 fn a_triangle_pin_starts_a_wire_from_any_of_its_points() {
     let mut h = harness("triangle-pin");
     show_node(&mut h, "construct");
-    let def = h.state().doc.graph.node("construct").unwrap().def.clone();
+    let def = h.state().doc().graph.node("construct").unwrap().def.clone();
     let planes = def.output_index("planes").unwrap();
     let flip = def.input_index("ratios").unwrap();
     // The 9-point triangle reaches 5.7 points above its centre and 5.8 to each side at its foot
@@ -168,27 +167,27 @@ fn a_triangle_pin_starts_a_wire_from_any_of_its_points() {
     for offset in [egui::vec2(0.0, -5.0), egui::vec2(5.0, 4.0)] {
         let from = h
             .state()
-            .canvas
+            .canvas()
             .pin_screen_pos("construct", false, planes)
             .expect("the planes pin is drawn");
-        let position = h.state().doc.graph.node("construct").unwrap().position;
-        let wires = h.state().doc.graph.wires().len();
+        let position = h.state().doc().graph.node("construct").unwrap().position;
+        let wires = h.state().doc().graph.wires().len();
         // Onto the construct's own ratios input: a cycle, refused, so nothing changes in the
         // graph if a wire was dragged; the node would follow the pointer if it was grabbed.
         let to = h
             .state()
-            .canvas
+            .canvas()
             .pin_screen_pos("construct", true, flip)
             .unwrap();
         drag(&mut h, from + offset, to);
         h.key_press(egui::Key::Escape);
         h.run_steps(3);
         assert_eq!(
-            h.state().doc.graph.node("construct").unwrap().position,
+            h.state().doc().graph.node("construct").unwrap().position,
             position,
             "grabbing the triangle at {offset:?} does not move the node"
         );
-        assert_eq!(h.state().doc.graph.wires().len(), wires);
+        assert_eq!(h.state().doc().graph.wires().len(), wires);
     }
 }
 
@@ -207,17 +206,17 @@ fn the_first_click_on_a_field_after_a_wire_drag_edits_it() {
         .unwrap();
     settle(&mut h);
     show_node(&mut h, &id);
-    let def = h.state().doc.graph.node(&id).unwrap().def.clone();
+    let def = h.state().doc().graph.node(&id).unwrap().def.clone();
     let a = def.input_index("a").unwrap();
     let result = def.output_index("result").unwrap();
     // A wire from the apex slider's value into `a`.
-    let from = h.state().canvas.pin_screen_pos("apex", false, 0).unwrap();
-    let to = h.state().canvas.pin_screen_pos(&id, true, a).unwrap();
-    let wires = h.state().doc.graph.wires().len();
+    let from = h.state().canvas().pin_screen_pos("apex", false, 0).unwrap();
+    let to = h.state().canvas().pin_screen_pos(&id, true, a).unwrap();
+    let wires = h.state().doc().graph.wires().len();
     drag(&mut h, from, to);
-    assert_eq!(h.state().doc.graph.wires().len(), wires + 1, "connected");
+    assert_eq!(h.state().doc().graph.wires().len(), wires + 1, "connected");
     // The first click on `b`'s field, at once (the evaluation still running), edits it.
-    let field = h.state().canvas.editor_screen_rect(&id, "b").unwrap();
+    let field = h.state().canvas().editor_screen_rect(&id, "b").unwrap();
     click(&mut h, field.center());
     assert!(
         h.query_by(|n| n.role() == Role::SpinButton && n.is_focused())
@@ -227,10 +226,14 @@ fn the_first_click_on_a_field_after_a_wire_drag_edits_it() {
     h.key_press(egui::Key::Escape);
     h.run_steps(2);
     // A wire dragged out of `result` and dropped on the background, then a click on `b`.
-    let from = h.state().canvas.pin_screen_pos(&id, false, result).unwrap();
+    let from = h
+        .state()
+        .canvas()
+        .pin_screen_pos(&id, false, result)
+        .unwrap();
     drag(&mut h, from, from + egui::vec2(80.0, 120.0));
     h.run_steps(2);
-    let field = h.state().canvas.editor_screen_rect(&id, "b").unwrap();
+    let field = h.state().canvas().editor_screen_rect(&id, "b").unwrap();
     click(&mut h, field.center());
     assert!(
         h.query_by(|n| n.role() == Role::SpinButton && n.is_focused())
@@ -275,7 +278,7 @@ fn long_port_names_end_in_an_ellipsis_with_the_whole_name_on_hover() {
     let mut h = common::harness_with("long-names", Some(main), common::temp_config("long-names"));
     settle(&mut h);
     show_node(&mut h, "t");
-    let node = h.state().canvas.node_screen_rect("t").unwrap();
+    let node = h.state().canvas().node_screen_rect("t").unwrap();
     for full in [
         "the_spacing_between_neighbouring_strips",
         "label_points_of_every_unrolled_strip",
@@ -327,11 +330,11 @@ fn the_first_click_on_a_checkbox_of_an_unselected_node_toggles_it() {
         .unwrap();
     settle(&mut h);
     show_node(&mut h, &id);
-    h.state_mut().canvas.select(Vec::new());
+    h.state_mut().select_nodes(Vec::new());
     h.run_steps(2);
     let flip = |h: &H| {
         h.state()
-            .doc
+            .doc()
             .graph
             .node(&id)
             .unwrap()
@@ -339,7 +342,7 @@ fn the_first_click_on_a_checkbox_of_an_unselected_node_toggles_it() {
             .cloned()
     };
     assert_ne!(flip(&h), Some(cnets_engine::Value::Boolean(true)));
-    let boxed = h.state().canvas.editor_screen_rect(&id, "flip").unwrap();
+    let boxed = h.state().canvas().editor_screen_rect(&id, "flip").unwrap();
     click(&mut h, boxed.left_center() + egui::vec2(6.0, 0.0));
     assert_eq!(
         flip(&h),
@@ -363,45 +366,53 @@ fn an_output_pin_stays_put_when_its_result_arrives_and_a_drag_beside_it_takes_it
     settle(&mut h);
     show_node(&mut h, &id);
     let result = {
-        let def = &h.state().doc.graph.node(&id).unwrap().def;
+        let def = &h.state().doc().graph.node(&id).unwrap().def;
         def.output_index("result").unwrap()
     };
     let a = h
         .state()
-        .doc
+        .doc()
         .graph
         .node(&target)
         .unwrap()
         .def
         .input_index("a")
         .unwrap();
-    let with_result = h.state().canvas.pin_screen_pos(&id, false, result).unwrap();
+    let with_result = h
+        .state()
+        .canvas()
+        .pin_screen_pos(&id, false, result)
+        .unwrap();
     assert!(!output_summary(&h, &id, result).is_empty());
     // The same frame without the node's result (as before it arrives).
     let status = h.state_mut().statuses_mut().remove(&id).unwrap();
     h.run_steps(4);
-    let without = h.state().canvas.pin_screen_pos(&id, false, result).unwrap();
+    let without = h
+        .state()
+        .canvas()
+        .pin_screen_pos(&id, false, result)
+        .unwrap();
     assert!(
         (without - with_result).length() < 0.5,
         "the pin moved from {without:?} to {with_result:?} when the result arrived"
     );
     // A press 6 points right of the pin takes it; the result arrives mid-drag; the drop on the
     // input connects.
-    let wires = h.state().doc.graph.wires().len();
+    let wires = h.state().doc().graph.wires().len();
     let start = without + egui::vec2(6.0, 0.0);
     h.hover_at(start);
     h.run_steps(2);
     h.drag_at(start);
     h.run_steps(2);
     h.state_mut().statuses_mut().insert(id.clone(), status);
-    let end = h.state().canvas.pin_screen_pos(&target, true, a).unwrap();
+    let end = h.state().canvas().pin_screen_pos(&target, true, a).unwrap();
     for t in [0.25, 0.5, 0.75, 1.0] {
         h.hover_at(start + (end - start) * t);
         h.run_steps(2);
     }
-    let end = h.state().canvas.pin_screen_pos(&target, true, a).unwrap();
+    let end = h.state().canvas().pin_screen_pos(&target, true, a).unwrap();
     h.drop_at(end);
     h.run_steps(3);
-    let graph = &h.state().doc.graph;
+    let graph = &h.state().doc().graph;
     assert_eq!(graph.wires().len(), wires + 1, "connected");
 }

@@ -132,7 +132,7 @@ fn a_quick_export_of_the_preview_asks_for_the_name() {
     h.state_mut().run(MenuAction::RunExports);
     h.run_steps(2);
     assert!(h.state_mut().dialog_mut().is_none());
-    assert_eq!(h.state().message, "this graph has no export nodes");
+    assert_eq!(h.state().message(), "this graph has no export nodes");
     h.state_mut().run(MenuAction::Export(ExportFormat::Obj));
     h.run_steps(2);
     // The dialog offers the document's name, and takes the one typed.
@@ -142,7 +142,7 @@ fn a_quick_export_of_the_preview_asks_for_the_name() {
     std::fs::create_dir_all(named.parent().unwrap()).unwrap();
     choose(&mut h, &named, "Export file");
     let obj = dir.join("exports").join("my canopy.obj");
-    assert!(obj.is_file(), "{}", h.state().message);
+    assert!(obj.is_file(), "{}", h.state().message());
     assert_eq!(
         h.state().export_report().as_ref().unwrap().files(),
         vec![obj.clone()]
@@ -200,7 +200,7 @@ fn a_browse_picked_file_outside_the_graphs_folder_is_read() {
     let status = site_status(&h);
     assert!(status.error().is_none(), "{status:?}");
     assert_eq!(
-        h.state().doc.graph.node("site").unwrap().value_of("path"),
+        h.state().doc().graph.node("site").unwrap().value_of("path"),
         Some(&Value::text(csv.display().to_string()))
     );
     assert!(
@@ -285,8 +285,8 @@ fn a_refused_read_asks_to_allow_its_folder() {
 #[test]
 fn a_renamed_node_is_shown_by_its_name_and_saved_with_the_graph() {
     let mut h = harness("rename");
-    let before = h.state().doc.to_ron();
-    h.state_mut().parameters_open = true;
+    let before = h.state().doc().to_ron();
+    h.state_mut().show_parameters(true);
     h.run_steps(3);
     assert!(h.query_by_label("Apex height").is_none());
     // Right-click ▸ Name ▸ Rename node makes this edit (the canvas's context menu does not open
@@ -298,13 +298,13 @@ fn a_renamed_node_is_shown_by_its_name_and_saved_with_the_graph() {
     h.run_steps(3);
     settle(&mut h);
     let app = h.state();
-    let node = app.doc.graph.node("apex").unwrap();
+    let node = app.doc().graph.node("apex").unwrap();
     assert_eq!(node.name.as_deref(), Some("Apex height"));
     assert_eq!(node.id, "apex", "the id stays: wires and --set use it");
     // The canvas title and the parameter panel show the name (the panel's is a second label).
     assert_eq!(h.query_all_by_label("Apex height").count(), 2);
     // Saved with the graph, loaded back; the evaluation did not change.
-    let text = app.doc.to_ron();
+    let text = app.doc().to_ron();
     assert!(text.contains("name: \"Apex height\""), "{text}");
     let registry = std::sync::Arc::new(cnets_nodes::registry());
     let loaded = cnets_engine::file::load_str(&text, "renamed", &registry).unwrap();
@@ -312,7 +312,7 @@ fn a_renamed_node_is_shown_by_its_name_and_saved_with_the_graph() {
     // One undo step, undone exactly; an old file (no names) loads unchanged.
     h.state_mut().run(MenuAction::Undo);
     h.run_steps(2);
-    assert_eq!(h.state().doc.to_ron(), before);
+    assert_eq!(h.state().doc().to_ron(), before);
     let old = cnets_engine::file::load_str(&before, "old", &registry).unwrap();
     assert!(old.graph.nodes().all(|(_, n)| n.name.is_none()));
     assert_eq!(cnets_engine::file::to_ron(&old.graph, &old.meta), before);

@@ -190,7 +190,7 @@ fn ink(image: &image::RgbaImage, r: egui::Rect) -> u32 {
 
 /// The value box of a `param.number` slider editor (right of its 110-point rail).
 fn value_box(h: &Harness<'static, EditorApp>) -> egui::Rect {
-    let canvas = &h.state().canvas;
+    let canvas = &h.state().canvas();
     let r = canvas
         .editor_screen_rect("ratio", "value")
         .expect("the slider is drawn");
@@ -201,8 +201,7 @@ fn value_box(h: &Harness<'static, EditorApp>) -> egui::Rect {
 
 fn set_ratio(h: &mut Harness<'static, EditorApp>, x: f64) {
     h.state_mut()
-        .doc
-        .edit(None, |g, _| {
+        .edit_graph(|g, _| {
             g.set_value("ratio", "value", Value::Number(x))
                 .map(|_| ())
                 .map_err(|e| e.to_string())
@@ -219,8 +218,13 @@ fn negative_values_show_their_minus_sign_at_three_zoom_levels() {
         (0.8, "editor_minus_zoom_080"),
         (1.3, "editor_minus_zoom_130"),
     ] {
-        let centre = h.state().canvas.node_rect("ratio").expect("drawn").center();
-        h.state_mut().canvas.zoom_to(zoom, Some(centre));
+        let centre = h
+            .state()
+            .canvas()
+            .node_rect("ratio")
+            .expect("drawn")
+            .center();
+        h.state_mut().zoom_canvas(zoom, Some(centre));
         h.run_steps(3);
         set_ratio(&mut h, 1.0);
         let rect = value_box(&h);

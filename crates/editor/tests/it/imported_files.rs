@@ -43,5 +43,8 @@ fn a_re_saved_import_is_read_again() {
     settle(&mut h);
     let after = output_of(h.state(), "len");
     assert!(after.iter().any(|o| o.contains("4.5")), "{after:?}");
-    assert!(!h.state().doc.is_dirty(), "the graph's text did not change");
+    assert!(
+        !h.state().doc().is_dirty(),
+        "the graph's text did not change"
+    );
 }

@@ -12,10 +12,8 @@ use egui_kittest::kittest::Queryable;
 fn the_shipped_library_is_listed_in_the_palette_and_inserts() {
     let mut h = harness_on(temp_config("library-components"), None, graphs_dir());
     let names: Vec<String> = {
-        let app = h.state_mut();
-        let registry = app.registry.clone();
-        app.library
-            .scan(&registry)
+        h.state_mut()
+            .rescan_library()
             .iter()
             .map(|e| e.name.clone())
             .collect()
@@ -29,7 +27,7 @@ fn the_shipped_library_is_listed_in_the_palette_and_inserts() {
         assert!(names.contains(&name.to_string()), "{name} in {names:?}");
     }
     for name in ["strip-fabrication", "support-structure", "reference-fit"] {
-        h.state_mut().palette.open_at([900.0, 700.0]);
+        h.state_mut().open_palette_at([900.0, 700.0]);
         h.run_steps(2);
         h.get_by(|n| n.role() == egui::accesskit::Role::TextInput && n.is_focused())
             .type_text(name);
@@ -38,18 +36,23 @@ fn the_shipped_library_is_listed_in_the_palette_and_inserts() {
             h.query_by_label(&format!("{name} (cluster)")).is_some(),
             "{name} is shown in the palette"
         );
-        h.state_mut().palette.open = false;
+        h.state_mut().close_palette();
         h.run_steps(2);
     }
-    h.state_mut().palette.open_at([900.0, 700.0]);
+    h.state_mut().open_palette_at([900.0, 700.0]);
     h.run_steps(2);
     h.get_by(|n| n.role() == egui::accesskit::Role::TextInput && n.is_focused())
         .type_text("closed-tube");
     h.run_steps(3);
     h.get_by_label("closed-tube (cluster)").click();
     h.run_steps(3);
-    let id = h.state().canvas.focused.clone().expect("a node was added");
-    let node = h.state().doc.graph.node(&id).expect("the node");
+    let id = h
+        .state()
+        .canvas()
+        .focused
+        .clone()
+        .expect("a node was added");
+    let node = h.state().doc().graph.node(&id).expect("the node");
     let cluster = Cluster::of(&node.def).expect("a cluster node");
     assert_eq!(cluster.label(), "closed-tube.ron");
     let inputs: Vec<&str> = node.def.inputs.iter().map(|p| p.name.as_ref()).collect();
@@ -57,7 +60,7 @@ fn the_shipped_library_is_listed_in_the_palette_and_inserts() {
     assert!(node.def.inputs.iter().all(|p| !p.doc.is_empty()));
     assert!(
         h.state()
-            .doc
+            .doc()
             .to_ron()
             .contains("source: \"closed-tube.ron\""),
         "resolved through graphs/library, as `--library graphs/library` resolves it"

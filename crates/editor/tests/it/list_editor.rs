@@ -57,7 +57,7 @@ fn click_at(h: &mut H, p: Pos2) {
 /// Screen centres of the **Edit…** buttons drawn inside `node` (accessibility rectangles of
 /// canvas widgets are in canvas coordinates).
 fn edit_buttons(h: &H, node: &str) -> Vec<Pos2> {
-    let canvas = &h.state().canvas;
+    let canvas = &h.state().canvas();
     let frame = canvas.node_screen_rect(node).expect("the node is drawn");
     h.get_all_by_label("Edit…")
         .map(|b| canvas.to_screen(b.rect().center()))
@@ -69,7 +69,7 @@ fn edit_buttons(h: &H, node: &str) -> Vec<Pos2> {
 fn open_editor(h: &mut H, node: &str, input: &str) {
     let area = h
         .state()
-        .canvas
+        .canvas()
         .editor_screen_rect(node, input)
         .expect("the input has an Edit… button");
     let button = edit_buttons(h, node)
@@ -78,7 +78,7 @@ fn open_editor(h: &mut H, node: &str, input: &str) {
         .expect("Edit… by its label, inside the node");
     click_at(h, button);
     assert!(
-        h.state().list_editors.is_open(node, input),
+        h.state().list_editors().is_open(node, input),
         "Edit… opens the window of {node}.{input}"
     );
     assert!(
@@ -111,7 +111,7 @@ fn shown(h: &H, cell: &str) -> String {
 }
 
 fn literal(app: &EditorApp, node: &str, input: &str) -> Value {
-    app.doc
+    app.doc()
         .graph
         .node(node)
         .unwrap()
@@ -128,13 +128,13 @@ fn a_typed_cell_changes_only_that_number_and_undo_restores_the_text() {
         h.query_by_label("4 points").is_some(),
         "the node shows the list's summary"
     );
-    let before = h.state().doc.to_ron();
-    let steps = h.state().doc.history.undo_len();
+    let before = h.state().doc().to_ron();
+    let steps = h.state().doc().history.undo_len();
     open_editor(&mut h, "directrix", "points");
     assert_eq!(shown(&h, "row 1 y"), "4");
     type_into(&mut h, "row 1 y", "4.40179139375686646");
     settle(&mut h);
-    let after = h.state().doc.to_ron();
+    let after = h.state().doc().to_ron();
     assert_eq!(
         after,
         before.replacen(
@@ -144,7 +144,11 @@ fn a_typed_cell_changes_only_that_number_and_undo_restores_the_text() {
         ),
         "the saved text changed in that number only (typed in full, kept in full)"
     );
-    assert_eq!(h.state().doc.history.undo_len(), steps + 1, "one undo step");
+    assert_eq!(
+        h.state().doc().history.undo_len(),
+        steps + 1,
+        "one undo step"
+    );
     assert_eq!(shown(&h, "row 1 y"), "4.4017913937568665", "shown in full");
     assert!(
         literal(h.state(), "directrix", "points").as_list().unwrap()[1]
@@ -154,19 +158,19 @@ fn a_typed_cell_changes_only_that_number_and_undo_restores_the_text() {
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     settle(&mut h);
     assert_eq!(
-        h.state().doc.to_ron(),
+        h.state().doc().to_ron(),
         before,
         "undo restores the text exactly"
     );
     assert_eq!(shown(&h, "row 1 y"), "4", "the window follows undo");
     h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
     settle(&mut h);
-    assert_eq!(h.state().doc.to_ron(), after, "and redo");
+    assert_eq!(h.state().doc().to_ron(), after, "and redo");
     assert_eq!(shown(&h, "row 1 y"), "4.4017913937568665");
     // A bad cell is refused in the window, and the document does not change.
     type_into(&mut h, "row 2 x", "4,5");
     settle(&mut h);
-    assert_eq!(h.state().doc.to_ron(), after);
+    assert_eq!(h.state().doc().to_ron(), after);
     assert!(
         h.query_by_label_contains("use '.' as the decimal point")
             .is_some(),
@@ -200,7 +204,7 @@ const SPLINE: &str = r#"(
 fn pasted_rows_replace_all_or_go_in_at_the_selected_cell_in_one_step_each() {
     let mut h = open("paste", write_graph("paste", SPLINE));
     open_editor(&mut h, "curve", "points");
-    let steps = h.state().doc.history.undo_len();
+    let steps = h.state().doc().history.undo_len();
     // Replacing all rows (the choice in the window), with spreadsheet text.
     h.get_by_label("replacing all rows").click();
     h.run_steps(2);
@@ -219,9 +223,9 @@ fn pasted_rows_replace_all_or_go_in_at_the_selected_cell_in_one_step_each() {
         "{:?}",
         literal(h.state(), "curve", "points")
     );
-    assert_eq!(h.state().doc.history.undo_len(), steps + 1, "one step");
+    assert_eq!(h.state().doc().history.undo_len(), steps + 1, "one step");
     assert_eq!(
-        h.state().doc.graph.node_count(),
+        h.state().doc().graph.node_count(),
         2,
         "the paste went to the table, not to the canvas"
     );
@@ -232,7 +236,6 @@ fn pasted_rows_replace_all_or_go_in_at_the_selected_cell_in_one_step_each() {
     );
     // At the selected cell: row 1, from y on; a line past the end adds a row.
     h.state_mut()
-        .list_editors
         .set_paste_mode("curve", "points", PasteMode::AtCell);
     h.get_by_label("row 1 y").click();
     h.run_steps(3);
@@ -253,12 +256,12 @@ fn pasted_rows_replace_all_or_go_in_at_the_selected_cell_in_one_step_each() {
         "{:?}",
         literal(h.state(), "curve", "points")
     );
-    assert_eq!(h.state().doc.history.undo_len(), steps + 2);
+    assert_eq!(h.state().doc().history.undo_len(), steps + 2);
     // A bad field: refused naming its line and field; nothing changes.
-    let text = h.state().doc.to_ron();
+    let text = h.state().doc().to_ron();
     h.event(egui::Event::Paste("1\t2\n3\tx\n".into()));
     h.run_steps(3);
-    assert_eq!(h.state().doc.to_ron(), text);
+    assert_eq!(h.state().doc().to_ron(), text);
     assert!(
         h.query_by_label_contains("line 2, field 2: 'x' is not a number")
             .is_some()
@@ -313,7 +316,7 @@ fn table_of(v: &Value) -> (Vec<usize>, Vec<f64>) {
 fn a_param_list_table_keeps_rows_by_columns() {
     let mut h = open("table", write_graph("table", TABLE));
     assert!(h.query_by_label("3 × 4 numbers, 0.1 … 1.2").is_some());
-    let before = h.state().doc.to_ron();
+    let before = h.state().doc().to_ron();
     open_editor(&mut h, "ratios", "values");
     assert_eq!(shown(&h, "row 0, column 2"), "0.30000000000000004");
     type_into(&mut h, "row 1, column 2", "0.75");
@@ -322,18 +325,22 @@ fn a_param_list_table_keeps_rows_by_columns() {
     assert_eq!(widths, vec![4, 4, 4], "a table stays a table");
     assert_eq!(numbers[6], 0.75);
     assert_eq!(
-        h.state().doc.to_ron(),
+        h.state().doc().to_ron(),
         before.replacen("0.6, 0.7, 0.8", "0.6, 0.75, 0.8", 1),
         "only that number changed"
     );
     // A cell typed in, then another clicked and typed in: two changes, two undo steps.
-    let steps = h.state().doc.history.undo_len();
+    let steps = h.state().doc().history.undo_len();
     type_only(&mut h, "row 0, column 0", "0.15");
     type_into(&mut h, "row 2, column 3", "1.25");
     settle(&mut h);
     let (_, numbers) = table_of(&literal(h.state(), "ratios", "values"));
     assert_eq!((numbers[0], numbers[11]), (0.15, 1.25));
-    assert_eq!(h.state().doc.history.undo_len(), steps + 2, "one step each");
+    assert_eq!(
+        h.state().doc().history.undo_len(),
+        steps + 2,
+        "one step each"
+    );
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     settle(&mut h);
     let (_, numbers) = table_of(&literal(h.state(), "ratios", "values"));
@@ -405,7 +412,7 @@ fn a_wired_input_is_read_only_and_the_window_closes_with_its_node() {
         edit_buttons(&h, "curve").is_empty(),
         "a wired input has no Edit… on its node"
     );
-    let text = h.state().doc.to_ron();
+    let text = h.state().doc().to_ron();
     h.get_by_label("row 1 y").click();
     h.run_steps(3);
     assert!(
@@ -415,11 +422,11 @@ fn a_wired_input_is_read_only_and_the_window_closes_with_its_node() {
     );
     h.event(egui::Event::Paste("1\t2\t3\n".into()));
     h.run_steps(3);
-    assert_eq!(h.state().doc.to_ron(), text, "nothing pasted");
+    assert_eq!(h.state().doc().to_ron(), text, "nothing pasted");
     let ok = h.state_mut().edit(Edit::Remove(vec!["curve".into()]));
     assert!(ok);
     h.run_steps(3);
-    assert!(h.state().list_editors.is_empty(), "its node is gone");
+    assert!(h.state().list_editors().is_empty(), "its node is gone");
 }
 
 #[test]
@@ -465,7 +472,7 @@ fn a_list_of_polylines_is_edited_one_polyline_at_a_time() {
     // As facade.ron's profiles: literal polylines in a param.list.
     let mut h = open("profiles", write_graph("profiles", PROFILES));
     assert!(h.query_by_label("2 polylines").is_some());
-    let before = h.state().doc.to_ron();
+    let before = h.state().doc().to_ron();
     let old = literal(h.state(), "profiles", "values");
     open_editor(&mut h, "profiles", "values");
     assert_eq!(shown(&h, "row 1 y"), "0.3", "the first polyline at first");
@@ -475,7 +482,7 @@ fn a_list_of_polylines_is_edited_one_polyline_at_a_time() {
     type_into(&mut h, "row 1 y", "-1.25");
     settle(&mut h);
     assert_eq!(
-        h.state().doc.to_ron(),
+        h.state().doc().to_ron(),
         before.replacen("(0.0, -1.2, 3.4)", "(0.0, -1.25, 3.4)", 1),
         "only that number changed"
     );
@@ -490,7 +497,7 @@ fn a_list_of_polylines_is_edited_one_polyline_at_a_time() {
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     settle(&mut h);
     assert_eq!(
-        h.state().doc.to_ron(),
+        h.state().doc().to_ron(),
         before,
         "one undo step, undone exactly"
     );
@@ -505,13 +512,13 @@ fn escape_closes_the_list_window_but_first_ends_a_cells_edit() {
     h.key_press(Key::Escape);
     h.run_steps(3);
     assert!(
-        h.state().list_editors.is_open("curve", "points"),
+        h.state().list_editors().is_open("curve", "points"),
         "the first Escape cancels the cell's edit"
     );
     h.key_press(Key::Escape);
     h.run_steps(3);
     assert!(
-        !h.state().list_editors.is_open("curve", "points"),
+        !h.state().list_editors().is_open("curve", "points"),
         "the next closes the window"
     );
 }

@@ -65,7 +65,7 @@ fn rows(v: &Value) -> Vec<Vec<f64>> {
 /// each sample x, the shown kind and handles give the node's y (domains mapped back to the unit
 /// square).
 fn assert_curve_is_the_nodes(app: &EditorApp, file: &str, id: &str, shown: &Shown) {
-    let graph = &app.doc.graph;
+    let graph = &app.doc().graph;
     let ctx = NodeContext::default();
     let mut ev = Evaluator::new();
     ev.evaluate_all(graph, &ctx);
@@ -123,7 +123,7 @@ fn nudge(h: &mut Harness<'static, EditorApp>, at: Pos2, dy: f32) {
 /// Clicks the button labelled `label` inside node `id` (accessibility rectangles of canvas
 /// widgets are in canvas coordinates).
 fn click_in_node(h: &mut Harness<'static, EditorApp>, id: &str, label: &str) {
-    let canvas = &h.state().canvas;
+    let canvas = &h.state().canvas();
     let node = canvas.node_screen_rect(id).expect("the node is drawn");
     let at = h
         .get_all_by_label(label)
@@ -139,15 +139,15 @@ fn click_in_node(h: &mut Harness<'static, EditorApp>, id: &str, label: &str) {
 }
 
 fn stored_handles(app: &EditorApp, id: &str) -> Option<Value> {
-    let node = app.doc.graph.node(id)?;
+    let node = app.doc().graph.node(id)?;
     node.value(handles_port(node)?).cloned()
 }
 
 /// Shows the mapper `id` at zoom 1 in the middle of the canvas.
 fn focus(h: &mut Harness<'static, EditorApp>, id: &str) {
     h.run_steps(2);
-    let centre = h.state().canvas.node_rect(id).expect("drawn").center();
-    h.state_mut().canvas.zoom_to(1.0, Some(centre));
+    let centre = h.state().canvas().node_rect(id).expect("drawn").center();
+    h.state_mut().zoom_canvas(1.0, Some(centre));
     h.run_steps(3);
 }
 
@@ -163,7 +163,7 @@ fn every_shipped_mapper_draws_its_nodes_curve_and_a_one_pixel_drag_keeps_the_sha
             focus(&mut h, id);
             let (shown, _) = h
                 .state()
-                .canvas
+                .canvas()
                 .mapper_view(id)
                 .cloned()
                 .unwrap_or_else(|| panic!("{name} {id}: the widget was drawn"));
@@ -182,15 +182,15 @@ fn every_shipped_mapper_draws_its_nodes_curve_and_a_one_pixel_drag_keeps_the_sha
                 }
                 let count = shown.rows[row].len();
                 for k in 0..count {
-                    let (now, drawn_row) = h.state().canvas.mapper_view(id).cloned().unwrap();
+                    let (now, drawn_row) = h.state().canvas().mapper_view(id).cloned().unwrap();
                     assert_eq!(drawn_row, row, "{name} {id}: the row selector");
                     let p = now.rows[row][k];
                     let at = h
                         .state()
-                        .canvas
+                        .canvas()
                         .mapper_screen_pos(id, p.x as f32, p.y as f32)
                         .unwrap();
-                    let steps = h.state().doc.history.undo_len();
+                    let steps = h.state().doc().history.undo_len();
                     // Away from the plot's edge (a handle on v = 1 cannot go higher).
                     nudge(&mut h, at, if p.y > 0.5 { 1.0 } else { -1.0 });
                     let after = stored_handles(h.state(), id)
@@ -208,12 +208,12 @@ fn every_shipped_mapper_draws_its_nodes_curve_and_a_one_pixel_drag_keeps_the_sha
                         ),
                     }
                     assert_eq!(
-                        h.state().doc.history.undo_len(),
+                        h.state().doc().history.undo_len(),
                         steps + 1,
                         "{name} {id} row {row} handle {k} at {at:?} ({p:?}): one undo step; message {}",
-                        h.state().message
+                        h.state().message()
                     );
-                    assert!(h.state_mut().doc.undo(), "undo");
+                    assert!(h.state_mut().undo(), "undo");
                     // The undone value's results in (they may resize the node) before the next
                     // handle is located.
                     h.run_steps(1);
@@ -244,14 +244,14 @@ fn a_wired_kind_is_shown_as_the_node_runs_it() {
     let mut h = harness_with("gh-kind", Some(file), temp_config("gh-kind"));
     let id = h
         .state()
-        .doc
+        .doc()
         .graph
         .nodes()
         .find(|(_, n)| is_mapper(n))
         .map(|(_, n)| n.id.clone())
         .expect("a mapper");
     focus(&mut h, &id);
-    let (shown, _) = h.state().canvas.mapper_view(&id).cloned().unwrap();
+    let (shown, _) = h.state().canvas().mapper_view(&id).cloned().unwrap();
     assert!(shown.kind_wired, "the kind is wired in grasshopper-style");
     assert_eq!(
         shown.kind(0).map(|k| k.name()),

@@ -34,15 +34,14 @@ impl egui::DroppedFile for Dropped {
 
 fn make_dirty(h: &mut H, x: f64) {
     h.state_mut()
-        .doc
-        .edit(None, |g, _| {
+        .edit_graph(|g, _| {
             g.set_value("ratio", "value", Value::Number(x))
                 .map(|_| ())
                 .map_err(|e| e.to_string())
         })
         .unwrap();
     h.run_steps(2);
-    assert!(h.state().doc.is_dirty());
+    assert!(h.state().doc().is_dirty());
 }
 
 /// Another valid graph file (in a folder of its own, so it is no example).
@@ -58,7 +57,7 @@ fn other_graph(config: &Path) -> PathBuf {
 
 fn ratio(h: &H) -> Option<f64> {
     h.state()
-        .doc
+        .doc()
         .graph
         .node("ratio")
         .and_then(|n| n.value_of("ratio").or_else(|| n.value_of("value")))
@@ -75,7 +74,7 @@ fn every_path_that_replaces_or_closes_the_document_asks_first() {
     let (tx, rx) = std::sync::mpsc::channel();
     h.state_mut().set_inbox(rx);
     make_dirty(&mut h, 0.31);
-    let text = h.state().doc.to_ron();
+    let text = h.state().doc().to_ron();
     type Trigger = Box<dyn Fn(&mut H)>;
     let o = other.clone();
     let o2 = other.clone();
@@ -149,8 +148,12 @@ fn every_path_that_replaces_or_closes_the_document_asks_first() {
             Some(expected),
             "{name}: asks before replacing"
         );
-        assert_eq!(h.state().doc.to_ron(), text, "{name}: nothing replaced yet");
-        assert!(!h.state().quit, "{name}: not closing yet");
+        assert_eq!(
+            h.state().doc().to_ron(),
+            text,
+            "{name}: nothing replaced yet"
+        );
+        assert!(!h.state().wants_to_quit(), "{name}: not closing yet");
         h.get_by_label("Cancel").click();
         h.run_steps(2);
         assert!(
@@ -158,23 +161,26 @@ fn every_path_that_replaces_or_closes_the_document_asks_first() {
             "{name}: question gone"
         );
         assert_eq!(
-            h.state().doc.to_ron(),
+            h.state().doc().to_ron(),
             text,
             "{name}: Cancel keeps the document"
         );
-        assert!(h.state().doc.is_dirty() && !h.state().quit, "{name}");
+        assert!(
+            h.state().doc().is_dirty() && !h.state().wants_to_quit(),
+            "{name}"
+        );
     }
     // Don't save: the other graph replaces the document.
     h.state_mut().run(MenuAction::OpenPath(other.clone()));
     h.run_steps(2);
     h.get_by_label("Don't save").click();
     h.run_steps(2);
-    assert_eq!(h.state().doc.path.as_deref(), Some(other.as_path()));
+    assert_eq!(h.state().doc().path.as_deref(), Some(other.as_path()));
     assert!(
-        h.state().doc.graph.node("ratio_other").is_some(),
+        h.state().doc().graph.node("ratio_other").is_some(),
         "the other graph"
     );
-    assert!(!h.state().doc.is_dirty());
+    assert!(!h.state().doc().is_dirty());
     std::fs::remove_file(&example).ok();
 }
 
@@ -185,7 +191,7 @@ fn save_in_the_question_saves_first_untitled_through_save_as() {
     // An untitled document: Save opens Save As, then the open goes on.
     let mut h = harness_with("guard-save", None, config.clone());
     make_dirty(&mut h, 0.27);
-    let text = h.state().doc.to_ron();
+    let text = h.state().doc().to_ron();
     h.state_mut().run(MenuAction::OpenPath(other.clone()));
     h.run_steps(2);
     h.get_by_label("Save").click();
@@ -203,20 +209,19 @@ fn save_in_the_question_saves_first_untitled_through_save_as() {
         "saved first"
     );
     assert_eq!(
-        h.state().doc.path.as_deref(),
+        h.state().doc().path.as_deref(),
         Some(other.as_path()),
         "then opened"
     );
     // A document with a file: Save writes it in place, then File ▸ New goes on.
     h.state_mut()
-        .doc
-        .edit(None, |g, _| {
+        .edit_graph(|g, _| {
             g.set_value("ratio_other", "value", Value::Number(0.29))
                 .map(|_| ())
                 .map_err(|e| e.to_string())
         })
         .unwrap();
-    let text = h.state().doc.to_ron();
+    let text = h.state().doc().to_ron();
     h.state_mut().run(MenuAction::New);
     h.run_steps(2);
     h.get_by_label("Save").click();
@@ -226,10 +231,10 @@ fn save_in_the_question_saves_first_untitled_through_save_as() {
         text,
         "saved in place"
     );
-    assert_eq!(h.state().doc.graph.node_count(), 0, "then the new graph");
+    assert_eq!(h.state().doc().graph.node_count(), 0, "then the new graph");
     // Untitled, Save, then Cancel in Save As: nothing is saved or replaced.
     h.state_mut().add_node("param.number", [0.0, 0.0]).unwrap();
-    let text = h.state().doc.to_ron();
+    let text = h.state().doc().to_ron();
     h.state_mut().run(MenuAction::OpenPath(other.clone()));
     h.run_steps(2);
     h.get_by_label("Save").click();
@@ -237,7 +242,11 @@ fn save_in_the_question_saves_first_untitled_through_save_as() {
     assert!(h.state_mut().dialog_mut().is_some());
     h.get_by_label("Cancel").click();
     h.run_steps(2);
-    assert_eq!(h.state().doc.to_ron(), text, "the untitled document stays");
+    assert_eq!(
+        h.state().doc().to_ron(),
+        text,
+        "the untitled document stays"
+    );
     assert!(h.state_mut().dialog_mut().is_none());
 }
 
@@ -250,11 +259,11 @@ fn examples_open_as_untitled_copies_and_the_first_save_asks_where() {
     std::fs::write(&shipped, DEFAULT_GRAPH).unwrap();
     // Started with no file on an examples folder holding torus-monge.ron: an untitled copy.
     let mut h = common::harness_on(config.clone(), None, examples.clone());
-    assert_eq!(h.state().doc.path, None, "untitled");
-    assert_eq!(h.state().doc.origin.as_deref(), Some(shipped.as_path()));
+    assert_eq!(h.state().doc().path, None, "untitled");
+    assert_eq!(h.state().doc().origin.as_deref(), Some(shipped.as_path()));
     assert!(
         h.state()
-            .doc
+            .doc()
             .title()
             .contains("copy of example torus-monge.ron")
     );
@@ -283,12 +292,12 @@ fn examples_open_as_untitled_copies_and_the_first_save_asks_where() {
         "the example is untouched"
     );
     assert!(std::fs::read_to_string(&mine).unwrap().contains("0.33"));
-    assert_eq!(h.state().doc.path.as_deref(), Some(mine.as_path()));
+    assert_eq!(h.state().doc().path.as_deref(), Some(mine.as_path()));
     // File ▸ Open example, and a shipped file given on the command line, are copies too.
     h.state_mut().run(MenuAction::OpenExample(shipped.clone()));
     h.run_steps(2);
     assert_eq!(
-        (h.state().doc.path.clone(), h.state().doc.origin.clone()),
+        (h.state().doc().path.clone(), h.state().doc().origin.clone()),
         (None, Some(shipped.clone()))
     );
     let h2 = common::harness_on(
@@ -296,7 +305,7 @@ fn examples_open_as_untitled_copies_and_the_first_save_asks_where() {
         Some(shipped.clone()),
         examples.clone(),
     );
-    assert_eq!(h2.state().doc.path, None);
+    assert_eq!(h2.state().doc().path, None);
     let _ = ratio(&h2);
 }
 
@@ -313,13 +322,17 @@ fn a_file_that_fails_to_load_shows_its_diagnostics_and_keeps_the_document() {
     .unwrap();
     let mut h = harness("badfile-doc");
     make_dirty(&mut h, 0.41);
-    let text = h.state().doc.to_ron();
+    let text = h.state().doc().to_ron();
     h.state_mut().run(MenuAction::OpenPath(bad.clone()));
     h.run_steps(2);
     h.get_by_label("Don't save").click();
     h.run_steps(3);
-    assert_eq!(h.state().doc.to_ron(), text, "the previous document stays");
-    assert!(h.state().doc.is_dirty(), "and keeps its unsaved changes");
+    assert_eq!(
+        h.state().doc().to_ron(),
+        text,
+        "the previous document stays"
+    );
+    assert!(h.state().doc().is_dirty(), "and keeps its unsaved changes");
     let failure = h
         .state()
         .load_failure()
@@ -358,7 +371,7 @@ fn a_file_that_fails_to_load_shows_its_diagnostics_and_keeps_the_document() {
     );
     assert!(h.state().load_failure().is_some());
     assert_eq!(
-        h.state().doc.graph.node_count(),
+        h.state().doc().graph.node_count(),
         0,
         "nothing that looks like the file"
     );
@@ -368,14 +381,15 @@ fn a_file_that_fails_to_load_shows_its_diagnostics_and_keeps_the_document() {
 /// The editor as the web page runs it (its requests queued for the page).
 fn in_page(name: &str) -> H {
     let mut h = harness(name);
-    h.state_mut().page = Some(cnets_editor::page::Page::default());
+    h.state_mut().in_page();
     h
 }
 
 /// The `.ron` downloads the page was asked for: (name, text).
 fn downloads(h: &mut H) -> Vec<(String, String)> {
-    let page = h.state_mut().page.as_mut().expect("in a page");
-    page.take()
+    assert!(h.state().page().is_some(), "in a page");
+    h.state_mut()
+        .take_page_requests()
         .into_iter()
         .filter_map(|r| match r {
             cnets_editor::page::PageRequest::Download { name, bytes } => {
@@ -394,14 +408,14 @@ fn a_graph_dropped_on_the_page_asks_before_it_replaces_unsaved_work() {
     // Nothing unsaved: the dropped graph opens at once, named by its file.
     let mut h = in_page("page-drop-clean");
     assert!(h.state_mut().receive_text(&other, Path::new("dropped.ron")));
-    assert_eq!(h.state().doc.name.as_deref(), Some("dropped.ron"));
-    assert_eq!(h.state().message, "opened dropped.ron");
+    assert_eq!(h.state().doc().name.as_deref(), Some("dropped.ron"));
+    assert_eq!(h.state().message(), "opened dropped.ron");
     // Unsaved work: the question first; Cancel keeps the work and lets the dropped graph go.
     let mut h = in_page("page-drop-cancel");
     make_dirty(&mut h, 0.31);
-    let mine = h.state().doc.to_ron();
+    let mine = h.state().doc().to_ron();
     assert!(h.state_mut().receive_text(&other, Path::new("dropped.ron")));
-    assert_eq!(h.state().doc.to_ron(), mine, "not replaced yet");
+    assert_eq!(h.state().doc().to_ron(), mine, "not replaced yet");
     h.run_steps(2);
     assert_eq!(
         h.state().unsaved_question(),
@@ -409,12 +423,12 @@ fn a_graph_dropped_on_the_page_asks_before_it_replaces_unsaved_work() {
     );
     h.get_by_label("Cancel").click();
     h.run_steps(3);
-    assert_eq!(h.state().doc.to_ron(), mine, "the work stays");
+    assert_eq!(h.state().doc().to_ron(), mine, "the work stays");
     assert_eq!(h.state().waiting(), None, "the dropped graph is let go");
     assert!(
-        h.state().message.contains("was not opened"),
+        h.state().message().contains("was not opened"),
         "{}",
-        h.state().message
+        h.state().message()
     );
     // Save: the work is downloaded (the page's save), then the dropped graph opens.
     assert!(h.state_mut().receive_text(&other, Path::new("dropped.ron")));
@@ -424,11 +438,11 @@ fn a_graph_dropped_on_the_page_asks_before_it_replaces_unsaved_work() {
     let saved = downloads(&mut h);
     assert_eq!(saved.len(), 1, "one download");
     assert_eq!(saved[0].1, mine, "the work as it was");
-    assert_eq!(h.state().doc.name.as_deref(), Some("dropped.ron"));
-    assert!(!h.state().doc.is_dirty());
+    assert_eq!(h.state().doc().name.as_deref(), Some("dropped.ron"));
+    assert!(!h.state().doc().is_dirty());
     // A file that does not load: its diagnostics, the document stays (no question).
     make_dirty(&mut h, 0.32);
-    let mine = h.state().doc.to_ron();
+    let mine = h.state().doc().to_ron();
     assert!(
         !h.state_mut()
             .receive_text("(version: 1, nodes: {", Path::new("bad.ron"))
@@ -436,7 +450,7 @@ fn a_graph_dropped_on_the_page_asks_before_it_replaces_unsaved_work() {
     h.run_steps(2);
     assert_eq!(h.state().unsaved_question(), None);
     assert!(h.state().load_failure().is_some());
-    assert_eq!(h.state().doc.to_ron(), mine);
+    assert_eq!(h.state().doc().to_ron(), mine);
 }
 
 #[test]
@@ -444,7 +458,7 @@ fn save_in_the_pages_question_downloads_and_goes_on() {
     // File ▸ New in the page with unsaved work: Save downloads the design, then the new graph.
     let mut h = in_page("page-new-save");
     make_dirty(&mut h, 0.29);
-    let mine = h.state().doc.to_ron();
+    let mine = h.state().doc().to_ron();
     h.state_mut().run(MenuAction::New);
     h.run_steps(2);
     h.get_by_label("Save").click();
@@ -456,8 +470,8 @@ fn save_in_the_pages_question_downloads_and_goes_on() {
             .collect::<Vec<_>>(),
         [mine]
     );
-    assert_eq!(h.state().doc.graph.node_count(), 0, "the new graph");
-    assert!(!h.state().doc.is_dirty());
+    assert_eq!(h.state().doc().graph.node_count(), 0, "the new graph");
+    assert!(!h.state().doc().is_dirty());
 }
 
 /// Every dialog closes on Escape, with its safe answer: the load failure closes, the file dialog
@@ -491,7 +505,7 @@ fn escape_closes_every_dialog_with_its_safe_answer() {
     );
     // The unsaved-changes question keeps the document.
     make_dirty(&mut h, 0.37);
-    let text = h.state().doc.to_ron();
+    let text = h.state().doc().to_ron();
     h.state_mut().run(MenuAction::New);
     h.run_steps(2);
     assert!(
@@ -501,9 +515,9 @@ fn escape_closes_every_dialog_with_its_safe_answer() {
     h.key_press(Key::Escape);
     h.run_steps(3);
     assert!(h.query_by_label("Don't save").is_none());
-    assert_eq!(h.state().doc.to_ron(), text, "the document stays");
+    assert_eq!(h.state().doc().to_ron(), text, "the document stays");
     // A load failure's report.
-    h.state_mut().doc.mark_saved();
+    h.state_mut().mark_saved();
     let bad = config.join("bad.ron");
     std::fs::write(&bad, "(version: 1, nodes: {\"a\": (type: \"no.such\")})").unwrap();
     h.state_mut().open(&bad);
@@ -518,7 +532,7 @@ fn escape_closes_every_dialog_with_its_safe_answer() {
     // The kept work comes back from File › Restore kept work.
     h.state_mut().run(MenuAction::RestoreKept);
     h.run_steps(3);
-    assert!(h.state().doc.is_dirty(), "restored as unsaved work");
+    assert!(h.state().doc().is_dirty(), "restored as unsaved work");
     assert_eq!(h.state().kept_recovery(), None);
     assert!(!config.join("held.ron").exists());
 }

@@ -13,7 +13,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
 fn face_positions(app: &EditorApp) -> Vec<[f32; 3]> {
-    app.viewport
+    app.viewport()
         .scene()
         .face_vertices()
         .iter()
@@ -25,17 +25,17 @@ fn open(h: &mut Harness<'static, EditorApp>, path: &Path) {
     h.state_mut().request(Replace::Open(path.to_path_buf()));
     settle(h);
     assert_eq!(
-        h.state().doc.path.as_deref(),
+        h.state().doc().path.as_deref(),
         Some(path),
         "{}: {:?}",
-        h.state().message,
+        h.state().message(),
         h.state().load_failure().as_ref().map(|f| &f.error)
     );
 }
 
 /// The nodes downstream of `id` (itself included) in the open document.
 fn downstream(app: &EditorApp, id: &str) -> usize {
-    let wires = app.doc.graph.wires();
+    let wires = app.doc().graph.wires();
     let mut seen = HashSet::from([id.to_string()]);
     let mut queue = VecDeque::from([id.to_string()]);
     while let Some(n) = queue.pop_front() {
@@ -64,7 +64,7 @@ fn open_keeps_the_evaluator_and_reruns_only_what_differs() {
     h.state_mut().request(Replace::New);
     settle(&mut h);
     open(&mut h, &a);
-    let all = h.state().doc.graph.node_count();
+    let all = h.state().doc().graph.node_count();
     assert_eq!(
         h.state().latency().ran,
         all,
@@ -105,15 +105,14 @@ fn open_keeps_the_evaluator_and_reruns_only_what_differs() {
     open(&mut h, &a);
     assert_eq!(h.state().latency().ran, cone);
     h.state_mut()
-        .doc
-        .edit(None, |g, _| {
+        .edit_graph(|g, _| {
             g.set_value("ratio", "value", cnets_engine::Value::Number(0.3))
                 .map_err(|e| e.to_string())
         })
         .unwrap();
     settle(&mut h);
     assert_eq!(h.state().latency().ran, cone);
-    assert!(h.state_mut().doc.undo());
+    assert!(h.state_mut().undo());
     settle(&mut h);
     assert_eq!(h.state().latency().ran, cone);
     assert_eq!(face_positions(h.state()), mesh_a);
@@ -147,20 +146,19 @@ fn mapper_handles_show_their_values_while_hovered_and_dragged() {
     // The new node's first result in before the picture (its outputs size the node).
     h.state_mut().wait_for_worker(Duration::from_secs(60));
     h.run_steps(3);
-    let centre = h.state().canvas.node_rect(&id).expect("drawn").center();
+    let centre = h.state().canvas().node_rect(&id).expect("drawn").center();
     // At the smallest zoom, where the canvas' own text is smallest.
     h.state_mut()
-        .canvas
-        .zoom_to(cnets_editor::canvas::MIN_ZOOM, Some(centre));
+        .zoom_canvas(cnets_editor::canvas::MIN_ZOOM, Some(centre));
     h.run_steps(4);
     assert!(
         painted_texts(&h, "u ").is_empty(),
         "no label before hovering"
     );
-    let b = handles(h.state().doc.graph.node(&id).unwrap())[1];
+    let b = handles(h.state().doc().graph.node(&id).unwrap())[1];
     let at = h
         .state()
-        .canvas
+        .canvas()
         .mapper_screen_pos(&id, b.x as f32, b.y as f32)
         .unwrap();
     h.hover_at(at);
@@ -173,7 +171,7 @@ fn mapper_handles_show_their_values_while_hovered_and_dragged() {
     // While dragged, the label follows the (snapped) value being written.
     let to = h
         .state()
-        .canvas
+        .canvas()
         .mapper_screen_pos(&id, b.x as f32, 0.3)
         .unwrap();
     h.drag_at(at);
@@ -182,7 +180,7 @@ fn mapper_handles_show_their_values_while_hovered_and_dragged() {
         h.hover_at(at + (to - at) * t);
         h.run_steps(2);
     }
-    let now = handles(h.state().doc.graph.node(&id).unwrap())[1];
+    let now = handles(h.state().doc().graph.node(&id).unwrap())[1];
     assert!((now.y - 0.3).abs() < 0.05, "dragged: {now:?}");
     let shown = painted_texts(&h, "u ");
     assert_eq!(shown.len(), 1, "{shown:?}");
@@ -215,8 +213,8 @@ fn the_overlap_hint_goes_once_nodes_no_longer_overlap() {
     .unwrap();
     let mut h = harness("overlap-hint");
     open(&mut h, &file);
-    assert!(h.state().canvas.has_overlaps());
-    assert!(h.state().overlap_hint, "{}", h.state().message);
+    assert!(h.state().canvas().has_overlaps());
+    assert!(h.state().overlap_hint(), "{}", h.state().message());
     let hint = cnets_editor::app::OVERLAP_HINT;
     assert!(
         h.query_by_label(hint).is_some(),
@@ -224,23 +222,23 @@ fn the_overlap_hint_goes_once_nodes_no_longer_overlap() {
     );
     // Still overlapping: the hint stays.
     h.run_steps(3);
-    assert!(h.state().overlap_hint);
+    assert!(h.state().overlap_hint());
     // View › Arrange graph (Ctrl+L): laid out, the hint goes.
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::L);
     h.run_steps(6);
-    assert!(!h.state().canvas.has_overlaps());
-    assert!(!h.state().overlap_hint);
+    assert!(!h.state().canvas().has_overlaps());
+    assert!(!h.state().overlap_hint());
     assert!(h.query_by_label(hint).is_none(), "the hint is gone");
     // A document whose nodes do not overlap gets no hint.
     assert!(h.state_mut().open(&graphs_dir().join("editor-default.ron")));
     settle(&mut h);
-    assert!(!h.state().canvas.has_overlaps());
-    assert!(!h.state().overlap_hint);
+    assert!(!h.state().canvas().has_overlaps());
+    assert!(!h.state().overlap_hint());
 }
 
 /// The wires of the graph being edited, as text.
 fn wire_texts(app: &EditorApp) -> Vec<String> {
-    app.doc
+    app.doc()
         .graph
         .wires()
         .iter()
@@ -255,7 +253,7 @@ fn inside_a_cluster_the_3d_view_shows_the_whole_design_and_ports_rename_keeping_
     let mesh = face_positions(h.state());
     assert!(!mesh.is_empty());
     let ids = ["directrix".to_string(), "generatrix".to_string()];
-    assert!(h.state_mut().make_cluster(&ids), "{}", h.state().message);
+    assert!(h.state_mut().make_cluster(&ids), "{}", h.state().message());
     settle(&mut h);
     let outer: Vec<String> = wire_texts(h.state());
     let wire = outer
@@ -266,7 +264,7 @@ fn inside_a_cluster_the_3d_view_shows_the_whole_design_and_ports_rename_keeping_
     let port = wire["cluster.".len()..wire.find(" ->").unwrap()].to_string();
     h.state_mut().open_cluster("cluster");
     settle(&mut h);
-    assert_eq!(h.state().doc.depth(), 1);
+    assert_eq!(h.state().doc().depth(), 1);
     // The inside holds only the two curves; the 3D view still shows the whole design.
     assert!(
         face_positions(h.state()) == mesh,
@@ -276,7 +274,7 @@ fn inside_a_cluster_the_3d_view_shows_the_whole_design_and_ports_rename_keeping_
     // Rename port, from the graph.output node's context menu.
     let out = h
         .state()
-        .doc
+        .doc()
         .graph
         .nodes()
         .map(|(_, n)| n)
@@ -285,10 +283,10 @@ fn inside_a_cluster_the_3d_view_shows_the_whole_design_and_ports_rename_keeping_
         })
         .map(|n| n.id.clone())
         .expect("the graph.output node of that port");
-    let title = h.state().canvas.node_rect(&out).expect("drawn");
+    let title = h.state().canvas().node_rect(&out).expect("drawn");
     let at = h
         .state()
-        .canvas
+        .canvas()
         .to_screen(title.left_top() + egui::vec2(title.width() * 0.5, 8.0));
     h.hover_at(at);
     h.run_steps(1);
@@ -318,7 +316,7 @@ fn inside_a_cluster_the_3d_view_shows_the_whole_design_and_ports_rename_keeping_
     settle(&mut h);
     assert_eq!(
         h.state()
-            .doc
+            .doc()
             .graph
             .node(&out)
             .and_then(|n| n.value_of("name")),
@@ -335,7 +333,7 @@ fn inside_a_cluster_the_3d_view_shows_the_whole_design_and_ports_rename_keeping_
     settle(&mut h);
     let app = h.state();
     let outputs: Vec<&str> = app
-        .doc
+        .doc()
         .graph
         .node("cluster")
         .unwrap()
@@ -353,17 +351,17 @@ fn inside_a_cluster_the_3d_view_shows_the_whole_design_and_ports_rename_keeping_
         now.contains(&"cluster.rail -> construct.directrix".to_string()),
         "{now:?}"
     );
-    assert_eq!(now.len(), outer.len(), "no wire dropped: {}", app.message);
-    assert!(!app.message.contains("dropped"), "{}", app.message);
+    assert_eq!(now.len(), outer.len(), "no wire dropped: {}", app.message());
+    assert!(!app.message().contains("dropped"), "{}", app.message());
     assert!(
-        app.doc.to_ron().contains("\"name\": \"rail\""),
+        app.doc().to_ron().contains("\"name\": \"rail\""),
         "stored in the cluster"
     );
     assert!(face_positions(app) == mesh);
     // Undo takes the rename back (inside the cluster, where it was made).
-    assert!(h.state_mut().doc.undo());
+    assert!(h.state_mut().undo());
     settle(&mut h);
-    assert!(h.state_mut().doc.undo());
+    assert!(h.state_mut().undo());
     settle(&mut h);
     h.state_mut().leave_to(0);
     settle(&mut h);
@@ -383,9 +381,13 @@ fn the_planarity_limit_is_set_in_the_viewport_and_kept_in_the_settings() {
         h.query_by_label("not planar from").is_none(),
         "only in planarity mode"
     );
-    h.state_mut().viewport.display_mut().options.color_mode = ColorMode::Planarity;
+    h.state_mut()
+        .viewport_mut()
+        .display_mut()
+        .options
+        .color_mode = ColorMode::Planarity;
     settle(&mut h);
-    let top = |h: &Harness<'static, EditorApp>| match &h.state().viewport.stats().legend {
+    let top = |h: &Harness<'static, EditorApp>| match &h.state().viewport().stats().legend {
         LegendInfo::Planarity(l) => l.labels.last().cloned().unwrap_or_default(),
         other => panic!("a planarity legend: {other:?}"),
     };
@@ -400,15 +402,15 @@ fn the_planarity_limit_is_set_in_the_viewport_and_kept_in_the_settings() {
     h.key_press(egui::Key::ArrowLeft);
     h.run_steps(2);
     settle(&mut h);
-    let limit = h.state().viewport.display().options.planarity_limit();
+    let limit = h.state().viewport().display().options.planarity_limit();
     assert!(limit < 1e-3, "the slider lowered the limit: {limit}");
-    assert_eq!(h.state().settings.planarity_limit(), Some(limit), "saved");
+    assert_eq!(h.state().settings().planarity_limit(), Some(limit), "saved");
     assert!(!top(&h).contains("1e-3"), "the legend follows: {}", top(&h));
     // A new session in the same settings folder starts with it.
     drop(h);
     let h = common::harness_with("planarity-limit-2", None, config);
     assert_eq!(
-        h.state().viewport.display().options.planarity_limit(),
+        h.state().viewport().display().options.planarity_limit(),
         limit
     );
 }
@@ -440,14 +442,14 @@ fn a_large_file_is_read_off_the_ui_thread_and_the_latest_open_wins() {
     assert!(h.state_mut().open(&big), "began to be read");
     assert_eq!(h.state().loading(), Some(big.as_path()));
     assert_ne!(
-        h.state().doc.path.as_deref(),
+        h.state().doc().path.as_deref(),
         Some(big.as_path()),
         "not yet replaced"
     );
     assert!(
-        h.state().message.starts_with("opening ") && h.state().message.ends_with(" MB)…"),
+        h.state().message().starts_with("opening ") && h.state().message().ends_with(" MB)…"),
         "the status bar says so: {}",
-        h.state().message
+        h.state().message()
     );
     // The window keeps drawing (with the notice) until the file is read, then it opens.
     h.run_steps(1);
@@ -467,15 +469,15 @@ fn a_large_file_is_read_off_the_ui_thread_and_the_latest_open_wins() {
         std::thread::sleep(std::time::Duration::from_millis(10));
     }
     assert_eq!(
-        h.state().doc.path.as_deref(),
+        h.state().doc().path.as_deref(),
         Some(big.as_path()),
         "{}",
-        h.state().message
+        h.state().message()
     );
-    assert!(!h.state().doc.is_dirty());
+    assert!(!h.state().doc().is_dirty());
     assert_eq!(
         h.state()
-            .doc
+            .doc()
             .graph
             .node("numbers")
             .unwrap()
@@ -493,9 +495,9 @@ fn a_large_file_is_read_off_the_ui_thread_and_the_latest_open_wins() {
     std::thread::sleep(std::time::Duration::from_secs(2));
     h.run_steps(3);
     assert!(
-        h.state().doc.graph.node("numbers").is_none(),
+        h.state().doc().graph.node("numbers").is_none(),
         "the document opened last stays: {}",
-        h.state().message
+        h.state().message()
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -521,16 +523,16 @@ fn a_large_start_up_file_is_read_after_the_window_opens_and_an_example_stays_a_c
         std::thread::sleep(Duration::from_millis(10));
     }
     // In the examples folder the file given is a shipped example: an untitled copy.
-    assert_eq!(h.state().doc.path, None, "{}", h.state().message);
-    assert_eq!(h.state().doc.origin.as_deref(), Some(big.as_path()));
-    assert!(!h.state().doc.is_dirty());
+    assert_eq!(h.state().doc().path, None, "{}", h.state().message());
+    assert_eq!(h.state().doc().origin.as_deref(), Some(big.as_path()));
+    assert!(!h.state().doc().is_dirty());
     assert!(
-        h.state().message.contains("copy of the example"),
+        h.state().message().contains("copy of the example"),
         "{}",
-        h.state().message
+        h.state().message()
     );
     let count = |app: &EditorApp| {
-        app.doc
+        app.doc()
             .graph
             .node("numbers")
             .and_then(|n| n.value_of("values"))
@@ -555,10 +557,10 @@ fn a_large_start_up_file_is_read_after_the_window_opens_and_an_example_stays_a_c
     );
     assert_eq!(app.loading(), None);
     assert_eq!(
-        app.doc.path.as_deref(),
+        app.doc().path.as_deref(),
         Some(big.as_path()),
         "{}",
-        app.message
+        app.message()
     );
     assert_eq!(count(&app), Some(500_000));
     let _ = std::fs::remove_dir_all(&dir);
@@ -575,9 +577,9 @@ fn a_document_edited_while_a_large_file_is_read_is_not_replaced_without_asking()
         h.state_mut()
             .add_node("param.number", [40.0, 40.0])
             .unwrap();
-        let edited = h.state().doc.to_ron();
+        let edited = h.state().doc().to_ron();
         assert!(!h.state_mut().wait_for_loading(Duration::from_secs(300)));
-        assert_eq!(h.state().doc.to_ron(), edited, "not replaced yet");
+        assert_eq!(h.state().doc().to_ron(), edited, "not replaced yet");
         h.run_steps(2);
         assert_eq!(
             h.state().unsaved_question(),
@@ -590,14 +592,18 @@ fn a_document_edited_while_a_large_file_is_read_is_not_replaced_without_asking()
         assert_eq!(h.state().loading(), None, "{answer}: nothing left reading");
         assert_eq!(h.state().waiting(), None, "{answer}: nothing left waiting");
         if opens {
-            assert_eq!(h.state().doc.path.as_deref(), Some(big.as_path()));
-            assert!(h.state().doc.graph.node("numbers").is_some());
+            assert_eq!(h.state().doc().path.as_deref(), Some(big.as_path()));
+            assert!(h.state().doc().graph.node("numbers").is_some());
         } else {
-            assert_eq!(h.state().doc.to_ron(), edited, "the edited document stays");
+            assert_eq!(
+                h.state().doc().to_ron(),
+                edited,
+                "the edited document stays"
+            );
             assert!(
-                h.state().message.contains("was not opened"),
+                h.state().message().contains("was not opened"),
                 "{}",
-                h.state().message
+                h.state().message()
             );
         }
     }
@@ -610,7 +616,7 @@ fn a_document_edited_while_a_large_file_is_read_is_not_replaced_without_asking()
 fn preview_only_the_selected_draws_the_selected_nodes_alone() {
     let mut h = harness("only-selected");
     let drawn = |h: &Harness<'static, EditorApp>| {
-        let picks = h.state().viewport.picks().clone();
+        let picks = h.state().viewport().picks().clone();
         let mut nodes: Vec<String> = picks
             .meshes
             .iter()
@@ -626,24 +632,24 @@ fn preview_only_the_selected_draws_the_selected_nodes_alone() {
         all.len() > 1 && all.contains(&"construct".to_string()),
         "{all:?}"
     );
-    let vertices = h.state().viewport.stats().vertices;
+    let vertices = h.state().viewport().stats().vertices;
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::ToggleOnlySelected);
-    h.state_mut().canvas.select(vec!["directrix".into()]);
+    h.state_mut().select_nodes(vec!["directrix".into()]);
     settle(&mut h);
     assert_eq!(drawn(&h), ["directrix"], "only the selected curve");
-    assert_eq!(h.state().viewport.stats().vertices, 0, "no mesh counted");
-    h.state_mut().canvas.select(vec!["construct".into()]);
+    assert_eq!(h.state().viewport().stats().vertices, 0, "no mesh counted");
+    h.state_mut().select_nodes(vec!["construct".into()]);
     settle(&mut h);
     assert_eq!(drawn(&h), ["construct"]);
-    assert_eq!(h.state().viewport.stats().vertices, vertices);
+    assert_eq!(h.state().viewport().stats().vertices, vertices);
     // Nothing selected: every previewed node; the toggle off: the same.
-    h.state_mut().canvas.select(Vec::new());
+    h.state_mut().select_nodes(Vec::new());
     settle(&mut h);
     assert_eq!(drawn(&h), all);
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::ToggleOnlySelected);
-    h.state_mut().canvas.select(vec!["construct".into()]);
+    h.state_mut().select_nodes(vec!["construct".into()]);
     settle(&mut h);
     assert_eq!(drawn(&h), all, "the toggle off draws every previewed node");
 }
@@ -656,7 +662,7 @@ fn on_a_phone_the_3d_view_takes_most_of_the_screen() {
     h.set_size(egui::vec2(390.0, 844.0));
     settle(&mut h);
     h.run_steps(4);
-    let view = h.state().viewport.rect();
+    let view = h.state().viewport().rect();
     let share = view.height() / 844.0;
     eprintln!(
         "phone: 3D view {view:?}, {:.0} % of the height",
@@ -668,7 +674,10 @@ fn on_a_phone_the_3d_view_takes_most_of_the_screen() {
         share * 100.0
     );
     assert!(view.width() >= 360.0, "{view:?}");
-    let parameters = h.state().parameters_rect.expect("the parameters are shown");
+    let parameters = h
+        .state()
+        .parameters_rect()
+        .expect("the parameters are shown");
     assert!(
         parameters.top() >= view.bottom() - 1.0,
         "{parameters:?} under {view:?}"
@@ -699,8 +708,8 @@ fn two_fingers_on_the_3d_view_pinch_zoom_and_pan() {
     let mut h = harness("pinch");
     settle(&mut h);
     h.run_steps(2);
-    let centre = h.state().viewport.rect().center();
-    let before = h.state().viewport.framing().camera;
+    let centre = h.state().viewport().rect().center();
+    let before = h.state().viewport().framing().camera;
     let apart = |d: f32| (centre - egui::vec2(d, 0.0), centre + egui::vec2(d, 0.0));
     let (a, b) = apart(40.0);
     // A browser's first finger also moves the pointer (egui starts a gesture where it is).
@@ -715,7 +724,7 @@ fn two_fingers_on_the_3d_view_pinch_zoom_and_pan() {
         touch(&h, 1, egui::TouchPhase::Move, b);
         h.run_steps(1);
     }
-    let zoomed = h.state().viewport.framing().camera;
+    let zoomed = h.state().viewport().framing().camera;
     assert!(
         dist(&zoomed) < 0.7 * dist(&before),
         "spread to twice apart: distance {} → {}",
@@ -734,7 +743,7 @@ fn two_fingers_on_the_3d_view_pinch_zoom_and_pan() {
     touch(&h, 0, egui::TouchPhase::End, a + by);
     touch(&h, 1, egui::TouchPhase::End, b + by);
     h.run_steps(2);
-    let panned = h.state().viewport.framing().camera;
+    let panned = h.state().viewport().framing().camera;
     assert!(
         (panned.target - zoomed.target).length() > 1e-3 * dist(&zoomed),
         "the target moved: {:?} → {:?}",
@@ -754,12 +763,16 @@ fn the_figures_over_the_3d_view_never_overlap() {
     for (width, height) in [(390.0, 844.0), (1280.0, 800.0)] {
         let mut h = harness("overlays");
         h.set_size(egui::vec2(width, height));
-        h.state_mut().viewport.display_mut().show_dimensions = true;
+        h.state_mut().viewport_mut().display_mut().show_dimensions = true;
         for mode in cnets_editor::preview::ColorMode::ALL {
-            h.state_mut().viewport.display_mut().options.color_mode = mode;
+            h.state_mut()
+                .viewport_mut()
+                .display_mut()
+                .options
+                .color_mode = mode;
             settle(&mut h);
             h.run_steps(3);
-            let overlays = h.state().viewport.last_frame().overlays.clone();
+            let overlays = h.state().viewport().last_frame().overlays.clone();
             let names: Vec<&str> = overlays.iter().map(|(n, _)| *n).collect();
             assert!(
                 ["statistics", "axes", "grid", "size"]
@@ -769,7 +782,7 @@ fn the_figures_over_the_3d_view_never_overlap() {
             );
             for (k, (a, ra)) in overlays.iter().enumerate() {
                 assert!(
-                    h.state().viewport.rect().expand(1.0).contains_rect(*ra),
+                    h.state().viewport().rect().expand(1.0).contains_rect(*ra),
                     "{a} {ra:?}"
                 );
                 for (b, rb) in &overlays[k + 1..] {

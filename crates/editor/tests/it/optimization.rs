@@ -33,7 +33,7 @@ fn right_click(h: &mut Harness<'static, EditorApp>, at: Pos2) {
 /// (right) side. An input's name is drawn beside its pin at the node's left edge; an output's
 /// name left of its summary's slot, so further in than a quarter of the node's width.
 fn port_label(h: &Harness<'static, EditorApp>, node: &str, name: &str, input: bool) -> Pos2 {
-    let canvas = &h.state().canvas;
+    let canvas = &h.state().canvas();
     let rect = canvas.node_screen_rect(node).expect("the node is drawn");
     let quarter = rect.left() + rect.width() / 4.0;
     h.get_all_by_label(name)
@@ -49,11 +49,11 @@ fn open_mapper_optimize_menu(h: &mut Harness<'static, EditorApp>) -> String {
         .state_mut()
         .add_node("mapper.graph", [420.0, 560.0])
         .unwrap();
-    h.state_mut().canvas.fit();
+    h.state_mut().fit_canvas();
     h.run_steps(4);
     let at = h
         .state()
-        .canvas
+        .canvas()
         .mapper_screen_pos(&id, 0.5, 0.9)
         .expect("the mapper plot");
     right_click(h, at);
@@ -65,27 +65,27 @@ fn open_mapper_optimize_menu(h: &mut Harness<'static, EditorApp>) -> String {
 #[test]
 fn variables_and_the_objective_are_picked_on_the_canvas_as_one_undo_step() {
     let mut h = harness("opt-pick");
-    let before = h.state().doc.to_ron();
-    let steps = h.state().doc.history.undo_len();
+    let before = h.state().doc().to_ron();
+    let steps = h.state().doc().history.undo_len();
     // The apex slider's value: bounds from the slider's own range.
     let at = port_label(&h, "apex", "value", true);
     right_click(&mut h, at);
     h.get_by_label("Optimize this value").click();
     h.run_steps(3);
-    assert!(h.state().optimization.open, "the panel opens");
-    assert_eq!(h.state().optimization.draft.variables.len(), 1);
+    assert!(h.state().optimization().open, "the panel opens");
+    assert_eq!(h.state().optimization().draft.variables.len(), 1);
     assert!(
-        h.state().doc.meta.optimization.is_none(),
+        h.state().doc().meta.optimization.is_none(),
         "no objective yet: a draft"
     );
     assert!(
-        h.state().message.contains("objective"),
+        h.state().message().contains("objective"),
         "{}",
-        h.state().message
+        h.state().message()
     );
     // planarity.max as the objective: the setup is complete and stored. (The panel took the
     // bottom of the window: zoom out to see the whole graph above it.)
-    h.state_mut().canvas.zoom_to(0.55, None);
+    h.state_mut().zoom_canvas(0.55, None);
     h.run_steps(3);
     let at = port_label(&h, "planarity", "max", false);
     right_click(&mut h, at);
@@ -93,7 +93,7 @@ fn variables_and_the_objective_are_picked_on_the_canvas_as_one_undo_step() {
     h.run_steps(3);
     let app = h.state();
     let setup = app
-        .doc
+        .doc()
         .meta
         .optimization
         .clone()
@@ -102,13 +102,13 @@ fn variables_and_the_objective_are_picked_on_the_canvas_as_one_undo_step() {
     assert_eq!(setup.variables.len(), 1);
     assert_eq!(setup.variables[0].input.to_string(), "apex.value");
     assert_eq!((setup.variables[0].min, setup.variables[0].max), (0.5, 1.5));
-    assert_eq!(app.doc.history.undo_len(), steps + 1);
-    assert!(app.doc.to_ron().contains("objective: \"planarity.max\""));
+    assert_eq!(app.doc().history.undo_len(), steps + 1);
+    assert!(app.doc().to_ron().contains("objective: \"planarity.max\""));
 
     // A graph-mapper handle coordinate, from the widget's context menu: bounds [0, 1], and the
     // default handles are written so the variable has a literal to live in.
     let id = open_mapper_optimize_menu(&mut h);
-    let handles = cnets_editor::mapper::handles(h.state().doc.graph.node(&id).unwrap());
+    let handles = cnets_editor::mapper::handles(h.state().doc().graph.node(&id).unwrap());
     let entry = format!(
         "[1][1] = {}",
         cnets_editor::worker::format_number(handles[1].y)
@@ -116,15 +116,15 @@ fn variables_and_the_objective_are_picked_on_the_canvas_as_one_undo_step() {
     h.get_by_label(&entry).click();
     h.run_steps(3);
     let app = h.state();
-    let setup = app.doc.meta.optimization.clone().unwrap();
-    assert_eq!(setup.variables.len(), 2, "{}", app.message);
+    let setup = app.doc().meta.optimization.clone().unwrap();
+    assert_eq!(setup.variables.len(), 2, "{}", app.message());
     assert_eq!(
         setup.variables[1].input.to_string(),
         format!("{id}.handles[1][1]")
     );
     assert_eq!((setup.variables[1].min, setup.variables[1].max), (0.0, 1.0));
     assert!(
-        app.doc
+        app.doc()
             .graph
             .node(&id)
             .unwrap()
@@ -137,7 +137,7 @@ fn variables_and_the_objective_are_picked_on_the_canvas_as_one_undo_step() {
     h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
     h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
     h.run_steps(2);
-    assert_eq!(h.state().doc.to_ron(), before);
+    assert_eq!(h.state().doc().to_ron(), before);
 }
 
 #[test]
@@ -149,12 +149,12 @@ fn every_value_of_an_input_is_one_whole_input_variable() {
     h.get_by_label("Optimize every value").click();
     h.run_steps(3);
     let app = h.state();
-    let variables = &app.optimization.draft.variables;
-    assert_eq!(variables.len(), 1, "{}", app.message);
+    let variables = &app.optimization().draft.variables;
+    assert_eq!(variables.len(), 1, "{}", app.message());
     assert_eq!(variables[0].input.to_string(), format!("{id}.handles"));
     assert_eq!((variables[0].min, variables[0].max), (0.0, 1.0));
     assert!(
-        app.doc
+        app.doc()
             .graph
             .node(&id)
             .unwrap()
@@ -163,9 +163,9 @@ fn every_value_of_an_input_is_one_whole_input_variable() {
         "the default handles are written so the variable has a literal to live in"
     );
     // The variables table says how many numbers the variable stands for: one per handle.
-    let handles = cnets_editor::mapper::handles(app.doc.graph.node(&id).unwrap()).len();
+    let handles = cnets_editor::mapper::handles(app.doc().graph.node(&id).unwrap()).len();
     assert_eq!(
-        cnets_editor::optimization::value_label(&app.doc.graph, &variables[0].input),
+        cnets_editor::optimization::value_label(&app.doc().graph, &variables[0].input),
         format!("{handles} numbers")
     );
 }
@@ -183,14 +183,13 @@ fn tube(name: &str) -> Harness<'static, EditorApp> {
     // which the snapshot must not depend on).
     h.key_press_modifiers(Modifiers::COMMAND, egui::Key::L);
     settle(&mut h);
-    assert!(!h.state().canvas.has_overlaps());
+    assert!(!h.state().canvas().has_overlaps());
     h
 }
 
 fn set_run(h: &mut Harness<'static, EditorApp>, max_iter: usize, method: Method) {
     h.state_mut()
-        .doc
-        .edit(None, |_, meta| {
+        .edit_graph(|_, meta| {
             let s = meta.optimization.as_mut().ok_or("no setup")?;
             s.max_iter = max_iter;
             s.method = method;
@@ -204,19 +203,22 @@ fn set_run(h: &mut Harness<'static, EditorApp>, max_iter: usize, method: Method)
 fn a_run_plots_the_objective_going_down_and_accept_is_one_undo_step() {
     let mut h = tube("opt-run");
     set_run(&mut h, 6, Method::Auto);
-    let before = h.state().doc.to_ron();
-    let steps = h.state().doc.history.undo_len();
+    let before = h.state().doc().to_ron();
+    let steps = h.state().doc().history.undo_len();
     h.get_by_label("▶ Run").click();
     h.run_steps(2);
     assert!(
-        h.state().optimization.running() || h.state().optimization.result.is_some(),
+        h.state().optimization().running() || h.state().optimization().result.is_some(),
         "{}",
-        h.state().message
+        h.state().message()
     );
-    assert!(h.state_mut().optimization.wait(Duration::from_secs(300)));
+    assert!(
+        h.state_mut()
+            .wait_for_optimization(Duration::from_secs(300))
+    );
     h.run_steps(3);
     let app = h.state();
-    let its = &app.optimization.iterations;
+    let its = &app.optimization().iterations;
     assert!(its.len() >= 2, "the plot has points: {}", its.len());
     let (first, last) = (its[0].objective, its[its.len() - 1].objective);
     assert!(
@@ -224,10 +226,16 @@ fn a_run_plots_the_objective_going_down_and_accept_is_one_undo_step() {
         "the objective decreased: {first} -> {last}"
     );
     assert!(its.windows(2).all(|w| w[1].evaluations > w[0].evaluations));
-    let finished = app.optimization.result.as_ref().unwrap().as_ref().unwrap();
+    let finished = app
+        .optimization()
+        .result
+        .as_ref()
+        .unwrap()
+        .as_ref()
+        .unwrap();
     assert_eq!(finished.outcome.stop, Stop::MaxIterations);
     assert_eq!(
-        app.doc.to_ron(),
+        app.doc().to_ron(),
         before,
         "the document is unchanged until Accept"
     );
@@ -242,20 +250,20 @@ fn a_run_plots_the_objective_going_down_and_accept_is_one_undo_step() {
     h.get_by_label("Accept").click();
     settle(&mut h);
     let app = h.state();
-    assert_ne!(app.doc.to_ron(), before, "Accept changes the document");
-    assert_eq!(app.doc.history.undo_len(), steps + 1, "one undo step");
-    assert!(app.optimization.result.is_none());
-    assert!(app.message.contains("accepted"), "{}", app.message);
+    assert_ne!(app.doc().to_ron(), before, "Accept changes the document");
+    assert_eq!(app.doc().history.undo_len(), steps + 1, "one undo step");
+    assert!(app.optimization().result.is_none());
+    assert!(app.message().contains("accepted"), "{}", app.message());
     // The accepted values are the optimizer's best point.
     let best = cnets_editor::optimization::current_value(
-        &app.doc.graph,
-        &app.doc.meta.optimization.as_ref().unwrap().variables[3].input,
+        &app.doc().graph,
+        &app.doc().meta.optimization.as_ref().unwrap().variables[3].input,
     )
     .unwrap();
     assert!((0.1..=0.9).contains(&best));
     h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
     h.run_steps(2);
-    assert_eq!(h.state().doc.to_ron(), before, "undo restores the text");
+    assert_eq!(h.state().doc().to_ron(), before, "undo restores the text");
 }
 
 #[test]
@@ -263,14 +271,14 @@ fn stop_cancels_a_run_and_revert_leaves_the_document_alone() {
     let mut h = tube("opt-stop");
     // Nelder–Mead with a huge limit: it would run for a long time.
     set_run(&mut h, 1_000_000, Method::NelderMead);
-    let before = h.state().doc.to_ron();
-    let steps = h.state().doc.history.undo_len();
+    let before = h.state().doc().to_ron();
+    let steps = h.state().doc().history.undo_len();
     h.get_by_label("▶ Run").click();
     h.run_steps(2);
     // Wait for a few iterations, then Stop.
     for _ in 0..2000 {
-        h.state_mut().optimization.poll();
-        if h.state().optimization.iterations.len() >= 3 {
+        h.state_mut().poll_optimization();
+        if h.state().optimization().iterations.len() >= 3 {
             break;
         }
         std::thread::sleep(Duration::from_millis(5));
@@ -279,30 +287,36 @@ fn stop_cancels_a_run_and_revert_leaves_the_document_alone() {
     h.get_by_label("■ Stop").click();
     h.run_steps(1);
     assert!(
-        h.state_mut().optimization.wait(Duration::from_secs(30)),
+        h.state_mut().wait_for_optimization(Duration::from_secs(30)),
         "Stop ends the run"
     );
     h.run_steps(2);
     let app = h.state();
-    let finished = app.optimization.result.as_ref().unwrap().as_ref().unwrap();
+    let finished = app
+        .optimization()
+        .result
+        .as_ref()
+        .unwrap()
+        .as_ref()
+        .unwrap();
     assert_eq!(finished.outcome.stop, Stop::Cancelled);
     assert!(finished.outcome.iterations < 1_000_000);
     h.get_by_label("Revert").click();
     h.run_steps(2);
     let app = h.state();
-    assert!(app.optimization.result.is_none());
+    assert!(app.optimization().result.is_none());
     assert_eq!(
-        app.doc.to_ron(),
+        app.doc().to_ron(),
         before,
         "Revert does not change the document"
     );
-    assert_eq!(app.doc.history.undo_len(), steps);
+    assert_eq!(app.doc().history.undo_len(), steps);
 }
 
 #[test]
 fn a_typed_min_above_max_is_refused_with_a_message_and_not_stored() {
     let mut h = tube("opt-bounds");
-    let before = h.state().doc.meta.optimization.clone().unwrap();
+    let before = h.state().doc().meta.optimization.clone().unwrap();
     let (min, max) = (before.variables[0].min, before.variables[0].max);
     assert!(max < 1.2, "{max}");
     // The first spin button of the variables table is the first variable's min.
@@ -319,16 +333,16 @@ fn a_typed_min_above_max_is_refused_with_a_message_and_not_stored() {
     h.key_press(egui::Key::Enter);
     h.run_steps(3);
     let app = h.state();
-    let after = app.doc.meta.optimization.clone().unwrap();
+    let after = app.doc().meta.optimization.clone().unwrap();
     assert_eq!(
         (after.variables[0].min, after.variables[0].max),
         (min, max),
         "the stored bounds are unchanged"
     );
     assert!(
-        app.message.contains("refused") && app.message.contains("is above max"),
+        app.message().contains("refused") && app.message().contains("is above max"),
         "{}",
-        app.message
+        app.message()
     );
     // A bound within range is stored as typed.
     h.get_all_by_role(Role::SpinButton).next().unwrap().click();
@@ -341,7 +355,7 @@ fn a_typed_min_above_max_is_refused_with_a_message_and_not_stored() {
     h.run_steps(1);
     h.key_press(egui::Key::Enter);
     h.run_steps(3);
-    let after = h.state().doc.meta.optimization.clone().unwrap();
+    let after = h.state().doc().meta.optimization.clone().unwrap();
     assert_eq!(
         (after.variables[0].min, after.variables[0].max),
         (0.05, max)
@@ -355,7 +369,7 @@ fn the_view_follows_the_best_point_live_and_revert_restores_it() {
     set_run(&mut h, 1_000_000, Method::NelderMead);
     h.state_mut().wait_for_worker(Duration::from_secs(60));
     h.run_steps(2);
-    let before = h.state().viewport.scene().face_vertices().to_vec();
+    let before = h.state().viewport().scene().face_vertices().to_vec();
     assert!(!before.is_empty());
     h.get_by_label("▶ Run").click();
     // While it runs, the picture moves with the optimizer's best point.
@@ -364,7 +378,7 @@ fn the_view_follows_the_best_point_live_and_revert_restores_it() {
     for _ in 0..600 {
         h.run_steps(1);
         h.state_mut().wait_for_worker(Duration::from_millis(500));
-        let now = h.state().viewport.scene().face_vertices().to_vec();
+        let now = h.state().viewport().scene().face_vertices().to_vec();
         if now != last {
             pictures += 1;
             last = now;
@@ -374,14 +388,17 @@ fn the_view_follows_the_best_point_live_and_revert_restores_it() {
         }
         std::thread::sleep(Duration::from_millis(20));
     }
-    assert!(h.state().optimization.running(), "the run was still going");
+    assert!(
+        h.state().optimization().running(),
+        "the run was still going"
+    );
     assert!(pictures >= 2, "{pictures} new pictures during the run");
     assert_ne!(last, before);
     h.get_by_label("■ Stop").click();
     // The click reaches the app in the next frame.
     h.run_steps(1);
     assert!(
-        h.state_mut().optimization.wait(Duration::from_secs(30)),
+        h.state_mut().wait_for_optimization(Duration::from_secs(30)),
         "Stop ends the run"
     );
     h.run_steps(2);
@@ -390,7 +407,7 @@ fn the_view_follows_the_best_point_live_and_revert_restores_it() {
     h.state_mut().wait_for_worker(Duration::from_secs(60));
     h.run_steps(2);
     assert_eq!(
-        h.state().viewport.scene().face_vertices(),
+        h.state().viewport().scene().face_vertices(),
         &before[..],
         "Revert shows the document's own values again"
     );

@@ -18,13 +18,13 @@ fn the_panel_is_docked_and_its_sliders_edit_the_graph() {
     let mut h = common::harness("parameters");
     h.key_press_modifiers(Modifiers::COMMAND, Key::P);
     h.run_steps(3);
-    assert!(h.state().parameters_open);
+    assert!(h.state().parameters_open());
     h.get_by_label("Parameters");
     h.get_by_label("this graph");
     h.snapshot("editor_parameters_panel");
     // An edit from the panel is an ordinary edit: applied, one undo step, undone exactly.
-    let before = h.state().doc.to_ron();
-    let graph: Graph = h.state().doc.graph.clone();
+    let before = h.state().doc().to_ron();
+    let graph: Graph = h.state().doc().graph.clone();
     let mut panel = Harness::builder()
         .with_size(egui::vec2(320.0, 420.0))
         .build_ui_state(
@@ -60,14 +60,19 @@ fn the_panel_is_docked_and_its_sliders_edit_the_graph() {
     };
     assert!(value.as_f64().unwrap() > 1.0, "{value:?}");
     assert!(h.state_mut().apply(last.clone()));
-    h.state_mut().doc.history.end_gesture();
+    h.state_mut().end_gesture();
     assert_eq!(
-        h.state().doc.graph.node("apex").unwrap().value_of("value"),
+        h.state()
+            .doc()
+            .graph
+            .node("apex")
+            .unwrap()
+            .value_of("value"),
         Some(value)
     );
-    assert_eq!(h.state().doc.history.undo_len(), 1);
+    assert_eq!(h.state().doc().history.undo_len(), 1);
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.run_steps(2);
-    assert_eq!(h.state().doc.to_ron(), before);
+    assert_eq!(h.state().doc().to_ron(), before);
     let _ = Value::Null;
 }

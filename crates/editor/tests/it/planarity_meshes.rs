@@ -33,7 +33,7 @@ fn hull_with_reference(name: &str) -> egui_kittest::Harness<'static, cnets_edito
 fn face_colours(h: &egui_kittest::Harness<'static, cnets_editor::EditorApp>) -> usize {
     let colours: std::collections::HashSet<[u8; 4]> = h
         .state()
-        .viewport
+        .viewport()
         .scene()
         .face_vertices()
         .iter()
@@ -45,12 +45,12 @@ fn face_colours(h: &egui_kittest::Harness<'static, cnets_editor::EditorApp>) -> 
 #[test]
 fn snapshot_planarity_of_the_hull_and_its_reference() {
     let mut h = hull_with_reference("planarity-meshes");
-    let mut o = h.state().viewport.display().options;
+    let mut o = h.state().viewport().display().options;
     o.color_mode = ColorMode::Planarity;
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::SetPreview(o));
     settle(&mut h);
-    let stats = h.state().viewport.stats().clone();
+    let stats = h.state().viewport().stats().clone();
     // The reference's quads are far from planar; the cone-net's are planar to rounding.
     assert!(stats.max_planarity.unwrap() > 1e-4, "{stats:?}");
     assert_eq!(
@@ -71,14 +71,14 @@ fn snapshot_planarity_of_the_hull_and_its_reference() {
 #[test]
 fn snapshot_distance_to_the_reference_with_its_legend_in_metres() {
     let mut h = hull_with_reference("distance-mode");
-    let reference = h.state().doc.graph.node("reference_hull").unwrap().uid();
-    let mut o = h.state().viewport.display().options;
+    let reference = h.state().doc().graph.node("reference_hull").unwrap().uid();
+    let mut o = h.state().viewport().display().options;
     o.color_mode = ColorMode::Distance;
     o.distance_to = Some(reference);
     h.state_mut()
         .run(cnets_editor::menus::MenuAction::SetPreview(o));
     settle(&mut h);
-    let stats = h.state().viewport.stats().clone();
+    let stats = h.state().viewport().stats().clone();
     let d = stats.distance.clone().expect("distance figures");
     assert_eq!(d.reference, "reference_hull", "{d:?}");
     // The net lies within centimetres to decimetres of the reference, never on it everywhere.

@@ -49,17 +49,17 @@ fn only_the_nodes_in_view_are_laid_out_and_every_node_keeps_its_place() {
     let mut h = harness_with("project-size", Some(file), temp_config("project-size"));
     settle(&mut h);
     let app = h.state();
-    let total = app.doc.graph.node_count();
+    let total = app.doc().graph.node_count();
     assert_eq!(total, 401);
-    let laid_out = app.canvas.laid_out();
+    let laid_out = app.canvas().laid_out();
     assert!(
         laid_out > 0 && laid_out < total / 3,
         "{laid_out} of {total} nodes laid out"
     );
     // Every node has its rectangle, at its position, and its pins (for wires).
-    for (_, n) in app.doc.graph.nodes() {
+    for (_, n) in app.doc().graph.nodes() {
         let r = app
-            .canvas
+            .canvas()
             .node_rect(&n.id)
             .unwrap_or_else(|| panic!("{} has a rectangle", n.id));
         assert!(
@@ -71,7 +71,7 @@ fn only_the_nodes_in_view_are_laid_out_and_every_node_keeps_its_place() {
     }
     let last = "n99_3";
     assert!(
-        app.canvas.pin_screen_pos(last, true, 0).is_some(),
+        app.canvas().pin_screen_pos(last, true, 0).is_some(),
         "a node far out of view keeps its pin"
     );
     // An edit of the slider reaches the farthest clamp.
@@ -94,25 +94,25 @@ fn only_the_nodes_in_view_are_laid_out_and_every_node_keeps_its_place() {
 fn panning_the_canvas_blits_the_3d_view_without_rendering_it_again() {
     let mut h = common::harness("project-size-pan");
     h.render().expect("a first picture");
-    let first = h.state().viewport.pictures_rendered();
+    let first = h.state().viewport().pictures_rendered();
     assert!(first >= 1, "the 3D view was rendered ({first})");
     for k in 0..12 {
         let zoom = 0.6 + 0.03 * k as f32;
         let around = egui::pos2(40.0 * k as f32, -25.0 * k as f32);
-        h.state_mut().canvas.zoom_to(zoom, Some(around));
+        h.state_mut().zoom_canvas(zoom, Some(around));
         h.run_steps(1);
         h.render().expect("a picture");
     }
     assert_eq!(
-        h.state().viewport.pictures_rendered(),
+        h.state().viewport().pictures_rendered(),
         first,
         "12 frames of canvas pan and zoom rendered the 3D view again"
     );
-    h.state_mut().viewport.orbit(0.3, 0.1);
+    h.state_mut().viewport_mut().orbit(0.3, 0.1);
     h.run_steps(1);
     h.render().expect("a picture");
     assert!(
-        h.state().viewport.pictures_rendered() > first,
+        h.state().viewport().pictures_rendered() > first,
         "turning the camera renders the 3D view"
     );
 }

@@ -24,13 +24,13 @@ fn shipped() -> Vec<PathBuf> {
 
 /// Pairs of nodes whose rectangles (as drawn, canvas coordinates) overlap.
 fn overlaps(app: &cnets_editor::EditorApp) -> Vec<(String, String)> {
-    let ids: Vec<String> = app.doc.graph.nodes().map(|(_, n)| n.id.clone()).collect();
+    let ids: Vec<String> = app.doc().graph.nodes().map(|(_, n)| n.id.clone()).collect();
     let mut out = Vec::new();
     for (i, a) in ids.iter().enumerate() {
         for b in &ids[i + 1..] {
             let (ra, rb) = (
-                app.canvas.node_rect(a).expect("drawn"),
-                app.canvas.node_rect(b).expect("drawn"),
+                app.canvas().node_rect(a).expect("drawn"),
+                app.canvas().node_rect(b).expect("drawn"),
             );
             if ra.intersects(rb) {
                 out.push((a.clone(), b.clone()));
@@ -111,7 +111,7 @@ fn tidy_shipped_graphs() {
         settle(&mut h);
         let positions: Vec<(String, [f32; 2])> = h
             .state()
-            .doc
+            .doc()
             .graph
             .nodes()
             .map(|(_, n)| (n.id.clone(), n.position))
@@ -133,8 +133,8 @@ fn canvas_text_sizes(
     h: &egui_kittest::Harness<'static, cnets_editor::EditorApp>,
 ) -> Vec<(String, f32)> {
     let app = h.state();
-    let area = app.canvas.screen_rect();
-    let zoom = app.canvas.zoom();
+    let area = app.canvas().screen_rect();
+    let zoom = app.canvas().zoom();
     h.output()
         .shapes
         .iter()
@@ -175,15 +175,15 @@ fn every_shipped_graph_opens_framed_beside_the_3d_view() {
         assert!(!sizes.is_empty(), "{name}: text is drawn on the canvas");
         let smallest = sizes.iter().map(|s| s.1).fold(f32::INFINITY, f32::min);
         let app = h.state();
-        let view = app.canvas.screen_rect();
-        let zoom = app.canvas.zoom();
+        let view = app.canvas().screen_rect();
+        let zoom = app.canvas().zoom();
         let rects: Vec<(String, egui::Rect)> = app
-            .doc
+            .doc()
             .graph
             .nodes()
             .filter_map(|(_, n)| {
-                let r = app.canvas.node_rect(&n.id)?;
-                let min = app.canvas.to_screen(r.min);
+                let r = app.canvas().node_rect(&n.id)?;
+                let min = app.canvas().to_screen(r.min);
                 Some((
                     n.id.clone(),
                     egui::Rect::from_min_size(min, r.size() * zoom),
@@ -192,14 +192,14 @@ fn every_shipped_graph_opens_framed_beside_the_3d_view() {
             .collect();
         assert_eq!(
             rects.len(),
-            app.doc.graph.node_count(),
+            app.doc().graph.node_count(),
             "{name}: every node measured"
         );
         // The canvas ends where the 3D view begins.
         assert!(
-            view.right() <= app.viewport.rect().left() + 1.0,
+            view.right() <= app.viewport().rect().left() + 1.0,
             "{name}: canvas {view:?}, 3D view {:?}",
-            app.viewport.rect()
+            app.viewport().rect()
         );
         // The graph's size on the canvas (canvas units) and the largest zoom showing it whole.
         let all = rects
@@ -272,9 +272,9 @@ fn every_shipped_graph_opens_framed_beside_the_3d_view() {
         h.key_press(egui::Key::Home);
         h.run_steps(4);
         let app = h.state();
-        let view = app.canvas.screen_rect();
-        for (_, n) in app.doc.graph.nodes() {
-            let r = app.canvas.node_screen_rect(&n.id).unwrap();
+        let view = app.canvas().screen_rect();
+        for (_, n) in app.doc().graph.nodes() {
+            let r = app.canvas().node_screen_rect(&n.id).unwrap();
             if r.left() < view.right() - 0.5 && r.right() > view.right() + 0.5 {
                 bad.push(format!(
                     "{name}: after Home, node {} {r:?} is cut by the canvas's right edge {}",
@@ -283,8 +283,8 @@ fn every_shipped_graph_opens_framed_beside_the_3d_view() {
                 ));
             }
         }
-        if app.canvas.zoom() < MIN_ZOOM - 1e-4 {
-            bad.push(format!("{name}: Home zooms to {}", app.canvas.zoom()));
+        if app.canvas().zoom() < MIN_ZOOM - 1e-4 {
+            bad.push(format!("{name}: Home zooms to {}", app.canvas().zoom()));
         }
     }
     eprintln!("{whole_count} graphs open framed whole");

@@ -7,7 +7,7 @@ use crate::common;
 
 use std::time::{Duration, Instant};
 
-use cnets_editor::edit::{Edit, apply};
+use cnets_editor::edit::Edit;
 use cnets_editor::worker::NodeStatus;
 use cnets_engine::Value;
 use common::{graphs_dir, harness_with, settle, temp_config};
@@ -55,18 +55,14 @@ fn every_slider_step_is_drawn_before_the_slow_nest_below_it_finishes() {
     let steps = 10;
     let mut running_seen = 0;
     for k in 0..steps {
-        let before = h.state().viewport.scene().clone();
+        let before = h.state().viewport().scene().clone();
         let pictures = h.state().latency().samples.len();
         let value = 0.86 + 0.01 * f64::from(k);
-        apply(
-            &mut h.state_mut().doc,
-            Edit::SetValue {
-                node: "lean".into(),
-                input: "value".into(),
-                value: Value::Number(value),
-            },
-        )
-        .unwrap();
+        assert!(h.state_mut().edit(Edit::SetValue {
+            node: "lean".into(),
+            input: "value".into(),
+            value: Value::Number(value),
+        }));
         // Frames as the window runs them, until this step's picture is drawn (the limit only
         // keeps a broken build from hanging: a picture comes within a second or two).
         let limit = Instant::now() + Duration::from_secs(120);
@@ -77,8 +73,8 @@ fn every_slider_step_is_drawn_before_the_slow_nest_below_it_finishes() {
         }
         let app = h.state();
         assert!(
-            !std::sync::Arc::ptr_eq(&before, app.viewport.scene())
-                && before.face_vertices() != app.viewport.scene().face_vertices(),
+            !std::sync::Arc::ptr_eq(&before, app.viewport().scene())
+                && before.face_vertices() != app.viewport().scene().face_vertices(),
             "step {k}: the surface in the view follows the slider"
         );
         if let Some(NodeStatus::Running { last_ms }) = app.statuses().get("nest") {

@@ -17,8 +17,7 @@ fn connect(
     input: &str,
 ) {
     h.state_mut()
-        .doc
-        .edit(None, |g, _| {
+        .edit_graph(|g, _| {
             g.connect(from, output, to, input)
                 .map(|_| ())
                 .map_err(|e| e.to_string())
@@ -28,8 +27,8 @@ fn connect(
 
 fn show_node(h: &mut egui_kittest::Harness<'static, cnets_editor::EditorApp>, id: &str) {
     h.run_steps(2);
-    let centre = h.state().canvas.node_rect(id).expect("drawn").center();
-    h.state_mut().canvas.zoom_to(1.0, Some(centre));
+    let centre = h.state().canvas().node_rect(id).expect("drawn").center();
+    h.state_mut().zoom_canvas(1.0, Some(centre));
     h.run_steps(4);
 }
 
@@ -48,8 +47,8 @@ fn a_panel_node_shows_its_text_inside_and_resizes() {
     assert!(readout.starts_with("{0}\n0  "), "{readout}");
     assert!(readout.lines().count() > 10, "multi-line: {readout}");
     // The text is drawn inside the node, every line of it in one label.
-    let node = h.state().canvas.node_screen_rect(&id).unwrap();
-    let canvas = &h.state().canvas;
+    let node = h.state().canvas().node_screen_rect(&id).unwrap();
+    let canvas = &h.state().canvas();
     let label = h.get_by_label(readout.as_str());
     let at = canvas.to_screen(label.rect().min);
     assert!(
@@ -60,7 +59,7 @@ fn a_panel_node_shows_its_text_inside_and_resizes() {
     // Drag the readout's bottom-right corner: the box grows.
     let before = h
         .state()
-        .canvas
+        .canvas()
         .panel_screen_rect(&id)
         .expect("the readout is drawn");
     let corner = before.max - egui::vec2(3.0, 3.0);
@@ -75,13 +74,13 @@ fn a_panel_node_shows_its_text_inside_and_resizes() {
     }
     h.drop_at(to);
     h.run_steps(4);
-    let after = h.state().canvas.panel_screen_rect(&id).unwrap();
+    let after = h.state().canvas().panel_screen_rect(&id).unwrap();
     assert!(
         after.width() > before.width() + 60.0 && after.height() > before.height() + 40.0,
         "resized: {before:?} → {after:?}"
     );
     assert_eq!(
-        h.state().doc.graph.node(&id).unwrap().position,
+        h.state().doc().graph.node(&id).unwrap().position,
         [0.0, 720.0],
         "resizing does not move the node"
     );
@@ -100,8 +99,7 @@ fn a_choice_node_is_a_drop_down_of_its_options() {
         Value::text("folded"),
     ]);
     h.state_mut()
-        .doc
-        .edit(None, |g, _| {
+        .edit_graph(|g, _| {
             g.set_value(&id, "options", options)
                 .map(|_| ())
                 .map_err(|e| e.to_string())
@@ -109,14 +107,14 @@ fn a_choice_node_is_a_drop_down_of_its_options() {
         .unwrap();
     settle(&mut h);
     show_node(&mut h, &id);
-    let steps = h.state().doc.history.undo_len();
+    let steps = h.state().doc().history.undo_len();
     // The drop-down shows the chosen option; open it and pick another.
     let combo = h
         .get_all_by_role(egui::accesskit::Role::ComboBox)
         .find(|c| c.value().as_deref() == Some("flat"))
         .expect("the drop-down showing the chosen option");
     // Widgets on the canvas have canvas coordinates.
-    let at = h.state().canvas.to_screen(combo.rect().center());
+    let at = h.state().canvas().to_screen(combo.rect().center());
     h.hover_at(at);
     h.run_steps(2);
     for pressed in [true, false] {
@@ -131,9 +129,13 @@ fn a_choice_node_is_a_drop_down_of_its_options() {
     h.get_by_label("arched").click();
     h.run_steps(3);
     settle(&mut h);
-    let node = h.state().doc.graph.node(&id).unwrap();
+    let node = h.state().doc().graph.node(&id).unwrap();
     assert_eq!(node.value_of("index"), Some(&Value::Integer(1)));
-    assert_eq!(h.state().doc.history.undo_len(), steps + 1, "one undo step");
+    assert_eq!(
+        h.state().doc().history.undo_len(),
+        steps + 1,
+        "one undo step"
+    );
     match &h.state().statuses()[&id] {
         NodeStatus::Ok { outputs, .. } => assert!(outputs[0].contains("arched"), "{outputs:?}"),
         other => panic!("{other:?}"),

@@ -11,8 +11,8 @@ impl WebApp {
     /// picture's time, the last change-to-picture latency, where the 3D view and the first slider
     /// are, in CSS pixels).
     pub(super) fn report(&mut self) {
-        let drawn = self.app.viewport.handed_version();
-        if drawn > 0 && self.first_picture_ms.is_none() && !self.app.viewport.scene().is_empty() {
+        let drawn = self.app.viewport().handed_version();
+        if drawn > 0 && self.first_picture_ms.is_none() && !self.app.viewport().scene().is_empty() {
             self.first_picture_ms = Some(now_ms());
         }
         let Some(window) = web_sys::window() else {
@@ -48,12 +48,12 @@ impl WebApp {
         );
         set(
             "busy",
-            JsValue::from_bool(self.app.viewport.scene_version() != drawn),
+            JsValue::from_bool(self.app.viewport().scene_version() != drawn),
         );
         // The worker has not answered the newest submission completely yet.
         set("evaluating", JsValue::from_bool(self.app.busy()));
-        set("view", rect(self.app.viewport.rect()));
-        set("title", self.app.doc.title().into());
+        set("view", rect(self.app.viewport().rect()));
+        set("title", self.app.doc().title().into());
         set(
             "tab_title",
             document().map_or(String::new(), |d| d.title()).into(),
@@ -69,33 +69,34 @@ impl WebApp {
         );
         // The figures over the 3D view: [name, [left, top, right, bottom]] each.
         let overlays = js_sys::Array::new();
-        for (name, r) in &self.app.viewport.last_frame().overlays {
+        for (name, r) in &self.app.viewport().last_frame().overlays {
             overlays.push(&js_sys::Array::of2(&JsValue::from_str(name), &rect(*r)).into());
         }
         set("overlays", overlays.into());
         set(
             "parameters",
-            self.app.parameters_rect.map_or(JsValue::NULL, rect),
+            self.app.parameters_rect().map_or(JsValue::NULL, rect),
         );
-        let canvas = self.app.canvas.screen_rect();
+        let canvas = self.app.canvas().screen_rect();
         set("canvas", rect(canvas));
         set(
             "overview",
             JsValue::from_bool(
-                cnets_editor::overview::placement(&self.app.canvas, &self.app.doc.graph).is_some(),
+                cnets_editor::overview::placement(self.app.canvas(), &self.app.doc().graph)
+                    .is_some(),
             ),
         );
         // Nodes not wholly on the canvas: (id, type) pairs.
         let hidden = js_sys::Array::new();
-        for (_, n) in self.app.doc.graph.nodes() {
-            if !cnets_editor::view_errors::in_view(&self.app.canvas, &n.id) {
+        for (_, n) in self.app.doc().graph.nodes() {
+            if !cnets_editor::view_errors::in_view(self.app.canvas(), &n.id) {
                 hidden.push(&JsValue::from(n.id.as_str()));
             }
         }
         set("hidden", hidden.into());
         // Failed nodes: {id, message, in_view} (in view: the node's badge is on the canvas).
         let failed = js_sys::Array::new();
-        for (_, n) in self.app.doc.graph.nodes() {
+        for (_, n) in self.app.doc().graph.nodes() {
             let Some(message) = self.app.statuses().get(&n.id).and_then(|s| s.error()) else {
                 continue;
             };
@@ -103,13 +104,13 @@ impl WebApp {
             let _ = js_sys::Reflect::set(&f, &"id".into(), &n.id.as_str().into());
             let _ = js_sys::Reflect::set(&f, &"message".into(), &message.into());
             let in_view = !cnets_editor::narrow::is_narrow(&self.ctx)
-                && cnets_editor::view_errors::in_view(&self.app.canvas, &n.id);
+                && cnets_editor::view_errors::in_view(self.app.canvas(), &n.id);
             let _ = js_sys::Reflect::set(&f, &"in_view".into(), &in_view.into());
             failed.push(&f);
         }
         set("failed", failed.into());
         let errors = js_sys::Array::new();
-        for e in &self.app.view_errors_shown {
+        for e in self.app.view_errors_shown() {
             errors.push(&JsValue::from(e.as_str()));
         }
         set("view_errors", errors.into());
@@ -165,17 +166,17 @@ impl WebApp {
                 .kept_recovery()
                 .map_or(JsValue::NULL, JsValue::from_str),
         );
-        set("document", JsValue::from_str(&self.app.doc.title()));
-        set("message", self.app.message.clone().into());
+        set("document", JsValue::from_str(&self.app.doc().title()));
+        set("message", self.app.message().to_string().into());
         set(
             "vertices",
-            JsValue::from_f64(self.app.viewport.stats().vertices as f64),
+            JsValue::from_f64(self.app.viewport().stats().vertices as f64),
         );
         // The first number slider on the canvas (in view), else the first integer one there,
         // else the first number slider of the graph.
         let of_type = |t: &str| -> Vec<String> {
             self.app
-                .doc
+                .doc()
                 .graph
                 .nodes()
                 .filter(|(_, n)| n.def.id == t)
@@ -183,8 +184,8 @@ impl WebApp {
                 .collect()
         };
         let (numbers, integers) = (of_type("param.number"), of_type("param.integer"));
-        let in_view = |id: &&String| cnets_editor::view_errors::in_view(&self.app.canvas, id);
-        let drawn = |id: &&String| self.app.canvas.editor_screen_rect(id, "value").is_some();
+        let in_view = |id: &&String| cnets_editor::view_errors::in_view(self.app.canvas(), id);
+        let drawn = |id: &&String| self.app.canvas().editor_screen_rect(id, "value").is_some();
         let slider = numbers
             .iter()
             .filter(in_view)
@@ -195,8 +196,8 @@ impl WebApp {
             .cloned();
         // The parameter panel's value editors: {id, type, rect, value}.
         let panel = js_sys::Array::new();
-        for (id, r) in &self.app.parameter_editors {
-            let Some(node) = self.app.doc.graph.node(id) else {
+        for (id, r) in self.app.parameter_editors() {
+            let Some(node) = self.app.doc().graph.node(id) else {
                 continue;
             };
             let e = js_sys::Object::new();
@@ -214,15 +215,15 @@ impl WebApp {
         }
         set("panel", panel.into());
         if let Some(id) = slider {
-            if let Some(r) = self.app.canvas.editor_screen_rect(&id, "value") {
+            if let Some(r) = self.app.canvas().editor_screen_rect(&id, "value") {
                 // The rail is the left part of the editor; the value box follows it.
-                let rail = r.width().min(110.0 * self.app.canvas.zoom());
+                let rail = r.width().min(110.0 * self.app.canvas().zoom());
                 let rail = egui::Rect::from_min_size(r.min, egui::vec2(rail, r.height()));
                 set("slider", rect(rail));
             }
             let value = self
                 .app
-                .doc
+                .doc()
                 .graph
                 .node(&id)
                 .and_then(|n| n.value_of("value"))
@@ -288,10 +289,10 @@ impl WebApp {
 /// of the first 64 tried nearest first, or null.
 fn net_vertex(app: &EditorApp) -> JsValue {
     use cnets_editor::viewport::net_drag::vertex_at;
-    let picks = app.viewport.picks();
-    let map = app.viewport.screen_map();
-    let inner = app.viewport.rect().shrink(60.0);
-    let centre = app.viewport.rect().center();
+    let picks = app.viewport().picks();
+    let map = app.viewport().screen_map();
+    let inner = app.viewport().rect().shrink(60.0);
+    let centre = app.viewport().rect().center();
     let mut candidates: Vec<(f32, egui::Pos2, &str, usize, usize)> = Vec::new();
     for m in &picks.meshes {
         let cnets_editor::preview::PickGeometry::Grid(g) = &m.geometry else {

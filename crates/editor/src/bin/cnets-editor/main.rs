@@ -101,7 +101,8 @@ const SCREENSHOT_PATIENCE: Duration = Duration::from_secs(300);
 impl Window {
     /// The evaluation is done and its picture drawn.
     fn settled(&self) -> bool {
-        !self.app.busy() && self.app.viewport.handed_version() >= self.app.viewport.scene_version()
+        !self.app.busy()
+            && self.app.viewport().handed_version() >= self.app.viewport().scene_version()
     }
 }
 
@@ -117,7 +118,7 @@ impl eframe::App for Window {
         let ctx = ui.ctx().clone();
         let ui_ms = started.elapsed().as_secs_f64() * 1e3;
         self.drivers.after_frame(&mut self.app, &ctx, ui_ms);
-        if self.app.quit {
+        if self.app.wants_to_quit() {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
         let Some(out) = self.screenshot.clone() else {
@@ -149,11 +150,11 @@ impl eframe::App for Window {
                     check_not_blank(&png)
                 });
             *self.result.lock().unwrap_or_else(|p| p.into_inner()) = Some(saved);
-            self.app.quit = true;
+            self.app.quit_now();
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         } else if self.frames >= self.quit_after
             && !self.requested
-            && self.app.viewport.framing().render_scale >= 1.0
+            && self.app.viewport().framing().render_scale >= 1.0
             && (self.settled() || self.opened.elapsed() > SCREENSHOT_PATIENCE)
         {
             // (On a software rasterizer the view renders at full resolution once it settles; a

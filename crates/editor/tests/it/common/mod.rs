@@ -73,7 +73,7 @@ fn build(
         examples_dir,
         wake: Arc::new(|| {}),
     });
-    app.show_timings = false;
+    app.set_show_timings(false);
     app.wait_for_worker(Duration::from_secs(60));
     let mut h = Harness::builder()
         .with_size(egui::vec2(1280.0, 800.0))

@@ -97,7 +97,7 @@ impl Bench {
                 "opened: {:.0} ms from launch to the first frame with the evaluated graph \
                  ({} nodes)",
                 self.opened_ms.unwrap_or(0.0),
-                app.doc.graph.node_count()
+                app.doc().graph.node_count()
             );
             println!(
                 "bench-{}: {} frames, {} pictures ({} before the rest of the graph finished)",
@@ -123,9 +123,9 @@ impl Bench {
             );
             println!("  evaluation (worker): {}", stats(&mut self.evals));
             println!("  scene build (worker): {}", stats(&mut self.scenes));
-            println!("  vertices: {}", app.viewport.stats().vertices);
+            println!("  vertices: {}", app.viewport().stats().vertices);
             // Quit without the unsaved-changes question.
-            app.quit = true;
+            app.quit_now();
             ctx.request_repaint();
             return;
         }
@@ -143,7 +143,7 @@ impl Bench {
         let Some(id) = first_slider(app) else {
             return;
         };
-        let node = app.doc.graph.node(&id).expect("the node");
+        let node = app.doc().graph.node(&id).expect("the node");
         let k = node
             .def
             .inputs
@@ -152,14 +152,11 @@ impl Bench {
             .unwrap_or(0);
         let (min, max, _) = cnets_editor::widgets::slider_range(node, k);
         let value = min + (max - min) * (0.5 + 0.4 * (t * std::f64::consts::TAU).sin());
-        let _ = cnets_editor::edit::apply(
-            &mut app.doc,
-            cnets_editor::edit::Edit::SetValue {
-                node: id,
-                input: "value".into(),
-                value: cnets_engine::Value::Number(value),
-            },
-        );
+        app.edit(cnets_editor::edit::Edit::SetValue {
+            node: id,
+            input: "value".into(),
+            value: cnets_engine::Value::Number(value),
+        });
     }
 }
 
@@ -168,7 +165,7 @@ impl Bench {
 /// second.
 fn pan_and_zoom(app: &mut EditorApp, t: f64) {
     let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
-    for (_, n) in app.doc.graph.nodes() {
+    for (_, n) in app.doc().graph.nodes() {
         for k in 0..2 {
             lo[k] = lo[k].min(n.position[k]);
             hi[k] = hi[k].max(n.position[k]);
@@ -183,5 +180,5 @@ fn pan_and_zoom(app: &mut EditorApp, t: f64) {
         0.5 * (lo[1] + hi[1]) + (hi[1] - lo[1]) / 3.0 * angle.sin(),
     );
     let zoom = 0.75 + 0.25 * (t * 1.3 * std::f64::consts::TAU).sin() as f32;
-    app.canvas.zoom_to(zoom, Some(around));
+    app.zoom_canvas(zoom, Some(around));
 }

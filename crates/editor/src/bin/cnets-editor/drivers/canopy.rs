@@ -37,8 +37,8 @@ pub(crate) fn click(t: Target) -> Step {
 /// A world point nudged by a fifth of a grid step on screen (the snap takes it away).
 pub(crate) fn near(p: DVec3) -> Target {
     Box::new(move |app: &EditorApp, ctx: &egui::Context| {
-        let s = app.viewport.grid_step();
-        let px = (s / app.viewport.screen_map().world_per_point()) as f32;
+        let s = app.viewport().grid_step();
+        let px = (s / app.viewport().screen_map().world_per_point()) as f32;
         world(p)(app, ctx).map(|q| q + vec2(0.2, -0.2) * px)
     })
 }
@@ -51,24 +51,24 @@ pub(crate) fn control(label: &'static str) -> Target {
 /// A pin of a node on the canvas.
 pub(crate) fn pin(node: &'static str, input: bool, port: &'static str) -> Target {
     Box::new(move |app: &EditorApp, _: &egui::Context| {
-        let def = &app.doc.graph.node(node)?.def;
+        let def = &app.doc().graph.node(node)?.def;
         let k = if input {
             def.input_index(port)?
         } else {
             def.output_index(port)?
         };
-        app.canvas.pin_screen_pos(node, input, k)
+        app.canvas().pin_screen_pos(node, input, k)
     })
 }
 
 /// The middle of the view, for the wheel.
 pub(crate) fn view_centre() -> Target {
-    Box::new(|app: &EditorApp, _: &egui::Context| Some(app.viewport.rect().center()))
+    Box::new(|app: &EditorApp, _: &egui::Context| Some(app.viewport().rect().center()))
 }
 
 /// The box of the construction's mesh: (W, D, H).
 pub(crate) fn mesh_size(app: &EditorApp) -> Option<DVec3> {
-    let picks = app.viewport.picks();
+    let picks = app.viewport().picks();
     let mesh = picks.meshes.iter().find(|m| m.node == "construct")?;
     let PickGeometry::Grid(g) = &mesh.geometry else {
         return None;
@@ -82,7 +82,7 @@ pub(crate) fn mesh_size(app: &EditorApp) -> Option<DVec3> {
 
 /// The x extent of the drawn directrix (the spline through the S-curve's points).
 fn directrix_width(app: &EditorApp) -> Option<f64> {
-    let picks = app.viewport.picks();
+    let picks = app.viewport().picks();
     let curve = picks.curves.iter().find(|c| c.node == "spline")?;
     let xs = curve.polyline.points.iter().map(|p| p.x);
     let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
@@ -92,7 +92,7 @@ fn directrix_width(app: &EditorApp) -> Option<f64> {
 }
 
 pub(crate) fn assistance(app: &EditorApp) -> f64 {
-    app.doc
+    app.doc()
         .graph
         .node("construct")
         .and_then(|n| n.value_of("assistance"))
@@ -101,7 +101,7 @@ pub(crate) fn assistance(app: &EditorApp) -> f64 {
 }
 
 pub(crate) fn folds(app: &EditorApp) -> String {
-    app.viewport.picks().folded_faces().len().to_string()
+    app.viewport().picks().folded_faces().len().to_string()
 }
 
 /// Draws a curve through `points` with the Draw curve tool and Enter.
@@ -124,7 +124,7 @@ pub(crate) fn export(entry: &'static str) -> Vec<Step> {
         Step::Wait(3),
         click(control("Export file")),
         Step::Wait(3),
-        print("exported", |app| app.message.clone()),
+        print("exported", |app| app.message().to_string()),
         click(control("Close export list")),
         Step::Wait(3),
     ]
@@ -137,7 +137,9 @@ pub fn canopy() -> Vec<Step> {
         // The Top view of an empty design frames 20 m around the origin.
         key(Key::Num1),
         Step::Settle,
-        print("top step", |app| format!("{:?}", app.viewport.grid_step())),
+        print("top step", |app| {
+            format!("{:?}", app.viewport().grid_step())
+        }),
     ];
     steps.extend(draw(S_CURVE.map(|(x, y)| DVec3::new(x, y, 0.0))));
     steps.extend([
@@ -150,14 +152,14 @@ pub fn canopy() -> Vec<Step> {
             view_centre(),
             -60.0,
             Box::new(|app| {
-                let map = app.viewport.screen_map();
+                let map = app.viewport().screen_map();
                 let half_width = map.world_per_point() * f64::from(map.rect.width()) / 2.0;
-                half_width > 7.0 && app.viewport.grid_step() <= 1.0
+                half_width > 7.0 && app.viewport().grid_step() <= 1.0
             }),
         ),
         Step::Wait(3),
         print("front step", |app| {
-            format!("{:?}", app.viewport.grid_step())
+            format!("{:?}", app.viewport().grid_step())
         }),
     ]);
     steps.extend(draw(ARCH.map(|(x, z)| DVec3::new(x, 0.0, z))));
@@ -192,7 +194,7 @@ pub fn canopy() -> Vec<Step> {
         key(Key::Num4),
         Step::Settle,
         print("wires", |app| {
-            app.doc
+            app.doc()
                 .graph
                 .wires()
                 .iter()
@@ -207,7 +209,7 @@ pub fn canopy() -> Vec<Step> {
             directrix_width(app).map_or("none".into(), |w| format!("{w:?}"))
         }),
         print("shown size", |app| {
-            app.viewport.bounds().map_or("none".into(), |b| {
+            app.viewport().bounds().map_or("none".into(), |b| {
                 cnets_editor::viewport::overlay::dimensions(&b)
             })
         }),
@@ -215,15 +217,17 @@ pub fn canopy() -> Vec<Step> {
         Step::Shot("canopy-3-constructed"),
         // The legend's fold entry frames and outlines the folds.
         click(Box::new(|app: &EditorApp, _: &egui::Context| {
-            app.viewport.last_frame().fold_entry.map(|r| r.center())
+            app.viewport().last_frame().fold_entry.map(|r| r.center())
         })),
         Step::Wait(4),
-        print("outlined", |app| app.viewport.highlight().len().to_string()),
+        print("outlined", |app| {
+            app.viewport().highlight().len().to_string()
+        }),
         Step::Shot("canopy-4-folds"),
         // Repair: drag the assistance from −1 to ½ or a little above.
         Step::DragUntil(
             Box::new(|app: &EditorApp, _: &egui::Context| {
-                app.canvas
+                app.canvas()
                     .editor_screen_rect("construct", "assistance")
                     .map(|r| r.center())
             }),
@@ -239,7 +243,7 @@ pub fn canopy() -> Vec<Step> {
         print("corrections", |app| match app.statuses().get("construct") {
             Some(cnets_editor::worker::NodeStatus::Ok { outputs, .. }) => outputs
                 .get(
-                    app.doc
+                    app.doc()
                         .graph
                         .node("construct")
                         .and_then(|n| n.def.output_index("corrections"))

@@ -32,11 +32,11 @@ fn control(label: &'static str) -> Target {
 fn beside_handle(node: &'static str, index: usize) -> Target {
     Box::new(move |app: &EditorApp, _: &egui::Context| {
         let h = app
-            .viewport
+            .viewport()
             .handle_list()
             .iter()
             .find(|h| h.key.node == node && h.key.index == index)?;
-        Some(app.viewport.screen_map().to_screen(h.position)? + vec2(3.0, -2.0))
+        Some(app.viewport().screen_map().to_screen(h.position)? + vec2(3.0, -2.0))
     })
 }
 
@@ -44,11 +44,11 @@ fn beside_handle(node: &'static str, index: usize) -> Target {
 /// tenth of a step (the snap takes it away).
 fn on_plane(a: f64, b: f64) -> Target {
     Box::new(move |app: &EditorApp, _: &egui::Context| {
-        let s = app.viewport.grid_step();
-        let map = app.viewport.screen_map();
+        let s = app.viewport().grid_step();
+        let map = app.viewport().screen_map();
         let px = (s / map.world_per_point()) as f32;
         let p = app
-            .viewport
+            .viewport()
             .framing()
             .perspective_plane
             .at(a * s, b * s, 0.0);
@@ -65,11 +65,11 @@ pub fn cplane() -> Vec<Step> {
     let mut steps = vec![
         Step::Settle,
         print("view", |app| {
-            app.viewport.framing().view.label().to_string()
+            app.viewport().framing().view.label().to_string()
         }),
         click(control("View")),
         click(control("CPlane from 3 points")),
-        print("tool", |app| app.viewport.tool().label().to_string()),
+        print("tool", |app| app.viewport().tool().label().to_string()),
     ];
     for k in 0..3 {
         steps.push(click(beside_handle("tri", k)));
@@ -77,15 +77,15 @@ pub fn cplane() -> Vec<Step> {
     steps.extend([
         Step::Settle,
         print("plane", |app| {
-            let p = app.viewport.framing().perspective_plane;
+            let p = app.viewport().framing().perspective_plane;
             [p.origin, p.u, p.v, p.normal].map(vector).join(" ")
         }),
         print("plane name", |app| {
-            app.viewport.framing().perspective_name.clone()
+            app.viewport().framing().perspective_name.clone()
         }),
         print("cplanes", |app| {
             let names: Vec<&str> = app
-                .doc
+                .doc()
                 .meta
                 .cplanes
                 .iter()
@@ -93,9 +93,9 @@ pub fn cplane() -> Vec<Step> {
                 .collect();
             names.join("|")
         }),
-        print("undo steps", |app| app.doc.history.undo_len().to_string()),
+        print("undo steps", |app| app.doc().history.undo_len().to_string()),
         Step::Key(Key::C, Modifiers::NONE),
-        print("step", |app| format!("{:?}", app.viewport.grid_step())),
+        print("step", |app| format!("{:?}", app.viewport().grid_step())),
     ]);
     for (a, b) in CURVE_STEPS {
         steps.push(click(on_plane(a, b)));
@@ -104,11 +104,11 @@ pub fn cplane() -> Vec<Step> {
         Step::Key(Key::Enter, Modifiers::NONE),
         Step::Settle,
         print("drawn view", |app| {
-            app.viewport.framing().view.label().to_string()
+            app.viewport().framing().view.label().to_string()
         }),
         print("drawn", |app| points_text(app, "points")),
         print("saved", |app| {
-            let text = cnets_engine::file::to_ron(&app.doc.graph, &app.doc.meta);
+            let text = cnets_engine::file::to_ron(&app.doc().graph, &app.doc().meta);
             text.contains("cplanes: [\n        (name: \"CPlane 1\"")
                 .to_string()
         }),

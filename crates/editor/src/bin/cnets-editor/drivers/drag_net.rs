@@ -42,9 +42,9 @@ fn print(key: &'static str, f: impl Fn(&EditorApp) -> String + 'static) -> Step 
 /// mapper handles do not move, nor on its first or last row) the pointer can grab where the view draws them
 /// (not hidden behind another face): the middle row's first, nearest the view's centre first.
 fn grabbable(app: &EditorApp, interior_only: bool) -> Vec<((usize, usize), DVec3, Pos2)> {
-    let picks = app.viewport.picks();
-    let map = app.viewport.screen_map();
-    let inner = app.viewport.rect().shrink(60.0);
+    let picks = app.viewport().picks();
+    let map = app.viewport().screen_map();
+    let inner = app.viewport().rect().shrink(60.0);
     let Some(PickGeometry::Grid(g)) = picks
         .meshes
         .iter()
@@ -65,7 +65,7 @@ fn grabbable(app: &EditorApp, interior_only: bool) -> Vec<((usize, usize), DVec3
             (interior && v.node == NET && v.vertex == ij).then_some((ij, *p, at))
         })
         .collect();
-    let centre = app.viewport.rect().center();
+    let centre = app.viewport().rect().center();
     let middle = g.rows / 2;
     found.sort_by(|a, b| {
         (a.0.0.abs_diff(middle), a.2.distance(centre))
@@ -87,7 +87,7 @@ fn reachable_pair(
     found: &[Grabbable],
 ) -> Option<(DVec3, Grabbable, Grabbable)> {
     use cnets_engine::optimize::drag::{DragRequest, drag};
-    let graph = app.doc.eval_graph();
+    let graph = app.doc().eval_graph();
     let ctx = cnets_engine::NodeContext::default();
     let far = |a: &Grabbable, b: &Grabbable| a.0.0.abs_diff(b.0.0) + a.0.1.abs_diff(b.0.1);
     for step in MOVES {
@@ -116,7 +116,7 @@ fn first_try(app: &EditorApp, grabs: &[Grabbable], found: &[Grabbable]) -> Strin
     let (Some(grab), Some(pin)) = (grabs.first(), found.last()) else {
         return "nothing to try".into();
     };
-    let graph = app.doc.eval_graph();
+    let graph = app.doc().eval_graph();
     let ctx = cnets_engine::NodeContext::default();
     let mut still = DragRequest::new(NET, grab.0, grab.1);
     still.max_iter = 0;
@@ -142,7 +142,7 @@ fn first_try(app: &EditorApp, grabs: &[Grabbable], found: &[Grabbable]) -> Strin
 
 /// Where the net's vertex (i, j) is in the picture shown.
 fn position(app: &EditorApp, ij: (usize, usize)) -> Option<DVec3> {
-    let picks = app.viewport.picks();
+    let picks = app.viewport().picks();
     match &picks.meshes.iter().find(|m| m.node == NET)?.geometry {
         PickGeometry::Grid(g) => g.vertices.get(ij.0 * g.cols + ij.1).copied(),
         PickGeometry::Mesh(_) => None,
@@ -156,7 +156,7 @@ fn vec(p: Option<DVec3>) -> String {
 /// Every literal input of the document, with every digit.
 fn inputs(app: &EditorApp) -> String {
     let mut lines: Vec<String> = app
-        .doc
+        .doc()
         .graph
         .nodes()
         .flat_map(|(_, n)| {
@@ -214,7 +214,7 @@ pub fn drag_net() -> Vec<Step> {
             "script: in view = {} vertices, {} interior, {:.4} m a point",
             found.len(),
             interior.len(),
-            app.viewport.screen_map().world_per_point()
+            app.viewport().screen_map().world_per_point()
         );
         let Some((step, ij, pin)) = reachable_pair(app, &interior, &found) else {
             println!(
@@ -245,21 +245,21 @@ pub fn drag_net() -> Vec<Step> {
     });
     let from: Target = Box::new(move |app: &EditorApp, _: &egui::Context| {
         let ij = g2.get()?;
-        app.viewport.screen_map().to_screen(position(app, ij)?)
+        app.viewport().screen_map().to_screen(position(app, ij)?)
     });
     let to: Target = Box::new(move |app: &EditorApp, _: &egui::Context| {
         let ij = g3.get()?;
-        app.viewport
+        app.viewport()
             .screen_map()
             .to_screen(position(app, ij)? + step.get())
     });
     // The middle of the net on screen, for the wheel.
     let net_centre: Target = Box::new(|app: &EditorApp, _: &egui::Context| {
-        let picks = app.viewport.picks();
+        let picks = app.viewport().picks();
         let mesh = picks.meshes.iter().find(|m| m.node == NET)?;
         let points = mesh.geometry.vertices();
         let mean = points.iter().copied().sum::<DVec3>() / points.len().max(1) as f64;
-        app.viewport.screen_map().to_screen(mean)
+        app.viewport().screen_map().to_screen(mean)
     });
     vec![
         Step::Settle,
@@ -269,18 +269,18 @@ pub fn drag_net() -> Vec<Step> {
         Step::WheelUntil(
             net_centre,
             120.0,
-            Box::new(|app: &EditorApp| app.viewport.screen_map().world_per_point() < 0.05),
+            Box::new(|app: &EditorApp| app.viewport().screen_map().world_per_point() < 0.05),
         ),
         Step::Settle,
         Step::Key(Key::G, Modifiers::NONE),
         Step::Wait(2),
-        print("tool", |app| app.viewport.tool().label().to_string()),
+        print("tool", |app| app.viewport().tool().label().to_string()),
         print("inputs before", inputs),
         Step::Click(pin_at, PointerButton::Primary, Modifiers::SHIFT),
         Step::Wait(2),
         print("grabbed", move |_| format!("{:?}", g4.get())),
         print("pinned", move |_| format!("{:?}", p2.get())),
-        print("pins", |app| match &app.viewport.tool() {
+        print("pins", |app| match &app.viewport().tool() {
             cnets_editor::viewport::Tool::DragNet(d) => d.pins.len().to_string(),
             _ => "no tool".into(),
         }),
@@ -339,7 +339,7 @@ pub fn drag_net() -> Vec<Step> {
             vec(p4.get().and_then(|ij| position(app, ij)))
         }),
         print("not convex", |app| {
-            let picks = app.viewport.picks();
+            let picks = app.viewport().picks();
             let folded = picks
                 .folded_faces()
                 .iter()
@@ -352,8 +352,8 @@ pub fn drag_net() -> Vec<Step> {
             format!("{folded}|{classified}")
         }),
         print("inputs after", inputs),
-        print("undo steps", |app| app.doc.history.undo_len().to_string()),
-        print("status", |app| app.message.clone()),
+        print("undo steps", |app| app.doc().history.undo_len().to_string()),
+        print("status", |app| app.message().to_string()),
         Step::Key(Key::Z, Modifiers::COMMAND),
         Step::Settle,
         print("inputs undone", inputs),

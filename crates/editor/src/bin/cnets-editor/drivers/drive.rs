@@ -6,7 +6,7 @@ use cnets_editor::app::EditorApp;
 /// The values of every `param.number` slider, one `node.value = x` a line (full precision).
 pub fn slider_values(app: &EditorApp) -> String {
     let mut lines: Vec<String> = app
-        .doc
+        .doc()
         .graph
         .nodes()
         .filter(|(_, n)| n.def.id == "param.number")
@@ -66,7 +66,8 @@ impl Drive {
             return;
         }
         self.frames += 1;
-        let settled = !app.busy() && app.viewport.handed_version() >= app.viewport.scene_version();
+        let settled =
+            !app.busy() && app.viewport().handed_version() >= app.viewport().scene_version();
         self.settled_frames = if settled { self.settled_frames + 1 } else { 0 };
         if self.frames < 30 || self.settled_frames < 4 {
             return;
@@ -74,15 +75,15 @@ impl Drive {
         let Some(id) = first_slider(app) else {
             return;
         };
-        if let Some(r) = app.canvas.editor_screen_rect(&id, "value") {
+        if let Some(r) = app.canvas().editor_screen_rect(&id, "value") {
             // On the rail: from a quarter of the way to 85 % (the rail is the left part of the
             // editor; the value box follows it).
-            let rail = r.width().min(110.0 * app.canvas.zoom());
+            let rail = r.width().min(110.0 * app.canvas().zoom());
             let y = r.center().y;
             self.from = Some(egui::pos2(r.left() + rail * 0.25, y));
             self.to = egui::pos2(r.left() + rail * 0.85, y);
             self.was = app
-                .doc
+                .doc()
                 .graph
                 .node(&id)
                 .and_then(|n| n.value_of("value"))
@@ -154,7 +155,7 @@ impl Drive {
 
 /// The id of the graph's first number slider (what the drag measurements move).
 pub fn first_slider(app: &EditorApp) -> Option<String> {
-    app.doc
+    app.doc()
         .graph
         .nodes()
         .find(|(_, n)| n.def.id == "param.number")

@@ -141,7 +141,7 @@ impl Drivers {
             if app.restore_offered() {
                 app.restore();
                 app.wait_for_worker(Duration::from_secs(60));
-                println!("restored: {}", app.message);
+                println!("restored: {}", app.message());
                 println!("{}", slider_values(app));
             } else {
                 println!("restored: nothing to restore");

@@ -11,15 +11,15 @@ use super::script::{Step, Target};
 
 /// Where the 3D view draws a world point.
 pub fn world(p: DVec3) -> Target {
-    Box::new(move |app: &EditorApp, _: &egui::Context| app.viewport.screen_map().to_screen(p))
+    Box::new(move |app: &EditorApp, _: &egui::Context| app.viewport().screen_map().to_screen(p))
 }
 
 /// A world point given in grid steps of the view (x, y, z multiplied by the current grid step),
 /// displaced by a fraction of a step on screen (the snap takes it away).
 fn grid_point(steps: DVec3, slack: egui::Vec2) -> Target {
     Box::new(move |app: &EditorApp, _: &egui::Context| {
-        let s = app.viewport.grid_step();
-        let map = app.viewport.screen_map();
+        let s = app.viewport().grid_step();
+        let map = app.viewport().screen_map();
         let px = (s / map.world_per_point()) as f32;
         map.to_screen(steps * s).map(|p| p + slack * px)
     })
@@ -29,18 +29,18 @@ fn grid_point(steps: DVec3, slack: egui::Vec2) -> Target {
 fn handle(node: &'static str, index: usize, offset: egui::Vec2) -> Target {
     Box::new(move |app: &EditorApp, _: &egui::Context| {
         let h = app
-            .viewport
+            .viewport()
             .handle_list()
             .iter()
             .find(|h| h.key.node == node && h.key.index == index)?;
-        Some(app.viewport.screen_map().to_screen(h.position)? + offset)
+        Some(app.viewport().screen_map().to_screen(h.position)? + offset)
     })
 }
 
 /// The points of a `param.points` node, with every digit.
 pub fn points_text(app: &EditorApp, node: &str) -> String {
     let points: Vec<String> = app
-        .doc
+        .doc()
         .graph
         .node(node)
         .and_then(|n| n.value_of("points"))
@@ -71,9 +71,9 @@ fn click(t: Target) -> Step {
 /// The grid step and the world size of a screen point, as the tests need them.
 fn scale_lines() -> Vec<Step> {
     vec![
-        print("step", |app| format!("{:?}", app.viewport.grid_step())),
+        print("step", |app| format!("{:?}", app.viewport().grid_step())),
         print("view", |app| {
-            app.viewport.framing().view.label().to_string()
+            app.viewport().framing().view.label().to_string()
         }),
     ]
 }
@@ -89,8 +89,8 @@ fn handles() -> Vec<Step> {
         Step::Drag(
             handle("pts", 1, vec2(0.0, 0.0)),
             Box::new(|app: &EditorApp, ctx: &egui::Context| {
-                let s = app.viewport.grid_step();
-                let px = (s / app.viewport.screen_map().world_per_point()) as f32;
+                let s = app.viewport().grid_step();
+                let px = (s / app.viewport().screen_map().world_per_point()) as f32;
                 let h = handle("pts", 1, vec2(0.0, 0.0))(app, ctx)?;
                 Some(h + vec2(3.3 * px, 1.7 * px))
             }),
@@ -99,7 +99,7 @@ fn handles() -> Vec<Step> {
         ),
         Step::Settle,
         print("after", |app| points_text(app, "pts")),
-        print("undo steps", |app| app.doc.history.undo_len().to_string()),
+        print("undo steps", |app| app.doc().history.undo_len().to_string()),
         Step::Key(Key::Z, Modifiers::COMMAND),
         Step::Settle,
         print("undone", |app| points_text(app, "pts")),
@@ -111,13 +111,13 @@ fn handles() -> Vec<Step> {
 
 /// Where the canvas draws pin `k` of node `node` (an input pin when `input`).
 fn pin(node: &'static str, input: bool, k: usize) -> Target {
-    Box::new(move |app: &EditorApp, _: &egui::Context| app.canvas.pin_screen_pos(node, input, k))
+    Box::new(move |app: &EditorApp, _: &egui::Context| app.canvas().pin_screen_pos(node, input, k))
 }
 
 /// The middle of the value editor of `node.input` on the canvas.
 fn field(node: &'static str, input: &'static str) -> Target {
     Box::new(move |app: &EditorApp, _: &egui::Context| {
-        app.canvas
+        app.canvas()
             .editor_screen_rect(node, input)
             .map(|r| r.center())
     })
@@ -125,7 +125,7 @@ fn field(node: &'static str, input: &'static str) -> Target {
 
 /// The literal value of `times.b`, as the file would write it (`none` when unset).
 fn times_b(app: &EditorApp) -> String {
-    app.doc
+    app.doc()
         .graph
         .node("times")
         .and_then(|n| n.value_of("b"))
@@ -167,7 +167,7 @@ fn wire_click() -> Vec<Step> {
     steps.extend(settle_type("7"));
     steps.extend([
         print("wires after connect", |app| {
-            app.doc.graph.wires().len().to_string()
+            app.doc().graph.wires().len().to_string()
         }),
         print("b after connect", times_b),
         Step::Drag(
@@ -183,12 +183,12 @@ fn wire_click() -> Vec<Step> {
     steps.extend(settle_type("5"));
     steps.extend([
         print("wires after drop", |app| {
-            app.doc.graph.wires().len().to_string()
+            app.doc().graph.wires().len().to_string()
         }),
         print("b after drop", times_b),
         // A path input's Browse… (the right end of its editor), clicked on the canvas.
         click(Box::new(|app: &EditorApp, _: &egui::Context| {
-            let r = app.canvas.editor_screen_rect("site", "path")?;
+            let r = app.canvas().editor_screen_rect("site", "path")?;
             Some(egui::pos2(r.right() - 8.0, r.center().y))
         })),
         Step::Wait(3),
@@ -205,7 +205,7 @@ fn wire_click() -> Vec<Step> {
 /// The nodes added since the script started that have type `type_id`.
 fn nodes_of(app: &EditorApp, type_id: &str) -> Vec<String> {
     let mut ids: Vec<String> = app
-        .doc
+        .doc()
         .graph
         .nodes()
         .filter(|(_, n)| n.def.id == type_id)
@@ -232,7 +232,7 @@ fn draw() -> Vec<Step> {
             nodes_of(app, "param.points").join(" ")
         }),
         print("wires", |app| {
-            app.doc
+            app.doc()
                 .graph
                 .wires()
                 .iter()
@@ -241,7 +241,7 @@ fn draw() -> Vec<Step> {
                 .join(" ")
         }),
         print("drawn", |app| points_text(app, "points")),
-        print("selected", |app| app.canvas.selected.join(" ")),
+        print("selected", |app| app.canvas().selected.join(" ")),
         Step::Shot("draw-front"),
         Step::Quit,
     ]);
@@ -251,8 +251,8 @@ fn draw() -> Vec<Step> {
 /// The centre of the face of the first previewed quad mesh that is highest (z) among the faces
 /// whose centre is well inside the view.
 fn top_face(app: &EditorApp) -> Option<(String, usize, DVec3)> {
-    let picks = app.viewport.picks();
-    let map = app.viewport.screen_map();
+    let picks = app.viewport().picks();
+    let map = app.viewport().screen_map();
     let mesh = picks
         .meshes
         .iter()
@@ -264,7 +264,7 @@ fn top_face(app: &EditorApp) -> Option<(String, usize, DVec3)> {
         })
         .filter(|(_, c)| {
             map.to_screen(*c)
-                .is_some_and(|s| app.viewport.rect().shrink(40.0).contains(s))
+                .is_some_and(|s| app.viewport().rect().shrink(40.0).contains(s))
         })
         .max_by(|a, b| a.1.z.total_cmp(&b.1.z))
         .map(|(f, c)| (mesh.node.clone(), f, c))
@@ -276,7 +276,7 @@ fn pick() -> Vec<Step> {
     let target = || -> Target {
         Box::new(|app: &EditorApp, _: &egui::Context| {
             let (_, _, c) = top_face(app)?;
-            app.viewport.screen_map().to_screen(c)
+            app.viewport().screen_map().to_screen(c)
         })
     };
     vec![
@@ -285,7 +285,7 @@ fn pick() -> Vec<Step> {
         Step::Settle,
         print("expected", |app| {
             top_face(app).map_or(String::new(), |(node, f, _)| {
-                let picks = app.viewport.picks();
+                let picks = app.viewport().picks();
                 let mesh = picks.meshes.iter().find(|m| m.node == node).unwrap();
                 let (i, j) = mesh.geometry.face_row_col(f).unwrap_or_default();
                 format!("{node} face (i {i}, j {j})")
@@ -294,13 +294,17 @@ fn pick() -> Vec<Step> {
         Step::Move(target()),
         Step::Wait(3),
         print("hover", |app| {
-            app.viewport
+            app.viewport()
                 .tools()
                 .hover
                 .as_ref()
                 .map(|h| {
-                    cnets_editor::viewport::pick::describe(app.viewport.picks(), h, &app.doc.graph)
-                        .replace('\n', " | ")
+                    cnets_editor::viewport::pick::describe(
+                        app.viewport().picks(),
+                        h,
+                        &app.doc().graph,
+                    )
+                    .replace('\n', " | ")
                 })
                 .unwrap_or_default()
         }),
@@ -308,7 +312,7 @@ fn pick() -> Vec<Step> {
         click(target()),
         Step::Wait(2),
         print("focused", |app| {
-            app.canvas.focused.clone().unwrap_or_default()
+            app.canvas().focused.clone().unwrap_or_default()
         }),
         Step::Quit,
     ]
@@ -319,24 +323,26 @@ fn folds() -> Vec<Step> {
     vec![
         Step::Settle,
         print("folds", |app| {
-            app.viewport.picks().folded_faces().len().to_string()
+            app.viewport().picks().folded_faces().len().to_string()
         }),
         click(Box::new(|app: &EditorApp, _: &egui::Context| {
-            app.viewport.last_frame().fold_entry.map(|r| r.center())
+            app.viewport().last_frame().fold_entry.map(|r| r.center())
         })),
         Step::Wait(3),
         print("framed", |app| {
-            let picks = app.viewport.picks();
-            let map = app.viewport.screen_map();
+            let picks = app.viewport().picks();
+            let map = app.viewport().screen_map();
             let inside = picks.folded_faces().iter().all(|(m, f)| {
                 picks.meshes[*m].geometry.face_corners(*f).iter().all(|p| {
                     map.to_screen(*p)
-                        .is_some_and(|s| app.viewport.rect().expand(1.0).contains(s))
+                        .is_some_and(|s| app.viewport().rect().expand(1.0).contains(s))
                 })
             });
             inside.to_string()
         }),
-        print("outlined", |app| app.viewport.highlight().len().to_string()),
+        print("outlined", |app| {
+            app.viewport().highlight().len().to_string()
+        }),
         Step::Shot("folds"),
         Step::Quit,
     ]
@@ -347,13 +353,13 @@ fn folds() -> Vec<Step> {
 /// typed, Enter — as a designer does it (the menu must not close on the click in its field).
 fn rename_menu() -> Vec<Step> {
     let label = |app: &EditorApp| {
-        app.doc
+        app.doc()
             .graph
             .node("R")
             .map_or("(none)".to_string(), |n| n.label().to_string())
     };
     let title: Target = Box::new(|app: &EditorApp, _: &egui::Context| {
-        app.canvas
+        app.canvas()
             .node_screen_rect("R")
             // On the title's words, left of the header's buttons (the eye and the enable
             // toggle sit near the middle of a wide node).
@@ -378,7 +384,7 @@ fn rename_menu() -> Vec<Step> {
         Step::Settle,
         print("label after", label),
         print("saved", |app| {
-            cnets_engine::file::to_ron(&app.doc.graph, &Default::default())
+            cnets_engine::file::to_ron(&app.doc().graph, &Default::default())
                 .contains("name: \"Radius\"")
                 .to_string()
         }),

@@ -267,8 +267,8 @@ impl Script {
                 }
             }
             Step::Settle => {
-                let idle =
-                    !app.busy() && app.viewport.handed_version() >= app.viewport.scene_version();
+                let idle = !app.busy()
+                    && app.viewport().handed_version() >= app.viewport().scene_version();
                 self.settled_frames = if idle { self.settled_frames + 1 } else { 0 };
                 if self.settled_frames >= 4 {
                     self.settled_frames = 0;
@@ -349,7 +349,7 @@ impl Script {
                     say(&format!("shot {name}"), &path.display().to_string());
                     self.shot_requested = false;
                     self.next();
-                } else if !self.shot_requested && app.viewport.framing().render_scale >= 1.0 {
+                } else if !self.shot_requested && app.viewport().framing().render_scale >= 1.0 {
                     ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(
                         egui::UserData::default(),
                     ));
@@ -362,7 +362,7 @@ impl Script {
                     &format!("{:.2}", self.started.elapsed().as_secs_f64()),
                 );
                 println!("script: end");
-                app.quit = true;
+                app.quit_now();
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
                 self.next();
                 return true;

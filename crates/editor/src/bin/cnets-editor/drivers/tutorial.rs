@@ -32,13 +32,15 @@ pub fn tutorial() -> Vec<Step> {
         click(control("New")),
         Step::Settle,
         print("nodes after new", |app| {
-            app.doc.graph.node_count().to_string()
+            app.doc().graph.node_count().to_string()
         }),
         Step::Shot("tutorial-1-new"),
         // Step 2: the directrix, drawn in the Top view.
         key(Key::Num1),
         Step::Settle,
-        print("top step", |app| format!("{:?}", app.viewport.grid_step())),
+        print("top step", |app| {
+            format!("{:?}", app.viewport().grid_step())
+        }),
     ];
     steps.extend(draw(S_CURVE.map(|(x, y)| DVec3::new(x, y, 0.0))));
     steps.extend([
@@ -51,14 +53,14 @@ pub fn tutorial() -> Vec<Step> {
             view_centre(),
             -60.0,
             Box::new(|app| {
-                let map = app.viewport.screen_map();
+                let map = app.viewport().screen_map();
                 let half_width = map.world_per_point() * f64::from(map.rect.width()) / 2.0;
-                half_width > 7.0 && app.viewport.grid_step() <= 1.0
+                half_width > 7.0 && app.viewport().grid_step() <= 1.0
             }),
         ),
         Step::Wait(3),
         print("front step", |app| {
-            format!("{:?}", app.viewport.grid_step())
+            format!("{:?}", app.viewport().grid_step())
         }),
     ]);
     steps.extend(draw(ARCH.map(|(x, z)| DVec3::new(x, 0.0, z))));
@@ -93,7 +95,7 @@ pub fn tutorial() -> Vec<Step> {
         key(Key::Num4),
         Step::Settle,
         print("wires", |app| {
-            app.doc
+            app.doc()
                 .graph
                 .wires()
                 .iter()
@@ -107,7 +109,7 @@ pub fn tutorial() -> Vec<Step> {
         // Step 5: no folded faces — the assistance dragged from −1 to ½.
         Step::DragUntil(
             Box::new(|app: &EditorApp, _: &egui::Context| {
-                app.canvas
+                app.canvas()
                     .editor_screen_rect("construct", "assistance")
                     .map(|r| r.center())
             }),
