@@ -13,6 +13,7 @@
 //! - [`table`]: the list as rows of cells and its edits; [`tsv`]: delimited text; [`summary`]:
 //!   the text on the node; [`OnNodeCache`]: that text kept while a list stays the same; `grid`: the cells of a window; `window`: one window.
 
+pub mod errors;
 mod grid;
 mod on_node_cache;
 pub mod summary;
@@ -26,6 +27,7 @@ use crate::document::GraphDocument;
 use crate::edit::Edit;
 use crate::{mapper, widgets};
 
+pub use errors::{CellError, NotATable, TableEditError};
 pub use on_node_cache::OnNodeCache;
 pub use table::{ItemType, Layout, Table};
 pub use window::PasteMode;

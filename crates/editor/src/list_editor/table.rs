@@ -13,6 +13,7 @@ use std::sync::Arc;
 use cnets_engine::{Value, ValueType};
 use cnets_geometry::{DVec3, Polyline};
 
+use super::errors::{CellError, NotATable, TableEditError};
 use super::summary::count;
 use super::tsv;
 
@@ -65,7 +66,7 @@ impl Cell {
     }
 
     /// A cell of the same kind read from `text` (an empty item takes a number).
-    fn parse_like(&self, text: &str) -> Result<Cell, String> {
+    fn parse_like(&self, text: &str) -> Result<Cell, CellError> {
         Ok(match self {
             Cell::Null if text.trim().is_empty() => Cell::Null,
             Cell::Null | Cell::Number(_) => Cell::Number(tsv::parse_number(text)?),
@@ -103,7 +104,8 @@ pub enum Row {
 }
 
 impl Row {
-    fn of(v: &Value) -> Result<Row, String> {
+    /// The row of item `item` of a list, `v`.
+    fn of(item: usize, v: &Value) -> Result<Row, NotATable> {
         if let Some(cell) = Cell::of(v) {
             return Ok(Row::Scalar(cell));
         }
@@ -119,12 +121,19 @@ impl Row {
             Value::List(items) => items
                 .iter()
                 .enumerate()
-                .map(|(k, item)| {
-                    Cell::of(item).ok_or_else(|| format!("its item {k} is a {}", item.type_name()))
+                .map(|(inner, value)| {
+                    Cell::of(value).ok_or_else(|| NotATable::Inner {
+                        item,
+                        inner,
+                        type_name: value.type_name(),
+                    })
                 })
                 .collect::<Result<Vec<_>, _>>()
                 .map(Row::List),
-            other => Err(format!("it is a {}", other.type_name())),
+            other => Err(NotATable::Item {
+                item,
+                type_name: other.type_name(),
+            }),
         }
     }
 
@@ -156,12 +165,12 @@ impl Row {
     }
 
     /// Sets cell `c` from `text`, read as the cell's kind.
-    fn set(&mut self, c: usize, text: &str) -> Result<(), String> {
+    fn set(&mut self, c: usize, text: &str) -> Result<(), CellError> {
         match self {
             Row::Scalar(cell) if c == 0 => *cell = cell.parse_like(text)?,
             Row::Triple { xyz, .. } if c < 3 => xyz[c] = tsv::parse_number(text)?,
             Row::List(cells) if c < cells.len() => cells[c] = cells[c].parse_like(text)?,
-            _ => return Err(format!("there is no column {c} in this row")),
+            _ => return Err(CellError::NoColumn(c)),
         }
         Ok(())
     }
@@ -252,7 +261,7 @@ pub struct Table {
 impl Table {
     /// The table of `value` (`None`: no value yet, an empty list), for an input taking `items`.
     /// Fails, saying why, for values that are not lists of cells, points or rows of cells.
-    pub fn new(value: Option<&Value>, items: &ItemType) -> Result<Table, String> {
+    pub fn new(value: Option<&Value>, items: &ItemType) -> Result<Table, NotATable> {
         let template = match items.item {
             ValueType::Point | ValueType::Polyline => Row::Triple {
                 xyz: [0.0; 3],
@@ -296,12 +305,10 @@ impl Table {
                 // Sized once: a list of millions of items is not grown by doubling.
                 table.rows = Vec::with_capacity(items.len());
                 for (k, item) in items.iter().enumerate() {
-                    table
-                        .rows
-                        .push(Row::of(item).map_err(|e| format!("item {k}: {e}"))?);
+                    table.rows.push(Row::of(k, item)?);
                 }
             }
-            Some(other) => return Err(format!("a single {} is not a list", other.type_name())),
+            Some(other) => return Err(NotATable::Single(other.type_name())),
         }
         Ok(table)
     }
@@ -311,7 +318,10 @@ impl Table {
     pub fn accepts(value: Option<&Value>) -> bool {
         match value {
             None | Some(Value::Null) | Some(Value::Polyline(_)) => true,
-            Some(Value::List(items)) => items.iter().all(|item| Row::of(item).is_ok()),
+            Some(Value::List(items)) => items
+                .iter()
+                .enumerate()
+                .all(|(k, item)| Row::of(k, item).is_ok()),
             Some(_) => false,
         }
     }
@@ -414,15 +424,16 @@ impl Table {
 
     /// Sets cell (r, c) from `text`, read as that cell's kind. Returns whether the value changed;
     /// on an error (naming the cell) nothing changes.
-    pub fn set_cell(&mut self, r: usize, c: usize, text: &str) -> Result<bool, String> {
-        let name = self.cell_name(r, c);
-        let row = self
-            .rows
-            .get_mut(r)
-            .ok_or_else(|| format!("{name}: there is no row {r} any more"))?;
+    pub fn set_cell(&mut self, r: usize, c: usize, text: &str) -> Result<bool, TableEditError> {
+        let cell = self.cell_name(r, c);
+        let Some(row) = self.rows.get_mut(r) else {
+            return Err(TableEditError::RowGone { cell, row: r });
+        };
         let before = row.value();
         let mut edited = row.clone();
-        edited.set(c, text).map_err(|e| format!("{name}: {e}"))?;
+        edited
+            .set(c, text)
+            .map_err(|error| TableEditError::Cell { cell, error })?;
         let changed = !edited.value().same_as(&before);
         if changed {
             *row = edited;
@@ -482,10 +493,10 @@ impl Table {
         r: usize,
         c: usize,
         lines: &[Vec<String>],
-    ) -> Result<String, String> {
+    ) -> Result<String, TableEditError> {
         let lines = self.oriented(lines);
         if lines.is_empty() {
-            return Err("nothing to paste: the text has no lines".into());
+            return Err(TableEditError::NothingToPaste);
         }
         let mut next = self.clone();
         let start = r.min(next.rows.len());
@@ -499,19 +510,22 @@ impl Table {
             }
             let width = next.rows[row].width();
             if c + fields.len() > width {
-                return Err(format!(
-                    "line {}: {} from column {} do not fit in row {row}, which has {}; nothing \
-                     was pasted",
-                    i + 1,
-                    count(fields.len(), ("field", "fields")),
-                    self.column_name(c),
-                    count(width, ("column", "columns")),
-                ));
+                return Err(TableEditError::DoesNotFit {
+                    line: i + 1,
+                    fields: fields.len(),
+                    column: self.column_name(c),
+                    row,
+                    width,
+                });
             }
             for (j, field) in fields.iter().enumerate() {
-                next.rows[row].set(c + j, field).map_err(|e| {
-                    format!("line {}, field {}: {e}; nothing was pasted", i + 1, j + 1)
-                })?;
+                next.rows[row]
+                    .set(c + j, field)
+                    .map_err(|error| TableEditError::Field {
+                        line: i + 1,
+                        field: j + 1,
+                        error,
+                    })?;
             }
         }
         *self = next;
@@ -530,10 +544,10 @@ impl Table {
     /// the old rows: of the last row; in an empty table: of the input's item type); a line of
     /// several fields makes a row of a table where the input takes tables. On an error (naming the
     /// line and field of the text) nothing changes. Returns what was done, in words.
-    pub fn replace_all(&mut self, lines: &[Vec<String>]) -> Result<String, String> {
+    pub fn replace_all(&mut self, lines: &[Vec<String>]) -> Result<String, TableEditError> {
         let lines = self.oriented(lines);
         if lines.is_empty() {
-            return Err("nothing to paste: the text has no lines".into());
+            return Err(TableEditError::NothingToPaste);
         }
         let layout = self.layout();
         let rows = lines
@@ -545,33 +559,35 @@ impl Table {
                     .get(i)
                     .or(self.rows.last())
                     .unwrap_or(&self.template);
-                self.row_from_fields(like, fields, layout)
-                    .map_err(|e| format!("line {}{e}; nothing was pasted", i + 1))
+                self.row_from_fields(i + 1, like, fields, layout)
             })
             .collect::<Result<Vec<_>, _>>()?;
         self.rows = rows;
         Ok(format!("replaced all rows: {} now", self.rows.len()))
     }
 
-    /// A row of the shape and kinds of `like` read from `fields` (errors start with the field:
-    /// `, field 2: …`, or `: …` for the whole line).
+    /// A row of the shape and kinds of `like` read from `fields`, line `line` of a paste.
     fn row_from_fields(
         &self,
+        line: usize,
         like: &Row,
         fields: &[String],
         layout: Layout,
-    ) -> Result<Row, String> {
-        let parse = |j: usize, kind: &Cell| {
-            kind.parse_like(&fields[j])
-                .map_err(|e| format!(", field {}: {e}", j + 1))
+    ) -> Result<Row, TableEditError> {
+        let field_error = |j: usize| {
+            move |error| TableEditError::Field {
+                line,
+                field: j + 1,
+                error,
+            }
         };
+        let parse = |j: usize, kind: &Cell| kind.parse_like(&fields[j]).map_err(field_error(j));
         let number = Cell::Number(0.0);
         match like {
             Row::Triple { vector, .. } if fields.len() == 3 => {
                 let mut xyz = [0.0; 3];
                 for (j, x) in xyz.iter_mut().enumerate() {
-                    *x = tsv::parse_number(&fields[j])
-                        .map_err(|e| format!(", field {}: {e}", j + 1))?;
+                    *x = tsv::parse_number(&fields[j]).map_err(field_error(j))?;
                 }
                 Ok(Row::Triple {
                     xyz,
@@ -581,10 +597,10 @@ impl Table {
             Row::Triple { .. }
                 if self.polyline.is_some() || layout == Layout::Xyz || !self.tables =>
             {
-                Err(format!(
-                    ": {}, but points need 3 (x, y, z)",
-                    count(fields.len(), ("field", "fields"))
-                ))
+                Err(TableEditError::NotAPoint {
+                    line,
+                    fields: fields.len(),
+                })
             }
             Row::Triple { .. } => (0..fields.len())
                 .map(|j| parse(j, &number))
@@ -595,10 +611,10 @@ impl Table {
                 .map(|j| parse(j, cell))
                 .collect::<Result<_, _>>()
                 .map(Row::List),
-            Row::Scalar(_) => Err(format!(
-                ": {} fields, but this list has one column",
-                fields.len()
-            )),
+            Row::Scalar(_) => Err(TableEditError::OneColumn {
+                line,
+                fields: fields.len(),
+            }),
             Row::List(cells) => (0..fields.len())
                 .map(|j| parse(j, cells.get(j).or(cells.last()).unwrap_or(&number)))
                 .collect::<Result<_, _>>()
@@ -742,10 +758,10 @@ mod tests {
     fn values_that_are_not_tables_are_refused_saying_why() {
         let polylines = Value::list(vec![Value::Polyline(Arc::new(Polyline::open(vec![])))]);
         let e = Table::new(Some(&polylines), &of(ValueType::Any, true)).unwrap_err();
-        assert_eq!(e, "item 0: it is a polyline");
+        assert_eq!(e.to_string(), "item 0: it is a polyline");
         let deep = Value::list(vec![points(&[[0.0; 3]])]);
         let e = Table::new(Some(&deep), &of(ValueType::Any, true)).unwrap_err();
-        assert_eq!(e, "item 0: its item 0 is a point");
+        assert_eq!(e.to_string(), "item 0: its item 0 is a point");
         assert!(Table::new(Some(&Value::Number(1.0)), &of(ValueType::Number, false)).is_err());
     }
 
@@ -809,11 +825,15 @@ mod tests {
         assert!(items[1].same_as(&Value::Integer(5)));
         // A bad cell is refused naming it, and nothing changes.
         let e = t.set_cell(1, 0, "5.5").unwrap_err();
-        assert_eq!(e, "row 1, column 0: '5.5' is not a whole number");
+        assert_eq!(
+            e.to_string(),
+            "row 1, column 0: '5.5' is not a whole number"
+        );
         assert!(t.to_value().same_as(&after));
         assert!(
             t.set_cell(0, 0, "1,5")
                 .unwrap_err()
+                .to_string()
                 .contains("'.' as the decimal point")
         );
     }
@@ -931,12 +951,13 @@ mod tests {
         // Too wide, or a bad field: refused, naming the line and field, nothing changed.
         let e = t.paste_at(0, 2, &lines("1,2")).unwrap_err();
         assert!(
-            e.starts_with("line 1: 2 fields from column z do not fit"),
+            e.to_string()
+                .starts_with("line 1: 2 fields from column z do not fit"),
             "{e}"
         );
         let e = t.paste_at(0, 0, &lines("1;2;3\n4;x;6")).unwrap_err();
         assert_eq!(
-            e,
+            e.to_string(),
             "line 2, field 2: 'x' is not a number; nothing was pasted"
         );
         assert!(t.to_value().same_as(&expected));
@@ -971,8 +992,9 @@ mod tests {
         // Points need three fields; a one-column list one.
         let mut p = Table::new(Some(&points(&[[0.0; 3]])), &of(ValueType::Point, false)).unwrap();
         let e = p.replace_all(&lines("1\t2\t3\n4\t5")).unwrap_err();
+        assert_eq!(e, TableEditError::NotAPoint { line: 2, fields: 2 });
         assert_eq!(
-            e,
+            e.to_string(),
             "line 2: 2 fields, but points need 3 (x, y, z); nothing was pasted"
         );
         let texts = Value::list(vec![Value::text("a")]);

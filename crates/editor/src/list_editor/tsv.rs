@@ -15,6 +15,8 @@
 //! **Numbers** use `.` as the decimal point. [`format_number`] writes the shortest text that
 //! reads back as the same `f64` (bit for bit), so nothing is rounded when shown or copied.
 
+use super::errors::{CellError, Expected};
+
 /// The separator of a delimited text.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Separator {
@@ -144,25 +146,29 @@ pub fn format_number(x: f64) -> String {
 
 /// A number written with `.` as the decimal point (`1.5`, `-2e-3`, `inf`, `NaN`; spaces around it
 /// are ignored). The error says why in a few words.
-pub fn parse_number(text: &str) -> Result<f64, String> {
+pub fn parse_number(text: &str) -> Result<f64, CellError> {
     let t = text.trim();
     if t.is_empty() {
-        return Err("empty: expected a number".into());
+        return Err(CellError::Empty(Expected::Number));
     }
     t.parse::<f64>().map_err(|_| {
+        let text = t.to_string();
         if t.contains(',') && t.replace(',', ".").parse::<f64>().is_ok() {
-            format!("'{t}' is not a number: use '.' as the decimal point")
+            CellError::DecimalComma { text }
         } else {
-            format!("'{t}' is not a number")
+            CellError::Not {
+                text,
+                expected: Expected::Number,
+            }
         }
     })
 }
 
 /// A whole number (`3`, `-12`; also `3.0` or `1e3`, which are whole).
-pub fn parse_integer(text: &str) -> Result<i64, String> {
+pub fn parse_integer(text: &str) -> Result<i64, CellError> {
     let t = text.trim();
     if t.is_empty() {
-        return Err("empty: expected a whole number".into());
+        return Err(CellError::Empty(Expected::WholeNumber));
     }
     if let Ok(i) = t.parse::<i64>() {
         return Ok(i);
@@ -170,20 +176,25 @@ pub fn parse_integer(text: &str) -> Result<i64, String> {
     match t.parse::<f64>() {
         // Exactly representable whole numbers only (|x| < 2^53).
         Ok(x) if x.fract() == 0.0 && x.abs() < 9.007_199_254_740_992e15 => Ok(x as i64),
-        Ok(_) => Err(format!("'{t}' is not a whole number")),
-        Err(_) => Err(format!("'{t}' is not a whole number")),
+        _ => Err(CellError::Not {
+            text: t.to_string(),
+            expected: Expected::WholeNumber,
+        }),
     }
 }
 
 /// `true` or `false` (any case, as spreadsheets write `TRUE`).
-pub fn parse_boolean(text: &str) -> Result<bool, String> {
+pub fn parse_boolean(text: &str) -> Result<bool, CellError> {
     let t = text.trim();
     if t.eq_ignore_ascii_case("true") {
         Ok(true)
     } else if t.eq_ignore_ascii_case("false") {
         Ok(false)
     } else {
-        Err(format!("'{t}' is not true or false"))
+        Err(CellError::Not {
+            text: t.to_string(),
+            expected: Expected::Boolean,
+        })
     }
 }
 
@@ -274,16 +285,20 @@ mod tests {
         assert!(
             parse_number("1,5")
                 .unwrap_err()
+                .to_string()
                 .contains("'.' as the decimal point")
         );
-        assert_eq!(parse_number("abc").unwrap_err(), "'abc' is not a number");
-        assert!(parse_number("  ").unwrap_err().starts_with("empty"));
+        assert_eq!(
+            parse_number("abc").unwrap_err().to_string(),
+            "'abc' is not a number"
+        );
+        assert_eq!(parse_number("  "), Err(CellError::Empty(Expected::Number)));
         assert_eq!(parse_number(" 2.5 "), Ok(2.5));
         assert_eq!(parse_integer("3"), Ok(3));
         assert_eq!(parse_integer("3.0"), Ok(3));
         assert_eq!(parse_integer("-1e3"), Ok(-1000));
         assert_eq!(
-            parse_integer("2.5").unwrap_err(),
+            parse_integer("2.5").unwrap_err().to_string(),
             "'2.5' is not a whole number"
         );
         assert_eq!(parse_boolean("TRUE"), Ok(true));

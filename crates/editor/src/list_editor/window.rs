@@ -6,6 +6,7 @@
 use cnets_engine::{NodeInstance, Value};
 use egui::{Color32, Ui};
 
+use super::errors::NotATable;
 use super::grid::{self, GridState};
 use super::summary::count;
 use super::table::Table;
@@ -178,7 +179,7 @@ impl EditorWindow {
         ui: &mut Ui,
         node: &NodeInstance,
         k: usize,
-        (current, table): (Option<&Value>, Result<Table, String>),
+        (current, table): (Option<&Value>, Result<Table, NotATable>),
         wired: bool,
         requests: Vec<Request>,
     ) -> Option<(Value, String)> {
@@ -249,7 +250,7 @@ impl EditorWindow {
                 Ok(true) => done.push(format!("set {}", next.cell_name(c.row, c.col))),
                 Ok(false) => {}
                 Err(e) => {
-                    self.note(e, true);
+                    self.note(e.to_string(), true);
                     // Back to the field, with the text as typed, to correct it.
                     self.grid.editing = Some(grid::Editing {
                         row: c.row,
@@ -391,7 +392,7 @@ impl EditorWindow {
                         self.note(what.clone(), false);
                         done.push(what);
                     }
-                    Err(e) => self.note(e, true),
+                    Err(e) => self.note(e.to_string(), true),
                 }
             }
             Request::RemoveSelected => {

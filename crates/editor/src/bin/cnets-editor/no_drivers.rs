@@ -10,7 +10,7 @@ pub const HELP: &str = "";
 
 /// No drivers asked for.
 #[derive(Default)]
-pub struct DriverArgs;
+pub struct DriverArgs {}
 
 impl DriverArgs {
     /// Never takes an option.
