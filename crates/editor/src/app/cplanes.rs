@@ -57,7 +57,7 @@ impl EditorApp {
         let selected = self.canvas.targets();
         match self.viewport.fit_cplane(&selected) {
             Ok((plane, what)) => self.add_cplane(plane, &format!("through {what}")),
-            Err(e) => self.message = e,
+            Err(e) => self.message = e.to_string(),
         }
     }
 }

@@ -10,6 +10,37 @@ use cnets_geometry::DVec3;
 
 use super::screen::WorldPlane;
 
+/// Why no construction plane was made.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum CPlaneError {
+    /// The first two of three clicked points coincide.
+    #[error("the first two points coincide: pick three distinct points")]
+    Coincide,
+    /// Three clicked points lie on one line.
+    #[error("the three points lie on one line: pick a point off it")]
+    ThreeOnALine,
+    /// Fewer than three points to fit through.
+    #[error("a plane needs three points or more, found {0}")]
+    TooFewPoints(usize),
+    /// The points to fit through lie on one line.
+    #[error("the points lie on one line: no plane through them")]
+    OnALine,
+    /// Nothing selected to fit through.
+    #[error(
+        "CPlane through a curve or row: select a node whose curve is previewed, or click a \
+         vertex or face of a net to fit through its row"
+    )]
+    NothingToFit,
+    /// The fit through what was selected failed.
+    #[error("CPlane through {what}: {error}")]
+    Through {
+        /// What it went through (`row 3 of net`, `the curve of outline`).
+        what: String,
+        /// Why it failed.
+        error: Box<CPlaneError>,
+    },
+}
+
 /// A construction plane: origin and orthonormal axes (f64).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CPlane {
@@ -109,32 +140,28 @@ impl CPlane {
 
     /// The plane through three points: origin at `a`, `u` towards `b`, the normal from the
     /// three. An error when they are (nearly) on one line.
-    pub fn from_three_points(a: DVec3, b: DVec3, c: DVec3) -> Result<CPlane, String> {
+    pub fn from_three_points(a: DVec3, b: DVec3, c: DVec3) -> Result<CPlane, CPlaneError> {
         let (ab, ac) = (b - a, c - a);
         let scale = ab.length().max(ac.length());
         if !(scale.is_finite() && scale > 0.0) || ab.length() <= 1e-12 * scale {
-            return Err("the first two points coincide: pick three distinct points".into());
+            return Err(CPlaneError::Coincide);
         }
         let n = ab.cross(ac);
         // The sine of the angle at `a` between the two directions.
         if n.length() <= 1e-9 * ab.length() * ac.length() {
-            return Err("the three points lie on one line: pick a point off it".into());
+            return Err(CPlaneError::ThreeOnALine);
         }
-        CPlane::from_axes(a, ab, ac)
-            .ok_or_else(|| "the three points lie on one line: pick a point off it".into())
+        CPlane::from_axes(a, ab, ac).ok_or(CPlaneError::ThreeOnALine)
     }
 
     /// The best-fit plane through `points` (least squares): origin at their centroid, normal the
     /// direction of least spread (the smallest eigenvector of their covariance), `u` the
     /// direction of most spread. An error with fewer than three points or when they lie on one
     /// line.
-    pub fn fit(points: &[DVec3]) -> Result<CPlane, String> {
+    pub fn fit(points: &[DVec3]) -> Result<CPlane, CPlaneError> {
         let points: Vec<DVec3> = points.iter().copied().filter(|p| p.is_finite()).collect();
         if points.len() < 3 {
-            return Err(format!(
-                "a plane needs three points or more, found {}",
-                points.len()
-            ));
+            return Err(CPlaneError::TooFewPoints(points.len()));
         }
         let centroid = points.iter().copied().sum::<DVec3>() / points.len() as f64;
         let mut cov = [[0.0f64; 3]; 3];
@@ -152,12 +179,11 @@ impl CPlane {
         order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
         let (middle, large) = (values[order[1]], values[order[2]]);
         if large.is_nan() || large <= 0.0 || middle <= 1e-18 * large {
-            return Err("the points lie on one line: no plane through them".into());
+            return Err(CPlaneError::OnALine);
         }
         let u = vectors[order[2]];
         let normal = vectors[order[0]];
-        CPlane::from_axes(centroid, u, normal.cross(u))
-            .ok_or_else(|| "the points lie on one line: no plane through them".into())
+        CPlane::from_axes(centroid, u, normal.cross(u)).ok_or(CPlaneError::OnALine)
     }
 
     /// The plane a graph file keeps under `plane.name`; `None` when its axes make no plane.
@@ -365,7 +391,7 @@ mod tests {
         assert!(close(p.normal, (b - a).cross(c - a).normalize()));
         assert!(!p.is_world() && p.label() == "CPlane");
         let line = CPlane::from_three_points(a, b, a + (b - a) * 2.5);
-        assert!(line.unwrap_err().contains("one line"));
+        assert_eq!(line.unwrap_err(), CPlaneError::ThreeOnALine);
         assert!(CPlane::from_three_points(a, a, c).is_err());
     }
 
@@ -401,7 +427,7 @@ mod tests {
             assert!(fit.local(*p).z.abs() < 1e-12, "{}", fit.local(*p).z);
         }
         let line: Vec<DVec3> = (0..5).map(|k| DVec3::splat(k as f64)).collect();
-        assert!(CPlane::fit(&line).unwrap_err().contains("one line"));
+        assert_eq!(CPlane::fit(&line).unwrap_err(), CPlaneError::OnALine);
         assert!(CPlane::fit(&row[..2]).is_err());
     }
 

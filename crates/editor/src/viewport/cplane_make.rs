@@ -8,7 +8,7 @@ use cnets_geometry::DVec3;
 use cnets_preview::{PickGeometry, Picks};
 use egui::{Color32, Painter, Stroke};
 
-use super::cplane::CPlane;
+use super::cplane::{CPlane, CPlaneError};
 use super::pick::Hit;
 use super::screen::ScreenMap;
 
@@ -27,7 +27,7 @@ pub enum ThreePointClick {
     /// The third point made a plane.
     Made(CPlane),
     /// The third point made no plane (the three are on one line): it was dropped, this says why.
-    Refused(String),
+    Refused(CPlaneError),
 }
 
 impl ThreePointTool {
@@ -91,7 +91,7 @@ pub fn fit_points(
     picks: &Picks,
     picked: Option<&Hit>,
     selected: &[String],
-) -> Result<(Vec<DVec3>, String), String> {
+) -> Result<(Vec<DVec3>, String), CPlaneError> {
     if let Some(hit) = picked
         && let Some(mesh) = picks.meshes.get(hit.mesh())
         && selected.contains(&mesh.node)
@@ -117,11 +117,7 @@ pub fn fit_points(
             return Ok((curves, format!("the curve of {id}")));
         }
     }
-    Err(
-        "CPlane through a curve or row: select a node whose curve is previewed, or click a \
-         vertex or face of a net to fit through its row"
-            .into(),
-    )
+    Err(CPlaneError::NothingToFit)
 }
 
 #[cfg(test)]
@@ -145,7 +141,8 @@ mod tests {
         let ThreePointClick::Refused(why) = tool.click(DVec3::X * 3.0) else {
             panic!("collinear")
         };
-        assert!(why.contains("one line"));
+        assert_eq!(why, CPlaneError::ThreeOnALine);
+        assert!(why.to_string().contains("one line"));
         assert_eq!(tool.points.len(), 2, "the first two are kept");
         let ThreePointClick::Made(plane) = tool.click(DVec3::new(1.0, 0.0, 1.0)) else {
             panic!("a plane")

@@ -56,7 +56,7 @@ use egui::{Color32, Key, Modifiers, PointerButton, Pos2, Rect, Sense, Ui};
 use crate::edit::Edit;
 use crate::preview::{Picks, PreviewStats};
 
-pub use cplane::CPlane;
+pub use cplane::{CPlane, CPlaneError};
 pub use cplane_make::ThreePointTool;
 pub use display::Display;
 pub use draw::{DrawTool, DrawnCurve};
@@ -301,10 +301,13 @@ impl Viewport {
     /// The construction plane fitted through the row of the net last clicked (when its node is
     /// selected) or the previewed curve of a selected node, and what it went through; an error
     /// saying what to select.
-    pub fn fit_cplane(&self, selected: &[String]) -> Result<(CPlane, String), String> {
+    pub fn fit_cplane(&self, selected: &[String]) -> Result<(CPlane, String), CPlaneError> {
         let (points, what) =
             cplane_make::fit_points(&self.drawn.picks, self.tools.picked.as_ref(), selected)?;
-        let plane = CPlane::fit(&points).map_err(|e| format!("CPlane through {what}: {e}"))?;
+        let plane = CPlane::fit(&points).map_err(|error| CPlaneError::Through {
+            what: what.clone(),
+            error: Box::new(error),
+        })?;
         Ok((plane, what))
     }
 
@@ -961,7 +964,7 @@ impl Viewport {
                             self.tools.tool = Tool::Select;
                         }
                         cplane_make::ThreePointClick::Refused(why) => {
-                            actions.push(ViewportAction::Message(why));
+                            actions.push(ViewportAction::Message(why.to_string()));
                         }
                     }
                 }
