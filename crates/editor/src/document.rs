@@ -18,6 +18,7 @@ use cnets_engine::file::{self, GraphMeta, LoadError, LoadOptions};
 use cnets_engine::{Graph, Registry, WireRef};
 
 use crate::cluster_ports::Renames;
+pub use crate::document_error::DocumentError;
 use crate::history::{EditKey, History};
 
 /// A document state, as the undo history keeps it.
@@ -105,7 +106,11 @@ pub fn differs(after: &Graph, before: &Graph) -> bool {
 
 /// Rebuilds the cluster of `level` from an edited subgraph: the graph around it with the cluster
 /// node's new definition (the level's own graph when the subgraph is unchanged).
-pub fn rebuild(level: &Level, graph: &Graph, meta: &GraphMeta) -> Result<(Graph, Rebuilt), String> {
+pub fn rebuild(
+    level: &Level,
+    graph: &Graph,
+    meta: &GraphMeta,
+) -> Result<(Graph, Rebuilt), DocumentError> {
     let template = &level.cluster.template;
     let same_text = file::to_ron(graph, meta) == file::to_ron(template, &level.cluster.meta);
     // The same node definitions too (a cluster inside may have been reloaded from its file).
@@ -129,11 +134,12 @@ pub fn rebuild(level: &Level, graph: &Graph, meta: &GraphMeta) -> Result<(Graph,
         meta.clone(),
         level.cluster.base_dir.clone(),
     )
-    .map_err(|e| format!("cluster '{}': {e}", level.node))?;
+    .map_err(|reason| DocumentError::Cluster {
+        node: level.node.clone(),
+        reason,
+    })?;
     let mut parent = level.graph.clone();
-    let dropped = parent
-        .replace_def(&level.node, Arc::new(cluster.node_def()))
-        .map_err(|e| e.to_string())?;
+    let dropped = parent.replace_def(&level.node, Arc::new(cluster.node_def()))?;
     // Renamed ports keep their wires and values.
     let dropped =
         Renames::between(template, graph).carry(&mut parent, &level.node, &level.graph, dropped);
@@ -276,10 +282,12 @@ impl GraphDocument {
 
     /// Saves atomically to `path` (and remembers it as the document's path). Inside a cluster,
     /// the document's own graph is saved with the cluster rebuilt from its edited subgraph.
-    pub fn save_as(&mut self, path: &Path) -> Result<(), String> {
+    pub fn save_as(&mut self, path: &Path) -> Result<(), DocumentError> {
         let (graph, meta, _) = self.compose()?;
-        file::save_file(path, &graph, &meta)
-            .map_err(|e| format!("cannot save {}: {e}", path.display()))?;
+        file::save_file(path, &graph, &meta).map_err(|error| DocumentError::Save {
+            path: path.to_path_buf(),
+            error,
+        })?;
         self.path = Some(path.to_path_buf());
         self.dirty = false;
         Ok(())
@@ -306,7 +314,7 @@ impl GraphDocument {
     }
 
     /// The document's own graph with every opened cluster rebuilt from its edited subgraph.
-    pub fn compose(&self) -> Result<(Graph, GraphMeta, Rebuilt), String> {
+    pub fn compose(&self) -> Result<(Graph, GraphMeta, Rebuilt), DocumentError> {
         let (mut graph, mut meta) = (self.graph.clone(), self.meta.clone());
         let mut last = Rebuilt::default();
         for level in self.stack.iter().rev() {
@@ -368,13 +376,13 @@ impl GraphDocument {
 
     /// Opens the cluster node `id` of the graph being edited: from now on edits apply to its
     /// subgraph. Not an undo step (undo restores where each step was made).
-    pub fn enter(&mut self, id: &str) -> Result<(), String> {
+    pub fn enter(&mut self, id: &str) -> Result<(), DocumentError> {
         let node = self
             .graph
             .node(id)
-            .ok_or_else(|| format!("no node '{id}'"))?;
+            .ok_or_else(|| DocumentError::NoNode(id.to_string()))?;
         let cluster =
-            Cluster::shared(&node.def).ok_or_else(|| format!("node '{id}' is not a cluster"))?;
+            Cluster::shared(&node.def).ok_or_else(|| DocumentError::NotACluster(id.to_string()))?;
         if self.stack.is_empty() {
             // The live copy starts as the document's graph itself: same revisions, so the worker's
             // results stay valid.
@@ -394,9 +402,9 @@ impl GraphDocument {
     /// Closes the innermost opened cluster: rebuilds it from the edited subgraph and gives the
     /// cluster node its new definition (one undo step when anything changed). Refused (staying
     /// inside) when the subgraph's interface is invalid.
-    pub fn leave(&mut self) -> Result<Rebuilt, String> {
+    pub fn leave(&mut self) -> Result<Rebuilt, DocumentError> {
         let Some(level) = self.stack.last() else {
-            return Err("not inside a cluster".into());
+            return Err(DocumentError::NotInACluster);
         };
         let (parent, rebuilt) = rebuild(level, &self.graph, &self.meta)?;
         let level = self.stack.pop().unwrap_or_else(|| unreachable!());
@@ -444,7 +452,7 @@ impl GraphDocument {
                     meta = level.meta.clone();
                 }
                 Err(e) => {
-                    self.live_error = Some(e);
+                    self.live_error = Some(e.to_string());
                     return;
                 }
             }
@@ -453,7 +461,7 @@ impl GraphDocument {
         let def = match rebuild(root, &graph, &meta) {
             Ok((g, _)) => g.node(&root.node).map(|n| n.def.clone()),
             Err(e) => {
-                self.live_error = Some(e);
+                self.live_error = Some(e.to_string());
                 return;
             }
         };
@@ -912,7 +920,8 @@ mod tests {
         .unwrap();
         assert!(doc.live_error.is_some(), "the live graph says why");
         let e = doc.leave().unwrap_err();
-        assert!(e.contains("port name"), "{e}");
+        assert!(matches!(e, DocumentError::Cluster { .. }), "{e}");
+        assert!(e.to_string().contains("port name"), "{e}");
         assert_eq!(doc.depth(), 1);
         assert!(
             doc.save_as(&dir.join("out.ron")).is_err(),

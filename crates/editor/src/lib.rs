@@ -34,6 +34,7 @@ pub mod canvas;
 pub mod clipboard;
 pub mod cluster_ports;
 pub mod document;
+pub mod document_error;
 pub mod drag_solver;
 pub mod edit;
 pub mod export;

@@ -57,7 +57,7 @@ impl EditorApp {
             Ok(()) => {
                 self.message = format!("inside cluster '{id}' — Esc or the breadcrumbs go back")
             }
-            Err(e) => self.message = e,
+            Err(e) => self.message = e.to_string(),
         }
     }
 

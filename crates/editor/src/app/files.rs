@@ -267,7 +267,7 @@ impl EditorApp {
                 self.recovery.clear();
                 self.message = format!("saved {}", path.display());
             }
-            Err(e) => self.message = e,
+            Err(e) => self.message = e.to_string(),
         }
         if !self.doc.is_dirty()
             && let Some(r) = self.modals.after_save.take()
