@@ -571,11 +571,11 @@ impl GraphDocument {
     /// (a slider drag, a node move) into a single step while the gesture lasts (see
     /// [`History::end_gesture`]). The edit runs on a copy of the graph: when it fails, nothing
     /// changes; when it succeeds but leaves the file text unchanged, no step is recorded.
-    pub fn edit<R>(
+    pub fn edit<R, E>(
         &mut self,
         key: Option<EditKey>,
-        f: impl FnOnce(&mut Graph, &mut GraphMeta) -> Result<R, String>,
-    ) -> Result<R, String> {
+        f: impl FnOnce(&mut Graph, &mut GraphMeta) -> Result<R, E>,
+    ) -> Result<R, E> {
         let before = self.snapshot();
         let mut graph = self.graph.clone();
         let mut meta = self.meta.clone();

@@ -7,11 +7,12 @@
 use std::sync::Arc;
 
 use cnets_engine::cluster::{self, Cluster, ClusterSource, explode, make_cluster};
-use cnets_engine::{Graph, GraphError, Value};
+use cnets_engine::{Graph, Value};
 use egui::Rect;
 
 use crate::clipboard::Clipboard;
 use crate::document::{GraphDocument, fresh_id};
+pub use crate::edit_error::EditError;
 use crate::history::EditKey;
 
 /// One change to the document's graph.
@@ -132,11 +133,10 @@ fn set_inputs(
     doc: &mut GraphDocument,
     key: EditKey,
     values: Vec<(String, String, Value)>,
-) -> Result<(), String> {
+) -> Result<(), EditError> {
     doc.edit(Some(key), |g, _| {
         for (node, input, value) in values {
-            g.set_value(&node, &input, value)
-                .map_err(|e| e.to_string())?;
+            g.set_value(&node, &input, value)?;
         }
         Ok(())
     })
@@ -145,9 +145,9 @@ fn set_inputs(
 /// Applies an edit to a document as one undoable step. Returns the ids of the nodes the edit
 /// created (the cluster node, the duplicates). Errors are messages for the status bar; the graph
 /// is unchanged then.
-pub fn apply(doc: &mut GraphDocument, edit: Edit) -> Result<Vec<String>, String> {
-    let err = |e: GraphError| e.to_string();
-    let none = |r: Result<(), String>| r.map(|()| Vec::new());
+pub fn apply(doc: &mut GraphDocument, edit: Edit) -> Result<Vec<String>, EditError> {
+    let err = EditError::from;
+    let none = |r: Result<(), EditError>| r.map(|()| Vec::new());
     match edit {
         Edit::Connect {
             from,
@@ -224,8 +224,10 @@ pub fn apply(doc: &mut GraphDocument, edit: Edit) -> Result<Vec<String>, String>
             let clip = Clipboard::copy(&doc.graph, &ids);
             let mut created = Vec::new();
             doc.edit(None, |g, _| {
-                created = clip.paste(g, [30.0, 30.0], true)?;
-                Ok(())
+                created = clip
+                    .paste(g, [30.0, 30.0], true)
+                    .map_err(EditError::Paste)?;
+                Ok::<_, EditError>(())
             })?;
             Ok(created)
         }
@@ -235,7 +237,7 @@ pub fn apply(doc: &mut GraphDocument, edit: Edit) -> Result<Vec<String>, String>
             Ok(vec![id])
         }
         Edit::ExplodeCluster(id) => none(doc.edit(None, |g, _| {
-            explode(g, &id).map(|_| ()).map_err(|e| e.to_string())
+            explode(g, &id).map(|_| ()).map_err(EditError::from)
         })),
         Edit::AddCurves { curves, at } => {
             let mut created = Vec::new();
@@ -268,16 +270,13 @@ pub fn apply(doc: &mut GraphDocument, edit: Edit) -> Result<Vec<String>, String>
                     created.push(points);
                     created.push(id);
                 }
-                Ok(())
+                Ok::<_, EditError>(())
             })?;
             Ok(created)
         }
         Edit::AddCPlane(plane) => none(doc.edit(None, |_, meta| {
             if meta.cplanes.iter().any(|p| p.name == plane.name) {
-                return Err(format!(
-                    "a construction plane is already called '{}'",
-                    plane.name
-                ));
+                return Err(EditError::CPlaneNameTaken(plane.name));
             }
             meta.cplanes.push(plane);
             Ok(())
@@ -292,9 +291,9 @@ fn cluster_nodes(
     nodes: &[String],
     id: &str,
     around: Option<Rect>,
-) -> Result<(), String> {
+) -> Result<(), EditError> {
     let selection: Vec<&str> = nodes.iter().map(String::as_str).collect();
-    let made = make_cluster(g, &selection, id).map_err(|e| e.to_string())?;
+    let made = make_cluster(g, &selection, id)?;
     let Some(b) = around else { return Ok(()) };
     let mut sub = made.template.clone();
     let mut order: Vec<(u64, String, bool)> = sub
@@ -314,17 +313,17 @@ fn cluster_nodes(
             k_out += 1.0;
             [b.right() + 100.0, b.top() + 190.0 * (k_out - 1.0)]
         };
-        sub.set_position(&n, at).map_err(|e| e.to_string())?;
+        sub.set_position(&n, at)?;
     }
     let laid_out = Cluster::new(
         ClusterSource::Inline,
         sub,
         made.meta.clone(),
         made.base_dir.clone(),
-    )?;
-    g.replace_def(id, Arc::new(laid_out.node_def()))
-        .map(|_| ())
-        .map_err(|e| e.to_string())
+    )
+    .map_err(EditError::Interface)?;
+    g.replace_def(id, Arc::new(laid_out.node_def()))?;
+    Ok(())
 }
 
 #[cfg(test)]
@@ -365,7 +364,8 @@ pub(crate) mod tests {
             },
         )
         .unwrap_err();
-        assert!(e.contains("type mismatch"), "{e}");
+        assert!(matches!(e, EditError::Graph(_)), "{e}");
+        assert!(e.to_string().contains("type mismatch"), "{e}");
         // len.length (number) into arc.radius would close arc -> len -> arc.
         let e = apply(
             &mut d,
@@ -378,7 +378,7 @@ pub(crate) mod tests {
             },
         )
         .unwrap_err();
-        assert!(e.contains("cycle"), "{e}");
+        assert!(e.to_string().contains("cycle"), "{e}");
         assert_eq!(d.to_ron(), before);
     }
 

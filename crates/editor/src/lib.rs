@@ -37,6 +37,7 @@ pub mod document;
 pub mod document_error;
 pub mod drag_solver;
 pub mod edit;
+pub mod edit_error;
 pub mod export;
 pub mod export_preview;
 pub mod file_dialog;

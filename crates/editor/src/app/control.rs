@@ -70,10 +70,10 @@ impl EditorApp {
     /// A scripted change to the graph and its settings, as one undo step (nothing changes when
     /// `change` fails). Designers' changes arrive as [`Edit`](crate::edit::Edit)s
     /// ([`EditorApp::edit`]); this is for the drivers and tests that set up a state.
-    pub fn edit_graph<R>(
+    pub fn edit_graph<R, E>(
         &mut self,
-        change: impl FnOnce(&mut Graph, &mut GraphMeta) -> Result<R, String>,
-    ) -> Result<R, String> {
+        change: impl FnOnce(&mut Graph, &mut GraphMeta) -> Result<R, E>,
+    ) -> Result<R, E> {
         self.doc.edit(None, change)
     }
 

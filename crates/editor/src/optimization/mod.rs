@@ -144,7 +144,7 @@ impl OptimizationPanel {
                     Some(v) => *v = variable,
                     None => setup.variables.push(variable),
                 }
-                Ok(())
+                Ok::<_, String>(())
             })?;
             return Ok(message);
         }
@@ -208,7 +208,7 @@ impl OptimizationPanel {
                 if let Some(s) = meta.optimization.as_mut() {
                     s.objective = path;
                 }
-                Ok(())
+                Ok::<_, String>(())
             })?;
             return Ok(message);
         }
@@ -239,7 +239,7 @@ impl OptimizationPanel {
                 if let Some(s) = meta.optimization.as_mut() {
                     s.penalties.push(penalty);
                 }
-                Ok(())
+                Ok::<_, String>(())
             })?;
         } else {
             self.draft.penalties.push(penalty);
@@ -266,7 +266,7 @@ impl OptimizationPanel {
         };
         doc.edit(None, |_, meta| {
             meta.optimization = Some(setup);
-            Ok(())
+            Ok::<_, String>(())
         })?;
         self.draft = Draft::default();
         Ok(true)

@@ -223,7 +223,7 @@ impl OptimizationPanel {
                     .ok_or_else(|| format!("{node}.{port} has no optimized value"))?;
                 g.set_value(node, port, value).map_err(|e| e.to_string())?;
             }
-            Ok(())
+            Ok::<_, String>(())
         })?;
         let message = format!(
             "accepted the optimized values: objective {} -> {}",

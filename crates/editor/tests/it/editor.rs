@@ -496,7 +496,7 @@ fn arrange_lays_nodes_out_without_overlaps_in_one_undo_step() {
             for id in &ids {
                 g.set_position(id, [0.0, 0.0]).map_err(|e| e.to_string())?;
             }
-            Ok(())
+            Ok::<_, String>(())
         })
         .unwrap();
     h.run_steps(3);

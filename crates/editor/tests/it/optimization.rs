@@ -193,7 +193,7 @@ fn set_run(h: &mut Harness<'static, EditorApp>, max_iter: usize, method: Method)
             let s = meta.optimization.as_mut().ok_or("no setup")?;
             s.max_iter = max_iter;
             s.method = method;
-            Ok(())
+            Ok::<_, String>(())
         })
         .unwrap();
     h.run_steps(2);
