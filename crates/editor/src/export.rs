@@ -93,7 +93,7 @@ pub fn unroller(registry: &Registry) -> Option<Arc<NodeDef>> {
                     .any(|p| p.ty != ValueType::Any && ValueType::QuadMesh.converts_to(&p.ty))
                 && d.outputs
                     .iter()
-                    .any(|p| p.hint.layer == Layer::Fabrication && p.ty == ValueType::Polyline)
+                    .any(|p| p.hint.layer == Some(Layer::Unrolled) && p.ty == ValueType::Polyline)
         })
         .cloned()
 }

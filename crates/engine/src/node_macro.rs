@@ -36,7 +36,7 @@
 /// `ctx`; add `flags(Export)` (or `Parameter`, `Import`) inside `#[node(…)]` for special nodes and
 /// `name = "Number slider"` for the name designers see. A port may carry `#[ui(…)]` after its doc
 /// comment: `widget = Slider` (a [`Widget`](crate::Widget)), `name = "…"`, `range = 0.0..=1.0`,
-/// `hard = 0.0..=1.0`, `step = 0.1`, and on outputs `layer = Support` (a
+/// `hard = 0.0..=1.0`, `step = 0.1`, and on outputs `layer = Supports` (a
 /// [`Layer`](crate::Layer)) — read by editors instead of guessing from names. A port of kind
 /// `k::Choice<E>` is a text with fixed words (a drop-down; checked when a value is set).
 #[macro_export]
@@ -63,7 +63,7 @@ macro_rules! node {
                     $( let port = port.with_default($crate::kinds::default_value::<$ikind, _>($idef)); )?
                     $( let port = port.with_hint({
                         #[allow(unused_imports)]
-                        use $crate::node::hint::{Layer::*, Role::*, Widget::*};
+                        use $crate::node::{Layer::*, Role::*, Widget::*};
                         let mut hint = $crate::node::HintBuilder::default();
                         $( hint.$ikey($ival); )*
                         hint.0
@@ -79,7 +79,7 @@ macro_rules! node {
                     );
                     $( let port = port.with_hint({
                         #[allow(unused_imports)]
-                        use $crate::node::hint::{Layer::*, Role::*, Widget::*};
+                        use $crate::node::{Layer::*, Role::*, Widget::*};
                         let mut hint = $crate::node::HintBuilder::default();
                         $( hint.$okey($oval); )*
                         hint.0

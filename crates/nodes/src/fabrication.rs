@@ -79,7 +79,7 @@ node! {
         factor: k::Number = 0.8,
     ) -> (
         /// The conical support layer (same size and wrap as the mesh).
-        #[ui(layer = Support)]
+        #[ui(layer = Supports)]
         mesh: k::QuadMesh,
     ) {
         Ok((fab::conical_support(&directrix, &mesh, &apex, factor).map_err(fab_err)?,))
@@ -100,7 +100,7 @@ node! {
         distance: k::Number = 0.1,
     ) -> (
         /// The parallel support layer.
-        #[ui(layer = Support)]
+        #[ui(layer = Supports)]
         mesh: k::QuadMesh,
     ) {
         Ok((fab::parallel_support(&directrix, &mesh, distance).map_err(fab_err)?,))
@@ -225,18 +225,18 @@ node! {
         max_length: Option<k::Number>,
     ) -> (
         /// One closed outline per strip, in the XY plane.
-        #[ui(layer = Fabrication)]
+        #[ui(layer = Unrolled)]
         outlines: k::List<k::Polyline>,
         /// Largest relative edge-length change over all quads.
         max_length_error: k::Number,
         /// The strip labels (`D0`, `D1`, … or `G0`, …).
         labels: k::List<k::Text>,
         /// Label positions (the midpoint of each strip's middle rung).
-        #[ui(layer = Fabrication)]
+        #[ui(layer = Unrolled)]
         label_points: k::List<k::Point>,
         /// Every fold line between consecutive panels of a strip, in the flat layout (two points),
         /// strip after strip.
-        #[ui(layer = Fabrication)]
+        #[ui(layer = Unrolled)]
         folds: k::List<k::Polyline>,
         /// The fold angle of every fold, in degrees, signed: mountain positive, seen from the side
         /// the panels' normals point to (the flat layout seen from +z; docs/fabrication.md).
@@ -247,7 +247,7 @@ node! {
         /// Marks in the flat layout: a tick on each long edge where a strip meets a neighbour
         /// (labelled with its name), the station lines, then the joint lines of split pieces,
         /// strip after strip.
-        #[ui(layer = Fabrication)]
+        #[ui(layer = Unrolled)]
         marks: k::List<k::Polyline>,
         /// The text of every mark: the neighbour's name (`D3`), the station (`S0`) or the joint
         /// (`D4.1 | D4.2`).
@@ -317,7 +317,7 @@ node! {
         direction: k::Choice<crate::choices::Direction> = "directrix",
     ) -> (
         /// One strip per polyline (2 × M or 2 × N quad grids).
-        #[ui(layer = Support)]
+        #[ui(layer = Supports)]
         strips: k::List<k::QuadMesh>,
     ) {
         let strips = match (directrix, layer) {
@@ -373,7 +373,7 @@ node! {
         marks: Option<k::List<k::Polyline>>,
     ) -> (
         /// The placed outlines, in input order.
-        #[ui(layer = Fabrication)]
+        #[ui(layer = Unrolled)]
         outlines: k::List<k::Polyline>,
         /// The sheet of each outline (0, 1, …).
         sheets: k::List<k::Integer>,
@@ -382,13 +382,13 @@ node! {
         /// The labels, in input order.
         labels: k::List<k::Text>,
         /// A point inside each placed outline.
-        #[ui(layer = Fabrication)]
+        #[ui(layer = Unrolled)]
         label_points: k::List<k::Point>,
         /// The fold lines on the placed outlines, in input order (empty when none were given).
-        #[ui(layer = Fabrication)]
+        #[ui(layer = Unrolled)]
         folds: k::List<k::Polyline>,
         /// The marks on the placed outlines, in input order (empty when none were given).
-        #[ui(layer = Fabrication)]
+        #[ui(layer = Unrolled)]
         marks: k::List<k::Polyline>,
     ) {
         if let Some(l) = &labels

@@ -98,8 +98,8 @@ pub fn markdown(registry: &Registry) -> String {
                     p.name,
                     p.type_name(),
                     match p.hint.layer {
-                        cnets_engine::Layer::Auto => String::new(),
-                        layer => layer.as_str().to_string(),
+                        None => String::new(),
+                        Some(layer) => layer.hint_word().to_string(),
                     },
                     p.doc.replace('|', "\\|")
                 );

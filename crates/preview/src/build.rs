@@ -8,7 +8,7 @@ use std::time::Instant;
 use web_time::Instant;
 
 use cnets_engine::value::Access;
-use cnets_engine::{Evaluator, Graph, Layer as HintLayer, PortDef, Value, ValueType};
+use cnets_engine::{Evaluator, Graph, PortDef, Value, ValueType};
 use cnets_geometry::conenet::quad_planarity;
 use cnets_geometry::fabrication::{FaceClass, face_planarity};
 use cnets_geometry::{DVec3, PolygonMesh, QuadGrid};
@@ -336,17 +336,11 @@ pub fn build_preview(graph: &Graph, eval: &Evaluator, opts: &PreviewOptions) -> 
     }
 }
 
-/// The layer an output is drawn in, from the port's declared preview layer
+/// The layer an output is drawn in: the port's declared preview layer
 /// ([`cnets_engine::PortHint::layer`]); geometry without one is a surface (curves and points
 /// find their own layers by type).
 pub fn layer_of(port: &PortDef) -> Layer {
-    match port.hint.layer {
-        HintLayer::Support => Layer::Supports,
-        HintLayer::Axes => Layer::Axes,
-        HintLayer::Apices => Layer::Apices,
-        HintLayer::Fabrication => Layer::Unrolled,
-        HintLayer::Auto => Layer::Surfaces,
-    }
+    port.hint.layer.unwrap_or(Layer::Surfaces)
 }
 
 struct Builder {

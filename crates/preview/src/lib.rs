@@ -214,23 +214,23 @@ mod tests {
     #[test]
     fn layers_by_the_ports_declared_layer_and_toggles() {
         use cnets_engine::value::{Access, ValueType};
-        use cnets_engine::{Layer as HintLayer, PortDef, PortHint};
-        let port = |name: &'static str, layer| {
+        use cnets_engine::{PortDef, PortHint};
+        let port = |name: &'static str, layer: Option<Layer>| {
             PortDef::new(name, ValueType::Point, Access::List).with_hint(PortHint {
                 layer,
                 ..PortHint::default()
             })
         };
-        assert_eq!(layer_of(&port("p", HintLayer::Apices)), Layer::Apices);
-        assert_eq!(layer_of(&port("p", HintLayer::Axes)), Layer::Axes);
-        assert_eq!(layer_of(&port("mesh", HintLayer::Support)), Layer::Supports);
+        assert_eq!(layer_of(&port("p", Some(Layer::Apices))), Layer::Apices);
+        assert_eq!(layer_of(&port("p", Some(Layer::Axes))), Layer::Axes);
         assert_eq!(
-            layer_of(&port("o", HintLayer::Fabrication)),
-            Layer::Unrolled
+            layer_of(&port("mesh", Some(Layer::Supports))),
+            Layer::Supports
         );
+        assert_eq!(layer_of(&port("o", Some(Layer::Unrolled))), Layer::Unrolled);
         // A name alone says nothing: no guessing from "apices" or "support".
-        assert_eq!(layer_of(&port("apices", HintLayer::Auto)), Layer::Surfaces);
-        assert_eq!(layer_of(&port("support", HintLayer::Auto)), Layer::Surfaces);
+        assert_eq!(layer_of(&port("apices", None)), Layer::Surfaces);
+        assert_eq!(layer_of(&port("support", None)), Layer::Surfaces);
         // Apex dots and unrolled strips are off until asked for; every other layer is on.
         let mut o = PreviewOptions::default();
         assert!(

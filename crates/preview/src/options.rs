@@ -65,84 +65,11 @@ impl DistanceSide {
     }
 }
 
-/// A toggleable group of preview geometry.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-pub enum Layer {
-    /// Meshes.
-    Surfaces,
-    /// Mesh edges.
-    Edges,
-    /// Polylines and segment sets (directrix, generatrix, …).
-    Curves,
-    /// Cone apices.
-    Apices,
-    /// Torsion-free node axes.
-    Axes,
-    /// Support layers.
-    Supports,
-    /// Other points.
-    Points,
-    /// Unrolled strips laid flat for the cutter (`pq.unroll_strips`, `fab.nest`: outlines and
-    /// label points), drawn in the XY plane far from the design: off unless asked.
-    Unrolled,
-}
+pub use cnets_engine::Layer;
 
-impl Layer {
-    /// All layers, for menus.
-    pub const ALL: [Layer; 8] = [
-        Layer::Surfaces,
-        Layer::Edges,
-        Layer::Curves,
-        Layer::Apices,
-        Layer::Axes,
-        Layer::Supports,
-        Layer::Points,
-        Layer::Unrolled,
-    ];
-
-    /// Layers off until asked for: apex dots (far from the surface, they clutter the view) and
-    /// unrolled strips (flat on the XY plane, away from the design).
-    pub const OFF_BY_DEFAULT: [Layer; 2] = [Layer::Apices, Layer::Unrolled];
-
-    /// Menu label.
-    pub fn label(self) -> &'static str {
-        match self {
-            Layer::Surfaces => "Surfaces",
-            Layer::Edges => "Edges",
-            Layer::Curves => "Curves (directrix…)",
-            Layer::Apices => "Apices",
-            Layer::Axes => "Torsion-free axes",
-            Layer::Supports => "Support layers",
-            Layer::Points => "Points",
-            Layer::Unrolled => "Unrolled strips (flat)",
-        }
-    }
-
-    /// Short name for command lines: surfaces, edges, curves, apices, axes, supports, points,
-    /// unrolled.
-    pub fn name(self) -> &'static str {
-        match self {
-            Layer::Surfaces => "surfaces",
-            Layer::Edges => "edges",
-            Layer::Curves => "curves",
-            Layer::Apices => "apices",
-            Layer::Axes => "axes",
-            Layer::Supports => "supports",
-            Layer::Points => "points",
-            Layer::Unrolled => "unrolled",
-        }
-    }
-
-    /// The layer with this short name.
-    pub fn parse(name: &str) -> Option<Layer> {
-        Layer::ALL
-            .into_iter()
-            .find(|l| l.name().eq_ignore_ascii_case(name.trim()))
-    }
-
-    fn bit(self) -> u8 {
-        1 << (self as u8)
-    }
+/// The bit of `layer` in [`PreviewOptions`]' set of shown layers.
+fn bit(layer: Layer) -> u8 {
+    1 << (layer as u8)
 }
 
 /// Display options of the viewport: colour mode and visible layers.
@@ -172,7 +99,7 @@ impl Default for PreviewOptions {
             layers: Layer::ALL
                 .iter()
                 .filter(|l| !Layer::OFF_BY_DEFAULT.contains(l))
-                .fold(0, |acc, l| acc | l.bit()),
+                .fold(0, |acc, l| acc | bit(*l)),
             planarity_limit: ToleranceMap::DEFAULT.limit.to_bits(),
         }
     }
@@ -225,15 +152,15 @@ impl PreviewOptions {
 
     /// Whether a layer is shown.
     pub fn shows(&self, layer: Layer) -> bool {
-        self.layers & layer.bit() != 0
+        self.layers & bit(layer) != 0
     }
 
     /// Shows or hides a layer.
     pub fn set(&mut self, layer: Layer, on: bool) {
         if on {
-            self.layers |= layer.bit();
+            self.layers |= bit(layer);
         } else {
-            self.layers &= !layer.bit();
+            self.layers &= !bit(layer);
         }
     }
 }

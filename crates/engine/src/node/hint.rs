@@ -7,6 +7,8 @@
 use std::borrow::Cow;
 use std::ops::RangeInclusive;
 
+use super::layer::Layer;
+
 /// The widget an editor uses for an input port's literal value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Widget {
@@ -62,35 +64,6 @@ impl Widget {
             self,
             Widget::Slider | Widget::Toggle | Widget::Choice | Widget::MapperHandles
         )
-    }
-}
-
-/// The preview layer an output's geometry is drawn in (View ▸ layers).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum Layer {
-    /// Chosen from the value's type (surfaces, curves, points).
-    #[default]
-    Auto,
-    /// A support structure (a second layer, beams, support strips).
-    Support,
-    /// Apex points.
-    Apices,
-    /// Torsion-free node axes.
-    Axes,
-    /// Flat fabrication output (unrolled strips, nested sheets): off unless asked.
-    Fabrication,
-}
-
-impl Layer {
-    /// The word used by `cnets nodes --json` and docs/nodes.md.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Layer::Auto => "auto",
-            Layer::Support => "support",
-            Layer::Apices => "apices",
-            Layer::Axes => "axes",
-            Layer::Fabrication => "fabrication",
-        }
     }
 }
 
@@ -154,8 +127,9 @@ pub struct PortHint {
     pub hard_range: Option<(f64, f64)>,
     /// The step of a drag or a slider.
     pub step: Option<f64>,
-    /// For an output: the preview layer it is drawn in.
-    pub layer: Layer,
+    /// For an output: the preview layer it is drawn in (`None`: chosen from the value's type —
+    /// surfaces, curves, points).
+    pub layer: Option<Layer>,
     /// For an output: what it means to the engine's tools ([`Role`]).
     pub role: Role,
     /// The inputs of the same node that hold this input's range (a slider's `min` and `max`),
@@ -204,9 +178,9 @@ impl HintBuilder {
         self.0.step = Some(step);
     }
 
-    /// `layer = Support`: the preview layer of an output.
+    /// `layer = Supports`: the preview layer of an output.
     pub fn layer(&mut self, layer: Layer) {
-        self.0.layer = layer;
+        self.0.layer = Some(layer);
     }
 
     /// `range_inputs = ("min", "max")`: the sibling inputs that hold this input's range.

@@ -42,8 +42,8 @@ fn hint_json(p: &PortDef) -> Json {
     if let Some(step) = h.step {
         o["step"] = json!(step);
     }
-    if h.layer != cnets_engine::Layer::Auto {
-        o["layer"] = json!(h.layer.as_str());
+    if let Some(layer) = h.layer {
+        o["layer"] = json!(layer.hint_word());
     }
     o
 }

@@ -158,16 +158,22 @@ fn designer_facing_ports_declare_their_widgets_and_layers() {
         let def = registry.get(id).unwrap();
         def.outputs[def.output_index(port).unwrap()].hint.layer
     };
-    assert_eq!(layer("cnets.conical_support", "mesh"), Layer::Support);
-    assert_eq!(layer("pq.parallel_support", "mesh"), Layer::Support);
-    assert_eq!(layer("cnets.support_strips", "strips"), Layer::Support);
-    assert_eq!(layer("cnets.torsion_free_axes", "axes"), Layer::Axes);
-    assert_eq!(layer("cnets.construct", "apices"), Layer::Apices);
-    assert_eq!(layer("pq.unroll_strips", "outlines"), Layer::Fabrication);
-    assert_eq!(layer("pq.unroll_strips", "folds"), Layer::Fabrication);
-    assert_eq!(layer("pq.unroll_strips", "marks"), Layer::Fabrication);
-    assert_eq!(layer("fab.nest", "outlines"), Layer::Fabrication);
-    assert_eq!(layer("cnets.construct", "mesh"), Layer::Auto);
+    assert_eq!(
+        layer("cnets.conical_support", "mesh"),
+        Some(Layer::Supports)
+    );
+    assert_eq!(layer("pq.parallel_support", "mesh"), Some(Layer::Supports));
+    assert_eq!(
+        layer("cnets.support_strips", "strips"),
+        Some(Layer::Supports)
+    );
+    assert_eq!(layer("cnets.torsion_free_axes", "axes"), Some(Layer::Axes));
+    assert_eq!(layer("cnets.construct", "apices"), Some(Layer::Apices));
+    assert_eq!(layer("pq.unroll_strips", "outlines"), Some(Layer::Unrolled));
+    assert_eq!(layer("pq.unroll_strips", "folds"), Some(Layer::Unrolled));
+    assert_eq!(layer("pq.unroll_strips", "marks"), Some(Layer::Unrolled));
+    assert_eq!(layer("fab.nest", "outlines"), Some(Layer::Unrolled));
+    assert_eq!(layer("cnets.construct", "mesh"), None);
     // Display names come from the nodes (Grasshopper's names where a designer expects them).
     assert_eq!(
         registry.get("param.number").unwrap().name(),
