@@ -537,7 +537,7 @@ impl EditorApp {
             },
             MenuAction::LeaveTo(depth) => self.leave_to(depth),
             MenuAction::ToggleOptimization => self.optimization.open = !self.optimization.open,
-            MenuAction::ToggleParameters => self.parameters_open = !self.parameters_open,
+            MenuAction::ToggleParameters => toggle(&mut self.panels.parameters_open),
             MenuAction::LibraryFolder => {
                 let start = self.settings.library_dir();
                 self.modals.open(super::Modal::File(FileDialog::new(

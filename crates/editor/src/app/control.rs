@@ -105,7 +105,7 @@ impl EditorApp {
 
     /// Shows or hides the parameter panel (View › Parameters).
     pub fn show_parameters(&mut self, open: bool) {
-        self.parameters_open = open;
+        self.panels.parameters_open = open;
     }
 
     /// Shows or hides the timings and the busy spinner in the status bar (snapshot tests hide

@@ -46,7 +46,7 @@ impl EditorApp {
                 preview: self.viewport.display().options,
                 depth: self.doc.depth(),
                 optimization: self.optimization.open,
-                parameters: self.parameters_open,
+                parameters: self.panels.parameters_open,
                 library: &self.library.dirs[0],
                 web: self.page.is_some(),
                 view: menus::ViewMenuState {
@@ -73,8 +73,7 @@ impl EditorApp {
         // Below a width threshold (a phone, a narrow window): the 3D view over the parameters,
         // the canvas behind a tab (crate::narrow).
         let narrow = crate::narrow::is_narrow(&ctx);
-        self.parameters_rect = None;
-        self.parameter_editors.clear();
+        self.panels.start_frame();
         egui::Panel::bottom("cnets-status").show(ui, |ui| {
             if narrow {
                 crate::narrow::status_bar(ui, &self.doc.title(), &self.message);
@@ -96,7 +95,7 @@ impl EditorApp {
                 }
                 ui.separator();
                 ui.label(&self.message);
-                if self.overlap_hint {
+                if self.fresh.overlap_hint {
                     ui.separator();
                     ui.label(OVERLAP_HINT);
                 }
@@ -119,7 +118,7 @@ impl EditorApp {
         if narrow {
             crate::narrow::panels(self, ui);
         } else {
-            if self.parameters_open {
+            if self.panels.parameters_open {
                 let actions = egui::Panel::left("cnets-parameters")
                     .resizable(true)
                     .default_size(260.0)
@@ -164,13 +163,8 @@ impl EditorApp {
             }
             None => {}
         }
-        if self.check_overlaps && self.canvas.measured(self.doc.graph.node_count()) {
-            self.check_overlaps = false;
-            self.overlap_hint = self.canvas.has_overlaps();
-        } else if self.overlap_hint && !self.canvas.has_overlaps() {
-            // The hint goes once the nodes no longer overlap (arranged, or moved apart).
-            self.overlap_hint = false;
-        }
+        self.fresh
+            .watch_overlaps(&self.canvas, self.doc.graph.node_count());
         // A path input's Browse… clicked this frame (on the canvas or in the parameter panel).
         if let Some((node, input)) = crate::widgets::take_browse_request(&ctx) {
             self.browse(&node, &input);
@@ -274,11 +268,11 @@ impl EditorApp {
 
     /// The parameter panel's contents; returns the edits made in it.
     pub(crate) fn parameters_contents(&mut self, ui: &mut Ui) -> Vec<CanvasAction> {
-        self.parameters_rect = Some(ui.clip_rect().intersect(ui.max_rect()));
+        self.panels.parameters_rect = Some(ui.clip_rect().intersect(ui.max_rect()));
         ui.heading("Parameters");
         let (actions, rects) =
             crate::parameters::show_with_rects(ui, &self.doc.graph, &self.evaluation.statuses);
-        self.parameter_editors = rects;
+        self.panels.parameter_editors = rects;
         actions
     }
 
@@ -350,7 +344,7 @@ impl EditorApp {
             self.apply_view(a);
         }
         let on_canvas = |id: &str| canvas_shown && crate::view_errors::in_view(&self.canvas, id);
-        self.view_errors_shown = crate::view_errors::hidden_failures(
+        self.panels.view_errors_shown = crate::view_errors::hidden_failures(
             &self.doc.graph,
             &self.evaluation.statuses,
             &on_canvas,

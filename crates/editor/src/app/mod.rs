@@ -14,10 +14,12 @@ mod dialogs;
 mod evaluation;
 mod exports;
 mod files;
+mod fresh_document;
 mod layout;
 mod loading;
 mod modals;
 mod net_drag;
+mod panels;
 mod queries;
 mod reads;
 mod worker;
@@ -26,10 +28,12 @@ pub use arrivals::Arrived;
 use clusters::Watching;
 use evaluation::Evaluation;
 pub use evaluation::Latency;
+pub use fresh_document::FreshDocument;
 pub use modals::{Modal, Modals};
 pub use net_drag::NetDragFigures;
 use net_drag::NetDrags;
-pub use reads::ReadPrompt;
+pub use panels::Panels;
+pub use reads::{ReadAccess, ReadPrompt};
 
 pub use files::is_example;
 pub use loading::LARGE_GRAPH_BYTES;
@@ -102,11 +106,8 @@ pub struct EditorApp {
     /// Graph files sent by `cnets-editor FILE` started while this window is open.
     inbox: Option<std::sync::mpsc::Receiver<PathBuf>>,
     last_title: String,
-    /// Check once the new document's nodes are measured whether they overlap (hint: Arrange).
-    check_overlaps: bool,
-    /// The status bar shows [`OVERLAP_HINT`]: the document opened with overlapping nodes and they
-    /// still overlap.
-    overlap_hint: bool,
+    /// The checks the document opened last still waits for (overlaps, framing on results).
+    fresh: FreshDocument,
     /// Show timings and the busy spinner in the status bar (snapshot tests turn them off: they
     /// vary from run to run).
     show_timings: bool,
@@ -130,15 +131,8 @@ pub struct EditorApp {
     watching: Watching,
     /// The optimization panel.
     optimization: OptimizationPanel,
-    /// Whether the parameter panel (View › Parameters) is shown.
-    parameters_open: bool,
-    /// The failed nodes' errors the 3D view listed in the last frame (`id: message`): those off
-    /// the canvas's view (crate::view_errors).
-    view_errors_shown: Vec<String>,
-    /// Where the parameter panel was drawn in the last frame (`None`: not shown), in points.
-    parameters_rect: Option<egui::Rect>,
-    /// Where the parameter panel drew each value editor in the last frame: (node id, rectangle).
-    parameter_editors: Vec<(String, egui::Rect)>,
+    /// The parameter panel and where the last frame drew the panels.
+    panels: Panels,
     /// The open table windows of literal lists (a node's **Edit…**).
     list_editors: ListEditors,
     /// The pointer's last position seen by [`EditorApp::raw_input`].
@@ -148,15 +142,10 @@ pub struct EditorApp {
     /// Counts the canvases made for graph levels (each gets its own view state).
     canvas_serial: u64,
     palette_was_open: bool,
-    /// Frame the canvas again once the first results of a new document are drawn (nodes grow
-    /// when their outputs get summaries).
-    refit_on_results: bool,
     /// In a web page: the requests for the page (see [`crate::page`]); `None` on the desktop.
     page: Option<crate::page::Page>,
-    /// The path input whose Browse… dialog is open (node id, input name).
-    browse_target: Option<(String, String)>,
-    /// Files whose prompt the designer declined (not asked again for this document).
-    declined_reads: Vec<PathBuf>,
+    /// What the document's reads wait on: the Browse… dialog's input, the declined prompts.
+    reads: ReadAccess,
     /// Called when a result is ready off the UI thread (requests a repaint).
     wake: Arc<dyn Fn() + Send + Sync>,
     /// The Drag net tool's drags: the one running, the one closing, where they are solved and
@@ -231,8 +220,7 @@ impl EditorApp {
             close_confirmed: false,
             inbox: None,
             last_title: String::new(),
-            check_overlaps: true,
-            overlap_hint: false,
+            fresh: FreshDocument::default(),
             show_timings: true,
             evaluation: Evaluation::new(Worker::spawn(options.wake.clone())),
             recovery,
@@ -248,19 +236,14 @@ impl EditorApp {
             optimization: OptimizationPanel::new(options.wake.clone()),
             wake: options.wake,
             net_drags: NetDrags::default(),
-            parameters_open: false,
-            parameters_rect: None,
-            parameter_editors: Vec::new(),
-            view_errors_shown: Vec::new(),
+            panels: Panels::default(),
             list_editors: ListEditors::default(),
             pointer: None,
             canvas_view: Vec::new(),
             canvas_serial: 0,
             palette_was_open: false,
-            refit_on_results: true,
             page: None,
-            browse_target: None,
-            declined_reads: Vec::new(),
+            reads: ReadAccess::default(),
         };
         if let Some(p) = app.doc.path.clone() {
             app.doc.allowed_reads = app.settings.allowed_reads(&p);
@@ -335,14 +318,12 @@ impl EditorApp {
             self.doc.allowed_reads = self.settings.allowed_reads(&p);
         }
         self.modals.remove(|m| matches!(m, Modal::ReadPrompt(_)));
-        self.declined_reads.clear();
+        self.reads.forget();
         // A new document is a new evaluation generation (fresh evaluator).
         self.doc.start_after(previous);
         self.canvas = Canvas::new();
         self.canvas_view.clear();
-        self.check_overlaps = true;
-        self.overlap_hint = false;
-        self.refit_on_results = true;
+        self.fresh.opened();
         self.evaluation.statuses.clear();
         self.viewport.reset();
         self.evaluation.pending_change = Some(Instant::now());

@@ -75,27 +75,27 @@ impl EditorApp {
 
     /// The status bar shows the hint to arrange overlapping nodes.
     pub fn overlap_hint(&self) -> bool {
-        self.overlap_hint
+        self.fresh.overlap_hint
     }
 
     /// The parameter panel (View › Parameters) is shown.
     pub fn parameters_open(&self) -> bool {
-        self.parameters_open
+        self.panels.parameters_open
     }
 
     /// The failed nodes' errors the 3D view listed in the last frame (`id: message`).
     pub fn view_errors_shown(&self) -> &[String] {
-        &self.view_errors_shown
+        &self.panels.view_errors_shown
     }
 
     /// Where the parameter panel was drawn in the last frame (`None`: not shown), in points.
     pub fn parameters_rect(&self) -> Option<egui::Rect> {
-        self.parameters_rect
+        self.panels.parameters_rect
     }
 
     /// Where the parameter panel drew each value editor in the last frame: (node id, rectangle).
     pub fn parameter_editors(&self) -> &[(String, egui::Rect)] {
-        &self.parameter_editors
+        &self.panels.parameter_editors
     }
 
     /// In a web page: its queued requests; `None` on the desktop.

@@ -23,6 +23,28 @@ pub struct ReadPrompt {
     pub folder: PathBuf,
 }
 
+/// What the document's reads are waiting on: the path input whose Browse… dialog is open and
+/// the files whose prompt the designer declined (not asked again for this document).
+#[derive(Default)]
+pub struct ReadAccess {
+    /// The path input whose Browse… dialog is open (node id, input name).
+    browse_target: Option<(String, String)>,
+    /// Files whose prompt the designer declined.
+    declined: Vec<PathBuf>,
+}
+
+impl ReadAccess {
+    /// A new document: nothing declined, no Browse… open.
+    pub fn forget(&mut self) {
+        *self = ReadAccess::default();
+    }
+
+    /// Whether the designer declined the prompt for `path`.
+    pub fn declined(&self, path: &Path) -> bool {
+        self.declined.iter().any(|p| p == path)
+    }
+}
+
 impl EditorApp {
     /// What an evaluation of the document may use ([`cnets_host::Session`], as every door makes
     /// its contexts): the folders it was allowed to read and the library folders.
@@ -69,7 +91,7 @@ impl EditorApp {
         let start = current
             .filter(|p| p.parent().is_some_and(Path::is_dir))
             .unwrap_or(base);
-        self.browse_target = Some((node.to_string(), input.to_string()));
+        self.reads.browse_target = Some((node.to_string(), input.to_string()));
         self.modals.open(super::Modal::File(FileDialog::new(
             Purpose::BrowseInput,
             &start,
@@ -80,7 +102,7 @@ impl EditorApp {
     /// graph's folder, and becomes the input's value (relative to the graph's folder when inside
     /// it), one undo step.
     pub(super) fn browsed(&mut self, path: &Path) {
-        let Some((node, input)) = self.browse_target.take() else {
+        let Some((node, input)) = self.reads.browse_target.take() else {
             return;
         };
         let base = self.doc.base_dir();
@@ -119,7 +141,7 @@ impl EditorApp {
             .filter_map(|(id, s)| {
                 Some((id.clone(), cnets_engine::files::refused_read(s.error()?)?))
             })
-            .filter(|(_, p)| !self.declined_reads.contains(p))
+            .filter(|(_, p)| !self.reads.declined(p))
             .filter(|(_, p)| !self.doc.allowed_reads.iter().any(|a| p.starts_with(a)))
             .collect();
         refused.sort();
@@ -148,7 +170,7 @@ impl EditorApp {
                 p.folder.display()
             );
         } else {
-            self.declined_reads.push(p.path);
+            self.reads.declined.push(p.path);
         }
     }
 

@@ -36,7 +36,7 @@ impl EditorApp {
     /// Takes an evaluation's results: node statuses, the scene and its figures.
     pub(super) fn take_response(&mut self, r: crate::worker::EvalResponse) {
         self.evaluation.statuses = r.statuses;
-        if r.view != self.evaluation.statuses_view || std::mem::take(&mut self.refit_on_results) {
+        if r.view != self.evaluation.statuses_view || self.fresh.take_refit() {
             // The first results of a document or of another graph level: frame it once they are
             // drawn.
             self.canvas.fit_later();
