@@ -335,12 +335,7 @@ fn a_library_graph_appears_in_the_palette_and_inserts_a_working_cluster() {
     h.run_steps(3);
     h.get_by_label("twice (cluster)").click();
     h.run_steps(3);
-    let id = h
-        .state()
-        .canvas()
-        .focused
-        .clone()
-        .expect("a node was added");
+    let id = common::focused_node(&h);
     assert_eq!(id, "twice");
     let node = h.state().doc().graph.node(&id).unwrap();
     let cluster = Cluster::of(&node.def).expect("a cluster node");

@@ -46,12 +46,7 @@ fn the_shipped_library_is_listed_in_the_palette_and_inserts() {
     h.run_steps(3);
     h.get_by_label("closed-tube (cluster)").click();
     h.run_steps(3);
-    let id = h
-        .state()
-        .canvas()
-        .focused
-        .clone()
-        .expect("a node was added");
+    let id = common::focused_node(&h);
     let node = h.state().doc().graph.node(&id).expect("the node");
     let cluster = Cluster::of(&node.def).expect("a cluster node");
     assert_eq!(cluster.label(), "closed-tube.ron");

@@ -187,6 +187,16 @@ fn tube(name: &str) -> Harness<'static, EditorApp> {
     h
 }
 
+/// The run that ended, with its outcome (the test fails when none ended or it failed).
+fn finished_run(app: &EditorApp) -> &cnets_editor::optimization::Finished {
+    app.optimization()
+        .result
+        .as_ref()
+        .expect("a run ended")
+        .as_ref()
+        .expect("the run succeeded")
+}
+
 fn set_run(h: &mut Harness<'static, EditorApp>, max_iter: usize, method: Method) {
     h.state_mut()
         .edit_graph(|_, meta| {
@@ -226,13 +236,7 @@ fn a_run_plots_the_objective_going_down_and_accept_is_one_undo_step() {
         "the objective decreased: {first} -> {last}"
     );
     assert!(its.windows(2).all(|w| w[1].evaluations > w[0].evaluations));
-    let finished = app
-        .optimization()
-        .result
-        .as_ref()
-        .unwrap()
-        .as_ref()
-        .unwrap();
+    let finished = finished_run(app);
     assert_eq!(finished.outcome.stop, Stop::MaxIterations);
     assert_eq!(
         app.doc().to_ron(),
@@ -292,13 +296,7 @@ fn stop_cancels_a_run_and_revert_leaves_the_document_alone() {
     );
     h.run_steps(2);
     let app = h.state();
-    let finished = app
-        .optimization()
-        .result
-        .as_ref()
-        .unwrap()
-        .as_ref()
-        .unwrap();
+    let finished = finished_run(app);
     assert_eq!(finished.outcome.stop, Stop::Cancelled);
     assert!(finished.outcome.iterations < 1_000_000);
     h.get_by_label("Revert").click();

@@ -94,6 +94,15 @@ pub fn harness_on(
     build(config, file, examples_dir)
 }
 
+/// The node the canvas focused (the one a palette pick just added).
+pub fn focused_node(h: &Harness<'static, EditorApp>) -> String {
+    h.state()
+        .canvas()
+        .focused
+        .clone()
+        .expect("a node was added")
+}
+
 /// Runs frames until the worker has answered and the UI is idle.
 pub fn settle(h: &mut Harness<'static, EditorApp>) {
     for _ in 0..5 {
